@@ -1,0 +1,542 @@
+//! A convex polyhedron as the intersection of half-spaces.
+//!
+//! Built by clipping: start from a large box and cut it by every facet plane in turn (each face
+//! polygon clipped Sutherland–Hodgman style, the cut closed by a new face made of the crossing
+//! points). Vertices are then welded, each facet gets an ordered outward polygon, and edges get
+//! the two facets they separate. Problems are reported, never hidden: a plane that never touches
+//! the solid, duplicate planes, an unbounded or empty solid.
+
+use super::{FacetPlane, Plane, DVec3, EPS, WELD};
+use crate::error::{Error, Result};
+use serde::Serialize;
+
+/// Half-size of the starting box; anything still touching it is unbounded.
+const BOX: f64 = 1.0e3;
+
+/// One facet of a [`Polyhedron`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Facet {
+    /// Plane with outward unit normal.
+    pub plane: Plane,
+    /// Facet name.
+    pub name: String,
+    /// Tier (kind) of the facet.
+    pub tier: String,
+    /// Indices into [`Polyhedron::vertices`], counter-clockwise seen from outside.
+    pub vertices: Vec<usize>,
+    /// Area of the facet polygon.
+    pub area: f64,
+    /// Area centroid of the facet polygon.
+    pub centroid: DVec3,
+}
+
+/// An edge between two facets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Edge {
+    /// First vertex (index).
+    pub a: usize,
+    /// Second vertex (index).
+    pub b: usize,
+    /// The facet whose polygon runs a→b, and the facet whose polygon runs b→a.
+    pub facets: [usize; 2],
+}
+
+/// A bounded convex polyhedron with derived vertices, facet polygons and adjacency.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Polyhedron {
+    /// Welded vertices.
+    pub vertices: Vec<DVec3>,
+    /// Facets, in the order of the planes given (every plane becomes one facet).
+    pub facets: Vec<Facet>,
+    /// Every edge once.
+    pub edges: Vec<Edge>,
+}
+
+/// A face during construction: its plane index (`None` for the starting box) and polygon.
+struct Face {
+    source: Option<usize>,
+    normal: DVec3,
+    poly: Vec<DVec3>,
+}
+
+fn box_faces() -> Vec<Face> {
+    let b = BOX;
+    let c = |x: f64, y: f64, z: f64| DVec3::new(x * b, y * b, z * b);
+    // Each face counter-clockwise seen from outside.
+    let quads: [(DVec3, [DVec3; 4]); 6] = [
+        (DVec3::X, [c(1., -1., -1.), c(1., 1., -1.), c(1., 1., 1.), c(1., -1., 1.)]),
+        (DVec3::NEG_X, [c(-1., -1., -1.), c(-1., -1., 1.), c(-1., 1., 1.), c(-1., 1., -1.)]),
+        (DVec3::Y, [c(-1., 1., -1.), c(-1., 1., 1.), c(1., 1., 1.), c(1., 1., -1.)]),
+        (DVec3::NEG_Y, [c(-1., -1., -1.), c(1., -1., -1.), c(1., -1., 1.), c(-1., -1., 1.)]),
+        (DVec3::Z, [c(-1., -1., 1.), c(1., -1., 1.), c(1., 1., 1.), c(-1., 1., 1.)]),
+        (DVec3::NEG_Z, [c(-1., -1., -1.), c(-1., 1., -1.), c(1., 1., -1.), c(1., -1., -1.)]),
+    ];
+    quads.iter().map(|(n, q)| Face { source: None, normal: *n, poly: q.to_vec() }).collect()
+}
+
+/// Point where segment p→q crosses the plane; computed in a canonical endpoint order so that the
+/// two faces sharing an edge get the same bits.
+fn crossing(plane: &Plane, p: DVec3, q: DVec3) -> DVec3 {
+    let (a, b) = if (p.x, p.y, p.z) < (q.x, q.y, q.z) { (p, q) } else { (q, p) };
+    let (da, db) = (plane.distance(a), plane.distance(b));
+    let t = da / (da - db);
+    a + (b - a) * t
+}
+
+/// Order points lying on a plane with normal `n` counter-clockwise seen from outside, dropping
+/// near-duplicates.
+pub(crate) fn order_on_plane(n: DVec3, pts: &mut Vec<DVec3>) {
+    if pts.is_empty() {
+        return;
+    }
+    let c = pts.iter().copied().sum::<DVec3>() / pts.len() as f64;
+    let u = n.any_orthonormal_vector();
+    let v = n.cross(u);
+    pts.sort_by(|p, q| {
+        let (a, b) = (*p - c, *q - c);
+        let ta = a.dot(v).atan2(a.dot(u));
+        let tb = b.dot(v).atan2(b.dot(u));
+        ta.total_cmp(&tb)
+    });
+    let mut out: Vec<DVec3> = Vec::with_capacity(pts.len());
+    for p in pts.drain(..) {
+        if out.last().is_none_or(|l: &DVec3| l.distance(p) > WELD) {
+            out.push(p);
+        }
+    }
+    while out.len() > 1 && out[0].distance(*out.last().unwrap()) <= WELD {
+        out.pop();
+    }
+    *pts = out;
+}
+
+/// Area vector (normal × area) of a closed polygon.
+fn area_vector(poly: &[DVec3]) -> DVec3 {
+    let mut s = DVec3::ZERO;
+    for i in 0..poly.len() {
+        s += poly[i].cross(poly[(i + 1) % poly.len()]);
+    }
+    0.5 * s
+}
+
+/// Area centroid of a planar polygon.
+fn polygon_centroid(poly: &[DVec3], n: DVec3) -> DVec3 {
+    let o = poly[0];
+    let mut acc = DVec3::ZERO;
+    let mut total = 0.0;
+    for i in 1..poly.len().saturating_sub(1) {
+        let (b, c) = (poly[i], poly[i + 1]);
+        let a = 0.5 * (b - o).cross(c - o).dot(n);
+        acc += a * (o + b + c) / 3.0;
+        total += a;
+    }
+    if total.abs() > 0.0 {
+        acc / total
+    } else {
+        poly.iter().copied().sum::<DVec3>() / poly.len() as f64
+    }
+}
+
+/// Cut the faces by one plane (index `k`). Returns whether the plane cut anything off.
+fn clip(faces: &mut Vec<Face>, plane: &Plane, k: usize) -> bool {
+    let mut cap: Vec<DVec3> = Vec::new();
+    let mut cut = false;
+    let mut kept = Vec::with_capacity(faces.len() + 1);
+    for face in faces.drain(..) {
+        let d: Vec<f64> = face.poly.iter().map(|p| plane.distance(*p)).collect();
+        let max = d.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let min = d.iter().copied().fold(f64::INFINITY, f64::min);
+        if max > EPS {
+            cut = true;
+        }
+        if max <= EPS {
+            for (p, &di) in face.poly.iter().zip(&d) {
+                if di.abs() <= EPS {
+                    cap.push(*p);
+                }
+            }
+            kept.push(face);
+            continue;
+        }
+        if min >= -EPS {
+            // Entirely outside (or lying in the plane): dropped.
+            for (p, &di) in face.poly.iter().zip(&d) {
+                if di.abs() <= EPS {
+                    cap.push(*p);
+                }
+            }
+            continue;
+        }
+        let n = face.poly.len();
+        let mut out = Vec::with_capacity(n + 2);
+        for i in 0..n {
+            let (p, q) = (face.poly[i], face.poly[(i + 1) % n]);
+            let (dp, dq) = (d[i], d[(i + 1) % n]);
+            let p_in = dp <= EPS;
+            if p_in {
+                out.push(p);
+                if dp.abs() <= EPS {
+                    cap.push(p);
+                }
+            }
+            if (dp < -EPS && dq > EPS) || (dp > EPS && dq < -EPS) {
+                let x = crossing(plane, p, q);
+                out.push(x);
+                cap.push(x);
+            }
+        }
+        if out.len() >= 3 {
+            kept.push(Face { source: face.source, normal: face.normal, poly: out });
+        }
+    }
+    if cut {
+        order_on_plane(plane.normal, &mut cap);
+        if cap.len() >= 3 {
+            kept.push(Face { source: Some(k), normal: plane.normal, poly: cap });
+        }
+    }
+    *faces = kept;
+    cut
+}
+
+impl Polyhedron {
+    /// Intersect the half-spaces of `planes`. Every plane must end up as a facet of positive
+    /// area; the solid must be bounded and non-empty; no two planes may coincide.
+    pub fn from_planes(planes: &[FacetPlane]) -> Result<Polyhedron> {
+        if planes.len() < 4 {
+            return Err(Error::Geometry(format!(
+                "a solid needs at least 4 facet planes, got {}",
+                planes.len()
+            )));
+        }
+        for (i, fp) in planes.iter().enumerate() {
+            let p = &fp.plane;
+            if !(p.normal.is_finite() && p.offset.is_finite()) || (p.normal.length() - 1.0).abs() > 1e-6 {
+                return Err(Error::Geometry(format!(
+                    "facet {} ({}) has no valid plane (normal must be finite and non-zero, offset finite)",
+                    i + 1,
+                    fp.name
+                )));
+            }
+            for (j, other) in planes.iter().enumerate().take(i) {
+                let q = &other.plane;
+                if p.normal.distance(q.normal) < 1e-9 && (p.offset - q.offset).abs() < 1e-9 {
+                    return Err(Error::Geometry(format!(
+                        "facets {} ({}) and {} ({}) are the same plane",
+                        j + 1,
+                        other.name,
+                        i + 1,
+                        fp.name
+                    )));
+                }
+            }
+        }
+        let mut faces = box_faces();
+        for (k, fp) in planes.iter().enumerate() {
+            clip(&mut faces, &fp.plane, k);
+            if faces.is_empty() {
+                return Err(Error::Geometry(format!(
+                    "the solid is empty: facet {} ({}) cuts away everything left",
+                    k + 1,
+                    fp.name
+                )));
+            }
+        }
+        if faces.iter().any(|f| f.source.is_none()) {
+            return Err(Error::Geometry(
+                "the solid is unbounded: the facet planes do not enclose a finite volume".into(),
+            ));
+        }
+        // Weld vertices.
+        let mut vertices: Vec<DVec3> = Vec::new();
+        let index_of = |p: DVec3, vertices: &mut Vec<DVec3>| -> usize {
+            if let Some(i) = vertices.iter().position(|v| v.distance(p) <= WELD) {
+                i
+            } else {
+                vertices.push(p);
+                vertices.len() - 1
+            }
+        };
+        let mut polys: Vec<Option<Vec<usize>>> = vec![None; planes.len()];
+        for face in &faces {
+            let mut idx: Vec<usize> = Vec::with_capacity(face.poly.len());
+            for p in &face.poly {
+                let i = index_of(*p, &mut vertices);
+                if idx.last() != Some(&i) {
+                    idx.push(i);
+                }
+            }
+            while idx.len() > 1 && idx.first() == idx.last() {
+                idx.pop();
+            }
+            let src = face.source.expect("box faces rejected above");
+            if idx.len() >= 3 {
+                polys[src] = Some(idx);
+            }
+        }
+        let mut facets = Vec::with_capacity(planes.len());
+        for (k, fp) in planes.iter().enumerate() {
+            let Some(idx) = polys[k].take() else {
+                return Err(Error::Geometry(format!(
+                    "facet {} ({}, tier {}) never touches the solid: its plane lies outside the other facets",
+                    k + 1,
+                    fp.name,
+                    fp.tier
+                )));
+            };
+            let poly: Vec<DVec3> = idx.iter().map(|&i| vertices[i]).collect();
+            let area = area_vector(&poly).dot(fp.plane.normal);
+            if area <= 1e-12 {
+                return Err(Error::Geometry(format!(
+                    "facet {} ({}, tier {}) touches the solid only in an edge or a point",
+                    k + 1,
+                    fp.name,
+                    fp.tier
+                )));
+            }
+            let centroid = polygon_centroid(&poly, fp.plane.normal);
+            facets.push(Facet {
+                plane: fp.plane,
+                name: fp.name.clone(),
+                tier: fp.tier.clone(),
+                vertices: idx,
+                area,
+                centroid,
+            });
+        }
+        let edges = build_edges(&facets)?;
+        Ok(Polyhedron { vertices, facets, edges })
+    }
+
+    /// The facet planes of this solid (the input of [`Polyhedron::from_planes`]).
+    pub fn facet_planes(&self) -> Vec<FacetPlane> {
+        self.facets
+            .iter()
+            .map(|f| FacetPlane { plane: f.plane, name: f.name.clone(), tier: f.tier.clone() })
+            .collect()
+    }
+
+    /// The polygon of facet `i` as points, counter-clockwise seen from outside.
+    pub fn facet_polygon(&self, i: usize) -> Vec<DVec3> {
+        self.facets[i].vertices.iter().map(|&v| self.vertices[v]).collect()
+    }
+
+    /// Volume (girdle diameters cubed).
+    pub fn volume(&self) -> f64 {
+        self.facets.iter().map(|f| f.area * f.plane.offset).sum::<f64>() / 3.0
+    }
+
+    /// Total surface area.
+    pub fn surface_area(&self) -> f64 {
+        self.facets.iter().map(|f| f.area).sum()
+    }
+
+    /// Area of the solid's shadow on a plane perpendicular to `dir` (any length).
+    pub fn projected_area(&self, dir: DVec3) -> f64 {
+        let u = dir.normalize();
+        self.facets.iter().map(|f| (f.area * f.plane.normal.dot(u)).max(0.0)).sum()
+    }
+
+    /// Axis-aligned bounding box (min, max).
+    pub fn bounding_box(&self) -> (DVec3, DVec3) {
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for v in &self.vertices {
+            lo = lo.min(*v);
+            hi = hi.max(*v);
+        }
+        (lo, hi)
+    }
+
+    /// Centroid of the solid's volume.
+    pub fn centroid(&self) -> DVec3 {
+        let o = self.vertices.iter().copied().sum::<DVec3>() / self.vertices.len() as f64;
+        let mut acc = DVec3::ZERO;
+        let mut vol = 0.0;
+        for i in 0..self.facets.len() {
+            let p = self.facet_polygon(i);
+            for i in 1..p.len() - 1 {
+                let v = (p[0] - o).dot((p[i] - o).cross(p[i + 1] - o)) / 6.0;
+                acc += v * (o + p[0] + p[i] + p[i + 1]) / 4.0;
+                vol += v;
+            }
+        }
+        acc / vol
+    }
+
+    /// Whether `p` is inside or on the solid, within `tol`.
+    pub fn contains(&self, p: DVec3, tol: f64) -> bool {
+        self.facets.iter().all(|f| f.plane.distance(p) <= tol)
+    }
+
+    /// Indices of the facets sharing an edge with facet `i`.
+    pub fn neighbors(&self, i: usize) -> Vec<usize> {
+        let mut out: Vec<usize> = self
+            .edges
+            .iter()
+            .filter_map(|e| {
+                if e.facets[0] == i {
+                    Some(e.facets[1])
+                } else if e.facets[1] == i {
+                    Some(e.facets[0])
+                } else {
+                    None
+                }
+            })
+            .collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// Largest distance of any vertex from the z axis (half the girdle outline's width for a
+    /// centred stone).
+    pub fn max_radius(&self) -> f64 {
+        self.vertices.iter().map(|v| v.truncate().length()).fold(0.0, f64::max)
+    }
+
+    /// The same solid scaled by `s` about the origin.
+    pub fn scaled(&self, s: f64) -> Polyhedron {
+        let mut out = self.clone();
+        for v in &mut out.vertices {
+            *v *= s;
+        }
+        for f in &mut out.facets {
+            f.plane.offset *= s;
+            f.area *= s * s;
+            f.centroid *= s;
+        }
+        out
+    }
+}
+
+fn build_edges(facets: &[Facet]) -> Result<Vec<Edge>> {
+    use std::collections::HashMap;
+    let mut half: HashMap<(usize, usize), usize> = HashMap::new();
+    for (fi, f) in facets.iter().enumerate() {
+        let n = f.vertices.len();
+        for i in 0..n {
+            half.insert((f.vertices[i], f.vertices[(i + 1) % n]), fi);
+        }
+    }
+    let mut edges = Vec::new();
+    for (&(a, b), &f0) in &half {
+        if a < b {
+            let Some(&f1) = half.get(&(b, a)) else {
+                return Err(Error::Geometry(format!(
+                    "facet {} has an edge no other facet shares (numerically degenerate solid)",
+                    facets[f0].name
+                )));
+            };
+            edges.push(Edge { a, b, facets: [f0, f1] });
+        }
+    }
+    for (&(a, b), &f0) in &half {
+        if a > b && !half.contains_key(&(b, a)) {
+            return Err(Error::Geometry(format!(
+                "facet {} has an edge no other facet shares (numerically degenerate solid)",
+                facets[f0].name
+            )));
+        }
+    }
+    edges.sort_by_key(|e| (e.a, e.b));
+    Ok(edges)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cube(h: f64) -> Vec<FacetPlane> {
+        [DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z]
+            .iter()
+            .enumerate()
+            .map(|(i, n)| FacetPlane::new(*n, h, format!("f{i}"), "side"))
+            .collect()
+    }
+
+    #[test]
+    fn cube_volume_area_topology() {
+        let p = Polyhedron::from_planes(&cube(0.5)).unwrap();
+        assert_eq!(p.vertices.len(), 8);
+        assert_eq!(p.edges.len(), 12);
+        assert!((p.volume() - 1.0).abs() < 1e-12);
+        assert!((p.surface_area() - 6.0).abs() < 1e-12);
+        assert!((p.projected_area(DVec3::new(1.0, 1.0, 1.0)) - 3f64.sqrt()).abs() < 1e-12);
+        for f in &p.facets {
+            assert_eq!(f.vertices.len(), 4);
+            assert_eq!(p.neighbors(p.facets.iter().position(|g| g == f).unwrap()).len(), 4);
+        }
+        assert!(p.centroid().length() < 1e-12);
+    }
+
+    #[test]
+    fn octahedron_euler_and_volume() {
+        let mut planes = Vec::new();
+        for sx in [-1.0, 1.0] {
+            for sy in [-1.0, 1.0] {
+                for sz in [-1.0, 1.0] {
+                    planes.push(FacetPlane::new(DVec3::new(sx, sy, sz), 1.0, "o", "o"));
+                }
+            }
+        }
+        for (i, p) in planes.iter_mut().enumerate() {
+            p.name = format!("o{i}");
+        }
+        let p = Polyhedron::from_planes(&planes).unwrap();
+        // |x|+|y|+|z| <= 1: volume 4/3, 6 vertices, 12 edges.
+        assert_eq!(p.vertices.len(), 6);
+        assert_eq!(p.edges.len(), 12);
+        assert!((p.volume() - 4.0 / 3.0).abs() < 1e-12);
+        assert_eq!(p.vertices.len() + p.facets.len(), p.edges.len() + 2);
+    }
+
+    #[test]
+    fn reports_redundant_unbounded_duplicate_empty() {
+        let mut planes = cube(0.5);
+        planes.push(FacetPlane::new(DVec3::new(1.0, 1.0, 0.0), 5.0, "far", "x"));
+        let e = Polyhedron::from_planes(&planes).unwrap_err().to_string();
+        assert!(e.contains("far") && e.contains("never touches"), "{e}");
+
+        let planes = cube(0.5)[..5].to_vec();
+        let e = Polyhedron::from_planes(&planes).unwrap_err().to_string();
+        assert!(e.contains("unbounded"), "{e}");
+
+        let mut planes = cube(0.5);
+        planes.push(planes[2].clone());
+        let e = Polyhedron::from_planes(&planes).unwrap_err().to_string();
+        assert!(e.contains("same plane"), "{e}");
+
+        let mut planes = cube(0.5);
+        planes.push(FacetPlane::new(DVec3::Z, -0.7, "below", "x"));
+        let e = Polyhedron::from_planes(&planes).unwrap_err().to_string();
+        assert!(e.contains("empty"), "{e}");
+    }
+
+    #[test]
+    fn plane_through_a_vertex_only_is_reported() {
+        let mut planes = cube(0.5);
+        planes.push(FacetPlane::new(DVec3::new(1.0, 1.0, 1.0), 1.5, "corner", "x"));
+        let e = Polyhedron::from_planes(&planes).unwrap_err().to_string();
+        assert!(e.contains("corner"), "{e}");
+    }
+
+    #[test]
+    fn truncated_cube_facets_are_outward_and_ccw() {
+        let mut planes = cube(0.5);
+        planes.push(FacetPlane::new(DVec3::new(1.0, 1.0, 1.0), 1.2, "corner", "x"));
+        let p = Polyhedron::from_planes(&planes).unwrap();
+        assert_eq!(p.facets.len(), 7);
+        for (i, f) in p.facets.iter().enumerate() {
+            let poly = p.facet_polygon(i);
+            assert!(area_vector(&poly).dot(f.plane.normal) > 0.0);
+            for v in &poly {
+                assert!(f.plane.distance(*v).abs() < 1e-9);
+            }
+        }
+        // Cube minus the corner tetrahedron with legs 0.3.
+        let legs: f64 = 1.5 - 1.2;
+        assert!((p.volume() - (1.0 - legs.powi(3) / 6.0)).abs() < 1e-12);
+        assert_eq!(p.vertices.len() + p.facets.len(), p.edges.len() + 2);
+    }
+}
