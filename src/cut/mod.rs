@@ -244,6 +244,11 @@ mod tests {
             assert_eq!(c.solid.facets.len(), 57 + n as usize);
         }
         let mut v = BTreeMap::new();
+        v.insert("girdle".to_string(), 0.0);
+        let knife = Cut::from_family("r", "round-brilliant", &v).unwrap();
+        assert_eq!(knife.solid.facets.len(), 57);
+        assert!(knife.proportions().girdle.abs() < 1e-12);
+        let mut v = BTreeMap::new();
         v.insert("girdle_facets".to_string(), 20.0);
         assert!(Cut::from_family("r", "round-brilliant", &v).is_err());
     }

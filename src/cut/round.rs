@@ -9,7 +9,7 @@
 //! (1 − lower_half)·R and the girdle point at the ridge's azimuth. The girdle: with
 //! `girdle_facets = 0`, 16 flat facets whose corners are the 16 points (the outline touches the
 //! circle there only); with N = 16, 32, 64, … N vertical facets tangent to the circle at
-//! azimuths k·360°/N.
+//! azimuths k·360°/N. A girdle of thickness 0 is a knife edge: no girdle facets at all.
 
 use super::{Family, ParamDef, Params, Unit};
 use crate::error::{Error, Result};
@@ -89,7 +89,9 @@ pub(crate) fn build(p: &Params) -> Result<Vec<FacetPlane>> {
         let ridge = 22.5 * (2 * (k / 2) + 1) as f64;
         out.push(FacetPlane::new(n, n.dot(at(R, ridge, zg)), format!("upper-half-{}", k + 1), "upper-half"));
     }
-    girdle(&mut out, nf);
+    if g > 0.0 {
+        girdle(&mut out, nf);
+    }
     for k in 0..8 {
         let az = 45.0 * k as f64;
         let n = facet_normal(pav, az, false);

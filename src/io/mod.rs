@@ -1,0 +1,46 @@
+//! Files: TOML cut specs, bundled presets, and safe (atomic) writing of outputs.
+
+pub mod presets;
+pub mod spec;
+
+use crate::error::{Error, Result};
+use std::path::Path;
+
+/// Write `bytes` to `path` atomically: write a temporary file beside it, then rename, so a
+/// failure never leaves a half-written output behind.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let shown = path.display().to_string();
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
+    };
+    if !dir.is_dir() {
+        return Err(Error::io(&shown, format!("folder {} does not exist", dir.display())));
+    }
+    let file = path.file_name().ok_or_else(|| Error::io(&shown, "not a file name"))?;
+    let tmp = dir.join(format!(".{}.tmp-{}", file.to_string_lossy(), std::process::id()));
+    std::fs::write(&tmp, bytes).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        Error::io(&shown, e)
+    })?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        Error::io(&shown, e)
+    })
+}
+
+/// Read a whole file; the error names the file.
+pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|e| {
+        let msg = match e.kind() {
+            std::io::ErrorKind::NotFound => "no such file".to_string(),
+            _ => e.to_string(),
+        };
+        Error::io(path.display().to_string(), msg)
+    })
+}
+
+/// 1-based line number of byte offset `pos` in `text`.
+pub fn line_of(text: &str, pos: usize) -> usize {
+    text.as_bytes()[..pos.min(text.len())].iter().filter(|&&b| b == b'\n').count() + 1
+}
