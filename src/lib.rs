@@ -8,5 +8,6 @@ pub mod error;
 pub mod cut;
 pub mod geometry;
 pub mod io;
+pub mod optics;
 
 pub use error::{Error, Result};

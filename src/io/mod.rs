@@ -44,3 +44,32 @@ pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
 pub fn line_of(text: &str, pos: usize) -> usize {
     text.as_bytes()[..pos.min(text.len())].iter().filter(|&&b| b == b'\n').count() + 1
 }
+
+/// Load a cut from a command-line argument: a preset name (see [`presets::names`]) or a path
+/// to a `.toml` spec, a GemCad `.asc`, or an `.obj`/`.stl` mesh (convex hull).
+pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
+    let path = Path::new(arg);
+    let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let stem = path.file_stem().map(|s| s.to_string_lossy().to_string()).unwrap_or_else(|| arg.to_string());
+    match ext.as_deref() {
+        Some("toml") => {
+            let bytes = read_bytes(path)?;
+            let text = String::from_utf8_lossy(&bytes);
+            spec::parse(&text, arg)?.to_cut(&stem, arg)
+        }
+        Some(other) if path.exists() || other.len() <= 4 => Err(Error::invalid(
+            arg,
+            format!("unknown file type `.{other}`; CUT is a preset ({}) or a .toml, .asc, .obj or .stl file", presets::names().join(", ")),
+        )),
+        _ => match presets::load(arg) {
+            Some(cut) => cut,
+            None => Err(Error::invalid(
+                arg,
+                format!(
+                    "unknown preset; presets: {}; or give a path to a .toml, .asc, .obj or .stl file",
+                    presets::names().join(", ")
+                ),
+            )),
+        },
+    }
+}
