@@ -30,7 +30,11 @@ impl Family {
             if self.param(k).is_none() {
                 return Err(Error::invalid(
                     k.as_str(),
-                    format!("unknown parameter for {}; allowed: {}", self.name, self.keys().join(", ")),
+                    format!(
+                        "unknown parameter for {}; allowed: {}",
+                        self.name,
+                        self.keys().join(", ")
+                    ),
                 ));
             }
         }
@@ -59,6 +63,9 @@ pub fn families() -> &'static [Family] {
 pub fn family(name: &str) -> Result<&'static Family> {
     FAMILIES.iter().find(|f| f.name == name).ok_or_else(|| {
         let names: Vec<&str> = FAMILIES.iter().map(|f| f.name).collect();
-        Error::invalid("family", format!("unknown family `{name}`; known: {}", names.join(", ")))
+        Error::invalid(
+            "family",
+            format!("unknown family `{name}`; known: {}", names.join(", ")),
+        )
     })
 }

@@ -74,12 +74,23 @@ pub fn tiers(s: &Polyhedron) -> Vec<TierSummary> {
     for f in &s.facets {
         let a = facet_angle_deg(f.plane.normal);
         let side = side_of(f.plane.normal.z);
-        match out.iter_mut().find(|(t, _)| t.name == f.tier && t.side == side) {
+        match out
+            .iter_mut()
+            .find(|(t, _)| t.name == f.tier && t.side == side)
+        {
             Some((t, sum)) => {
                 t.count += 1;
                 *sum += a;
             }
-            None => out.push((TierSummary { name: f.tier.clone(), angle: 0.0, count: 1, side }, a)),
+            None => out.push((
+                TierSummary {
+                    name: f.tier.clone(),
+                    angle: 0.0,
+                    count: 1,
+                    side,
+                },
+                a,
+            )),
         }
     }
     out.into_iter()
@@ -125,7 +136,11 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
             .filter(|v| v.truncate().length() > r - 1e-9)
             .map(|v| v.z)
             .fold(0.0, |a, b| a + b)
-            / s.vertices.iter().filter(|v| v.truncate().length() > r - 1e-9).count().max(1) as f64;
+            / s.vertices
+                .iter()
+                .filter(|v| v.truncate().length() > r - 1e-9)
+                .count()
+                .max(1) as f64;
         (z, z)
     } else {
         (
@@ -142,15 +157,19 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
         let zmax = zs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let zmin = zs.iter().copied().fold(f64::INFINITY, f64::min);
         match side_of(f.plane.normal.z) {
-            "crown" if f.plane.normal.z < 1.0 - 1e-9 && zmin <= g_top + tol => {
-                if best_crown.as_ref().is_none_or(|(_, z)| zmax > *z + tol) {
-                    best_crown = Some((f.tier.clone(), zmax));
-                }
+            "crown"
+                if f.plane.normal.z < 1.0 - 1e-9
+                    && zmin <= g_top + tol
+                    && best_crown.as_ref().is_none_or(|(_, z)| zmax > *z + tol) =>
+            {
+                best_crown = Some((f.tier.clone(), zmax));
             }
-            "pavilion" if f.plane.normal.z > -1.0 + 1e-9 && zmax >= g_bot - tol => {
-                if best_pav.as_ref().is_none_or(|(_, z)| zmin < *z - tol) {
-                    best_pav = Some((f.tier.clone(), zmin));
-                }
+            "pavilion"
+                if f.plane.normal.z > -1.0 + 1e-9
+                    && zmax >= g_bot - tol
+                    && best_pav.as_ref().is_none_or(|(_, z)| zmin < *z - tol) =>
+            {
+                best_pav = Some((f.tier.clone(), zmin));
             }
             _ => {}
         }

@@ -8,7 +8,10 @@ use crate::error::Result;
 /// (name, TOML text) of every bundled preset.
 pub const PRESETS: &[(&str, &str)] = &[
     ("tolkowsky", include_str!("../../cuts/tolkowsky.toml")),
-    ("gia-reference", include_str!("../../cuts/gia-reference.toml")),
+    (
+        "gia-reference",
+        include_str!("../../cuts/gia-reference.toml"),
+    ),
 ];
 
 /// Names of the bundled presets.

@@ -28,10 +28,10 @@ pub fn cmf(l: f64) -> DVec3 {
 
 /// CIE D65 relative spectral power, 380–780 nm in 10 nm steps.
 const D65: [f64; 41] = [
-    49.9755, 54.6482, 82.7549, 91.486, 93.4318, 86.6823, 104.865, 117.008, 117.812, 114.861, 115.923,
-    108.811, 109.354, 107.802, 104.79, 107.689, 104.405, 104.046, 100.0, 96.3342, 95.788, 88.6856,
-    90.0062, 89.5991, 87.6987, 83.2886, 83.6992, 80.0268, 80.2146, 82.2778, 78.2842, 69.7213,
-    71.6091, 74.349, 61.604, 69.8856, 75.087, 63.5927, 46.4182, 66.8054, 63.3828,
+    49.9755, 54.6482, 82.7549, 91.486, 93.4318, 86.6823, 104.865, 117.008, 117.812, 114.861,
+    115.923, 108.811, 109.354, 107.802, 104.79, 107.689, 104.405, 104.046, 100.0, 96.3342, 95.788,
+    88.6856, 90.0062, 89.5991, 87.6987, 83.2886, 83.6992, 80.0268, 80.2146, 82.2778, 78.2842,
+    69.7213, 71.6091, 74.349, 61.604, 69.8856, 75.087, 63.5927, 46.4182, 66.8054, 63.3828,
 ];
 
 /// D65 relative spectral power at `l` nm (100 at 560 nm); 0 outside 380–780 nm.
@@ -64,7 +64,10 @@ pub fn band_weights_d65(n: usize) -> Vec<DVec3> {
             let a = LAMBDA_MIN + i as f64 * w;
             let steps = (w.ceil() as usize).max(1) * 4;
             let h = w / steps as f64;
-            (0..steps).map(|k| a + (k as f64 + 0.5) * h).map(|l| d65(l) * cmf(l) * h).sum()
+            (0..steps)
+                .map(|k| a + (k as f64 + 0.5) * h)
+                .map(|l| d65(l) * cmf(l) * h)
+                .sum()
         })
         .collect();
     let y: f64 = out.iter().map(|v| v.y).sum();
@@ -136,7 +139,10 @@ mod tests {
     #[test]
     fn d65_white_point() {
         let (x, y) = chromaticity(d65_white());
-        assert!((x - 0.3127).abs() < 0.003 && (y - 0.3290).abs() < 0.003, "({x}, {y})");
+        assert!(
+            (x - 0.3127).abs() < 0.003 && (y - 0.3290).abs() < 0.003,
+            "({x}, {y})"
+        );
         let rgb = xyz_to_linear_srgb(d65_white());
         for v in rgb.to_array() {
             assert!((v - 1.0).abs() < 0.03, "{rgb:?}");
@@ -146,10 +152,14 @@ mod tests {
 
     #[test]
     fn cmf_peaks_where_cie_tables_do() {
-        let argmax = |f: &dyn Fn(f64) -> f64| (380..=780).max_by(|a, b| f(*a as f64).total_cmp(&f(*b as f64))).unwrap();
-        assert!((argmax(&|l| cmf(l).y) as i32 - 555).abs() <= 3);
-        assert!((argmax(&|l| cmf(l).x) as i32 - 599).abs() <= 3);
-        assert!((argmax(&|l| cmf(l).z) as i32 - 446).abs() <= 4);
+        let argmax = |f: &dyn Fn(f64) -> f64| {
+            (380i32..=780)
+                .max_by(|a, b| f(*a as f64).total_cmp(&f(*b as f64)))
+                .unwrap()
+        };
+        assert!((argmax(&|l| cmf(l).y) - 555).abs() <= 3);
+        assert!((argmax(&|l| cmf(l).x) - 599).abs() <= 3);
+        assert!((argmax(&|l| cmf(l).z) - 446).abs() <= 4);
         assert!((cmf(555.0).y - 1.0).abs() < 0.02);
     }
 

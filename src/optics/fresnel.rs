@@ -27,7 +27,10 @@ impl Complex {
     }
     /// `self · conj(other)`.
     pub fn mul_conj(self, o: Complex) -> Complex {
-        Complex { re: self.re * o.re + self.im * o.im, im: self.im * o.re - self.re * o.im }
+        Complex {
+            re: self.re * o.re + self.im * o.im,
+            im: self.im * o.re - self.re * o.im,
+        }
     }
 }
 
@@ -83,12 +86,22 @@ impl Interface {
     /// Mueller matrix of reflection in the s–p frame.
     pub fn mueller_reflect(&self) -> Mueller {
         let c = self.rs.mul_conj(self.rp);
-        Mueller::block(0.5 * (self.r_s + self.r_p), 0.5 * (self.r_s - self.r_p), c.re, c.im)
+        Mueller::block(
+            0.5 * (self.r_s + self.r_p),
+            0.5 * (self.r_s - self.r_p),
+            c.re,
+            c.im,
+        )
     }
     /// Mueller matrix of transmission (power, including the beam-area factor) in the s–p frame.
     pub fn mueller_transmit(&self) -> Mueller {
         let (ts, tp) = (self.t_s(), self.t_p());
-        Mueller::block(0.5 * (ts + tp), 0.5 * (ts - tp), (ts * tp).max(0.0).sqrt(), 0.0)
+        Mueller::block(
+            0.5 * (ts + tp),
+            0.5 * (ts - tp),
+            (ts * tp).max(0.0).sqrt(),
+            0.0,
+        )
     }
 }
 
@@ -106,7 +119,17 @@ pub fn fresnel(cos_i: f64, n_i: f64, n_t: f64) -> Interface {
         let root = (sin2_t - 1.0).sqrt() / eta; // = sqrt(sin²θ − n²)
         let rs = unit_ratio(cos_i, root);
         let rp = unit_ratio(n * n * cos_i, root);
-        return Interface { cos_i, cos_t: 0.0, tir: true, rs, rp, ts: 0.0, tp: 0.0, r_s: 1.0, r_p: 1.0 };
+        return Interface {
+            cos_i,
+            cos_t: 0.0,
+            tir: true,
+            rs,
+            rp,
+            ts: 0.0,
+            tp: 0.0,
+            r_s: 1.0,
+            r_p: 1.0,
+        };
     }
     let cos_t = (1.0 - sin2_t).sqrt();
     let (a, b) = (n_i * cos_i, n_t * cos_t);
@@ -131,7 +154,10 @@ pub fn fresnel(cos_i: f64, n_i: f64, n_t: f64) -> Interface {
 /// `(x − i·y)/(x + i·y)`, a unit complex number.
 fn unit_ratio(x: f64, y: f64) -> Complex {
     let d = x * x + y * y;
-    Complex { re: (x * x - y * y) / d, im: -2.0 * x * y / d }
+    Complex {
+        re: (x * x - y * y) / d,
+        im: -2.0 * x * y / d,
+    }
 }
 
 /// Critical angle in radians for light inside `n_i` meeting `n_t < n_i`.
@@ -190,7 +216,10 @@ mod tests {
                         assert!((g * f.tp * f.tp - f.t_p()).abs() < 1e-12);
                     }
                 } else {
-                    assert!((f.rs.norm_sqr() - 1.0).abs() < 1e-12 && (f.rp.norm_sqr() - 1.0).abs() < 1e-12);
+                    assert!(
+                        (f.rs.norm_sqr() - 1.0).abs() < 1e-12
+                            && (f.rp.norm_sqr() - 1.0).abs() < 1e-12
+                    );
                 }
             }
         }
@@ -222,7 +251,8 @@ mod tests {
         for deg in [30.0f64, 45.0, 60.0, 80.0] {
             let th = deg.to_radians();
             let f = fresnel(th.cos(), N, 1.0);
-            let expect = 2.0 * (th.cos() * (th.sin().powi(2) - n * n).sqrt() / th.sin().powi(2)).atan();
+            let expect =
+                2.0 * (th.cos() * (th.sin().powi(2) - n * n).sqrt() / th.sin().powi(2)).atan();
             assert!((f.phase_difference().abs() - expect).abs() < 1e-12, "{deg}");
         }
     }

@@ -34,7 +34,10 @@ impl Material {
     pub fn diamond() -> Material {
         Material {
             name: "diamond".into(),
-            dispersion: Dispersion::Sellmeier(vec![(0.3306, 0.175 * 0.175), (4.3356, 0.106 * 0.106)]),
+            dispersion: Dispersion::Sellmeier(vec![
+                (0.3306, 0.175 * 0.175),
+                (4.3356, 0.106 * 0.106),
+            ]),
             density: 3.515,
         }
     }
@@ -77,7 +80,11 @@ impl Material {
     }
     /// A fixed refractive index (no dispersion), with diamond's density.
     pub fn constant(n: f64) -> Material {
-        Material { name: format!("ri-{n}"), dispersion: Dispersion::Constant(n), density: 3.515 }
+        Material {
+            name: format!("ri-{n}"),
+            dispersion: Dispersion::Constant(n),
+            density: 3.515,
+        }
     }
 
     /// Names accepted by [`Material::by_name`].
@@ -134,7 +141,11 @@ mod tests {
     fn diamond_index_and_dispersion() {
         let d = Material::diamond();
         assert!((d.ri_d() - 2.4173).abs() < 2e-4, "{}", d.ri_d());
-        assert!((d.bg_dispersion() - 0.044).abs() < 0.002, "{}", d.bg_dispersion());
+        assert!(
+            (d.bg_dispersion() - 0.044).abs() < 0.002,
+            "{}",
+            d.bg_dispersion()
+        );
     }
 
     #[test]
@@ -144,13 +155,24 @@ mod tests {
         assert!((Material::sapphire().ri_d() - 1.768).abs() < 0.003);
         assert!((Material::glass().ri_d() - 1.5168).abs() < 5e-4);
         assert_eq!(Material::constant(2.0).bg_dispersion(), 0.0);
-        assert!(Material::by_name("moissanite").unwrap_err().to_string().contains("birefringent"));
-        assert!(Material::by_name("unobtainium").unwrap_err().to_string().contains("diamond"));
+        assert!(Material::by_name("moissanite")
+            .unwrap_err()
+            .to_string()
+            .contains("birefringent"));
+        assert!(Material::by_name("unobtainium")
+            .unwrap_err()
+            .to_string()
+            .contains("diamond"));
     }
 
     #[test]
     fn index_falls_with_wavelength() {
-        for m in [Material::diamond(), Material::cubic_zirconia(), Material::sapphire(), Material::glass()] {
+        for m in [
+            Material::diamond(),
+            Material::cubic_zirconia(),
+            Material::sapphire(),
+            Material::glass(),
+        ] {
             let mut prev = f64::INFINITY;
             for l in (380..=780).step_by(10) {
                 let n = m.ri(l as f64);

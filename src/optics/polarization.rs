@@ -36,7 +36,12 @@ impl Mueller {
     }
     /// The full 4×4 matrix, row-major (for tests and printing).
     pub fn rows(&self) -> [[f64; 4]; 4] {
-        [[self.a, self.b, 0.0, 0.0], [self.b, self.a, 0.0, 0.0], [0.0, 0.0, self.c, self.s], [0.0, 0.0, -self.s, self.c]]
+        [
+            [self.a, self.b, 0.0, 0.0],
+            [self.b, self.a, 0.0, 0.0],
+            [0.0, 0.0, self.c, self.s],
+            [0.0, 0.0, -self.s, self.c],
+        ]
     }
 }
 
@@ -85,7 +90,9 @@ mod tests {
                 // Pure s and pure p light: R + T = 1 each, with Rs and Rp.
                 let s = DVec4::new(1.0, 1.0, 0.0, 0.0);
                 let p = DVec4::new(1.0, -1.0, 0.0, 0.0);
-                assert!((r.apply(s).x - f.r_s).abs() < 1e-12 && (r.apply(p).x - f.r_p).abs() < 1e-12);
+                assert!(
+                    (r.apply(s).x - f.r_s).abs() < 1e-12 && (r.apply(p).x - f.r_p).abs() < 1e-12
+                );
                 assert!((r.apply(s).x + t.apply(s).x - 1.0).abs() < 1e-12);
                 // A reflection of fully polarized light stays fully polarized (pure amplitudes).
                 let v = DVec4::new(1.0, 0.3, 0.5, (1.0f64 - 0.09 - 0.25).sqrt());
@@ -110,7 +117,7 @@ mod tests {
     fn stokes_rotation() {
         let d = DVec3::Z;
         let v = DVec4::new(1.0, 1.0, 0.0, 0.0); // linear along x
-        // Reference axis x → y (90°): the same light is now Q = −1.
+                                                // Reference axis x → y (90°): the same light is now Q = −1.
         let w = rotate_stokes(v, DVec3::X, DVec3::Y, d);
         assert!((w - DVec4::new(1.0, -1.0, 0.0, 0.0)).length() < 1e-12);
         // 45°: Q → U sign convention, and a round trip is the identity.
