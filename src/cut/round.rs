@@ -145,6 +145,19 @@ pub(crate) fn build(p: &Params) -> Result<Vec<FacetPlane>> {
     // Stars: through the table edge midpoint (radius ρe) and the star tip on the bezel ridge.
     let rho_e = t * 22.5f64.to_radians().cos();
     let rho_s = rho_e + star * (1.0 - rho_e);
+    // The bezel–bezel ridge crosses the table plane at radius t/cos 22.5°: a star tip inside
+    // that would stand above the table.
+    let rho_ridge = t / 22.5f64.to_radians().cos();
+    let star_min = (rho_ridge - rho_e) / (1.0 - rho_e);
+    if star <= star_min + 1e-6 {
+        return Err(Error::invalid(
+            "star",
+            format!(
+                "{star} is too short for table {t}: the star tip would stand above the table; allowed ({:.4}, 1) at this table",
+                star_min + 1e-6
+            ),
+        ));
+    }
     let tip_z = bezel_z(rho_s * R, 22.5);
     let star_angle = ((ztable - tip_z) / ((rho_s - rho_e) * R))
         .atan()
@@ -190,6 +203,17 @@ pub(crate) fn build(p: &Params) -> Result<Vec<FacetPlane>> {
     }
     // Lower halves: through the main–main ridge point at radius (1 − lh)·R and the girdle point.
     let r_tip = (1.0 - lh) * R;
+    // The culet's corners lie on the main–main ridges at radius (culet/2)/cos 22.5°.
+    let culet_corner = culet / 2.0 / 22.5f64.to_radians().cos();
+    if culet > 0.0 && r_tip <= culet_corner + 1e-6 {
+        return Err(Error::invalid(
+            "lower_half",
+            format!(
+                "{lh} is too long for culet {culet}: the lower halves would reach into the culet; allowed (0, {:.4}) at this culet",
+                1.0 - (culet_corner + 1e-6) / R
+            ),
+        ));
+    }
     let tip = main_z(r_tip, 22.5);
     let lh_angle = ((-zg - tip) / ((R - r_tip) * c1125)).atan().to_degrees();
     for k in 0..16 {
