@@ -1,0 +1,2 @@
+//! Reading and writing cut files: GemCad `.asc` designs (more formats join here).
+pub mod asc;
