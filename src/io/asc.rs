@@ -1,4 +1,4 @@
-//! GemCad `.asc` designs: read them into a [`Cut`].
+//! GemCad `.asc` designs: read them into a [`Cut`], write a [`Cut`] as one.
 //!
 //! # The format
 //!
@@ -48,7 +48,7 @@
 //! [`AscDesign::planes`] are in the file's units. [`AscDesign::to_cut`] scales the solid about
 //! the origin so that its girdle outline is 1 wide: the largest horizontal distance between
 //! any two vertices (the outline's width across corners) becomes 1, and every plane offset is
-//! scaled with it.
+//! scaled with it. [`write`] writes distances in the cut's own units (girdle diameter D = 1).
 //!
 //! # Tolerated
 //!
@@ -62,9 +62,10 @@ use crate::cut::Cut;
 use crate::error::{Error, Result};
 use crate::geometry::{facet_normal, DVec3, FacetPlane, Polyhedron};
 use std::collections::{BTreeMap, HashMap, HashSet};
+use std::fmt::Write as _;
 use std::path::Path;
 
-/// The index gear used when a file has no `g` line.
+/// The index gear used when a file has no `g` line, and by [`write`] for gear 0.
 pub const DEFAULT_GEAR: u32 = 96;
 
 /// One `a` line (with its continuation lines) as written in the file.
@@ -506,6 +507,95 @@ fn unique_names<'a>(bases: impl Iterator<Item = &'a str> + Clone) -> Vec<String>
         .collect()
 }
 
+// ---------------------------------------------------------------------------------------------
+// Writing
+
+/// A number with 6 decimals when that is exact, else the shortest text that reads back to
+/// the same `f64`.
+fn fmt_num(x: f64) -> String {
+    let x = if x == 0.0 { 0.0 } else { x }; // no "-0"
+    let six = format!("{x:.6}");
+    if six.parse::<f64>().ok() == Some(x) {
+        six
+    } else {
+        format!("{x}")
+    }
+}
+
+/// A name as one `.asc` token.
+fn token(name: &str) -> String {
+    name.split_whitespace().collect::<Vec<_>>().join("_")
+}
+
+/// Write `cut` as a GemCad `.asc` design on a gear of `gear` teeth (0 means 96), gear offset
+/// 0, symmetry `y 1 n`, the cut's name as the title, no `I` line (a cut carries no material).
+///
+/// Facets are grouped into one `a` line per (tier, angle, distance), in order of first
+/// appearance, the tier written as `n TIER` after the first index. Angles are degrees
+/// (pavilion negative, girdle −90); a culet is written GemCad's way, as angle 0 with a
+/// negative distance. Each azimuth becomes an index by the module's convention
+/// (`i = g · (azimuth + 90°) / 360°`, index 0 written as `g`); an azimuth off the gear gives a
+/// fractional index. Numbers are written with 6 decimals when exact, else with all the digits
+/// needed to read back the same value. Distances are in the cut's units (D = 1). Planes with
+/// a negative offset (the origin outside the solid) cannot be expressed in GemCad's
+/// convention and do not read back the same.
+pub fn write(cut: &Cut, gear: u32) -> String {
+    let gear = if gear == 0 { DEFAULT_GEAR } else { gear };
+    let g = f64::from(gear);
+    // (tier, angle text, distance text) → indices
+    let mut groups: Vec<((String, String, String), Vec<String>)> = Vec::new();
+    for f in &cut.solid.facets {
+        let n = f.plane.normal;
+        let h = n.x.hypot(n.y);
+        let tilt = h.atan2(n.z.abs()).to_degrees();
+        let crown = n.z > 1e-12;
+        let (angle, dist) = if h <= 1e-12 && !crown {
+            (0.0, -f.plane.offset) // culet: `a 0 -d`
+        } else if crown {
+            (tilt, f.plane.offset)
+        } else {
+            (-tilt, f.plane.offset)
+        };
+        let index = if h <= 1e-12 {
+            gear.to_string()
+        } else {
+            let az = n.y.atan2(n.x).to_degrees();
+            let i = (g * (az + 90.0) / 360.0).rem_euclid(g);
+            let r = i.round();
+            if (i - r).abs() < 1e-9 {
+                let r = if r == 0.0 || r == g { g } else { r };
+                format!("{r:.0}")
+            } else {
+                fmt_num(i)
+            }
+        };
+        let key = (token(&f.tier), fmt_num(angle), fmt_num(dist));
+        match groups.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, v)) => v.push(index),
+            None => groups.push((key, vec![index])),
+        }
+    }
+    let mut out = String::new();
+    let _ = writeln!(out, "GemCad 5.0");
+    let _ = writeln!(out, "g {gear} 0.0");
+    let _ = writeln!(out, "y 1 n");
+    let title = cut.name.split_whitespace().collect::<Vec<_>>().join(" ");
+    if !title.is_empty() {
+        let _ = writeln!(out, "H {title}");
+    }
+    for ((tier, angle, dist), indices) in &groups {
+        let _ = write!(out, "a {angle} {dist}");
+        for (k, i) in indices.iter().enumerate() {
+            let _ = write!(out, " {i}");
+            if k == 0 && !tier.is_empty() {
+                let _ = write!(out, " n {tier}");
+            }
+        }
+        out.push('\n');
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -670,6 +760,68 @@ F Footnote one
             parse("H Café\n".as_bytes(), "x").unwrap().title[0],
             "Caf\u{e9}"
         );
+    }
+
+    fn round_trip(gear: u32) {
+        let cut = Cut::from_family("r", "round-brilliant", &BTreeMap::new()).unwrap();
+        let text = write(&cut, gear);
+        let back = parse(text.as_bytes(), "r.asc")
+            .unwrap()
+            .to_cut("r")
+            .unwrap();
+        let s = 1.0 / xy_extent(&cut.solid.vertices);
+        let want: Vec<FacetPlane> = cut
+            .solid
+            .facet_planes()
+            .into_iter()
+            .map(|mut p| {
+                p.plane.offset *= s;
+                p
+            })
+            .collect();
+        same_planes(&want, &back.solid.facet_planes(), 1e-9)
+            .unwrap_or_else(|e| panic!("gear {gear}: {e}\n{text}"));
+        // Tiers survive.
+        let tiers: HashSet<&str> = back.solid.facets.iter().map(|f| f.tier.as_str()).collect();
+        for t in [
+            "table",
+            "bezel",
+            "star",
+            "upper-half",
+            "girdle",
+            "pavilion-main",
+            "lower-half",
+        ] {
+            assert!(tiers.contains(t), "tier {t} lost");
+        }
+    }
+
+    #[test]
+    fn asc_write_read_round_trip() {
+        round_trip(96);
+        // On an 80 gear the halves sit between teeth: fractional indices.
+        round_trip(80);
+        let cut = Cut::from_family("r", "round-brilliant", &BTreeMap::new()).unwrap();
+        let text = write(&cut, 80);
+        assert!(text.contains(" 22.5"), "{text}");
+        let text = write(&cut, 96);
+        assert!(text.starts_with("GemCad 5.0\ng 96 0.0\n"), "{text}");
+        assert!(text.contains("a 0.000000 "), "{text}");
+    }
+
+    #[test]
+    fn asc_culet_round_trips_as_gemcad_writes_it() {
+        let mut v = BTreeMap::new();
+        v.insert("culet".to_string(), 0.03);
+        let cut = Cut::from_family("r", "round-brilliant", &v).unwrap();
+        let text = write(&cut, 96);
+        let culet = text.lines().find(|l| l.ends_with("n culet")).unwrap();
+        assert!(culet.starts_with("a 0.000000 -"), "{culet}");
+        let back = parse(text.as_bytes(), "r.asc")
+            .unwrap()
+            .to_cut("r")
+            .unwrap();
+        assert_eq!(back.solid.facets.len(), cut.solid.facets.len());
     }
 
     #[test]
