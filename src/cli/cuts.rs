@@ -83,6 +83,7 @@ pub fn generate(a: &GenerateArgs) -> Result<()> {
         .unwrap_or_default();
     let bytes: Vec<u8> = match ext.as_str() {
         "toml" => io::spec::write(&cut).into_bytes(),
+        "asc" => io::asc::write(&cut, io::asc::DEFAULT_GEAR).into_bytes(),
         _ => {
             return Err(Error::invalid(
                 "-o",

@@ -1,5 +1,6 @@
 //! Files: TOML cut specs, bundled presets, and safe (atomic) writing of outputs.
 
+pub mod asc;
 pub mod presets;
 pub mod spec;
 
@@ -75,6 +76,7 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
             let text = String::from_utf8_lossy(&bytes);
             spec::parse(&text, arg)?.to_cut(&stem, arg)
         }
+        Some("asc") => asc::read(path),
         Some(other) if path.exists() || other.len() <= 4 => Err(Error::invalid(
             arg,
             format!("unknown file type `.{other}`; CUT is a preset ({}) or a .toml, .asc, .obj or .stl file", presets::names().join(", ")),

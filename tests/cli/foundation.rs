@@ -188,3 +188,28 @@ fn bad_input_is_one_line_exit_2_and_leaves_no_file() {
         "{left:?}"
     );
 }
+
+#[test]
+fn asc_round_trip_and_broken_line() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    ok(p, &["generate", "gia-reference", "-o", "g.asc"]);
+    let text = std::fs::read_to_string(p.join("g.asc")).unwrap();
+    assert!(
+        text.starts_with("GemCad") && text.contains("\na "),
+        "{text}"
+    );
+    let j: serde_json::Value = serde_json::from_str(&ok(p, &["info", "g.asc", "--json"])).unwrap();
+    assert_eq!(j["facet_count"].as_u64(), Some(73));
+    assert!((j["proportions"]["total_depth"].as_f64().unwrap() - 0.600).abs() < 0.0007);
+    assert!((j["proportions"]["crown_angle"].as_f64().unwrap() - 34.0).abs() < 1e-6);
+    let broken = text.replacen("\na ", "\na x3 ", 1);
+    std::fs::write(p.join("broken.asc"), broken).unwrap();
+    let line = bad(
+        p,
+        &["generate", "broken.asc", "-o", "out.obj"],
+        &["broken.asc:", "x3"],
+    );
+    assert!(line.contains("not a number"), "{line}");
+    assert!(!files(p).iter().any(|f| f.starts_with("out")));
+}
