@@ -26,6 +26,40 @@
 //! no bounds of its own: it works in an unbounded reparametrisation, each free parameter being
 //! `x = lo + (hi − lo) · sigmoid(u)`, so every point it can ever propose is inside the box and
 //! the cost stays smooth (no flat clamped regions that would stall the simplex).
+//!
+//! # Example
+//!
+//! ```
+//! use facetlab::optimize::{config::Config, run, Evaluator, ScoreSet};
+//! use facetlab::cut::Cut;
+//!
+//! /// A smooth bump with its top at crown 34.5°, pavilion 40.8°.
+//! struct Bump;
+//! impl Evaluator for Bump {
+//!     fn evaluate(&self, cut: &Cut) -> facetlab::Result<ScoreSet> {
+//!         let (c, p) = (cut.params["crown_angle"], cut.params["pavilion_angle"]);
+//!         let b = (-((c - 34.5) / 3.0).powi(2) - ((p - 40.8) / 1.0).powi(2)).exp();
+//!         Ok(ScoreSet::new(b, 0.0, 0.0))
+//!     }
+//! }
+//!
+//! let text = r#"
+//!     [cut]
+//!     family = "round-brilliant"
+//!     [free]
+//!     crown_angle = [30.0, 38.0]
+//!     pavilion_angle = [39.0, 42.5]
+//!     [method]
+//!     name = "nelder-mead"
+//!     starts = 2
+//!     max_evaluations = 200
+//! "#;
+//! let config = Config::from_str(text, "doc.toml").unwrap();
+//! let outcome = run::search(&config, &Bump, &run::Hooks::default()).unwrap();
+//! let best = &outcome.best().params;
+//! assert!((best["crown_angle"] - 34.5).abs() < 0.1);
+//! assert!((best["pavilion_angle"] - 40.8).abs() < 0.05);
+//! ```
 
 pub mod config;
 pub mod contour;
@@ -33,8 +67,12 @@ pub mod design;
 pub mod guard;
 pub mod history;
 pub mod nelder_mead;
+pub mod plot;
 pub mod problem;
 pub mod pso;
+pub mod report;
+pub mod run;
+pub mod sweep;
 pub mod verify;
 
 pub use config::Config;
@@ -113,3 +151,6 @@ where
         self(cut)
     }
 }
+
+#[cfg(test)]
+mod tests;
