@@ -98,7 +98,7 @@ impl Progress for Bar {
         self.0.set_position(s.evaluations.min(s.budget));
         if s.best_cost.is_finite() {
             self.0.set_message(format!(
-                "iteration {}  best cost {:.4}",
+                "iteration {}  best {:.4}",
                 s.iterations, s.best_cost
             ));
         }
@@ -129,7 +129,7 @@ pub fn run_optimize(
     let pb = bar(
         config.budget.max_evaluations,
         a.quiet,
-        "{spinner} [{elapsed_precise}] [{bar:30}] {pos}/{len} evaluations  {msg}",
+        "{spinner} {elapsed_precise} [{bar:20}] {pos}/{len} evals  {msg}",
     );
     let progress = Bar(pb.clone());
     let opts = RunOptions {
@@ -236,7 +236,7 @@ pub fn run_sweep(a: &SweepArgs, evaluator: &dyn Evaluator) -> Result<()> {
     let pb = bar(
         n,
         a.quiet,
-        "{spinner} [{elapsed_precise}] [{bar:30}] {pos}/{len} cuts  {per_sec}  eta {eta}",
+        "{spinner} {elapsed_precise} [{bar:20}] {pos}/{len} cuts  {per_sec}  eta {eta}",
     );
     let tick = || pb.inc(1);
     let result = sweep::sweep(&config, evaluator, &x, &y, Some(&tick));

@@ -92,19 +92,20 @@ impl Axis {
                 format!("MAX {max} must be above MIN {min}"),
             ));
         }
-        let n = ((max - min) / step * (1.0 + 1e-9)).floor() as usize + 1;
+        let steps = ((max - min) / step * (1.0 + 1e-9)).floor();
+        if steps >= 5000.0 {
+            return Err(Error::invalid(
+                flag,
+                format!("{} values; at most 5000 per axis", steps + 1.0),
+            ));
+        }
+        let n = steps as usize + 1;
         if n < 2 {
             return Err(Error::invalid(
                 flag,
                 format!(
                     "STEP {step} leaves a single value between {min} and {max}; use a smaller step"
                 ),
-            ));
-        }
-        if n > 5000 {
-            return Err(Error::invalid(
-                flag,
-                format!("{n} values; at most 5000 per axis"),
             ));
         }
         let decimals = [parts[1], parts[3]]
@@ -480,6 +481,7 @@ mod tests {
             ("crown_angle:1:40:1", "--x crown_angle: 1 is out of range"),
             ("girdle_facets:0:32:16", "whole-number"),
             ("crown_angle:25:26:5", "single value"),
+            ("crown_angle:25:40:1e-300", "at most 5000 per axis"),
         ] {
             let e = Axis::parse("--x", spec, &c).unwrap_err().to_string();
             assert!(e.contains(want), "{spec}: {e}");
