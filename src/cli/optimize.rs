@@ -20,7 +20,7 @@ use std::sync::Once;
 pub struct OptimizeArgs {
     /// Optimization config (TOML), e.g. optim/round-brilliance.toml.
     pub config: PathBuf,
-    /// Run folder to write (default: results/<name>-<UTC time>/).
+    /// Run folder to write (default: results/NAME-UTCTIME/, NAME from the config).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Override the config's seed.
@@ -54,7 +54,7 @@ pub struct SweepArgs {
     pub run: Option<PathBuf>,
     /// Output folder (sweep.csv, sweep.png, sweep.svg in it), or a file name whose stem is
     /// used for all three (map.png → map.csv, map.png, map.svg).
-    /// Default: results/sweep-<name>-<x>-<y>/.
+    /// Default: results/sweep-NAME-X-Y/.
     #[arg(long, value_name = "FILE|DIR")]
     pub out: Option<PathBuf>,
     /// No progress bar.

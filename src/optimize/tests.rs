@@ -380,3 +380,28 @@ fn evaluator_trait_objects_work() {
     let cut = Cut::from_family("r", "round-brilliant", &Default::default()).unwrap();
     assert!(e.evaluate(&cut).unwrap().brilliance > 0.0);
 }
+
+#[test]
+fn a_run_where_every_cut_fails_still_writes_its_report() {
+    let refuse = |_: &Cut| -> Result<ScoreSet> { Err(crate::Error::Geometry("refused".into())) };
+    for method in [NM, PSO] {
+        let dir = tempfile::tempdir().unwrap();
+        let opts = RunOptions {
+            out: Some(dir.path().to_path_buf()),
+            ..RunOptions::default()
+        };
+        let s = run::run(&config(method, ""), &refuse, Some(&fake_verifier), &opts).unwrap();
+        assert!(s.outcome.winners.is_empty());
+        assert!(s
+            .outcome
+            .best()
+            .error
+            .as_deref()
+            .unwrap()
+            .contains("refused"));
+        assert!(
+            dir.path().join("report.md").is_file() && dir.path().join("convergence.png").is_file()
+        );
+        assert!(!dir.path().join("best.toml").exists());
+    }
+}
