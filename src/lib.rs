@@ -10,5 +10,6 @@ pub mod error;
 pub mod geometry;
 pub mod io;
 pub mod optics;
+pub mod optimize;
 
 pub use error::{Error, Result};

@@ -2,6 +2,7 @@
 //! it. Each subcommand lives in its own module.
 
 mod cuts;
+pub mod optimize;
 
 use crate::error::Result;
 use clap::{Parser, Subcommand};

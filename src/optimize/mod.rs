@@ -1,0 +1,156 @@
+//! The optimizer: argmin searches over a family's proportions, convergence plots, sweeps, and a
+//! photon-tracer verification of the winners.
+//!
+//! Data flows one way:
+//!
+//! - [`config`] reads an `optim/*.toml` file into a validated [`Config`] (every error names the
+//!   file and the field);
+//! - [`problem`] turns a parameter vector into a [`Cut`], scores it with an [`Evaluator`] and
+//!   returns a finite cost: `−(weighted score) + constraint penalties`;
+//! - [`nelder_mead`] (multi-start from a seeded Latin hypercube or Halton set) and [`pso`]
+//!   (particle swarm) run argmin's solvers on it, stopped by [`guard`] on the evaluation budget
+//!   or Ctrl-C;
+//! - [`history`] keeps every evaluation (Nelder–Mead) or every particle position (swarm) as
+//!   rows of `history.csv`;
+//! - [`verify`] re-scores the winners with a [`Verifier`] (the photon tracer) and flags any
+//!   disagreement with the beam tracer beyond 4 standard errors;
+//! - [`run`] writes the run folder (config as used, history, plots, best cut, reports) and
+//!   [`sweep`] maps a score over two parameters.
+//!
+//! The objective and the verifier are traits so the searches can be tested on analytic
+//! functions and wired to the tracers separately.
+//!
+//! # Bounds
+//!
+//! Particle swarm takes the bounds itself (argmin clamps positions to the box). Nelder–Mead has
+//! no bounds of its own: it works in an unbounded reparametrisation, each free parameter being
+//! `x = lo + (hi − lo) · sigmoid(u)`, so every point it can ever propose is inside the box and
+//! the cost stays smooth (no flat clamped regions that would stall the simplex).
+//!
+//! # Example
+//!
+//! ```
+//! use facetlab::optimize::{config::Config, run, Evaluator, ScoreSet};
+//! use facetlab::cut::Cut;
+//!
+//! /// A smooth bump with its top at crown 34.5°, pavilion 40.8°.
+//! struct Bump;
+//! impl Evaluator for Bump {
+//!     fn evaluate(&self, cut: &Cut) -> facetlab::Result<ScoreSet> {
+//!         let (c, p) = (cut.params["crown_angle"], cut.params["pavilion_angle"]);
+//!         let b = (-((c - 34.5) / 3.0).powi(2) - ((p - 40.8) / 1.0).powi(2)).exp();
+//!         Ok(ScoreSet::new(b, 0.0, 0.0))
+//!     }
+//! }
+//!
+//! let text = r#"
+//!     [cut]
+//!     family = "round-brilliant"
+//!     [free]
+//!     crown_angle = [30.0, 38.0]
+//!     pavilion_angle = [39.0, 42.5]
+//!     [method]
+//!     name = "nelder-mead"
+//!     starts = 2
+//!     max_evaluations = 200
+//! "#;
+//! let config = Config::from_str(text, "doc.toml").unwrap();
+//! let outcome = run::search(&config, &Bump, &run::Hooks::default()).unwrap();
+//! let best = &outcome.best().params;
+//! assert!((best["crown_angle"] - 34.5).abs() < 0.1);
+//! assert!((best["pavilion_angle"] - 40.8).abs() < 0.05);
+//! ```
+
+pub mod config;
+pub mod contour;
+pub mod design;
+pub mod guard;
+pub mod history;
+pub mod nelder_mead;
+pub mod plot;
+pub mod problem;
+pub mod pso;
+pub mod report;
+pub mod run;
+pub mod sweep;
+pub mod verify;
+
+pub use config::Config;
+pub use verify::{Verifier, VerifyReport, VerifyRow};
+
+use crate::cut::Cut;
+use crate::error::Result;
+use serde::Serialize;
+
+/// The scores of one cut, as the optimizer sees them.
+///
+/// `brilliance`, `fire` and `scintillation` are the objective's terms (each roughly in [0, 1],
+/// higher is better). `extra` holds any further named scores the evaluator computes (ASET
+/// shares, …); they are shown in the reports but not optimized.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct ScoreSet {
+    /// Light return under diffuse light.
+    pub brilliance: f64,
+    /// Colour seen under small light sources.
+    pub fire: f64,
+    /// How the face-up pattern changes as the stone tilts.
+    pub scintillation: f64,
+    /// Further named scores, shown in reports in this order.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub extra: Vec<(String, f64)>,
+}
+
+impl ScoreSet {
+    /// The three objective scores, no extras.
+    pub fn new(brilliance: f64, fire: f64, scintillation: f64) -> ScoreSet {
+        ScoreSet {
+            brilliance,
+            fire,
+            scintillation,
+            extra: Vec::new(),
+        }
+    }
+
+    /// The score called `name` (`brilliance`, `fire`, `scintillation` or an extra).
+    pub fn get(&self, name: &str) -> Option<f64> {
+        match name {
+            "brilliance" => Some(self.brilliance),
+            "fire" => Some(self.fire),
+            "scintillation" => Some(self.scintillation),
+            _ => self.extra.iter().find(|(k, _)| k == name).map(|(_, v)| *v),
+        }
+    }
+
+    /// Every score, name and value, the three objective scores first.
+    pub fn all(&self) -> Vec<(String, f64)> {
+        let mut out = vec![
+            ("brilliance".to_string(), self.brilliance),
+            ("fire".to_string(), self.fire),
+            ("scintillation".to_string(), self.scintillation),
+        ];
+        out.extend(self.extra.iter().cloned());
+        out
+    }
+}
+
+/// The objective's scorer: a cut in, its scores out.
+///
+/// It must be deterministic (same cut, same scores) so that runs repeat, and `Sync`, because
+/// particle swarms and multi-start searches evaluate cuts on several threads. An `Err` is not
+/// fatal: the optimizer gives that cut a finite penalty cost and moves on.
+pub trait Evaluator: Sync {
+    /// Score one cut.
+    fn evaluate(&self, cut: &Cut) -> Result<ScoreSet>;
+}
+
+impl<F> Evaluator for F
+where
+    F: Fn(&Cut) -> Result<ScoreSet> + Sync,
+{
+    fn evaluate(&self, cut: &Cut) -> Result<ScoreSet> {
+        self(cut)
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,435 @@
+//! `report.json` and `report.md`: the start and the winners side by side (free parameters,
+//! proportions, every score, constraints, verification), and how the search went.
+//!
+//! `report.json` keys (stable):
+//!
+//! - `name`, `description`, `config` (the file it came from), `family`, `method`, `seed`;
+//! - `free`: `[{key, min, max, start}]`; `objective`: the weights; `constraints`: the limits
+//!   (absent ones `null`) and `penalty`;
+//! - `search`: `evaluations`, `iterations`, `stop` (`max-iterations`, `max-evaluations`,
+//!   `converged`, `interrupted`), `start_stops` (Nelder–Mead: per start), `seconds`,
+//!   `evaluations_per_second`, `threads`;
+//! - `verification`: `available`, `photons`, `sigma`, `seconds`, `note` (why it was skipped);
+//! - `start` and `winners[]`, each a candidate: `label`, `free`, `params`, `proportions`,
+//!   `weight_retention`, `scores` (by name), `weighted_score`, `penalty`, `cost`,
+//!   `constraints[]` (`name`, `value`, `limit`, `violation`, `ok`), `error`, `found_at`
+//!   (`track`, `iteration`, `evaluations`), `verification` (`photons`, `rows[]` of `name`,
+//!   `value`, `stderr`, `beam`; `sigma`, `disagreements`, `seconds`, `error`);
+//! - `files`: the files of the run folder.
+
+use super::config::{Config, Constraints, Method, Weights};
+use super::guard::Stop;
+use super::problem::{weight_retention, ConstraintCheck, Evaluation};
+use super::verify::Verification;
+use crate::cut::Proportions;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+/// Where in the history a winner was found.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FoundAt {
+    /// Start or particle number.
+    pub track: usize,
+    /// Iteration.
+    pub iteration: u64,
+    /// Running evaluation count.
+    pub evaluations: u64,
+}
+
+/// A cut in the report: the start or a winner.
+#[derive(Clone, Debug, Serialize)]
+pub struct Candidate {
+    /// `start`, `winner 1`, …
+    pub label: String,
+    /// Free parameters.
+    pub free: BTreeMap<String, f64>,
+    /// Every family parameter.
+    pub params: BTreeMap<String, f64>,
+    /// Measured proportions (absent when the cut failed).
+    pub proportions: Option<Proportions>,
+    /// Volume over the containing upright cylinder.
+    pub weight_retention: Option<f64>,
+    /// Scores by name (absent when the cut failed).
+    pub scores: Option<BTreeMap<String, f64>>,
+    /// Σ weight · score.
+    pub weighted_score: f64,
+    /// Constraint penalty.
+    pub penalty: f64,
+    /// Cost = −weighted score + penalty.
+    pub cost: f64,
+    /// Constraints as measured.
+    pub constraints: Vec<ConstraintCheck>,
+    /// Why the cut failed, if it did.
+    pub error: Option<String>,
+    /// Where the search found it (winners only).
+    pub found_at: Option<FoundAt>,
+    /// The photon tracer's verification, when run.
+    pub verification: Option<Verification>,
+    /// Score names in display order (not serialised; JSON maps are sorted).
+    #[serde(skip)]
+    pub score_order: Vec<String>,
+}
+
+impl Candidate {
+    /// A candidate from an evaluation.
+    pub fn new(label: &str, config: &Config, e: &Evaluation, found_at: Option<FoundAt>) -> Self {
+        let free = config
+            .free
+            .iter()
+            .zip(&e.x)
+            .map(|(f, v)| (f.key.clone(), *v))
+            .collect();
+        let all = e.scores.as_ref().map(|s| s.all()).unwrap_or_default();
+        Candidate {
+            label: label.to_string(),
+            free,
+            params: config.params_at(&e.x),
+            proportions: e.cut.as_ref().map(|c| c.proportions()),
+            weight_retention: e.cut.as_ref().map(weight_retention),
+            scores: e.scores.as_ref().map(|_| all.iter().cloned().collect()),
+            weighted_score: e.score,
+            penalty: e.penalty,
+            cost: e.cost,
+            constraints: e.checks.clone(),
+            error: e.error.clone(),
+            found_at,
+            verification: None,
+            score_order: all.into_iter().map(|(k, _)| k).collect(),
+        }
+    }
+}
+
+/// A free parameter in the report.
+#[derive(Clone, Debug, Serialize)]
+pub struct FreeJson {
+    /// Key.
+    pub key: String,
+    /// Lower bound.
+    pub min: f64,
+    /// Upper bound.
+    pub max: f64,
+    /// Start value.
+    pub start: f64,
+}
+
+/// How the search went.
+#[derive(Clone, Debug, Serialize)]
+pub struct SearchJson {
+    /// Evaluations.
+    pub evaluations: u64,
+    /// Iterations (summed over starts).
+    pub iterations: u64,
+    /// Why it stopped (the first interruption, else the most common reason).
+    pub stop: Stop,
+    /// Per Nelder–Mead start.
+    pub start_stops: Vec<Stop>,
+    /// Wall-clock seconds of the search.
+    pub seconds: f64,
+    /// Evaluations per second.
+    pub evaluations_per_second: f64,
+    /// Worker threads.
+    pub threads: usize,
+}
+
+/// About the verification step.
+#[derive(Clone, Debug, Serialize)]
+pub struct VerificationJson {
+    /// Whether a verifier ran.
+    pub available: bool,
+    /// Photons per cut and light.
+    pub photons: u64,
+    /// Disagreement threshold in standard errors.
+    pub sigma: f64,
+    /// Seconds spent verifying.
+    pub seconds: f64,
+    /// Why verification was skipped or cut short, if it was.
+    pub note: Option<String>,
+}
+
+/// The whole report.
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    /// Run name.
+    pub name: String,
+    /// Free text from the config.
+    pub description: Option<String>,
+    /// Config file.
+    pub config: String,
+    /// Family.
+    pub family: String,
+    /// Method.
+    pub method: String,
+    /// Seed.
+    pub seed: u64,
+    /// Free parameters.
+    pub free: Vec<FreeJson>,
+    /// Objective weights.
+    pub objective: Weights,
+    /// Constraints.
+    pub constraints: Constraints,
+    /// The search.
+    pub search: SearchJson,
+    /// The verification.
+    pub verification: VerificationJson,
+    /// The start cut.
+    pub start: Candidate,
+    /// The winners, best first.
+    pub winners: Vec<Candidate>,
+    /// Files of the run folder.
+    pub files: Vec<String>,
+}
+
+impl Report {
+    /// `report.json`.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+            + "\n"
+    }
+
+    /// `report.md`.
+    pub fn to_markdown(&self, config: &Config) -> String {
+        let mut o = String::new();
+        let _ = writeln!(o, "# Optimization run: {}\n", self.name);
+        if let Some(d) = &self.description {
+            let _ = writeln!(o, "{d}\n");
+        }
+        let method = match config.method {
+            Method::NelderMead(n) => format!(
+                "Nelder–Mead, {} start{} ({}{}), sigmoid-mapped bounds",
+                n.starts,
+                if n.starts == 1 { "" } else { "s" },
+                n.design.name(),
+                if n.include_start {
+                    ", start 0 = the configured start"
+                } else {
+                    ""
+                }
+            ),
+            Method::ParticleSwarm(s) => format!("particle swarm, {} particles", s.particles),
+        };
+        let w = &self.objective;
+        let _ = writeln!(
+            o,
+            "- config: `{}` (family `{}`), seed {}\n- method: {method}\n- objective: score = {}·brilliance + {}·fire + {}·scintillation; cost = −score + penalties",
+            self.config, self.family, self.seed, w.brilliance, w.fire, w.scintillation
+        );
+        let s = &self.search;
+        let _ = writeln!(
+            o,
+            "- search: {} evaluations, {} iterations in {:.1} s ({:.1} evaluations/s on {} threads); stopped: {}",
+            s.evaluations,
+            s.iterations,
+            s.seconds,
+            s.evaluations_per_second,
+            s.threads,
+            s.stop.text()
+        );
+        let v = &self.verification;
+        if v.available {
+            let _ = writeln!(
+                o,
+                "- verification: photon tracer, {} photons per light, {:.1} s; flagged beyond {} standard errors{}",
+                v.photons,
+                v.seconds,
+                v.sigma,
+                v.note.as_ref().map(|n| format!(" ({n})")).unwrap_or_default()
+            );
+        } else {
+            let _ = writeln!(
+                o,
+                "- verification: not run{}",
+                v.note
+                    .as_ref()
+                    .map(|n| format!(" ({n})"))
+                    .unwrap_or_default()
+            );
+        }
+
+        let cands: Vec<&Candidate> = std::iter::once(&self.start).chain(&self.winners).collect();
+        let _ = writeln!(o, "\n## Start and winners\n");
+        let _ = write!(o, "| |");
+        for c in &cands {
+            let _ = write!(o, " {} |", c.label);
+        }
+        let _ = write!(o, "\n|---|");
+        for _ in &cands {
+            let _ = write!(o, "---:|");
+        }
+        o.push('\n');
+        let row = |o: &mut String, name: &str, f: &dyn Fn(&Candidate) -> String| {
+            let _ = write!(o, "| {name} |");
+            for c in &cands {
+                let _ = write!(o, " {} |", f(c));
+            }
+            o.push('\n');
+        };
+        let section = |o: &mut String, name: &str| {
+            let _ = write!(o, "| **{name}** |");
+            for _ in &cands {
+                o.push_str(" |");
+            }
+            o.push('\n');
+        };
+        section(&mut o, "free parameters");
+        for f in &config.free {
+            row(&mut o, &f.label(), &|c| fmt_param(c.free[&f.key], f.unit));
+        }
+        section(&mut o, "proportions");
+        let pr = |o: &mut String, name: &str, g: &dyn Fn(&Proportions) -> f64, pct: bool| {
+            row(o, name, &|c| match &c.proportions {
+                Some(p) if pct => format!("{:.1} %", 100.0 * g(p)),
+                Some(p) => format!("{:.2}°", g(p)),
+                None => "—".into(),
+            })
+        };
+        pr(&mut o, "table", &|p| p.table, true);
+        pr(&mut o, "crown angle", &|p| p.crown_angle, false);
+        pr(&mut o, "pavilion angle", &|p| p.pavilion_angle, false);
+        pr(&mut o, "crown height", &|p| p.crown_height, true);
+        pr(&mut o, "pavilion depth", &|p| p.pavilion_depth, true);
+        pr(&mut o, "total depth", &|p| p.total_depth, true);
+        pr(&mut o, "girdle", &|p| p.girdle, true);
+        row(&mut o, "weight retention", &|c| {
+            c.weight_retention
+                .map(|w| format!("{:.1} %", 100.0 * w))
+                .unwrap_or("—".into())
+        });
+        section(&mut o, "scores");
+        let mut names: Vec<String> = Vec::new();
+        for c in &cands {
+            for n in &c.score_order {
+                if !names.contains(n) {
+                    names.push(n.clone());
+                }
+            }
+        }
+        for n in &names {
+            row(&mut o, n, &|c| {
+                c.scores
+                    .as_ref()
+                    .and_then(|s| s.get(n))
+                    .map(|v| format!("{v:.4}"))
+                    .unwrap_or("—".into())
+            });
+        }
+        row(&mut o, "weighted score", &|c| {
+            format!("{:.4}", c.weighted_score)
+        });
+        row(&mut o, "penalty", &|c| format!("{:.4}", c.penalty));
+        row(&mut o, "**cost**", &|c| format!("**{:.4}**", c.cost));
+        if !self.start.constraints.is_empty() {
+            section(&mut o, "constraints");
+            for (i, k) in self.start.constraints.iter().enumerate() {
+                row(&mut o, &format!("{} {}", k.name, k.limit), &|c| {
+                    c.constraints
+                        .get(i)
+                        .map(|k| format!("{:.4} {}", k.value, if k.ok { "✓" } else { "✗" }))
+                        .unwrap_or("—".into())
+                });
+            }
+        }
+        row(&mut o, "found at", &|c| match &c.found_at {
+            Some(f) => format!(
+                "{} {}, iteration {}, evaluation {}",
+                match config.method {
+                    Method::NelderMead(_) => "start",
+                    Method::ParticleSwarm(_) => "particle",
+                },
+                f.track,
+                f.iteration,
+                f.evaluations
+            ),
+            None => "—".into(),
+        });
+        if cands.iter().any(|c| c.error.is_some()) {
+            row(&mut o, "error", &|c| c.error.clone().unwrap_or_default());
+        }
+
+        if cands.iter().any(|c| c.verification.is_some()) {
+            let _ = writeln!(
+                o,
+                "\n## Verification by the photon tracer\n\nMonte Carlo value ± standard error; where the beam tracer gives the same quantity its value and the distance in standard errors (z) follow. ⚠ marks a disagreement beyond {} standard errors.\n",
+                self.verification.sigma
+            );
+            let mut rows: Vec<String> = Vec::new();
+            for c in &cands {
+                if let Some(v) = &c.verification {
+                    for r in &v.report.rows {
+                        if !rows.contains(&r.name) {
+                            rows.push(r.name.clone());
+                        }
+                    }
+                }
+            }
+            let _ = write!(o, "| |");
+            for c in &cands {
+                let _ = write!(o, " {} |", c.label);
+            }
+            let _ = write!(o, "\n|---|");
+            for _ in &cands {
+                let _ = write!(o, "---:|");
+            }
+            o.push('\n');
+            let sigma = self.verification.sigma;
+            for name in &rows {
+                row(&mut o, name, &|c| {
+                    let Some(r) = c
+                        .verification
+                        .as_ref()
+                        .and_then(|v| v.report.rows.iter().find(|r| &r.name == name))
+                    else {
+                        return "—".into();
+                    };
+                    let mut s = format!("{:.4} ± {:.4}", r.value, r.stderr);
+                    if let (Some(b), Some(z)) = (r.beam, r.z()) {
+                        let _ = write!(s, " (beam {b:.4}, z {z:.1})");
+                        if r.disagrees(sigma) {
+                            s.push_str(" ⚠");
+                        }
+                    }
+                    s
+                });
+            }
+            for c in &cands {
+                if let Some(e) = c.verification.as_ref().and_then(|v| v.error.as_ref()) {
+                    let _ = writeln!(o, "\n{}: the verifier failed: {e}", c.label);
+                }
+            }
+            let flagged: Vec<String> = cands
+                .iter()
+                .filter_map(|c| {
+                    let v = c.verification.as_ref()?;
+                    (!v.disagreements.is_empty())
+                        .then(|| format!("{}: {}", c.label, v.disagreements.join(", ")))
+                })
+                .collect();
+            if flagged.is_empty() {
+                let _ = writeln!(
+                    o,
+                    "\nNo disagreement between the tracers beyond {sigma} standard errors."
+                );
+            } else {
+                let _ = writeln!(
+                    o,
+                    "\n**Disagreement beyond {sigma} standard errors** — {}",
+                    flagged.join("; ")
+                );
+            }
+        }
+
+        let _ = writeln!(o, "\n## Files\n");
+        for f in &self.files {
+            let _ = writeln!(o, "- `{f}`");
+        }
+        o
+    }
+}
+
+fn fmt_param(v: f64, unit: crate::cut::Unit) -> String {
+    match unit {
+        crate::cut::Unit::Degrees => format!("{v:.3}°"),
+        crate::cut::Unit::Fraction => format!("{v:.4}"),
+        _ => format!("{v}"),
+    }
+}

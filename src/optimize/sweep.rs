@@ -1,0 +1,535 @@
+//! Sweeps: a score over a grid of two family parameters (the others as in the config's start
+//! cut), evaluated in parallel, written as CSV and as a heatmap with contour lines — optionally
+//! with an optimizer run's path drawn on it.
+//!
+//! Axes are given as `KEY:MIN:MAX:STEP` (`crown_angle:25:40:0.5`); the grid holds
+//! `MIN, MIN+STEP, …` up to `MAX` (inclusive within rounding). The CSV has one row per grid
+//! point, x varying fastest: `<x key>,<y key>,brilliance,fire,scintillation,objective`
+//! (+ any extra scores), where `objective = Σ weight · score − penalties` (higher is better;
+//! the negative of the optimizer's cost) and a cut that cannot be built has `NaN` scores.
+
+use super::config::{axis_label, Config};
+use super::history::History;
+use super::plot::{save_both, Heatmap};
+use super::problem::{check_constraints, penalty, weighted};
+use super::{Evaluator, ScoreSet};
+use crate::cut::{Cut, Unit};
+use crate::error::{Error, Result};
+use crate::io::{read_bytes, write_atomic};
+use rayon::prelude::*;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+/// Largest number of grid points.
+pub const MAX_POINTS: usize = 250_000;
+
+/// One axis of a sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axis {
+    /// Family parameter.
+    pub key: String,
+    /// Grid values, increasing.
+    pub values: Vec<f64>,
+    /// Unit, for the label.
+    pub unit: Unit,
+}
+
+impl Axis {
+    /// Parse `KEY:MIN:MAX:STEP` for `flag` (`--x`, `--y`), checking the key and every value
+    /// against the family.
+    pub fn parse(flag: &str, spec: &str, config: &Config) -> Result<Axis> {
+        let parts: Vec<&str> = spec.split(':').map(str::trim).collect();
+        if parts.len() != 4 {
+            return Err(Error::invalid(
+                flag,
+                format!("`{spec}` is not KEY:MIN:MAX:STEP (e.g. crown_angle:25:40:0.5)"),
+            ));
+        }
+        let fam = config.family;
+        let def = fam.param(parts[0]).ok_or_else(|| {
+            Error::invalid(
+                flag,
+                format!(
+                    "`{}` is not a parameter of {}; allowed: {}",
+                    parts[0],
+                    fam.name,
+                    fam.keys().join(", ")
+                ),
+            )
+        })?;
+        if def.unit == Unit::Count {
+            return Err(Error::invalid(
+                flag,
+                format!(
+                    "`{}` is a whole-number parameter; sweep a continuous one",
+                    def.key
+                ),
+            ));
+        }
+        let num = |s: &str, what: &str| -> Result<f64> {
+            match s.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(Error::invalid(
+                    flag,
+                    format!("{what} `{s}` is not a finite number"),
+                )),
+            }
+        };
+        let (min, max, step) = (
+            num(parts[1], "MIN")?,
+            num(parts[2], "MAX")?,
+            num(parts[3], "STEP")?,
+        );
+        if step <= 0.0 {
+            return Err(Error::invalid(
+                flag,
+                format!("STEP {step} must be positive"),
+            ));
+        }
+        if max <= min {
+            return Err(Error::invalid(
+                flag,
+                format!("MAX {max} must be above MIN {min}"),
+            ));
+        }
+        let steps = ((max - min) / step * (1.0 + 1e-9)).floor();
+        if steps >= 5000.0 {
+            return Err(Error::invalid(
+                flag,
+                format!("{} values; at most 5000 per axis", steps + 1.0),
+            ));
+        }
+        let n = steps as usize + 1;
+        if n < 2 {
+            return Err(Error::invalid(
+                flag,
+                format!(
+                    "STEP {step} leaves a single value between {min} and {max}; use a smaller step"
+                ),
+            ));
+        }
+        let decimals = [parts[1], parts[3]]
+            .iter()
+            .map(|s| s.split_once('.').map(|(_, f)| f.len()).unwrap_or(0))
+            .max()
+            .unwrap_or(0)
+            .min(12) as i32;
+        let scale = 10f64.powi(decimals);
+        let values: Vec<f64> = (0..n)
+            .map(|i| ((min + i as f64 * step) * scale).round() / scale)
+            .collect();
+        for &v in &values {
+            def.check(v)
+                .map_err(|e| Error::invalid(format!("{flag} {}", def.key), strip_field(e)))?;
+        }
+        Ok(Axis {
+            key: def.key.to_string(),
+            values,
+            unit: def.unit,
+        })
+    }
+
+    /// Axis label with unit.
+    pub fn label(&self) -> String {
+        axis_label(&self.key, self.unit)
+    }
+}
+
+fn strip_field(e: Error) -> String {
+    match e {
+        Error::Invalid { message, .. } => message,
+        other => other.to_string(),
+    }
+}
+
+/// Which score a heatmap shows.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum SweepScore {
+    /// Brilliance.
+    Brilliance,
+    /// Fire.
+    Fire,
+    /// Scintillation.
+    Scintillation,
+    /// Σ weight · score − penalties.
+    Objective,
+}
+
+impl SweepScore {
+    /// Parse `brilliance`, `fire`, `scintillation` or `objective`.
+    pub fn parse(s: &str) -> Result<SweepScore> {
+        match s {
+            "brilliance" => Ok(SweepScore::Brilliance),
+            "fire" => Ok(SweepScore::Fire),
+            "scintillation" => Ok(SweepScore::Scintillation),
+            "objective" => Ok(SweepScore::Objective),
+            other => Err(Error::invalid(
+                "--score",
+                format!(
+                    "unknown score `{other}`; allowed: brilliance, fire, scintillation, objective"
+                ),
+            )),
+        }
+    }
+
+    /// Name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            SweepScore::Brilliance => "brilliance",
+            SweepScore::Fire => "fire",
+            SweepScore::Scintillation => "scintillation",
+            SweepScore::Objective => "objective",
+        }
+    }
+}
+
+/// One grid point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cell {
+    /// x value.
+    pub x: f64,
+    /// y value.
+    pub y: f64,
+    /// Scores (None when the cut failed).
+    pub scores: Option<ScoreSet>,
+    /// Σ weight · score − penalties (NaN when the cut failed).
+    pub objective: f64,
+}
+
+impl Cell {
+    /// The value of `score` (NaN when the cut failed).
+    pub fn value(&self, score: &SweepScore) -> f64 {
+        match (score, &self.scores) {
+            (SweepScore::Objective, _) => self.objective,
+            (_, None) => f64::NAN,
+            (SweepScore::Brilliance, Some(s)) => s.brilliance,
+            (SweepScore::Fire, Some(s)) => s.fire,
+            (SweepScore::Scintillation, Some(s)) => s.scintillation,
+        }
+    }
+}
+
+/// A finished sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sweep {
+    /// x axis.
+    pub x: Axis,
+    /// y axis.
+    pub y: Axis,
+    /// Cells, x fastest: cell `(i, j)` is `cells[j * nx + i]`.
+    pub cells: Vec<Cell>,
+}
+
+/// Evaluate the grid (in parallel; the result is in grid order whatever the thread count).
+/// `tick` is called once per finished point.
+pub fn sweep(
+    config: &Config,
+    evaluator: &dyn Evaluator,
+    x: &Axis,
+    y: &Axis,
+    tick: Option<&(dyn Fn() + Sync)>,
+) -> Result<Sweep> {
+    if x.key == y.key {
+        return Err(Error::invalid(
+            "--y",
+            format!(
+                "sweeps `{}` on both axes; give two different parameters",
+                x.key
+            ),
+        ));
+    }
+    let nx = x.values.len();
+    let n = nx * y.values.len();
+    if n > MAX_POINTS {
+        return Err(Error::invalid(
+            "--x/--y",
+            format!("{n} grid points; at most {MAX_POINTS}: use larger steps"),
+        ));
+    }
+    let cells: Vec<Cell> = (0..n)
+        .into_par_iter()
+        .map(|k| {
+            let (xv, yv) = (x.values[k % nx], y.values[k / nx]);
+            let mut p = config.start.clone();
+            p.insert(x.key.clone(), xv);
+            p.insert(y.key.clone(), yv);
+            let scored = Cut::from_family(&config.name, config.family.name, &p)
+                .and_then(|cut| evaluator.evaluate(&cut).map(|s| (cut, s)));
+            let cell = match scored {
+                Ok((cut, s)) => {
+                    let checks = check_constraints(&cut, &config.constraints);
+                    let obj = weighted(&s, &config.weights) - penalty(&checks, &config.constraints);
+                    Cell {
+                        x: xv,
+                        y: yv,
+                        scores: Some(s),
+                        objective: if obj.is_finite() { obj } else { f64::NAN },
+                    }
+                }
+                Err(_) => Cell {
+                    x: xv,
+                    y: yv,
+                    scores: None,
+                    objective: f64::NAN,
+                },
+            };
+            if let Some(t) = tick {
+                t();
+            }
+            cell
+        })
+        .collect();
+    Ok(Sweep {
+        x: x.clone(),
+        y: y.clone(),
+        cells,
+    })
+}
+
+impl Sweep {
+    /// Names of the extra scores (from the first scored cell).
+    fn extras(&self) -> Vec<String> {
+        self.cells
+            .iter()
+            .find_map(|c| c.scores.as_ref())
+            .map(|s| s.extra.iter().map(|(k, _)| k.clone()).collect())
+            .unwrap_or_default()
+    }
+
+    /// The CSV text.
+    pub fn to_csv(&self) -> String {
+        let extras = self.extras();
+        let mut o = format!(
+            "{},{},brilliance,fire,scintillation,objective",
+            self.x.key, self.y.key
+        );
+        for e in &extras {
+            let _ = write!(o, ",{e}");
+        }
+        o.push('\n');
+        for c in &self.cells {
+            let s = |v: f64| {
+                if v.is_finite() {
+                    v.to_string()
+                } else {
+                    "NaN".into()
+                }
+            };
+            let _ = write!(
+                o,
+                "{},{},{},{},{},{}",
+                c.x,
+                c.y,
+                s(c.value(&SweepScore::Brilliance)),
+                s(c.value(&SweepScore::Fire)),
+                s(c.value(&SweepScore::Scintillation)),
+                s(c.objective)
+            );
+            for e in &extras {
+                let v = c
+                    .scores
+                    .as_ref()
+                    .and_then(|sc| sc.get(e))
+                    .unwrap_or(f64::NAN);
+                let _ = write!(o, ",{}", s(v));
+            }
+            o.push('\n');
+        }
+        o
+    }
+
+    /// The grid of `score`: `z[j][i]`.
+    pub fn grid(&self, score: &SweepScore) -> Vec<Vec<f64>> {
+        let nx = self.x.values.len();
+        self.cells
+            .chunks(nx)
+            .map(|row| row.iter().map(|c| c.value(score)).collect())
+            .collect()
+    }
+
+    /// The heatmap of `score`, with an optional path.
+    pub fn heatmap(
+        &self,
+        score: &SweepScore,
+        title: String,
+        path: Option<Vec<(f64, f64)>>,
+    ) -> Heatmap {
+        Heatmap {
+            title,
+            xs: self.x.values.clone(),
+            ys: self.y.values.clone(),
+            z: self.grid(score),
+            x_label: self.x.label(),
+            y_label: self.y.label(),
+            z_label: match score {
+                SweepScore::Objective => "objective = weighted score − penalties".into(),
+                other => other.name().to_string(),
+            },
+            path,
+        }
+    }
+}
+
+/// The optimizer's path (best point so far) from a run folder, projected on the sweep's axes.
+/// A parameter that was not free in that run is constant: its value comes from the run's
+/// `config.toml`.
+pub fn run_path(run_dir: &Path, x: &str, y: &str) -> Result<Vec<(f64, f64)>> {
+    let hist_path = run_dir.join("history.csv");
+    let text = String::from_utf8_lossy(&read_bytes(&hist_path)?).to_string();
+    let h = History::from_csv(&text, &hist_path.display().to_string())?;
+    let col = |k: &str| h.keys.iter().position(|c| c == k);
+    let fixed = |k: &str| -> Result<f64> {
+        let cfg_path = run_dir.join("config.toml");
+        let cfg = Config::load(&cfg_path)?;
+        cfg.start.get(k).copied().ok_or_else(|| {
+            Error::invalid(
+                "--run",
+                format!(
+                    "{}: the run's family {} has no parameter `{k}`",
+                    run_dir.display(),
+                    cfg.family.name
+                ),
+            )
+        })
+    };
+    let (cx, cy) = (col(x), col(y));
+    let fx = match cx {
+        Some(_) => 0.0,
+        None => fixed(x)?,
+    };
+    let fy = match cy {
+        Some(_) => 0.0,
+        None => fixed(y)?,
+    };
+    Ok(h.best_path()
+        .into_iter()
+        .map(|p| (cx.map_or(fx, |i| p[i]), cy.map_or(fy, |i| p[i])))
+        .collect())
+}
+
+/// Where a sweep's three files go: `--out` as a folder (`sweep.csv`, `.png`, `.svg` in it) or,
+/// with a `.csv`, `.png` or `.svg` extension, as the common stem.
+pub fn output_paths(out: &Path) -> (PathBuf, PathBuf, PathBuf) {
+    let ext = out
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let stem = match ext.as_deref() {
+        Some("csv" | "png" | "svg") => out.with_extension(""),
+        _ => out.join("sweep"),
+    };
+    (
+        stem.with_extension("csv"),
+        stem.with_extension("png"),
+        stem.with_extension("svg"),
+    )
+}
+
+/// Write the CSV and the heatmap (PNG and SVG).
+pub fn write(
+    sweep: &Sweep,
+    score: &SweepScore,
+    title: String,
+    path: Option<Vec<(f64, f64)>>,
+    out: &Path,
+) -> Result<(PathBuf, PathBuf, PathBuf)> {
+    let (csv, png, svg) = output_paths(out);
+    if let Some(d) = csv.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(d).map_err(|e| Error::io(d.display().to_string(), e))?;
+    }
+    write_atomic(&csv, sweep.to_csv().as_bytes())?;
+    save_both(&sweep.heatmap(score, title, path), &png, &svg)?;
+    Ok((csv, png, svg))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cfg() -> Config {
+        Config::from_str(
+            "[cut]\nfamily = \"round-brilliant\"\n[free]\ncrown_angle = [30.0, 38.0]\n",
+            "s.toml",
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn axes_parse_and_refuse() {
+        let c = cfg();
+        let a = Axis::parse("--x", "crown_angle:25:40:0.5", &c).unwrap();
+        assert_eq!(a.values.len(), 31);
+        assert_eq!(a.values[3], 26.5);
+        assert_eq!(*a.values.last().unwrap(), 40.0);
+        let b = Axis::parse("--y", "pavilion_angle:38:43:0.1", &c).unwrap();
+        assert_eq!(b.values.len(), 51);
+        assert_eq!(b.values[7], 38.7, "rounded to the step's decimals");
+        for (spec, want) in [
+            (
+                "crown_angle:25:40",
+                "--x: `crown_angle:25:40` is not KEY:MIN:MAX:STEP",
+            ),
+            (
+                "crown:25:40:1",
+                "--x: `crown` is not a parameter of round-brilliant",
+            ),
+            ("crown_angle:40:25:1", "--x: MAX 25 must be above MIN 40"),
+            ("crown_angle:25:40:0", "--x: STEP 0 must be positive"),
+            (
+                "crown_angle:25:40:x",
+                "--x: STEP `x` is not a finite number",
+            ),
+            ("crown_angle:1:40:1", "--x crown_angle: 1 is out of range"),
+            ("girdle_facets:0:32:16", "whole-number"),
+            ("crown_angle:25:26:5", "single value"),
+            ("crown_angle:25:40:1e-300", "at most 5000 per axis"),
+        ] {
+            let e = Axis::parse("--x", spec, &c).unwrap_err().to_string();
+            assert!(e.contains(want), "{spec}: {e}");
+        }
+        assert!(SweepScore::parse("fyre")
+            .unwrap_err()
+            .to_string()
+            .starts_with("--score: unknown score `fyre`"));
+    }
+
+    #[test]
+    fn sweep_is_in_grid_order_and_writes_files() {
+        let c = cfg();
+        let x = Axis::parse("--x", "crown_angle:30:36:1", &c).unwrap();
+        let y = Axis::parse("--y", "pavilion_angle:39:42:0.5", &c).unwrap();
+        let bump = |cut: &Cut| -> Result<ScoreSet> {
+            let (a, b) = (cut.params["crown_angle"], cut.params["pavilion_angle"]);
+            Ok(ScoreSet::new(
+                (-((a - 34.0) / 2.0).powi(2) - (b - 40.5).powi(2)).exp(),
+                a / 100.0,
+                0.0,
+            ))
+        };
+        let s = sweep(&c, &bump, &x, &y, None).unwrap();
+        assert_eq!(s.cells.len(), 7 * 7);
+        assert_eq!((s.cells[8].x, s.cells[8].y), (31.0, 39.5));
+        let g = s.grid(&SweepScore::Brilliance);
+        assert!((g[3][4] - 1.0).abs() < 1e-12, "peak at (34, 40.5)");
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let s1 = pool.install(|| sweep(&c, &bump, &x, &y, None).unwrap());
+        assert_eq!(s1.to_csv(), s.to_csv());
+        let dir = tempfile::tempdir().unwrap();
+        let (csv, png, svg) = write(
+            &s,
+            &SweepScore::Brilliance,
+            "t".into(),
+            Some(vec![(31.0, 39.5), (34.0, 40.5)]),
+            &dir.path().join("map.png"),
+        )
+        .unwrap();
+        assert!(csv.ends_with("map.csv") && png.exists() && svg.exists());
+        let text = std::fs::read_to_string(csv).unwrap();
+        assert!(text.starts_with(
+            "crown_angle,pavilion_angle,brilliance,fire,scintillation,objective\n30,39,"
+        ));
+        assert_eq!(output_paths(Path::new("out")).0, Path::new("out/sweep.csv"));
+    }
+}
