@@ -11,3 +11,6 @@ pub mod io;
 pub mod optics;
 
 pub use error::{Error, Result};
+pub mod photon;
+pub mod plot;
+pub mod cli;

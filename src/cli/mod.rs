@@ -1,0 +1,3 @@
+//! The command line (the lead wires the subcommands into `main`).
+
+pub mod trace;
