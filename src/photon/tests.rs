@@ -262,6 +262,7 @@ fn same_seed_same_numbers_on_one_and_two_threads() {
 /// grid of rays over the stone, every Fresnel split followed with its exact weight to the
 /// same depth, no randomness. Written against `Polyhedron` and the `optics` functions only.
 fn grid_light_return(s: &Polyhedron, n: f64, depth: u32, grid: usize) -> (f64, f64) {
+    #[allow(clippy::too_many_arguments)]
     fn follow(
         s: &Polyhedron,
         p: DVec3,
