@@ -548,3 +548,32 @@ impl<'a> Tracer<'a> {
         Some((fate, lambda))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn beam_grid_entry_matches_the_general_entry() {
+        let cut = crate::io::load_cut("tolkowsky").unwrap();
+        let s = TraceSolid::new(&cut.solid).unwrap();
+        for light in [Light::directed(0.0), Light::directed(60.0), Light::directed(90.0), Light::offset_directed()] {
+            let cfg = TraceConfig::thesis();
+            let tr = Tracer::new(&s, &light, &cfg).unwrap();
+            let beam = tr.beam.as_ref().unwrap();
+            let mut rng = SmallRng::seed_from_u64(5);
+            let (mut hits, mut differ) = (0, 0);
+            for _ in 0..20_000 {
+                let a = (2.0 * rng.random::<f64>() - 1.0) * tr.half;
+                let b = (2.0 * rng.random::<f64>() - 1.0) * tr.half;
+                let o = tr.centre + tr.u * a + tr.v * b;
+                let fast = beam.entry(a, b);
+                let general = s.entry(o, tr.axis).map(|(_, f)| f);
+                hits += general.is_some() as u32;
+                differ += (fast != general) as u32;
+            }
+            assert!(hits > 5_000, "{}", light.label);
+            assert_eq!(differ, 0, "{}", light.label);
+        }
+    }
+}

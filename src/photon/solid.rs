@@ -53,7 +53,7 @@ impl TraceSolid {
                 "the solid has too few facets to trace".into(),
             ));
         }
-        let padded = n.div_ceil(LANES) * LANES;
+        let padded = n.div_ceil(2 * LANES) * (2 * LANES);
         let mut nx = vec![0.0; padded];
         let mut ny = vec![0.0; padded];
         let mut nz = vec![0.0; padded];
@@ -221,7 +221,7 @@ impl TraceSolid {
 fn has_avx2() -> bool {
     #[cfg(target_arch = "x86_64")]
     {
-        std::is_x86_feature_detected!("avx2")
+        std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
@@ -229,46 +229,37 @@ fn has_avx2() -> bool {
     }
 }
 
-/// Lane-by-lane f32 exit search: lane `l` keeps the smallest `t` of facets `l, l+8, …`
-/// (first wins ties), then the lanes are reduced (smallest index wins ties). Exactly the
-/// arithmetic of [`exit_index_avx2`].
-fn exit_index_scalar(f: &[Vec<f32>; 4], p: [f32; 3], d: [f32; 3]) -> usize {
-    let mut best = [f32::INFINITY; LANES];
-    let mut idx = [0u32; LANES];
-    let n = f[0].len();
-    let mut b = 0;
-    while b < n {
-        for l in 0..LANES {
-            let i = b + l;
-            let nd = f[0][i] * d[0] + f[1][i] * d[1] + f[2][i] * d[2];
-            let np = f[0][i] * p[0] + f[1][i] * p[1] + f[2][i] * p[2];
-            let t = (f[3][i] - np) / nd;
-            let t = if nd > 0.0 { t } else { f32::INFINITY };
-            if t < best[l] {
-                best[l] = t;
-                idx[l] = i as u32;
-            }
-        }
-        b += LANES;
+/// The f32 time to facet `i`'s plane, or infinity when the ray does not move toward it.
+#[inline(always)]
+fn t32(f: &[Vec<f32>; 4], i: usize, p: [f32; 3], d: [f32; 3]) -> f32 {
+    let nd = f[0][i].mul_add(d[0], f[1][i].mul_add(d[1], f[2][i] * d[2]));
+    let np = f[0][i].mul_add(p[0], f[1][i].mul_add(p[1], f[2][i] * p[2]));
+    let t = (f[3][i] - np) / nd;
+    if nd > 0.0 {
+        t
+    } else {
+        f32::INFINITY
     }
-    reduce(best, idx)
 }
 
-#[inline(always)]
-fn reduce(best: [f32; LANES], idx: [u32; LANES]) -> usize {
-    let mut bt = best[0];
-    let mut bi = idx[0];
-    for l in 1..LANES {
-        if best[l] < bt || (best[l] == bt && idx[l] < bi) {
-            bt = best[l];
-            bi = idx[l];
+/// The f32 exit search, one facet at a time: the facet with the smallest `t` (the first on
+/// ties). [`exit_index_avx2`] computes the same `t`s (same fused operations) and gives the
+/// same facet.
+fn exit_index_scalar(f: &[Vec<f32>; 4], p: [f32; 3], d: [f32; 3]) -> usize {
+    let mut best = f32::INFINITY;
+    let mut idx = 0;
+    for i in 0..f[0].len() {
+        let t = t32(f, i, p, d);
+        if t < best {
+            best = t;
+            idx = i;
         }
     }
-    bi as usize
+    idx
 }
 
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,fma")]
 unsafe fn exit_index_avx2(f: &[Vec<f32>; 4], p: [f32; 3], d: [f32; 3]) -> usize {
     use std::arch::x86_64::*;
     let n = f[0].len();
@@ -276,37 +267,111 @@ unsafe fn exit_index_avx2(f: &[Vec<f32>; 4], p: [f32; 3], d: [f32; 3]) -> usize 
     let (px, py, pz) = (_mm256_set1_ps(p[0]), _mm256_set1_ps(p[1]), _mm256_set1_ps(p[2]));
     let inf = _mm256_set1_ps(f32::INFINITY);
     let zero = _mm256_setzero_ps();
-    let eight = _mm256_set1_epi32(LANES as i32);
-    let mut best = inf;
-    let mut bidx = _mm256_setzero_si256();
-    let mut idx = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    let step = _mm256_set1_epi32(2 * LANES as i32);
+    // Two independent (best, index) accumulators: even and odd blocks of 8 facets.
+    let mut best = [inf, inf];
+    let mut bidx = [_mm256_setzero_si256(), _mm256_setzero_si256()];
+    let mut idx = [_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_setr_epi32(8, 9, 10, 11, 12, 13, 14, 15)];
     let mut b = 0;
     while b < n {
-        // SAFETY: every array has length n, a multiple of LANES, and b + 8 <= n.
-        let (nx, ny, nz, off) = unsafe {
-            (
-                _mm256_loadu_ps(f[0].as_ptr().add(b)),
-                _mm256_loadu_ps(f[1].as_ptr().add(b)),
-                _mm256_loadu_ps(f[2].as_ptr().add(b)),
-                _mm256_loadu_ps(f[3].as_ptr().add(b)),
-            )
-        };
-        let nd = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(nx, dx), _mm256_mul_ps(ny, dy)), _mm256_mul_ps(nz, dz));
-        let np = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(nx, px), _mm256_mul_ps(ny, py)), _mm256_mul_ps(nz, pz));
-        let t = _mm256_div_ps(_mm256_sub_ps(off, np), nd);
-        let t = _mm256_blendv_ps(inf, t, _mm256_cmp_ps(nd, zero, _CMP_GT_OQ));
-        let lt = _mm256_cmp_ps(t, best, _CMP_LT_OQ);
-        best = _mm256_blendv_ps(best, t, lt);
-        bidx = _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(bidx), _mm256_castsi256_ps(idx), lt));
-        idx = _mm256_add_epi32(idx, eight);
-        b += LANES;
+        for k in 0..2 {
+            let o = b + k * LANES;
+            // SAFETY: every array has length n, a multiple of 2·LANES, and o + 8 <= n.
+            let (nx, ny, nz, off) = unsafe {
+                (
+                    _mm256_loadu_ps(f[0].as_ptr().add(o)),
+                    _mm256_loadu_ps(f[1].as_ptr().add(o)),
+                    _mm256_loadu_ps(f[2].as_ptr().add(o)),
+                    _mm256_loadu_ps(f[3].as_ptr().add(o)),
+                )
+            };
+            let nd = _mm256_fmadd_ps(nx, dx, _mm256_fmadd_ps(ny, dy, _mm256_mul_ps(nz, dz)));
+            let np = _mm256_fmadd_ps(nx, px, _mm256_fmadd_ps(ny, py, _mm256_mul_ps(nz, pz)));
+            let t = _mm256_div_ps(_mm256_sub_ps(off, np), nd);
+            let t = _mm256_blendv_ps(inf, t, _mm256_cmp_ps(nd, zero, _CMP_GT_OQ));
+            let lt = _mm256_cmp_ps(t, best[k], _CMP_LT_OQ);
+            best[k] = _mm256_blendv_ps(best[k], t, lt);
+            bidx[k] = _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(bidx[k]), _mm256_castsi256_ps(idx[k]), lt));
+            idx[k] = _mm256_add_epi32(idx[k], step);
+        }
+        b += 2 * LANES;
     }
-    let mut bt = [0f32; LANES];
-    let mut bi = [0u32; LANES];
-    // SAFETY: the arrays hold exactly 8 lanes.
-    unsafe {
-        _mm256_storeu_ps(bt.as_mut_ptr(), best);
-        _mm256_storeu_si256(bi.as_mut_ptr() as *mut __m256i, bidx);
+    // Branch-free reduction: the smallest t over all 16 lanes, then the smallest index
+    // among the lanes holding it.
+    let m = _mm256_min_ps(best[0], best[1]);
+    let m = _mm256_min_ps(m, _mm256_permute2f128_ps(m, m, 1));
+    let m = _mm256_min_ps(m, _mm256_shuffle_ps(m, m, 0b01_00_11_10));
+    let m = _mm256_min_ps(m, _mm256_shuffle_ps(m, m, 0b10_11_00_01));
+    let none = _mm256_set1_epi32(i32::MAX);
+    let pick = |b: __m256, i: __m256i| {
+        _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(none), _mm256_castsi256_ps(i), _mm256_cmp_ps(b, m, _CMP_EQ_OQ)))
+    };
+    let i = _mm256_min_epi32(pick(best[0], bidx[0]), pick(best[1], bidx[1]));
+    let i = _mm256_min_epi32(i, _mm256_permute2x128_si256(i, i, 1));
+    let i = _mm256_min_epi32(i, _mm256_shuffle_epi32(i, 0b01_00_11_10));
+    let i = _mm256_min_epi32(i, _mm256_shuffle_epi32(i, 0b10_11_00_01));
+    let i = _mm256_cvtsi256_si32(i);
+    if i == i32::MAX {
+        // Every t is NaN (a NaN direction): the scalar search says facet 0.
+        0
+    } else {
+        i as usize
     }
-    reduce(bt, bi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::rngs::SmallRng;
+    use rand::{Rng, SeedableRng};
+
+    fn random_dir(rng: &mut SmallRng) -> DVec3 {
+        loop {
+            let v = DVec3::new(rng.random::<f64>() * 2.0 - 1.0, rng.random::<f64>() * 2.0 - 1.0, rng.random::<f64>() * 2.0 - 1.0);
+            if v.length_squared() > 1e-3 && v.length_squared() <= 1.0 {
+                return v.normalize();
+            }
+        }
+    }
+
+    #[test]
+    fn fast_exit_search_matches_the_f64_reference() {
+        let cut = crate::io::load_cut("tolkowsky").unwrap();
+        let s = TraceSolid::new(&cut.solid).unwrap();
+        let mut rng = SmallRng::seed_from_u64(3);
+        let mut differ = 0;
+        for _ in 0..20_000 {
+            // A point on a random facet's plane inside the stone, moving inward or along.
+            let p = s.centre + 0.3 * random_dir(&mut rng) * rng.random::<f64>();
+            let d = random_dir(&mut rng);
+            let (t, j) = s.exit(p, d);
+            let (t64, j64) = s.exit_f64(p, d);
+            assert!((t - t64).abs() < 1e-5, "{t} vs {t64}");
+            differ += (j != j64) as u32;
+            let pf = {
+                let q = p - s.centre;
+                [q.x as f32, q.y as f32, q.z as f32]
+            };
+            let df = [d.x as f32, d.y as f32, d.z as f32];
+            let scalar = exit_index_scalar(&s.f, pf, df);
+            #[cfg(target_arch = "x86_64")]
+            if s.avx2 {
+                // SAFETY: AVX2 and FMA detected.
+                assert_eq!(scalar, unsafe { exit_index_avx2(&s.f, pf, df) });
+            }
+            assert_eq!(scalar, j);
+        }
+        assert!(differ <= 2, "{differ} exits chose another facet than f64");
+    }
+
+    #[test]
+    fn entry_finds_the_facet_facing_the_ray() {
+        let cut = crate::io::load_cut("tolkowsky").unwrap();
+        let s = TraceSolid::new(&cut.solid).unwrap();
+        let (t, f) = s.entry(DVec3::new(0.01, 0.02, 3.0), DVec3::NEG_Z).unwrap();
+        assert_eq!(cut.solid.facets[f].tier, "table");
+        assert!((3.0 - t - cut.solid.bounding_box().1.z).abs() < 1e-12);
+        assert!(s.entry(DVec3::new(0.8, 0.0, 3.0), DVec3::NEG_Z).is_none());
+        assert!(s.entry(DVec3::new(0.0, 0.0, 3.0), DVec3::Z).is_none());
+    }
 }
