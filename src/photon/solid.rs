@@ -40,8 +40,8 @@ pub struct TraceSolid {
     pub centre: DVec3,
     /// Radius of the bounding sphere (slightly enlarged).
     pub radius: f64,
-    /// Whether the CPU has AVX2 (checked once).
-    avx2: bool,
+    /// Whether the CPU has AVX2 and FMA (checked once).
+    pub(crate) avx2: bool,
 }
 
 impl TraceSolid {
