@@ -20,19 +20,37 @@ fn cpu_seconds() -> Option<f64> {
 fn main() {
     let cut = facetlab::io::load_cut("tolkowsky").expect("preset");
     let light = Light::directed(0.0);
-    let photons: u64 = std::env::var("PHOTONS").ok().and_then(|s| s.parse().ok()).unwrap_or(20_000_000);
-    println!("tolkowsky, directed light at 0°, depth 6, thesis absorption; {photons} photons per run");
+    let photons: u64 = std::env::var("PHOTONS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(20_000_000);
+    println!(
+        "tolkowsky, directed light at 0°, depth 6, thesis absorption; {photons} photons per run"
+    );
     for pol in [false, true] {
         for threads in [1usize, 2] {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
-            let cfg = TraceConfig { photons, polarization: pol, ..TraceConfig::thesis() };
-            let warm = TraceConfig { photons: photons / 10, ..cfg.clone() };
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("pool");
+            let cfg = TraceConfig {
+                photons,
+                polarization: pol,
+                ..TraceConfig::thesis()
+            };
+            let warm = TraceConfig {
+                photons: photons / 10,
+                ..cfg.clone()
+            };
             pool.install(|| trace(&cut.solid, &light, &warm, None).expect("trace"));
             let start = Instant::now();
             let cpu0 = cpu_seconds();
             let t = pool.install(|| trace(&cut.solid, &light, &cfg, None).expect("trace"));
             let s = start.elapsed().as_secs_f64();
-            let cpu = cpu_seconds().zip(cpu0).map(|(a, b)| a - b).filter(|c| *c > 0.0);
+            let cpu = cpu_seconds()
+                .zip(cpu0)
+                .map(|(a, b)| a - b)
+                .filter(|c| *c > 0.0);
             println!(
                 "polarization {:3}, {threads} thread{}: {:7.2} M photons/s wall ({:.2} s), {} M photons per CPU-second; {} hit, light return {:.4}",
                 if pol { "on" } else { "off" },

@@ -200,25 +200,26 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
             })? as u32,
         ),
     };
-    let absorption =
-        match a.absorption.trim().to_ascii_lowercase().as_str() {
-            "none" => Absorption::None,
-            "thesis" => Absorption::Thesis,
-            s if s.starts_with("beer:") => Absorption::Beer(parse_number(
-                "--absorption",
-                &s[5..],
-                0.0,
-                1e6,
-                "beer:K with K (per girdle diameter)",
-            )?),
-            _ => return Err(Error::invalid(
+    let absorption = match a.absorption.trim().to_ascii_lowercase().as_str() {
+        "none" => Absorption::None,
+        "thesis" => Absorption::Thesis,
+        s if s.starts_with("beer:") => Absorption::Beer(parse_number(
+            "--absorption",
+            &s[5..],
+            0.0,
+            1e6,
+            "beer:K with K (per girdle diameter)",
+        )?),
+        _ => {
+            return Err(Error::invalid(
                 "--absorption",
                 format!(
                     "`{}` is not allowed; use none, thesis or beer:K (K >= 0 per girdle diameter)",
                     a.absorption
                 ),
-            )),
-        };
+            ))
+        }
+    };
     let polarization = match a.polarization.trim().to_ascii_lowercase().as_str() {
         "on" | "true" | "yes" => true,
         "off" | "false" | "no" => false,

@@ -70,24 +70,37 @@ impl Beam {
         }
         let n_front = front_facet.len();
         // Pad to whole lanes with planes that never decide anything.
-        while front[0].len() % BL != 0 {
+        while !front[0].len().is_multiple_of(BL) {
             front[0].push(f64::NEG_INFINITY);
             front[1].push(0.0);
             front[2].push(0.0);
             front_facet.push(usize::MAX);
         }
-        while back[0].len() % BL != 0 {
+        while !back[0].len().is_multiple_of(BL) {
             back[0].push(f64::INFINITY);
             back[1].push(0.0);
             back[2].push(0.0);
         }
-        let mut beam = Beam { front, front_facet, back, parallel, half, cells: Vec::new(), candidates: Vec::new() };
+        let mut beam = Beam {
+            front,
+            front_facet,
+            back,
+            parallel,
+            half,
+            cells: Vec::new(),
+            candidates: Vec::new(),
+        };
         // The grid.
         let step = 2.0 * half / GRID as f64;
         let corner = |i: usize| -half + i as f64 * step;
         let mut lists: Vec<Vec<u32>> = vec![Vec::new(); GRID * GRID];
         for (k, &f) in beam.front_facet[..n_front].iter().enumerate() {
-            let (mut alo, mut ahi, mut blo, mut bhi) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+            let (mut alo, mut ahi, mut blo, mut bhi) = (
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            );
             for &vi in &s.facet_vertices[f] {
                 let r = s.vertices[vi] - centre;
                 let (a, b) = (r.dot(u), r.dot(v));
@@ -108,7 +121,10 @@ impl Beam {
             }
         }
         let inside: Vec<bool> = (0..(GRID + 1) * (GRID + 1))
-            .map(|c| beam.entry_full(corner(c / (GRID + 1)), corner(c % (GRID + 1))).is_some())
+            .map(|c| {
+                beam.entry_full(corner(c / (GRID + 1)), corner(c % (GRID + 1)))
+                    .is_some()
+            })
             .collect();
         for (c, list) in lists.iter().enumerate() {
             let (i, j) = (c / GRID, c % GRID);
@@ -118,7 +134,10 @@ impl Beam {
             } else if corners.iter().all(|&(x, y)| inside[x * (GRID + 1) + y]) {
                 let start = beam.candidates.len() as u32;
                 beam.candidates.extend_from_slice(list);
-                Cell::Inside { start, len: list.len() as u32 }
+                Cell::Inside {
+                    start,
+                    len: list.len() as u32,
+                }
             } else {
                 Cell::Border
             };
@@ -170,10 +189,10 @@ impl Beam {
         let mut tout = [f64::INFINITY; BL];
         let k = &self.back;
         for c in (0..k[0].len()).step_by(BL) {
-            for l in 0..BL {
+            for (l, o) in tout.iter_mut().enumerate() {
                 let i = c + l;
                 let t = k[0][i] + a * k[1][i] + b * k[2][i];
-                tout[l] = if t < tout[l] { t } else { tout[l] };
+                *o = if t < *o { t } else { *o };
             }
         }
         let (mut t_in, mut f_in) = (tin[0], fin[0]);
@@ -184,7 +203,12 @@ impl Beam {
             }
         }
         let t_out = tout.iter().copied().fold(f64::INFINITY, f64::min);
-        if t_in > t_out || self.parallel.iter().any(|g| g[0] - a * g[1] - b * g[2] < 0.0) {
+        if t_in > t_out
+            || self
+                .parallel
+                .iter()
+                .any(|g| g[0] - a * g[1] - b * g[2] < 0.0)
+        {
             return None;
         }
         let facet = self.front_facet[f_in];
@@ -283,9 +307,16 @@ impl<'a> Tracer<'a> {
             }
         };
         // A light covering the stone must be in front of the whole stone.
-        let ahead = s.vertices.iter().map(|p| (*p - centre).dot(axis)).fold(f64::INFINITY, f64::min);
+        let ahead = s
+            .vertices
+            .iter()
+            .map(|p| (*p - centre).dot(axis))
+            .fold(f64::INFINITY, f64::min);
         if light.size == LightSize::CoverStone && ahead <= 0.0 {
-            return Err(Error::invalid("light", "the light's plane cuts through the stone; move it further away"));
+            return Err(Error::invalid(
+                "light",
+                "the light's plane cuts through the stone; move it further away",
+            ));
         }
         let fixed_n = match (&cfg.material.dispersion, cfg.wavelengths) {
             (Dispersion::Constant(n), _) => Some(*n),
@@ -308,7 +339,8 @@ impl<'a> Tracer<'a> {
             fixed_n,
             seed: cfg.seed,
             cos_deg: (0..=180).map(|k| (k as f64).to_radians().cos()).collect(),
-            beam: (light.kind == LightKind::Directed).then(|| Beam::new(s, centre, axis, u, v, half)),
+            beam: (light.kind == LightKind::Directed)
+                .then(|| Beam::new(s, centre, axis, u, v, half)),
         })
     }
 
@@ -580,7 +612,12 @@ mod tests {
     fn beam_grid_entry_matches_the_general_entry() {
         let cut = crate::io::load_cut("tolkowsky").unwrap();
         let s = TraceSolid::new(&cut.solid).unwrap();
-        for light in [Light::directed(0.0), Light::directed(60.0), Light::directed(90.0), Light::offset_directed()] {
+        for light in [
+            Light::directed(0.0),
+            Light::directed(60.0),
+            Light::directed(90.0),
+            Light::offset_directed(),
+        ] {
             let cfg = TraceConfig::thesis();
             let tr = Tracer::new(&s, &light, &cfg).unwrap();
             let beam = tr.beam.as_ref().unwrap();

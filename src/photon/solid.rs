@@ -263,15 +263,26 @@ fn exit_index_scalar(f: &[Vec<f32>; 4], p: [f32; 3], d: [f32; 3]) -> usize {
 unsafe fn exit_index_avx2(f: &[Vec<f32>; 4], p: [f32; 3], d: [f32; 3]) -> usize {
     use std::arch::x86_64::*;
     let n = f[0].len();
-    let (dx, dy, dz) = (_mm256_set1_ps(d[0]), _mm256_set1_ps(d[1]), _mm256_set1_ps(d[2]));
-    let (px, py, pz) = (_mm256_set1_ps(p[0]), _mm256_set1_ps(p[1]), _mm256_set1_ps(p[2]));
+    let (dx, dy, dz) = (
+        _mm256_set1_ps(d[0]),
+        _mm256_set1_ps(d[1]),
+        _mm256_set1_ps(d[2]),
+    );
+    let (px, py, pz) = (
+        _mm256_set1_ps(p[0]),
+        _mm256_set1_ps(p[1]),
+        _mm256_set1_ps(p[2]),
+    );
     let inf = _mm256_set1_ps(f32::INFINITY);
     let zero = _mm256_setzero_ps();
     let step = _mm256_set1_epi32(2 * LANES as i32);
     // Two independent (best, index) accumulators: even and odd blocks of 8 facets.
     let mut best = [inf, inf];
     let mut bidx = [_mm256_setzero_si256(), _mm256_setzero_si256()];
-    let mut idx = [_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_setr_epi32(8, 9, 10, 11, 12, 13, 14, 15)];
+    let mut idx = [
+        _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
+        _mm256_setr_epi32(8, 9, 10, 11, 12, 13, 14, 15),
+    ];
     let mut b = 0;
     while b < n {
         for k in 0..2 {
@@ -291,7 +302,11 @@ unsafe fn exit_index_avx2(f: &[Vec<f32>; 4], p: [f32; 3], d: [f32; 3]) -> usize 
             let t = _mm256_blendv_ps(inf, t, _mm256_cmp_ps(nd, zero, _CMP_GT_OQ));
             let lt = _mm256_cmp_ps(t, best[k], _CMP_LT_OQ);
             best[k] = _mm256_blendv_ps(best[k], t, lt);
-            bidx[k] = _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(bidx[k]), _mm256_castsi256_ps(idx[k]), lt));
+            bidx[k] = _mm256_castps_si256(_mm256_blendv_ps(
+                _mm256_castsi256_ps(bidx[k]),
+                _mm256_castsi256_ps(idx[k]),
+                lt,
+            ));
             idx[k] = _mm256_add_epi32(idx[k], step);
         }
         b += 2 * LANES;
@@ -304,7 +319,11 @@ unsafe fn exit_index_avx2(f: &[Vec<f32>; 4], p: [f32; 3], d: [f32; 3]) -> usize 
     let m = _mm256_min_ps(m, _mm256_shuffle_ps(m, m, 0b10_11_00_01));
     let none = _mm256_set1_epi32(i32::MAX);
     let pick = |b: __m256, i: __m256i| {
-        _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(none), _mm256_castsi256_ps(i), _mm256_cmp_ps(b, m, _CMP_EQ_OQ)))
+        _mm256_castps_si256(_mm256_blendv_ps(
+            _mm256_castsi256_ps(none),
+            _mm256_castsi256_ps(i),
+            _mm256_cmp_ps(b, m, _CMP_EQ_OQ),
+        ))
     };
     let i = _mm256_min_epi32(pick(best[0], bidx[0]), pick(best[1], bidx[1]));
     let i = _mm256_min_epi32(i, _mm256_permute2x128_si256(i, i, 1));
@@ -327,7 +346,11 @@ mod tests {
 
     fn random_dir(rng: &mut SmallRng) -> DVec3 {
         loop {
-            let v = DVec3::new(rng.random::<f64>() * 2.0 - 1.0, rng.random::<f64>() * 2.0 - 1.0, rng.random::<f64>() * 2.0 - 1.0);
+            let v = DVec3::new(
+                rng.random::<f64>() * 2.0 - 1.0,
+                rng.random::<f64>() * 2.0 - 1.0,
+                rng.random::<f64>() * 2.0 - 1.0,
+            );
             if v.length_squared() > 1e-3 && v.length_squared() <= 1.0 {
                 return v.normalize();
             }
