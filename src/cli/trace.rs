@@ -13,10 +13,10 @@
 //! ends in a one-line error naming the flag and what is allowed.
 //!
 //! **JSON** (`--json FILE`, written atomically). One cut without `--rotate`: a single object
-//! with the keys of a [`Tally`](crate::photon::Tally) (`photons_shot`, `photons_hit`,
+//! with the keys of a [`Tally`] (`photons_shot`, `photons_hit`,
 //! `face_categories.{lt45,45_90,90_135,gt135}`, `light_return`, `absorbed`, `depth_limited`,
 //! `exit_angle_cdf` (181 values), `photons_per_second`, their `*_stderr`, `exits_per_facet`,
-//! `cut`, `light`, `light_angle`, … — see [`crate::photon`]'s tally docs) plus `settings` (the
+//! `cut`, `light`, `light_angle`, … — see [`Tally`]) plus `settings` (the
 //! run's flags as understood). Several cuts or `--rotate`: `{"settings": {...}, "results":
 //! [one such object per cut and angle]}` in the order cut by cut, angle by angle.
 //!
@@ -420,7 +420,11 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         LightChoice::Single(_) => set.config.photons,
         LightChoice::Rotate(_) => set.config.photons * photon::ROTATION_ANGLES.len() as u64,
     };
-    let bar = progress_bar(per_cut.saturating_mul(cuts.len() as u64), args.quiet);
+    let unit = match set.light {
+        LightChoice::Single(_) => "photons",
+        LightChoice::Rotate(_) => "hits",
+    };
+    let bar = progress_bar(per_cut.saturating_mul(cuts.len() as u64), unit, args.quiet);
     let tick = |n: u64| bar.inc(n);
     let progress: Option<&(dyn Fn(u64) + Sync)> = Some(&tick);
     // results[cut] = one tally, or one per rotation angle.
@@ -457,12 +461,13 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     Ok(())
 }
 
-fn progress_bar(total: u64, quiet: bool) -> indicatif::ProgressBar {
+fn progress_bar(total: u64, unit: &str, quiet: bool) -> indicatif::ProgressBar {
     if quiet || !std::io::stderr().is_terminal() {
         return indicatif::ProgressBar::hidden();
     }
     let bar = indicatif::ProgressBar::new(total);
-    if let Ok(style) = indicatif::ProgressStyle::with_template("{spinner} tracing [{bar:40}] {percent:>3}% {human_pos}/{human_len} photons, {per_sec}, eta {eta}") {
+    let template = format!("{{spinner}} tracing [{{bar:30}}] {{percent:>3}}% {{human_pos}}/{{human_len}} {unit}, eta {{eta}}");
+    if let Ok(style) = indicatif::ProgressStyle::with_template(&template) {
         bar.set_style(style.progress_chars("=> "));
     }
     bar

@@ -1,22 +1,4 @@
 //! Tallies: integer counts while tracing, shares with standard errors when reported.
-//!
-//! JSON keys of a [`Tally`] (shares are of the photons that hit the stone unless said):
-//!
-//! | key | meaning |
-//! | --- | --- |
-//! | `cut` | the cut's name |
-//! | `light` | the light's description; `light_angle`: rotation angle in degrees or null |
-//! | `photons_shot`, `photons_hit` | photons shot from the light, photons that hit the stone |
-//! | `face_categories.{lt45,45_90,90_135,gt135}` | share leaving through facets whose outward normal is < 45°, 45–90° (90° included), 90–135°, > 135° from up |
-//! | `light_return` | share leaving with an upward direction (z > 0) |
-//! | `absorbed`, `depth_limited` | share absorbed, share stopped by the depth limit |
-//! | `exited` | share that left the stone (= the sum of the four categories) |
-//! | `*_stderr` | the standard error of each share, sqrt(p(1 − p)/n) |
-//! | `exit_angle_cdf` | 181 values: value k is the share of *exited* photons whose exit direction is less than k° from up (0 at k = 0, 1 at k = 180) |
-//! | `exit_angle_cdf_stderr` | its standard errors |
-//! | `exits_per_facet` | per facet: `name`, `tier`, `category`, `share` (of hit), `stderr` |
-//! | `mean_interactions` | surface interactions per hit photon |
-//! | `elapsed_s`, `photons_per_second` | wall-clock time and photons shot per second |
 
 use super::solid::TraceSolid;
 use super::Light;
@@ -164,6 +146,24 @@ pub struct PhotonPath {
 }
 
 /// The result of a run: counts, what they are of, and timing.
+///
+/// Serialized (`serde::Serialize`), a tally has these JSON keys (shares are of the photons that hit the stone unless said):
+///
+/// | key | meaning |
+/// | --- | --- |
+/// | `cut` | the cut's name |
+/// | `light` | the light's description; `light_angle`: rotation angle in degrees or null |
+/// | `photons_shot`, `photons_hit` | photons shot from the light, photons that hit the stone |
+/// | `face_categories.{lt45,45_90,90_135,gt135}` | share leaving through facets whose outward normal is < 45°, 45–90° (90° included), 90–135°, > 135° from up |
+/// | `light_return` | share leaving with an upward direction (z > 0) |
+/// | `absorbed`, `depth_limited` | share absorbed, share stopped by the depth limit |
+/// | `exited` | share that left the stone (= the sum of the four categories) |
+/// | `*_stderr` | the standard error of each share, sqrt(p(1 − p)/n) |
+/// | `exit_angle_cdf` | 181 values: value k is the share of *exited* photons whose exit direction is less than k° from up (0 at k = 0, 1 at k = 180) |
+/// | `exit_angle_cdf_stderr` | its standard errors |
+/// | `exits_per_facet` | per facet: `name`, `tier`, `category`, `share` (of hit), `stderr` |
+/// | `mean_interactions` | surface interactions per hit photon |
+/// | `elapsed_s`, `photons_per_second` | wall-clock time and photons shot per second |
 #[derive(Clone, Debug)]
 pub struct Tally {
     /// The cut's name (empty when traced from a bare solid).
