@@ -12,4 +12,7 @@ pub mod io;
 pub mod optics;
 pub mod optimize;
 
+pub mod photon;
+pub mod plot;
+
 pub use error::{Error, Result};

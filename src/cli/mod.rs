@@ -3,6 +3,7 @@
 
 mod cuts;
 pub mod optimize;
+pub mod trace;
 
 use crate::error::Result;
 use clap::{Parser, Subcommand};
@@ -29,6 +30,9 @@ pub enum Command {
     Info(cuts::InfoArgs),
     /// List the bundled presets and the families with their parameters (defaults, ranges).
     List(cuts::ListArgs),
+    /// Shoot photons through cuts (the thesis's forward Monte Carlo): face categories, exit
+    /// angles, light return; overhead, offset, directed or rotating light.
+    Trace(trace::TraceArgs),
 }
 
 /// Run a parsed command line.
@@ -37,5 +41,6 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Generate(a) => cuts::generate(&a),
         Command::Info(a) => cuts::info(&a),
         Command::List(a) => cuts::list(&a),
+        Command::Trace(a) => trace::run(&a),
     }
 }

@@ -1,0 +1,780 @@
+//! `facetlab trace CUT...`: the thesis's photon experiments, one command each.
+//!
+//! ```text
+//! facetlab trace tolkowsky gia-reference                       # overhead undirected light
+//! facetlab trace tolkowsky --light offset                      # off-centre undirected light
+//! facetlab trace tolkowsky --light offset-directed             # off-centre directed light
+//! facetlab trace tolkowsky --light directed --angle 0          # parallel beam straight down
+//! facetlab trace tolkowsky --light directed --rotate           # rotation sweep 0–180° by 30°
+//! facetlab trace tolkowsky --photons 2e7 --json out.json --plots results/plots
+//! ```
+//!
+//! Flags are read as text and validated here into the library's types, so every bad value
+//! ends in a one-line error naming the flag and what is allowed.
+//!
+//! **JSON** (`--json FILE`, written atomically). One cut without `--rotate`: a single object
+//! with the keys of a [`Tally`] (`photons_shot`, `photons_hit`,
+//! `face_categories.{lt45,45_90,90_135,gt135}`, `light_return`, `absorbed`, `depth_limited`,
+//! `exit_angle_cdf` (181 values), `photons_per_second`, their `*_stderr`, `exits_per_facet`,
+//! `cut`, `light`, `light_angle`, … — see [`Tally`]) plus `settings` (the
+//! run's flags as understood). Several cuts or `--rotate`: `{"settings": {...}, "results":
+//! [one such object per cut and angle]}` in the order cut by cut, angle by angle.
+//!
+//! **Plots** (`--plots DIR`, PNG and SVG of each): `face_categories`, `exit_angle_cdf`,
+//! `rotation` (with `--rotate`), and per cut `paths_<cut>_one`, `paths_<cut>_bounces`,
+//! `paths_<cut>_wavelength`, `paths_<cut>_no_first_segment`, `facets_<cut>`.
+
+use crate::error::{Error, Result};
+use crate::optics::Material;
+use crate::photon::{
+    self, Absorption, Light, LightKind, Tally, TraceConfig, WavelengthSampling, CATEGORY_LABELS,
+};
+use crate::plot::{self, Camera, PathColor, PathStyle};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+/// Flags of `facetlab trace`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct TraceArgs {
+    /// Cuts to compare: preset names (tolkowsky, gia-reference) or .toml/.asc/.obj/.stl files.
+    #[arg(required = true, value_name = "CUT")]
+    pub cuts: Vec<String>,
+    /// Light: overhead (undirected, 1.5 D square 4 D above), offset (moved by (−1, −1) D),
+    /// offset-directed (the off-centre square as a parallel beam toward the stone), directed
+    /// (a parallel beam just covering the stone, turned by --angle).
+    #[arg(
+        long,
+        default_value = "overhead",
+        value_name = "overhead|offset|offset-directed|directed"
+    )]
+    pub light: String,
+    /// Turn the light around the x axis by this many degrees (0 = from above, 180 = from
+    /// below); for --light directed and overhead.
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub angle: Option<String>,
+    /// Rotation sweep: the light at 0°, 30°, …, 180°, each shot until --photons have hit.
+    #[arg(long)]
+    pub rotate: bool,
+    /// Photons to shoot (with --rotate: photons that must hit, per angle); 2e7 and 20_000_000
+    /// are accepted.
+    #[arg(
+        long,
+        default_value = "1000000",
+        value_name = "N",
+        allow_hyphen_values = true
+    )]
+    pub photons: String,
+    /// Surface interactions per photon (the entry counts), or `unlimited`.
+    #[arg(
+        long,
+        default_value = "6",
+        value_name = "N|unlimited",
+        allow_hyphen_values = true
+    )]
+    pub depth: String,
+    /// Absorption: none, thesis (flat 0.1 per bounce inside), or beer:K (K per girdle diameter).
+    #[arg(
+        long,
+        default_value = "thesis",
+        value_name = "none|thesis|beer:K",
+        allow_hyphen_values = true
+    )]
+    pub absorption: String,
+    /// Track polarization with Stokes vectors and Mueller matrices (on) or use the
+    /// unpolarized average (off, the thesis).
+    #[arg(long, default_value = "on", value_name = "on|off")]
+    pub polarization: String,
+    /// A fixed refractive index instead of the material's dispersion curve.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub ri: Option<String>,
+    /// Material: diamond, cubic-zirconia (cz), sapphire, glass.
+    #[arg(long, value_name = "NAME")]
+    pub material: Option<String>,
+    /// Wavelengths: uniform over 380–780 nm (the thesis), weighted by D65, or one fixed
+    /// wavelength in nm.
+    #[arg(
+        long,
+        default_value = "uniform",
+        value_name = "uniform|d65|NM",
+        allow_hyphen_values = true
+    )]
+    pub spectrum: String,
+    /// Seed of the random numbers (the same seed gives the same numbers on any thread count).
+    #[arg(
+        long,
+        default_value = "1",
+        value_name = "N",
+        allow_hyphen_values = true
+    )]
+    pub seed: String,
+    /// Write the results as JSON to this file.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Write charts and pictures (PNG and SVG) to this folder (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub plots: Option<PathBuf>,
+    /// Photon paths recorded per cut for the path pictures.
+    #[arg(
+        long,
+        default_value = "400",
+        value_name = "N",
+        allow_hyphen_values = true
+    )]
+    pub paths: String,
+    /// Camera of the pictures: azimuth,elevation in degrees.
+    #[arg(
+        long,
+        default_value = "30,20",
+        value_name = "AZ,EL",
+        allow_hyphen_values = true
+    )]
+    pub camera: String,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Which light the flags chose.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LightChoice {
+    /// One light.
+    Single(Light),
+    /// The rotation sweep with this kind of light.
+    Rotate(LightKind),
+}
+
+/// The flags, validated.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    /// The light or the sweep.
+    pub light: LightChoice,
+    /// Tracer settings.
+    pub config: TraceConfig,
+    /// Camera of the pictures.
+    pub camera: Camera,
+}
+
+fn parse_count(flag: &str, s: &str, min: u64, max: u64) -> Result<u64> {
+    let t = s.trim().replace('_', "");
+    let v = if let Ok(v) = t.parse::<u64>() {
+        Some(v)
+    } else {
+        match t.parse::<f64>() {
+            Ok(f) if f.is_finite() && f >= 0.0 && f.fract() == 0.0 && f <= u64::MAX as f64 => {
+                Some(f as u64)
+            }
+            _ => None,
+        }
+    };
+    match v {
+        Some(v) if (min..=max).contains(&v) => Ok(v),
+        _ => Err(Error::invalid(flag, format!("`{s}` is not allowed; give a whole number in {min}..={max} (2e7 and 20_000_000 work)"))),
+    }
+}
+
+fn parse_number(flag: &str, s: &str, lo: f64, hi: f64, what: &str) -> Result<f64> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= lo && v <= hi => Ok(v),
+        _ => Err(Error::invalid(
+            flag,
+            format!("`{s}` is not allowed; give {what} in [{lo}, {hi}]"),
+        )),
+    }
+}
+
+/// Validate the flags into the library's types.
+pub fn settings(a: &TraceArgs) -> Result<Settings> {
+    let photons = parse_count("--photons", &a.photons, 1, 1_000_000_000_000)?;
+    let depth = match a.depth.trim().to_ascii_lowercase().as_str() {
+        "unlimited" | "none" | "inf" => None,
+        s => Some(
+            parse_count("--depth", s, 1, photon::UNLIMITED_CAP as u64).map_err(|_| {
+                Error::invalid(
+                    "--depth",
+                    format!(
+                        "`{}` is not allowed; give a whole number in 1..={} or `unlimited`",
+                        a.depth,
+                        photon::UNLIMITED_CAP
+                    ),
+                )
+            })? as u32,
+        ),
+    };
+    let absorption = match a.absorption.trim().to_ascii_lowercase().as_str() {
+        "none" => Absorption::None,
+        "thesis" => Absorption::Thesis,
+        s if s.starts_with("beer:") => Absorption::Beer(parse_number(
+            "--absorption",
+            &s[5..],
+            0.0,
+            1e6,
+            "beer:K with K (per girdle diameter)",
+        )?),
+        _ => {
+            return Err(Error::invalid(
+                "--absorption",
+                format!(
+                    "`{}` is not allowed; use none, thesis or beer:K (K >= 0 per girdle diameter)",
+                    a.absorption
+                ),
+            ))
+        }
+    };
+    let polarization = match a.polarization.trim().to_ascii_lowercase().as_str() {
+        "on" | "true" | "yes" => true,
+        "off" | "false" | "no" => false,
+        _ => {
+            return Err(Error::invalid(
+                "--polarization",
+                format!("`{}` is not allowed; use on or off", a.polarization),
+            ))
+        }
+    };
+    let material = match (&a.ri, &a.material) {
+        (Some(_), Some(_)) => {
+            return Err(Error::invalid(
+                "--ri",
+                "give either --ri or --material, not both",
+            ))
+        }
+        (Some(r), None) => {
+            Material::constant(parse_number("--ri", r, 1.0001, 10.0, "a refractive index")?)
+        }
+        (None, Some(m)) => Material::by_name(m)?,
+        (None, None) => Material::diamond(),
+    };
+    let wavelengths = match a.spectrum.trim().to_ascii_lowercase().as_str() {
+        "uniform" => WavelengthSampling::Uniform,
+        "d65" => WavelengthSampling::D65,
+        s => match s.trim_end_matches("nm").parse::<f64>() {
+            Ok(l) if (380.0..=780.0).contains(&l) => WavelengthSampling::Fixed(l),
+            _ => {
+                return Err(Error::invalid(
+                    "--spectrum",
+                    format!(
+                        "`{}` is not allowed; use uniform, d65, or a wavelength in 380–780 nm",
+                        a.spectrum
+                    ),
+                ))
+            }
+        },
+    };
+    let seed = parse_count("--seed", &a.seed, 0, u64::MAX)?;
+    let record_paths = parse_count("--paths", &a.paths, 0, 100_000)? as usize;
+    let camera = parse_camera(&a.camera)?;
+    let angle = a
+        .angle
+        .as_deref()
+        .map(|s| parse_number("--angle", s, 0.0, 180.0, "degrees"))
+        .transpose()?;
+    let light_name = a.light.trim().to_ascii_lowercase();
+    let light = match (light_name.as_str(), a.rotate) {
+        ("overhead", true) | ("directed", true) if angle.is_some() => {
+            return Err(Error::invalid(
+                "--angle",
+                "--rotate sweeps 0–180° itself; drop --angle",
+            ))
+        }
+        ("overhead", true) => LightChoice::Rotate(LightKind::Undirected),
+        ("directed", true) => LightChoice::Rotate(LightKind::Directed),
+        ("overhead", false) => match angle {
+            None => LightChoice::Single(Light::overhead()),
+            Some(x) => LightChoice::Single(Light::rotated(LightKind::Undirected, x)),
+        },
+        ("directed", false) => LightChoice::Single(Light::directed(angle.unwrap_or(0.0))),
+        ("offset", _) | ("offset-directed", _) => {
+            if a.rotate {
+                return Err(Error::invalid(
+                    "--rotate",
+                    "the rotation sweep is for --light overhead or directed",
+                ));
+            }
+            if angle.is_some() {
+                return Err(Error::invalid(
+                    "--angle",
+                    "is for --light overhead or directed",
+                ));
+            }
+            LightChoice::Single(if light_name == "offset" {
+                Light::offset()
+            } else {
+                Light::offset_directed()
+            })
+        }
+        _ => {
+            return Err(Error::invalid(
+                "--light",
+                format!(
+                    "`{}` is not allowed; use overhead, offset, offset-directed or directed",
+                    a.light
+                ),
+            ))
+        }
+    };
+    let record_paths = if a.plots.is_some() { record_paths } else { 0 };
+    let config = TraceConfig {
+        photons,
+        until_hit: false,
+        depth,
+        absorption,
+        polarization,
+        material,
+        wavelengths,
+        seed,
+        record_paths,
+    };
+    config.validate()?;
+    Ok(Settings {
+        light,
+        config,
+        camera,
+    })
+}
+
+fn parse_camera(s: &str) -> Result<Camera> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let bad = || {
+        Error::invalid("--camera", format!("`{s}` is not allowed; give AZ,EL in degrees, azimuth in [-360, 360], elevation in [-90, 90]"))
+    };
+    if parts.len() != 2 {
+        return Err(bad());
+    }
+    let az = parse_number("--camera", parts[0], -360.0, 360.0, "degrees").map_err(|_| bad())?;
+    let el = parse_number("--camera", parts[1], -90.0, 90.0, "degrees").map_err(|_| bad())?;
+    Ok(Camera {
+        azimuth_deg: az,
+        elevation_deg: el,
+    })
+}
+
+fn settings_json(s: &Settings, cuts: &[String]) -> serde_json::Value {
+    let c = &s.config;
+    serde_json::json!({
+        "cuts": cuts,
+        "light": match &s.light { LightChoice::Single(l) => l.label.clone(), LightChoice::Rotate(k) => format!("rotation sweep, {}", kind_name(*k)) },
+        "rotate": matches!(s.light, LightChoice::Rotate(_)),
+        "photons": c.photons,
+        "photons_counted": if matches!(s.light, LightChoice::Rotate(_)) { "hit per angle" } else { "shot" },
+        "depth": c.depth,
+        "absorption": c.absorption,
+        "polarization": c.polarization,
+        "material": c.material.name,
+        "spectrum": c.wavelengths,
+        "seed": c.seed,
+    })
+}
+
+fn kind_name(k: LightKind) -> &'static str {
+    match k {
+        LightKind::Directed => "directed",
+        LightKind::Undirected => "undirected",
+    }
+}
+
+/// A file-name-safe form of a cut name.
+fn slug(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() {
+        "cut".into()
+    } else {
+        s
+    }
+}
+
+/// Run `facetlab trace`.
+pub fn run(args: &TraceArgs) -> Result<()> {
+    let set = settings(args)?;
+    let cuts = args
+        .cuts
+        .iter()
+        .map(|c| crate::io::load_cut(c))
+        .collect::<Result<Vec<_>>>()?;
+    if let Some(dir) = &args.plots {
+        if dir.exists() && !dir.is_dir() {
+            return Err(Error::io(
+                dir.display().to_string(),
+                "exists and is not a folder",
+            ));
+        }
+    }
+    if let Some(j) = &args.json {
+        if let Some(parent) = j.parent().filter(|p| !p.as_os_str().is_empty()) {
+            if !parent.is_dir() {
+                return Err(Error::io(
+                    j.display().to_string(),
+                    format!("folder {} does not exist", parent.display()),
+                ));
+            }
+        }
+    }
+    let per_cut = match set.light {
+        LightChoice::Single(_) => set.config.photons,
+        LightChoice::Rotate(_) => set.config.photons * photon::ROTATION_ANGLES.len() as u64,
+    };
+    let unit = match set.light {
+        LightChoice::Single(_) => "photons",
+        LightChoice::Rotate(_) => "hits",
+    };
+    let bar = progress_bar(per_cut.saturating_mul(cuts.len() as u64), unit, args.quiet);
+    let tick = |n: u64| bar.inc(n);
+    let progress: Option<&(dyn Fn(u64) + Sync)> = Some(&tick);
+    // results[cut] = one tally, or one per rotation angle.
+    let mut results: Vec<Vec<Tally>> = Vec::with_capacity(cuts.len());
+    for cut in &cuts {
+        let r = match &set.light {
+            LightChoice::Single(l) => vec![photon::trace_cut(cut, l, &set.config, progress)?],
+            LightChoice::Rotate(k) => photon::rotation_sweep(cut, *k, &set.config, progress)?,
+        };
+        results.push(r);
+    }
+    bar.finish_and_clear();
+    print_table(&set, &results);
+    if let Some(j) = &args.json {
+        let flat: Vec<&Tally> = results.iter().flatten().collect();
+        let settings = settings_json(&set, &args.cuts);
+        let value = if flat.len() == 1 {
+            let mut v =
+                serde_json::to_value(flat[0]).map_err(|e| Error::io(j.display().to_string(), e))?;
+            if let Some(m) = v.as_object_mut() {
+                m.insert("settings".into(), settings);
+            }
+            v
+        } else {
+            serde_json::json!({ "settings": settings, "results": flat })
+        };
+        let text = serde_json::to_string_pretty(&value)
+            .map_err(|e| Error::io(j.display().to_string(), e))?;
+        crate::io::write_atomic(j, text.as_bytes())?;
+    }
+    if let Some(dir) = &args.plots {
+        write_plots(dir, &set, &cuts, &results)?;
+    }
+    Ok(())
+}
+
+fn progress_bar(total: u64, unit: &str, quiet: bool) -> indicatif::ProgressBar {
+    if quiet || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(total);
+    let template = format!("{{spinner}} tracing [{{bar:30}}] {{percent:>3}}% {{human_pos}}/{{human_len}} {unit}, eta {{eta}}");
+    if let Ok(style) = indicatif::ProgressStyle::with_template(&template) {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar
+}
+
+fn pct(v: (f64, f64)) -> String {
+    format!("{:6.2}% ±{:.2}", 100.0 * v.0, 100.0 * v.1)
+}
+
+fn print_table(set: &Settings, results: &[Vec<Tally>]) {
+    let c = &set.config;
+    let depth = c
+        .depth
+        .map(|d| d.to_string())
+        .unwrap_or_else(|| "unlimited".into());
+    let absorption = match c.absorption {
+        Absorption::None => "none".to_string(),
+        Absorption::Thesis => "thesis (0.1 per bounce)".to_string(),
+        Absorption::Beer(k) => format!("Beer–Lambert {k}/D"),
+    };
+    let spectrum = match c.wavelengths {
+        WavelengthSampling::Uniform => "uniform 380–780 nm".to_string(),
+        WavelengthSampling::D65 => "D65".to_string(),
+        WavelengthSampling::Fixed(l) => format!("{l} nm"),
+    };
+    println!(
+        "material {}, depth {depth}, absorption {absorption}, polarization {}, spectrum {spectrum}, seed {}",
+        c.material.name,
+        if c.polarization { "on" } else { "off" },
+        c.seed
+    );
+    let w = results
+        .iter()
+        .map(|r| r[0].cut.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(16)
+        + 2;
+    let header = |label: &str| {
+        let mut s = format!("{label:<24}");
+        for r in results {
+            s += &format!("{:>w$}", r[0].cut);
+        }
+        s
+    };
+    match &set.light {
+        LightChoice::Single(l) => {
+            println!(
+                "light: {}; shares of photons that hit the stone ± standard error",
+                l.label
+            );
+            println!("{}", header(""));
+            let row = |label: &str, f: &dyn Fn(&Tally) -> String| {
+                let mut s = format!("{label:<24}");
+                for r in results {
+                    s += &format!("{:>w$}", f(&r[0]));
+                }
+                println!("{s}");
+            };
+            row("photons shot", &|t| t.counts.shot.to_string());
+            row("photons hit", &|t| t.counts.hit.to_string());
+            for (k, label) in CATEGORY_LABELS.iter().enumerate() {
+                row(&format!("exit faces {label}"), &|t| pct(t.category(k)));
+            }
+            row("light return (upward)", &|t| pct(t.light_return()));
+            row("absorbed", &|t| pct(t.absorbed()));
+            row("depth-limited", &|t| pct(t.depth_limited()));
+            row("median exit angle", &|t| {
+                let (cdf, _) = t.exit_angle_cdf();
+                cdf.iter()
+                    .position(|&v| v >= 0.5)
+                    .map(|k| format!("{k}°"))
+                    .unwrap_or_else(|| "–".into())
+            });
+            row("interactions per photon", &|t| {
+                format!("{:.2}", t.mean_interactions())
+            });
+            row("photons per second", &|t| {
+                format!("{:.3e}", t.photons_per_second())
+            });
+        }
+        LightChoice::Rotate(k) => {
+            println!(
+                "rotation sweep, {} light; {} photons hit per angle; shares ± standard error",
+                kind_name(*k),
+                c.photons
+            );
+            for (title, f) in [
+                (
+                    "exit faces < 45°",
+                    &(|t: &Tally| pct(t.category(0))) as &dyn Fn(&Tally) -> String,
+                ),
+                ("light return (upward)", &|t: &Tally| pct(t.light_return())),
+            ] {
+                println!("{}", header(title));
+                for (i, a) in photon::ROTATION_ANGLES.iter().enumerate() {
+                    let mut s = format!("{:<24}", format!("  {a}°"));
+                    for r in results {
+                        s += &format!("{:>w$}", f(&r[i]));
+                    }
+                    println!("{s}");
+                }
+            }
+        }
+    }
+}
+
+fn write_plots(
+    dir: &Path,
+    set: &Settings,
+    cuts: &[crate::cut::Cut],
+    results: &[Vec<Tally>],
+) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
+    let firsts: Vec<&Tally> = results.iter().map(|r| &r[0]).collect();
+    let light = match &set.light {
+        LightChoice::Single(l) => l.label.clone(),
+        LightChoice::Rotate(k) => format!("{} light from above (0°)", kind_name(*k)),
+    };
+    plot::face_categories(&firsts, &light, &dir.join("face_categories"))?;
+    plot::exit_angle_cdf(&firsts, &light, &dir.join("exit_angle_cdf"))?;
+    if let LightChoice::Rotate(k) = set.light {
+        let sweeps: Vec<(&str, &[Tally])> = results
+            .iter()
+            .map(|r| (r[0].cut.as_str(), r.as_slice()))
+            .collect();
+        plot::rotation(&sweeps, kind_name(k), &dir.join("rotation"))?;
+    }
+    for (cut, r) in cuts.iter().zip(results) {
+        let s = slug(&cut.name);
+        let t = &r[0];
+        plot::facet_categories(
+            &cut.solid,
+            set.camera,
+            &format!("{}: facets by normal category", cut.name),
+            &dir.join(format!("facets_{s}")),
+        )?;
+        if t.paths.is_empty() {
+            continue;
+        }
+        let style = |color, first_segment, alpha, n: usize, what: &str| PathStyle {
+            camera: set.camera,
+            color,
+            first_segment,
+            alpha,
+            max_paths: n,
+            title: format!("{}: {what} ({})", cut.name, t.light),
+        };
+        let variants = [
+            (
+                "one",
+                style(PathColor::Bounces, true, 1.0, 1, "one photon path"),
+            ),
+            (
+                "bounces",
+                style(
+                    PathColor::Bounces,
+                    true,
+                    0.25,
+                    usize::MAX,
+                    "photon paths by bounce count",
+                ),
+            ),
+            (
+                "wavelength",
+                style(
+                    PathColor::Wavelength,
+                    true,
+                    0.25,
+                    usize::MAX,
+                    "photon paths by wavelength",
+                ),
+            ),
+            (
+                "no_first_segment",
+                style(
+                    PathColor::Bounces,
+                    false,
+                    0.25,
+                    usize::MAX,
+                    "paths inside and out, light segment hidden",
+                ),
+            ),
+        ];
+        for (name, st) in variants {
+            plot::photon_paths(
+                &cut.solid,
+                &t.paths,
+                &st,
+                &dir.join(format!("paths_{s}_{name}")),
+            )?;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(clap::Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: TraceArgs,
+    }
+
+    fn parse(extra: &[&str]) -> TraceArgs {
+        let mut v = vec!["trace", "tolkowsky"];
+        v.extend_from_slice(extra);
+        Cli::try_parse_from(v).unwrap().args
+    }
+
+    fn err(extra: &[&str]) -> String {
+        let e = settings(&parse(extra)).unwrap_err().to_string();
+        assert!(!e.contains('\n'), "one line: {e}");
+        e
+    }
+
+    #[test]
+    fn defaults_are_the_thesis_setup() {
+        let s = settings(&parse(&[])).unwrap();
+        assert_eq!(s.light, LightChoice::Single(Light::overhead()));
+        assert_eq!(s.config.depth, Some(6));
+        assert_eq!(s.config.absorption, Absorption::Thesis);
+        assert!(s.config.polarization);
+        let s = settings(&parse(&[
+            "--photons",
+            "2e7",
+            "--light",
+            "directed",
+            "--rotate",
+            "--depth",
+            "unlimited",
+            "--absorption",
+            "beer:0.5",
+            "--ri",
+            "2.4",
+            "--spectrum",
+            "589.3",
+        ]))
+        .unwrap();
+        assert_eq!(s.config.photons, 20_000_000);
+        assert_eq!(s.light, LightChoice::Rotate(LightKind::Directed));
+        assert_eq!(s.config.depth, None);
+        assert_eq!(s.config.absorption, Absorption::Beer(0.5));
+        assert_eq!(s.config.wavelengths, WavelengthSampling::Fixed(589.3));
+    }
+
+    #[test]
+    fn bad_flags_are_rejected_with_one_line_naming_the_flag() {
+        for (flags, flag) in [
+            (&["--photons", "0"][..], "--photons"),
+            (&["--photons", "-5"], "--photons"),
+            (&["--photons", "lots"], "--photons"),
+            (&["--photons", "1.5"], "--photons"),
+            (&["--depth", "0"], "--depth"),
+            (&["--depth", "NaN"], "--depth"),
+            (&["--absorption", "beer:-1"], "--absorption"),
+            (&["--absorption", "some"], "--absorption"),
+            (&["--polarization", "maybe"], "--polarization"),
+            (&["--ri", "0.9"], "--ri"),
+            (&["--ri", "nan"], "--ri"),
+            (&["--ri", "2.4", "--material", "glass"], "--ri"),
+            (&["--material", "moissanite"], "--material"),
+            (&["--angle", "200", "--light", "directed"], "--angle"),
+            (&["--angle", "30", "--light", "offset"], "--angle"),
+            (&["--angle", "30", "--rotate"], "--angle"),
+            (&["--rotate", "--light", "offset"], "--rotate"),
+            (&["--light", "sun"], "--light"),
+            (&["--spectrum", "200"], "--spectrum"),
+            (&["--seed", "x"], "--seed"),
+            (&["--camera", "30"], "--camera"),
+        ] {
+            let e = err(flags);
+            assert!(e.starts_with(flag), "{flags:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn unknown_cut_is_an_error_and_writes_nothing() {
+        let dir = std::env::temp_dir().join(format!("facetlab-trace-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let json = dir.join("out.json");
+        let mut a = parse(&["--photons", "100", "--quiet"]);
+        a.cuts = vec!["no-such-cut".into()];
+        a.json = Some(json.clone());
+        assert!(run(&a).unwrap_err().to_string().contains("no-such-cut"));
+        assert!(!json.exists());
+        let mut a = parse(&["--photons", "3000", "--quiet", "--light", "directed"]);
+        a.json = Some(json.clone());
+        run(&a).unwrap();
+        let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+        assert_eq!(v["photons_shot"], 3000);
+        assert_eq!(v["exit_angle_cdf"].as_array().unwrap().len(), 181);
+        for k in ["lt45", "45_90", "90_135", "gt135"] {
+            assert!(v["face_categories"][k].as_f64().is_some(), "{k}");
+        }
+        for k in [
+            "photons_hit",
+            "light_return",
+            "absorbed",
+            "depth_limited",
+            "photons_per_second",
+        ] {
+            assert!(v[k].as_f64().is_some(), "{k}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -1,0 +1,447 @@
+//! The photon tracer: the thesis's forward Monte Carlo from the light.
+//!
+//! Photons leave a square [`Light`] (directed: all parallel to the light's axis; undirected:
+//! uniform over the hemisphere in front of it), get a wavelength ([`WavelengthSampling`]) and
+//! the material's refractive index at it, and meet the stone's facets. At every surface
+//! Fresnel's equations choose reflection or refraction by roulette (with the photon's Stokes
+//! vector and Mueller matrices when [`TraceConfig::polarization`] is on, else the unpolarized
+//! average); Snell's law gives the new direction; total internal reflection reflects.
+//! [`Absorption`] removes photons inside the stone; a depth limit stops the rest.
+//!
+//! Photons carry unit weight, so the bookkeeping is exact in whole numbers
+//! (see [`Counts::check`]):
+//!
+//! * shot = missed + hit,
+//! * hit = exited + absorbed + depth-limited,
+//! * exited = the sum over the four face categories = the sum over facets.
+//!
+//! **Depth.** The surface interactions of a photon are counted, the first hit on the stone
+//! included. With `depth: Some(n)` a photon that is still inside the stone after its n-th
+//! interaction is counted as depth-limited (the thesis: 6). `depth: None` is "unlimited", with a
+//! safety cap of [`UNLIMITED_CAP`] interactions (photons trapped by total internal reflection
+//! in a loop would otherwise never end); photons reaching it are also counted as
+//! depth-limited.
+//!
+//! **Determinism.** Work is split into chunks of [`CHUNK`] photons; chunk `c` draws from its own
+//! RNG seeded from `(seed, c)`; tallies are integer counts, so their sum does not depend on
+//! the order or the thread count: the same seed gives the same numbers on any number of
+//! threads.
+//!
+//! ```
+//! use facetlab::photon::{trace, Light, TraceConfig};
+//! let cut = facetlab::io::load_cut("tolkowsky").unwrap();
+//! let cfg = TraceConfig { photons: 2_000, ..TraceConfig::thesis() };
+//! let t = trace(&cut.solid, &Light::directed(0.0), &cfg, None).unwrap();
+//! assert_eq!(t.counts.shot, 2_000);
+//! assert!(t.light_return().0 > 0.3);
+//! ```
+
+mod kernel;
+mod solid;
+mod tally;
+#[cfg(test)]
+mod tests;
+
+pub use solid::TraceSolid;
+pub use tally::{
+    face_category, share, Counts, Fate, PhotonPath, Tally, CATEGORY_KEYS, CATEGORY_LABELS,
+};
+
+use crate::cut::Cut;
+use crate::error::{Error, Result};
+use crate::geometry::{DVec3, Polyhedron};
+use crate::optics::color::{LAMBDA_MAX, LAMBDA_MIN};
+use crate::optics::Material;
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Photons per deterministic chunk.
+pub const CHUNK: u64 = 8192;
+/// Interaction cap of the "unlimited" depth mode.
+pub const UNLIMITED_CAP: u32 = 100_000;
+/// The angles of the thesis's rotation sweep, degrees.
+pub const ROTATION_ANGLES: [f64; 7] = [0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0];
+/// Distance of the thesis's lights from the girdle centre, girdle diameters.
+pub const LIGHT_DISTANCE: f64 = 4.0;
+/// Side of the thesis's square light, girdle diameters.
+pub const LIGHT_SIDE: f64 = 1.5;
+
+/// How photons leave the light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LightKind {
+    /// All parallel to the light's axis.
+    Directed,
+    /// Uniform over the hemisphere in front of the light (uniform in solid angle).
+    Undirected,
+}
+
+/// Size of the square light.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LightSize {
+    /// A square of this side (girdle diameters), centred on [`Light::centre`].
+    Side(f64),
+    /// The smallest square (in the light's plane, sides along its axes) that covers the
+    /// stone's shadow along the light's axis; its centre is moved within the light's plane to
+    /// the shadow's centre. Used for directed light: every photon is then aimed at the stone.
+    CoverStone,
+}
+
+/// A square light.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Light {
+    /// Directed or undirected.
+    pub kind: LightKind,
+    /// Centre of the square.
+    pub centre: DVec3,
+    /// The direction the light faces (unit; normalised when resolved).
+    pub axis: DVec3,
+    /// Size of the square.
+    pub size: LightSize,
+    /// Rotation angle of the sweep (degrees), when the light is one of its positions.
+    pub angle: Option<f64>,
+    /// Short description for tables and JSON.
+    pub label: String,
+}
+
+impl Light {
+    /// The thesis's overhead light: undirected, a square of side 1.5 D, 4 D above the girdle
+    /// centre, facing down.
+    pub fn overhead() -> Light {
+        Light {
+            kind: LightKind::Undirected,
+            centre: DVec3::new(0.0, 0.0, LIGHT_DISTANCE),
+            axis: DVec3::NEG_Z,
+            size: LightSize::Side(LIGHT_SIDE),
+            angle: None,
+            label: "overhead undirected".into(),
+        }
+    }
+
+    /// The thesis's off-centre light: the overhead square moved by (−1 D, −1 D) horizontally,
+    /// still facing down, undirected.
+    pub fn offset() -> Light {
+        Light {
+            centre: DVec3::new(-1.0, -1.0, LIGHT_DISTANCE),
+            label: "off-centre undirected".into(),
+            ..Light::overhead()
+        }
+    }
+
+    /// The thesis's off-centre directed light: the off-centre square, turned to face the
+    /// stone's centre (the girdle centre), every photon parallel to that axis.
+    pub fn offset_directed() -> Light {
+        let centre = DVec3::new(-1.0, -1.0, LIGHT_DISTANCE);
+        Light {
+            kind: LightKind::Directed,
+            centre,
+            axis: (-centre).normalize(),
+            size: LightSize::Side(LIGHT_SIDE),
+            angle: None,
+            label: "off-centre directed".into(),
+        }
+    }
+
+    /// A directed light at position `angle_deg` of the rotation sweep: a parallel beam
+    /// covering the stone's shadow. `directed(0.0)` is a beam straight down over the whole
+    /// stone, `directed(180.0)` straight up.
+    pub fn directed(angle_deg: f64) -> Light {
+        Light::rotated(LightKind::Directed, angle_deg)
+    }
+
+    /// The light of the rotation sweep at `angle_deg`: it starts straight above the stone and
+    /// turns around the x axis (through the girdle centre) toward −y; at 180° it is straight
+    /// below. Directed: a beam just covering the stone's shadow. Undirected: the overhead
+    /// square (side 1.5 D, 4 D from the girdle centre) turned with it.
+    pub fn rotated(kind: LightKind, angle_deg: f64) -> Light {
+        let a = angle_deg.to_radians();
+        let up = DVec3::new(0.0, -a.sin(), a.cos());
+        let (size, name) = match kind {
+            LightKind::Directed => (LightSize::CoverStone, "directed"),
+            LightKind::Undirected => (LightSize::Side(LIGHT_SIDE), "undirected"),
+        };
+        Light {
+            kind,
+            centre: up * LIGHT_DISTANCE,
+            axis: -up,
+            size,
+            angle: Some(angle_deg),
+            label: format!("{name} at {angle_deg}°"),
+        }
+    }
+
+    /// Check the light's numbers (finite centre and axis, positive side).
+    pub fn validate(&self) -> Result<()> {
+        if !(self.centre.is_finite() && self.axis.is_finite() && self.axis.length() > 1e-12) {
+            return Err(Error::invalid(
+                "light",
+                "centre and axis must be finite, axis non-zero",
+            ));
+        }
+        if let LightSize::Side(s) = self.size {
+            if !(s.is_finite() && s > 0.0) {
+                return Err(Error::invalid(
+                    "light",
+                    format!("side {s} must be a positive number"),
+                ));
+            }
+        }
+        if let Some(a) = self.angle {
+            if !a.is_finite() {
+                return Err(Error::invalid("--angle", "must be a number of degrees"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Absorption inside the stone.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Absorption {
+    /// None (a clear stone).
+    None,
+    /// The thesis's flat roulette: before each surface interaction from inside the stone a
+    /// photon is absorbed with probability 0.1.
+    Thesis,
+    /// Beer–Lambert with this attenuation coefficient per girdle diameter of path: a photon
+    /// survives a path of length L with probability exp(−k·L).
+    Beer(f64),
+}
+
+/// Probability of absorption per internal segment in [`Absorption::Thesis`].
+pub const THESIS_ABSORPTION: f64 = 0.1;
+
+/// How each photon's wavelength is chosen.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum WavelengthSampling {
+    /// Uniform over 380–780 nm (the thesis).
+    Uniform,
+    /// Weighted by the CIE D65 illuminant over 380–780 nm.
+    D65,
+    /// Every photon at this wavelength, nm.
+    Fixed(f64),
+}
+
+/// What to trace and how.
+#[derive(Clone, Debug)]
+pub struct TraceConfig {
+    /// Photons to shoot, or (with `until_hit`) photons that must hit the stone.
+    pub photons: u64,
+    /// Shoot until exactly `photons` have hit the stone (the rotation sweep's rule).
+    pub until_hit: bool,
+    /// Surface interactions per photon (entry included); `None` is unlimited (capped at
+    /// [`UNLIMITED_CAP`]).
+    pub depth: Option<u32>,
+    /// Absorption model.
+    pub absorption: Absorption,
+    /// Carry a Stokes vector and use Mueller matrices (true), or the unpolarized average.
+    pub polarization: bool,
+    /// The stone's material ([`Material::constant`] for a fixed index).
+    pub material: Material,
+    /// Wavelength sampling.
+    pub wavelengths: WavelengthSampling,
+    /// Seed of the random numbers.
+    pub seed: u64,
+    /// Record the paths of the first this-many photons that hit the stone (for pictures).
+    pub record_paths: usize,
+}
+
+impl TraceConfig {
+    /// The thesis's experiment: 1 000 000 photons, depth 6, the flat 0.1 absorption roulette,
+    /// diamond with wavelengths uniform over 380–780 nm, seed 1 — with polarization on.
+    pub fn thesis() -> TraceConfig {
+        TraceConfig {
+            photons: 1_000_000,
+            until_hit: false,
+            depth: Some(6),
+            absorption: Absorption::Thesis,
+            polarization: true,
+            material: Material::diamond(),
+            wavelengths: WavelengthSampling::Uniform,
+            seed: 1,
+            record_paths: 0,
+        }
+    }
+
+    /// Check every number; errors name the flag a user would set.
+    pub fn validate(&self) -> Result<()> {
+        if self.photons == 0 {
+            return Err(Error::invalid("--photons", "must be at least 1"));
+        }
+        if let Some(d) = self.depth {
+            if d == 0 || d > UNLIMITED_CAP {
+                return Err(Error::invalid(
+                    "--depth",
+                    format!("{d} is out of range; allowed 1..={UNLIMITED_CAP} or `unlimited`"),
+                ));
+            }
+        }
+        if let Absorption::Beer(k) = self.absorption {
+            if !(k.is_finite() && k >= 0.0) {
+                return Err(Error::invalid("--absorption", format!("beer:{k}: the coefficient must be a finite number >= 0 (per girdle diameter)")));
+            }
+        }
+        if let WavelengthSampling::Fixed(l) = self.wavelengths {
+            if !(LAMBDA_MIN..=LAMBDA_MAX).contains(&l) {
+                return Err(Error::invalid(
+                    "--wavelength",
+                    format!("{l} nm is out of range; allowed 380–780 nm"),
+                ));
+            }
+        }
+        for l in [LAMBDA_MIN, LAMBDA_MAX] {
+            let n = self.material.ri(l);
+            if !(n.is_finite() && n > 1.0 && n <= 10.0) {
+                return Err(Error::invalid(
+                    "--ri",
+                    format!("refractive index {n} is out of range; allowed (1, 10]"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Trace `cfg.photons` photons from `light` through `solid`. `progress`, if given, is called
+/// once per finished chunk with the photons it accounts for (photons shot, or photons hit
+/// with `until_hit`), so a caller can drive a progress bar.
+pub fn trace(
+    solid: &Polyhedron,
+    light: &Light,
+    cfg: &TraceConfig,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<Tally> {
+    cfg.validate()?;
+    light.validate()?;
+    let ts = TraceSolid::new(solid)?;
+    let tracer = kernel::Tracer::new(&ts, light, cfg)?;
+    let start = Instant::now();
+    let counts = if cfg.until_hit {
+        run_until_hit(&tracer, cfg.photons, progress)?
+    } else {
+        run_shot(&tracer, cfg.photons, progress)
+    };
+    let elapsed = start.elapsed().as_secs_f64();
+    let paths = if cfg.record_paths > 0 {
+        tracer.record_paths(cfg.record_paths, counts.shot)
+    } else {
+        Vec::new()
+    };
+    Ok(Tally::new(
+        String::new(),
+        light,
+        &ts,
+        counts,
+        elapsed,
+        paths,
+    ))
+}
+
+/// [`trace`] a cut; the tally carries the cut's name.
+pub fn trace_cut(
+    cut: &Cut,
+    light: &Light,
+    cfg: &TraceConfig,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<Tally> {
+    let mut t = trace(&cut.solid, light, cfg, progress).map_err(|e| e.context(&cut.name))?;
+    t.cut = cut.name.clone();
+    Ok(t)
+}
+
+/// The thesis's rotation sweep: the light at each of [`ROTATION_ANGLES`] (see
+/// [`Light::rotated`]), shooting until `cfg.photons` photons have hit the stone at each angle
+/// (`cfg.until_hit` is forced on).
+pub fn rotation_sweep(
+    cut: &Cut,
+    kind: LightKind,
+    cfg: &TraceConfig,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<Vec<Tally>> {
+    let cfg = TraceConfig {
+        until_hit: true,
+        ..cfg.clone()
+    };
+    ROTATION_ANGLES
+        .iter()
+        .map(|&a| trace_cut(cut, &Light::rotated(kind, a), &cfg, progress))
+        .collect()
+}
+
+fn run_shot(
+    tracer: &kernel::Tracer,
+    photons: u64,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Counts {
+    let chunks = photons.div_ceil(CHUNK);
+    let nf = tracer.facet_count();
+    (0..chunks)
+        .into_par_iter()
+        .map(|c| {
+            let n = CHUNK.min(photons - c * CHUNK);
+            let counts = tracer.chunk(c, n, None);
+            if let Some(p) = progress {
+                p(n);
+            }
+            counts
+        })
+        .reduce(
+            || Counts::new(nf),
+            |mut a, b| {
+                a.add(&b);
+                a
+            },
+        )
+}
+
+/// Shots before giving up on a light that never reaches the stone.
+const MISS_GIVE_UP: u64 = 2_000_000;
+
+fn run_until_hit(
+    tracer: &kernel::Tracer,
+    hits: u64,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<Counts> {
+    let mut total = Counts::new(tracer.facet_count());
+    let mut next = 0u64;
+    let mut wave = 1u64;
+    loop {
+        let results: Vec<Counts> = (next..next + wave)
+            .into_par_iter()
+            .map(|c| tracer.chunk(c, CHUNK, None))
+            .collect();
+        for (i, r) in results.into_iter().enumerate() {
+            let need = hits - total.hit;
+            if r.hit >= need {
+                // The chunk that crosses the target is traced again, stopping at the target.
+                let last = tracer.chunk(next + i as u64, CHUNK, Some(need));
+                total.add(&last);
+                if let Some(p) = progress {
+                    p(need);
+                }
+                return Ok(total);
+            }
+            if let Some(p) = progress {
+                p(r.hit);
+            }
+            total.add(&r);
+        }
+        next += wave;
+        if total.hit == 0 && total.shot >= MISS_GIVE_UP {
+            return Err(Error::invalid(
+                "light",
+                format!(
+                    "no photon hit the stone in {} shots; the light does not face the stone",
+                    total.shot
+                ),
+            ));
+        }
+        // Size the next wave from the hit rate so far (deterministic: results only).
+        let rate = (total.hit.max(1) as f64) / total.shot as f64;
+        let want = ((hits - total.hit) as f64 / rate / CHUNK as f64).ceil() as u64;
+        wave = want.clamp(1, 64);
+    }
+}
