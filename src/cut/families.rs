@@ -1,6 +1,6 @@
 //! The registry of parametric families.
 
-use super::{round, ParamDef, Params};
+use super::{cushion, marquise, oval, pear, round, ParamDef, Params};
 use crate::error::{Error, Result};
 use crate::geometry::FacetPlane;
 use std::collections::BTreeMap;
@@ -30,7 +30,11 @@ impl Family {
             if self.param(k).is_none() {
                 return Err(Error::invalid(
                     k.as_str(),
-                    format!("unknown parameter for {}; allowed: {}", self.name, self.keys().join(", ")),
+                    format!(
+                        "unknown parameter for {}; allowed: {}",
+                        self.name,
+                        self.keys().join(", ")
+                    ),
                 ));
             }
         }
@@ -48,7 +52,13 @@ impl Family {
     }
 }
 
-static FAMILIES: &[Family] = &[round::FAMILY];
+static FAMILIES: &[Family] = &[
+    round::FAMILY,
+    oval::FAMILY,
+    marquise::FAMILY,
+    pear::FAMILY,
+    cushion::FAMILY,
+];
 
 /// Every family.
 pub fn families() -> &'static [Family] {
@@ -59,6 +69,9 @@ pub fn families() -> &'static [Family] {
 pub fn family(name: &str) -> Result<&'static Family> {
     FAMILIES.iter().find(|f| f.name == name).ok_or_else(|| {
         let names: Vec<&str> = FAMILIES.iter().map(|f| f.name).collect();
-        Error::invalid("family", format!("unknown family `{name}`; known: {}", names.join(", ")))
+        Error::invalid(
+            "family",
+            format!("unknown family `{name}`; known: {}", names.join(", ")),
+        )
     })
 }

@@ -5,8 +5,14 @@
 //! same keys are used in TOML specs, in `--set key=value`, by `info` and by the optimizer.
 //! Lengths are fractions of the girdle diameter (0.57, not 57), angles are degrees.
 
+mod construct;
+mod cushion;
 mod families;
+mod marquise;
 mod measure;
+mod outline;
+mod oval;
+mod pear;
 mod round;
 
 pub use families::{families, family, Family};
@@ -69,21 +75,36 @@ impl ParamDef {
             format!("[{}, {}]", self.min, self.max)
         };
         let hint = match self.unit {
-            Unit::Fraction if v > 1.0 => " (lengths are fractions of the girdle diameter: 0.57, not 57)",
+            Unit::Fraction if v > 1.0 => {
+                " (lengths are fractions of the girdle diameter: 0.57, not 57)"
+            }
             _ => "",
         };
         if !v.is_finite() {
-            return Err(Error::invalid(self.key, format!("{v} is not a number; allowed {range} {}", self.unit.label())));
+            return Err(Error::invalid(
+                self.key,
+                format!("{v} is not a number; allowed {range} {}", self.unit.label()),
+            ));
         }
-        let inside = if self.open { v > self.min && v < self.max } else { v >= self.min && v <= self.max };
+        let inside = if self.open {
+            v > self.min && v < self.max
+        } else {
+            v >= self.min && v <= self.max
+        };
         if !inside {
             return Err(Error::invalid(
                 self.key,
-                format!("{v} is out of range; allowed {range} {}{hint}", self.unit.label()),
+                format!(
+                    "{v} is out of range; allowed {range} {}{hint}",
+                    self.unit.label()
+                ),
             ));
         }
         if self.unit == Unit::Count && v.fract() != 0.0 {
-            return Err(Error::invalid(self.key, format!("{v} must be a whole number in {range}")));
+            return Err(Error::invalid(
+                self.key,
+                format!("{v} must be a whole number in {range}"),
+            ));
         }
         Ok(v)
     }
@@ -126,18 +147,33 @@ pub struct Cut {
 impl Cut {
     /// Generate a cut of `family` with `values` overriding the family's defaults. Unknown keys
     /// and out-of-range values are errors naming the key.
-    pub fn from_family(name: &str, family_name: &str, values: &BTreeMap<String, f64>) -> Result<Cut> {
+    pub fn from_family(
+        name: &str,
+        family_name: &str,
+        values: &BTreeMap<String, f64>,
+    ) -> Result<Cut> {
         let fam = family(family_name)?;
         let params = fam.params(values)?;
         let planes = (fam.build)(&params)?;
-        let solid = Polyhedron::from_planes(&planes).map_err(|e| e.context(&format!("{family_name} cut")))?;
-        Ok(Cut { name: name.to_string(), family: Some(fam.name.to_string()), params: params.values, solid })
+        let solid = Polyhedron::from_planes(&planes)
+            .map_err(|e| e.context(&format!("{family_name} cut")))?;
+        Ok(Cut {
+            name: name.to_string(),
+            family: Some(fam.name.to_string()),
+            params: params.values,
+            solid,
+        })
     }
 
     /// A cut from explicit facet planes.
     pub fn from_planes(name: &str, planes: &[FacetPlane]) -> Result<Cut> {
         let solid = Polyhedron::from_planes(planes).map_err(|e| e.context(name))?;
-        Ok(Cut { name: name.to_string(), family: None, params: BTreeMap::new(), solid })
+        Ok(Cut {
+            name: name.to_string(),
+            family: None,
+            params: BTreeMap::new(),
+            solid,
+        })
     }
 
     /// The same family cut with one more parameter changed (`--set key=value`). Cuts that are
@@ -172,6 +208,8 @@ impl Cut {
 }
 
 #[cfg(test)]
+mod testutil;
+#[cfg(test)]
 mod tests {
     use super::*;
 
@@ -194,23 +232,53 @@ mod tests {
     fn gia_reference_matches_published_figures() {
         let c = gia();
         let p = c.proportions();
-        assert!((p.crown_height - 0.145).abs() < 0.0007, "crown height {}", p.crown_height);
-        assert!((p.pavilion_depth - 0.430).abs() < 0.0007, "pavilion depth {}", p.pavilion_depth);
-        assert!((p.total_depth - 0.600).abs() < 0.0007, "total depth {}", p.total_depth);
+        assert!(
+            (p.crown_height - 0.145).abs() < 0.0007,
+            "crown height {}",
+            p.crown_height
+        );
+        assert!(
+            (p.pavilion_depth - 0.430).abs() < 0.0007,
+            "pavilion depth {}",
+            p.pavilion_depth
+        );
+        assert!(
+            (p.total_depth - 0.600).abs() < 0.0007,
+            "total depth {}",
+            p.total_depth
+        );
         assert!((p.table - 0.57).abs() < 1e-9);
         assert!((p.crown_angle - 34.0).abs() < 1e-9);
         assert!((p.pavilion_angle - 40.7).abs() < 1e-9);
         assert!((p.girdle - 0.025).abs() < 1e-9);
         let t = c.tiers();
         let angle = |n: &str| t.iter().find(|x| x.name == n).unwrap().angle;
-        assert!((angle("star") - 21.1).abs() < 0.05, "star {}", angle("star"));
-        assert!((angle("upper-half") - 40.6).abs() < 0.05, "upper half {}", angle("upper-half"));
-        assert!((angle("lower-half") - 41.8).abs() < 0.05, "lower half {}", angle("lower-half"));
+        assert!(
+            (angle("star") - 21.1).abs() < 0.05,
+            "star {}",
+            angle("star")
+        );
+        assert!(
+            (angle("upper-half") - 40.6).abs() < 0.05,
+            "upper half {}",
+            angle("upper-half")
+        );
+        assert!(
+            (angle("lower-half") - 41.8).abs() < 0.05,
+            "lower half {}",
+            angle("lower-half")
+        );
         // 57 facets (no culet) + 16 girdle facets.
         assert_eq!(c.solid.facets.len(), 57 + 16);
         let count = |n: &str| t.iter().find(|x| x.name == n).unwrap().count;
-        assert_eq!((count("bezel"), count("star"), count("upper-half")), (8, 8, 16));
-        assert_eq!((count("pavilion-main"), count("lower-half"), count("girdle")), (8, 16, 16));
+        assert_eq!(
+            (count("bezel"), count("star"), count("upper-half")),
+            (8, 8, 16)
+        );
+        assert_eq!(
+            (count("pavilion-main"), count("lower-half"), count("girdle")),
+            (8, 16, 16)
+        );
     }
 
     #[test]
@@ -225,14 +293,22 @@ mod tests {
         assert!(e.starts_with("table:") && e.contains("0.57, not 57"), "{e}");
         let mut ch = BTreeMap::new();
         ch.insert("star".to_string(), 1.0);
-        assert!(c.with_params(&ch).unwrap_err().to_string().contains("(0, 1)"));
+        assert!(c
+            .with_params(&ch)
+            .unwrap_err()
+            .to_string()
+            .contains("(0, 1)"));
         let mut ch = BTreeMap::new();
         ch.insert("tabel".to_string(), 0.5);
         let e = c.with_params(&ch).unwrap_err().to_string();
         assert!(e.contains("tabel") && e.contains("table"), "{e}");
         let mut ch = BTreeMap::new();
         ch.insert("crown_angle".to_string(), f64::NAN);
-        assert!(c.with_params(&ch).unwrap_err().to_string().contains("not a number"));
+        assert!(c
+            .with_params(&ch)
+            .unwrap_err()
+            .to_string()
+            .contains("not a number"));
     }
 
     #[test]
