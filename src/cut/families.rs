@@ -1,6 +1,6 @@
 //! The registry of parametric families.
 
-use super::{cushion, marquise, oval, pear, round, ParamDef, Params};
+use super::{cushion, emerald, marquise, oval, pear, princess, round, ParamDef, Params};
 use crate::error::{Error, Result};
 use crate::geometry::FacetPlane;
 use std::collections::BTreeMap;
@@ -54,6 +54,8 @@ impl Family {
 
 static FAMILIES: &[Family] = &[
     round::FAMILY,
+    princess::FAMILY,
+    emerald::FAMILY,
     oval::FAMILY,
     marquise::FAMILY,
     pear::FAMILY,

@@ -7,13 +7,16 @@
 
 mod construct;
 mod cushion;
+mod emerald;
 mod families;
 mod marquise;
 mod measure;
 mod outline;
 mod oval;
 mod pear;
+mod princess;
 mod round;
+mod steps;
 
 pub use families::{families, family, Family};
 pub use measure::{Proportions, TierSummary};
