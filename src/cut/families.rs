@@ -1,6 +1,8 @@
 //! The registry of parametric families.
 
-use super::{cushion, emerald, marquise, oval, pear, princess, round, ParamDef, Params};
+use super::{
+    cushion, emerald, marquise, old_european, oval, pear, princess, round, sphere, ParamDef, Params,
+};
 use crate::error::{Error, Result};
 use crate::geometry::FacetPlane;
 use std::collections::BTreeMap;
@@ -60,6 +62,8 @@ static FAMILIES: &[Family] = &[
     marquise::FAMILY,
     pear::FAMILY,
     cushion::FAMILY,
+    old_european::FAMILY,
+    sphere::FAMILY,
 ];
 
 /// Every family.

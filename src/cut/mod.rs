@@ -11,11 +11,13 @@ mod emerald;
 mod families;
 mod marquise;
 mod measure;
+mod old_european;
 mod outline;
 mod oval;
 mod pear;
 mod princess;
 mod round;
+mod sphere;
 mod steps;
 
 pub use families::{families, family, Family};
