@@ -34,21 +34,33 @@ pub enum Error {
 impl Error {
     /// Shorthand for [`Error::Invalid`].
     pub fn invalid(field: impl Into<String>, message: impl Into<String>) -> Self {
-        Error::Invalid { field: field.into(), message: message.into() }
+        Error::Invalid {
+            field: field.into(),
+            message: message.into(),
+        }
     }
     /// Shorthand for [`Error::Parse`].
     pub fn parse(source: impl Into<String>, message: impl Into<String>) -> Self {
-        Error::Parse { source: source.into(), message: message.into() }
+        Error::Parse {
+            source: source.into(),
+            message: message.into(),
+        }
     }
     /// Shorthand for [`Error::Io`].
     pub fn io(path: impl Into<String>, err: impl fmt::Display) -> Self {
-        Error::Io { path: path.into(), message: err.to_string() }
+        Error::Io {
+            path: path.into(),
+            message: err.to_string(),
+        }
     }
     /// Prefix the message with a context (a file name, a cut name).
     pub fn context(self, ctx: &str) -> Self {
         match self {
             Error::Geometry(m) => Error::Geometry(format!("{ctx}: {m}")),
-            Error::Invalid { field, message } => Error::Invalid { field: format!("{ctx}: {field}"), message },
+            Error::Invalid { field, message } => Error::Invalid {
+                field: format!("{ctx}: {field}"),
+                message,
+            },
             other => other,
         }
     }

@@ -4,9 +4,11 @@
 //! optimizer → plots → CLI. The library knows nothing of the command line.
 #![warn(missing_docs)]
 
-pub mod error;
+pub mod cli;
 pub mod cut;
+pub mod error;
 pub mod geometry;
 pub mod io;
+pub mod optics;
 
 pub use error::{Error, Result};

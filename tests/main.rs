@@ -1,1 +1,4 @@
-fn main(){}
+//! Integration tests: the CLI as a user runs it. One test binary (`autotests = false`) so it
+//! links once.
+
+mod cli;

@@ -7,9 +7,10 @@
 //!   a knife-edge girdle, whose plane is then at the widest vertex;
 //! - crown height: table plane to the girdle top; pavilion depth: girdle bottom to the lowest
 //!   point; total depth: highest to lowest point;
-//! - crown angle: mean angle of the crown tier that both touches the girdle and rises highest
-//!   (the bezels); pavilion angle: the pavilion tier that touches the girdle and reaches lowest
-//!   (the mains).
+//! - crown angle: mean angle of the crown tier that touches the table (or the top) and reaches
+//!   lowest (the bezels); pavilion angle: the pavilion tier that touches the bottom (culet or
+//!   point) and reaches highest (the mains); a tier that spans all the way to the girdle is
+//!   preferred. For free-form imported designs these are heuristics: read the tier list.
 
 use crate::geometry::{facet_angle_deg, Polyhedron};
 use serde::Serialize;
@@ -74,12 +75,23 @@ pub fn tiers(s: &Polyhedron) -> Vec<TierSummary> {
     for f in &s.facets {
         let a = facet_angle_deg(f.plane.normal);
         let side = side_of(f.plane.normal.z);
-        match out.iter_mut().find(|(t, _)| t.name == f.tier && t.side == side) {
+        match out
+            .iter_mut()
+            .find(|(t, _)| t.name == f.tier && t.side == side)
+        {
             Some((t, sum)) => {
                 t.count += 1;
                 *sum += a;
             }
-            None => out.push((TierSummary { name: f.tier.clone(), angle: 0.0, count: 1, side }, a)),
+            None => out.push((
+                TierSummary {
+                    name: f.tier.clone(),
+                    angle: 0.0,
+                    count: 1,
+                    side,
+                },
+                a,
+            )),
         }
     }
     out.into_iter()
@@ -125,7 +137,11 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
             .filter(|v| v.truncate().length() > r - 1e-9)
             .map(|v| v.z)
             .fold(0.0, |a, b| a + b)
-            / s.vertices.iter().filter(|v| v.truncate().length() > r - 1e-9).count().max(1) as f64;
+            / s.vertices
+                .iter()
+                .filter(|v| v.truncate().length() > r - 1e-9)
+                .count()
+                .max(1) as f64;
         (z, z)
     } else {
         (
@@ -134,28 +150,40 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
         )
     };
     let tol = 1e-7;
-    // Main tiers: touch the girdle, and rise highest / reach lowest.
-    let mut best_crown: Option<(String, f64)> = None;
-    let mut best_pav: Option<(String, f64)> = None;
+    // Main tiers: the crown tier that touches the table (or the top) and reaches lowest; the
+    // pavilion tier that touches the bottom (culet or point) and reaches highest.
+    // Candidates keyed by (spans to the girdle, how far they reach): a tier running from the
+    // table to the girdle (or from the culet to the girdle) wins; else the one reaching furthest.
+    let mut best_crown: Option<(String, (bool, f64))> = None;
+    let mut best_pav: Option<(String, (bool, f64))> = None;
+    let better = |k: (bool, f64), cur: &Option<(String, (bool, f64))>| -> bool {
+        match cur {
+            None => true,
+            Some((_, c)) => (k.0 && !c.0) || (k.0 == c.0 && k.1 > c.1 + tol),
+        }
+    };
     for f in &s.facets {
         let zs: Vec<f64> = f.vertices.iter().map(|&v| s.vertices[v].z).collect();
         let zmax = zs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let zmin = zs.iter().copied().fold(f64::INFINITY, f64::min);
-        match side_of(f.plane.normal.z) {
-            "crown" if f.plane.normal.z < 1.0 - 1e-9 && zmin <= g_top + tol => {
-                if best_crown.as_ref().is_none_or(|(_, z)| zmax > *z + tol) {
-                    best_crown = Some((f.tier.clone(), zmax));
+        let nz = f.plane.normal.z;
+        match side_of(nz) {
+            "crown" if nz < 1.0 - 1e-9 && zmax >= table_z - tol => {
+                let k = (zmin <= g_top + tol, -zmin);
+                if better(k, &best_crown) {
+                    best_crown = Some((f.tier.clone(), k));
                 }
             }
-            "pavilion" if f.plane.normal.z > -1.0 + 1e-9 && zmax >= g_bot - tol => {
-                if best_pav.as_ref().is_none_or(|(_, z)| zmin < *z - tol) {
-                    best_pav = Some((f.tier.clone(), zmin));
+            "pavilion" if nz > -1.0 + 1e-9 && zmin <= lo.z + tol => {
+                let k = (zmax >= g_bot - tol, zmax);
+                if better(k, &best_pav) {
+                    best_pav = Some((f.tier.clone(), k));
                 }
             }
             _ => {}
         }
     }
-    let tier_angle = |tier: &Option<(String, f64)>, crown: bool| -> f64 {
+    let tier_angle = |tier: &Option<(String, (bool, f64))>, crown: bool| -> f64 {
         let Some((name, _)) = tier else { return 0.0 };
         let angles: Vec<f64> = s
             .facets

@@ -317,6 +317,63 @@ mod tests {
     }
 
     #[test]
+    fn impossible_star_and_lower_half_are_named() {
+        // At a 85 % table the bezel ridge meets the table plane at radius 0.92: a 50 % star
+        // (tip at 0.893) would stand above the table.
+        let mut v = BTreeMap::new();
+        v.insert("table".to_string(), 0.85);
+        let e = Cut::from_family("r", "round-brilliant", &v)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("star:") && e.contains("above the table"),
+            "{e}"
+        );
+        v.insert("star".to_string(), 0.7);
+        assert!(Cut::from_family("r", "round-brilliant", &v).is_ok());
+        let mut v = BTreeMap::new();
+        v.insert("culet".to_string(), 0.2);
+        v.insert("lower_half".to_string(), 0.85);
+        let e = Cut::from_family("r", "round-brilliant", &v)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("lower_half:") && e.contains("culet"), "{e}");
+    }
+
+    #[test]
+    fn random_parameters_build_or_say_which_parameter() {
+        use rand::{Rng, SeedableRng};
+        let fam = family("round-brilliant").unwrap();
+        let mut rng = rand::rngs::SmallRng::seed_from_u64(7);
+        let mut built = 0;
+        for _ in 0..400 {
+            let mut v = BTreeMap::new();
+            for p in fam.params.iter().filter(|p| p.key != "girdle_facets") {
+                v.insert(
+                    p.key.to_string(),
+                    p.min + (p.max - p.min) * rng.random_range(0.001..0.999),
+                );
+            }
+            match Cut::from_family("r", "round-brilliant", &v) {
+                Ok(c) => {
+                    let s = &c.solid;
+                    assert_eq!(s.vertices.len() + s.facets.len(), s.edges.len() + 2);
+                    assert!(s.volume() > 0.0);
+                    built += 1;
+                }
+                Err(e) => {
+                    let e = e.to_string();
+                    assert!(
+                        e.starts_with("star:") || e.starts_with("lower_half:"),
+                        "{e} for {v:?}"
+                    );
+                }
+            }
+        }
+        assert!(built > 200, "{built}");
+    }
+
+    #[test]
     fn girdle_facet_counts() {
         for n in [32.0, 64.0] {
             let mut v = BTreeMap::new();

@@ -34,13 +34,19 @@ impl Plane {
         if !(len.is_finite() && len > 0.0 && offset.is_finite()) {
             return None;
         }
-        Some(Plane { normal: normal / len, offset: offset / len })
+        Some(Plane {
+            normal: normal / len,
+            offset: offset / len,
+        })
     }
 
     /// The plane with outward normal `normal` (normalised) through the point `p`.
     pub fn through(normal: DVec3, p: DVec3) -> Option<Plane> {
         let n = normal.try_normalize()?;
-        Some(Plane { normal: n, offset: n.dot(p) })
+        Some(Plane {
+            normal: n,
+            offset: n.dot(p),
+        })
     }
 
     /// Signed distance: positive outside, negative inside.
@@ -88,8 +94,20 @@ pub struct FacetPlane {
 
 impl FacetPlane {
     /// A facet plane from a normal and offset (normal need not be unit length).
-    pub fn new(normal: DVec3, offset: f64, name: impl Into<String>, tier: impl Into<String>) -> FacetPlane {
-        let plane = Plane::new(normal, offset).unwrap_or(Plane { normal: DVec3::Z, offset: f64::NAN });
-        FacetPlane { plane, name: name.into(), tier: tier.into() }
+    pub fn new(
+        normal: DVec3,
+        offset: f64,
+        name: impl Into<String>,
+        tier: impl Into<String>,
+    ) -> FacetPlane {
+        let plane = Plane::new(normal, offset).unwrap_or(Plane {
+            normal: DVec3::Z,
+            offset: f64::NAN,
+        });
+        FacetPlane {
+            plane,
+            name: name.into(),
+            tier: tier.into(),
+        }
     }
 }

@@ -6,7 +6,7 @@
 //! the two facets they separate. Problems are reported, never hidden: a plane that never touches
 //! the solid, duplicate planes, an unbounded or empty solid.
 
-use super::{FacetPlane, Plane, DVec3, EPS, WELD};
+use super::{DVec3, FacetPlane, Plane, EPS, WELD};
 use crate::error::{Error, Result};
 use serde::Serialize;
 
@@ -64,20 +64,79 @@ fn box_faces() -> Vec<Face> {
     let c = |x: f64, y: f64, z: f64| DVec3::new(x * b, y * b, z * b);
     // Each face counter-clockwise seen from outside.
     let quads: [(DVec3, [DVec3; 4]); 6] = [
-        (DVec3::X, [c(1., -1., -1.), c(1., 1., -1.), c(1., 1., 1.), c(1., -1., 1.)]),
-        (DVec3::NEG_X, [c(-1., -1., -1.), c(-1., -1., 1.), c(-1., 1., 1.), c(-1., 1., -1.)]),
-        (DVec3::Y, [c(-1., 1., -1.), c(-1., 1., 1.), c(1., 1., 1.), c(1., 1., -1.)]),
-        (DVec3::NEG_Y, [c(-1., -1., -1.), c(1., -1., -1.), c(1., -1., 1.), c(-1., -1., 1.)]),
-        (DVec3::Z, [c(-1., -1., 1.), c(1., -1., 1.), c(1., 1., 1.), c(-1., 1., 1.)]),
-        (DVec3::NEG_Z, [c(-1., -1., -1.), c(-1., 1., -1.), c(1., 1., -1.), c(1., -1., -1.)]),
+        (
+            DVec3::X,
+            [
+                c(1., -1., -1.),
+                c(1., 1., -1.),
+                c(1., 1., 1.),
+                c(1., -1., 1.),
+            ],
+        ),
+        (
+            DVec3::NEG_X,
+            [
+                c(-1., -1., -1.),
+                c(-1., -1., 1.),
+                c(-1., 1., 1.),
+                c(-1., 1., -1.),
+            ],
+        ),
+        (
+            DVec3::Y,
+            [
+                c(-1., 1., -1.),
+                c(-1., 1., 1.),
+                c(1., 1., 1.),
+                c(1., 1., -1.),
+            ],
+        ),
+        (
+            DVec3::NEG_Y,
+            [
+                c(-1., -1., -1.),
+                c(1., -1., -1.),
+                c(1., -1., 1.),
+                c(-1., -1., 1.),
+            ],
+        ),
+        (
+            DVec3::Z,
+            [
+                c(-1., -1., 1.),
+                c(1., -1., 1.),
+                c(1., 1., 1.),
+                c(-1., 1., 1.),
+            ],
+        ),
+        (
+            DVec3::NEG_Z,
+            [
+                c(-1., -1., -1.),
+                c(-1., 1., -1.),
+                c(1., 1., -1.),
+                c(1., -1., -1.),
+            ],
+        ),
     ];
-    quads.iter().map(|(n, q)| Face { source: None, normal: *n, poly: q.to_vec() }).collect()
+    quads
+        .iter()
+        .map(|(n, q)| Face {
+            source: None,
+            normal: *n,
+            poly: q.to_vec(),
+        })
+        .collect()
 }
 
 /// Point where segment p→q crosses the plane; computed in a canonical endpoint order so that the
 /// two faces sharing an edge get the same bits.
 fn crossing(plane: &Plane, p: DVec3, q: DVec3) -> DVec3 {
-    let (a, b) = if (p.x, p.y, p.z) < (q.x, q.y, q.z) { (p, q) } else { (q, p) };
+    let (a, b) = if (p.x, p.y, p.z) < (q.x, q.y, q.z) {
+        (p, q)
+    } else {
+        (q, p)
+    };
     let (da, db) = (plane.distance(a), plane.distance(b));
     let t = da / (da - db);
     a + (b - a) * t
@@ -186,13 +245,21 @@ fn clip(faces: &mut Vec<Face>, plane: &Plane, k: usize) -> bool {
             }
         }
         if out.len() >= 3 {
-            kept.push(Face { source: face.source, normal: face.normal, poly: out });
+            kept.push(Face {
+                source: face.source,
+                normal: face.normal,
+                poly: out,
+            });
         }
     }
     if cut {
         order_on_plane(plane.normal, &mut cap);
         if cap.len() >= 3 {
-            kept.push(Face { source: Some(k), normal: plane.normal, poly: cap });
+            kept.push(Face {
+                source: Some(k),
+                normal: plane.normal,
+                poly: cap,
+            });
         }
     }
     *faces = kept;
@@ -211,7 +278,9 @@ impl Polyhedron {
         }
         for (i, fp) in planes.iter().enumerate() {
             let p = &fp.plane;
-            if !(p.normal.is_finite() && p.offset.is_finite()) || (p.normal.length() - 1.0).abs() > 1e-6 {
+            if !(p.normal.is_finite() && p.offset.is_finite())
+                || (p.normal.length() - 1.0).abs() > 1e-6
+            {
                 return Err(Error::Geometry(format!(
                     "facet {} ({}) has no valid plane (normal must be finite and non-zero, offset finite)",
                     i + 1,
@@ -305,25 +374,41 @@ impl Polyhedron {
             });
         }
         let edges = build_edges(&facets)?;
-        Ok(Polyhedron { vertices, facets, edges })
+        Ok(Polyhedron {
+            vertices,
+            facets,
+            edges,
+        })
     }
 
     /// The facet planes of this solid (the input of [`Polyhedron::from_planes`]).
     pub fn facet_planes(&self) -> Vec<FacetPlane> {
         self.facets
             .iter()
-            .map(|f| FacetPlane { plane: f.plane, name: f.name.clone(), tier: f.tier.clone() })
+            .map(|f| FacetPlane {
+                plane: f.plane,
+                name: f.name.clone(),
+                tier: f.tier.clone(),
+            })
             .collect()
     }
 
     /// The polygon of facet `i` as points, counter-clockwise seen from outside.
     pub fn facet_polygon(&self, i: usize) -> Vec<DVec3> {
-        self.facets[i].vertices.iter().map(|&v| self.vertices[v]).collect()
+        self.facets[i]
+            .vertices
+            .iter()
+            .map(|&v| self.vertices[v])
+            .collect()
     }
 
     /// Volume (girdle diameters cubed).
     pub fn volume(&self) -> f64 {
-        self.facets.iter().map(|f| f.area * f.plane.offset).sum::<f64>() / 3.0
+        self.facets
+            .iter()
+            .map(|f| f.area * f.plane.offset)
+            .sum::<f64>()
+            / 3.0
     }
 
     /// Total surface area.
@@ -334,7 +419,10 @@ impl Polyhedron {
     /// Area of the solid's shadow on a plane perpendicular to `dir` (any length).
     pub fn projected_area(&self, dir: DVec3) -> f64 {
         let u = dir.normalize();
-        self.facets.iter().map(|f| (f.area * f.plane.normal.dot(u)).max(0.0)).sum()
+        self.facets
+            .iter()
+            .map(|f| (f.area * f.plane.normal.dot(u)).max(0.0))
+            .sum()
     }
 
     /// Axis-aligned bounding box (min, max).
@@ -392,7 +480,10 @@ impl Polyhedron {
     /// Largest distance of any vertex from the z axis (half the girdle outline's width for a
     /// centred stone).
     pub fn max_radius(&self) -> f64 {
-        self.vertices.iter().map(|v| v.truncate().length()).fold(0.0, f64::max)
+        self.vertices
+            .iter()
+            .map(|v| v.truncate().length())
+            .fold(0.0, f64::max)
     }
 
     /// The same solid scaled by `s` about the origin.
@@ -428,7 +519,11 @@ fn build_edges(facets: &[Facet]) -> Result<Vec<Edge>> {
                     facets[f0].name
                 )));
             };
-            edges.push(Edge { a, b, facets: [f0, f1] });
+            edges.push(Edge {
+                a,
+                b,
+                facets: [f0, f1],
+            });
         }
     }
     for (&(a, b), &f0) in &half {
@@ -448,11 +543,18 @@ mod tests {
     use super::*;
 
     fn cube(h: f64) -> Vec<FacetPlane> {
-        [DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z]
-            .iter()
-            .enumerate()
-            .map(|(i, n)| FacetPlane::new(*n, h, format!("f{i}"), "side"))
-            .collect()
+        [
+            DVec3::X,
+            DVec3::NEG_X,
+            DVec3::Y,
+            DVec3::NEG_Y,
+            DVec3::Z,
+            DVec3::NEG_Z,
+        ]
+        .iter()
+        .enumerate()
+        .map(|(i, n)| FacetPlane::new(*n, h, format!("f{i}"), "side"))
+        .collect()
     }
 
     #[test]
@@ -465,7 +567,11 @@ mod tests {
         assert!((p.projected_area(DVec3::new(1.0, 1.0, 1.0)) - 3f64.sqrt()).abs() < 1e-12);
         for f in &p.facets {
             assert_eq!(f.vertices.len(), 4);
-            assert_eq!(p.neighbors(p.facets.iter().position(|g| g == f).unwrap()).len(), 4);
+            assert_eq!(
+                p.neighbors(p.facets.iter().position(|g| g == f).unwrap())
+                    .len(),
+                4
+            );
         }
         assert!(p.centroid().length() < 1e-12);
     }
@@ -516,7 +622,12 @@ mod tests {
     #[test]
     fn plane_through_a_vertex_only_is_reported() {
         let mut planes = cube(0.5);
-        planes.push(FacetPlane::new(DVec3::new(1.0, 1.0, 1.0), 1.5, "corner", "x"));
+        planes.push(FacetPlane::new(
+            DVec3::new(1.0, 1.0, 1.0),
+            1.5,
+            "corner",
+            "x",
+        ));
         let e = Polyhedron::from_planes(&planes).unwrap_err().to_string();
         assert!(e.contains("corner"), "{e}");
     }
@@ -524,7 +635,12 @@ mod tests {
     #[test]
     fn truncated_cube_facets_are_outward_and_ccw() {
         let mut planes = cube(0.5);
-        planes.push(FacetPlane::new(DVec3::new(1.0, 1.0, 1.0), 1.2, "corner", "x"));
+        planes.push(FacetPlane::new(
+            DVec3::new(1.0, 1.0, 1.0),
+            1.2,
+            "corner",
+            "x",
+        ));
         let p = Polyhedron::from_planes(&planes).unwrap();
         assert_eq!(p.facets.len(), 7);
         for (i, f) in p.facets.iter().enumerate() {

@@ -1,5 +1,6 @@
 //! Files: TOML cut specs, bundled presets, and safe (atomic) writing of outputs.
 
+pub mod asc;
 pub mod presets;
 pub mod spec;
 
@@ -15,10 +16,19 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         _ => std::path::PathBuf::from("."),
     };
     if !dir.is_dir() {
-        return Err(Error::io(&shown, format!("folder {} does not exist", dir.display())));
+        return Err(Error::io(
+            &shown,
+            format!("folder {} does not exist", dir.display()),
+        ));
     }
-    let file = path.file_name().ok_or_else(|| Error::io(&shown, "not a file name"))?;
-    let tmp = dir.join(format!(".{}.tmp-{}", file.to_string_lossy(), std::process::id()));
+    let file = path
+        .file_name()
+        .ok_or_else(|| Error::io(&shown, "not a file name"))?;
+    let tmp = dir.join(format!(
+        ".{}.tmp-{}",
+        file.to_string_lossy(),
+        std::process::id()
+    ));
     std::fs::write(&tmp, bytes).map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
         Error::io(&shown, e)
@@ -42,5 +52,44 @@ pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
 
 /// 1-based line number of byte offset `pos` in `text`.
 pub fn line_of(text: &str, pos: usize) -> usize {
-    text.as_bytes()[..pos.min(text.len())].iter().filter(|&&b| b == b'\n').count() + 1
+    text.as_bytes()[..pos.min(text.len())]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
+/// Load a cut from a command-line argument: a preset name (see [`presets::names`]) or a path
+/// to a `.toml` spec, a GemCad `.asc`, or an `.obj`/`.stl` mesh (convex hull).
+pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
+    let path = Path::new(arg);
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or_else(|| arg.to_string());
+    match ext.as_deref() {
+        Some("toml") => {
+            let bytes = read_bytes(path)?;
+            let text = String::from_utf8_lossy(&bytes);
+            spec::parse(&text, arg)?.to_cut(&stem, arg)
+        }
+        Some("asc") => asc::read(path),
+        Some(other) if path.exists() || other.len() <= 4 => Err(Error::invalid(
+            arg,
+            format!("unknown file type `.{other}`; CUT is a preset ({}) or a .toml, .asc, .obj or .stl file", presets::names().join(", ")),
+        )),
+        _ => match presets::load(arg) {
+            Some(cut) => cut,
+            None => Err(Error::invalid(
+                arg,
+                format!(
+                    "unknown preset; presets: {}; or give a path to a .toml, .asc, .obj or .stl file",
+                    presets::names().join(", ")
+                ),
+            )),
+        },
+    }
 }

@@ -65,7 +65,10 @@ pub struct FacetSpec {
 /// Parse a spec; `source` (the file name) prefixes errors, with the line number.
 pub fn parse(text: &str, source: &str) -> Result<CutSpec> {
     toml::from_str::<CutSpec>(text).map_err(|e| {
-        let line = e.span().map(|s| format!(":{}", line_of(text, s.start))).unwrap_or_default();
+        let line = e
+            .span()
+            .map(|s| format!(":{}", line_of(text, s.start)))
+            .unwrap_or_default();
         Error::parse(format!("{source}{line}"), e.message().to_string())
     })
 }
@@ -73,7 +76,10 @@ pub fn parse(text: &str, source: &str) -> Result<CutSpec> {
 impl CutSpec {
     /// Build the cut. `default_name` is used when the spec has no `name`.
     pub fn to_cut(&self, default_name: &str, source: &str) -> Result<Cut> {
-        let name = self.name.clone().unwrap_or_else(|| default_name.to_string());
+        let name = self
+            .name
+            .clone()
+            .unwrap_or_else(|| default_name.to_string());
         match (&self.family, self.facets.is_empty()) {
             (Some(_), false) => Err(Error::invalid(
                 format!("{source}: facets"),
@@ -158,7 +164,10 @@ mod tests {
     fn family_round_trip() {
         let cut = Cut::from_family("x", "round-brilliant", &BTreeMap::new()).unwrap();
         let text = write(&cut);
-        let back = parse(&text, "x.toml").unwrap().to_cut("y", "x.toml").unwrap();
+        let back = parse(&text, "x.toml")
+            .unwrap()
+            .to_cut("y", "x.toml")
+            .unwrap();
         assert_eq!(back.params, cut.params);
         assert_eq!(back.name, "x");
         assert!((back.solid.volume() - cut.solid.volume()).abs() < 1e-15);
@@ -170,7 +179,10 @@ mod tests {
         let mut explicit = cut.clone();
         explicit.family = None;
         let text = write(&explicit);
-        let back = parse(&text, "x.toml").unwrap().to_cut("y", "x.toml").unwrap();
+        let back = parse(&text, "x.toml")
+            .unwrap()
+            .to_cut("y", "x.toml")
+            .unwrap();
         assert_eq!(back.solid.facets.len(), cut.solid.facets.len());
         for (a, b) in back.solid.facets.iter().zip(&cut.solid.facets) {
             assert_eq!(a.plane, b.plane);
@@ -180,16 +192,33 @@ mod tests {
 
     #[test]
     fn errors_name_line_and_field() {
-        let e = parse("family = \"round-brilliant\"\n[params]\ntable = \n", "bad.toml").unwrap_err().to_string();
+        let e = parse(
+            "family = \"round-brilliant\"\n[params]\ntable = \n",
+            "bad.toml",
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.starts_with("bad.toml:3:"), "{e}");
-        let e = parse("family = \"round-brilliant\"\ncolour = 3\n", "bad.toml").unwrap_err().to_string();
+        let e = parse("family = \"round-brilliant\"\ncolour = 3\n", "bad.toml")
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("bad.toml:2:") && e.contains("colour"), "{e}");
-        let spec = parse("family = \"round-brilliant\"\n[params]\ncrown_angle = 75.0\n", "c.toml").unwrap();
+        let spec = parse(
+            "family = \"round-brilliant\"\n[params]\ncrown_angle = 75.0\n",
+            "c.toml",
+        )
+        .unwrap();
         let e = spec.to_cut("c", "c.toml").unwrap_err().to_string();
-        assert!(e.starts_with("c.toml: params.crown_angle:") && e.contains("[5, 60]"), "{e}");
+        assert!(
+            e.starts_with("c.toml: params.crown_angle:") && e.contains("[5, 60]"),
+            "{e}"
+        );
         assert!(!e.contains('\n'));
         let spec = parse("family = \"rund\"\n", "c.toml").unwrap();
         let e = spec.to_cut("c", "c.toml").unwrap_err().to_string();
-        assert!(e.contains("unknown family `rund`") && e.contains("round-brilliant"), "{e}");
+        assert!(
+            e.contains("unknown family `rund`") && e.contains("round-brilliant"),
+            "{e}"
+        );
     }
 }

@@ -1,0 +1,293 @@
+//! `generate` and `info`.
+
+use crate::cut::Cut;
+use crate::error::{Error, Result};
+use crate::io;
+use crate::optics::Material;
+use clap::Args;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// Flags of `facetlab generate`.
+#[derive(Debug, Args)]
+pub struct GenerateArgs {
+    /// Preset name or path (.toml, .asc, .obj, .stl).
+    pub cut: String,
+    /// Change a parameter of a family cut, e.g. `--set crown_angle=34.5` (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Output file; the format follows the extension: .toml .asc .obj .stl .svg.
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub output: PathBuf,
+}
+
+/// Flags of `facetlab info`.
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    /// Preset name or path (.toml, .asc, .obj, .stl).
+    pub cut: String,
+    /// Change a parameter of a family cut, e.g. `--set table=0.55` (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Print JSON instead of a table (keys documented in the README).
+    #[arg(long)]
+    pub json: bool,
+    /// Girdle diameter in millimetres, for the carat weight.
+    #[arg(long, value_name = "MM", default_value_t = 6.5)]
+    pub diameter_mm: f64,
+    /// Material, for the carat weight (diamond, cubic-zirconia, sapphire, glass).
+    #[arg(long, default_value = "diamond")]
+    pub material: String,
+}
+
+/// Parse `--set key=value` flags.
+pub fn parse_sets(sets: &[String]) -> Result<BTreeMap<String, f64>> {
+    let mut out = BTreeMap::new();
+    for s in sets {
+        let Some((k, v)) = s.split_once('=') else {
+            return Err(Error::invalid(
+                "--set",
+                format!("expected KEY=VALUE, got `{s}`"),
+            ));
+        };
+        let (k, v) = (k.trim(), v.trim());
+        let value: f64 = v
+            .parse()
+            .map_err(|_| Error::invalid(format!("--set {k}"), format!("`{v}` is not a number")))?;
+        out.insert(k.to_string(), value);
+    }
+    Ok(out)
+}
+
+/// Load a cut and apply `--set` changes.
+pub fn load_with_sets(arg: &str, sets: &[String]) -> Result<Cut> {
+    let changes = parse_sets(sets)?;
+    let cut = io::load_cut(arg)?;
+    cut.with_params(&changes).map_err(|e| match e {
+        Error::Invalid { field, message } if !field.starts_with("--set") => Error::Invalid {
+            field: format!("--set {field}"),
+            message,
+        },
+        other => other,
+    })
+}
+
+/// `facetlab generate`.
+pub fn generate(a: &GenerateArgs) -> Result<()> {
+    let cut = load_with_sets(&a.cut, &a.set)?;
+    let ext = a
+        .output
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    let bytes: Vec<u8> = match ext.as_str() {
+        "toml" => io::spec::write(&cut).into_bytes(),
+        "asc" => io::asc::write(&cut, io::asc::DEFAULT_GEAR).into_bytes(),
+        _ => {
+            return Err(Error::invalid(
+                "-o",
+                format!("cannot write `.{ext}`; allowed extensions: .toml, .asc, .obj, .stl, .svg"),
+            ))
+        }
+    };
+    io::write_atomic(&a.output, &bytes)?;
+    eprintln!(
+        "wrote {} ({} facets)",
+        a.output.display(),
+        cut.solid.facets.len()
+    );
+    Ok(())
+}
+
+/// JSON of `info` (keys documented in the README).
+#[derive(Debug, Serialize)]
+pub struct InfoJson {
+    /// Cut name.
+    pub name: String,
+    /// Family, if generated from one.
+    pub family: Option<String>,
+    /// Family parameters.
+    pub params: BTreeMap<String, f64>,
+    /// Number of facets, girdle facets included.
+    pub facet_count: usize,
+    /// Number of vertices.
+    pub vertex_count: usize,
+    /// Volume in girdle diameters cubed.
+    pub volume: f64,
+    /// Measured proportions.
+    pub proportions: crate::cut::Proportions,
+    /// Tiers: name, mean angle, count, side.
+    pub tiers: Vec<crate::cut::TierSummary>,
+    /// Girdle diameter used for the weight, mm.
+    pub diameter_mm: f64,
+    /// Material used for the weight.
+    pub material: String,
+    /// Weight in carats for that diameter and material.
+    pub carats: f64,
+    /// Geometric checks: closed surface (V − E + F = 2).
+    pub checks: Checks,
+}
+
+/// Geometric checks reported by `info`.
+#[derive(Debug, Serialize)]
+pub struct Checks {
+    /// V − E + F.
+    pub euler_characteristic: i64,
+    /// Every edge separates exactly two facets and V − E + F = 2.
+    pub closed: bool,
+    /// Smallest facet area over the mean facet area.
+    pub smallest_facet_ratio: f64,
+}
+
+/// Build the `info` record.
+pub fn info_json(cut: &Cut, diameter_mm: f64, material: &Material) -> InfoJson {
+    let s = &cut.solid;
+    let volume = s.volume();
+    let mm3 = volume * diameter_mm.powi(3);
+    let carats = mm3 * 1e-3 * material.density / 0.2;
+    let euler = s.vertices.len() as i64 - s.edges.len() as i64 + s.facets.len() as i64;
+    let mean = s.surface_area() / s.facets.len() as f64;
+    let smallest = s
+        .facets
+        .iter()
+        .map(|f| f.area)
+        .fold(f64::INFINITY, f64::min);
+    InfoJson {
+        name: cut.name.clone(),
+        family: cut.family.clone(),
+        params: cut.params.clone(),
+        facet_count: s.facets.len(),
+        vertex_count: s.vertices.len(),
+        volume,
+        proportions: cut.proportions(),
+        tiers: cut.tiers(),
+        diameter_mm,
+        material: material.name.clone(),
+        carats,
+        checks: Checks {
+            euler_characteristic: euler,
+            closed: euler == 2,
+            smallest_facet_ratio: smallest / mean,
+        },
+    }
+}
+
+/// `facetlab info`.
+pub fn info(a: &InfoArgs) -> Result<()> {
+    if !(a.diameter_mm.is_finite() && a.diameter_mm > 0.0 && a.diameter_mm < 1000.0) {
+        return Err(Error::invalid(
+            "--diameter-mm",
+            format!(
+                "{} is not allowed; give a diameter in (0, 1000) mm",
+                a.diameter_mm
+            ),
+        ));
+    }
+    let material = Material::by_name(&a.material)?;
+    let cut = load_with_sets(&a.cut, &a.set)?;
+    let j = info_json(&cut, a.diameter_mm, &material);
+    if a.json {
+        let text = serde_json::to_string_pretty(&j)
+            .map_err(|e| Error::invalid("--json", e.to_string()))?;
+        println!("{text}");
+        return Ok(());
+    }
+    print!("{}", info_text(&j));
+    Ok(())
+}
+
+/// Human-readable `info`.
+pub fn info_text(j: &InfoJson) -> String {
+    use std::fmt::Write;
+    let mut o = String::new();
+    let fam = j
+        .family
+        .as_deref()
+        .map(|f| format!(" ({f})"))
+        .unwrap_or_default();
+    let _ = writeln!(o, "{}{fam}", j.name);
+    let p = &j.proportions;
+    let pct = |v: f64| format!("{:6.1} %", v * 100.0);
+    let _ = writeln!(o, "\nProportions (lengths as % of girdle diameter)");
+    let _ = writeln!(o, "  table            {}", pct(p.table));
+    let _ = writeln!(o, "  crown angle      {:6.2} °", p.crown_angle);
+    let _ = writeln!(o, "  pavilion angle   {:6.2} °", p.pavilion_angle);
+    let _ = writeln!(o, "  crown height     {}", pct(p.crown_height));
+    let _ = writeln!(o, "  pavilion depth   {}", pct(p.pavilion_depth));
+    let _ = writeln!(o, "  total depth      {}", pct(p.total_depth));
+    let _ = writeln!(o, "  girdle           {}", pct(p.girdle));
+    let _ = writeln!(o, "\nTiers                 angle   count");
+    for t in &j.tiers {
+        let _ = writeln!(
+            o,
+            "  {:<16} {:8.2} ° {:5}   {}",
+            t.name, t.angle, t.count, t.side
+        );
+    }
+    let _ = writeln!(
+        o,
+        "\nFacets {}   vertices {}   volume {:.5} D³",
+        j.facet_count, j.vertex_count, j.volume
+    );
+    let _ = writeln!(
+        o,
+        "Weight {:.3} ct for a {:.2} mm {} stone",
+        j.carats, j.diameter_mm, j.material
+    );
+    let c = &j.checks;
+    let _ = writeln!(
+        o,
+        "Checks: convex solid, {} (V − E + F = {}), smallest facet {:.3} of the mean area",
+        if c.closed { "closed" } else { "NOT closed" },
+        c.euler_characteristic,
+        c.smallest_facet_ratio
+    );
+    if !j.params.is_empty() {
+        let _ = writeln!(o, "\nParameters (--set KEY=VALUE)");
+        for (k, v) in &j.params {
+            let _ = writeln!(o, "  {k:<16} {v}");
+        }
+    }
+    o
+}
+
+/// Flags of `facetlab list`.
+#[derive(Debug, Args)]
+pub struct ListArgs {
+    /// Print only the preset names, one per line (for scripts).
+    #[arg(long)]
+    pub names: bool,
+}
+
+/// `facetlab list`.
+pub fn list(a: &ListArgs) -> Result<()> {
+    if a.names {
+        for n in io::presets::names() {
+            println!("{n}");
+        }
+        return Ok(());
+    }
+    println!("Presets (use as CUT):");
+    for n in io::presets::names() {
+        let desc = match io::presets::load(n) {
+            Some(Ok(c)) => format!("{} — {}", c.name, c.family.unwrap_or_default()),
+            Some(Err(e)) => format!("(broken: {e})"),
+            None => String::new(),
+        };
+        println!("  {n:<16} {desc}");
+    }
+    println!("\nFamilies and their parameters (--set KEY=VALUE; lengths are fractions of the girdle diameter):");
+    for f in crate::cut::families() {
+        println!("\n  {} — {}", f.name, f.doc);
+        for p in f.params {
+            let (l, r) = if p.open { ("(", ")") } else { ("[", "]") };
+            let range = format!("{l}{}, {}{r} {}", p.min, p.max, p.unit.label());
+            println!(
+                "    {:<16} default {:<7} {:<40} {}",
+                p.key, p.default, range, p.doc
+            );
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,40 @@
+//! The command line: a thin layer that validates flags into the library's own types and calls
+//! it. Each subcommand lives in its own module.
+
+mod cuts;
+
+use crate::error::Result;
+use clap::{Parser, Subcommand};
+
+/// facetlab: design, score and optimize cut gemstones with real optics.
+///
+/// CUT is a preset name (tolkowsky, gia-reference, …) or a path to a .toml spec, a GemCad .asc,
+/// or an .obj/.stl mesh (taken as its convex hull). Lengths are fractions of the girdle
+/// diameter (table 0.57), angles are degrees.
+#[derive(Debug, Parser)]
+#[command(name = "facetlab", version, about, long_about = None, propagate_version = true)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Write a cut to a file: .toml spec, .asc (GemCad), .obj, .stl or .svg diagram, by extension.
+    Generate(cuts::GenerateArgs),
+    /// Show a cut's proportions, tiers, facet count, volume and carat weight.
+    Info(cuts::InfoArgs),
+    /// List the bundled presets and the families with their parameters (defaults, ranges).
+    List(cuts::ListArgs),
+}
+
+/// Run a parsed command line.
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Generate(a) => cuts::generate(&a),
+        Command::Info(a) => cuts::info(&a),
+        Command::List(a) => cuts::list(&a),
+    }
+}

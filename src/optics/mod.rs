@@ -1,0 +1,17 @@
+//! Optics shared by both tracers, as pure functions: materials with Sellmeier dispersion,
+//! Fresnel amplitudes and reflectances, total internal reflection with its s–p phase, Mueller
+//! matrices and Stokes vectors, and colour (CIE 1931, D65, sRGB).
+//!
+//! Polarization convention: a Stokes vector `(I, Q, U, V)` is given in a frame whose reference
+//! axis `e_s` is a unit vector perpendicular to the propagation direction; `Q = I_s − I_p`
+//! with `p = d × e_s`. At an interface the natural frame has `e_s` perpendicular to the plane of
+//! incidence, and there the Mueller matrices have the block form of [`Mueller`].
+
+pub mod color;
+mod fresnel;
+mod material;
+mod polarization;
+
+pub use fresnel::{critical_angle, fresnel, reflect, refract, Complex, Interface};
+pub use material::{Dispersion, Material};
+pub use polarization::{rotate_stokes, s_axis, Mueller, Stokes};

@@ -1,0 +1,215 @@
+//! Issue 2: generate, info, presets and the bad-input contract.
+
+use super::{bad, files, ok};
+use tempfile::tempdir;
+
+#[test]
+fn info_gia_reference_shows_published_proportions() {
+    let d = tempdir().unwrap();
+    let j: serde_json::Value =
+        serde_json::from_str(&ok(d.path(), &["info", "gia-reference", "--json"])).unwrap();
+    let p = &j["proportions"];
+    let close = |k: &str, v: f64, tol: f64| {
+        let got = p[k].as_f64().unwrap();
+        assert!((got - v).abs() < tol, "{k}: {got} vs {v}");
+    };
+    close("crown_height", 0.145, 0.0007);
+    close("pavilion_depth", 0.430, 0.0007);
+    close("total_depth", 0.600, 0.0007);
+    close("table", 0.57, 1e-9);
+    close("crown_angle", 34.0, 1e-9);
+    close("pavilion_angle", 40.7, 1e-9);
+    close("girdle", 0.025, 1e-9);
+    let tier = |n: &str| {
+        j["tiers"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|t| t["name"] == n)
+            .unwrap()["angle"]
+            .as_f64()
+            .unwrap()
+    };
+    assert!((tier("star") - 21.1).abs() < 0.05);
+    assert!((tier("upper-half") - 40.6).abs() < 0.05);
+    assert!((tier("lower-half") - 41.8).abs() < 0.05);
+    assert_eq!(j["facet_count"].as_u64(), Some(73));
+    assert!(j["volume"].as_f64().unwrap() > 0.1);
+    // A 6.5 mm round of 60 % depth weighs about one carat.
+    let ct = j["carats"].as_f64().unwrap();
+    assert!((0.9..1.1).contains(&ct), "{ct}");
+    let text = ok(d.path(), &["info", "gia-reference"]);
+    assert!(
+        text.contains("14.5 %") && text.contains("43.0 %") && text.contains("60.0 %"),
+        "{text}"
+    );
+}
+
+#[test]
+fn generate_toml_round_trips_through_info() {
+    let d = tempdir().unwrap();
+    ok(
+        d.path(),
+        &[
+            "generate",
+            "tolkowsky",
+            "--set",
+            "crown_angle=33",
+            "--set",
+            "table=0.55",
+            "-o",
+            "t.toml",
+        ],
+    );
+    let j: serde_json::Value =
+        serde_json::from_str(&ok(d.path(), &["info", "t.toml", "--json"])).unwrap();
+    assert!((j["proportions"]["crown_angle"].as_f64().unwrap() - 33.0).abs() < 1e-9);
+    assert!((j["proportions"]["table"].as_f64().unwrap() - 0.55).abs() < 1e-9);
+    assert_eq!(files(d.path()), vec!["t.toml".to_string()]);
+}
+
+#[test]
+fn bad_input_is_one_line_exit_2_and_leaves_no_file() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    bad(
+        p,
+        &["info", "nosuchcut"],
+        &["nosuchcut", "unknown preset", "tolkowsky"],
+    );
+    bad(
+        p,
+        &["info", "missing.toml"],
+        &["missing.toml", "no such file"],
+    );
+    std::fs::write(
+        p.join("broken.toml"),
+        "family = \"round-brilliant\"\n[params]\ntable = = 3\n",
+    )
+    .unwrap();
+    bad(p, &["info", "broken.toml"], &["broken.toml:3"]);
+    std::fs::write(
+        p.join("unknown.toml"),
+        "family = \"round-brilliant\"\n[params]\ntabel = 0.5\n",
+    )
+    .unwrap();
+    bad(
+        p,
+        &["info", "unknown.toml"],
+        &["unknown.toml", "tabel", "allowed"],
+    );
+    bad(
+        p,
+        &[
+            "generate",
+            "tolkowsky",
+            "--set",
+            "crown_angle=75",
+            "-o",
+            "x.toml",
+        ],
+        &["crown_angle", "[5, 60]"],
+    );
+    bad(
+        p,
+        &[
+            "generate",
+            "tolkowsky",
+            "--set",
+            "pavilion_angle=NaN",
+            "-o",
+            "x.toml",
+        ],
+        &["pavilion_angle", "not a number"],
+    );
+    bad(
+        p,
+        &[
+            "generate",
+            "tolkowsky",
+            "--set",
+            "table=1.2",
+            "-o",
+            "x.toml",
+        ],
+        &["table", "allowed"],
+    );
+    bad(
+        p,
+        &["generate", "tolkowsky", "--set", "star=0", "-o", "x.toml"],
+        &["star", "(0, 1)"],
+    );
+    bad(
+        p,
+        &[
+            "generate",
+            "tolkowsky",
+            "--set",
+            "lower_half=1.5",
+            "-o",
+            "x.toml",
+        ],
+        &["lower_half", "(0, 1)"],
+    );
+    bad(
+        p,
+        &["generate", "tolkowsky", "--set", "crown", "-o", "x.toml"],
+        &["--set", "KEY=VALUE"],
+    );
+    bad(
+        p,
+        &["generate", "tolkowsky", "-o", "x.docx"],
+        &["-o", ".docx", ".obj"],
+    );
+    bad(
+        p,
+        &["generate", "tolkowsky", "-o", "nodir/x.toml"],
+        &["nodir"],
+    );
+    // An explicit design whose table plane lies above the crown: it swallows the crown.
+    let swallow = "name = \"tall table\"\n\
+        [[facets]]\nname = \"table\"\nnormal = [0, 0, 1]\noffset = 0.9\n\
+        [[facets]]\nname = \"c1\"\nnormal = [1, 0, 1]\noffset = 0.3\n\
+        [[facets]]\nname = \"c2\"\nnormal = [-1, 0, 1]\noffset = 0.3\n\
+        [[facets]]\nname = \"c3\"\nnormal = [0, 1, 1]\noffset = 0.3\n\
+        [[facets]]\nname = \"c4\"\nnormal = [0, -1, 1]\noffset = 0.3\n\
+        [[facets]]\nname = \"p\"\nnormal = [0, 0, -1]\noffset = 0.3\n";
+    std::fs::write(p.join("swallow.toml"), swallow).unwrap();
+    bad(
+        p,
+        &["generate", "swallow.toml", "-o", "y.toml"],
+        &["swallow.toml", "table", "never touches"],
+    );
+    let left = files(p);
+    assert!(
+        !left
+            .iter()
+            .any(|f| f.starts_with('x') || f.starts_with('y') || f.contains(".tmp")),
+        "{left:?}"
+    );
+}
+
+#[test]
+fn asc_round_trip_and_broken_line() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    ok(p, &["generate", "gia-reference", "-o", "g.asc"]);
+    let text = std::fs::read_to_string(p.join("g.asc")).unwrap();
+    assert!(
+        text.starts_with("GemCad") && text.contains("\na "),
+        "{text}"
+    );
+    let j: serde_json::Value = serde_json::from_str(&ok(p, &["info", "g.asc", "--json"])).unwrap();
+    assert_eq!(j["facet_count"].as_u64(), Some(73));
+    assert!((j["proportions"]["total_depth"].as_f64().unwrap() - 0.600).abs() < 0.0007);
+    assert!((j["proportions"]["crown_angle"].as_f64().unwrap() - 34.0).abs() < 1e-6);
+    let broken = text.replacen("\na ", "\na x3 ", 1);
+    std::fs::write(p.join("broken.asc"), broken).unwrap();
+    let line = bad(
+        p,
+        &["generate", "broken.asc", "-o", "out.obj"],
+        &["broken.asc:", "x3"],
+    );
+    assert!(line.contains("not a number"), "{line}");
+    assert!(!files(p).iter().any(|f| f.starts_with("out")));
+}
