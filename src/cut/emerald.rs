@@ -7,15 +7,18 @@
 //! Crown: `crown_steps` rows ("steps") of 8 facets — 4 sides and 4 corners — between the girdle
 //! and the table. Each step moves in by the same width, (1 − table)/2 / steps, on all four sides,
 //! so the table is `table` wide across the stone and the side facets of one step share one angle:
-//! the step at the girdle is cut at `crown_angle`, and each step above it `crown_step_angle`
-//! flatter (angles must flatten toward the table for the crown to be convex). Corner facets join
-//! the bevels of consecutive rows; the bevels shrink with the row's width, so the table's corners
-//! are cut like the girdle's, and corner facets lie a little flatter than the sides.
+//! the step next to the table is cut at `crown_angle` (the crown angle `info` reports), and each
+//! step below it `crown_step_angle` steeper (angles must flatten toward the table for the crown
+//! to be convex). Corner facets join the bevels of consecutive rows; the bevels shrink with the
+//! row's width, so the table's corners are cut like the girdle's, and corner facets lie a little
+//! flatter than the sides.
 //!
 //! Pavilion: `pavilion_steps` rows the same way, each moving in by 1/(2·steps), so the long sides
-//! meet in a keel `length_width − 1` long; the step at the girdle is the steepest, at
-//! `pavilion_angle` (the angle `info` reports), and each step toward the keel is
-//! `pavilion_step_angle` flatter. `culet` > 0 flattens the keel into a narrow culet facet.
+//! meet in a keel `length_width − 1` long; the step next to the keel is cut at `pavilion_angle`
+//! (the pavilion angle `info` reports; it is the flattest, the one most light from the table
+//! meets) and each step above it `pavilion_step_angle` steeper, the steepest at the girdle.
+//! `culet` > 0 flattens the keel into a narrow culet facet. The ranges keep every step below 90°,
+//! so every combination builds.
 //! Depths in closed form: crown height = (1 − table)/(2·steps)·Σ tan(step angles), pavilion depth
 //! = 1/(2·steps)·Σ tan(step angles) (less the culet's share).
 
@@ -46,12 +49,12 @@ const PARAMS: &[ParamDef] = &[
     },
     ParamDef {
         key: "crown_angle",
-        default: 40.0,
-        min: 25.0,
-        max: 60.0,
+        default: 24.0,
+        min: 10.0,
+        max: 45.0,
         open: false,
         unit: Unit::Degrees,
-        doc: "angle of the crown step at the girdle (sides)",
+        doc: "angle of the crown step next to the table (the flattest)",
     },
     ParamDef {
         key: "crown_steps",
@@ -66,19 +69,19 @@ const PARAMS: &[ParamDef] = &[
         key: "crown_step_angle",
         default: 8.0,
         min: 1.0,
-        max: 15.0,
+        max: 12.0,
         open: false,
         unit: Unit::Degrees,
-        doc: "how much flatter each crown step is than the one below it",
+        doc: "how much steeper each crown step is than the one above it",
     },
     ParamDef {
         key: "pavilion_angle",
-        default: 50.0,
-        min: 35.0,
-        max: 65.0,
+        default: 40.0,
+        min: 30.0,
+        max: 50.0,
         open: false,
         unit: Unit::Degrees,
-        doc: "angle of the pavilion step at the girdle (the steepest)",
+        doc: "angle of the pavilion step next to the keel (the flattest)",
     },
     ParamDef {
         key: "pavilion_steps",
@@ -96,7 +99,7 @@ const PARAMS: &[ParamDef] = &[
         max: 10.0,
         open: false,
         unit: Unit::Degrees,
-        doc: "how much flatter each pavilion step is than the one above it",
+        doc: "how much steeper each pavilion step is than the one below it",
     },
     ParamDef {
         key: "girdle",
@@ -135,28 +138,10 @@ pub const FAMILY: Family = Family {
     build,
 };
 
-/// The smallest step angle allowed, degrees.
-const MIN_STEP: f64 = 5.0;
-
-/// Step angles `first, first − step, …`; an error on `step_key` when the last gets too flat.
-pub(crate) fn step_angles(
-    first: f64,
-    step: f64,
-    n: usize,
-    step_key: &str,
-    count_key: &str,
-) -> Result<Vec<f64>> {
-    let angles: Vec<f64> = (0..n).map(|i| first - step * i as f64).collect();
-    let last = angles[n - 1];
-    if last < MIN_STEP {
-        return Err(Error::invalid(
-            step_key,
-            format!(
-                "{step}° per step over {n} {count_key} from {first}° leaves the last step at {last}°; the last step needs at least {MIN_STEP}° (use a smaller {step_key} or fewer {count_key})"
-            ),
-        ));
-    }
-    Ok(angles)
+/// Step angles from the girdle inward: `n` steps ending at `inner` (next to the table or the
+/// keel), each step toward the girdle `step` degrees steeper.
+pub(crate) fn step_angles(inner: f64, step: f64, n: usize) -> Vec<f64> {
+    (0..n).map(|i| inner + step * (n - 1 - i) as f64).collect()
 }
 
 /// Checks the `corner` bevel: 0, or large enough to be a real facet.
@@ -191,20 +176,8 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
     check_corner(corner)?;
     let nc = p.get("crown_steps") as usize;
     let np = p.get("pavilion_steps") as usize;
-    let crown = step_angles(
-        p.get("crown_angle"),
-        p.get("crown_step_angle"),
-        nc,
-        "crown_step_angle",
-        "crown_steps",
-    )?;
-    let pav = step_angles(
-        p.get("pavilion_angle"),
-        p.get("pavilion_step_angle"),
-        np,
-        "pavilion_step_angle",
-        "pavilion_steps",
-    )?;
+    let crown = step_angles(p.get("crown_angle"), p.get("crown_step_angle"), nc);
+    let pav = step_angles(p.get("pavilion_angle"), p.get("pavilion_step_angle"), np);
     let zg = g / 2.0;
     let top = Ring {
         a: lw / 2.0,
@@ -265,6 +238,8 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
 mod tests {
     use crate::cut::testutil::*;
 
+    /// Closed-form total depth: girdle + crown height + pavilion depth (sharp keel), with step
+    /// angles listed from the girdle inward.
     fn depth(t: f64, g: f64, crown: &[f64], pav: &[f64]) -> f64 {
         let tan = |a: &f64| a.to_radians().tan();
         g + (1.0 - t) / (2.0 * crown.len() as f64) * crown.iter().map(tan).sum::<f64>()
@@ -284,85 +259,80 @@ mod tests {
                 assert_eq!(count(&c, &format!("{tier}-{i}")), 4, "{tier}-{i}");
             }
         }
-        assert_eq!(
-            (count(&c, "table"), count(&c, "girdle"), count(&c, "culet")),
-            (1, 8, 0)
-        );
+        let fixed = (count(&c, "table"), count(&c, "girdle"), count(&c, "culet"));
+        assert_eq!(fixed, (1, 8, 0));
         // 25 crown + 24 pavilion facets + 8 girdle facets: the classic 57 + girdle.
         assert_eq!(c.solid.facets.len(), 49 + 8);
         assert!(symmetric_under(&c, flip_x) && symmetric_under(&c, flip_y));
         let sharp = ok("emerald", &[("corner", 0.0)]);
         assert_eq!(sharp.solid.facets.len(), 1 + 12 + 4 + 12);
-        let more = ok(
-            "emerald",
-            &[
-                ("crown_steps", 4.0),
-                ("crown_step_angle", 6.0),
-                ("pavilion_steps", 2.0),
-                ("culet", 0.05),
-            ],
-        );
-        assert_eq!(more.solid.facets.len(), 1 + 32 + 8 + 16 + 1);
+        let kv = [
+            ("crown_steps", 4.0),
+            ("pavilion_steps", 2.0),
+            ("culet", 0.05),
+        ];
+        assert_eq!(ok("emerald", &kv).solid.facets.len(), 1 + 32 + 8 + 16 + 1);
     }
 
     #[test]
     fn emerald_measures_match_parameters() {
         let cases = [
-            (1.4, 0.64, 40.0, 8.0, 50.0, 5.0, 0.02, 0.15),
-            (1.0, 0.5, 55.0, 15.0, 62.0, 9.0, 0.0, 0.3),
-            (2.5, 0.78, 28.0, 1.0, 36.0, 1.0, 0.1, 0.0),
+            (1.4, 0.64, 24.0, 8.0, 40.0, 5.0, 0.02, 0.15),
+            (1.0, 0.4, 45.0, 12.0, 50.0, 10.0, 0.0, 0.3),
+            (2.5, 0.8, 10.0, 1.0, 30.0, 1.0, 0.1, 0.0),
         ];
         for (lw, t, ca, cs, pa, ps, g, corner) in cases {
-            let c = ok(
-                "emerald",
-                &[
-                    ("length_width", lw),
-                    ("table", t),
-                    ("crown_angle", ca),
-                    ("crown_step_angle", cs),
-                    ("pavilion_angle", pa),
-                    ("pavilion_step_angle", ps),
-                    ("girdle", g),
-                    ("corner", corner),
-                ],
-            );
+            let kv = [
+                ("length_width", lw),
+                ("table", t),
+                ("crown_angle", ca),
+                ("crown_step_angle", cs),
+                ("pavilion_angle", pa),
+                ("pavilion_step_angle", ps),
+                ("girdle", g),
+                ("corner", corner),
+            ];
+            let c = ok("emerald", &kv);
             assert!((bbox_ratio(&c) - lw).abs() < 1e-9);
             assert!((table_width(&c) - t).abs() < 1e-9);
+            // `info` reads the step next to the table and the one next to the keel.
             let p = c.proportions();
-            // Every side facet of a step has the step's angle, on the long and the short sides.
-            let steps = [(ca, pa), (ca - cs, pa - ps), (ca - 2.0 * cs, pa - 2.0 * ps)];
+            assert!((p.crown_angle - ca).abs() < 1e-9, "crown {}", p.crown_angle);
+            assert!(
+                (p.pavilion_angle - pa).abs() < 1e-9,
+                "pavilion {}",
+                p.pavilion_angle
+            );
+            assert!((p.girdle - g).abs() < 1e-9);
+            // Every side facet of a step has the step's angle, on the long and the short sides;
+            // steps get steeper toward the girdle.
+            let crown = [ca + 2.0 * cs, ca + cs, ca];
+            let pav = [pa + 2.0 * ps, pa + ps, pa];
             for side in 1..=4 {
-                for (i, (crown, pav)) in steps.into_iter().enumerate() {
-                    let crown_facet = format!("crown-step-{}-{side}", i + 1);
-                    let pav_facet = format!("pavilion-step-{}-{side}", i + 1);
-                    assert!(
-                        (angle_of(&c, &crown_facet) - crown).abs() < 1e-9,
-                        "{crown_facet}"
-                    );
-                    assert!((angle_of(&c, &pav_facet) - pav).abs() < 1e-9, "{pav_facet}");
+                for i in 0..3 {
+                    let cf = format!("crown-step-{}-{side}", i + 1);
+                    let pf = format!("pavilion-step-{}-{side}", i + 1);
+                    assert!((angle_of(&c, &cf) - crown[i]).abs() < 1e-9, "{cf}");
+                    assert!((angle_of(&c, &pf) - pav[i]).abs() < 1e-9, "{pf}");
                 }
             }
-            assert!((p.girdle - g).abs() < 1e-9);
-            let want = depth(
-                t,
-                g,
-                &[ca, ca - cs, ca - 2.0 * cs],
-                &[pa, pa - ps, pa - 2.0 * ps],
-            );
+            let want = depth(t, g, &crown, &pav);
             assert!(
                 (p.total_depth - want).abs() < 1e-9,
                 "depth {} vs {want}",
                 p.total_depth
             );
             // The keel is as long as the stone is longer than wide.
-            let keel: Vec<_> = c
+            let low = c.solid.bounding_box().0.z;
+            let keel: Vec<f64> = c
                 .solid
                 .vertices
                 .iter()
-                .filter(|v| v.z < -(p.total_depth - p.crown_height - g) - g / 2.0 + 1e-9)
+                .filter(|v| v.z < low + 1e-9)
+                .map(|v| v.x)
                 .collect();
-            let len = keel.iter().map(|v| v.x).fold(f64::NEG_INFINITY, f64::max)
-                - keel.iter().map(|v| v.x).fold(f64::INFINITY, f64::min);
+            let len = keel.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+                - keel.iter().copied().fold(f64::INFINITY, f64::min);
             assert!((len - (lw - 1.0)).abs() < 1e-9, "keel {len}");
         }
     }
@@ -372,18 +342,21 @@ mod tests {
         sweep_main_angles("emerald", 6);
         assert!(sweep_each("emerald", 6) > 50);
         out_of_range_named("emerald");
-        let e = cut(
-            "emerald",
-            &[("crown_angle", 25.0), ("crown_step_angle", 12.0)],
-        )
-        .expect_err("25° − 2·12° is too flat")
-        .to_string();
-        assert!(
-            e.starts_with("crown_step_angle:") && e.contains("crown_steps"),
-            "{e}"
-        );
+        // The steepest corner of the ranges still builds: 45° + 3·12° and 50° + 3·10° steps.
+        let steep = [
+            ("crown_angle", 45.0),
+            ("crown_step_angle", 12.0),
+            ("crown_steps", 4.0),
+            ("pavilion_angle", 50.0),
+            ("pavilion_step_angle", 10.0),
+            ("pavilion_steps", 4.0),
+            ("table", 0.4),
+            ("corner", 0.3),
+            ("culet", 0.1),
+        ];
+        ok("emerald", &steep);
         let e = cut("emerald", &[("corner", 0.001)])
-            .unwrap_err()
+            .expect_err("tiny corner")
             .to_string();
         assert!(e.starts_with("corner:") && e.contains("0.005"), "{e}");
     }

@@ -233,6 +233,9 @@ mod tests {
         )
         .unwrap_err()
         .to_string();
-        assert!(e.starts_with("star:") && e.contains("between"), "{e}");
+        assert!(
+            e.starts_with("star:") && e.contains("use star above 0.5"),
+            "{e}"
+        );
     }
 }

@@ -207,10 +207,12 @@ pub(crate) fn brilliant(o: &Outline, p: &Params, family: &str) -> Result<Vec<Fac
         } else {
             "long: the star tips would reach the girdle"
         };
-        let allowed = if a < b {
-            format!("use star between {a} and {b}")
-        } else {
+        let allowed = if a >= b {
             "no star length works; change table".to_string()
+        } else if b >= 1.0 {
+            format!("use star above {a}")
+        } else {
+            format!("use star between {a} and {b}")
         };
         return Err(Error::invalid(
             "star",

@@ -233,7 +233,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.starts_with("star:") && e.contains("too short") && e.contains("between"),
+            e.starts_with("star:") && e.contains("too short") && e.contains("use star above 0.3"),
             "{e}"
         );
         let e = cut("oval", &[("culet", 0.1), ("lower_half", 0.9)])

@@ -5,8 +5,9 @@
 //!
 //! Crown ("bevelled sides"): one or two tiers (`crown_tiers`) of 4 side facets and 4 corner
 //! facets between the girdle and the table, each tier moving in by the same width on all sides;
-//! the tier at the girdle is cut at `crown_angle`, a second tier above it `crown_step_angle`
-//! flatter. The table is `table` wide across the stone, so crown height =
+//! the tier next to the table is cut at `crown_angle` (the crown angle `info` reports); with two
+//! tiers the one at the girdle is `crown_step_angle` steeper. The table is `table` wide across the
+//! stone, so crown height =
 //! (1 − table)/(2·tiers)·Σ tan(tier angles).
 //!
 //! Pavilion, as seen from below: an "X" of 4 *pavilion mains* — kites running from the girdle
@@ -35,9 +36,9 @@ use crate::geometry::{DVec3, FacetPlane};
 const PARAMS: &[ParamDef] = &[
     ParamDef { key: "length_width", default: 1.0, min: 1.0, max: 1.5, open: false, unit: Unit::Ratio, doc: "length over width of the outline (1 = square)" },
     ParamDef { key: "table", default: 0.68, min: 0.5, max: 0.85, open: false, unit: Unit::Fraction, doc: "table width across the stone, as a fraction of the width" },
-    ParamDef { key: "crown_angle", default: 35.0, min: 20.0, max: 50.0, open: false, unit: Unit::Degrees, doc: "angle of the crown tier at the girdle (sides)" },
+    ParamDef { key: "crown_angle", default: 35.0, min: 20.0, max: 50.0, open: false, unit: Unit::Degrees, doc: "angle of the crown tier next to the table (sides)" },
     ParamDef { key: "crown_tiers", default: 1.0, min: 1.0, max: 2.0, open: false, unit: Unit::Count, doc: "crown tiers between girdle and table (1 or 2)" },
-    ParamDef { key: "crown_step_angle", default: 10.0, min: 1.0, max: 15.0, open: false, unit: Unit::Degrees, doc: "how much flatter the second crown tier is than the first" },
+    ParamDef { key: "crown_step_angle", default: 10.0, min: 1.0, max: 15.0, open: false, unit: Unit::Degrees, doc: "with two crown tiers: how much steeper the tier at the girdle is" },
     ParamDef { key: "pavilion_angle", default: 41.0, min: 35.0, max: 48.0, open: false, unit: Unit::Degrees, doc: "angle of the 4 corner-to-culet pavilion mains" },
     ParamDef { key: "pavilion_chevrons", default: 3.0, min: 1.0, max: 4.0, open: false, unit: Unit::Count, doc: "rows of chevron facets on each pavilion side" },
     ParamDef { key: "chevron_length", default: 0.6, min: 0.2, max: 0.8, open: false, unit: Unit::Fraction, doc: "share of the girdle-to-culet distance along the main–main ridge covered by the chevrons" },
@@ -84,13 +85,7 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
     let cl = p.get("chevron_length");
     check_corner(c)?;
     let tiers = p.get("crown_tiers") as usize;
-    let crown = step_angles(
-        p.get("crown_angle"),
-        p.get("crown_step_angle"),
-        tiers,
-        "crown_step_angle",
-        "crown_tiers",
-    )?;
+    let crown = step_angles(p.get("crown_angle"), p.get("crown_step_angle"), tiers);
     let zg = g / 2.0;
     let (a, b) = (lw / 2.0, 0.5);
     let top = Ring { a, b, c, z: zg };
@@ -290,24 +285,22 @@ mod tests {
             assert!((bbox_ratio(&c) - lw).abs() < 1e-9);
             assert!((table_width(&c) - t).abs() < 1e-9);
             let p = c.proportions();
-            assert!(
-                (angle_of(&c, "crown-tier-1-1") - ca).abs() < 1e-9
-                    && (angle_of(&c, "crown-tier-1-2") - ca).abs() < 1e-9
-            );
-            assert!((p.pavilion_angle - pa).abs() < 1e-9);
+            assert!((p.crown_angle - ca).abs() < 1e-9 && (p.pavilion_angle - pa).abs() < 1e-9);
+            // The tier at the girdle: the crown angle, or 10° (the default step) steeper.
+            let lower = if tiers == 1.0 { ca } else { ca + 10.0 };
+            for side in ["crown-tier-1-1", "crown-tier-1-2"] {
+                assert!((angle_of(&c, side) - lower).abs() < 1e-9, "{side}");
+            }
             let tan = |a: f64| a.to_radians().tan();
-            let crown = if tiers == 1.0 {
-                (1.0 - t) / 2.0 * tan(ca)
-            } else {
-                (1.0 - t) / 4.0 * (tan(ca) + tan(ca - 10.0))
-            };
+            let crown =
+                (1.0 - t) / (2.0 * tiers) * (tan(ca) + if tiers == 1.0 { 0.0 } else { tan(lower) });
             let want = g + crown + pavilion_depth(lw, corner, pa);
             assert!(
                 (p.total_depth - want).abs() < 1e-9,
                 "depth {} vs {want}",
                 p.total_depth
             );
-            // Square princess of the defaults: culet under the centre, mains meet there.
+            // The mains meet in one point under the centre, also on a rectangle.
             let low =
                 c.solid
                     .vertices
