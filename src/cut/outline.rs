@@ -5,8 +5,7 @@
 //! ones are the *main points* (where bezels and pavilion mains touch the girdle); the odd ones are
 //! the *ridge points* between them (where the upper and lower halves meet the girdle). Each main
 //! point also carries the outline's outward normal ν there (at a pointed tip: the bisector).
-//! The layout is the round brilliant's, generalised the way a cutter cuts a fancy brilliant with
-//! one angle per tier:
+//! The layout is the round brilliant's, generalised to the outline:
 //!
 //! - girdle: 16 vertical flats, the chords P_j P_{j+1} (the outline is touched at the 16 points),
 //!   from z = −girdle/2 to +girdle/2; none for a knife-edge girdle (girdle = 0);
@@ -23,7 +22,9 @@
 //!   bezel angle, which is therefore below `crown_angle` on elongated shapes;
 //! - stars: through two neighbouring table corners and the star tip on the bezel–bezel ridge. The
 //!   tip is the ridge point above (the projection of) E + star·(P_ridge − E), E the table-edge
-//!   midpoint — exactly the round brilliant's rule, where that point already lies on the ridge;
+//!   midpoint — exactly the round brilliant's rule, where that point already lies on the ridge.
+//!   As on the round, a short star with a large table would put the tips above the table: the
+//!   build then names the star lengths that work;
 //! - upper halves: through a star tip, its ridge point and one of the two neighbouring main points;
 //! - pavilion mains: every main at `pavilion_angle`, facing ν, touching the girdle bottom at its
 //!   main point. On an elongated outline the mains do not meet in a point but in a keel (a ridge

@@ -3,12 +3,16 @@
 //! The girdle outline is the ellipse with width 1 (across, y) and length `length_width` (x). Its
 //! 16 girdle points are the round brilliant's points stretched along the length: parameter angle
 //! 22.5°·j, P = (L/2·cos θ, 1/2·sin θ). The facets follow the shared brilliant-around-an-outline
-//! layout (see `outline.rs`): every bezel is cut at `crown_angle` and every pavilion main at
-//! `pavilion_angle` — the angles do *not* stretch, so this is not the round solid stretched by an
-//! affine map (which would flatten the bezels at the ends). The table is the bezel tops moved in by
-//! (1 − table)/2 along each bezel's normal, so its width across the stone is `table`; the mains
-//! meet in a keel along the length, L − 1 long at most. With `length_width` = 1 this is exactly
-//! the round brilliant with its 16-flat girdle.
+//! layout (see `outline.rs`). Which angles stretch:
+//! - the crown (table, bezels, stars, upper halves) and the girdle are *exactly* the round
+//!   brilliant's stretched by the affine map x → L·x (plane normals map by the inverse transpose):
+//!   the table is the round's table stretched, `crown_angle` is the angle of the two bezels facing
+//!   across the width, and the bezels toward the ends are flatter (tan α shrinks by up to 1/L);
+//! - the pavilion is *not* stretched: every main is cut at `pavilion_angle`, so the mains meet in a
+//!   keel L − 1 long instead of a point (a stretched round pavilion would keep a point and flatten
+//!   the end mains).
+//!
+//! With `length_width` = 1 this is exactly the round brilliant with its 16-flat girdle.
 
 use super::outline::{brilliant, Outline};
 use super::{Family, ParamDef, Params, Unit};
@@ -174,6 +178,36 @@ mod tests {
                 f.name
             );
             assert_eq!(g.tier, f.tier);
+        }
+    }
+
+    #[test]
+    fn oval_crown_is_the_stretched_round_crown() {
+        use crate::geometry::DVec3;
+        let lw = 1.45;
+        let kv = [("table", 0.58), ("crown_angle", 35.0), ("star", 0.55)];
+        let oval = ok("oval", &[kv.as_slice(), &[("length_width", lw)]].concat());
+        let round = ok("round-brilliant", &kv);
+        let crown = ["table", "bezel", "star", "upper-half", "girdle"];
+        let mut n = 0;
+        for f in round
+            .solid
+            .facets
+            .iter()
+            .filter(|f| crown.contains(&f.tier.as_str()))
+        {
+            // The plane n·x = d maps under x → (L x, y, z) to (n.x / L, n.y, n.z)·x = d.
+            let m = DVec3::new(f.plane.normal.x / lw, f.plane.normal.y, f.plane.normal.z);
+            let (normal, offset) = (m / m.length(), f.plane.offset / m.length());
+            let g = oval.solid.facets.iter().find(|g| g.name == f.name).unwrap();
+            assert!(g.plane.normal.distance(normal) < 1e-9, "{}", f.name);
+            assert!((g.plane.offset - offset).abs() < 1e-9, "{}", f.name);
+            n += 1;
+        }
+        assert_eq!(n, 1 + 8 + 8 + 16 + 16);
+        // The pavilion is not stretched: all mains keep the pavilion angle.
+        for k in 1..=8 {
+            assert!((angle_of(&oval, &format!("pavilion-main-{k}")) - 41.0).abs() < 1e-9);
         }
     }
 

@@ -7,24 +7,26 @@
 //! facets between the girdle and the table, each tier moving in by the same width on all sides;
 //! the tier next to the table is cut at `crown_angle` (the crown angle `info` reports); with two
 //! tiers the one at the girdle is `crown_step_angle` steeper. The table is `table` wide across the
-//! stone, so crown height =
-//! (1 − table)/(2·tiers)·Σ tan(tier angles).
+//! stone, so crown height = (1 − table)/(2·tiers)·Σ tan(tier angles).
 //!
 //! Pavilion, as seen from below: an "X" of 4 *pavilion mains* — kites running from the girdle
 //! corners to the culet, all at `pavilion_angle` — and on each side rows of *chevrons*.
 //! The mains alone would make a pyramid with its point (the culet) at depth
 //! tan(pavilion angle)·(L/2 + 1/2 − corner)/√2 under the girdle, whatever the length; between two
-//! mains they meet in a ridge running from the culet up to the middle of a side. The chevrons
-//! fill the side from the girdle down to a point on that ridge a share `chevron_length` of the way
-//! from the girdle to the culet (like the round's lower halves). On the side's centre line, points
+//! mains they meet in a ridge running from the culet up toward the middle of a side. The chevrons
+//! fill the side from the girdle down to a point on that ridge a share `chevron_length` of the
+//! (horizontal) way from the side to the culet, like the round's lower halves. On the side's centre line, points
 //! A0 (middle of the girdle edge), A1, …, A(n+1) (on the ridge) are spaced evenly and lie on a
 //! parabola that leaves the ridge tangentially, so the profile flattens toward the culet and the
 //! pavilion stays convex. Every chevron is a triangle from a girdle corner K of the side to two
 //! consecutive centre-line points (Ai, Ai+1); its mirror image comes from the other corner, and the
 //! pair forms a "V" pointing at the culet. n = `pavilion_chevrons` rows (8 facets each, row 1 next
 //! to the mains); the last bit of each side, from the girdle edge to A1, is a triangular
-//! `pavilion-side` facet. Facets: 1 table, 8·tiers crown, 8 girdle, 4 mains, 4 sides, 8n chevrons
-//! (+ culet): 49 with two chevrons and one crown tier, 57 with three, 65 with four, as in the trade.
+//! `pavilion-side` facet. Facets: table, 8 per crown tier (4 without corner bevels), 8 girdle
+//! (4), and 8 + 8n on the pavilion (4 mains, 4 sides, 8n chevrons), plus an optional culet — 41
+//! plus 8 girdle facets by default. The pavilion's 24 / 32 / 40 facets for 2 / 3 / 4 chevrons match
+//! the trade's princesses; their crowns usually carry more (brilliant-style) facets than this
+//! step crown.
 
 use super::construct::{check_solid, plane_through_or};
 use super::emerald::{check_corner, step_angles};
