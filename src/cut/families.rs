@@ -1,6 +1,8 @@
 //! The registry of parametric families.
 
-use super::{round, ParamDef, Params};
+use super::{
+    cushion, emerald, marquise, old_european, oval, pear, princess, round, sphere, ParamDef, Params,
+};
 use crate::error::{Error, Result};
 use crate::geometry::FacetPlane;
 use std::collections::BTreeMap;
@@ -52,7 +54,17 @@ impl Family {
     }
 }
 
-static FAMILIES: &[Family] = &[round::FAMILY];
+static FAMILIES: &[Family] = &[
+    round::FAMILY,
+    princess::FAMILY,
+    emerald::FAMILY,
+    oval::FAMILY,
+    marquise::FAMILY,
+    pear::FAMILY,
+    cushion::FAMILY,
+    old_european::FAMILY,
+    sphere::FAMILY,
+];
 
 /// Every family.
 pub fn families() -> &'static [Family] {

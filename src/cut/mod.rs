@@ -5,9 +5,20 @@
 //! same keys are used in TOML specs, in `--set key=value`, by `info` and by the optimizer.
 //! Lengths are fractions of the girdle diameter (0.57, not 57), angles are degrees.
 
+mod construct;
+mod cushion;
+mod emerald;
 mod families;
+mod marquise;
 mod measure;
+mod old_european;
+mod outline;
+mod oval;
+mod pear;
+mod princess;
 mod round;
+mod sphere;
+mod steps;
 
 pub use families::{families, family, Family};
 pub use measure::{Proportions, TierSummary};
@@ -201,6 +212,8 @@ impl Cut {
     }
 }
 
+#[cfg(test)]
+mod testutil;
 #[cfg(test)]
 mod tests {
     use super::*;

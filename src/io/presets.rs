@@ -12,6 +12,16 @@ pub const PRESETS: &[(&str, &str)] = &[
         "gia-reference",
         include_str!("../../cuts/gia-reference.toml"),
     ),
+    ("eulitz", include_str!("../../cuts/eulitz.toml")),
+    ("ags-ideal", include_str!("../../cuts/ags-ideal.toml")),
+    ("old-european", include_str!("../../cuts/old-european.toml")),
+    ("princess", include_str!("../../cuts/princess.toml")),
+    ("emerald", include_str!("../../cuts/emerald.toml")),
+    ("oval", include_str!("../../cuts/oval.toml")),
+    ("marquise", include_str!("../../cuts/marquise.toml")),
+    ("pear", include_str!("../../cuts/pear.toml")),
+    ("cushion", include_str!("../../cuts/cushion.toml")),
+    ("sphere", include_str!("../../cuts/sphere.toml")),
 ];
 
 /// Names of the bundled presets.
@@ -35,6 +45,15 @@ mod tests {
         for n in names() {
             let cut = load(n).unwrap().unwrap_or_else(|e| panic!("{n}: {e}"));
             assert!(cut.solid.volume() > 0.0, "{n}");
+        }
+        // Every family has a preset.
+        for f in crate::cut::families() {
+            let tag = format!("family = \"{}\"", f.name);
+            assert!(
+                PRESETS.iter().any(|(_, t)| t.contains(&tag)),
+                "no preset for family {}",
+                f.name
+            );
         }
     }
 }
