@@ -5,9 +5,11 @@
 //! lengths in girdle diameters (D = 1). A facet is the half-space `normal · x <= offset` with an
 //! outward unit normal.
 
+mod hull;
 mod polyhedron;
 
 pub use glam::{DVec2, DVec3};
+pub use hull::{convex_hull, convex_hull_with_tolerance, MERGE_TOL};
 pub use polyhedron::{Edge, Facet, Polyhedron};
 
 use serde::{Deserialize, Serialize};
