@@ -7,5 +7,6 @@
 pub mod error;
 pub mod cut;
 pub mod geometry;
+pub mod io;
 
 pub use error::{Error, Result};
