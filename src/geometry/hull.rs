@@ -484,8 +484,8 @@ fn merge(pts: &[DVec3], tris: &[Face], tol: f64) -> Vec<(DVec3, f64)> {
                 .iter()
                 .map(|p| n.dot(*p))
                 .fold(f64::NEG_INFINITY, f64::max);
-            // A facet rests on at least three points that are not on one line; anything else is
-            // a sliver of rounding, and dropping it leaves the solid unchanged.
+            // A facet is a polygon resting on the points; a plane that touches them only in a
+            // point or along an edge is a sliver of rounding, and dropping it changes nothing.
             spans_a_facet(pts, n, d, tol).then_some((n, d))
         })
         .collect();
@@ -514,27 +514,53 @@ fn merge(pts: &[DVec3], tris: &[Face], tol: f64) -> Vec<(DVec3, f64)> {
         .collect()
 }
 
-/// Whether the points within `tol` of the plane `n·x = d` include three not on one line.
+/// Smallest facet area kept (in units of the size squared): a facet must be a polygon, not a
+/// point or an edge, also for [`super::Polyhedron::from_planes`].
+const MIN_AREA: f64 = 1e-10;
+
+/// Whether the points within `tol` of the plane `n·x = d` span a polygon of at least
+/// [`MIN_AREA`].
 fn spans_a_facet(pts: &[DVec3], n: DVec3, d: f64, tol: f64) -> bool {
-    let mut on = pts.iter().copied().filter(|p| d - n.dot(*p) <= tol);
-    let Some(a) = on.next() else { return false };
-    let mut axis: Option<DVec3> = None;
-    for p in on {
-        match axis {
-            None => {
-                if p.distance(a) > tol {
-                    axis = (p - a).try_normalize();
-                }
-            }
-            Some(u) => {
-                let r = p - a;
-                if (r - u * r.dot(u)).length() > tol {
-                    return true;
-                }
-            }
-        }
+    let (u, v) = n.any_orthonormal_pair();
+    let mut flat: Vec<(f64, f64)> = pts
+        .iter()
+        .filter(|p| d - n.dot(**p) <= tol)
+        .map(|p| (u.dot(*p), v.dot(*p)))
+        .collect();
+    if flat.len() < 3 {
+        return false;
     }
-    false
+    flat.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let cross = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    // Monotone chain: lower and upper hulls, then the shoelace area.
+    let mut hull: Vec<(f64, f64)> = Vec::with_capacity(2 * flat.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &(f64, f64)>> = if pass == 0 {
+            Box::new(flat.iter())
+        } else {
+            Box::new(flat.iter().rev())
+        };
+        for &p in iter {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    let area: f64 = (0..hull.len())
+        .map(|i| {
+            let (a, b) = (hull[i], hull[(i + 1) % hull.len()]);
+            a.0 * b.1 - a.1 * b.0
+        })
+        .sum::<f64>()
+        / 2.0;
+    area > MIN_AREA
 }
 
 #[cfg(test)]
@@ -784,6 +810,24 @@ mod tests {
             worst[0] < 1e-12 && worst[1] < 1e-7 && worst[2] < 1e-5 && worst[3] < 1e-3,
             "{worst:?}"
         );
+    }
+
+    #[test]
+    fn a_facet_must_be_a_polygon() {
+        let square = |s: f64| -> Vec<DVec3> {
+            vec![
+                DVec3::ZERO,
+                DVec3::X * s,
+                DVec3::new(s, s, 0.0),
+                DVec3::Y * s,
+                DVec3::new(0.3, 0.2, -1.0),
+            ]
+        };
+        assert!(spans_a_facet(&square(1.0), DVec3::Z, 0.0, 1e-7));
+        assert!(!spans_a_facet(&square(1e-6), DVec3::Z, 0.0, 1e-7));
+        // Points along a line only.
+        let line: Vec<DVec3> = (0..5).map(|i| DVec3::X * i as f64).collect();
+        assert!(!spans_a_facet(&line, DVec3::Z, 0.0, 1e-7));
     }
 
     #[test]

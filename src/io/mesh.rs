@@ -118,6 +118,26 @@ fn sig2(x: f64) -> String {
     format!("{x:.dec$}")
 }
 
+/// A token from the file as shown in a message: at most 24 characters, control characters and
+/// undecodable bytes as `?`.
+fn quote(tok: &str) -> String {
+    let mut out: String = tok
+        .chars()
+        .take(24)
+        .map(|c| {
+            if c.is_control() || c == '\u{FFFD}' {
+                '?'
+            } else {
+                c
+            }
+        })
+        .collect();
+    if tok.chars().count() > 24 {
+        out.push('…');
+    }
+    out
+}
+
 fn at(source: &str, line: usize) -> String {
     format!("{source}:{line}")
 }
@@ -149,14 +169,18 @@ pub fn read_obj(bytes: &[u8], source: &str) -> Result<Vec<FacetPlane>> {
                     let Some((v, sig)) = number(tok) else {
                         return Err(Error::parse(
                             at(source, line_no),
-                            format!("`{tok}` is not a number; a vertex is `v x y z` with decimal numbers"),
+                            format!(
+                                "`{}` is not a number; a vertex is `v x y z` with decimal numbers",
+                                quote(tok)
+                            ),
                         ));
                     };
                     if !v.is_finite() {
                         return Err(Error::parse(
                             at(source, line_no),
                             format!(
-                                "`{tok}` is not a finite number; vertex coordinates must be finite"
+                                "`{}` is not a finite number; vertex coordinates must be finite",
+                                quote(tok)
                             ),
                         ));
                     }
@@ -172,7 +196,7 @@ pub fn read_obj(bytes: &[u8], source: &str) -> Result<Vec<FacetPlane>> {
                     let Ok(k) = idx.parse::<i64>() else {
                         return Err(Error::parse(
                             at(source, line_no),
-                            format!("`{tok}` is not a vertex index; a face is `f a b c …` with indices from 1 (or negative, counting back)"),
+                            format!("`{}` is not a vertex index; a face is `f a b c …` with indices from 1 (or negative, counting back)", quote(tok)),
                         ));
                     };
                     let resolved = if k > 0 {
@@ -326,7 +350,8 @@ fn read_ascii_stl(bytes: &[u8], source: &str) -> Result<Points> {
                             return Err(Error::parse(
                                 at(source, line_no),
                                 format!(
-                                    "`{tok}` is not a finite number; a vertex is `vertex x y z`"
+                                    "`{}` is not a finite number; a vertex is `vertex x y z`",
+                                    quote(tok)
                                 ),
                             ))
                         }
@@ -336,7 +361,7 @@ fn read_ascii_stl(bytes: &[u8], source: &str) -> Result<Points> {
             }
             "solid" | "facet" | "outer" | "endloop" | "endfacet" | "endsolid" => {}
             other => {
-                let shown: String = other.chars().take(20).collect();
+                let shown = quote(other);
                 return Err(Error::parse(
                     at(source, line_no),
                     format!(
@@ -369,6 +394,12 @@ fn planes_from_points(points: &Points, source: &str) -> Result<Vec<FacetPlane>> 
     }
     let size = (hi - lo).max_element();
     let largest = lo.abs().max(hi.abs()).max_element();
+    if !size.is_finite() || largest > 1e150 {
+        return Err(Error::parse(
+            source,
+            format!("vertex coordinates up to {largest:e} are too large; allowed up to 1e150"),
+        ));
+    }
     if !(size.is_finite() && size > 0.0) {
         return Err(Error::parse(
             source,
@@ -903,6 +934,95 @@ mod tests {
             let _ = read_stl(&text, "fuzz.stl");
             let _ = read_obj(&bytes, "fuzz.obj");
         }
+    }
+
+    #[test]
+    fn random_obj_text_never_panics() {
+        // Mostly well-formed files with odd values (huge, tiny, repeated, flat, a stray word),
+        // so that most reach the hull, the convexity check and the normalisation.
+        let mut rng = SmallRng::seed_from_u64(9);
+        let odd = [
+            "0", "1e300", "-1e-300", "nan", "1e400", "x", "5e-324", "1", "1",
+        ];
+        let (mut reached, mut ok) = (0, 0);
+        for _ in 0..400 {
+            let mut text = String::new();
+            let scale: f64 = [1.0, 1e-9, 1e9, 1e140][rng.random_range(0..4)];
+            let flat = rng.random_bool(0.1);
+            let on_sphere = rng.random_bool(0.3);
+            let nv = rng.random_range(0..30);
+            for k in 0..nv {
+                let mut c: Vec<String> = if on_sphere {
+                    // Convex: every vertex on a sphere.
+                    let d = DVec3::new(
+                        rng.random_range(-1.0..1.0),
+                        rng.random_range(-1.0..1.0),
+                        rng.random_range(-1.0..1.0),
+                    );
+                    (d.normalize_or(DVec3::Z) * scale)
+                        .to_array()
+                        .iter()
+                        .map(|x| format!("{x}"))
+                        .collect()
+                } else {
+                    (0..3)
+                        .map(|_| {
+                            format!(
+                                "{}",
+                                (rng.random_range(-1.0..1.0f64) * 8.0).round() / 8.0 * scale
+                            )
+                        })
+                        .collect()
+                };
+                if flat {
+                    c[2] = "0".into();
+                }
+                if rng.random_bool(0.03) {
+                    c[rng.random_range(0..3)] = odd[rng.random_range(0..odd.len())].to_string();
+                }
+                if rng.random_bool(0.02) {
+                    c.pop();
+                }
+                text += &format!("v {}\n", c.join(" "));
+                if k > 3 && rng.random_bool(0.3) {
+                    let n = if rng.random_bool(0.02) {
+                        2
+                    } else {
+                        rng.random_range(3..6)
+                    };
+                    let idx: Vec<String> = (0..n)
+                        .map(|_| {
+                            let i = rng.random_range(1..=k as i64 + 1);
+                            if rng.random_bool(0.2) {
+                                format!("{}/1/1", -i)
+                            } else {
+                                i.to_string()
+                            }
+                        })
+                        .collect();
+                    text += &format!("f {}\n# note \u{7}\n", idx.join(" "));
+                }
+            }
+            if nv > 2 && rng.random_bool(0.8) {
+                let all: Vec<String> = (1..=nv).map(|i| i.to_string()).collect();
+                text += &format!("f {}\n", all.join(" "));
+            }
+            match read_obj(text.as_bytes(), "fuzz.obj") {
+                Ok(planes) => {
+                    reached += 1;
+                    ok += 1;
+                    assert!(Polyhedron::from_planes(&planes).is_ok());
+                }
+                Err(e) => {
+                    let m = e.to_string();
+                    assert!(m.starts_with("fuzz.obj") && !m.contains('\n'), "{m}");
+                    if m.contains("not convex") || m.contains("hull") {
+                        reached += 1;
+                    }
+                }
+            }
+        }
+        assert!(reached > 150 && ok > 20, "{reached} {ok}");
     }
 
     #[test]
