@@ -443,7 +443,7 @@ fn planes_from_points(points: &Points, source: &str) -> Result<Vec<FacetPlane>> 
             offset: (h.offset - h.normal.dot(centre)) / size,
         })
         .collect();
-    let solid = Polyhedron::from_planes(&named(&unit)).map_err(|e| hull_error(e, source))?;
+    let solid = solid_from_planes(&named(&unit)).map_err(|e| hull_error(e, source))?;
     let (origin, width) = girdle_frame(&solid);
     if width <= 1e-9 {
         return Err(Error::parse(
@@ -540,6 +540,37 @@ fn girdle_frame(s: &Polyhedron) -> (DVec3, f64) {
     (DVec3::new(cx, cy, cz), width)
 }
 
+/// [`Polyhedron::from_planes`], retried in a shuffled order when the given one fails.
+///
+/// Clipping many planes in azimuth order (neighbour after neighbour, as the readers name them)
+/// can leave `from_planes` with an edge it cannot pair when hundreds of facets meet at
+/// near-degenerate vertices; the same planes in a scrambled order do not. The facets of the
+/// result are put back in the order given.
+pub(crate) fn solid_from_planes(planes: &[FacetPlane]) -> Result<Polyhedron> {
+    use rand::seq::SliceRandom;
+    use rand::SeedableRng;
+    let first = match Polyhedron::from_planes(planes) {
+        Ok(s) => return Ok(s),
+        Err(e) => e,
+    };
+    let mut order: Vec<usize> = (0..planes.len()).collect();
+    order.shuffle(&mut rand::rngs::SmallRng::seed_from_u64(planes.len() as u64));
+    let shuffled: Vec<FacetPlane> = order.iter().map(|&i| planes[i].clone()).collect();
+    let Ok(mut solid) = Polyhedron::from_planes(&shuffled) else {
+        return Err(first);
+    };
+    // solid.facets[k] is planes[order[k]]: move it back to place order[k].
+    let mut facets: Vec<Option<crate::geometry::Facet>> = vec![None; planes.len()];
+    for (k, f) in solid.facets.drain(..).enumerate() {
+        facets[order[k]] = Some(f);
+    }
+    solid.facets = facets.into_iter().flatten().collect();
+    for e in &mut solid.edges {
+        e.facets = e.facets.map(|k| order[k]);
+    }
+    Ok(solid)
+}
+
 fn hull_error(e: Error, source: &str) -> Error {
     match e {
         Error::Geometry(m) => Error::parse(source, format!("convex hull of the mesh: {m}")),
@@ -569,7 +600,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Cut> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(&shown, e))?;
     let planes = reader(&bytes, &shown)?;
     let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("mesh");
-    let solid = Polyhedron::from_planes(&planes).map_err(|e| hull_error(e, &shown))?;
+    let solid = solid_from_planes(&planes).map_err(|e| hull_error(e, &shown))?;
     Ok(Cut {
         name: name.to_string(),
         family: None,
@@ -1023,6 +1054,39 @@ mod tests {
             }
         }
         assert!(reached > 150 && ok > 20, "{reached} {ok}");
+    }
+
+    #[test]
+    fn many_facets_in_azimuth_order_still_make_a_solid() {
+        // 300 points on a sphere: ~600 facets, named in azimuth order. Clipping them in that
+        // order can defeat Polyhedron::from_planes; solid_from_planes retries scrambled and
+        // puts the facets back in order.
+        let mut rng = SmallRng::seed_from_u64(2);
+        let mut text = String::new();
+        for _ in 0..300 {
+            let d = DVec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            );
+            let d = d.normalize_or(DVec3::Z);
+            text += &format!("v {} {} {}\n", d.x, d.y, d.z);
+        }
+        let planes = read_obj(text.as_bytes(), "ball.obj").unwrap();
+        let s = solid_from_planes(&planes).unwrap();
+        assert_eq!(s.facets.len(), planes.len());
+        for (f, p) in s.facets.iter().zip(&planes) {
+            assert_eq!((&f.name, f.plane), (&p.name, p.plane));
+        }
+        for e in &s.edges {
+            for k in e.facets {
+                let poly = &s.facets[k].vertices;
+                assert!(poly.contains(&e.a) && poly.contains(&e.b));
+            }
+        }
+        assert_eq!(s.vertices.len() + s.facets.len(), s.edges.len() + 2);
+        let ball = 4.0 / 3.0 * std::f64::consts::PI * 0.125;
+        assert!(s.volume() > 0.9 * ball && s.volume() < ball);
     }
 
     #[test]
