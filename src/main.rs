@@ -3,6 +3,12 @@
 use clap::Parser;
 
 fn main() {
+    #[cfg(unix)]
+    // SAFETY: called first thing in main, before any other thread exists; SIG_DFL is a valid
+    // disposition for SIGPIPE.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = facetlab::cli::Cli::parse();
     if let Err(e) = facetlab::cli::run(cli) {
         eprintln!("facetlab: {e}");

@@ -32,7 +32,7 @@ pub enum Command {
     List(cuts::ListArgs),
     /// Shoot photons through cuts (the thesis's forward Monte Carlo): face categories, exit
     /// angles, light return; overhead, offset, directed or rotating light.
-    Trace(trace::TraceArgs),
+    Trace(Box<trace::TraceArgs>),
 }
 
 /// Run a parsed command line.

@@ -316,69 +316,20 @@ impl Polyhedron {
                 "the solid is unbounded: the facet planes do not enclose a finite volume".into(),
             ));
         }
-        // Weld vertices.
-        let mut vertices: Vec<DVec3> = Vec::new();
-        let index_of = |p: DVec3, vertices: &mut Vec<DVec3>| -> usize {
-            if let Some(i) = vertices.iter().position(|v| v.distance(p) <= WELD) {
-                i
-            } else {
-                vertices.push(p);
-                vertices.len() - 1
-            }
-        };
-        let mut polys: Vec<Option<Vec<usize>>> = vec![None; planes.len()];
-        for face in &faces {
-            let mut idx: Vec<usize> = Vec::with_capacity(face.poly.len());
-            for p in &face.poly {
-                let i = index_of(*p, &mut vertices);
-                if idx.last() != Some(&i) {
-                    idx.push(i);
+        // Weld at the finest tolerance that pairs every edge: exact designs weld at WELD;
+        // planes read from rounded mesh coordinates miss their common points by more and
+        // leave clusters of nearly coincident vertices, welded at a coarser tolerance.
+        let mut first_err = None;
+        for weld in [WELD, 10.0 * WELD, 100.0 * WELD, 1000.0 * WELD] {
+            match assemble(&faces, planes, weld) {
+                Ok(p) => return Ok(p),
+                Err(Assembly::Final(e)) => return Err(first_err.unwrap_or(e)),
+                Err(Assembly::Unpaired(e)) => {
+                    first_err.get_or_insert(e);
                 }
             }
-            while idx.len() > 1 && idx.first() == idx.last() {
-                idx.pop();
-            }
-            let src = face.source.expect("box faces rejected above");
-            if idx.len() >= 3 {
-                polys[src] = Some(idx);
-            }
         }
-        let mut facets = Vec::with_capacity(planes.len());
-        for (k, fp) in planes.iter().enumerate() {
-            let Some(idx) = polys[k].take() else {
-                return Err(Error::Geometry(format!(
-                    "facet {} ({}, tier {}) never touches the solid: its plane lies outside the other facets",
-                    k + 1,
-                    fp.name,
-                    fp.tier
-                )));
-            };
-            let poly: Vec<DVec3> = idx.iter().map(|&i| vertices[i]).collect();
-            let area = area_vector(&poly).dot(fp.plane.normal);
-            if area <= 1e-12 {
-                return Err(Error::Geometry(format!(
-                    "facet {} ({}, tier {}) touches the solid only in an edge or a point",
-                    k + 1,
-                    fp.name,
-                    fp.tier
-                )));
-            }
-            let centroid = polygon_centroid(&poly, fp.plane.normal);
-            facets.push(Facet {
-                plane: fp.plane,
-                name: fp.name.clone(),
-                tier: fp.tier.clone(),
-                vertices: idx,
-                area,
-                centroid,
-            });
-        }
-        let edges = build_edges(&facets)?;
-        Ok(Polyhedron {
-            vertices,
-            facets,
-            edges,
-        })
+        Err(first_err.unwrap_or_else(|| Error::Geometry("degenerate solid".into())))
     }
 
     /// The facet planes of this solid (the input of [`Polyhedron::from_planes`]).
@@ -499,6 +450,135 @@ impl Polyhedron {
         }
         out
     }
+}
+
+/// Insert into each facet polygon the vertices that lie inside one of its edges. Clipping can
+/// leave a vertex (where several planes nearly meet) on one face's edge but not in the
+/// polygon of the face across that edge; after this every half-edge has its twin.
+fn split_t_junctions(polys: &mut [Option<Vec<usize>>], vertices: &[DVec3], weld: f64) {
+    let mut used = vec![false; vertices.len()];
+    for idx in polys.iter().flatten() {
+        for &i in idx {
+            used[i] = true;
+        }
+    }
+    for idx in polys.iter_mut().flatten() {
+        let mut out: Vec<usize> = Vec::with_capacity(idx.len());
+        let n = idx.len();
+        for e in 0..n {
+            let (a, b) = (idx[e], idx[(e + 1) % n]);
+            out.push(a);
+            let (pa, pb) = (vertices[a], vertices[b]);
+            let ab = pb - pa;
+            let len2 = ab.length_squared();
+            if len2 <= 0.0 {
+                continue;
+            }
+            let mut inner: Vec<(f64, usize)> = Vec::new();
+            for (v, p) in vertices.iter().enumerate() {
+                if !used[v] || idx.contains(&v) {
+                    continue;
+                }
+                let t = (*p - pa).dot(ab) / len2;
+                if t <= 0.0 || t >= 1.0 {
+                    continue;
+                }
+                if (pa + ab * t).distance(*p) <= weld {
+                    inner.push((t, v));
+                }
+            }
+            inner.sort_by(|x, y| x.0.total_cmp(&y.0));
+            out.extend(inner.into_iter().map(|(_, v)| v));
+        }
+        *idx = out;
+    }
+}
+
+/// Why assembling welded faces failed: a final error, or edges left unpaired (worth another
+/// try at a coarser weld).
+enum Assembly {
+    Final(Error),
+    Unpaired(Error),
+}
+
+/// Weld the clipped faces' points at tolerance `weld`, mend T-junctions, build facets and edges.
+fn assemble(
+    faces: &[Face],
+    planes: &[FacetPlane],
+    weld: f64,
+) -> std::result::Result<Polyhedron, Assembly> {
+    let mut vertices: Vec<DVec3> = Vec::new();
+    let index_of = |p: DVec3, vertices: &mut Vec<DVec3>| -> usize {
+        if let Some(i) = vertices.iter().position(|v| v.distance(p) <= weld) {
+            i
+        } else {
+            vertices.push(p);
+            vertices.len() - 1
+        }
+    };
+    let mut polys: Vec<Option<Vec<usize>>> = vec![None; planes.len()];
+    for face in faces {
+        let mut idx: Vec<usize> = Vec::with_capacity(face.poly.len());
+        for p in &face.poly {
+            let i = index_of(*p, &mut vertices);
+            if idx.last() != Some(&i) {
+                idx.push(i);
+            }
+        }
+        while idx.len() > 1 && idx.first() == idx.last() {
+            idx.pop();
+        }
+        let src = face.source.expect("box faces rejected above");
+        if idx.len() >= 3 {
+            polys[src] = Some(idx);
+        }
+    }
+    for idx in polys.iter_mut().flatten() {
+        // A coarse weld can pinch a polygon: keep the first visit of each vertex.
+        let mut seen = Vec::with_capacity(idx.len());
+        idx.retain(|v| {
+            let fresh = !seen.contains(v);
+            seen.push(*v);
+            fresh
+        });
+    }
+    split_t_junctions(&mut polys, &vertices, weld);
+    let mut facets = Vec::with_capacity(planes.len());
+    for (k, fp) in planes.iter().enumerate() {
+        let Some(idx) = polys[k].take() else {
+            return Err(Assembly::Final(Error::Geometry(format!(
+                "facet {} ({}, tier {}) never touches the solid: its plane lies outside the other facets",
+                k + 1,
+                fp.name,
+                fp.tier
+            ))));
+        };
+        let poly: Vec<DVec3> = idx.iter().map(|&i| vertices[i]).collect();
+        let area = area_vector(&poly).dot(fp.plane.normal);
+        if area <= 1e-12 {
+            return Err(Assembly::Final(Error::Geometry(format!(
+                "facet {} ({}, tier {}) touches the solid only in an edge or a point",
+                k + 1,
+                fp.name,
+                fp.tier
+            ))));
+        }
+        let centroid = polygon_centroid(&poly, fp.plane.normal);
+        facets.push(Facet {
+            plane: fp.plane,
+            name: fp.name.clone(),
+            tier: fp.tier.clone(),
+            vertices: idx,
+            area,
+            centroid,
+        });
+    }
+    let edges = build_edges(&facets).map_err(Assembly::Unpaired)?;
+    Ok(Polyhedron {
+        vertices,
+        facets,
+        edges,
+    })
 }
 
 fn build_edges(facets: &[Facet]) -> Result<Vec<Edge>> {
@@ -630,6 +710,34 @@ mod tests {
         ));
         let e = Polyhedron::from_planes(&planes).unwrap_err().to_string();
         assert!(e.contains("corner"), "{e}");
+    }
+
+    #[test]
+    fn hundreds_of_tangent_planes_in_azimuth_order() {
+        // A sphere of tangent planes added ring by ring: many nearly-degenerate vertices.
+        let mut planes = Vec::new();
+        let rings = 24;
+        for i in 0..rings {
+            let z = -1.0 + (2.0 * i as f64 + 1.0) / rings as f64;
+            let r = (1.0 - z * z).sqrt();
+            let m = 40;
+            for j in 0..m {
+                let a = std::f64::consts::TAU * j as f64 / m as f64 + 0.1 * i as f64;
+                let n = DVec3::new(r * a.cos(), r * a.sin(), z);
+                planes.push(FacetPlane::new(n, 0.5, format!("s{i}-{j}"), "sphere"));
+            }
+        }
+        planes.push(FacetPlane::new(DVec3::Z, 0.5, "top", "top"));
+        planes.push(FacetPlane::new(DVec3::NEG_Z, 0.5, "bottom", "bottom"));
+        let p = Polyhedron::from_planes(&planes).unwrap();
+        assert_eq!(p.facets.len(), planes.len());
+        assert_eq!(p.vertices.len() + p.facets.len(), p.edges.len() + 2);
+        let ball = std::f64::consts::PI / 6.0;
+        assert!(
+            p.volume() > ball && p.volume() < ball * 1.05,
+            "{}",
+            p.volume()
+        );
     }
 
     #[test]

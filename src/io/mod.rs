@@ -1,8 +1,10 @@
 //! Files: TOML cut specs, bundled presets, and safe (atomic) writing of outputs.
 
 pub mod asc;
+pub mod mesh;
 pub mod presets;
 pub mod spec;
+pub mod svg;
 
 use crate::error::{Error, Result};
 use std::path::Path;
@@ -77,6 +79,7 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
             spec::parse(&text, arg)?.to_cut(&stem, arg)
         }
         Some("asc") => asc::read(path),
+        Some("obj") | Some("stl") => mesh::read(path),
         Some(other) if path.exists() || other.len() <= 4 => Err(Error::invalid(
             arg,
             format!("unknown file type `.{other}`; CUT is a preset ({}) or a .toml, .asc, .obj or .stl file", presets::names().join(", ")),

@@ -213,3 +213,38 @@ fn asc_round_trip_and_broken_line() {
     assert!(line.contains("not a number"), "{line}");
     assert!(!files(p).iter().any(|f| f.starts_with("out")));
 }
+
+#[test]
+fn mesh_and_svg_outputs_and_non_convex_mesh() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    for ext in ["obj", "stl"] {
+        let name = format!("t.{ext}");
+        ok(p, &["generate", "tolkowsky", "-o", &name]);
+        let j: serde_json::Value =
+            serde_json::from_str(&ok(p, &["info", &name, "--json"])).unwrap();
+        assert_eq!(j["facet_count"].as_u64(), Some(73), "{ext}");
+        assert!(
+            (j["proportions"]["total_depth"].as_f64().unwrap() - 0.612).abs() < 0.002,
+            "{ext}"
+        );
+    }
+    ok(p, &["generate", "princess", "-o", "p.svg"]);
+    let svg = std::fs::read_to_string(p.join("p.svg")).unwrap();
+    assert!(
+        svg.starts_with("<svg") || svg.starts_with("<?xml"),
+        "{}",
+        &svg[..40]
+    );
+    assert!(svg.trim_end().ends_with("</svg>"));
+    // A cube with one vertex pushed deep inside: not convex.
+    let dented = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nv 0.5 0.5 0.6\n\
+        f 1 2 3 4\nf 5 6 9\nf 6 7 9\nf 7 8 9\nf 8 5 9\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    std::fs::write(p.join("dented.obj"), dented).unwrap();
+    bad(
+        p,
+        &["generate", "dented.obj", "-o", "out.toml"],
+        &["dented.obj", "not convex", "%"],
+    );
+    assert!(!files(p).iter().any(|f| f.starts_with("out")));
+}
