@@ -235,6 +235,8 @@ pub(crate) struct Tracer<'a> {
     beam: Option<Beam>,
     /// cos(k°) for k = 0..=180.
     cos_deg: Vec<f64>,
+    /// Weight of an exit direction, summed into [`Counts::weight_sum`].
+    pub(crate) exit_weight: Option<&'a (dyn Fn(DVec3) -> f64 + Sync)>,
 }
 
 /// Unpolarized Fresnel reflectance for incidence cosine `cos_i` and index ratio
@@ -341,6 +343,7 @@ impl<'a> Tracer<'a> {
             cos_deg: (0..=180).map(|k| (k as f64).to_radians().cos()).collect(),
             beam: (light.kind == LightKind::Directed)
                 .then(|| Beam::new(s, centre, axis, u, v, half)),
+            exit_weight: None,
         })
     }
 
@@ -443,6 +446,11 @@ impl<'a> Tracer<'a> {
         let bin = self.cos_deg[1..180].partition_point(|&c| d.z <= c);
         k.angle_hist[bin] += 1;
         k.light_return += (d.z > 0.0) as u64;
+        if let Some(w) = self.exit_weight {
+            let x = w(d);
+            k.weight_sum += x;
+            k.weight_sq += x * x;
+        }
     }
 
     /// Choose reflection or transmission at facet normal `m` (outward) for a photon moving in

@@ -340,6 +340,55 @@ pub fn trace(
     ))
 }
 
+/// The mean exit weight of a [`trace_weighted`] run, per photon that hit the stone.
+#[derive(Clone, Debug)]
+pub struct WeightedTally {
+    /// The ordinary tally (its counts carry the weight sums).
+    pub tally: Tally,
+    /// Σ weight / photons hit: absorbed and depth-limited photons count as weight 0.
+    pub mean: f64,
+    /// Standard error of `mean`.
+    pub stderr: f64,
+}
+
+/// [`trace`], also summing `weight(d)` over the exit directions `d` of the photons that leave
+/// the stone (external reflections included). With directed light from a viewer this is a
+/// Monte Carlo estimate of what the viewer sees under an environment of radiance `weight`
+/// (reciprocity), the independent check of the beam tracer's brilliance.
+pub fn trace_weighted(
+    solid: &Polyhedron,
+    light: &Light,
+    cfg: &TraceConfig,
+    weight: &(dyn Fn(DVec3) -> f64 + Sync),
+) -> Result<WeightedTally> {
+    cfg.validate()?;
+    light.validate()?;
+    let ts = TraceSolid::new(solid)?;
+    let mut tracer = kernel::Tracer::new(&ts, light, cfg)?;
+    tracer.exit_weight = Some(weight);
+    let start = Instant::now();
+    let counts = if cfg.until_hit {
+        run_until_hit(&tracer, cfg.photons, None)?
+    } else {
+        run_shot(&tracer, cfg.photons, None)
+    };
+    let elapsed = start.elapsed().as_secs_f64();
+    let n = counts.hit as f64;
+    let (mean, stderr) = if counts.hit == 0 {
+        (0.0, 0.0)
+    } else {
+        let m = counts.weight_sum / n;
+        let var = (counts.weight_sq / n - m * m).max(0.0);
+        (m, (var / n).sqrt())
+    };
+    let tally = Tally::new(String::new(), light, &ts, counts, elapsed, Vec::new());
+    Ok(WeightedTally {
+        tally,
+        mean,
+        stderr,
+    })
+}
+
 /// [`trace`] a cut; the tally carries the cut's name.
 pub fn trace_cut(
     cut: &Cut,
@@ -388,13 +437,14 @@ fn run_shot(
             }
             counts
         })
-        .reduce(
-            || Counts::new(nf),
-            |mut a, b| {
-                a.add(&b);
-                a
-            },
-        )
+        // Collected, then added in chunk order: the float sums (exit weights) come out the
+        // same on any thread count.
+        .collect::<Vec<Counts>>()
+        .iter()
+        .fold(Counts::new(nf), |mut a, b| {
+            a.add(b);
+            a
+        })
 }
 
 /// Shots before giving up on a light that never reaches the stone.

@@ -28,7 +28,7 @@ pub fn face_category(n: DVec3) -> u8 {
 }
 
 /// Integer counts of a run (merged by adding).
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Counts {
     /// Photons shot.
     pub shot: u64,
@@ -48,6 +48,10 @@ pub struct Counts {
     pub angle_hist: Vec<u64>,
     /// Surface interactions of all hit photons.
     pub interactions: u64,
+    /// Sum over exited photons of the exit weight (see [`crate::photon::trace_weighted`]).
+    pub weight_sum: f64,
+    /// Sum over exited photons of the squared exit weight.
+    pub weight_sq: f64,
 }
 
 impl Counts {
@@ -63,6 +67,8 @@ impl Counts {
             per_facet: vec![0; facets],
             angle_hist: vec![0; 180],
             interactions: 0,
+            weight_sum: 0.0,
+            weight_sq: 0.0,
         }
     }
 
@@ -74,6 +80,8 @@ impl Counts {
         self.depth_limited += o.depth_limited;
         self.light_return += o.light_return;
         self.interactions += o.interactions;
+        self.weight_sum += o.weight_sum;
+        self.weight_sq += o.weight_sq;
         for (a, b) in self.categories.iter_mut().zip(&o.categories) {
             *a += b;
         }

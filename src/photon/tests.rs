@@ -459,3 +459,28 @@ fn recorded_paths_start_at_the_light_and_touch_the_stone() {
         assert!((380.0..=780.0).contains(&p.wavelength));
     }
 }
+
+#[test]
+fn weighted_exits_reproduce_light_return_on_any_thread_count() {
+    let solid = tolkowsky();
+    let c = TraceConfig {
+        photons: 60_000,
+        ..cfg(0)
+    };
+    let up = |d: DVec3| if d.z > 0.0 { 1.0 } else { 0.0 };
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| trace_weighted(&solid, &Light::directed(0.0), &c, &up).unwrap())
+    };
+    let (one, two) = (run(1), run(2));
+    assert_eq!(one.mean.to_bits(), two.mean.to_bits());
+    let (lr, se) = one.tally.light_return();
+    assert!((one.mean - lr).abs() < 1e-12, "{} vs {lr}", one.mean);
+    assert!((one.stderr - se).abs() < 1e-9, "{} vs {se}", one.stderr);
+    // A smooth weight: mean of z⁺ lies between 0 and the light return.
+    let cosw = trace_weighted(&solid, &Light::directed(0.0), &c, &|d: DVec3| d.z.max(0.0)).unwrap();
+    assert!(cosw.mean > 0.3 && cosw.mean < lr, "{}", cosw.mean);
+}
