@@ -13,16 +13,10 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
 use std::path::{Path, PathBuf};
-use std::sync::Once;
 
-static FONT: Once = Once::new();
-static DEJAVU: &[u8] = include_bytes!("DejaVuSans.ttf");
-
-/// Register the bundled font as `sans-serif` (once per process).
+/// Register the bundled font as `sans-serif` (once per process; shared with [`crate::plot`]).
 pub fn ensure_font() {
-    FONT.call_once(|| {
-        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, DEJAVU);
-    });
+    crate::plot::register_font();
 }
 
 /// The result of a drawing step on backend `DB`.

@@ -22,7 +22,9 @@ use std::sync::Once;
 const FONT: &[u8] = include_bytes!("DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
-fn register_font() {
+/// Register the bundled DejaVu Sans as `sans-serif` (once per process), so text draws without
+/// system fonts.
+pub fn register_font() {
     REGISTER.call_once(|| {
         // The bundled font is valid; if registration ever failed, text would fall back to
         // plotters' error path, reported by the drawing calls.
