@@ -1,0 +1,3 @@
+//! Command-line subcommands (thin layers over the library).
+
+pub mod score;
