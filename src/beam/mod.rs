@@ -32,7 +32,7 @@
 mod tracer;
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 pub use tracer::{ExitSink, Stone, TraceStats};
 
@@ -168,6 +168,11 @@ pub struct ExitBeam {
     pub reflections: u32,
     /// External reflection at the entry facet (never went inside).
     pub external: bool,
+    /// Left a narrow beam that was followed as one ray (see [`TraceOptions`]): its power and
+    /// direction are those of the ray through the narrow beam's centre, and its footprint is
+    /// the whole narrow beam's, so it is less exact than the others where the narrow beam
+    /// would have straddled an edge.
+    pub narrow: bool,
     pub(crate) node: u32,
 }
 

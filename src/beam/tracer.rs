@@ -446,6 +446,7 @@ impl Stone {
                 exit_facet: f,
                 reflections: 0,
                 external: true,
+                narrow: false,
                 node,
             };
             st.exits += 1;
@@ -566,6 +567,7 @@ impl Stone {
                             exit_facet: g,
                             reflections: depth,
                             external: false,
+                            narrow: true,
                             node,
                         };
                         st.exits += 1;
@@ -711,6 +713,7 @@ impl Stone {
                             exit_facet: g,
                             reflections: beam.depth,
                             external: false,
+                            narrow: false,
                             node,
                         };
                         st.exits += 1;
