@@ -246,7 +246,10 @@ impl ScoreConfig {
             ));
         }
         if self.scintillation_tilts.len() < 2
-            || self.scintillation_tilts.iter().any(|t| !(t.abs() <= 60.0))
+            || self
+                .scintillation_tilts
+                .iter()
+                .any(|t| t.is_nan() || t.abs() > 60.0)
         {
             return Err(Error::invalid(
                 "scintillation-tilts",
