@@ -69,6 +69,13 @@ pub struct TraceOptions {
     /// Compute each exit beam's footprint polygon (needed for images and patterns; costs a
     /// little time). Default off.
     pub footprints: bool,
+    /// Use the stone's symmetry (default on): when rotations about the z axis or mirrors
+    /// through it map the stone and the incoming direction onto themselves, only a
+    /// fundamental wedge of the cross-section is traced and every exit beam is handed out once
+    /// per symmetry, transformed (direction, polarization frame, footprint, facets). A face-up
+    /// round brilliant has 16 symmetries. The result is the same light, split along the
+    /// wedge's edges too.
+    pub symmetry: bool,
 }
 
 impl TraceOptions {
@@ -94,6 +101,7 @@ impl Default for TraceOptions {
             threshold: 1e-9,
             max_depth: 1000,
             footprints: false,
+            symmetry: true,
         }
     }
 }
@@ -174,6 +182,8 @@ pub struct ExitBeam {
     /// would have straddled an edge.
     pub narrow: bool,
     pub(crate) node: u32,
+    /// Index of the symmetry that maps the traced beam to this one (0 = identity).
+    pub(crate) sym: u16,
 }
 
 /// Everything one trace produced: exit beams, power accounting, footprints.
@@ -192,6 +202,7 @@ pub struct BeamTree {
     /// Every exit beam, in tracing order.
     pub exits: Vec<ExitBeam>,
     nodes: Vec<(u32, u32)>,
+    perms: Vec<Vec<u32>>,
     footprints: Vec<DVec2>,
     footprint_ranges: Vec<(u32, u32)>,
 }
@@ -217,6 +228,13 @@ impl BeamTree {
             k = parent;
         }
         out.reverse();
+        if e.sym != 0 {
+            if let Some(p) = self.perms.get(e.sym as usize) {
+                for f in &mut out {
+                    *f = p[*f] as usize;
+                }
+            }
+        }
         out
     }
 
@@ -267,7 +285,11 @@ impl Stone {
             want: opts.footprints,
         };
         let (stats, nodes) = self.trace_into(frame, ri, opts, &mut sink, true);
+        let perms = (0..self.symmetry_order())
+            .map(|i| self.permutation(i).to_vec())
+            .collect();
         BeamTree {
+            perms,
             frame: *frame,
             ri,
             wavelength_nm,

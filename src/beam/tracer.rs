@@ -4,7 +4,7 @@ use super::{ExitBeam, Frame, TraceOptions};
 use crate::geometry::clip2d;
 use crate::geometry::Polyhedron;
 use crate::optics::{fresnel, reflect, refract, rotate_stokes, s_axis, Interface, Stokes};
-use glam::{DVec2, DVec3, DVec4};
+use glam::{DMat3, DVec2, DVec3, DVec4};
 
 /// Facets with `|n · d|` below this are seen edge-on: no beam starts or ends on them.
 const GRAZE: f64 = 1e-12;
@@ -39,6 +39,8 @@ pub struct TraceStats {
     pub exits: usize,
     /// Narrow beams followed as rays (below the split threshold).
     pub rays: usize,
+    /// Facets met by those rays (their segments inside the stone).
+    pub ray_segments: usize,
     /// Power that entered narrow-beam (ray) mode: the share of the light whose further path was
     /// found by one ray per narrow beam rather than by exact splitting.
     pub ray_power: f64,
@@ -57,10 +59,18 @@ pub struct Stone {
     facet_vertices: Vec<u32>,
     facet_range: Vec<(u32, u32)>,
     neighbors: Vec<u32>,
+    /// Plane `(normal, offset)` of each entry of `neighbors`, stored alongside for the walk.
+    neighbor_planes: Vec<glam::DVec4>,
     neighbor_range: Vec<(u32, u32)>,
     /// Cube map over directions: the facet whose normal is closest to each cell's direction,
     /// where walks toward a ray's exit facet start.
     dir_table: Vec<u32>,
+    /// Symmetries of the solid about the z axis (identity first): rotations, then mirrors.
+    ops: Vec<SymOp>,
+    /// Order of the rotation group about z (1 = none).
+    rot_order: usize,
+    /// Azimuth (radians) of one mirror plane through the z axis, if any.
+    mirror_az: Option<f64>,
     /// Per start facet and cube-map cell: the exit facet of the ray from the facet's centroid
     /// in the cell's central direction (a better start for walks from that facet).
     facet_table: Vec<u32>,
@@ -68,6 +78,123 @@ pub struct Stone {
 
 /// Cells per cube-map face side of [`Stone::dir_table`].
 const CUBE_RES: usize = 8;
+
+/// A symmetry of the solid: an orthogonal map about the z axis and the facet permutation it
+/// induces.
+#[derive(Clone, Debug)]
+struct SymOp {
+    m: DMat3,
+    mirror: bool,
+    perm: Vec<u32>,
+}
+
+/// Hands each exit beam of the traced wedge to the real sink once per symmetry, transformed.
+struct SymSink<'a, S: ExitSink> {
+    inner: &'a mut S,
+    ops: Vec<(u16, &'a SymOp, [f64; 4])>,
+    foot: Vec<DVec2>,
+}
+
+impl<'a, S: ExitSink> SymSink<'a, S> {
+    fn new(stone: &'a Stone, group: &[usize], frame: &Frame, inner: &'a mut S) -> Self {
+        let ops = group
+            .iter()
+            .map(|&i| {
+                let op = &stone.ops[i];
+                let (gu, gv) = (op.m * frame.u, op.m * frame.v);
+                (
+                    i as u16,
+                    op,
+                    [
+                        gu.dot(frame.u),
+                        gv.dot(frame.u),
+                        gu.dot(frame.v),
+                        gv.dot(frame.v),
+                    ],
+                )
+            })
+            .collect();
+        SymSink {
+            inner,
+            ops,
+            foot: Vec::new(),
+        }
+    }
+}
+
+impl<S: ExitSink> ExitSink for SymSink<'_, S> {
+    fn wants_footprints(&self) -> bool {
+        self.inner.wants_footprints()
+    }
+    fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+        for &(i, op, m2) in &self.ops {
+            if i == 0 {
+                self.inner.exit(e, fp);
+                continue;
+            }
+            let mut stokes = e.stokes;
+            if op.mirror {
+                // A mirror turns the s–p frame's handedness: U and V change sign.
+                stokes.z = -stokes.z;
+                stokes.w = -stokes.w;
+            }
+            let t = ExitBeam {
+                direction: op.m * e.direction,
+                axis: op.m * e.axis,
+                stokes,
+                entry_facet: op.perm[e.entry_facet] as usize,
+                exit_facet: op.perm[e.exit_facet] as usize,
+                sym: i,
+                ..*e
+            };
+            self.foot.clear();
+            self.foot.extend(
+                fp.iter()
+                    .map(|p| DVec2::new(m2[0] * p.x + m2[1] * p.y, m2[2] * p.x + m2[3] * p.y)),
+            );
+            self.inner.exit(&t, &self.foot);
+        }
+    }
+}
+
+/// Mirror across the vertical plane at azimuth `phi` (radians).
+fn mirror_matrix(phi: f64) -> DMat3 {
+    let m = DVec3::new(-phi.sin(), phi.cos(), 0.0);
+    DMat3::IDENTITY - 2.0 * DMat3::from_cols(m * m.x, m * m.y, m * m.z)
+}
+
+/// The facet permutation of `m` if it maps every facet plane onto a facet plane.
+fn facet_permutation(normals: &[DVec3], offsets: &[f64], m: &DMat3) -> Option<Vec<u32>> {
+    let tol = 1e-9;
+    let mut perm = Vec::with_capacity(normals.len());
+    for (n, o) in normals.iter().zip(offsets) {
+        let mn = *m * *n;
+        let j = (0..normals.len()).find(|&j| {
+            normals[j].distance_squared(mn) < tol * tol && (offsets[j] - o).abs() < tol
+        })?;
+        perm.push(j as u32);
+    }
+    Some(perm)
+}
+
+/// Clip a convex planar polygon by the half-space `n · x <= 0`.
+fn clip_halfspace(poly: &[DVec3], n: DVec3, out: &mut Vec<DVec3>) {
+    out.clear();
+    let k = poly.len();
+    for i in 0..k {
+        let (p, q) = (poly[i], poly[(i + 1) % k]);
+        let (dp, dq) = (n.dot(p), n.dot(q));
+        if dp <= 0.0 {
+            out.push(p);
+        }
+        if (dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0) {
+            out.push(p + (q - p) * (dp / (dp - dq)));
+        }
+    }
+    if out.len() < 3 {
+        out.clear();
+    }
+}
 
 /// Central direction of cube-map cell (i, j) of `face`.
 fn cube_dir(face: usize, i: usize, j: usize) -> DVec3 {
@@ -183,7 +310,15 @@ struct Work {
 /// The transmitted intensity is `I − I_r`, so the split conserves power exactly.
 #[inline]
 fn split(polarization: bool, f: &Interface, s: Stokes) -> (Stokes, Stokes) {
-    if polarization {
+    if f.tir {
+        // Total internal reflection: all power reflected (with the s–p phase if polarized).
+        let r = if polarization {
+            f.mueller_reflect().apply(s)
+        } else {
+            DVec4::new(s.x, 0.0, 0.0, 0.0)
+        };
+        (DVec4::new(s.x, r.y, r.z, r.w), DVec4::ZERO)
+    } else if polarization {
         let r = f.mueller_reflect().apply(s);
         let mut t = f.mueller_transmit().apply(s);
         t.x = (s.x - r.x).max(0.0);
@@ -239,6 +374,9 @@ impl Stone {
         let centroids: Vec<DVec3> = solid.facets.iter().map(|f| f.centroid).collect();
         let cells = 6 * CUBE_RES * CUBE_RES;
         let mut stone = Stone {
+            ops: Vec::new(),
+            rot_order: 1,
+            mirror_az: None,
             dir_table,
             facet_table: Vec::new(),
             normals: solid.facets.iter().map(|f| f.plane.normal).collect(),
@@ -247,9 +385,15 @@ impl Stone {
             vertices: solid.vertices.clone(),
             facet_vertices,
             facet_range,
+            neighbor_planes: Vec::new(),
             neighbors,
             neighbor_range,
         };
+        stone.neighbor_planes = stone
+            .neighbors
+            .iter()
+            .map(|&h| stone.normals[h as usize].extend(stone.offsets[h as usize]))
+            .collect();
         let mut facet_table = vec![0u32; nf * cells];
         for f in 0..nf {
             for face in 0..6 {
@@ -269,7 +413,122 @@ impl Stone {
             }
         }
         stone.facet_table = facet_table;
+        stone.find_symmetry();
         stone
+    }
+
+    /// Find the rotations about the z axis and the mirrors through it that map the solid onto
+    /// itself (the ones a face-up view shares).
+    fn find_symmetry(&mut self) {
+        let (normals, offsets) = (&self.normals, &self.offsets);
+        let rot = |k: usize| DMat3::from_rotation_z(std::f64::consts::TAU / k as f64);
+        let k = [64, 48, 32, 24, 16, 12, 10, 9, 8, 7, 6, 5, 4, 3, 2]
+            .into_iter()
+            .find(|&k| facet_permutation(normals, offsets, &rot(k)).is_some())
+            .unwrap_or(1);
+        // Mirror candidates: bisectors between a tilted facet's normal and its look-alikes.
+        let mut mirror = None;
+        if let Some(f0) = (0..normals.len()).find(|&f| normals[f].truncate().length() > 1e-6) {
+            let a0 = normals[f0].y.atan2(normals[f0].x);
+            for j in 0..normals.len() {
+                if (normals[j].z - normals[f0].z).abs() < 1e-9
+                    && (offsets[j] - offsets[f0]).abs() < 1e-9
+                {
+                    let aj = normals[j].y.atan2(normals[j].x);
+                    let phi = 0.5 * (a0 + aj);
+                    for cand in [phi, phi + std::f64::consts::FRAC_PI_2] {
+                        if facet_permutation(normals, offsets, &mirror_matrix(cand)).is_some() {
+                            mirror = Some(cand.rem_euclid(std::f64::consts::PI / k as f64));
+                            break;
+                        }
+                    }
+                }
+                if mirror.is_some() {
+                    break;
+                }
+            }
+        }
+        let mut ops = Vec::new();
+        for j in 0..k {
+            let m = DMat3::from_rotation_z(std::f64::consts::TAU * j as f64 / k as f64);
+            if let Some(perm) = facet_permutation(normals, offsets, &m) {
+                ops.push(SymOp {
+                    m,
+                    mirror: false,
+                    perm,
+                });
+            }
+        }
+        if let Some(phi0) = mirror {
+            for j in 0..k {
+                let m = mirror_matrix(phi0 + std::f64::consts::PI * j as f64 / k as f64);
+                if let Some(perm) = facet_permutation(normals, offsets, &m) {
+                    ops.push(SymOp {
+                        m,
+                        mirror: true,
+                        perm,
+                    });
+                }
+            }
+        }
+        // Keep the symmetry only if the whole group was found consistently.
+        if ops.len() == k * if mirror.is_some() { 2 } else { 1 } {
+            self.ops = ops;
+            self.rot_order = k;
+            self.mirror_az = mirror;
+        } else {
+            self.ops = vec![SymOp {
+                m: DMat3::IDENTITY,
+                mirror: false,
+                perm: (0..normals.len() as u32).collect(),
+            }];
+            self.rot_order = 1;
+            self.mirror_az = None;
+        }
+    }
+
+    /// Facet permutation of symmetry `i` (for facet sequences of replicated exit beams).
+    pub(crate) fn permutation(&self, i: usize) -> &[u32] {
+        &self.ops[i].perm
+    }
+
+    /// Number of symmetries of the solid about the z axis (1 = none; 16 for a round brilliant).
+    pub fn symmetry_order(&self) -> usize {
+        self.ops.len()
+    }
+
+    /// The symmetries that fix direction `d` (indices into `ops`), and the half-spaces
+    /// `n · x <= 0` (planes through the z axis) cutting out a fundamental wedge whose images
+    /// under them tile space.
+    fn frame_symmetry(&self, d: DVec3) -> (Vec<usize>, Vec<DVec3>) {
+        use std::f64::consts::{PI, TAU};
+        let k = self.rot_order;
+        let side = |a: f64| DVec3::new(a.sin(), -a.cos(), 0.0); // n·x <= 0: left of azimuth a
+        if d.truncate().length() < 1e-12 {
+            let all: Vec<usize> = (0..self.ops.len()).collect();
+            let wedge = match self.mirror_az {
+                Some(p0) if k == 1 => vec![side(p0)],
+                Some(p0) => vec![side(p0), -side(p0 + PI / k as f64)],
+                None if k == 1 => vec![],
+                None if k == 2 => vec![side(0.0)],
+                None => vec![side(0.0), -side(TAU / k as f64)],
+            };
+            return (all, wedge);
+        }
+        // A tilted direction keeps at most the mirror through it.
+        let psi = d.y.atan2(d.x);
+        if let Some(p0) = self.mirror_az {
+            let step = PI / k as f64;
+            let x = (psi - p0) / step;
+            if (x - x.round()).abs() < 1e-9 {
+                let j = (x.round() as i64).rem_euclid(k as i64) as usize;
+                let idx = k + j;
+                if idx < self.ops.len() && self.ops[idx].mirror {
+                    return (vec![0, idx], vec![side(psi)]);
+                }
+            }
+        }
+        (vec![0], vec![])
     }
 
     /// Number of facets.
@@ -301,14 +560,18 @@ impl Stone {
         }
         for _ in 0..nf {
             let s = (self.offsets[g] - self.normals[g].dot(x)) / k;
-            let p = x + t * s;
+            let p = (x + t * s).extend(-1.0);
             let (mut worst, mut next) = (1e-13, usize::MAX);
-            for &h in self.facet_neighbors(g) {
-                let h = h as usize;
-                let v = self.normals[h].dot(p) - self.offsets[h];
-                if v > worst && h != exclude && self.normals[h].dot(t) > GRAZE {
-                    worst = v;
-                    next = h;
+            let (a, b) = self.neighbor_range[g];
+            let (a, b) = (a as usize, b as usize);
+            for (pl, &h) in self.neighbor_planes[a..b].iter().zip(&self.neighbors[a..b]) {
+                let v = pl.dot(p);
+                if v > worst {
+                    let h = h as usize;
+                    if h != exclude && self.normals[h].dot(t) > GRAZE {
+                        worst = v;
+                        next = h;
+                    }
                 }
             }
             if next == usize::MAX {
@@ -414,6 +677,14 @@ impl Stone {
             a2: frame.v,
             b: DVec2::ZERO,
         };
+        // Symmetry: trace a fundamental wedge and hand out every exit once per symmetry.
+        let (group, wedge) = if opts.symmetry {
+            self.frame_symmetry(d0)
+        } else {
+            (vec![0], vec![])
+        };
+        let mut sym = SymSink::new(self, &group, frame, sink);
+        let mut piece: Vec<DVec3> = Vec::with_capacity(32);
 
         // Entry: external reflection and refraction at every facet facing the light.
         for f in 0..self.facet_count() {
@@ -422,17 +693,34 @@ impl Stone {
             if c <= GRAZE {
                 continue;
             }
-            let p = c * self.areas[f] / total;
+            let verts = self.facet_verts(f);
+            w.cur.clear();
+            w.cur
+                .extend(verts.iter().map(|&v| self.vertices[v as usize]));
+            let mut p = c * self.areas[f] / total;
+            if !wedge.is_empty() {
+                for h in &wedge {
+                    clip_halfspace(&w.cur, *h, &mut piece);
+                    std::mem::swap(&mut w.cur, &mut piece);
+                    if w.cur.is_empty() {
+                        break;
+                    }
+                }
+                if w.cur.is_empty() {
+                    continue;
+                }
+                let fp: Vec<DVec2> = w.cur.iter().map(|&x| map0.apply(x)).collect();
+                p = clip2d::area(&fp) / total;
+                if p <= 0.0 {
+                    continue;
+                }
+            }
             st.power_in += p;
             let node = w.nodes.len() as u32;
             w.nodes.push((u32::MAX, f as u32));
             let fr = fresnel(c, 1.0, ri);
             let axis = s_axis(d0, n).unwrap_or(frame.u);
             let (sr, stt) = split(cx.pol, &fr, DVec4::new(p, 0.0, 0.0, 0.0));
-            let verts = self.facet_verts(f);
-            w.cur.clear();
-            w.cur
-                .extend(verts.iter().map(|&v| self.vertices[v as usize]));
             w.foot.clear();
             if cx.want_fp {
                 w.foot.extend(w.cur.iter().map(|&x| map0.apply(x)));
@@ -448,9 +736,10 @@ impl Stone {
                 external: true,
                 narrow: false,
                 node,
+                sym: 0,
             };
             st.exits += 1;
-            sink.exit(&ext, &w.foot);
+            sym.exit(&ext, &w.foot);
             let beam = match refract(d0, n, 1.0, ri) {
                 Some(t) if stt.x > 0.0 => Beam {
                     dir: t,
@@ -471,13 +760,17 @@ impl Stone {
                 }
             };
             // `w.cur` holds the polygon, `w.foot` its footprint.
-            self.continue_beam(beam, &cx, &mut w, &mut st, sink);
+            self.continue_beam(beam, &cx, &mut w, &mut st, &mut sym);
             // Depth-first from this root; roots go in facet order, so the walk order (and the
             // exit order) is deterministic.
             while let Some(beam) = w.stack.pop() {
-                self.split_beam(beam, &cx, &mut w, &mut st, sink);
+                self.split_beam(beam, &cx, &mut w, &mut st, &mut sym);
             }
         }
+        let g = group.len() as f64;
+        st.power_in *= g;
+        st.cut_off *= g;
+        st.exits *= group.len();
         let nodes = if keep_nodes {
             std::mem::take(&mut w.nodes)
         } else {
@@ -542,6 +835,7 @@ impl Stone {
                 st.cut_off += s.x;
                 return;
             };
+            st.ray_segments += 1;
             x += t * best.max(0.0);
             let n = self.normals[g];
             let fr = fresnel(n.dot(t), cx.ri, 1.0);
@@ -569,6 +863,7 @@ impl Stone {
                             external: false,
                             narrow: true,
                             node,
+                            sym: 0,
                         };
                         st.exits += 1;
                         sink.exit(&e, &w.foot);
@@ -715,6 +1010,7 @@ impl Stone {
                             external: false,
                             narrow: false,
                             node,
+                            sym: 0,
                         };
                         st.exits += 1;
                         sink.exit(&e, &w.foot);

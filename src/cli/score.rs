@@ -16,7 +16,7 @@
 //! `scintillation`, `aset.{blue,red,green,leak}` (the keys of [`Scores`]) and `settings` (the
 //! run's configuration as understood: `material`, `ri` (null unless `--ri`), `polarization`,
 //! `head_shadow_deg`, `wavelength_nm`, `bands`, `tilts`, `scintillation_tilts`, `resolution`,
-//! `split_threshold`, `threshold`). Several cuts: `{"settings": {...}, "results": [one such
+//! `split_threshold`, `fire_split_threshold`, `threshold`). Several cuts: `{"settings": {...}, "results": [one such
 //! object per cut, without settings]}` in the order given. With `--verify` (once wired to the
 //! photon tracer) each object also gets `verify.*`.
 
@@ -158,6 +158,7 @@ struct SettingsJson<'a> {
     scintillation_tilts: &'a [f64],
     resolution: usize,
     split_threshold: f64,
+    fire_split_threshold: f64,
     threshold: f64,
 }
 
@@ -177,6 +178,7 @@ impl<'a> SettingsJson<'a> {
             scintillation_tilts: &c.scintillation_tilts,
             resolution: c.resolution,
             split_threshold: c.trace.split_threshold,
+            fire_split_threshold: c.fire_split_threshold,
             threshold: c.trace.threshold,
         }
     }

@@ -42,7 +42,10 @@
 //!   a little light never dominates. A material without dispersion gives identical bands,
 //!   hence grey pixels, hence 0 (to rounding). Fire depends on fine detail (which part of
 //!   a beam meets a 5° spot at which wavelength), so it is the score most sensitive to the
-//!   tracer's narrow-beam approximation: a few percent at the default split threshold.
+//!   tracer's narrow-beam approximation; its traces split down to
+//!   [`ScoreConfig::fire_split_threshold`] (1e-5), ten times finer than the others. It is
+//!   continuous but steep: for a round brilliant it moves by about 3 per degree of pavilion
+//!   angle as coloured flashes slide across the spots' rims and the pixels.
 //! * **`scintillation`** ∈ [0, 1]: how much the face-up pattern of bright and dark changes as
 //!   the stone rocks. The image of the spot lights at [`ScoreConfig::wavelength_nm`] is taken
 //!   at each tilt of [`ScoreConfig::scintillation_tilts`] (rocking about the x axis,
@@ -145,6 +148,10 @@ pub struct ScoreConfig {
     pub resolution: usize,
     /// Tracer settings (footprints are switched on where needed).
     pub trace: TraceOptions,
+    /// Split threshold of the face-up traces for fire (see [`TraceOptions::split_threshold`]):
+    /// fire's spot images are the most sensitive to the narrow-beam approximation, and
+    /// face-up traces of symmetric stones are cheap. Default 1e-5.
+    pub fire_split_threshold: f64,
 }
 
 impl Default for ScoreConfig {
@@ -160,6 +167,7 @@ impl Default for ScoreConfig {
             scintillation_tilts: (-3..=3).map(|k| 2.0 * k as f64).collect(),
             resolution: 64,
             trace: TraceOptions::default(),
+            fire_split_threshold: 1e-5,
         }
     }
 }
@@ -184,6 +192,7 @@ impl ScoreConfig {
                 split_threshold: 1e-3,
                 ..TraceOptions::default()
             },
+            fire_split_threshold: 1e-4,
             ..ScoreConfig::default()
         }
     }
@@ -268,6 +277,8 @@ impl ScoreConfig {
         let t = &self.trace;
         if !(t.threshold >= 0.0
             && t.threshold < 1.0
+            && self.fire_split_threshold >= 0.0
+            && self.fire_split_threshold < 1.0
             && t.split_threshold >= 0.0
             && t.split_threshold < 1.0)
         {
@@ -362,6 +373,8 @@ struct Job {
     brilliance: bool,
     /// Upward share and ASET bins (face-up).
     face_up: bool,
+    /// Split threshold of this trace.
+    split: f64,
 }
 
 /// What a [`Job`] measured.
@@ -433,6 +446,7 @@ fn run_job(
     let opts = TraceOptions {
         polarization: cfg.polarization,
         footprints: job.image,
+        split_threshold: job.split,
         ..cfg.trace
     };
     let mut sink = PoseSink {
@@ -474,8 +488,8 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
         Brilliance,
         Image,
     }
-    let index = |tilt: Tilt, ri: f64, what: Use, jobs: &mut Vec<Job>| -> usize {
-        let same = |j: &Job| j.tilt == tilt && j.ri.to_bits() == ri.to_bits();
+    let index = |tilt: Tilt, ri: f64, what: Use, split: f64, jobs: &mut Vec<Job>| -> usize {
+        let same = |j: &Job| j.tilt == tilt && j.ri.to_bits() == ri.to_bits() && j.split == split;
         let k = match jobs.iter().position(same) {
             Some(k) => k,
             None => {
@@ -485,6 +499,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
                     image: false,
                     brilliance: false,
                     face_up: false,
+                    split,
                 });
                 jobs.len() - 1
             }
@@ -496,11 +511,12 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
         }
         k
     };
-    let face_up = index(Tilt::FACE_UP, ri0, Use::FaceUp, &mut jobs);
+    let split = cfg.trace.split_threshold;
+    let face_up = index(Tilt::FACE_UP, ri0, Use::FaceUp, split, &mut jobs);
     let brill: Vec<usize> = cfg
         .tilts
         .iter()
-        .map(|t| index(*t, ri0, Use::Brilliance, &mut jobs))
+        .map(|t| index(*t, ri0, Use::Brilliance, split, &mut jobs))
         .collect();
     let constant = matches!(cfg.material.dispersion, Dispersion::Constant(_));
     let fire: Vec<usize> = centres
@@ -510,6 +526,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
                 Tilt::FACE_UP,
                 if constant { ri0 } else { cfg.material.ri(l) },
                 Use::Image,
+                cfg.fire_split_threshold,
                 &mut jobs,
             )
         })
@@ -525,6 +542,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
                 },
                 ri0,
                 Use::Image,
+                split,
                 &mut jobs,
             )
         })
