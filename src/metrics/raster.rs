@@ -21,8 +21,10 @@ pub struct Raster {
 }
 
 impl Raster {
-    /// A black image.
+    /// A black image (at least one pixel; a non-positive or non-finite `half` gives an image
+    /// that ignores everything).
     pub fn new(n: usize, half: f64) -> Raster {
+        let n = n.max(1);
         Raster {
             n,
             half,
@@ -41,7 +43,11 @@ impl Raster {
     /// Add `value` (per unit area, i.e. the pixel average where fully covered) over the convex
     /// polygon `poly`, pixel by pixel by exact clipping.
     pub fn add_polygon(&mut self, poly: &[DVec2], value: f64) {
-        if poly.len() < 3 || value == 0.0 || !value.is_finite() {
+        if poly.len() < 3
+            || value == 0.0
+            || !value.is_finite()
+            || !(self.half > 0.0 && self.half.is_finite())
+        {
             return;
         }
         let h = self.pixel();

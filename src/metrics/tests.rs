@@ -288,3 +288,19 @@ fn config_validation_names_the_field() {
         "scintillation-tilts",
     );
 }
+
+#[test]
+fn unvalidated_configs_do_not_panic() {
+    let s = octahedron();
+    let weird = ScoreConfig {
+        tilts: vec![],
+        bands: 0,
+        resolution: 0,
+        scintillation_tilts: vec![f64::NAN],
+        head_shadow_deg: f64::NAN,
+        material: Material::constant(0.5),
+        ..lean()
+    };
+    let sc = score(&s, &weird);
+    assert!(sc.brilliance.is_finite() && sc.fire.is_finite());
+}
