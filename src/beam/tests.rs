@@ -539,3 +539,45 @@ fn symmetry_reduction_changes_nothing() {
         }
     }
 }
+
+/// The facet walk finds the same exit as scanning every facet, from points on every facet in
+/// many directions.
+#[test]
+fn exit_facet_walk_agrees_with_scan() {
+    for s in [tolkowsky(), princess(), octahedron(), cube()] {
+        let stone = Stone::new(&s);
+        let mut k = 0u64;
+        for f in 0..s.facets.len() {
+            let poly = s.facet_polygon(f);
+            let c = s.facets[f].centroid;
+            for (vi, v) in poly.iter().enumerate() {
+                let x = c + (*v - c) * 0.9;
+                for j in 0..12 {
+                    k += 1;
+                    // A deterministic spread of directions into the stone.
+                    let a = (k as f64 * 2.399_963) % std::f64::consts::TAU;
+                    let z = ((k * 7919 + vi as u64 * 31 + j) % 1000) as f64 / 500.0 - 1.0;
+                    let t = DVec3::new(
+                        (1.0 - z * z).sqrt() * a.cos(),
+                        (1.0 - z * z).sqrt() * a.sin(),
+                        z,
+                    );
+                    let t = if t.dot(s.facets[f].plane.normal) > 0.0 {
+                        -t
+                    } else {
+                        t
+                    };
+                    if t.dot(s.facets[f].plane.normal) > -1e-3 {
+                        continue;
+                    }
+                    let (gw, dw) = stone.exit_facet(x, t, f).unwrap();
+                    let (gs, ds) = stone.exit_facet_scan(x, t, f).unwrap();
+                    assert!(
+                        (dw - ds).abs() < 1e-12,
+                        "facet {f}: walk {gw} {dw} scan {gs} {ds}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -403,7 +403,7 @@ impl Stone {
                         let c = cube_cell(t);
                         facet_table[f * cells + c] = if stone.normals[f].dot(t) < 0.0 {
                             stone
-                                .exit_facet_scan(centroids[f], t, f)
+                                .walk(stone.dir_table[c] as usize, centroids[f], t, f)
                                 .map_or(stone.dir_table[c], |(g, _)| g as u32)
                         } else {
                             stone.dir_table[c]
@@ -546,13 +546,19 @@ impl Stone {
     /// guess: each step moves to the neighbour whose plane the ray crosses first, so the
     /// distance falls strictly and the walk ends. `exclude` is the facet `x` lies on.
     #[inline]
-    fn exit_facet(&self, x: DVec3, t: DVec3, exclude: usize) -> Option<(usize, f64)> {
+    pub(crate) fn exit_facet(&self, x: DVec3, t: DVec3, exclude: usize) -> Option<(usize, f64)> {
         let cell = cube_cell(t);
-        let mut g = if exclude < self.facet_count() {
+        let g = if exclude < self.facet_count() && !self.facet_table.is_empty() {
             self.facet_table[exclude * 6 * CUBE_RES * CUBE_RES + cell]
         } else {
             self.dir_table[cell]
         } as usize;
+        self.walk(g, x, t, exclude)
+    }
+
+    /// The walk of [`Stone::exit_facet`] from facet `g`.
+    #[inline]
+    fn walk(&self, mut g: usize, x: DVec3, t: DVec3, exclude: usize) -> Option<(usize, f64)> {
         let nf = self.facet_count();
         let mut k = self.normals[g].dot(t);
         if g == exclude || k <= GRAZE {
@@ -584,7 +590,12 @@ impl Stone {
     }
 
     /// [`Stone::exit_facet`] by scanning every facet.
-    fn exit_facet_scan(&self, x: DVec3, t: DVec3, exclude: usize) -> Option<(usize, f64)> {
+    pub(crate) fn exit_facet_scan(
+        &self,
+        x: DVec3,
+        t: DVec3,
+        exclude: usize,
+    ) -> Option<(usize, f64)> {
         let (mut best, mut g) = (f64::INFINITY, usize::MAX);
         for (h, n) in self.normals.iter().enumerate() {
             let k = n.dot(t);
