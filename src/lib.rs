@@ -4,11 +4,13 @@
 //! optimizer → plots → CLI. The library knows nothing of the command line.
 #![warn(missing_docs)]
 
+pub mod beam;
 pub mod cli;
 pub mod cut;
 pub mod error;
 pub mod geometry;
 pub mod io;
+pub mod metrics;
 pub mod optics;
 pub mod optimize;
 

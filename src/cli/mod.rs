@@ -3,6 +3,7 @@
 
 mod cuts;
 pub mod optimize;
+pub mod score;
 pub mod trace;
 
 use crate::error::Result;
@@ -33,6 +34,14 @@ pub enum Command {
     /// Shoot photons through cuts (the thesis's forward Monte Carlo): face categories, exit
     /// angles, light return; overhead, offset, directed or rotating light.
     Trace(Box<trace::TraceArgs>),
+    /// Score cuts with the beam tracer: brilliance, fire, scintillation, ASET shares, overhead
+    /// light return; `--verify N` re-measures with the photon tracer.
+    Score(score::ScoreArgs),
+    /// Search a family's proportions for the best weighted brilliance, fire and scintillation
+    /// (argmin Nelder–Mead or particle swarm), then verify the winners with the photon tracer.
+    Optimize(optimize::OptimizeArgs),
+    /// Map a score over a grid of two parameters: CSV and a heatmap with contours.
+    Sweep(optimize::SweepArgs),
 }
 
 /// Run a parsed command line.
@@ -42,5 +51,18 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Info(a) => cuts::info(&a),
         Command::List(a) => cuts::list(&a),
         Command::Trace(a) => trace::run(&a),
+        Command::Score(a) => score::run(&a),
+        Command::Optimize(a) => {
+            let config = crate::metrics::ScoreConfig::default();
+            let evaluator = crate::optimize::engines::BeamEvaluator {
+                config: config.clone(),
+            };
+            let verifier = crate::optimize::engines::PhotonVerifier { config };
+            optimize::run_optimize(&a, &evaluator, Some(&verifier))
+        }
+        Command::Sweep(a) => {
+            let evaluator = crate::optimize::engines::BeamEvaluator::default();
+            optimize::run_sweep(&a, &evaluator)
+        }
     }
 }

@@ -5,6 +5,7 @@
 
 use crate::error::{Error, Result};
 use crate::optimize::guard::{Progress, Status};
+use crate::optimize::run::FnWriter;
 use crate::optimize::run::{self, CutWriter, Hooks, RunOptions};
 use crate::optimize::sweep::{self, Axis, SweepScore};
 use crate::optimize::{Config, Evaluator, Verifier};
@@ -105,11 +106,14 @@ impl Progress for Bar {
     }
 }
 
-/// The writers of the best cut besides `best.toml`.
-// Lead: add the GemCad, OBJ and SVG writers here at merge, e.g.
-// `FnWriter::new("asc", |c| Ok(crate::io::asc::write(c, 96)))`.
+/// The writers of the best cut besides `best.toml`: GemCad, OBJ and the SVG diagram.
 fn cut_writers() -> Vec<&'static dyn CutWriter> {
-    Vec::new()
+    static ASC: FnWriter = FnWriter::new("asc", |c| {
+        Ok(crate::io::asc::write(c, crate::io::asc::DEFAULT_GEAR))
+    });
+    static OBJ: FnWriter = FnWriter::new("obj", |c| Ok(crate::io::mesh::write_obj(c)));
+    static SVG: FnWriter = FnWriter::new("svg", |c| Ok(crate::io::svg::diagram(c)));
+    vec![&ASC, &OBJ, &SVG]
 }
 
 /// `facetlab optimize`.

@@ -64,6 +64,7 @@
 pub mod config;
 pub mod contour;
 pub mod design;
+pub mod engines;
 pub mod guard;
 pub mod history;
 pub mod nelder_mead;

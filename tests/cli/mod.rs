@@ -1,6 +1,7 @@
 //! Shared helpers for running the `facetlab` binary.
 
 mod foundation;
+mod optimize;
 
 use std::path::Path;
 use std::process::{Command, Output};

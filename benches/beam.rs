@@ -1,0 +1,258 @@
+//! Beam tracer benchmarks (Instant-based, with warm-up). Run: `cargo bench --bench beam`
+//! (optionally with a filter: `pose`, `score`, `photons`).
+//!
+//! Reports:
+//! * `pose`: one pose (overhead / face-up, where the stone's 16 symmetries apply) at one
+//!   wavelength for `tolkowsky`, one thread, at several split thresholds (the default is
+//!   1e-4), with the tree's size; a tilted pose (no symmetry); the paper's depth-8 setting;
+//! * `score`: the full default `score` of `tolkowsky` on the global rayon pool and on one thread;
+//! * `photons`: how many photons a Monte Carlo photon tracer needs to match the beam tracer's
+//!   `overhead_light_return` to 1e-4 (one standard error), and the time ratio. The photon
+//!   tracer is not on this branch, so a minimal one is built here (straight-down photons over
+//!   the stone's shadow, Fresnel choice by roulette, unpolarized, no absorption, no depth
+//!   limit); its cost per photon stands in for the real one's.
+
+use facetlab::beam::{Frame, Stone, TraceOptions};
+use facetlab::geometry::Polyhedron;
+use facetlab::metrics::{overhead_light_return_with, score, ScoreConfig};
+use facetlab::optics::{fresnel, reflect, refract};
+use glam::DVec3;
+use rand::{rngs::SmallRng, Rng, SeedableRng};
+use std::time::{Duration, Instant};
+
+fn time<F: FnMut()>(mut f: F, min_time: Duration) -> (Duration, usize) {
+    let t0 = Instant::now();
+    while t0.elapsed() < min_time / 4 {
+        f();
+    }
+    let t0 = Instant::now();
+    let mut n = 0;
+    while t0.elapsed() < min_time || n < 3 {
+        f();
+        n += 1;
+    }
+    (t0.elapsed() / n as u32, n)
+}
+
+/// One photon straight down at a random point of the stone's shadow; true if it leaves upward.
+fn photon(s: &Polyhedron, ri: f64, rng: &mut SmallRng, r: f64, top: f64) -> Option<bool> {
+    let d = DVec3::NEG_Z;
+    let p0 = DVec3::new(rng.random_range(-r..r), rng.random_range(-r..r), top);
+    let (mut tin, mut tout, mut fin) = (f64::NEG_INFINITY, f64::INFINITY, usize::MAX);
+    for (k, f) in s.facets.iter().enumerate() {
+        let (nd, dist) = (
+            f.plane.normal.dot(d),
+            f.plane.offset - f.plane.normal.dot(p0),
+        );
+        if nd < 0.0 {
+            if dist / nd > tin {
+                tin = dist / nd;
+                fin = k;
+            }
+        } else if nd > 0.0 {
+            tout = tout.min(dist / nd);
+        } else if dist < 0.0 {
+            return None;
+        }
+    }
+    if fin == usize::MAX || tin >= tout {
+        return None;
+    }
+    let n0 = s.facets[fin].plane.normal;
+    if rng.random::<f64>() < fresnel(-n0.dot(d), 1.0, ri).reflectance() {
+        return Some(reflect(d, n0).z > 0.0);
+    }
+    let mut x = p0 + d * tin;
+    let mut t = refract(d, n0, 1.0, ri)?;
+    loop {
+        let (mut best, mut g) = (f64::INFINITY, 0);
+        for (k, f) in s.facets.iter().enumerate() {
+            let nt = f.plane.normal.dot(t);
+            if nt > 0.0 {
+                let sd = (f.plane.offset - f.plane.normal.dot(x)) / nt;
+                if sd < best {
+                    best = sd;
+                    g = k;
+                }
+            }
+        }
+        x += t * best;
+        let n = s.facets[g].plane.normal;
+        if rng.random::<f64>() >= fresnel(n.dot(t), ri, 1.0).reflectance() {
+            if let Some(out) = refract(t, n, ri, 1.0) {
+                return Some(out.z > 0.0);
+            }
+        }
+        t = reflect(t, n);
+    }
+}
+
+fn main() {
+    let cut = facetlab::io::load_cut("tolkowsky").expect("preset");
+    let solid = &cut.solid;
+    let stone = Stone::new(solid);
+    let ri = facetlab::optics::Material::diamond().ri(589.3);
+    let frame = Frame::overhead();
+    let filter = std::env::args().skip(1).find(|a| !a.starts_with('-'));
+    let run = |name: &str| filter.as_deref().is_none_or(|f| name.contains(f));
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool");
+    println!("rayon threads: {}", rayon::current_num_threads());
+
+    if run("pose") {
+        for split in [1e-3, 1e-4, 1e-5] {
+            let opts = TraceOptions {
+                split_threshold: split,
+                ..Default::default()
+            };
+            let tree = stone.trace(&frame, ri, 589.3, &opts);
+            let (dt, n) = time(
+                || {
+                    std::hint::black_box(stone.trace(&frame, ri, 589.3, &opts));
+                },
+                Duration::from_secs(2),
+            );
+            println!(
+                "pose tolkowsky 589.3 nm, split {split:e}: {:.3} ms/trace ({n} runs); beams {}, rays {} \
+                 ({} segments), exits {}, cut-off {:.1e}, light return {:.6}",
+                dt.as_secs_f64() * 1e3,
+                tree.stats.beams,
+                tree.stats.rays,
+                tree.stats.ray_segments,
+                tree.stats.exits,
+                tree.stats.cut_off,
+                tree.exits.iter().filter(|e| e.direction.z > 0.0).map(|e| e.power).sum::<f64>()
+            );
+        }
+        // A tilted view (10° toward azimuth 30°): no symmetry left to use.
+        let tilted = facetlab::beam::Frame::viewer(
+            facetlab::metrics::Tilt {
+                tilt_deg: 10.0,
+                azimuth_deg: 30.0,
+            }
+            .rotation(),
+        );
+        let opts = TraceOptions::default();
+        let tree = stone.trace(&tilted, ri, 589.3, &opts);
+        let (dt, n) = time(
+            || {
+                std::hint::black_box(stone.trace(&tilted, ri, 589.3, &opts));
+            },
+            Duration::from_secs(2),
+        );
+        println!(
+            "pose tolkowsky tilted 10° (no symmetry), split 1e-4: {:.3} ms/trace ({n} runs); beams {}, rays {} ({} segments), exits {}",
+            dt.as_secs_f64() * 1e3,
+            tree.stats.beams,
+            tree.stats.rays,
+            tree.stats.ray_segments,
+            tree.stats.exits
+        );
+        // The paper's setting: exact splitting, depth 8, nothing below 1e-6.
+        let opts = TraceOptions {
+            max_depth: 8,
+            ..TraceOptions::exact(1e-6)
+        };
+        let tree = stone.trace(&frame, ri, 589.3, &opts);
+        let (dt, n) = time(
+            || {
+                std::hint::black_box(stone.trace(&frame, ri, 589.3, &opts));
+            },
+            Duration::from_secs(2),
+        );
+        println!(
+            "pose tolkowsky, exact to depth 8 (paper-style): {:.3} ms/trace ({n} runs); beams {}, cut-off {:.2e}",
+            dt.as_secs_f64() * 1e3,
+            tree.stats.beams,
+            tree.stats.cut_off
+        );
+    }
+
+    if run("score") {
+        let cfg = ScoreConfig::default();
+        let (dt, n) = time(
+            || {
+                std::hint::black_box(score(solid, &cfg));
+            },
+            Duration::from_secs(4),
+        );
+        println!(
+            "score tolkowsky, default config: {:.1} ms ({n} runs, global pool)",
+            dt.as_secs_f64() * 1e3
+        );
+        let (dt1, n1) = time(
+            || {
+                one.install(|| std::hint::black_box(score(solid, &cfg)));
+            },
+            Duration::from_secs(4),
+        );
+        println!(
+            "score tolkowsky, default config: {:.1} ms ({n1} runs, 1 thread)",
+            dt1.as_secs_f64() * 1e3
+        );
+        let fast = ScoreConfig::fast();
+        let (dt, n) = time(
+            || {
+                std::hint::black_box(score(solid, &fast));
+            },
+            Duration::from_secs(4),
+        );
+        println!(
+            "score tolkowsky, ScoreConfig::fast(): {:.1} ms ({n} runs, global pool)",
+            dt.as_secs_f64() * 1e3
+        );
+    }
+
+    if run("photons") {
+        // Beam tracer, unpolarized like the photon stand-in; accurate settings for the reference.
+        let accurate = TraceOptions {
+            polarization: false,
+            split_threshold: 1e-5,
+            ..Default::default()
+        };
+        let p = overhead_light_return_with(&stone, ri, &accurate);
+        let default = TraceOptions {
+            polarization: false,
+            ..Default::default()
+        };
+        let p_default = overhead_light_return_with(&stone, ri, &default);
+        let (beam_dt, _) = time(
+            || {
+                std::hint::black_box(overhead_light_return_with(&stone, ri, &default));
+            },
+            Duration::from_secs(2),
+        );
+        // Photons over the stone's bounding square (misses are not counted).
+        let r = solid.max_radius() * 1.001;
+        let top = solid.bounding_box().1.z + 1.0;
+        let mut rng = SmallRng::seed_from_u64(1);
+        let target = 200_000;
+        let (mut hit, mut up) = (0u64, 0u64);
+        let t0 = Instant::now();
+        while hit < target {
+            if let Some(u) = photon(solid, ri, &mut rng, r, top) {
+                hit += 1;
+                up += u as u64;
+            }
+        }
+        let per_photon = t0.elapsed().as_secs_f64() / hit as f64;
+        let q = up as f64 / hit as f64;
+        let se = (q * (1.0 - q) / hit as f64).sqrt();
+        let need = p * (1.0 - p) / 1e-8;
+        let photon_time = need * per_photon;
+        println!(
+            "photons: beam light return {p:.6} (split 1e-5; default settings {p_default:.6}, {:.2} ms), \
+             stand-in photon tracer {q:.5} ± {se:.5} from {hit} photons ({:.2} µs/photon, {:+.1} SE)",
+            beam_dt.as_secs_f64() * 1e3,
+            per_photon * 1e6,
+            (q - p) / se
+        );
+        println!(
+            "photons needed for a standard error of 1e-4: {need:.3e}, {photon_time:.1} s on one core; \
+             ratio to one default beam trace: {:.0}×",
+            photon_time / beam_dt.as_secs_f64()
+        );
+    }
+}

@@ -1,0 +1,517 @@
+//! `facetlab score CUT...`: brilliance, fire, scintillation, ASET shares and overhead light
+//! return from the beam tracer, one column per cut.
+//!
+//! ```text
+//! facetlab score tolkowsky gia-reference
+//! facetlab score tolkowsky --material cz --head-shadow 15
+//! facetlab score mycut.toml --ri 2.42 --polarization off --json scores.json
+//! ```
+//!
+//! Flags are read as text and validated here into [`ScoreConfig`], so every bad value ends in
+//! a one-line error naming the flag and what is allowed. Score definitions and ranges are in
+//! [`crate::metrics`].
+//!
+//! **JSON** (`--json FILE`, written atomically). One cut: a single object with `cut` (its
+//! name), `overhead_light_return`, `brilliance`, `brilliance_iso`, `brilliance_cos`, `fire`,
+//! `scintillation`, `aset.{blue,red,green,leak}` (the keys of [`Scores`]) and `settings` (the
+//! run's configuration as understood: `material`, `ri` (null unless `--ri`), `polarization`,
+//! `head_shadow_deg`, `wavelength_nm`, `bands`, `tilts`, `scintillation_tilts`, `resolution`,
+//! `split_threshold`, `fire_split_threshold`, `threshold`). Several cuts: `{"settings": {...}, "results": [one such
+//! object per cut, without settings]}` in the order given. With `--verify` each object also gets `verify.{overhead_light_return, brilliance,
+//! brilliance_iso, brilliance_cos}.{beam, photon, stderr, z, photons}`: the beam tracer's
+//! value, the photon tracer's estimate and standard error, (beam − photon)/stderr, and the
+//! photons per figure and pose (seed 1).
+
+use crate::error::{Error, Result};
+use crate::metrics::verify::{verify_scores, Check};
+use crate::metrics::{score, ScoreConfig, Scores, Tilt};
+use crate::optics::{Dispersion, Material};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// Flags of `facetlab score`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct ScoreArgs {
+    /// Cuts to score: preset names (tolkowsky, gia-reference) or .toml/.asc/.obj/.stl files.
+    #[arg(required = true, value_name = "CUT")]
+    pub cuts: Vec<String>,
+    /// A fixed refractive index instead of the material's dispersion curve (no fire).
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub ri: Option<String>,
+    /// Material: diamond (default), cubic-zirconia (cz), sapphire, glass.
+    #[arg(long, value_name = "NAME")]
+    pub material: Option<String>,
+    /// Track polarization with Stokes vectors and Mueller matrices (on) or use the
+    /// unpolarized average (off).
+    #[arg(long, default_value = "on", value_name = "on|off")]
+    pub polarization: String,
+    /// Half-angle in degrees of the viewer's head shadow around the zenith (0 = none).
+    #[arg(
+        long,
+        default_value = "0",
+        value_name = "DEG",
+        allow_hyphen_values = true
+    )]
+    pub head_shadow: String,
+    /// Write the scores as JSON to this file.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Re-measure overhead light return and brilliance with this many photons of the photon
+    /// tracer and print both with the difference in standard errors.
+    #[arg(long, value_name = "PHOTONS", allow_hyphen_values = true)]
+    pub verify: Option<String>,
+}
+
+/// The flags, validated.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    /// Scoring configuration.
+    pub config: ScoreConfig,
+    /// Photons for `--verify`.
+    pub verify: Option<u64>,
+}
+
+fn parse_number(flag: &str, s: &str, lo: f64, hi: f64, what: &str) -> Result<f64> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= lo && v <= hi => Ok(v),
+        _ => Err(Error::invalid(
+            flag,
+            format!("`{s}` is not allowed; give {what} in [{lo}, {hi}]"),
+        )),
+    }
+}
+
+fn parse_count(flag: &str, s: &str, min: u64, max: u64) -> Result<u64> {
+    let t = s.trim().replace('_', "");
+    let v = match t.parse::<u64>() {
+        Ok(v) => Some(v),
+        Err(_) => match t.parse::<f64>() {
+            Ok(f) if f.is_finite() && f >= 0.0 && f.fract() == 0.0 && f <= u64::MAX as f64 => {
+                Some(f as u64)
+            }
+            _ => None,
+        },
+    };
+    match v {
+        Some(v) if (min..=max).contains(&v) => Ok(v),
+        _ => Err(Error::invalid(
+            flag,
+            format!("`{s}` is not allowed; give a whole number in {min}..={max} (1e6 and 1_000_000 work)"),
+        )),
+    }
+}
+
+/// Validate the flags into the library's types.
+pub fn settings(a: &ScoreArgs) -> Result<Settings> {
+    let material = match (&a.ri, &a.material) {
+        (Some(_), Some(_)) => {
+            return Err(Error::invalid(
+                "--ri",
+                "give either --ri or --material, not both",
+            ))
+        }
+        (Some(r), None) => {
+            Material::constant(parse_number("--ri", r, 1.0001, 10.0, "a refractive index")?)
+        }
+        (None, Some(m)) => Material::by_name(m)?,
+        (None, None) => Material::diamond(),
+    };
+    let polarization = match a.polarization.trim().to_ascii_lowercase().as_str() {
+        "on" | "true" | "yes" => true,
+        "off" | "false" | "no" => false,
+        _ => {
+            return Err(Error::invalid(
+                "--polarization",
+                format!("`{}` is not allowed; use on or off", a.polarization),
+            ))
+        }
+    };
+    let head = parse_number(
+        "--head-shadow",
+        &a.head_shadow,
+        0.0,
+        60.0,
+        "a half-angle in degrees (0 = none)",
+    )?;
+    let verify = a
+        .verify
+        .as_deref()
+        .map(|v| parse_count("--verify", v, 1, 1_000_000_000_000))
+        .transpose()?;
+    let config = ScoreConfig {
+        material,
+        polarization,
+        head_shadow_deg: head,
+        ..ScoreConfig::default()
+    };
+    config.validate()?;
+    Ok(Settings { config, verify })
+}
+
+/// The configuration as written to JSON.
+#[derive(Serialize)]
+struct SettingsJson<'a> {
+    material: &'a str,
+    ri: Option<f64>,
+    polarization: bool,
+    head_shadow_deg: f64,
+    wavelength_nm: f64,
+    bands: usize,
+    tilts: &'a [Tilt],
+    scintillation_tilts: &'a [f64],
+    resolution: usize,
+    split_threshold: f64,
+    fire_split_threshold: f64,
+    threshold: f64,
+}
+
+impl<'a> SettingsJson<'a> {
+    fn new(c: &'a ScoreConfig) -> Self {
+        SettingsJson {
+            material: &c.material.name,
+            ri: match c.material.dispersion {
+                Dispersion::Constant(n) => Some(n),
+                _ => None,
+            },
+            polarization: c.polarization,
+            head_shadow_deg: c.head_shadow_deg,
+            wavelength_nm: c.wavelength_nm,
+            bands: c.bands,
+            tilts: &c.tilts,
+            scintillation_tilts: &c.scintillation_tilts,
+            resolution: c.resolution,
+            split_threshold: c.trace.split_threshold,
+            fire_split_threshold: c.fire_split_threshold,
+            threshold: c.trace.threshold,
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct CutJson<'a> {
+    cut: &'a str,
+    #[serde(flatten)]
+    scores: &'a Scores,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    settings: Option<SettingsJson<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    verify: Option<std::collections::BTreeMap<&'a str, VerifyJson>>,
+}
+
+#[derive(Serialize)]
+struct VerifyJson {
+    beam: f64,
+    photon: f64,
+    stderr: f64,
+    z: f64,
+    photons: u64,
+}
+
+fn verify_json(
+    checks: Option<&Vec<Check>>,
+    photons: u64,
+) -> Option<std::collections::BTreeMap<&str, VerifyJson>> {
+    checks.map(|cs| {
+        cs.iter()
+            .map(|c| {
+                (
+                    c.name.as_str(),
+                    VerifyJson {
+                        beam: c.beam,
+                        photon: c.photon,
+                        stderr: c.stderr,
+                        z: c.z,
+                        photons,
+                    },
+                )
+            })
+            .collect()
+    })
+}
+
+#[derive(Serialize)]
+struct ManyJson<'a> {
+    settings: SettingsJson<'a>,
+    results: Vec<CutJson<'a>>,
+}
+
+/// The JSON document for these results (see the module documentation).
+/// `verify` holds, per cut, the photon-tracer checks of `--verify` (empty when not asked),
+/// made with `photons` photons per figure.
+pub fn to_json(
+    config: &ScoreConfig,
+    results: &[(String, Scores)],
+    verify: &[Vec<Check>],
+    photons: u64,
+) -> Result<String> {
+    let doc = if let [(name, s)] = results {
+        serde_json::to_string_pretty(&CutJson {
+            cut: name,
+            scores: s,
+            settings: Some(SettingsJson::new(config)),
+            verify: verify_json(verify.first(), photons),
+        })
+    } else {
+        serde_json::to_string_pretty(&ManyJson {
+            settings: SettingsJson::new(config),
+            results: results
+                .iter()
+                .enumerate()
+                .map(|(i, (n, s))| CutJson {
+                    cut: n,
+                    scores: s,
+                    settings: None,
+                    verify: verify_json(verify.get(i), photons),
+                })
+                .collect(),
+        })
+    };
+    doc.map_err(|e| Error::invalid("--json", e.to_string()))
+}
+
+/// The table printed by `facetlab score`: one row per score, one column per cut.
+pub fn table(config: &ScoreConfig, results: &[(String, Scores)]) -> String {
+    type Row = (&'static str, fn(&Scores) -> f64);
+    let rows: [Row; 10] = [
+        ("overhead light return", |s| s.overhead_light_return),
+        ("brilliance (ISO+COS)/2", |s| s.brilliance),
+        ("  brilliance ISO", |s| s.brilliance_iso),
+        ("  brilliance COS", |s| s.brilliance_cos),
+        ("fire", |s| s.fire),
+        ("scintillation", |s| s.scintillation),
+        ("ASET blue 75-90°", |s| s.aset.blue),
+        ("ASET red 45-75°", |s| s.aset.red),
+        ("ASET green 0-45°", |s| s.aset.green),
+        ("ASET leak <0°", |s| s.aset.leak),
+    ];
+    let label_w = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
+    let col_w = results
+        .iter()
+        .map(|(n, _)| n.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(8);
+    let c = config;
+    let mut out = format!(
+        "{}, {}, polarization {}, head shadow {}°, {} poses, {} bands\n",
+        c.material.name,
+        match c.material.dispersion {
+            Dispersion::Constant(n) => format!("n = {n}"),
+            _ => format!(
+                "n = {:.4} at {} nm",
+                c.material.ri(c.wavelength_nm),
+                c.wavelength_nm
+            ),
+        },
+        if c.polarization { "on" } else { "off" },
+        c.head_shadow_deg,
+        c.tilts.len(),
+        c.bands
+    );
+    out.push_str(&format!("{:label_w$}", ""));
+    for (n, _) in results {
+        out.push_str(&format!("  {n:>col_w$}"));
+    }
+    out.push('\n');
+    for (label, f) in rows {
+        let pad = label_w - label.chars().count();
+        out.push_str(label);
+        out.push_str(&" ".repeat(pad));
+        for (_, s) in results {
+            out.push_str(&format!("  {:>col_w$.4}", f(s)));
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// Run `facetlab score`.
+pub fn run(a: &ScoreArgs) -> Result<()> {
+    let s = settings(a)?;
+    let cuts = a
+        .cuts
+        .iter()
+        .map(|c| crate::io::load_cut(c))
+        .collect::<Result<Vec<_>>>()?;
+    if let Some(path) = &a.json {
+        // Fail before the work, not after it.
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            if !dir.is_dir() {
+                return Err(Error::io(
+                    path.display().to_string(),
+                    format!("folder {} does not exist", dir.display()),
+                ));
+            }
+        }
+    }
+    let results: Vec<(String, Scores)> = cuts
+        .iter()
+        .map(|c| (c.name.clone(), score(&c.solid, &s.config)))
+        .collect();
+    print!("{}", table(&s.config, &results));
+    let mut checks: Vec<Vec<Check>> = Vec::new();
+    let photons = s.verify.unwrap_or(0);
+    if let Some(photons) = s.verify {
+        println!(
+            "\nphoton-tracer check, {photons} photons per figure and pose (value ± standard error; beam − photon in standard errors)"
+        );
+        for (cut, (name, sc)) in cuts.iter().zip(&results) {
+            let cs = verify_scores(&cut.solid, &s.config, sc, photons, VERIFY_SEED)?;
+            println!("{name}");
+            for c in &cs {
+                let flag = if c.z.abs() > 4.0 {
+                    "  ⚠ beyond 4 se"
+                } else {
+                    ""
+                };
+                println!(
+                    "  {:<24} beam {:.4}   photon {:.4} ± {:.4}   {:+.2} se{flag}",
+                    c.name, c.beam, c.photon, c.stderr, c.z
+                );
+            }
+            checks.push(cs);
+        }
+    }
+    if let Some(path) = &a.json {
+        crate::io::write_atomic(
+            path,
+            to_json(&s.config, &results, &checks, photons)?.as_bytes(),
+        )?;
+    }
+    Ok(())
+}
+
+/// Seed of the photon tracer in `--verify`.
+pub const VERIFY_SEED: u64 = 1;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(extra: &[&str]) -> ScoreArgs {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct W {
+            #[command(flatten)]
+            a: ScoreArgs,
+        }
+        let mut v = vec!["score"];
+        v.extend_from_slice(extra);
+        W::try_parse_from(v).unwrap().a
+    }
+
+    #[test]
+    fn flags_are_validated_into_one_line_errors() {
+        let e = |x: &[&str]| settings(&args(x)).unwrap_err().to_string();
+        assert!(e(&["t", "--ri", "abc"]).starts_with("--ri:"));
+        assert!(e(&["t", "--ri", "0.5"]).contains("[1.0001, 10]"));
+        assert!(e(&["t", "--ri", "NaN"]).starts_with("--ri:"));
+        assert!(e(&["t", "--ri", "2", "--material", "cz"]).contains("not both"));
+        assert!(e(&["t", "--material", "unobtainium"]).starts_with("--material:"));
+        assert!(e(&["t", "--polarization", "maybe"]).contains("on or off"));
+        assert!(e(&["t", "--head-shadow", "-3"]).starts_with("--head-shadow:"));
+        assert!(e(&["t", "--head-shadow", "90"]).contains("[0, 60]"));
+        assert!(e(&["t", "--verify", "lots"]).starts_with("--verify:"));
+        for msg in [e(&["t", "--ri", "abc"]), e(&["t", "--verify", "0"])] {
+            assert!(!msg.contains('\n'));
+        }
+        let s = settings(&args(&[
+            "t",
+            "--ri",
+            "2.42",
+            "--polarization",
+            "off",
+            "--head-shadow",
+            "15",
+        ]))
+        .unwrap();
+        assert_eq!(s.config.material.ri(500.0), 2.42);
+        assert!(!s.config.polarization && s.config.head_shadow_deg == 15.0);
+        assert_eq!(
+            settings(&args(&["t", "--verify", "1e6"])).unwrap().verify,
+            Some(1_000_000)
+        );
+    }
+
+    #[test]
+    fn verify_is_refused_until_wired_and_bad_cuts_fail_first() {
+        let e = run(&args(&["tolkowsky", "--verify", "1000"]))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("--verify:") && e.contains("photon tracer"),
+            "{e}"
+        );
+        let e = run(&args(&["no-such-preset"])).unwrap_err().to_string();
+        assert!(e.contains("unknown preset"), "{e}");
+    }
+
+    #[test]
+    fn table_and_json_have_the_documented_shape() {
+        let cfg = ScoreConfig::default();
+        let s = Scores {
+            fire: 0.25,
+            ..Default::default()
+        };
+        let one = to_json(&cfg, &[("tolkowsky".into(), s)], &[], 0).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&one).unwrap();
+        for k in [
+            "overhead_light_return",
+            "brilliance",
+            "brilliance_iso",
+            "brilliance_cos",
+            "fire",
+            "scintillation",
+        ] {
+            assert!(v[k].is_number(), "{k} in {one}");
+        }
+        for k in ["blue", "red", "green", "leak"] {
+            assert!(v["aset"][k].is_number(), "aset.{k}");
+        }
+        assert_eq!(v["cut"], "tolkowsky");
+        assert_eq!(v["settings"]["material"], "diamond");
+        assert!(v["settings"]["ri"].is_null());
+        let two = to_json(&cfg, &[("a".into(), s), ("b".into(), s)], &[], 0).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&two).unwrap();
+        assert_eq!(v["results"][1]["cut"], "b");
+        assert_eq!(v["results"][0]["fire"], 0.25);
+        assert!(v["results"][0].get("settings").is_none() && v["settings"].is_object());
+        let t = table(
+            &cfg,
+            &[("tolkowsky".into(), s), ("gia-reference".into(), s)],
+        );
+        assert_eq!(t.lines().count(), 12);
+        assert!(t.lines().nth(1).unwrap().contains("gia-reference") && t.contains("0.2500"));
+    }
+
+    #[test]
+    fn run_writes_json_atomically() {
+        let dir = std::env::temp_dir().join(format!("facetlab-score-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("s.json");
+        run(&args(&[
+            "tolkowsky",
+            "--ri",
+            "2.4",
+            "--json",
+            path.to_str().unwrap(),
+        ]))
+        .unwrap();
+        let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+        assert_eq!(v["cut"], "Tolkowsky");
+        assert!(v["fire"].as_f64().unwrap().abs() < 1e-9);
+        assert_eq!(v["settings"]["ri"], 2.4);
+        // A folder that does not exist: an error naming the file, nothing written.
+        let bad = dir.join("missing").join("s.json");
+        let e = run(&args(&[
+            "tolkowsky",
+            "--ri",
+            "2.4",
+            "--json",
+            bad.to_str().unwrap(),
+        ]))
+        .unwrap_err();
+        assert!(e.to_string().contains("s.json") && !bad.exists());
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}

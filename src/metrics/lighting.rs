@@ -1,0 +1,277 @@
+//! Lighting environments, as radiance functions of the direction light arrives *from*
+//! (world coordinates, z up, the viewer straight above).
+//!
+//! Every edge (the horizon, the head shadow's rim, a spot's rim, an ASET band boundary) is a
+//! smooth ramp [`EDGE_DEG`] wide on each side rather than a step. A beam's exit direction
+//! moves continuously with the cut's proportions; with a step edge its whole power would jump
+//! in or out of the light as it crosses, with a ramp it fades. That is what keeps the scores
+//! continuous (Lipschitz) in the cut's parameters, which the optimizer relies on.
+
+use glam::DVec3;
+
+/// Half-width of every soft edge, degrees.
+pub const EDGE_DEG: f64 = 1.0;
+
+/// C¹ ramp: 0 for `x ≤ 0`, 1 for `x ≥ 1`, `3x² − 2x³` between.
+#[inline]
+pub fn smoothstep(x: f64) -> f64 {
+    let x = x.clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
+}
+
+/// 0 well below `edge_deg`, 1 well above, a ramp of ±[`EDGE_DEG`] around it.
+#[inline]
+pub fn soft_above(value_deg: f64, edge_deg: f64) -> f64 {
+    smoothstep((value_deg - edge_deg + EDGE_DEG) / (2.0 * EDGE_DEG))
+}
+
+/// Elevation of direction `w` above the horizon, degrees.
+#[inline]
+pub fn elevation_deg(w: DVec3) -> f64 {
+    w.z.clamp(-1.0, 1.0).asin().to_degrees()
+}
+
+/// A small round light source of uniform radiance 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spot {
+    /// Elevation of its centre above the horizon, degrees.
+    pub elevation_deg: f64,
+    /// Azimuth of its centre, degrees from +x toward +y.
+    pub azimuth_deg: f64,
+    /// Angular radius, degrees (the rim is soft by ±[`EDGE_DEG`]).
+    pub radius_deg: f64,
+}
+
+impl Spot {
+    /// Unit vector toward the spot's centre.
+    pub fn direction(&self) -> DVec3 {
+        let (e, a) = (
+            self.elevation_deg.to_radians(),
+            self.azimuth_deg.to_radians(),
+        );
+        DVec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
+    }
+
+    /// The default set for fire and scintillation: seven 5° spots, three at 40° elevation,
+    /// three at 60° (turned 60° from the first three) and one at 75°, at azimuths that do not
+    /// share a round brilliant's 8-fold symmetry.
+    pub fn default_set() -> Vec<Spot> {
+        let mut v = Vec::new();
+        for k in 0..3 {
+            v.push(Spot {
+                elevation_deg: 40.0,
+                azimuth_deg: 10.0 + 120.0 * k as f64,
+                radius_deg: 5.0,
+            });
+            v.push(Spot {
+                elevation_deg: 60.0,
+                azimuth_deg: 70.0 + 120.0 * k as f64,
+                radius_deg: 5.0,
+            });
+        }
+        v.push(Spot {
+            elevation_deg: 75.0,
+            azimuth_deg: 205.0,
+            radius_deg: 5.0,
+        });
+        v
+    }
+}
+
+/// Radiance functions of the scoring environments, with the head shadow applied.
+#[derive(Clone, Debug)]
+pub struct Lighting {
+    /// Head shadow half-angle around the zenith (the viewer's direction), degrees; 0 = none.
+    pub head_shadow_deg: f64,
+    spots: Vec<(DVec3, f64, f64, f64)>,
+}
+
+impl Lighting {
+    /// Lighting with a head shadow of `head_shadow_deg` and the given spots.
+    pub fn new(head_shadow_deg: f64, spots: &[Spot]) -> Lighting {
+        let spots = spots
+            .iter()
+            .map(|s| {
+                let inner = (s.radius_deg - EDGE_DEG).max(0.0).to_radians().cos();
+                let outer = (s.radius_deg + EDGE_DEG).to_radians().cos();
+                (s.direction(), inner, outer, s.radius_deg)
+            })
+            .collect();
+        Lighting {
+            head_shadow_deg,
+            spots,
+        }
+    }
+
+    /// Share of the light from `w` that the viewer's head lets through: 0 inside the shadow
+    /// cone around the zenith, 1 outside, soft at the rim.
+    #[inline]
+    pub fn head(&self, w: DVec3) -> f64 {
+        if self.head_shadow_deg <= 0.0 {
+            return 1.0;
+        }
+        // Angle from the zenith = 90° − elevation.
+        soft_above(90.0 - elevation_deg(w), self.head_shadow_deg)
+    }
+
+    /// GemRay-style ISO lighting: radiance 1 over the upper hemisphere, 0 below (soft at the
+    /// horizon), times the head shadow.
+    #[inline]
+    pub fn iso(&self, w: DVec3) -> f64 {
+        let sky = if w.z >= 0.1 {
+            1.0
+        } else if w.z <= -0.1 {
+            0.0
+        } else {
+            soft_above(elevation_deg(w), 0.0)
+        };
+        if sky == 0.0 {
+            0.0
+        } else {
+            sky * self.head(w)
+        }
+    }
+
+    /// GemRay-style COS lighting: radiance ∝ the cosine of the angle from the zenith (1 at
+    /// the zenith, 0 at and below the horizon), times the head shadow.
+    #[inline]
+    pub fn cos(&self, w: DVec3) -> f64 {
+        if w.z <= 0.0 {
+            0.0
+        } else {
+            w.z * self.head(w)
+        }
+    }
+
+    /// Radiance of the spot lights (each 1, soft rims), times the head shadow.
+    #[inline]
+    pub fn spots(&self, w: DVec3) -> f64 {
+        let mut l = 0.0;
+        for &(c, inner, outer, radius) in &self.spots {
+            let d = w.dot(c);
+            if d <= outer {
+                continue;
+            }
+            l += if d >= inner {
+                1.0
+            } else {
+                1.0 - soft_above(d.clamp(-1.0, 1.0).acos().to_degrees(), radius)
+            };
+        }
+        if l == 0.0 {
+            0.0
+        } else {
+            l * self.head(w)
+        }
+    }
+
+    /// Whether [`Lighting::spots`] can be non-zero for `w` (cheap pre-test).
+    #[inline]
+    pub fn near_spot(&self, w: DVec3) -> bool {
+        self.spots.iter().any(|&(c, _, outer, _)| w.dot(c) > outer)
+    }
+}
+
+/// ASET-style shares of one direction: light from 75–90° elevation (`blue`), 45–75° (`red`),
+/// 0–45° (`green`) and below the horizon (`leak`), each boundary soft by ±[`EDGE_DEG`]. The
+/// four always add up to 1.
+#[inline]
+pub fn aset_bins(w: DVec3) -> [f64; 4] {
+    // Away from the soft boundaries (±1° around 75°, 45° and 0°) no arcsine is needed.
+    const S76: f64 = 0.970_295_726_275_996_5;
+    const S74: f64 = 0.961_261_695_938_318_9;
+    const S46: f64 = 0.719_339_800_338_651_1;
+    const S44: f64 = 0.694_658_370_458_997_3;
+    const S1: f64 = 0.017_452_406_437_283_51;
+    let z = w.z;
+    if z >= S76 {
+        [1.0, 0.0, 0.0, 0.0]
+    } else if (S46..=S74).contains(&z) {
+        [0.0, 1.0, 0.0, 0.0]
+    } else if (S1..=S44).contains(&z) {
+        [0.0, 0.0, 1.0, 0.0]
+    } else if z <= -S1 {
+        [0.0, 0.0, 0.0, 1.0]
+    } else {
+        aset_bins_exact(w)
+    }
+}
+
+#[inline]
+fn aset_bins_exact(w: DVec3) -> [f64; 4] {
+    let e = elevation_deg(w);
+    let a = soft_above(e, 75.0);
+    let b = soft_above(e, 45.0);
+    let c = soft_above(e, 0.0);
+    [a, b - a, c - b, 1.0 - c]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dir(elev: f64, az: f64) -> DVec3 {
+        Spot {
+            elevation_deg: elev,
+            azimuth_deg: az,
+            radius_deg: 1.0,
+        }
+        .direction()
+    }
+
+    #[test]
+    fn iso_cos_head() {
+        let l = Lighting::new(0.0, &[]);
+        assert_eq!(l.iso(dir(30.0, 10.0)), 1.0);
+        assert_eq!(l.iso(dir(-30.0, 10.0)), 0.0);
+        assert!((l.iso(dir(0.0, 0.0)) - 0.5).abs() < 1e-12);
+        assert!((l.cos(dir(30.0, 0.0)) - 0.5).abs() < 1e-12);
+        assert_eq!(l.cos(dir(-5.0, 0.0)), 0.0);
+        let h = Lighting::new(15.0, &[]);
+        assert_eq!(h.iso(dir(89.0, 0.0)), 0.0);
+        assert_eq!(h.iso(dir(60.0, 0.0)), 1.0);
+        assert!((h.iso(dir(75.0, 0.0)) - 0.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn spots_and_rims() {
+        let s = Spot {
+            elevation_deg: 40.0,
+            azimuth_deg: 10.0,
+            radius_deg: 5.0,
+        };
+        let l = Lighting::new(0.0, &[s]);
+        assert_eq!(l.spots(s.direction()), 1.0);
+        assert_eq!(l.spots(dir(40.0, 30.0)), 0.0);
+        assert!((l.spots(dir(45.0, 10.0)) - 0.5).abs() < 1e-6);
+        assert!(l.near_spot(dir(44.5, 10.0)) && !l.near_spot(dir(46.5, 10.0)));
+        // The ramp is monotone and continuous.
+        let mut prev = 1.0;
+        for k in 0..=400 {
+            let v = l.spots(dir(40.0 + k as f64 * 0.02, 10.0));
+            assert!(v <= prev + 1e-12 && prev - v < 0.02);
+            prev = v;
+        }
+    }
+
+    #[test]
+    fn aset_bins_partition() {
+        for k in -90..=90 {
+            let b = aset_bins(dir(k as f64 + 0.3, 0.0));
+            assert!((b.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+            assert!(b.iter().all(|&x| (0.0..=1.0).contains(&x)));
+        }
+        assert_eq!(aset_bins(dir(80.0, 0.0)), [1.0, 0.0, 0.0, 0.0]);
+        assert_eq!(aset_bins(dir(60.0, 0.0)), [0.0, 1.0, 0.0, 0.0]);
+        assert_eq!(aset_bins(dir(20.0, 0.0)), [0.0, 0.0, 1.0, 0.0]);
+        assert_eq!(aset_bins(dir(-20.0, 0.0)), [0.0, 0.0, 0.0, 1.0]);
+        // The shortcut agrees with the arcsine form everywhere.
+        for k in 0..=18000 {
+            let w = dir(-90.0 + k as f64 * 0.01, 0.0);
+            let (a, b) = (aset_bins(w), aset_bins_exact(w));
+            for i in 0..4 {
+                assert!((a[i] - b[i]).abs() < 1e-9, "{k}: {a:?} {b:?}");
+            }
+        }
+    }
+}

@@ -1,0 +1,306 @@
+//! Tests of the scores.
+
+use super::*;
+use crate::beam::tests::{octahedron, princess, tolkowsky};
+use std::collections::BTreeMap;
+
+/// A lighter configuration for tests that score many cuts.
+fn lean() -> ScoreConfig {
+    ScoreConfig {
+        tilts: vec![
+            Tilt::FACE_UP,
+            Tilt {
+                tilt_deg: 10.0,
+                azimuth_deg: 30.0,
+            },
+        ],
+        bands: 4,
+        scintillation_tilts: vec![-2.0, 0.0, 2.0],
+        resolution: 32,
+        trace: TraceOptions {
+            split_threshold: 1e-3,
+            threshold: 1e-7,
+            ..Default::default()
+        },
+        ..ScoreConfig::default()
+    }
+}
+
+fn round(pavilion: f64) -> Polyhedron {
+    let mut v = BTreeMap::new();
+    v.insert("pavilion_angle".to_string(), pavilion);
+    let c = crate::io::load_cut("tolkowsky").unwrap();
+    c.with_params(&v).unwrap().solid
+}
+
+fn check_ranges(name: &str, s: &Scores) {
+    for (k, v) in [
+        ("overhead_light_return", s.overhead_light_return),
+        ("brilliance", s.brilliance),
+        ("brilliance_iso", s.brilliance_iso),
+        ("brilliance_cos", s.brilliance_cos),
+        ("scintillation", s.scintillation),
+        ("blue", s.aset.blue),
+        ("red", s.aset.red),
+        ("green", s.aset.green),
+        ("leak", s.aset.leak),
+    ] {
+        assert!((0.0..=1.0).contains(&v), "{name}: {k} = {v}");
+    }
+    assert!(s.fire >= 0.0 && s.fire < 150.0, "{name}: fire {}", s.fire);
+    let a = s.aset;
+    assert!(
+        (a.blue + a.red + a.green + a.leak - 1.0).abs() < 1e-12,
+        "{name}: {a:?}"
+    );
+    assert!(s.brilliance_cos < s.brilliance_iso, "{name}");
+    assert!((s.brilliance - 0.5 * (s.brilliance_iso + s.brilliance_cos)).abs() < 1e-15);
+}
+
+#[test]
+fn default_scores_of_tolkowsky_are_in_range_and_plausible() {
+    let s = score(&tolkowsky(), &ScoreConfig::default());
+    check_ranges("tolkowsky", &s);
+    // An ideal round brilliant returns most overhead light and leaks little face-up.
+    assert!(s.overhead_light_return > 0.85, "{s:?}");
+    assert!(s.aset.leak < 0.15 && s.brilliance_iso > 0.8, "{s:?}");
+    assert!(s.fire > 0.0 && s.scintillation > 0.0);
+}
+
+#[test]
+fn scores_of_other_solids_are_in_range_and_rank_sensibly() {
+    let r = score(&tolkowsky(), &lean());
+    let p = score(&princess(), &lean());
+    let o = score(&octahedron(), &lean());
+    for (n, s) in [("tolkowsky", &r), ("princess", &p), ("octahedron", &o)] {
+        check_ranges(n, s);
+    }
+    // A cut designed for light return beats a crude square cut, which beats an octahedron
+    // (most of whose face-up view looks through the stone).
+    assert!(
+        r.brilliance > p.brilliance && p.brilliance > o.brilliance,
+        "{r:?} {p:?} {o:?}"
+    );
+    assert!(o.aset.leak > 0.4 && r.aset.leak < 0.15);
+}
+
+#[test]
+fn zero_dispersion_has_no_fire() {
+    let cfg = ScoreConfig {
+        material: Material::constant(2.4173),
+        ..lean()
+    };
+    let s = score(&tolkowsky(), &cfg);
+    assert!(s.fire.abs() < 1e-9, "{}", s.fire);
+    // Same index with dispersion: fire.
+    let d = score(&tolkowsky(), &lean());
+    assert!(d.fire > 0.01, "{}", d.fire);
+    // The rest barely changes (n is the diamond's at 589.3 nm in both).
+    assert!((s.brilliance - d.brilliance).abs() < 0.01);
+}
+
+#[test]
+fn cubic_zirconia_has_more_fire_than_diamond() {
+    let cfg = ScoreConfig {
+        bands: 6,
+        trace: TraceOptions {
+            split_threshold: 3e-4,
+            ..Default::default()
+        },
+        ..lean()
+    };
+    let d = score(&tolkowsky(), &cfg);
+    let cz = score(
+        &tolkowsky(),
+        &ScoreConfig {
+            material: Material::cubic_zirconia(),
+            ..cfg.clone()
+        },
+    );
+    assert!(cz.fire > 1.2 * d.fire, "cz {} diamond {}", cz.fire, d.fire);
+}
+
+#[test]
+fn overhead_light_return_agrees_with_score_and_polarization_matters_little() {
+    let s = tolkowsky();
+    let cfg = lean();
+    let olr = overhead_light_return_with(
+        &Stone::new(&s),
+        cfg.material.ri(cfg.wavelength_nm),
+        &cfg.trace,
+    );
+    assert_eq!(olr, score(&s, &cfg).overhead_light_return);
+    let on = overhead_light_return(&s, &Material::diamond(), 589.3, true);
+    let off = overhead_light_return(&s, &Material::diamond(), 589.3, false);
+    assert!((on - off).abs() < 0.01 && on != off, "{on} {off}");
+}
+
+#[test]
+fn results_do_not_depend_on_thread_count() {
+    let s = princess();
+    let cfg = lean();
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| score(&s, &cfg))
+    };
+    let (a, b) = (run(1), run(3));
+    assert_eq!(a, b);
+    assert_eq!(
+        serde_json::to_string(&a).unwrap(),
+        serde_json::to_string(&b).unwrap()
+    );
+}
+
+#[test]
+fn head_shadow_darkens_brilliance() {
+    let s = tolkowsky();
+    let open = score(&s, &lean());
+    let shadow = score(
+        &s,
+        &ScoreConfig {
+            head_shadow_deg: 20.0,
+            ..lean()
+        },
+    );
+    assert!(
+        shadow.brilliance_iso < open.brilliance_iso - 0.02,
+        "{} {}",
+        shadow.brilliance_iso,
+        open.brilliance_iso
+    );
+    assert!(shadow.brilliance_cos < open.brilliance_cos);
+    assert_eq!(shadow.aset, open.aset);
+}
+
+/// Continuity in the pavilion angle: 40.00° → 41.00° in 0.01° steps, with no jump in
+/// brilliance larger than 0.01 nor in scintillation larger than 0.03. Fire is continuous but
+/// steep (coloured flashes slide across the spots' rims and the pixels), so its bound is
+/// stated relative to its own scale: no step changes it by more than a third of its value;
+/// and on a 10× finer step its changes shrink accordingly (a jump would not).
+#[test]
+fn scores_are_continuous_in_pavilion_angle() {
+    let cfg = ScoreConfig {
+        tilts: vec![Tilt::FACE_UP],
+        bands: 3,
+        scintillation_tilts: vec![-2.0, 2.0],
+        resolution: 24,
+        polarization: false,
+        trace: TraceOptions {
+            threshold: 1e-7,
+            ..Default::default()
+        },
+        ..lean()
+    };
+    let sweep = |start: f64, step: f64, n: usize| -> Vec<Scores> {
+        (0..=n)
+            .into_par_iter()
+            .map(|k| score(&round(start + step * k as f64), &cfg))
+            .collect()
+    };
+    let max_jump = |s: &[Scores], f: fn(&Scores) -> f64| {
+        s.windows(2)
+            .map(|w| (f(&w[1]) - f(&w[0])).abs())
+            .fold(0.0, f64::max)
+    };
+    let coarse = sweep(40.0, 0.01, 100);
+    let bri = max_jump(&coarse, |s| s.brilliance);
+    let sci = max_jump(&coarse, |s| s.scintillation);
+    let fire = max_jump(&coarse, |s| s.fire);
+    let fire_scale = coarse.iter().map(|s| s.fire).fold(0.0, f64::max);
+    eprintln!("max jumps per 0.01°: brilliance {bri:.1e}, scintillation {sci:.1e}, fire {fire:.1e} (fire up to {fire_scale:.2})");
+    assert!(bri < 0.01 && sci < 0.03 && fire < fire_scale / 3.0);
+    // The overall trend is real, not noise: brilliance moves more over the degree than any step.
+    assert!(
+        (coarse[100].brilliance - coarse[0].brilliance).abs() > 3.0 * bri.min(1.0) || bri < 2e-3
+    );
+    let fine = sweep(40.5, 0.001, 10);
+    let fire_fine = max_jump(&fine, |s| s.fire);
+    let bri_fine = max_jump(&fine, |s| s.brilliance);
+    eprintln!("max jumps per 0.001°: brilliance {bri_fine:.1e}, fire {fire_fine:.1e}");
+    assert!(fire_fine < fire / 2.0 && bri_fine < bri / 2.0);
+}
+
+#[test]
+fn config_validation_names_the_field() {
+    assert!(ScoreConfig::default().validate().is_ok());
+    assert!(ScoreConfig::fast().validate().is_ok());
+    let bad = |c: ScoreConfig, field: &str| {
+        let e = c.validate().unwrap_err().to_string();
+        assert!(e.starts_with(field), "{e}");
+    };
+    bad(
+        ScoreConfig {
+            head_shadow_deg: -1.0,
+            ..Default::default()
+        },
+        "head-shadow",
+    );
+    bad(
+        ScoreConfig {
+            head_shadow_deg: f64::NAN,
+            ..Default::default()
+        },
+        "head-shadow",
+    );
+    bad(
+        ScoreConfig {
+            wavelength_nm: 1000.0,
+            ..Default::default()
+        },
+        "wavelength",
+    );
+    bad(
+        ScoreConfig {
+            material: Material::constant(0.9),
+            ..Default::default()
+        },
+        "wavelength",
+    );
+    bad(
+        ScoreConfig {
+            bands: 0,
+            ..Default::default()
+        },
+        "bands",
+    );
+    bad(
+        ScoreConfig {
+            resolution: 2,
+            ..Default::default()
+        },
+        "resolution",
+    );
+    bad(
+        ScoreConfig {
+            tilts: vec![],
+            ..Default::default()
+        },
+        "tilts",
+    );
+    bad(
+        ScoreConfig {
+            scintillation_tilts: vec![0.0],
+            ..Default::default()
+        },
+        "scintillation-tilts",
+    );
+}
+
+#[test]
+fn unvalidated_configs_do_not_panic() {
+    let s = octahedron();
+    let weird = ScoreConfig {
+        tilts: vec![],
+        bands: 0,
+        resolution: 0,
+        scintillation_tilts: vec![f64::NAN],
+        head_shadow_deg: f64::NAN,
+        material: Material::constant(0.5),
+        ..lean()
+    };
+    let sc = score(&s, &weird);
+    assert!(sc.brilliance.is_finite() && sc.fire.is_finite());
+}

@@ -1,0 +1,78 @@
+//! Issue 5: a short optimization on the real objective (beam-tracer brilliance), verified by
+//! the photon tracer, writes every file and improves on its start.
+
+use super::{bad, ok};
+use tempfile::tempdir;
+
+const CONFIG: &str = r#"
+name = "short"
+seed = 3
+[cut]
+family = "round-brilliant"
+[cut.params]
+table = 0.57
+crown_angle = 36.0
+pavilion_angle = 42.0
+[free]
+crown_angle = [30.0, 38.0]
+pavilion_angle = [39.5, 42.5]
+[objective]
+brilliance = 1.0
+[method]
+name = "nelder-mead"
+starts = 2
+max_evaluations = 24
+[verify]
+winners = 1
+photons = 4000
+"#;
+
+#[test]
+fn short_real_run_improves_and_writes_every_file() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    std::fs::write(p.join("short.toml"), CONFIG).unwrap();
+    ok(p, &["optimize", "short.toml", "--out", "run", "--quiet"]);
+    let run = p.join("run");
+    for f in [
+        "config.toml",
+        "history.csv",
+        "convergence.png",
+        "convergence.svg",
+        "best.toml",
+        "best.asc",
+        "best.obj",
+        "best.svg",
+        "report.md",
+        "report.json",
+    ] {
+        let meta = std::fs::metadata(run.join(f)).unwrap_or_else(|_| panic!("{f} missing"));
+        assert!(meta.len() > 0, "{f} is empty");
+    }
+    let j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(run.join("report.json")).unwrap()).unwrap();
+    let start = j["start"]["cost"].as_f64().unwrap();
+    let best = j["winners"][0]["cost"].as_f64().unwrap();
+    assert!(best < start - 1e-3, "best {best} vs start {start}");
+    // The winner was re-scored by the photon tracer, with beam values beside the estimates.
+    let rows = j["winners"][0]["verification"]["rows"].as_array().unwrap();
+    assert!(rows
+        .iter()
+        .any(|r| r["name"] == "brilliance_mc" && r["beam"].is_number()));
+    // The best cut file is a valid cut of the family.
+    let info: serde_json::Value =
+        serde_json::from_str(&ok(&run, &["info", "best.toml", "--json"])).unwrap();
+    assert_eq!(info["family"], "round-brilliant");
+    // A bad config names the field.
+    std::fs::write(
+        p.join("bad.toml"),
+        CONFIG.replace("crown_angle = [30.0, 38.0]", "crown_angle = [38.0, 30.0]"),
+    )
+    .unwrap();
+    bad(
+        p,
+        &["optimize", "bad.toml", "--out", "run2"],
+        &["bad.toml", "free.crown_angle"],
+    );
+    assert!(!p.join("run2").exists());
+}
