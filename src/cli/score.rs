@@ -434,14 +434,36 @@ mod tests {
     }
 
     #[test]
-    fn verify_is_refused_until_wired_and_bad_cuts_fail_first() {
-        let e = run(&args(&["tolkowsky", "--verify", "1000"]))
+    fn verify_adds_photon_estimates_and_bad_cuts_fail_first() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("s.json");
+        let p = path.to_str().unwrap();
+        run(&args(&["tolkowsky", "--verify", "3000", "--json", p])).unwrap();
+        let j: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        for k in [
+            "overhead_light_return",
+            "brilliance",
+            "brilliance_iso",
+            "brilliance_cos",
+        ] {
+            let v = &j["verify"][k];
+            assert_eq!(v["beam"].as_f64(), j[k].as_f64(), "{k}");
+            let (ph, se, z) = (
+                v["photon"].as_f64().unwrap(),
+                v["stderr"].as_f64().unwrap(),
+                v["z"].as_f64().unwrap(),
+            );
+            assert!(
+                se > 0.0 && ((j[k].as_f64().unwrap() - ph) / se - z).abs() < 1e-9,
+                "{k}: {v}"
+            );
+            assert_eq!(v["photons"].as_u64(), Some(3000));
+        }
+        let e = run(&args(&["tolkowsky", "--verify", "0"]))
             .unwrap_err()
             .to_string();
-        assert!(
-            e.starts_with("--verify:") && e.contains("photon tracer"),
-            "{e}"
-        );
+        assert!(e.starts_with("--verify"), "{e}");
         let e = run(&args(&["no-such-preset"])).unwrap_err().to_string();
         assert!(e.contains("unknown preset"), "{e}");
     }

@@ -336,6 +336,7 @@ pub fn overhead_light_return(
 ) -> f64 {
     let opts = TraceOptions {
         polarization,
+        split_threshold: ScoreConfig::default().fire_split_threshold,
         ..Default::default()
     };
     overhead_light_return_with(&Stone::new(solid), material.ri(wavelength_nm), &opts)

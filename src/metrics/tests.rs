@@ -124,11 +124,12 @@ fn cubic_zirconia_has_more_fire_than_diamond() {
 fn overhead_light_return_agrees_with_score_and_polarization_matters_little() {
     let s = tolkowsky();
     let cfg = lean();
-    let olr = overhead_light_return_with(
-        &Stone::new(&s),
-        cfg.material.ri(cfg.wavelength_nm),
-        &cfg.trace,
-    );
+    let fine = TraceOptions {
+        split_threshold: cfg.fire_split_threshold,
+        ..cfg.trace
+    };
+    let olr =
+        overhead_light_return_with(&Stone::new(&s), cfg.material.ri(cfg.wavelength_nm), &fine);
     assert_eq!(olr, score(&s, &cfg).overhead_light_return);
     let on = overhead_light_return(&s, &Material::diamond(), 589.3, true);
     let off = overhead_light_return(&s, &Material::diamond(), 589.3, false);
