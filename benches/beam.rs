@@ -13,11 +13,7 @@
 //!   limit); its cost per photon stands in for the real one's.
 
 use facetlab::beam::{Frame, Stone, TraceOptions};
-use facetlab::geometry::Polyhedron;
 use facetlab::metrics::{overhead_light_return_with, score, ScoreConfig};
-use facetlab::optics::{fresnel, reflect, refract};
-use glam::DVec3;
-use rand::{rngs::SmallRng, Rng, SeedableRng};
 use std::time::{Duration, Instant};
 
 fn time<F: FnMut()>(mut f: F, min_time: Duration) -> (Duration, usize) {
@@ -32,59 +28,6 @@ fn time<F: FnMut()>(mut f: F, min_time: Duration) -> (Duration, usize) {
         n += 1;
     }
     (t0.elapsed() / n as u32, n)
-}
-
-/// One photon straight down at a random point of the stone's shadow; true if it leaves upward.
-fn photon(s: &Polyhedron, ri: f64, rng: &mut SmallRng, r: f64, top: f64) -> Option<bool> {
-    let d = DVec3::NEG_Z;
-    let p0 = DVec3::new(rng.random_range(-r..r), rng.random_range(-r..r), top);
-    let (mut tin, mut tout, mut fin) = (f64::NEG_INFINITY, f64::INFINITY, usize::MAX);
-    for (k, f) in s.facets.iter().enumerate() {
-        let (nd, dist) = (
-            f.plane.normal.dot(d),
-            f.plane.offset - f.plane.normal.dot(p0),
-        );
-        if nd < 0.0 {
-            if dist / nd > tin {
-                tin = dist / nd;
-                fin = k;
-            }
-        } else if nd > 0.0 {
-            tout = tout.min(dist / nd);
-        } else if dist < 0.0 {
-            return None;
-        }
-    }
-    if fin == usize::MAX || tin >= tout {
-        return None;
-    }
-    let n0 = s.facets[fin].plane.normal;
-    if rng.random::<f64>() < fresnel(-n0.dot(d), 1.0, ri).reflectance() {
-        return Some(reflect(d, n0).z > 0.0);
-    }
-    let mut x = p0 + d * tin;
-    let mut t = refract(d, n0, 1.0, ri)?;
-    loop {
-        let (mut best, mut g) = (f64::INFINITY, 0);
-        for (k, f) in s.facets.iter().enumerate() {
-            let nt = f.plane.normal.dot(t);
-            if nt > 0.0 {
-                let sd = (f.plane.offset - f.plane.normal.dot(x)) / nt;
-                if sd < best {
-                    best = sd;
-                    g = k;
-                }
-            }
-        }
-        x += t * best;
-        let n = s.facets[g].plane.normal;
-        if rng.random::<f64>() >= fresnel(n.dot(t), ri, 1.0).reflectance() {
-            if let Some(out) = refract(t, n, ri, 1.0) {
-                return Some(out.z > 0.0);
-            }
-        }
-        t = reflect(t, n);
-    }
 }
 
 fn main() {
@@ -224,33 +167,37 @@ fn main() {
             },
             Duration::from_secs(2),
         );
-        // Photons over the stone's bounding square (misses are not counted).
-        let r = solid.max_radius() * 1.001;
-        let top = solid.bounding_box().1.z + 1.0;
-        let mut rng = SmallRng::seed_from_u64(1);
-        let target = 200_000;
-        let (mut hit, mut up) = (0u64, 0u64);
+        // The real photon tracer on the same light: directed straight down over the stone, no
+        // absorption, unlimited depth, one wavelength, unpolarized; both threads.
+        let pc = facetlab::photon::TraceConfig {
+            photons: 4_000_000,
+            until_hit: false,
+            depth: None,
+            absorption: facetlab::photon::Absorption::None,
+            polarization: false,
+            material: facetlab::optics::Material::diamond(),
+            wavelengths: facetlab::photon::WavelengthSampling::Fixed(589.3),
+            seed: 1,
+            record_paths: 0,
+        };
         let t0 = Instant::now();
-        while hit < target {
-            if let Some(u) = photon(solid, ri, &mut rng, r, top) {
-                hit += 1;
-                up += u as u64;
-            }
-        }
-        let per_photon = t0.elapsed().as_secs_f64() / hit as f64;
-        let q = up as f64 / hit as f64;
-        let se = (q * (1.0 - q) / hit as f64).sqrt();
+        let t = facetlab::photon::trace(solid, &facetlab::photon::Light::directed(0.0), &pc, None)
+            .expect("trace");
+        let per_photon = t0.elapsed().as_secs_f64() / t.counts.hit as f64;
+        let (q, se) = t.light_return();
+        let hit = t.counts.hit;
         let need = p * (1.0 - p) / 1e-8;
         let photon_time = need * per_photon;
         println!(
             "photons: beam light return {p:.6} (split 1e-5; default settings {p_default:.6}, {:.2} ms), \
-             stand-in photon tracer {q:.5} ± {se:.5} from {hit} photons ({:.2} µs/photon, {:+.1} SE)",
+             photon tracer {q:.5} ± {se:.5} from {hit} photons ({:.3} µs/photon on {} threads, {:+.1} SE)",
             beam_dt.as_secs_f64() * 1e3,
             per_photon * 1e6,
+            rayon::current_num_threads(),
             (q - p) / se
         );
         println!(
-            "photons needed for a standard error of 1e-4: {need:.3e}, {photon_time:.1} s on one core; \
+            "photons needed for a standard error of 1e-4: {need:.3e}, {photon_time:.1} s on this machine; \
              ratio to one default beam trace: {:.0}×",
             photon_time / beam_dt.as_secs_f64()
         );
