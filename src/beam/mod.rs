@@ -62,7 +62,9 @@ pub struct TraceOptions {
     /// Beams with at least this share of the incoming power are split exactly; smaller ones
     /// continue as narrow beams. Default [`TraceOptions::SPLIT_THRESHOLD`].
     pub split_threshold: f64,
-    /// Light with less than this share of the incoming power is cut off. Default 1e-9.
+    /// Light with less than this share of the incoming power is cut off (and accounted as
+    /// cut off). Default 1e-8: against 1e-9 it moves brilliance by under 1e-5 and overhead
+    /// light return by under 2e-5 on the presets, and saves a sixth of a score's time.
     pub threshold: f64,
     /// Largest number of internal reflections followed. Default 1000.
     pub max_depth: u32,
@@ -98,7 +100,7 @@ impl Default for TraceOptions {
         TraceOptions {
             polarization: true,
             split_threshold: Self::SPLIT_THRESHOLD,
-            threshold: 1e-9,
+            threshold: 1e-8,
             max_depth: 1000,
             footprints: false,
             symmetry: true,
