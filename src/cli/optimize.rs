@@ -252,7 +252,10 @@ pub fn run_sweep(a: &SweepArgs, evaluator: &dyn Evaluator) -> Result<()> {
         config.family.name,
         x.key,
         y.key,
-        a.config.file_name().map(|f| f.to_string_lossy()).unwrap_or_default()
+        a.config
+            .file_name()
+            .map(|f| f.to_string_lossy())
+            .unwrap_or_default()
     );
     let (csv, png, svg) = sweep::write(&s, &score, title, path, &out)?;
     let z = s.grid(&score);

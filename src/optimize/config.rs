@@ -71,6 +71,52 @@ pub struct RawConfig {
     /// Verification of the winners.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub verify: Option<RawVerify>,
+    /// How the cuts are scored (material, lighting).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub score: Option<RawScore>,
+}
+
+/// `[score]`: the scoring settings of the beam tracer (and of the photon-tracer checks).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScore {
+    /// Material name (diamond, cubic-zirconia, sapphire, glass); default diamond.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
+    /// A fixed refractive index instead of a material (no dispersion, no fire).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ri: Option<f64>,
+    /// Head-shadow half-angle in degrees, 0–60; default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub head_shadow: Option<f64>,
+    /// Track polarization; default true.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polarization: Option<bool>,
+}
+
+/// Validated `[score]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScoreSettings {
+    /// The material (from `material` or `ri`).
+    pub material: crate::optics::Material,
+    /// Whether `ri` was given (for writing the config back).
+    pub ri: Option<f64>,
+    /// Head-shadow half-angle, degrees.
+    pub head_shadow_deg: f64,
+    /// Track polarization.
+    pub polarization: bool,
+}
+
+impl ScoreSettings {
+    /// The beam tracer's scoring configuration for these settings.
+    pub fn score_config(&self) -> crate::metrics::ScoreConfig {
+        crate::metrics::ScoreConfig {
+            material: self.material.clone(),
+            head_shadow_deg: self.head_shadow_deg,
+            polarization: self.polarization,
+            ..crate::metrics::ScoreConfig::default()
+        }
+    }
 }
 
 /// `[cut]`.
@@ -364,6 +410,8 @@ pub struct Config {
     pub budget: Budget,
     /// Verification.
     pub verify: VerifySettings,
+    /// Scoring settings.
+    pub score: ScoreSettings,
 }
 
 /// Defaults (also documented in `OPTIMIZE.md`).
@@ -849,6 +897,44 @@ impl Config {
             sigma,
         };
 
+        let rs = raw.score.clone().unwrap_or_default();
+        let material = match (&rs.material, rs.ri) {
+            (Some(_), Some(_)) => {
+                return Err(Error::invalid(
+                    at("score.ri"),
+                    "give either score.material or score.ri, not both",
+                ))
+            }
+            (None, Some(n)) => {
+                let n = finite(&at("score.ri"), n)?;
+                if !(n > 1.0 && n <= 10.0) {
+                    return Err(Error::invalid(
+                        at("score.ri"),
+                        format!("{n} is out of range; allowed (1, 10]"),
+                    ));
+                }
+                crate::optics::Material::constant(n)
+            }
+            (Some(m), None) => crate::optics::Material::by_name(m).map_err(|e| match e {
+                Error::Invalid { message, .. } => Error::invalid(at("score.material"), message),
+                other => other,
+            })?,
+            (None, None) => crate::optics::Material::diamond(),
+        };
+        let head_shadow_deg = finite(&at("score.head_shadow"), rs.head_shadow.unwrap_or(0.0))?;
+        if !(0.0..=60.0).contains(&head_shadow_deg) {
+            return Err(Error::invalid(
+                at("score.head_shadow"),
+                format!("{head_shadow_deg} is out of range; allowed [0, 60] degrees (0 = none)"),
+            ));
+        }
+        let score = ScoreSettings {
+            material,
+            ri: rs.ri,
+            head_shadow_deg,
+            polarization: rs.polarization.unwrap_or(true),
+        };
+
         Ok(Config {
             source: source.to_string(),
             name,
@@ -863,6 +949,7 @@ impl Config {
             method,
             budget,
             verify,
+            score,
         })
     }
 
@@ -937,6 +1024,16 @@ impl Config {
                 photons: Some(self.verify.photons),
                 min_distance: Some(self.verify.min_distance),
                 sigma: Some(self.verify.sigma),
+            }),
+            score: Some(RawScore {
+                material: self
+                    .score
+                    .ri
+                    .is_none()
+                    .then(|| self.score.material.name.clone()),
+                ri: self.score.ri,
+                head_shadow: Some(self.score.head_shadow_deg),
+                polarization: Some(self.score.polarization),
             }),
         }
     }
@@ -1096,6 +1193,44 @@ mod tests {
             .replace("fire = 0.5", "fire = 0.0")
             .replace("brilliance = 1.0", "brilliance = 0.0"));
         assert!(e.contains("objective: every weight is 0"), "{e}");
+    }
+
+    #[test]
+    fn score_section_sets_material_and_lighting() {
+        let c = Config::from_str(
+            &format!("{GOOD}\n[score]\nmaterial = \"cz\"\nhead_shadow = 15\n"),
+            "round.toml",
+        )
+        .unwrap();
+        let sc = c.score.score_config();
+        assert_eq!(sc.material.name, "cubic-zirconia");
+        assert_eq!(sc.head_shadow_deg, 15.0);
+        assert!(sc.polarization);
+        // Written back and read again, the settings survive.
+        let back = Config::from_str(&c.as_used_toml(), "back.toml").unwrap();
+        assert_eq!(back.score, c.score);
+        let c = Config::from_str(
+            &format!("{GOOD}\n[score]\nri = 2.0\npolarization = false\n"),
+            "round.toml",
+        )
+        .unwrap();
+        assert_eq!(c.score.score_config().material.ri(400.0), 2.0);
+        assert!(!c.score.polarization);
+        for (extra, needle) in [
+            (
+                "material = \"unobtainium\"",
+                "round.toml: score.material: unknown material",
+            ),
+            ("material = \"diamond\"\nri = 2.4", "score.ri: give either"),
+            ("ri = 0.5", "score.ri: 0.5 is out of range"),
+            ("head_shadow = 75", "score.head_shadow: 75 is out of range"),
+            ("colour = 1", "colour"),
+        ] {
+            let e = Config::from_str(&format!("{GOOD}\n[score]\n{extra}\n"), "round.toml")
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(needle), "{extra}: {e}");
+        }
     }
 
     #[test]
