@@ -2,6 +2,7 @@
 //! it. Each subcommand lives in its own module.
 
 mod cuts;
+mod flags;
 pub mod optimize;
 pub mod score;
 pub mod trace;

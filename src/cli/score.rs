@@ -22,10 +22,11 @@
 //! value, the photon tracer's estimate and standard error, (beam − photon)/stderr, and the
 //! photons per figure and pose (seed 1).
 
+use super::flags;
 use crate::error::{Error, Result};
 use crate::metrics::verify::{verify_scores, Check};
 use crate::metrics::{score, ScoreConfig, Scores, Tilt};
-use crate::optics::{Dispersion, Material};
+use crate::optics::Dispersion;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -71,62 +72,11 @@ pub struct Settings {
     pub verify: Option<u64>,
 }
 
-fn parse_number(flag: &str, s: &str, lo: f64, hi: f64, what: &str) -> Result<f64> {
-    match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= lo && v <= hi => Ok(v),
-        _ => Err(Error::invalid(
-            flag,
-            format!("`{s}` is not allowed; give {what} in [{lo}, {hi}]"),
-        )),
-    }
-}
-
-fn parse_count(flag: &str, s: &str, min: u64, max: u64) -> Result<u64> {
-    let t = s.trim().replace('_', "");
-    let v = match t.parse::<u64>() {
-        Ok(v) => Some(v),
-        Err(_) => match t.parse::<f64>() {
-            Ok(f) if f.is_finite() && f >= 0.0 && f.fract() == 0.0 && f <= u64::MAX as f64 => {
-                Some(f as u64)
-            }
-            _ => None,
-        },
-    };
-    match v {
-        Some(v) if (min..=max).contains(&v) => Ok(v),
-        _ => Err(Error::invalid(
-            flag,
-            format!("`{s}` is not allowed; give a whole number in {min}..={max} (1e6 and 1_000_000 work)"),
-        )),
-    }
-}
-
 /// Validate the flags into the library's types.
 pub fn settings(a: &ScoreArgs) -> Result<Settings> {
-    let material = match (&a.ri, &a.material) {
-        (Some(_), Some(_)) => {
-            return Err(Error::invalid(
-                "--ri",
-                "give either --ri or --material, not both",
-            ))
-        }
-        (Some(r), None) => {
-            Material::constant(parse_number("--ri", r, 1.0001, 10.0, "a refractive index")?)
-        }
-        (None, Some(m)) => Material::by_name(m)?,
-        (None, None) => Material::diamond(),
-    };
-    let polarization = match a.polarization.trim().to_ascii_lowercase().as_str() {
-        "on" | "true" | "yes" => true,
-        "off" | "false" | "no" => false,
-        _ => {
-            return Err(Error::invalid(
-                "--polarization",
-                format!("`{}` is not allowed; use on or off", a.polarization),
-            ))
-        }
-    };
-    let head = parse_number(
+    let material = flags::material(a.ri.as_deref(), a.material.as_deref())?;
+    let polarization = flags::on_off("--polarization", &a.polarization)?;
+    let head = flags::number(
         "--head-shadow",
         &a.head_shadow,
         0.0,
@@ -136,7 +86,7 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
     let verify = a
         .verify
         .as_deref()
-        .map(|v| parse_count("--verify", v, 1, 1_000_000_000_000))
+        .map(|v| flags::count("--verify", v, 1, 1_000_000_000_000))
         .transpose()?;
     let config = ScoreConfig {
         material,

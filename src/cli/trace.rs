@@ -24,8 +24,8 @@
 //! `rotation` (with `--rotate`), and per cut `paths_<cut>_one`, `paths_<cut>_bounces`,
 //! `paths_<cut>_wavelength`, `paths_<cut>_no_first_segment`, `facets_<cut>`.
 
+use super::flags;
 use crate::error::{Error, Result};
-use crate::optics::Material;
 use crate::photon::{
     self, Absorption, Light, LightKind, Tally, TraceConfig, WavelengthSampling, CATEGORY_LABELS,
 };
@@ -154,41 +154,13 @@ pub struct Settings {
     pub camera: Camera,
 }
 
-fn parse_count(flag: &str, s: &str, min: u64, max: u64) -> Result<u64> {
-    let t = s.trim().replace('_', "");
-    let v = if let Ok(v) = t.parse::<u64>() {
-        Some(v)
-    } else {
-        match t.parse::<f64>() {
-            Ok(f) if f.is_finite() && f >= 0.0 && f.fract() == 0.0 && f <= u64::MAX as f64 => {
-                Some(f as u64)
-            }
-            _ => None,
-        }
-    };
-    match v {
-        Some(v) if (min..=max).contains(&v) => Ok(v),
-        _ => Err(Error::invalid(flag, format!("`{s}` is not allowed; give a whole number in {min}..={max} (2e7 and 20_000_000 work)"))),
-    }
-}
-
-fn parse_number(flag: &str, s: &str, lo: f64, hi: f64, what: &str) -> Result<f64> {
-    match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= lo && v <= hi => Ok(v),
-        _ => Err(Error::invalid(
-            flag,
-            format!("`{s}` is not allowed; give {what} in [{lo}, {hi}]"),
-        )),
-    }
-}
-
 /// Validate the flags into the library's types.
 pub fn settings(a: &TraceArgs) -> Result<Settings> {
-    let photons = parse_count("--photons", &a.photons, 1, 1_000_000_000_000)?;
+    let photons = flags::count("--photons", &a.photons, 1, 1_000_000_000_000)?;
     let depth = match a.depth.trim().to_ascii_lowercase().as_str() {
         "unlimited" | "none" | "inf" => None,
         s => Some(
-            parse_count("--depth", s, 1, photon::UNLIMITED_CAP as u64).map_err(|_| {
+            flags::count("--depth", s, 1, photon::UNLIMITED_CAP as u64).map_err(|_| {
                 Error::invalid(
                     "--depth",
                     format!(
@@ -203,7 +175,7 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
     let absorption = match a.absorption.trim().to_ascii_lowercase().as_str() {
         "none" => Absorption::None,
         "thesis" => Absorption::Thesis,
-        s if s.starts_with("beer:") => Absorption::Beer(parse_number(
+        s if s.starts_with("beer:") => Absorption::Beer(flags::number(
             "--absorption",
             &s[5..],
             0.0,
@@ -220,29 +192,8 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
             ))
         }
     };
-    let polarization = match a.polarization.trim().to_ascii_lowercase().as_str() {
-        "on" | "true" | "yes" => true,
-        "off" | "false" | "no" => false,
-        _ => {
-            return Err(Error::invalid(
-                "--polarization",
-                format!("`{}` is not allowed; use on or off", a.polarization),
-            ))
-        }
-    };
-    let material = match (&a.ri, &a.material) {
-        (Some(_), Some(_)) => {
-            return Err(Error::invalid(
-                "--ri",
-                "give either --ri or --material, not both",
-            ))
-        }
-        (Some(r), None) => {
-            Material::constant(parse_number("--ri", r, 1.0001, 10.0, "a refractive index")?)
-        }
-        (None, Some(m)) => Material::by_name(m)?,
-        (None, None) => Material::diamond(),
-    };
+    let polarization = flags::on_off("--polarization", &a.polarization)?;
+    let material = flags::material(a.ri.as_deref(), a.material.as_deref())?;
     let wavelengths = match a.spectrum.trim().to_ascii_lowercase().as_str() {
         "uniform" => WavelengthSampling::Uniform,
         "d65" => WavelengthSampling::D65,
@@ -259,13 +210,13 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
             }
         },
     };
-    let seed = parse_count("--seed", &a.seed, 0, u64::MAX)?;
-    let record_paths = parse_count("--paths", &a.paths, 0, 100_000)? as usize;
+    let seed = flags::count("--seed", &a.seed, 0, u64::MAX)?;
+    let record_paths = flags::count("--paths", &a.paths, 0, 100_000)? as usize;
     let camera = parse_camera(&a.camera)?;
     let angle = a
         .angle
         .as_deref()
-        .map(|s| parse_number("--angle", s, 0.0, 180.0, "degrees"))
+        .map(|s| flags::number("--angle", s, 0.0, 180.0, "degrees"))
         .transpose()?;
     let light_name = a.light.trim().to_ascii_lowercase();
     let light = match (light_name.as_str(), a.rotate) {
@@ -339,8 +290,8 @@ fn parse_camera(s: &str) -> Result<Camera> {
     if parts.len() != 2 {
         return Err(bad());
     }
-    let az = parse_number("--camera", parts[0], -360.0, 360.0, "degrees").map_err(|_| bad())?;
-    let el = parse_number("--camera", parts[1], -90.0, 90.0, "degrees").map_err(|_| bad())?;
+    let az = flags::number("--camera", parts[0], -360.0, 360.0, "degrees").map_err(|_| bad())?;
+    let el = flags::number("--camera", parts[1], -90.0, 90.0, "degrees").map_err(|_| bad())?;
     Ok(Camera {
         azimuth_deg: az,
         elevation_deg: el,

@@ -1,0 +1,106 @@
+//! Parsing of flag values shared by the subcommands; every error is one line naming the flag
+//! and what is allowed.
+
+use crate::error::{Error, Result};
+use crate::optics::Material;
+
+/// A number in `[lo, hi]`; `what` describes it in the error.
+pub fn number(flag: &str, s: &str, lo: f64, hi: f64, what: &str) -> Result<f64> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= lo && v <= hi => Ok(v),
+        _ => Err(Error::invalid(
+            flag,
+            format!("`{s}` is not allowed; give {what} in [{lo}, {hi}]"),
+        )),
+    }
+}
+
+/// A whole number in `min..=max`; `2e7` and `20_000_000` are accepted.
+pub fn count(flag: &str, s: &str, min: u64, max: u64) -> Result<u64> {
+    let t = s.trim().replace('_', "");
+    let v = match t.parse::<u64>() {
+        Ok(v) => Some(v),
+        Err(_) => match t.parse::<f64>() {
+            Ok(f) if f.is_finite() && f >= 0.0 && f.fract() == 0.0 && f <= u64::MAX as f64 => {
+                Some(f as u64)
+            }
+            _ => None,
+        },
+    };
+    match v {
+        Some(v) if (min..=max).contains(&v) => Ok(v),
+        _ => Err(Error::invalid(
+            flag,
+            format!("`{s}` is not allowed; give a whole number in {min}..={max} (2e7 and 20_000_000 work)"),
+        )),
+    }
+}
+
+/// `on`/`off` (also `true`/`false`, `yes`/`no`).
+pub fn on_off(flag: &str, s: &str) -> Result<bool> {
+    match s.trim().to_ascii_lowercase().as_str() {
+        "on" | "true" | "yes" => Ok(true),
+        "off" | "false" | "no" => Ok(false),
+        _ => Err(Error::invalid(
+            flag,
+            format!("`{s}` is not allowed; use on or off"),
+        )),
+    }
+}
+
+/// The material from `--ri N` or `--material NAME` (diamond when neither is given).
+pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
+    match (ri, name) {
+        (Some(_), Some(_)) => Err(Error::invalid(
+            "--ri",
+            "give either --ri or --material, not both",
+        )),
+        (Some(r), None) => Ok(Material::constant(number(
+            "--ri",
+            r,
+            1.0001,
+            10.0,
+            "a refractive index",
+        )?)),
+        (None, Some(m)) => Material::by_name(m),
+        (None, None) => Ok(Material::diamond()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn flags_parse_or_name_the_flag() {
+        assert_eq!(count("--photons", "2e7", 1, u64::MAX).unwrap(), 20_000_000);
+        assert_eq!(
+            count("--photons", "20_000_000", 1, u64::MAX).unwrap(),
+            20_000_000
+        );
+        assert!(count("--photons", "1.5", 1, 10)
+            .unwrap_err()
+            .to_string()
+            .starts_with("--photons:"));
+        assert!(count("--photons", "0", 1, 10).is_err());
+        assert_eq!(
+            number("--angle", " 30 ", 0.0, 180.0, "an angle").unwrap(),
+            30.0
+        );
+        assert!(number("--angle", "NaN", 0.0, 180.0, "an angle").is_err());
+        assert!(
+            !on_off("--polarization", "OFF").unwrap() && on_off("--polarization", "yes").unwrap()
+        );
+        assert!(on_off("--polarization", "maybe")
+            .unwrap_err()
+            .to_string()
+            .contains("on or off"));
+        assert_eq!(material(Some("2.0"), None).unwrap().ri(500.0), 2.0);
+        assert!(material(Some("2.0"), Some("cz")).is_err());
+        assert!(material(Some("0.9"), None)
+            .unwrap_err()
+            .to_string()
+            .starts_with("--ri:"));
+        assert_eq!(material(None, Some("cz")).unwrap().name, "cubic-zirconia");
+    }
+}
