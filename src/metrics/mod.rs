@@ -30,22 +30,23 @@
 //!   with equal weights over the poses [`ScoreConfig::tilts`] (face-up and two rings of
 //!   tilted poses by default) — GIA's weighted light return in spirit.
 //!   **`brilliance`** = (ISO + COS) / 2.
-//! * **`fire`** ≥ 0 (below about 150; 0.2 for a Tolkowsky diamond): colour under small
-//!   light sources. The face-up view is traced at
+//! * **`fire`** ≥ 0, in percent (0.7 for a Tolkowsky diamond, 1.2 for the same cut in cubic
+//!   zirconia): saturated colour under small light sources. The face-up view is traced at
 //!   [`ScoreConfig::bands`] wavelengths (band centres across 380–780 nm); each band's image of
 //!   the spot lights ([`lighting::Spot::default_set`], seven 5° spots of radiance 1) is
 //!   rasterised with exact footprint coverage; each pixel's spectrum becomes CIE XYZ with
 //!   D65-weighted CIE 1931 bands ([`color::band_weights_d65`]) and then CIELAB relative to
-//!   the D65 white of the spots' radiance (Y = 1). Fire is the luminance-weighted chroma
-//!   `Y·C*ab` averaged over the stone's face-up outline — coloured light per
-//!   unit of face-up area, so that a stone showing more coloured flashes scores higher, and
-//!   a little light never dominates. A material without dispersion gives identical bands,
-//!   hence grey pixels, hence 0 (to rounding). Fire depends on fine detail (which part of
-//!   a beam meets a 5° spot at which wavelength), so it is the score most sensitive to the
-//!   tracer's narrow-beam approximation; its traces split down to
-//!   [`ScoreConfig::fire_split_threshold`] (1e-5), ten times finer than the others. It is
-//!   continuous but steep: for a round brilliant it moves by about 3 per degree of pavilion
-//!   angle as coloured flashes slide across the spots' rims and the pixels.
+//!   the D65 white of the spots' radiance (Y = 1). Fire is `100 · Σ Y·s` over the face-up
+//!   outline per unit of its area, `s = C*ab / L*` the pixel's saturation: coloured light per
+//!   unit of face-up area. `s` hardly depends on brightness, so fire is linear in the light
+//!   and one concentrated flash cannot dominate (luminance × chroma grows like Y^4/3 and did).
+//!   Fire is averaged over [`ScoreConfig::fire_placements`] placements of the spot set
+//!   ([`fire_lightings`]: turned by golden angles, raised or lowered by up to 4.5°), as a
+//!   viewer sees a stone under lights in many places: with one placement a coloured flash
+//!   crossing one spot's rim made fire jump sevenfold within 0.1° of pavilion angle; averaged,
+//!   the same neighbourhood varies by under 1.5×. A material without dispersion gives
+//!   identical bands, hence grey pixels, hence 0 (to rounding). Fire's traces split down to
+//!   [`ScoreConfig::fire_split_threshold`] (1e-5), ten times finer than the others.
 //! * **`scintillation`** ∈ [0, 1]: how much the face-up pattern of bright and dark changes as
 //!   the stone rocks. The image of the spot lights at [`ScoreConfig::wavelength_nm`] is taken
 //!   at each tilt of [`ScoreConfig::scintillation_tilts`] (rocking about the x axis,
@@ -147,6 +148,9 @@ pub struct ScoreConfig {
     pub scintillation_tilts: Vec<f64>,
     /// Pixels per side of the fire and scintillation images. Default 64.
     pub resolution: usize,
+    /// Placements of the spot lights that fire is averaged over ([`fire_lightings`]).
+    /// Default 8.
+    pub fire_placements: usize,
     /// Tracer settings (footprints are switched on where needed).
     pub trace: TraceOptions,
     /// Split threshold of the face-up traces for fire, overhead light return and ASET (see
@@ -168,6 +172,7 @@ impl Default for ScoreConfig {
             bands: 8,
             scintillation_tilts: (-3..=3).map(|k| 2.0 * k as f64).collect(),
             resolution: 64,
+            fire_placements: 8,
             trace: TraceOptions::default(),
             fire_split_threshold: 1e-5,
         }
@@ -190,6 +195,7 @@ impl ScoreConfig {
             bands: 6,
             scintillation_tilts: vec![-6.0, -3.0, 0.0, 3.0, 6.0],
             resolution: 48,
+            fire_placements: 4,
             trace: TraceOptions {
                 split_threshold: 1e-3,
                 ..TraceOptions::default()
@@ -370,8 +376,9 @@ pub fn overhead_light_return_with(stone: &Stone, ri: f64, opts: &TraceOptions) -
 struct Job {
     tilt: Tilt,
     ri: f64,
-    /// Spot-light image (fire, scintillation).
-    image: bool,
+    /// Spot-light images: one per lighting of [`fire_lightings`] used (0 = none; 1 for
+    /// scintillation, all of them for fire).
+    images: usize,
     /// ISO and COS sums (brilliance).
     brilliance: bool,
     /// Upward share and ASET bins (face-up).
@@ -389,12 +396,13 @@ struct PoseResult {
     iso: f64,
     cos: f64,
     aset: [f64; 4],
-    image: Option<Raster>,
+    images: Vec<Raster>,
 }
 
 struct PoseSink<'a> {
     rot: DMat3,
     light: &'a Lighting,
+    spots: &'a [Lighting],
     area: f64,
     job: Job,
     r: PoseResult,
@@ -402,7 +410,7 @@ struct PoseSink<'a> {
 
 impl ExitSink for PoseSink<'_> {
     fn wants_footprints(&self) -> bool {
-        self.r.image.is_some()
+        !self.r.images.is_empty()
     }
     fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
         let w = self.rot * e.direction;
@@ -422,9 +430,9 @@ impl ExitSink for PoseSink<'_> {
             r.iso += p * self.light.iso(w);
             r.cos += p * self.light.cos(w);
         }
-        if let Some(img) = &mut r.image {
-            if self.light.near_spot(w) {
-                let l = self.light.spots(w);
+        for (img, light) in r.images.iter_mut().zip(self.spots) {
+            if light.near_spot(w) {
+                let l = light.spots(w);
                 let a = clip2d::area(fp);
                 if l > 0.0 && a > 0.0 {
                     // Radiance through this beam: its power per unit of footprint, relative to
@@ -441,6 +449,7 @@ fn run_job(
     solid: &Polyhedron,
     job: &Job,
     light: &Lighting,
+    spots: &[Lighting],
     cfg: &ScoreConfig,
     half: f64,
 ) -> PoseResult {
@@ -448,17 +457,20 @@ fn run_job(
     let frame = Frame::viewer(rot);
     let opts = TraceOptions {
         polarization: cfg.polarization,
-        footprints: job.image,
+        footprints: job.images > 0,
         split_threshold: job.split,
         ..cfg.trace
     };
     let mut sink = PoseSink {
         rot,
         light,
+        spots: &spots[..job.images.min(spots.len())],
         area: solid.projected_area(-frame.dir),
         job: *job,
         r: PoseResult {
-            image: job.image.then(|| Raster::new(cfg.resolution, half)),
+            images: (0..job.images.min(spots.len()))
+                .map(|_| Raster::new(cfg.resolution, half))
+                .collect(),
             ..Default::default()
         },
     };
@@ -474,6 +486,7 @@ fn run_job(
 pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
     let stone = Stone::new(solid);
     let light = Lighting::new(cfg.head_shadow_deg, &cfg.spots);
+    let spot_sets = fire_lightings(cfg);
     let half = solid
         .vertices
         .iter()
@@ -489,7 +502,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
     enum Use {
         FaceUp,
         Brilliance,
-        Image,
+        Image(usize),
     }
     let index = |tilt: Tilt, ri: f64, what: Use, split: f64, jobs: &mut Vec<Job>| -> usize {
         let same = |j: &Job| j.tilt == tilt && j.ri.to_bits() == ri.to_bits() && j.split == split;
@@ -499,7 +512,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
                 jobs.push(Job {
                     tilt,
                     ri,
-                    image: false,
+                    images: 0,
                     brilliance: false,
                     face_up: false,
                     split,
@@ -510,7 +523,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
         match what {
             Use::FaceUp => jobs[k].face_up = true,
             Use::Brilliance => jobs[k].brilliance = true,
-            Use::Image => jobs[k].image = true,
+            Use::Image(n) => jobs[k].images = jobs[k].images.max(n),
         }
         k
     };
@@ -536,7 +549,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
             index(
                 Tilt::FACE_UP,
                 if constant { ri0 } else { cfg.material.ri(l) },
-                Use::Image,
+                Use::Image(spot_sets.len()),
                 cfg.fire_split_threshold,
                 &mut jobs,
             )
@@ -552,7 +565,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
                     azimuth_deg: 90.0,
                 },
                 ri0,
-                Use::Image,
+                Use::Image(1),
                 split,
                 &mut jobs,
             )
@@ -560,7 +573,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
         .collect();
     let results: Vec<PoseResult> = jobs
         .par_iter()
-        .map(|j| run_job(&stone, solid, j, &light, cfg, half))
+        .map(|j| run_job(&stone, solid, j, &light, &spot_sets, cfg, half))
         .collect();
 
     let norm = |r: &PoseResult, x: f64| {
@@ -594,31 +607,62 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
     } else {
         Aset::default()
     };
-    let images: Vec<&Raster> = fire
-        .iter()
-        .filter_map(|&k| results[k].image.as_ref())
-        .collect();
+    let weights = color::band_weights_d65(bands);
+    let outline = solid.projected_area(DVec3::Z);
+    let fire_value = (0..spot_sets.len())
+        .map(|s| {
+            let images: Vec<&Raster> = fire
+                .iter()
+                .filter_map(|&k| results[k].images.get(s))
+                .collect();
+            fire_of(&images, &weights, outline)
+        })
+        .sum::<f64>()
+        / spot_sets.len().max(1) as f64;
     let scint_images: Vec<&Raster> = scint
         .iter()
-        .filter_map(|&k| results[k].image.as_ref())
+        .filter_map(|&k| results[k].images.first())
         .collect();
     Scores {
         overhead_light_return: norm(fu, fu.up),
         brilliance: 0.5 * (brilliance_iso + brilliance_cos),
         brilliance_iso,
         brilliance_cos,
-        fire: fire_of(
-            &images,
-            &color::band_weights_d65(bands),
-            solid.projected_area(DVec3::Z),
-        ),
+        fire: fire_value,
         scintillation: scintillation_of(&scint_images),
         aset,
     }
 }
 
-/// Luminance-weighted chroma `Y·C*ab` of a spectral image, integrated over the image and
-/// divided by `area`: `images[b]` is band `b`'s radiance image (relative to the
+/// The placements of the spot lights over which fire is averaged: the first is
+/// [`ScoreConfig::spots`] as given (scintillation uses it); placement k > 0 turns the set about
+/// the zenith by k golden angles (137.5°, so every rotational symmetry of a cut is sampled at
+/// spread-out phases) and raises or lowers it by up to 4.5°. A viewer sees a stone under lights
+/// in many places; one fixed placement makes fire jump when a single coloured flash crosses a
+/// single spot's rim.
+pub fn fire_lightings(cfg: &ScoreConfig) -> Vec<Lighting> {
+    const LIFT: [f64; 8] = [0.0, 3.0, -3.0, 1.5, -1.5, 4.5, -4.5, 0.75];
+    (0..cfg.fire_placements.max(1))
+        .map(|k| {
+            let turn = 137.507_764_050_037_85 * k as f64;
+            let lift = LIFT[k % LIFT.len()];
+            let spots: Vec<Spot> = cfg
+                .spots
+                .iter()
+                .map(|s| Spot {
+                    elevation_deg: (s.elevation_deg + lift).clamp(1.0, 89.0),
+                    azimuth_deg: (s.azimuth_deg + turn) % 360.0,
+                    radius_deg: s.radius_deg,
+                })
+                .collect();
+            Lighting::new(cfg.head_shadow_deg, &spots)
+        })
+        .collect()
+}
+
+/// Saturated light of a spectral image in percent: `100 · Σ Y·s` over the pixels, times the
+/// pixel area, divided by `area`, where `s = C*ab / L*` is the pixel's CIELAB saturation
+/// (nearly independent of brightness, so the sum is linear in the light): `images[b]` is band `b`'s radiance image (relative to the
 /// sources' radiance), `weights[b]` its XYZ weight (their sum is the white, Y = 1).
 pub fn fire_of(images: &[&Raster], weights: &[DVec3], area: f64) -> f64 {
     let Some(first) = images.first() else {
@@ -636,10 +680,13 @@ pub fn fire_of(images: &[&Raster], weights: &[DVec3], area: f64) -> f64 {
             .map(|(img, w)| *w * img.data[p])
             .sum();
         if xyz.y > 0.0 {
-            yc += xyz.y * color::chroma(color::xyz_to_lab(xyz, white));
+            let lab = color::xyz_to_lab(xyz, white);
+            if lab.x > 0.0 {
+                yc += xyz.y * color::chroma(lab) / lab.x;
+            }
         }
     }
-    yc * first.pixel().powi(2) / area
+    100.0 * yc * first.pixel().powi(2) / area
 }
 
 /// `Σₖ Σₚ |Iₖ₊₁ − Iₖ| / Σₖ Σₚ (Iₖ₊₁ + Iₖ)` over a sequence of images; 0 without light.

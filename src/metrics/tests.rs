@@ -305,3 +305,63 @@ fn unvalidated_configs_do_not_panic() {
     let sc = score(&s, &weird);
     assert!(sc.brilliance.is_finite() && sc.fire.is_finite());
 }
+
+/// Around the proportions where a single fixed spot placement gave a fire peak (0.13 → 0.87
+/// within 0.1° of pavilion angle), the averaged fire varies smoothly.
+#[test]
+fn fire_has_no_single_flash_peaks() {
+    let cfg = ScoreConfig {
+        tilts: vec![Tilt::FACE_UP],
+        scintillation_tilts: vec![0.0],
+        ..ScoreConfig::default()
+    };
+    let fires: Vec<f64> = [42.2, 42.3, 42.35, 42.38, 42.4, 42.45, 42.5, 42.6]
+        .iter()
+        .map(|&p| {
+            let v: BTreeMap<String, f64> = [
+                ("table", 0.5989),
+                ("crown_angle", 32.729),
+                ("pavilion_angle", p),
+                ("star", 0.4862),
+                ("lower_half", 0.7554),
+            ]
+            .iter()
+            .map(|(k, v)| (k.to_string(), *v))
+            .collect();
+            let cut = crate::cut::Cut::from_family("r", "round-brilliant", &v).unwrap();
+            score(&cut.solid, &cfg).fire
+        })
+        .collect();
+    let (lo, hi) = fires
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &f| (a.min(f), b.max(f)));
+    assert!(lo > 0.0 && hi / lo < 2.0, "{fires:?}");
+    // One placement alone still shows the peak the average removes.
+    let one = ScoreConfig {
+        fire_placements: 1,
+        ..cfg.clone()
+    };
+    let spiky: Vec<f64> = [42.38, 42.5]
+        .iter()
+        .map(|&p| {
+            let mut v: BTreeMap<String, f64> = BTreeMap::new();
+            for (k, x) in [
+                ("table", 0.5989),
+                ("crown_angle", 32.729),
+                ("star", 0.4862),
+                ("lower_half", 0.7554),
+            ] {
+                v.insert(k.to_string(), x);
+            }
+            v.insert("pavilion_angle".into(), p);
+            score(
+                &crate::cut::Cut::from_family("r", "round-brilliant", &v)
+                    .unwrap()
+                    .solid,
+                &one,
+            )
+            .fire
+        })
+        .collect();
+    assert!(spiky[0] > 1.8 * spiky[1], "{spiky:?}");
+}
