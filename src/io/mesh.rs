@@ -469,7 +469,35 @@ fn planes_from_points(points: &Points, source: &str) -> Result<Vec<FacetPlane>> 
     for f in &mut out {
         f.tier = side(f.plane.normal).0.to_string();
     }
+    split_tiers_by_angle(&mut out);
     Ok(out)
+}
+
+/// Crown and pavilion facets grouped into tiers by angle: angles within 0.05° of their
+/// neighbour in sorted order form one tier, named by side and mean angle (`crown-34.50`), so
+/// that `info` reports a mesh's bezels and mains as a cutter would.
+fn split_tiers_by_angle(facets: &mut [FacetPlane]) {
+    for sidename in ["crown", "pavilion"] {
+        let mut idx: Vec<(usize, f64)> = facets
+            .iter()
+            .enumerate()
+            .filter(|(_, f)| f.tier == sidename)
+            .map(|(i, f)| (i, facet_angle_deg(f.plane.normal)))
+            .collect();
+        idx.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let mut start = 0;
+        while start < idx.len() {
+            let mut end = start + 1;
+            while end < idx.len() && idx[end].1 - idx[end - 1].1 <= 0.05 {
+                end += 1;
+            }
+            let mean = idx[start..end].iter().map(|x| x.1).sum::<f64>() / (end - start) as f64;
+            for &(i, _) in &idx[start..end] {
+                facets[i].tier = format!("{sidename}-{mean:.2}");
+            }
+            start = end;
+        }
+    }
 }
 
 fn named(planes: &[Plane]) -> Vec<FacetPlane> {
@@ -719,9 +747,30 @@ mod tests {
         assert!(text.starts_with("# facetlab"));
         let planes = read_obj(text.as_bytes(), "rb.obj").unwrap();
         assert_same(&c, &planes, 1e-7, 1e-9);
-        // Tiers by side, table first.
+        // Tiers by side and angle, table first.
         assert_eq!(planes[0].tier, "table");
-        let count = |t: &str| planes.iter().filter(|p| p.tier == t).count();
+        let count = |t: &str| {
+            planes
+                .iter()
+                .filter(|p| p.tier.split('-').next() == Some(t))
+                .count()
+        };
+        let tiers = |t: &str| {
+            let mut v: Vec<&str> = planes
+                .iter()
+                .filter(|p| p.tier.starts_with(t))
+                .map(|p| p.tier.as_str())
+                .collect();
+            v.dedup();
+            v.len()
+        };
+        // Bezels, stars, upper halves; mains, lower halves.
+        assert_eq!((tiers("crown"), tiers("pavilion")), (3, 2));
+        assert!(
+            planes.iter().any(|p| p.tier == "pavilion-40.75"),
+            "{:?}",
+            planes.iter().map(|p| &p.tier).collect::<Vec<_>>()
+        );
         assert_eq!(
             (
                 count("table"),

@@ -751,8 +751,11 @@ mod tests {
         let cut = Cut::from_planes("imported \"stone\"", &planes).unwrap();
         let svg = diagram(&cut);
         check_balanced(&svg).unwrap();
-        for t in ["table", "crown", "girdle", "pavilion"] {
+        for t in ["table", "girdle"] {
             assert!(svg.contains(&format!(">{t}</text>")), "{t}");
+        }
+        for t in &cut.tiers() {
+            assert!(svg.contains(&format!(">{}</text>", t.name)), "{}", t.name);
         }
         assert!(svg.contains("imported &quot;stone&quot;"));
     }
