@@ -131,19 +131,7 @@ mod tests {
     #[test]
     fn pear_default_facets_and_symmetry() {
         let c = ok("pear", &[]);
-        let want = [
-            ("table", 1),
-            ("bezel", 8),
-            ("star", 8),
-            ("upper-half", 16),
-            ("girdle", 16),
-            ("pavilion-main", 8),
-            ("lower-half", 16),
-        ];
-        for (tier, n) in want {
-            assert_eq!(count(&c, tier), n, "{tier}");
-        }
-        assert_eq!(c.solid.facets.len(), 57 + 16);
+        assert_brilliant_tiers(&c);
         assert_eq!(ok("pear", &[("culet", 0.04)]).solid.facets.len(), 58 + 16);
         assert!(
             symmetric_under(&c, flip_y),

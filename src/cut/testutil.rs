@@ -148,3 +148,22 @@ pub fn out_of_range_named(fam: &str) {
         }
     }
 }
+
+/// Assert the tier counts of a brilliant without culet: 1 table, 8 bezels, 8 stars,
+/// 16 upper halves, 16 girdle facets, 8 pavilion mains, 16 lower halves (57 + 16 facets).
+pub fn assert_brilliant_tiers(c: &Cut) {
+    let want = [
+        ("table", 1),
+        ("bezel", 8),
+        ("star", 8),
+        ("upper-half", 16),
+        ("girdle", 16),
+        ("pavilion-main", 8),
+        ("lower-half", 16),
+        ("culet", 0),
+    ];
+    for (tier, n) in want {
+        assert_eq!(count(c, tier), n, "{tier}");
+    }
+    assert_eq!(c.solid.facets.len(), 57 + 16);
+}
