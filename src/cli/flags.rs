@@ -103,4 +103,43 @@ mod tests {
             .starts_with("--ri:"));
         assert_eq!(material(None, Some("cz")).unwrap().name, "cubic-zirconia");
     }
+
+    #[test]
+    fn design_index_is_mentioned_only_when_it_differs_and_nothing_was_chosen() {
+        let mut quartz = crate::io::load_cut("tolkowsky").unwrap();
+        quartz.design_ri = Some(1.54);
+        let mut dia = quartz.clone();
+        dia.design_ri = Some(2.418);
+        let plain = crate::io::load_cut("gia-reference").unwrap();
+        let cuts = [quartz, dia, plain];
+        let notes = design_ri_notes(&cuts, &Material::diamond(), false);
+        assert_eq!(notes.len(), 1, "{notes:?}");
+        assert!(
+            notes[0].contains("--ri 1.54") && notes[0].contains("Tolkowsky"),
+            "{}",
+            notes[0]
+        );
+        assert!(design_ri_notes(&cuts, &Material::diamond(), true).is_empty());
+    }
+}
+
+/// A note (for stderr) on each cut whose design file names a refractive index other than the
+/// material's, when the user chose no material: GemCad designs are cut for one material, and
+/// scoring a quartz design as diamond without saying so would mislead.
+pub fn design_ri_notes(cuts: &[crate::cut::Cut], material: &Material, chosen: bool) -> Vec<String> {
+    if chosen {
+        return Vec::new();
+    }
+    let n = material.ri_d();
+    cuts.iter()
+        .filter_map(|c| {
+            let d = c.design_ri?;
+            ((d - n).abs() > 0.005).then(|| {
+                format!(
+                    "note: {} was designed for refractive index {d}; it is traced as {} (n = {n:.4}); pass --ri {d} to trace it as designed",
+                    c.name, material.name
+                )
+            })
+        })
+        .collect()
 }

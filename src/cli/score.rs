@@ -294,6 +294,13 @@ pub fn run(a: &ScoreArgs) -> Result<()> {
             }
         }
     }
+    for note in flags::design_ri_notes(
+        &cuts,
+        &s.config.material,
+        a.ri.is_some() || a.material.is_some(),
+    ) {
+        eprintln!("{note}");
+    }
     let results: Vec<(String, Scores)> = cuts
         .iter()
         .map(|c| (c.name.clone(), score(&c.solid, &s.config)))

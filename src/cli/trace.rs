@@ -349,6 +349,10 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         .iter()
         .map(|c| crate::io::load_cut(c))
         .collect::<Result<Vec<_>>>()?;
+    let chosen = args.ri.is_some() || args.material.is_some();
+    for note in flags::design_ri_notes(&cuts, &set.config.material, chosen) {
+        eprintln!("{note}");
+    }
     if let Some(dir) = &args.plots {
         if dir.exists() && !dir.is_dir() {
             return Err(Error::io(

@@ -147,6 +147,9 @@ pub struct Cut {
     pub params: BTreeMap<String, f64>,
     /// The solid.
     pub solid: Polyhedron,
+    /// The refractive index the design file was cut for (GemCad's `I` line), if it names one.
+    /// Scores use the material chosen on the command line; this is for telling the user.
+    pub design_ri: Option<f64>,
 }
 
 impl Cut {
@@ -167,6 +170,7 @@ impl Cut {
             family: Some(fam.name.to_string()),
             params: params.values,
             solid,
+            design_ri: None,
         })
     }
 
@@ -178,6 +182,7 @@ impl Cut {
             family: None,
             params: BTreeMap::new(),
             solid,
+            design_ri: None,
         })
     }
 

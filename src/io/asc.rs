@@ -127,7 +127,9 @@ pub fn read(path: &Path) -> Result<Cut> {
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "design".into());
-    build_cut(&design.planes, &stem, &shown)
+    let mut cut = build_cut(&design.planes, &stem, &shown)?;
+    cut.design_ri = design.ri;
+    Ok(cut)
 }
 
 fn build_cut(planes: &[FacetPlane], name: &str, ctx: &str) -> Result<Cut> {
@@ -162,6 +164,7 @@ fn build_cut(planes: &[FacetPlane], name: &str, ctx: &str) -> Result<Cut> {
         family: None,
         params: BTreeMap::new(),
         solid: solid.scaled(1.0 / width),
+        design_ri: None,
     })
 }
 

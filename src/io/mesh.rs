@@ -603,6 +603,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Cut> {
         family: None,
         params: Default::default(),
         solid,
+        design_ri: None,
     })
 }
 
