@@ -67,6 +67,27 @@ pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
     }
 }
 
+/// A note (for stderr) on each cut whose design file names a refractive index other than the
+/// material's, when the user chose no material: GemCad designs are cut for one material, and
+/// scoring a quartz design as diamond without saying so would mislead.
+pub fn design_ri_notes(cuts: &[crate::cut::Cut], material: &Material, chosen: bool) -> Vec<String> {
+    if chosen {
+        return Vec::new();
+    }
+    let n = material.ri_d();
+    cuts.iter()
+        .filter_map(|c| {
+            let d = c.design_ri?;
+            ((d - n).abs() > 0.005).then(|| {
+                format!(
+                    "note: {} was designed for refractive index {d}; it is traced as {} (n = {n:.4}); pass --ri {d} to trace it as designed",
+                    c.name, material.name
+                )
+            })
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -121,25 +142,4 @@ mod tests {
         );
         assert!(design_ri_notes(&cuts, &Material::diamond(), true).is_empty());
     }
-}
-
-/// A note (for stderr) on each cut whose design file names a refractive index other than the
-/// material's, when the user chose no material: GemCad designs are cut for one material, and
-/// scoring a quartz design as diamond without saying so would mislead.
-pub fn design_ri_notes(cuts: &[crate::cut::Cut], material: &Material, chosen: bool) -> Vec<String> {
-    if chosen {
-        return Vec::new();
-    }
-    let n = material.ri_d();
-    cuts.iter()
-        .filter_map(|c| {
-            let d = c.design_ri?;
-            ((d - n).abs() > 0.005).then(|| {
-                format!(
-                    "note: {} was designed for refractive index {d}; it is traced as {} (n = {n:.4}); pass --ri {d} to trace it as designed",
-                    c.name, material.name
-                )
-            })
-        })
-        .collect()
 }
