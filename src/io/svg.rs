@@ -433,34 +433,30 @@ fn side_annotations(
             thin,
         );
     }
-    if props.crown_height > 1e-9 {
+    // A vertical dimension at x = xr between heights a and b, labelled to its right.
+    let side_dimension = |out: &mut String, a: f64, b: f64, text: String| {
         dimension(
             out,
-            DVec2::new(xr, px(0.0, g_top).y),
-            DVec2::new(xr, px(0.0, z_table).y),
+            DVec2::new(xr, px(0.0, a).y),
+            DVec2::new(xr, px(0.0, b).y),
         );
-        let y = px(0.0, 0.5 * (g_top + z_table)).y + 4.0;
-        label(
+        let y = px(0.0, 0.5 * (a + b)).y + 4.0;
+        label(out, DVec2::new(xr + 8.0, y), 12.0, "start", &text);
+    };
+    if props.crown_height > 1e-9 {
+        side_dimension(
             out,
-            DVec2::new(xr + 8.0, y),
-            12.0,
-            "start",
-            &format!("crown height {}", pct(props.crown_height)),
+            g_top,
+            z_table,
+            format!("crown height {}", pct(props.crown_height)),
         );
     }
     if props.pavilion_depth > 1e-9 {
-        dimension(
+        side_dimension(
             out,
-            DVec2::new(xr, px(0.0, g_bot).y),
-            DVec2::new(xr, px(0.0, z_bot).y),
-        );
-        let y = px(0.0, 0.5 * (g_bot + z_bot)).y + 4.0;
-        label(
-            out,
-            DVec2::new(xr + 8.0, y),
-            12.0,
-            "start",
-            &format!("pavilion depth {}", pct(props.pavilion_depth)),
+            g_bot,
+            z_bot,
+            format!("pavilion depth {}", pct(props.pavilion_depth)),
         );
     }
     dimension(
