@@ -1,11 +1,12 @@
 //! facetlab: design, score and optimize cut gemstones with real optics.
 //!
 //! Data flows one way: [`geometry`] → [`cut`] → [`io`] → [`optics`] → tracers → metrics →
-//! optimizer → plots → CLI. The library knows nothing of the command line.
+//! optimizer → plots; the `facetlab` binary (its own `cli` module) sits on top. The library
+//! knows nothing of the command line: clap, indicatif and ctrlc are the binary's, behind the
+//! default `cli` feature.
 #![warn(missing_docs)]
 
 pub mod beam;
-pub mod cli;
 pub mod cut;
 pub mod error;
 pub mod geometry;

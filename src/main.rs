@@ -2,6 +2,8 @@
 
 use clap::Parser;
 
+mod cli;
+
 fn main() {
     #[cfg(unix)]
     // SAFETY: called first thing in main, before any other thread exists; SIG_DFL is a valid
@@ -9,8 +11,8 @@ fn main() {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    let cli = facetlab::cli::Cli::parse();
-    if let Err(e) = facetlab::cli::run(cli) {
+    let cli = cli::Cli::parse();
+    if let Err(e) = cli::run(cli) {
         eprintln!("facetlab: {e}");
         std::process::exit(2);
     }

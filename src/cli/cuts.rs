@@ -1,10 +1,10 @@
 //! `generate` and `info`.
 
-use crate::cut::Cut;
-use crate::error::{Error, Result};
-use crate::io;
-use crate::optics::Material;
 use clap::Args;
+use facetlab::cut::Cut;
+use facetlab::error::{Error, Result};
+use facetlab::io;
+use facetlab::optics::Material;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -119,9 +119,9 @@ pub struct InfoJson {
     /// Volume in girdle diameters cubed.
     pub volume: f64,
     /// Measured proportions.
-    pub proportions: crate::cut::Proportions,
+    pub proportions: facetlab::cut::Proportions,
     /// Tiers: name, mean angle, count, side.
-    pub tiers: Vec<crate::cut::TierSummary>,
+    pub tiers: Vec<facetlab::cut::TierSummary>,
     /// Girdle diameter used for the weight, mm.
     pub diameter_mm: f64,
     /// Material used for the weight.
@@ -281,7 +281,7 @@ pub fn list(a: &ListArgs) -> Result<()> {
         println!("  {n:<16} {desc}");
     }
     println!("\nFamilies and their parameters (--set KEY=VALUE; lengths are fractions of the girdle diameter):");
-    for f in crate::cut::families() {
+    for f in facetlab::cut::families() {
         println!("\n  {} — {}", f.name, f.doc);
         for p in f.params {
             let (l, r) = if p.open { ("(", ")") } else { ("[", "]") };

@@ -1,8 +1,8 @@
 //! Parsing of flag values shared by the subcommands; every error is one line naming the flag
 //! and what is allowed.
 
-use crate::error::{Error, Result};
-use crate::optics::Material;
+use facetlab::error::{Error, Result};
+use facetlab::optics::Material;
 
 /// A number in `[lo, hi]`; `what` describes it in the error.
 pub fn number(flag: &str, s: &str, lo: f64, hi: f64, what: &str) -> Result<f64> {
@@ -70,7 +70,11 @@ pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
 /// A note (for stderr) on each cut whose design file names a refractive index other than the
 /// material's, when the user chose no material: GemCad designs are cut for one material, and
 /// scoring a quartz design as diamond without saying so would mislead.
-pub fn design_ri_notes(cuts: &[crate::cut::Cut], material: &Material, chosen: bool) -> Vec<String> {
+pub fn design_ri_notes(
+    cuts: &[facetlab::cut::Cut],
+    material: &Material,
+    chosen: bool,
+) -> Vec<String> {
     if chosen {
         return Vec::new();
     }
@@ -127,11 +131,11 @@ mod tests {
 
     #[test]
     fn design_index_is_mentioned_only_when_it_differs_and_nothing_was_chosen() {
-        let mut quartz = crate::io::load_cut("tolkowsky").unwrap();
+        let mut quartz = facetlab::io::load_cut("tolkowsky").unwrap();
         quartz.design_ri = Some(1.54);
         let mut dia = quartz.clone();
         dia.design_ri = Some(2.418);
-        let plain = crate::io::load_cut("gia-reference").unwrap();
+        let plain = facetlab::io::load_cut("gia-reference").unwrap();
         let cuts = [quartz, dia, plain];
         let notes = design_ri_notes(&cuts, &Material::diamond(), false);
         assert_eq!(notes.len(), 1, "{notes:?}");

@@ -7,8 +7,8 @@ pub mod optimize;
 pub mod score;
 pub mod trace;
 
-use crate::error::Result;
 use clap::{Parser, Subcommand};
+use facetlab::error::Result;
 
 /// facetlab: design, score and optimize cut gemstones with real optics.
 ///
@@ -53,17 +53,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::List(a) => cuts::list(&a),
         Command::Trace(a) => trace::run(&a),
         Command::Score(a) => score::run(&a),
-        Command::Optimize(a) => {
-            let config = crate::metrics::ScoreConfig::default();
-            let evaluator = crate::optimize::engines::BeamEvaluator {
-                config: config.clone(),
-            };
-            let verifier = crate::optimize::engines::PhotonVerifier { config };
-            optimize::run_optimize(&a, &evaluator, Some(&verifier))
-        }
-        Command::Sweep(a) => {
-            let evaluator = crate::optimize::engines::BeamEvaluator::default();
-            optimize::run_sweep(&a, &evaluator)
-        }
+        Command::Optimize(a) => optimize::run_optimize(&a, &optimize::real_scorers),
+        Command::Sweep(a) => optimize::run_sweep(&a, &optimize::real_scorers),
     }
 }

@@ -3,13 +3,14 @@
 //! Both take the objective's scorer as an [`Evaluator`] (and `optimize` the photon tracer as a
 //! [`Verifier`]), so the command line stays thin and the scorers are wired in one place.
 
-use crate::error::{Error, Result};
-use crate::optimize::guard::{Progress, Status};
-use crate::optimize::run::FnWriter;
-use crate::optimize::run::{self, CutWriter, Hooks, RunOptions};
-use crate::optimize::sweep::{self, Axis, SweepScore};
-use crate::optimize::{Config, Evaluator, Verifier};
 use clap::Args;
+use facetlab::error::{Error, Result};
+use facetlab::optimize::engines::{BeamEvaluator, PhotonVerifier};
+use facetlab::optimize::guard::{Progress, Status};
+use facetlab::optimize::run::FnWriter;
+use facetlab::optimize::run::{self, CutWriter, Hooks, RunOptions};
+use facetlab::optimize::sweep::{self, Axis, SweepScore};
+use facetlab::optimize::{Config, Evaluator, Verifier};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -109,23 +110,33 @@ impl Progress for Bar {
 /// The writers of the best cut besides `best.toml`: GemCad, OBJ and the SVG diagram.
 fn cut_writers() -> Vec<&'static dyn CutWriter> {
     static ASC: FnWriter = FnWriter::new("asc", |c| {
-        Ok(crate::io::asc::write(c, crate::io::asc::DEFAULT_GEAR))
+        Ok(facetlab::io::asc::write(c, facetlab::io::asc::DEFAULT_GEAR))
     });
-    static OBJ: FnWriter = FnWriter::new("obj", |c| Ok(crate::io::mesh::write_obj(c)));
-    static SVG: FnWriter = FnWriter::new("svg", |c| Ok(crate::io::svg::diagram(c)));
+    static OBJ: FnWriter = FnWriter::new("obj", |c| Ok(facetlab::io::mesh::write_obj(c)));
+    static SVG: FnWriter = FnWriter::new("svg", |c| Ok(facetlab::io::svg::diagram(c)));
     vec![&ASC, &OBJ, &SVG]
 }
 
-/// `facetlab optimize`.
-pub fn run_optimize(
-    a: &OptimizeArgs,
-    evaluator: &dyn Evaluator,
-    verifier: Option<&dyn Verifier>,
-) -> Result<()> {
+/// The objective's scorer and the winners' verifier for a loaded config.
+pub type Scorers = (Box<dyn Evaluator>, Option<Box<dyn Verifier>>);
+
+/// The real scorers: the beam tracer and the photon tracer, both with the config's `[score]`
+/// settings. They can only be made from a loaded config, so no command scores with defaults.
+pub fn real_scorers(config: &Config) -> Scorers {
+    (
+        Box::new(BeamEvaluator::new(config)),
+        Some(Box::new(PhotonVerifier::new(config))),
+    )
+}
+
+/// `facetlab optimize`: load the config, then make its scorers with `make`.
+pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<()> {
     let mut config = Config::load(&a.config)?;
     if let Some(s) = a.seed {
         config.seed = s;
     }
+    let (evaluator, verifier) = make(&config);
+    let evaluator = evaluator.as_ref();
     // Fail on a bad start cut before spending any time.
     config.start_cut()?;
     install_ctrl_c();
@@ -145,7 +156,11 @@ pub fn run_optimize(
         },
         ..RunOptions::default()
     };
-    let verifier = if a.no_verify { None } else { verifier };
+    let verifier = if a.no_verify {
+        None
+    } else {
+        verifier.as_deref()
+    };
     let result = run::run(&config, evaluator, verifier, &opts);
     pb.finish_and_clear();
     let s = result?;
@@ -212,9 +227,11 @@ pub fn run_optimize(
     Ok(())
 }
 
-/// `facetlab sweep`.
-pub fn run_sweep(a: &SweepArgs, evaluator: &dyn Evaluator) -> Result<()> {
+/// `facetlab sweep`: load the config, then make its scorer with `make`.
+pub fn run_sweep(a: &SweepArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<()> {
     let config = Config::load(&a.config)?;
+    let (evaluator, _) = make(&config);
+    let evaluator = evaluator.as_ref();
     let x = Axis::parse("--x", &a.x, &config)?;
     let y = Axis::parse("--y", &a.y, &config)?;
     let score = SweepScore::parse(&a.score)?;
@@ -287,8 +304,8 @@ pub fn run_sweep(a: &SweepArgs, evaluator: &dyn Evaluator) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cut::Cut;
-    use crate::optimize::ScoreSet;
+    use facetlab::cut::Cut;
+    use facetlab::optimize::ScoreSet;
 
     fn bump(cut: &Cut) -> Result<ScoreSet> {
         let (c, p) = (cut.params["crown_angle"], cut.params["pavilion_angle"]);
@@ -297,6 +314,10 @@ mod tests {
             0.0,
             0.0,
         ))
+    }
+
+    fn bumps(_: &Config) -> Scorers {
+        (Box::new(bump), None)
     }
 
     #[test]
@@ -316,7 +337,7 @@ mod tests {
             no_verify: false,
             quiet: true,
         };
-        run_optimize(&a, &bump, None).unwrap();
+        run_optimize(&a, &bumps).unwrap();
         assert!(out.join("report.md").is_file());
         let used = std::fs::read_to_string(out.join("config.toml")).unwrap();
         assert!(used.contains("seed = 9"));
@@ -329,13 +350,13 @@ mod tests {
             out: Some(dir.path().join("map.png")),
             quiet: true,
         };
-        run_sweep(&s, &bump).unwrap();
+        run_sweep(&s, &bumps).unwrap();
         assert!(dir.path().join("map.csv").is_file() && dir.path().join("map.svg").is_file());
         let bad = SweepArgs {
             run: Some(dir.path().join("nope")),
             ..s
         };
-        let e = run_sweep(&bad, &bump).unwrap_err().to_string();
+        let e = run_sweep(&bad, &bumps).unwrap_err().to_string();
         assert!(e.starts_with("--run:"), "{e}");
         let e = run_optimize(
             &OptimizeArgs {
@@ -345,8 +366,7 @@ mod tests {
                 no_verify: true,
                 quiet: true,
             },
-            &bump,
-            None,
+            &bumps,
         )
         .unwrap_err()
         .to_string();

@@ -9,7 +9,7 @@
 //!
 //! Flags are read as text and validated here into [`ScoreConfig`], so every bad value ends in
 //! a one-line error naming the flag and what is allowed. Score definitions and ranges are in
-//! [`crate::metrics`].
+//! [`facetlab::metrics`].
 //!
 //! **JSON** (`--json FILE`, written atomically). One cut: a single object with `cut` (its
 //! name), `overhead_light_return`, `brilliance`, `brilliance_iso`, `brilliance_cos`, `fire`,
@@ -23,10 +23,10 @@
 //! photons per figure and pose (seed 1).
 
 use super::flags;
-use crate::error::{Error, Result};
-use crate::metrics::verify::{verify_scores, Check};
-use crate::metrics::{score, ScoreConfig, Scores, Tilt};
-use crate::optics::Dispersion;
+use facetlab::error::{Error, Result};
+use facetlab::metrics::verify::{verify_scores, Check};
+use facetlab::metrics::{score, ScoreConfig, Scores, Tilt};
+use facetlab::optics::Dispersion;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -281,7 +281,7 @@ pub fn run(a: &ScoreArgs) -> Result<()> {
     let cuts = a
         .cuts
         .iter()
-        .map(|c| crate::io::load_cut(c))
+        .map(|c| facetlab::io::load_cut(c))
         .collect::<Result<Vec<_>>>()?;
     if let Some(path) = &a.json {
         // Fail before the work, not after it.
@@ -330,7 +330,7 @@ pub fn run(a: &ScoreArgs) -> Result<()> {
         }
     }
     if let Some(path) = &a.json {
-        crate::io::write_atomic(
+        facetlab::io::write_atomic(
             path,
             to_json(&s.config, &results, &checks, photons)?.as_bytes(),
         )?;

@@ -25,11 +25,11 @@
 //! `paths_<cut>_wavelength`, `paths_<cut>_no_first_segment`, `facets_<cut>`.
 
 use super::flags;
-use crate::error::{Error, Result};
-use crate::photon::{
+use facetlab::error::{Error, Result};
+use facetlab::photon::{
     self, Absorption, Light, LightKind, Tally, TraceConfig, WavelengthSampling, CATEGORY_LABELS,
 };
-use crate::plot::{self, Camera, PathColor, PathStyle};
+use facetlab::plot::{self, Camera, PathColor, PathStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
@@ -347,7 +347,7 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     let cuts = args
         .cuts
         .iter()
-        .map(|c| crate::io::load_cut(c))
+        .map(|c| facetlab::io::load_cut(c))
         .collect::<Result<Vec<_>>>()?;
     let chosen = args.ri.is_some() || args.material.is_some();
     for note in flags::design_ri_notes(&cuts, &set.config.material, chosen) {
@@ -408,7 +408,7 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         };
         let text = serde_json::to_string_pretty(&value)
             .map_err(|e| Error::io(j.display().to_string(), e))?;
-        crate::io::write_atomic(j, text.as_bytes())?;
+        facetlab::io::write_atomic(j, text.as_bytes())?;
     }
     if let Some(dir) = &args.plots {
         write_plots(dir, &set, &cuts, &results)?;
@@ -533,7 +533,7 @@ fn print_table(set: &Settings, results: &[Vec<Tally>]) {
 fn write_plots(
     dir: &Path,
     set: &Settings,
-    cuts: &[crate::cut::Cut],
+    cuts: &[facetlab::cut::Cut],
     results: &[Vec<Tally>],
 ) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;

@@ -2,7 +2,7 @@
 //! tracer's thesis metrics plus Monte Carlo brilliance ([`PhotonVerifier`]).
 
 use super::verify::{VerifyReport, VerifyRow};
-use super::{Evaluator, ScoreSet, Verifier};
+use super::{Config, Evaluator, ScoreSet, Verifier};
 use crate::cut::Cut;
 use crate::error::Result;
 use crate::metrics::verify::{brilliance_mc, overhead_light_return_mc};
@@ -11,13 +11,27 @@ use crate::photon::{self, Light, LightKind, Tally, TraceConfig, ROTATION_ANGLES}
 
 /// Scores a cut with the beam tracer ([`crate::metrics::score`]). Brilliance, fire and
 /// scintillation are the objective's terms; the other scores ride along as extras.
-#[derive(Clone, Debug, Default)]
+///
+/// It is built from the optimization [`Config`] it serves (its `[score]` section), so the
+/// scores an optimizer climbs are always those of the config's material and lighting.
+#[derive(Clone, Debug)]
 pub struct BeamEvaluator {
-    /// Scoring settings.
-    pub config: ScoreConfig,
+    config: ScoreConfig,
 }
 
 impl BeamEvaluator {
+    /// The evaluator for a config: its `[score]` settings (material, head shadow, polarization).
+    pub fn new(config: &Config) -> Self {
+        BeamEvaluator {
+            config: config.score.score_config(),
+        }
+    }
+
+    /// The scoring settings in use.
+    pub fn score_config(&self) -> &ScoreConfig {
+        &self.config
+    }
+
     /// The scores as the optimizer reports them.
     pub fn score_set(s: &Scores) -> ScoreSet {
         let mut set = ScoreSet::new(s.brilliance, s.fire, s.scintillation);
@@ -44,11 +58,20 @@ impl Evaluator for BeamEvaluator {
 /// overhead and off-centre undirected light and under the directed light rotated 0–180°
 /// (thesis settings: depth 6, flat 0.1 absorption, 380–780 nm; shot until `photons` hit), and
 /// Monte Carlo overhead light return and brilliance under the beam tracer's lighting, which
-/// carry the beam tracer's value for comparison.
-#[derive(Clone, Debug, Default)]
+/// carry the beam tracer's value for comparison. Built, like [`BeamEvaluator`], from the
+/// config it serves.
+#[derive(Clone, Debug)]
 pub struct PhotonVerifier {
-    /// The beam tracer's scoring settings (lighting, poses, material).
-    pub config: ScoreConfig,
+    config: ScoreConfig,
+}
+
+impl PhotonVerifier {
+    /// The verifier for a config: its `[score]` settings.
+    pub fn new(config: &Config) -> Self {
+        PhotonVerifier {
+            config: config.score.score_config(),
+        }
+    }
 }
 
 fn top_rows(rows: &mut Vec<VerifyRow>, t: &Tally, label: &str) {

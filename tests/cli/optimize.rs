@@ -76,3 +76,58 @@ fn short_real_run_improves_and_writes_every_file() {
     );
     assert!(!p.join("run2").exists());
 }
+
+/// The fire and brilliance a one-cell sweep reports for `CONFIG` with `score` as its
+/// `[score]` section.
+fn swept_scores(p: &std::path::Path, tag: &str, score: &str) -> (f64, f64) {
+    std::fs::write(
+        p.join(format!("{tag}.toml")),
+        format!("{CONFIG}\n[score]\n{score}\n"),
+    )
+    .unwrap();
+    ok(
+        p,
+        &[
+            "sweep",
+            &format!("{tag}.toml"),
+            "--x",
+            "crown_angle:34:35:1",
+            "--y",
+            "pavilion_angle:40.8:41.8:1",
+            "--out",
+            &format!("{tag}.png"),
+            "--quiet",
+        ],
+    );
+    let csv = std::fs::read_to_string(p.join(format!("{tag}.csv"))).unwrap();
+    let mut lines = csv.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<f64> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let col = |k: &str| row[head.iter().position(|h| *h == k).unwrap()];
+    (col("brilliance"), col("fire"))
+}
+
+#[test]
+fn score_section_reaches_the_scorer() {
+    // Trust issue: `optimize`/`sweep` used to score with diamond whatever `[score]` said.
+    let d = tempdir().unwrap();
+    let p = d.path();
+    let (b_diamond, f_diamond) = swept_scores(p, "diamond", "");
+    let (b_fixed, f_fixed) = swept_scores(p, "fixed", "ri = 1.54");
+    let (_, f_cz) = swept_scores(p, "cz", "material = \"cubic-zirconia\"");
+    assert!(f_diamond > 0.1, "diamond fire {f_diamond}");
+    assert!(
+        f_fixed.abs() < 1e-12,
+        "a fixed index has no dispersion: fire {f_fixed}"
+    );
+    assert!(
+        (b_fixed - b_diamond).abs() > 0.01,
+        "{b_fixed} vs {b_diamond}"
+    );
+    assert!(f_cz > f_diamond, "CZ fire {f_cz} vs diamond {f_diamond}");
+}
