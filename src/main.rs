@@ -1,8 +1,47 @@
 //! The `facetlab` binary: parse the command line, run, print one-line errors with exit code 2.
 
-use clap::Parser;
+use clap::error::ErrorKind;
+use clap::{CommandFactory, FromArgMatches};
 
 mod cli;
+
+/// Parse the command line. Negative numbers are values, not flags (`--diameter-mm -3` reaches
+/// the validator, which says what is allowed); a usage error is one line like every other error.
+fn parse() -> cli::Cli {
+    let cmd = cli::Cli::command().mut_subcommands(|s| s.allow_negative_numbers(true));
+    let parsed = cmd
+        .try_get_matches()
+        .and_then(|m| cli::Cli::from_arg_matches(&m));
+    match parsed {
+        Ok(c) => c,
+        Err(e) => match e.kind() {
+            ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
+            _ => {
+                let text = e.render().to_string();
+                // The message is the first paragraph (a list of missing arguments continues
+                // on indented lines); the tip and usage after the blank line are dropped.
+                let para: Vec<&str> = text
+                    .lines()
+                    .take_while(|l| !l.trim().is_empty())
+                    .map(str::trim)
+                    .collect();
+                let joined = para.join(" ");
+                let line = joined.strip_prefix("error: ").unwrap_or(&joined);
+                let sub = std::env::args()
+                    .nth(1)
+                    .filter(|a| cli::Cli::command().find_subcommand(a).is_some());
+                let help = match sub {
+                    Some(s) => format!("facetlab {s} --help"),
+                    None => "facetlab --help".to_string(),
+                };
+                eprintln!("facetlab: {line} (see '{help}')");
+                std::process::exit(2);
+            }
+        },
+    }
+}
 
 fn main() {
     #[cfg(unix)]
@@ -11,7 +50,7 @@ fn main() {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    let cli = cli::Cli::parse();
+    let cli = parse();
     if let Err(e) = cli::run(cli) {
         eprintln!("facetlab: {e}");
         std::process::exit(2);

@@ -248,3 +248,25 @@ fn mesh_and_svg_outputs_and_non_convex_mesh() {
     );
     assert!(!files(p).iter().any(|f| f.starts_with("out")));
 }
+
+#[test]
+fn usage_errors_are_one_line_too() {
+    // clap's own errors used to print seven lines (tip, usage, blank lines).
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path();
+    bad(
+        p,
+        &["info", "tolkowsky", "--diameter-mm", "-3"],
+        &["--diameter-mm", "-3"],
+    );
+    bad(
+        p,
+        &["info", "tolkowsky", "--bogus"],
+        &["--bogus", "facetlab info --help"],
+    );
+    bad(p, &["score"], &["<CUT>", "facetlab score --help"]);
+    bad(p, &["frobnicate"], &["frobnicate"]);
+    // Help and version still print in full, to stdout, and succeed.
+    let help = ok(p, &["score", "--help"]);
+    assert!(help.contains("--verify"), "{help}");
+}
