@@ -219,7 +219,7 @@ mod tests {
             let mut chart = ChartBuilder::on(root).build_cartesian_2d(0f64..1f64, 0f64..1f64)?;
             chart
                 .draw_series(LineSeries::new([(0.0, 0.0), (1.0, 1.0)], TAB10[0]))?
-                .label("a")
+                .label("key-a")
                 .legend(line_key(TAB10[0].stroke_width(2), 20));
             legend(
                 &mut chart,
@@ -236,7 +236,7 @@ mod tests {
         let png = std::fs::read(dir.path().join("x.v2.png")).unwrap();
         assert_eq!(&png[1..4], b"PNG");
         let svg = std::fs::read_to_string(dir.path().join("x.v2.svg")).unwrap();
-        assert!(svg.contains("<svg") && svg.contains(">a</text>"), "{svg}");
+        assert!(svg.contains("<svg") && svg.contains("key-a"), "{svg}");
         let names: Vec<String> = std::fs::read_dir(dir.path())
             .unwrap()
             .map(|f| f.unwrap().file_name().to_string_lossy().to_string())
