@@ -150,6 +150,7 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     let opts = RunOptions {
         out: a.out.clone(),
         writers: cut_writers(),
+        convergence: Some(facetlab::plot::optimize::convergence),
         hooks: Hooks {
             stop: Some(&STOP),
             progress: Some(&progress),
@@ -274,7 +275,14 @@ pub fn run_sweep(a: &SweepArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<()>
             .map(|f| f.to_string_lossy())
             .unwrap_or_default()
     );
-    let (csv, png, svg) = sweep::write(&s, &score, title, path, &out)?;
+    let (csv, png, svg) = sweep::write(
+        &s,
+        &score,
+        title,
+        path,
+        &out,
+        facetlab::plot::optimize::heatmap,
+    )?;
     let z = s.grid(&score);
     let best = s
         .cells

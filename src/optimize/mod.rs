@@ -62,13 +62,11 @@
 //! ```
 
 pub mod config;
-pub mod contour;
 pub mod design;
 pub mod engines;
 pub mod guard;
 pub mod history;
 pub mod nelder_mead;
-pub mod plot;
 pub mod problem;
 pub mod pso;
 pub mod report;

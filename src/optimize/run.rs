@@ -6,7 +6,7 @@
 //! |---|---|
 //! | `config.toml` | the config as used, every default written out |
 //! | `history.csv` | every evaluated point (see [`super::history`]) |
-//! | `convergence.png`, `.svg` | best and current cost against evaluations |
+//! | `convergence.png`, `.svg` (with a [`ConvergenceChart`]) | best and current cost against evaluations |
 //! | `best.toml` (+ `.asc`, `.obj`, `.svg` with those writers) | the best cut |
 //! | `report.md`, `report.json` | start and winners side by side, verification, timing |
 //!
@@ -16,7 +16,6 @@
 use super::config::{Config, Method};
 use super::guard::{Progress, Stop, Tracker};
 use super::history::History;
-use super::plot::{save_both, Convergence};
 use super::problem::{Objective, FAILED_COST};
 use super::report::{Candidate, FoundAt, FreeJson, Report, SearchJson, VerificationJson};
 use super::verify::{Verification, Verifier};
@@ -281,6 +280,12 @@ fn toml_spec(cut: &Cut) -> Result<String> {
 /// The TOML spec writer (always available).
 pub const TOML_WRITER: FnWriter = FnWriter::new("toml", toml_spec);
 
+/// Draws a run's convergence chart (best and current cost against evaluations) from its history,
+/// under `title`, as the PNG `png` and the SVG `svg`. The optimizer draws no charts itself: the
+/// binary connects the plot module's `convergence` here.
+pub type ConvergenceChart =
+    fn(history: &History, title: &str, png: &Path, svg: &Path) -> Result<()>;
+
 /// Everything a run folder needs besides the config and the evaluator.
 pub struct RunOptions<'a> {
     /// The folder to write; `None` = a new `<results_root>/<name>-<UTC time>/`.
@@ -289,6 +294,8 @@ pub struct RunOptions<'a> {
     pub results_root: PathBuf,
     /// Writers of the best cut; `best.toml` is always written.
     pub writers: Vec<&'a dyn CutWriter>,
+    /// Draws `convergence.png` and `.svg`; `None` = no chart.
+    pub convergence: Option<ConvergenceChart>,
     /// Stop flag and progress.
     pub hooks: Hooks<'a>,
 }
@@ -299,6 +306,7 @@ impl Default for RunOptions<'_> {
             out: None,
             results_root: PathBuf::from("results"),
             writers: Vec::new(),
+            convergence: None,
             hooks: Hooks::default(),
         }
     }
@@ -399,12 +407,13 @@ pub fn report(config: &Config, o: &Outcome, files: Vec<String>) -> Report {
     }
 }
 
-/// Write the run folder for an outcome.
+/// Write the run folder for an outcome; `convergence` draws its chart.
 pub fn write_folder(
     dir: &Path,
     config: &Config,
     outcome: &Outcome,
     writers: &[&dyn CutWriter],
+    convergence: Option<ConvergenceChart>,
 ) -> Result<Report> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
     let mut files = Vec::new();
@@ -415,22 +424,22 @@ pub fn write_folder(
     };
     put("config.toml", config.as_used_toml().as_bytes())?;
     put("history.csv", outcome.history.to_csv().as_bytes())?;
-    let fig = Convergence {
-        history: &outcome.history,
-        title: format!(
+    if let Some(chart) = convergence {
+        let title = format!(
             "{} — {} ({} evaluations)",
             config.name,
             config.method.name(),
             outcome.evaluations
-        ),
-    };
-    save_both(
-        &fig,
-        &dir.join("convergence.png"),
-        &dir.join("convergence.svg"),
-    )?;
-    files.push("convergence.png".into());
-    files.push("convergence.svg".into());
+        );
+        chart(
+            &outcome.history,
+            &title,
+            &dir.join("convergence.png"),
+            &dir.join("convergence.svg"),
+        )?;
+        files.push("convergence.png".into());
+        files.push("convergence.svg".into());
+    }
     if let Some(cut) = &outcome.best_cut {
         let mut all: Vec<&dyn CutWriter> = vec![&TOML_WRITER];
         all.extend(writers.iter().filter(|w| w.extension() != "toml"));
@@ -467,7 +476,7 @@ pub fn run(
         Some(v) => verify(&mut outcome, config, v, &opts.hooks),
         None => outcome.verify_note = Some("no photon tracer connected".into()),
     }
-    let report = write_folder(&dir, config, &outcome, &opts.writers)?;
+    let report = write_folder(&dir, config, &outcome, &opts.writers, opts.convergence)?;
     Ok(RunSummary {
         dir,
         outcome,

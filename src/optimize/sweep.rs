@@ -10,7 +10,6 @@
 
 use super::config::{axis_label, Config};
 use super::history::History;
-use super::plot::{save_both, Heatmap};
 use super::problem::{check_constraints, penalty, weighted};
 use super::{Evaluator, ScoreSet};
 use crate::cut::{Cut, Unit};
@@ -19,6 +18,32 @@ use crate::io::{read_bytes, write_atomic};
 use rayon::prelude::*;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
+
+/// A score over a grid of two parameters, as a chart shows it: the values, the axis labels and
+/// optionally the optimizer's path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Heatmap {
+    /// Title.
+    pub title: String,
+    /// Grid x values (at least 2, increasing).
+    pub xs: Vec<f64>,
+    /// Grid y values (at least 2, increasing).
+    pub ys: Vec<f64>,
+    /// `z[j][i]` at `(xs[i], ys[j])`; NaN where the cut failed.
+    pub z: Vec<Vec<f64>>,
+    /// x axis label.
+    pub x_label: String,
+    /// y axis label.
+    pub y_label: String,
+    /// Colour bar label.
+    pub z_label: String,
+    /// The optimizer's path (best point so far), in (x, y).
+    pub path: Option<Vec<(f64, f64)>>,
+}
+
+/// Draws a [`Heatmap`] as the PNG `png` and the SVG `svg`. The optimizer draws no charts
+/// itself: the binary connects the plot module's `heatmap` here.
+pub type HeatmapChart = fn(map: &Heatmap, png: &Path, svg: &Path) -> Result<()>;
 
 /// Largest number of grid points.
 pub const MAX_POINTS: usize = 250_000;
@@ -424,20 +449,21 @@ pub fn output_paths(out: &Path) -> (PathBuf, PathBuf, PathBuf) {
     )
 }
 
-/// Write the CSV and the heatmap (PNG and SVG).
+/// Write the CSV and the heatmap (PNG and SVG, drawn by `chart`).
 pub fn write(
     sweep: &Sweep,
     score: &SweepScore,
     title: String,
     path: Option<Vec<(f64, f64)>>,
     out: &Path,
+    chart: HeatmapChart,
 ) -> Result<(PathBuf, PathBuf, PathBuf)> {
     let (csv, png, svg) = output_paths(out);
     if let Some(d) = csv.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(d).map_err(|e| Error::io(d.display().to_string(), e))?;
     }
     write_atomic(&csv, sweep.to_csv().as_bytes())?;
-    save_both(&sweep.heatmap(score, title, path), &png, &svg)?;
+    chart(&sweep.heatmap(score, title, path), &png, &svg)?;
     Ok((csv, png, svg))
 }
 
@@ -517,15 +543,27 @@ mod tests {
         let s1 = pool.install(|| sweep(&c, &bump, &x, &y, None).unwrap());
         assert_eq!(s1.to_csv(), s.to_csv());
         let dir = tempfile::tempdir().unwrap();
+        // The chart receives the map; this one writes its size and path as text.
+        let chart: HeatmapChart = |m, png, svg| {
+            let text = format!("{}x{} {:?}", m.xs.len(), m.ys.len(), m.path);
+            write_atomic(png, text.as_bytes())?;
+            write_atomic(svg, m.z_label.as_bytes())
+        };
         let (csv, png, svg) = write(
             &s,
             &SweepScore::Brilliance,
             "t".into(),
             Some(vec![(31.0, 39.5), (34.0, 40.5)]),
             &dir.path().join("map.png"),
+            chart,
         )
         .unwrap();
-        assert!(csv.ends_with("map.csv") && png.exists() && svg.exists());
+        assert!(csv.ends_with("map.csv"));
+        assert_eq!(
+            std::fs::read_to_string(png).unwrap(),
+            "7x7 Some([(31.0, 39.5), (34.0, 40.5)])"
+        );
+        assert_eq!(std::fs::read_to_string(svg).unwrap(), "brilliance");
         let text = std::fs::read_to_string(csv).unwrap();
         assert!(text.starts_with(
             "crown_angle,pavilion_angle,brilliance,fire,scintillation,objective\n30,39,"

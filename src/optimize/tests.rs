@@ -3,6 +3,7 @@
 
 use super::config::Config;
 use super::guard::{Progress, Status, Stop};
+use super::history::History;
 use super::run::{self, FnWriter, Hooks, RunOptions};
 use super::verify::{VerifyReport, VerifyRow};
 use super::{Evaluator, ScoreSet};
@@ -179,6 +180,18 @@ fn obj_text(cut: &Cut) -> Result<String> {
     Ok(format!("# {} vertices\n", cut.solid.vertices.len()))
 }
 
+/// A convergence chart that writes the number of rows it was given (the real one is the plot
+/// module's, wired by the binary).
+fn fake_chart(
+    h: &History,
+    title: &str,
+    png: &std::path::Path,
+    svg: &std::path::Path,
+) -> Result<()> {
+    crate::io::write_atomic(png, format!("{} rows", h.rows.len()).as_bytes())?;
+    crate::io::write_atomic(svg, title.as_bytes())
+}
+
 #[test]
 fn a_run_improves_on_its_start_and_writes_every_file() {
     let c = config(
@@ -191,6 +204,7 @@ fn a_run_improves_on_its_start_and_writes_every_file() {
     let opts = RunOptions {
         out: Some(out.clone()),
         writers: vec![&obj],
+        convergence: Some(fake_chart),
         ..RunOptions::default()
     };
     let s = run::run(&c, &bump, Some(&fake_verifier), &opts).unwrap();
@@ -211,6 +225,11 @@ fn a_run_improves_on_its_start_and_writes_every_file() {
         );
         assert!(s.report.files.contains(&f.to_string()), "{f} listed");
     }
+    // The chart hook received the run's history.
+    assert_eq!(
+        std::fs::read_to_string(out.join("convergence.png")).unwrap(),
+        format!("{} rows", s.outcome.history.rows.len())
+    );
     // Nothing half-written left behind.
     let names: Vec<String> = std::fs::read_dir(&out)
         .unwrap()
@@ -289,6 +308,7 @@ fn ctrl_c_stops_cleanly_and_still_writes() {
             stop: Some(&STOP),
             progress: None,
         },
+        convergence: Some(fake_chart),
         ..RunOptions::default()
     };
     let s = run::run(&c, &pressing, Some(&fake_verifier), &opts).unwrap();
@@ -388,6 +408,7 @@ fn a_run_where_every_cut_fails_still_writes_its_report() {
         let dir = tempfile::tempdir().unwrap();
         let opts = RunOptions {
             out: Some(dir.path().to_path_buf()),
+            convergence: Some(fake_chart),
             ..RunOptions::default()
         };
         let s = run::run(&config(method, ""), &refuse, Some(&fake_verifier), &opts).unwrap();

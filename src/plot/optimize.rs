@@ -1,100 +1,39 @@
-//! Pictures of runs and sweeps (plotters): the convergence plot and the score heatmap. Each is a
-//! [`Figure`] drawn by one function generic over the backend, saved as PNG and SVG.
-//!
-//! Text uses a bundled DejaVu Sans (registered once as `sans-serif`), so no system fonts are
-//! needed.
+//! The optimizer's charts: a run's convergence (best and current cost against evaluations) and a
+//! sweep's heatmap (a score over two parameters, with contour lines, a colour bar and optionally
+//! the optimizer's path). They reach the optimizer as its hooks
+//! ([`crate::optimize::run::ConvergenceChart`], [`crate::optimize::sweep::HeatmapChart`]): the
+//! binary hands [`convergence`] and [`heatmap`] to a run and a sweep.
 
 use super::contour::{nice_levels, segments};
-use super::history::{History, Track};
-use super::problem::FAILED_COST;
-use crate::error::{Error, Result};
-use crate::io::write_atomic;
+use super::{box_key, font, legend, line_key, save_to, DrawResult, Figure, LegendStyle, TAB10};
+use crate::error::Result;
+use crate::optimize::history::{History, Track};
+use crate::optimize::problem::FAILED_COST;
+use crate::optimize::sweep::Heatmap;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-/// Register the bundled font as `sans-serif` (once per process; shared with [`crate::plot`]).
-pub fn ensure_font() {
-    crate::plot::register_font();
+/// Draw a run's convergence chart under `title` as the PNG `png` and the SVG `svg`: one pair of
+/// lines (best so far, thick; each evaluation, thin) per Nelder–Mead start, or the swarm's best
+/// with its spread (min–max and quartile bands, median, every particle as a dot).
+pub fn convergence(history: &History, title: &str, png: &Path, svg: &Path) -> Result<()> {
+    save_to(
+        &Convergence {
+            history,
+            title: title.to_string(),
+        },
+        png,
+        svg,
+    )
 }
 
-/// The result of a drawing step on backend `DB`.
-pub type DrawResult<DB> =
-    std::result::Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
-
-/// A picture that can be drawn on any plotters backend.
-pub trait Figure {
-    /// Pixel size (width, height).
-    fn size(&self) -> (u32, u32);
-    /// Draw on a white `root`.
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB>;
+/// Draw a sweep's heatmap as the PNG `png` and the SVG `svg`: Viridis cells (grey where the cut
+/// failed), labelled contour lines, a colour bar, and the optimizer's path if the map has one.
+pub fn heatmap(map: &Heatmap, png: &Path, svg: &Path) -> Result<()> {
+    save_to(&Map(map), png, svg)
 }
-
-fn plot_err(path: &Path, e: impl std::fmt::Display) -> Error {
-    Error::io(path.display().to_string(), format!("could not draw: {e}"))
-}
-
-/// Save `fig` as a PNG (written beside the target and renamed, like every output).
-pub fn save_png(fig: &impl Figure, path: &Path) -> Result<()> {
-    ensure_font();
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().to_string())
-        .unwrap_or_else(|| "plot.png".into());
-    let tmp = dir.join(format!(".{name}.tmp-{}.png", std::process::id()));
-    let drawn = (|| {
-        let root = BitMapBackend::new(&tmp, fig.size()).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| plot_err(path, e))?;
-        fig.draw(&root).map_err(|e| plot_err(path, e))?;
-        root.present().map_err(|e| plot_err(path, e))
-    })();
-    let done = drawn.and_then(|_| {
-        std::fs::rename(&tmp, path).map_err(|e| Error::io(path.display().to_string(), e))
-    });
-    if done.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    done
-}
-
-/// The SVG text of `fig`.
-pub fn svg_string(fig: &impl Figure) -> Result<String> {
-    ensure_font();
-    let mut s = String::new();
-    {
-        let root = SVGBackend::with_string(&mut s, fig.size()).into_drawing_area();
-        let p = Path::new("figure.svg");
-        root.fill(&WHITE).map_err(|e| plot_err(p, e))?;
-        fig.draw(&root).map_err(|e| plot_err(p, e))?;
-        root.present().map_err(|e| plot_err(p, e))?;
-    }
-    Ok(s)
-}
-
-/// Save `fig` as `<stem>.png` and `<stem>.svg`.
-pub fn save_both(fig: &impl Figure, png: &Path, svg: &Path) -> Result<()> {
-    save_png(fig, png)?;
-    write_atomic(svg, svg_string(fig)?.as_bytes())
-}
-
-/// Tableau's ten colours, for one line per start.
-pub const TAB10: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
 
 fn quantile(sorted: &[f64], q: f64) -> f64 {
     if sorted.is_empty() {
@@ -120,13 +59,10 @@ struct Band {
     best: f64,
 }
 
-/// Best and current cost against evaluations: one pair of lines per Nelder–Mead start, or the
-/// swarm's best with its spread (min–max and quartile bands, median, every particle as a dot).
-pub struct Convergence<'a> {
-    /// The history.
-    pub history: &'a History,
-    /// Title.
-    pub title: String,
+/// Best and current cost against evaluations.
+struct Convergence<'a> {
+    history: &'a History,
+    title: String,
 }
 
 impl Convergence<'_> {
@@ -169,7 +105,7 @@ impl Figure for Convergence<'_> {
         let (ylo, yhi) = self.y_range();
         let clamp = |v: f64| v.clamp(ylo, yhi);
         let xmax = h.rows.last().map(|r| r.evaluations).unwrap_or(1).max(1) as f64;
-        let root = root.titled(&self.title, ("sans-serif", 20))?;
+        let root = root.titled(&self.title, font(20))?;
         let mut chart = ChartBuilder::on(&root)
             .margin(16)
             .x_label_area_size(48)
@@ -181,8 +117,8 @@ impl Figure for Convergence<'_> {
             .y_desc("cost = −(weighted score) + penalties")
             .x_label_formatter(&|v| format!("{v:.0}"))
             .y_label_formatter(&|v| tidy(*v, yhi - ylo))
-            .label_style(("sans-serif", 14))
-            .axis_desc_style(("sans-serif", 16))
+            .label_style(font(14))
+            .axis_desc_style(font(16))
             .light_line_style(RGBColor(235, 235, 235))
             .draw()?;
         match h.track {
@@ -202,9 +138,7 @@ impl Figure for Convergence<'_> {
                     if k < 10 {
                         let last = rows.last().map(|r| r.best_cost).unwrap_or(f64::NAN);
                         best.label(format!("start {k}: best {last:.4}"))
-                            .legend(move |(x, y)| {
-                                PathElement::new(vec![(x, y), (x + 22, y)], col.stroke_width(3))
-                            });
+                            .legend(line_key(col.stroke_width(3), 22));
                     }
                 }
                 // Legend entry for the thin lines.
@@ -214,9 +148,7 @@ impl Figure for Convergence<'_> {
                         BLACK.mix(0.35),
                     )))?
                     .label("cost of each evaluation (thin)")
-                    .legend(|(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 22, y)], BLACK.mix(0.35).stroke_width(1))
-                    });
+                    .legend(line_key(BLACK.mix(0.35).stroke_width(1), 22));
             }
             Track::Particle => {
                 let iters = h.rows.iter().map(|r| r.iteration).max().unwrap_or(0);
@@ -251,27 +183,21 @@ impl Figure for Convergence<'_> {
                         blue.mix(0.12).filled(),
                     )))?
                     .label("swarm: min–max of the iteration")
-                    .legend(move |(x, y)| {
-                        Rectangle::new([(x, y - 6), (x + 22, y + 6)], blue.mix(0.12).filled())
-                    });
+                    .legend(box_key(blue.mix(0.12).filled(), 22));
                 chart
                     .draw_series(std::iter::once(Polygon::new(
                         poly(|b| b.q1, |b| b.q3),
                         blue.mix(0.3).filled(),
                     )))?
                     .label("swarm: quartiles")
-                    .legend(move |(x, y)| {
-                        Rectangle::new([(x, y - 6), (x + 22, y + 6)], blue.mix(0.3).filled())
-                    });
+                    .legend(box_key(blue.mix(0.3).filled(), 22));
                 chart
                     .draw_series(LineSeries::new(
                         band.iter().map(|b| (b.x, clamp(b.median))),
                         blue.stroke_width(1),
                     ))?
                     .label("swarm: median")
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 22, y)], blue.stroke_width(1))
-                    });
+                    .legend(line_key(blue.stroke_width(1), 22));
                 chart
                     .draw_series(h.rows.iter().map(|r| {
                         Circle::new(
@@ -290,9 +216,7 @@ impl Figure for Convergence<'_> {
                         red.stroke_width(3),
                     ))?
                     .label(format!("swarm best: {last:.4}"))
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 22, y)], red.stroke_width(3))
-                    });
+                    .legend(line_key(red.stroke_width(3), 22));
             }
         }
         if let Some(b) = h.best_row() {
@@ -305,43 +229,23 @@ impl Figure for Convergence<'_> {
                 .label(format!("best of the run: {:.4}", b.cost))
                 .legend(|(x, y)| Cross::new((x + 11, y), 5, BLACK.stroke_width(2)));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.5))
-            .label_font(("sans-serif", 13))
-            .draw()?;
+        legend(
+            &mut chart,
+            SeriesLabelPosition::UpperRight,
+            LegendStyle::Compact,
+        )?;
         Ok(())
     }
 }
 
-/// A score over a grid of two parameters, with contour lines, a colour bar, and optionally the
-/// optimizer's path.
-pub struct Heatmap {
-    /// Title.
-    pub title: String,
-    /// Grid x values (at least 2, increasing).
-    pub xs: Vec<f64>,
-    /// Grid y values (at least 2, increasing).
-    pub ys: Vec<f64>,
-    /// `z[j][i]` at `(xs[i], ys[j])`; NaN where the cut failed (drawn grey).
-    pub z: Vec<Vec<f64>>,
-    /// x axis label.
-    pub x_label: String,
-    /// y axis label.
-    pub y_label: String,
-    /// Colour bar label.
-    pub z_label: String,
-    /// The optimizer's path (best point so far), in (x, y).
-    pub path: Option<Vec<(f64, f64)>>,
-}
+/// A sweep's map as a figure.
+struct Map<'a>(&'a Heatmap);
 
-impl Heatmap {
+impl Map<'_> {
     /// The finite range of `z`.
-    pub fn z_range(&self) -> (f64, f64) {
+    fn z_range(&self) -> (f64, f64) {
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for v in self.z.iter().flatten().filter(|v| v.is_finite()) {
+        for v in self.0.z.iter().flatten().filter(|v| v.is_finite()) {
             lo = lo.min(*v);
             hi = hi.max(*v);
         }
@@ -355,7 +259,7 @@ impl Heatmap {
     }
 
     /// The contour levels drawn.
-    pub fn levels(&self) -> Vec<f64> {
+    fn levels(&self) -> Vec<f64> {
         let (lo, hi) = self.z_range();
         nice_levels(lo, hi, 8)
     }
@@ -399,7 +303,7 @@ fn level_label(v: f64) -> String {
     s.to_string()
 }
 
-impl Figure for Heatmap {
+impl Figure for Map<'_> {
     fn size(&self) -> (u32, u32) {
         (1000, 760)
     }
@@ -407,11 +311,11 @@ impl Figure for Heatmap {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
         let (zlo, zhi) = self.z_range();
         let levels = self.levels();
-        let root = root.titled(&self.title, ("sans-serif", 20))?;
+        let root = root.titled(&self.0.title, font(20))?;
         let (w, _) = root.dim_in_pixel();
         let (left, right) = root.split_horizontally(w.saturating_sub(150));
-        let xc = half_steps(&self.xs);
-        let yc = half_steps(&self.ys);
+        let xc = half_steps(&self.0.xs);
+        let yc = half_steps(&self.0.ys);
         let (x0, x1) = (xc[0].0, xc[xc.len() - 1].1);
         let (y0, y1) = (yc[0].0, yc[yc.len() - 1].1);
         let mut chart = ChartBuilder::on(&left)
@@ -422,16 +326,16 @@ impl Figure for Heatmap {
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc(self.x_label.as_str())
-            .y_desc(self.y_label.as_str())
-            .label_style(("sans-serif", 14))
-            .axis_desc_style(("sans-serif", 16))
+            .x_desc(self.0.x_label.as_str())
+            .y_desc(self.0.y_label.as_str())
+            .label_style(font(14))
+            .axis_desc_style(font(16))
             .draw()?;
         let grey = RGBColor(190, 190, 190);
-        chart.draw_series(self.ys.iter().enumerate().flat_map(|(j, _)| {
+        chart.draw_series(self.0.ys.iter().enumerate().flat_map(|(j, _)| {
             let (xc, yc) = (&xc, &yc);
-            self.xs.iter().enumerate().map(move |(i, _)| {
-                let v = self.z[j][i];
+            self.0.xs.iter().enumerate().map(move |(i, _)| {
+                let v = self.0.z[j][i];
                 let style = if v.is_finite() {
                     ViridisRGB::get_color_normalized(v, zlo, zhi).filled()
                 } else {
@@ -441,7 +345,7 @@ impl Figure for Heatmap {
             })
         }))?;
         for (k, lv) in levels.iter().enumerate() {
-            let segs = segments(&self.xs, &self.ys, &self.z, *lv);
+            let segs = segments(&self.0.xs, &self.0.ys, &self.0.z, *lv);
             chart
                 .draw_series(segs.iter().map(|(a, b)| {
                     PathElement::new(vec![*a, *b], WHITE.mix(0.75).stroke_width(1))
@@ -453,18 +357,16 @@ impl Figure for Heatmap {
                 chart.draw_series(std::iter::once(Text::new(
                     level_label(*lv),
                     mid,
-                    ("sans-serif", 12).into_font().color(&WHITE),
+                    font(12).color(&WHITE),
                 )))?;
             }
         }
-        if let Some(path) = self.path.as_ref().filter(|p| !p.is_empty()) {
+        if let Some(path) = self.0.path.as_ref().filter(|p| !p.is_empty()) {
             let red = RGBColor(240, 40, 40);
             chart
                 .draw_series(LineSeries::new(path.iter().copied(), red.stroke_width(2)))?
                 .label("optimizer: best point so far")
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 22, y)], red.stroke_width(2))
-                });
+                .legend(line_key(red.stroke_width(2), 22));
             chart.draw_series(path.iter().map(|p| Circle::new(*p, 2, red.filled())))?;
             chart
                 .draw_series(std::iter::once(Circle::new(
@@ -484,13 +386,11 @@ impl Figure for Heatmap {
                 10,
                 WHITE.stroke_width(1),
             )))?;
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK.mix(0.5))
-                .label_font(("sans-serif", 13))
-                .draw()?;
+            legend(
+                &mut chart,
+                SeriesLabelPosition::UpperRight,
+                LegendStyle::Compact,
+            )?;
         }
         // Colour bar.
         let mut bar = ChartBuilder::on(&right)
@@ -502,9 +402,9 @@ impl Figure for Heatmap {
         bar.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
-            .y_desc(self.z_label.as_str())
-            .label_style(("sans-serif", 13))
-            .axis_desc_style(("sans-serif", 15))
+            .y_desc(self.0.z_label.as_str())
+            .label_style(font(13))
+            .axis_desc_style(font(15))
             .y_labels(8)
             .y_label_formatter(&|v| tidy(*v, zhi - zlo))
             .draw()?;
@@ -521,5 +421,89 @@ impl Figure for Heatmap {
             PathElement::new(vec![(0.0, *lv), (1.0, *lv)], WHITE.mix(0.9).stroke_width(1))
         }))?;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::optimize::history::Row;
+
+    fn history(track: Track, costs: &[(usize, f64)]) -> History {
+        let mut h = History::new(track, vec!["a".into(), "b".into()]);
+        let mut best = f64::INFINITY;
+        for (k, &(t, cost)) in costs.iter().enumerate() {
+            best = best.min(cost);
+            h.rows.push(Row {
+                track: t,
+                iteration: k as u64 / 3,
+                evaluations: k as u64 + 1,
+                cost,
+                best_cost: best,
+                x: vec![k as f64, 1.0],
+            });
+        }
+        h
+    }
+
+    #[test]
+    fn convergence_draws_starts_swarms_and_runs_where_every_cut_failed() {
+        let dir = tempfile::tempdir().unwrap();
+        let ok: Vec<(usize, f64)> = (0..12).map(|k| (k % 2, -0.5 - 0.01 * k as f64)).collect();
+        let failed: Vec<(usize, f64)> = (0..6).map(|k| (k % 3, FAILED_COST)).collect();
+        for (name, h) in [
+            ("nm", history(Track::Start, &ok)),
+            ("pso", history(Track::Particle, &ok)),
+            ("failed", history(Track::Start, &failed)),
+            ("failed_pso", history(Track::Particle, &failed)),
+        ] {
+            let (png, svg) = (dir.path().join("c.png"), dir.path().join("c.svg"));
+            convergence(&h, name, &png, &svg).unwrap();
+            assert_eq!(&std::fs::read(&png).unwrap()[1..4], b"PNG", "{name}");
+            let text = std::fs::read_to_string(&svg).unwrap();
+            assert!(text.contains("best of the run"), "{name}");
+            let swarm = text.contains("swarm best");
+            assert_eq!(swarm, h.track == Track::Particle, "{name}");
+        }
+    }
+
+    #[test]
+    fn heatmap_draws_contours_grey_cells_and_the_path() {
+        let xs: Vec<f64> = (0..9).map(|i| 30.0 + i as f64).collect();
+        let ys: Vec<f64> = (0..7).map(|j| 39.0 + 0.5 * j as f64).collect();
+        let mut z: Vec<Vec<f64>> = ys
+            .iter()
+            .map(|y| {
+                xs.iter()
+                    .map(|x| -((x - 34.0) / 3.0).powi(2) - (y - 40.5).powi(2))
+                    .collect()
+            })
+            .collect();
+        z[0][0] = f64::NAN;
+        let mut map = Heatmap {
+            title: "t".into(),
+            xs,
+            ys,
+            z,
+            x_label: "crown".into(),
+            y_label: "pavilion".into(),
+            z_label: "score".into(),
+            path: Some(vec![(31.0, 39.5), (34.0, 40.5)]),
+        };
+        let m = Map(&map);
+        let (lo, hi) = m.z_range();
+        assert!(lo < -2.0 && hi == 0.0, "{lo} {hi}");
+        assert!(m.levels().iter().all(|l| *l > lo && *l < hi));
+        let dir = tempfile::tempdir().unwrap();
+        let (png, svg) = (dir.path().join("m.png"), dir.path().join("m.svg"));
+        heatmap(&map, &png, &svg).unwrap();
+        assert_eq!(&std::fs::read(&png).unwrap()[1..4], b"PNG");
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert!(text.contains("end (best)") && text.contains("score"));
+        map.path = None;
+        heatmap(&map, &png, &svg).unwrap();
+        assert!(!std::fs::read_to_string(&svg)
+            .unwrap()
+            .contains("end (best)"));
     }
 }
