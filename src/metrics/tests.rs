@@ -1,7 +1,7 @@
 //! Tests of the scores.
 
 use super::*;
-use crate::beam::tests::{octahedron, princess, tolkowsky};
+use crate::testkit::{octahedron, princess, tolkowsky};
 use std::collections::BTreeMap;
 
 /// A lighter configuration for tests that score many cuts.
