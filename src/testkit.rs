@@ -125,13 +125,13 @@ pub(crate) fn princess() -> Polyhedron {
 
 #[test]
 fn kit_solids_have_their_volumes() {
-    assert!((cube().volume() - 1.0).abs() < 1e-12);
-    assert!((boxed(1.0, 2.0, 3.0).volume() - 48.0).abs() < 1e-12);
-    assert!((slab(40.0, 0.05).volume() - 80.0 * 80.0 * 0.1).abs() < 1e-9);
+    let near = |got: f64, want: f64| assert!((got / want - 1.0).abs() < 1e-9, "{got} vs {want}");
+    near(cube().volume(), 1.0);
+    near(boxed(1.0, 2.0, 3.0).volume(), 48.0);
+    near(slab(40.0, 0.05).volume(), 80.0 * 80.0 * 0.1);
     // |x|+|y|+|z| ≤ r: volume 4r³/3.
-    assert!((octahedron_of(1.0).volume() - 4.0 / 3.0).abs() < 1e-12);
-    let r = 0.5 * 3f64.sqrt();
-    assert!((octahedron().volume() - 4.0 * r * r * r / 3.0).abs() < 1e-12);
+    near(octahedron_of(1.0).volume(), 4.0 / 3.0);
+    near(octahedron().volume(), 0.5 * 3f64.sqrt());
     assert_eq!(princess().facets.len(), 25);
     assert_eq!(cube().facets[5].name, "bottom");
 }

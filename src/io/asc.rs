@@ -48,7 +48,7 @@
 //! [`AscDesign::planes`] are in the file's units. [`AscDesign::to_cut`] scales the solid about
 //! the origin so that its girdle outline is 1 wide: the largest horizontal distance between
 //! any two vertices (the outline's width across corners) becomes 1, and every plane offset is
-//! scaled with it. [`write`] writes distances in the cut's own units (girdle diameter D = 1).
+//! scaled with it. [`write()`] writes distances in the cut's own units (girdle diameter D = 1).
 //!
 //! # Tolerated
 //!
@@ -65,7 +65,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// The index gear used when a file has no `g` line, and by [`write`] for gear 0.
+/// The index gear used when a file has no `g` line, and by [`write()`] for gear 0.
 pub const DEFAULT_GEAR: u32 = 96;
 
 /// One `a` line (with its continuation lines) as written in the file.

@@ -1,6 +1,6 @@
 //! Golden values: every score of the `tolkowsky` preset under two fixed settings, pinned to
-//! 1e-6. The range and ranking tests in `tests.rs` hold for a wide band of wrong answers; these
-//! fail on any change of the numbers.
+//! 1e-6 (after the range checks of `tests.rs`, which hold for a wide band of wrong answers);
+//! these fail on any change of the numbers.
 //!
 //! # When a change is legitimate
 //!
@@ -43,7 +43,9 @@ fn fields(s: &Scores) -> [(&'static str, f64); 10] {
 /// Score the preset under `cfg`; print the values when `FACETLAB_PRINT_GOLDEN` is set; assert
 /// each equals `pinned` within [`TOL`].
 fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 10]) {
-    let got = fields(&score(&tolkowsky(), cfg));
+    let s = score(&tolkowsky(), cfg);
+    super::tests::check_ranges(constant, &s);
+    let got = fields(&s);
     if std::env::var_os("FACETLAB_PRINT_GOLDEN").is_some() {
         let mut out = format!("const {constant}: [f64; 10] = [\n");
         for (name, v) in &got {
