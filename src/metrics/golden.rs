@@ -56,7 +56,7 @@ fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 10]) {
     let off: Vec<String> = got
         .iter()
         .zip(pinned)
-        .filter(|((_, g), p)| !((g - *p).abs() <= TOL))
+        .filter(|((_, g), p)| (g - *p).abs().is_nan() || (g - *p).abs() > TOL)
         .map(|((name, g), p)| format!("{name} = {g:.9}, pinned {p:.9}"))
         .collect();
     assert!(
