@@ -4,6 +4,33 @@
 //! optimizer → plots; the `facetlab` binary (its own `cli` module) sits on top. The library
 //! knows nothing of the command line: clap, indicatif and ctrlc are the binary's, behind the
 //! default `cli` feature.
+//!
+//! # A short tour
+//!
+//! Load a preset (or a `.toml`, `.asc`, `.obj`, `.stl` file) with [`io::load_cut`], change its
+//! parameters with [`cut::Cut::with_params`] (or build any family with
+//! [`cut::Cut::from_family`]), and score it with [`metrics::score`]:
+//!
+//! ```
+//! use facetlab::metrics::{score, ScoreConfig};
+//! use std::collections::BTreeMap;
+//!
+//! let tolkowsky = facetlab::io::load_cut("tolkowsky").unwrap();
+//! let deeper = tolkowsky
+//!     .with_params(&BTreeMap::from([("pavilion_angle".to_string(), 42.0)]))
+//!     .unwrap();
+//! assert!(deeper.proportions().pavilion_depth > tolkowsky.proportions().pavilion_depth);
+//!
+//! let s = score(&tolkowsky.solid, &ScoreConfig::default());
+//! // An ideal round brilliant returns most of the light and leaks little face-up.
+//! assert!(s.brilliance > 0.7 && s.aset.leak < 0.15, "{s:?}");
+//! assert!(s.fire > 0.0 && s.scintillation > 0.0);
+//! let a = s.aset;
+//! assert!((a.blue + a.red + a.green + a.leak - 1.0).abs() < 1e-12);
+//! ```
+//!
+//! Solids come from half-spaces ([`geometry::Polyhedron::from_planes`]); GemCad designs are
+//! read and written by [`io::asc`].
 #![warn(missing_docs)]
 
 pub mod beam;
@@ -17,5 +44,8 @@ pub mod optimize;
 
 pub mod photon;
 pub mod plot;
+
+#[cfg(test)]
+pub(crate) mod testkit;
 
 pub use error::{Error, Result};

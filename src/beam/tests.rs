@@ -2,93 +2,10 @@
 //! closed form (the cube), and an independent deterministic ray-grid tracer.
 
 use super::*;
-use crate::geometry::{clip2d, facet_normal, FacetPlane};
+use crate::geometry::clip2d;
 use crate::optics::{fresnel, reflect, refract};
 
-pub(crate) fn tolkowsky() -> Polyhedron {
-    crate::io::load_cut("tolkowsky").unwrap().solid
-}
-
-pub(crate) fn cube() -> Polyhedron {
-    let planes: Vec<FacetPlane> = [
-        DVec3::X,
-        DVec3::NEG_X,
-        DVec3::Y,
-        DVec3::NEG_Y,
-        DVec3::Z,
-        DVec3::NEG_Z,
-    ]
-    .iter()
-    .enumerate()
-    .map(|(i, n)| FacetPlane::new(*n, 0.5, format!("f{i}"), "side"))
-    .collect();
-    Polyhedron::from_planes(&planes).unwrap()
-}
-
-pub(crate) fn octahedron() -> Polyhedron {
-    let mut planes = Vec::new();
-    for sx in [-1.0, 1.0] {
-        for sy in [-1.0, 1.0] {
-            for sz in [-1.0, 1.0] {
-                let n = DVec3::new(sx, sy, sz);
-                planes.push(FacetPlane::new(
-                    n,
-                    0.5 * 3f64.sqrt(),
-                    format!("o{}", planes.len()),
-                    "o",
-                ));
-            }
-        }
-    }
-    Polyhedron::from_planes(&planes).unwrap()
-}
-
-/// A princess-like square brilliant built from planes: square girdle, table, 4 bezels and 4
-/// corner crown facets, 4 pavilion break facets, 4 pavilion mains and 4 corner pavilion facets.
-pub(crate) fn princess() -> Polyhedron {
-    let h = 0.5;
-    let zg = 0.01;
-    let mut p = Vec::new();
-    let mut add = |n: DVec3, through: DVec3, tier: &str| {
-        let k = p.len();
-        p.push(FacetPlane::new(
-            n,
-            n.normalize().dot(through) * n.length(),
-            format!("{tier}-{k}"),
-            tier,
-        ));
-    };
-    for k in 0..4 {
-        let az = 90.0 * k as f64;
-        let a = az.to_radians();
-        let n = DVec3::new(a.cos(), a.sin(), 0.0);
-        add(n, n * h, "girdle");
-        add(facet_normal(34.0, az, true), n * h + DVec3::Z * zg, "bezel");
-        add(
-            facet_normal(50.0, az, false),
-            n * h - DVec3::Z * zg,
-            "pavilion-break",
-        );
-        add(
-            facet_normal(41.0, az, false),
-            n * h - DVec3::Z * (zg + 0.06),
-            "pavilion-main",
-        );
-        let c = DVec3::new(a.cos() - a.sin(), a.sin() + a.cos(), 0.0) * h;
-        add(
-            facet_normal(22.0, az + 45.0, true),
-            c + DVec3::Z * zg,
-            "corner-crown",
-        );
-        add(
-            facet_normal(35.0, az + 45.0, false),
-            c - DVec3::Z * zg,
-            "corner-pavilion",
-        );
-    }
-    add(DVec3::Z, DVec3::Z * (zg + 0.15), "table");
-    Polyhedron::from_planes(&p).unwrap()
-}
+use crate::testkit::{cube, octahedron, princess, tolkowsky};
 
 fn solids() -> Vec<(&'static str, Polyhedron)> {
     vec![

@@ -155,6 +155,30 @@ pub struct Cut {
 impl Cut {
     /// Generate a cut of `family` with `values` overriding the family's defaults. Unknown keys
     /// and out-of-range values are errors naming the key.
+    ///
+    /// ```
+    /// use facetlab::cut::{family, Cut};
+    /// use std::collections::BTreeMap;
+    ///
+    /// // A family declares its parameters: key, default and allowed range.
+    /// let crown = family("round-brilliant").unwrap().param("crown_angle").unwrap();
+    /// assert!(crown.min <= 34.0 && 34.0 <= crown.max);
+    ///
+    /// // Lengths are fractions of the girdle diameter, angles degrees; the rest default.
+    /// let mut v = BTreeMap::new();
+    /// for (k, x) in [("table", 0.57), ("crown_angle", 34.0), ("pavilion_angle", 40.7),
+    ///                ("girdle", 0.025), ("star", 0.5), ("lower_half", 0.8)] {
+    ///     v.insert(k.to_string(), x);
+    /// }
+    /// let cut = Cut::from_family("mine", "round-brilliant", &v).unwrap();
+    /// let p = cut.proportions();
+    /// assert!((p.crown_height - 0.145).abs() < 0.001, "{p:?}");
+    /// assert!((p.total_depth - 0.600).abs() < 0.001, "{p:?}");
+    ///
+    /// v.insert("crown_angle".to_string(), 75.0);
+    /// let e = Cut::from_family("mine", "round-brilliant", &v).unwrap_err().to_string();
+    /// assert!(e.starts_with("crown_angle"), "{e}");
+    /// ```
     pub fn from_family(
         name: &str,
         family_name: &str,

@@ -269,6 +269,27 @@ fn clip(faces: &mut Vec<Face>, plane: &Plane, k: usize) -> bool {
 impl Polyhedron {
     /// Intersect the half-spaces of `planes`. Every plane must end up as a facet of positive
     /// area; the solid must be bounded and non-empty; no two planes may coincide.
+    ///
+    /// ```
+    /// use facetlab::geometry::{DVec3, FacetPlane, Polyhedron};
+    ///
+    /// // The unit cube: six half-spaces `normal · x <= 0.5`.
+    /// let normals = [DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z];
+    /// let planes: Vec<FacetPlane> = normals
+    ///     .iter()
+    ///     .enumerate()
+    ///     .map(|(i, n)| FacetPlane::new(*n, 0.5, format!("f{i}"), "side"))
+    ///     .collect();
+    /// let cube = Polyhedron::from_planes(&planes).unwrap();
+    /// assert_eq!((cube.vertices.len(), cube.edges.len(), cube.facets.len()), (8, 12, 6));
+    /// assert!((cube.volume() - 1.0).abs() < 1e-12);
+    ///
+    /// // A plane that never touches the solid is an error naming the facet.
+    /// let mut more = planes.clone();
+    /// more.push(FacetPlane::new(DVec3::new(1.0, 1.0, 0.0), 5.0, "far", "x"));
+    /// let e = Polyhedron::from_planes(&more).unwrap_err().to_string();
+    /// assert!(e.contains("far") && e.contains("never touches"), "{e}");
+    /// ```
     pub fn from_planes(planes: &[FacetPlane]) -> Result<Polyhedron> {
         if planes.len() < 4 {
             return Err(Error::Geometry(format!(
@@ -622,24 +643,11 @@ fn build_edges(facets: &[Facet]) -> Result<Vec<Edge>> {
 mod tests {
     use super::*;
 
-    fn cube(h: f64) -> Vec<FacetPlane> {
-        [
-            DVec3::X,
-            DVec3::NEG_X,
-            DVec3::Y,
-            DVec3::NEG_Y,
-            DVec3::Z,
-            DVec3::NEG_Z,
-        ]
-        .iter()
-        .enumerate()
-        .map(|(i, n)| FacetPlane::new(*n, h, format!("f{i}"), "side"))
-        .collect()
-    }
+    use crate::testkit::{cube_planes, octahedron_planes};
 
     #[test]
     fn cube_volume_area_topology() {
-        let p = Polyhedron::from_planes(&cube(0.5)).unwrap();
+        let p = Polyhedron::from_planes(&cube_planes(0.5)).unwrap();
         assert_eq!(p.vertices.len(), 8);
         assert_eq!(p.edges.len(), 12);
         assert!((p.volume() - 1.0).abs() < 1e-12);
@@ -658,17 +666,7 @@ mod tests {
 
     #[test]
     fn octahedron_euler_and_volume() {
-        let mut planes = Vec::new();
-        for sx in [-1.0, 1.0] {
-            for sy in [-1.0, 1.0] {
-                for sz in [-1.0, 1.0] {
-                    planes.push(FacetPlane::new(DVec3::new(sx, sy, sz), 1.0, "o", "o"));
-                }
-            }
-        }
-        for (i, p) in planes.iter_mut().enumerate() {
-            p.name = format!("o{i}");
-        }
+        let planes = octahedron_planes(1.0);
         let p = Polyhedron::from_planes(&planes).unwrap();
         // |x|+|y|+|z| <= 1: volume 4/3, 6 vertices, 12 edges.
         assert_eq!(p.vertices.len(), 6);
@@ -679,21 +677,21 @@ mod tests {
 
     #[test]
     fn reports_redundant_unbounded_duplicate_empty() {
-        let mut planes = cube(0.5);
+        let mut planes = cube_planes(0.5);
         planes.push(FacetPlane::new(DVec3::new(1.0, 1.0, 0.0), 5.0, "far", "x"));
         let e = Polyhedron::from_planes(&planes).unwrap_err().to_string();
         assert!(e.contains("far") && e.contains("never touches"), "{e}");
 
-        let planes = cube(0.5)[..5].to_vec();
+        let planes = cube_planes(0.5)[..5].to_vec();
         let e = Polyhedron::from_planes(&planes).unwrap_err().to_string();
         assert!(e.contains("unbounded"), "{e}");
 
-        let mut planes = cube(0.5);
+        let mut planes = cube_planes(0.5);
         planes.push(planes[2].clone());
         let e = Polyhedron::from_planes(&planes).unwrap_err().to_string();
         assert!(e.contains("same plane"), "{e}");
 
-        let mut planes = cube(0.5);
+        let mut planes = cube_planes(0.5);
         planes.push(FacetPlane::new(DVec3::Z, -0.7, "below", "x"));
         let e = Polyhedron::from_planes(&planes).unwrap_err().to_string();
         assert!(e.contains("empty"), "{e}");
@@ -701,7 +699,7 @@ mod tests {
 
     #[test]
     fn plane_through_a_vertex_only_is_reported() {
-        let mut planes = cube(0.5);
+        let mut planes = cube_planes(0.5);
         planes.push(FacetPlane::new(
             DVec3::new(1.0, 1.0, 1.0),
             1.5,
@@ -742,7 +740,7 @@ mod tests {
 
     #[test]
     fn truncated_cube_facets_are_outward_and_ccw() {
-        let mut planes = cube(0.5);
+        let mut planes = cube_planes(0.5);
         planes.push(FacetPlane::new(
             DVec3::new(1.0, 1.0, 1.0),
             1.2,

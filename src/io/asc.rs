@@ -48,7 +48,7 @@
 //! [`AscDesign::planes`] are in the file's units. [`AscDesign::to_cut`] scales the solid about
 //! the origin so that its girdle outline is 1 wide: the largest horizontal distance between
 //! any two vertices (the outline's width across corners) becomes 1, and every plane offset is
-//! scaled with it. [`write`] writes distances in the cut's own units (girdle diameter D = 1).
+//! scaled with it. [`write()`] writes distances in the cut's own units (girdle diameter D = 1).
 //!
 //! # Tolerated
 //!
@@ -65,7 +65,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// The index gear used when a file has no `g` line, and by [`write`] for gear 0.
+/// The index gear used when a file has no `g` line, and by [`write()`] for gear 0.
 pub const DEFAULT_GEAR: u32 = 96;
 
 /// One `a` line (with its continuation lines) as written in the file.
@@ -542,6 +542,19 @@ fn token(name: &str) -> String {
 /// needed to read back the same value. Distances are in the cut's units (D = 1). Planes with
 /// a negative offset (the origin outside the solid) cannot be expressed in GemCad's
 /// convention and do not read back the same.
+///
+/// A round trip through the text:
+///
+/// ```
+/// use facetlab::io::{asc, load_cut};
+///
+/// let cut = load_cut("gia-reference").unwrap();
+/// let text = asc::write(&cut, 96);
+/// assert!(text.starts_with("GemCad"));
+/// let back = asc::parse(text.as_bytes(), "gia.asc").unwrap().to_cut("gia").unwrap();
+/// assert_eq!(back.solid.facets.len(), cut.solid.facets.len());
+/// assert!((back.proportions().crown_angle - 34.0).abs() < 1e-6);
+/// ```
 pub fn write(cut: &Cut, gear: u32) -> String {
     let gear = if gear == 0 { DEFAULT_GEAR } else { gear };
     let g = f64::from(gear);
@@ -883,20 +896,43 @@ F Footnote one
         let _ = std::fs::remove_dir_all(&dir);
     }
 
+    /// No-panic test: every prefix of a messy file, and the file with each byte garbled, either
+    /// parses or fails with one line naming the file (and the cut, for the solid's errors).
     #[test]
     fn asc_no_panic_on_truncated_or_garbled_input() {
-        let bytes = messy();
-        for n in 0..=bytes.len() {
-            if let Ok(d) = parse(&bytes[..n], "t.asc") {
-                let _ = d.to_cut("t");
+        let check = |bytes: &[u8]| -> bool {
+            match parse(bytes, "garbled.asc") {
+                Ok(d) => match d.to_cut("garbled-cut") {
+                    Ok(_) => true,
+                    Err(e) => {
+                        let e = e.to_string();
+                        assert!(!e.contains('\n') && e.contains("garbled-cut"), "{e}");
+                        false
+                    }
+                },
+                Err(e) => {
+                    let e = e.to_string();
+                    assert!(!e.contains('\n') && e.starts_with("garbled.asc"), "{e}");
+                    false
+                }
             }
+        };
+        let bytes = messy();
+        let (mut built, mut failed) = (0, 0);
+        for n in 0..=bytes.len() {
             let mut g = bytes.clone();
             if let Some(b) = g.get_mut(n) {
                 *b = b.wrapping_mul(7).wrapping_add(0x81);
             }
-            if let Ok(d) = parse(&g, "t.asc") {
-                let _ = d.to_cut("t");
+            for ok in [check(&bytes[..n]), check(&g)] {
+                if ok {
+                    built += 1;
+                } else {
+                    failed += 1;
+                }
             }
         }
+        // Both outcomes occur: the loop exercised the error paths and the builder.
+        assert!(built > 0 && failed > 0, "{built} built, {failed} failed");
     }
 }

@@ -63,6 +63,16 @@ pub fn line_of(text: &str, pos: usize) -> usize {
 
 /// Load a cut from a command-line argument: a preset name (see [`presets::names`]) or a path
 /// to a `.toml` spec, a GemCad `.asc`, or an `.obj`/`.stl` mesh (convex hull).
+///
+/// ```
+/// let cut = facetlab::io::load_cut("tolkowsky").unwrap();
+/// assert_eq!(cut.family.as_deref(), Some("round-brilliant"));
+/// // 57 facets of the brilliant plus 16 girdle facets.
+/// assert_eq!(cut.solid.facets.len(), 73);
+/// // An unknown name is an error that names it.
+/// let e = facetlab::io::load_cut("nosuchcut").unwrap_err().to_string();
+/// assert!(e.contains("nosuchcut"), "{e}");
+/// ```
 pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
     let path = Path::new(arg);
     let ext = path

@@ -63,6 +63,8 @@ pub mod raster;
 pub mod verify;
 
 #[cfg(test)]
+mod golden;
+#[cfg(test)]
 mod tests;
 
 use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions};

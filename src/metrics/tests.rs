@@ -1,7 +1,7 @@
 //! Tests of the scores.
 
 use super::*;
-use crate::beam::tests::{octahedron, princess, tolkowsky};
+use crate::testkit::{octahedron, princess, tolkowsky};
 use std::collections::BTreeMap;
 
 /// A lighter configuration for tests that score many cuts.
@@ -33,7 +33,8 @@ fn round(pavilion: f64) -> Polyhedron {
     c.with_params(&v).unwrap().solid
 }
 
-fn check_ranges(name: &str, s: &Scores) {
+/// Ranges and identities every score set satisfies (also applied to the golden settings).
+pub(super) fn check_ranges(name: &str, s: &Scores) {
     for (k, v) in [
         ("overhead_light_return", s.overhead_light_return),
         ("brilliance", s.brilliance),
@@ -47,7 +48,9 @@ fn check_ranges(name: &str, s: &Scores) {
     ] {
         assert!((0.0..=1.0).contains(&v), "{name}: {k} = {v}");
     }
-    assert!(s.fire >= 0.0 && s.fire < 150.0, "{name}: fire {}", s.fire);
+    // Fire is a percentage of order 1 (golden.rs: 0.72 for Tolkowsky in diamond, 1.09 in cubic
+    // zirconia); a scale error of a few times fails here.
+    assert!(s.fire >= 0.0 && s.fire < 3.0, "{name}: fire {}", s.fire);
     let a = s.aset;
     assert!(
         (a.blue + a.red + a.green + a.leak - 1.0).abs() < 1e-12,
@@ -55,16 +58,6 @@ fn check_ranges(name: &str, s: &Scores) {
     );
     assert!(s.brilliance_cos < s.brilliance_iso, "{name}");
     assert!((s.brilliance - 0.5 * (s.brilliance_iso + s.brilliance_cos)).abs() < 1e-15);
-}
-
-#[test]
-fn default_scores_of_tolkowsky_are_in_range_and_plausible() {
-    let s = score(&tolkowsky(), &ScoreConfig::default());
-    check_ranges("tolkowsky", &s);
-    // An ideal round brilliant returns most overhead light and leaks little face-up.
-    assert!(s.overhead_light_return > 0.85, "{s:?}");
-    assert!(s.aset.leak < 0.15 && s.brilliance_iso > 0.8, "{s:?}");
-    assert!(s.fire > 0.0 && s.scintillation > 0.0);
 }
 
 #[test]
@@ -291,7 +284,7 @@ fn config_validation_names_the_field() {
 }
 
 #[test]
-fn unvalidated_configs_do_not_panic() {
+fn unvalidated_configs_no_panic_scores_stay_finite() {
     let s = octahedron();
     let weird = ScoreConfig {
         tilts: vec![],

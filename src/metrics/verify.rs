@@ -192,33 +192,11 @@ pub fn verify_scores(
 mod tests {
     use super::*;
     use crate::beam::Stone;
-    use crate::geometry::DVec3;
     use crate::metrics::{overhead_light_return_with, score, Tilt};
     use crate::optics::Material;
 
     fn octahedron() -> Polyhedron {
-        let mut planes = Vec::new();
-        for (i, (sx, sy, sz)) in [
-            (1., 1., 1.),
-            (1., -1., 1.),
-            (-1., 1., 1.),
-            (-1., -1., 1.),
-            (1., 1., -1.),
-            (1., -1., -1.),
-            (-1., 1., -1.),
-            (-1., -1., -1.),
-        ]
-        .iter()
-        .enumerate()
-        {
-            planes.push(FacetPlane::new(
-                DVec3::new(*sx, *sy, *sz),
-                0.5,
-                format!("o{i}"),
-                "o",
-            ));
-        }
-        Polyhedron::from_planes(&planes).unwrap()
+        crate::testkit::octahedron_of(0.5)
     }
 
     fn solids() -> Vec<(&'static str, Polyhedron)> {

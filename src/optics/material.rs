@@ -30,7 +30,8 @@ pub const LINE_G_NM: f64 = 430.8;
 pub const LINE_D_NM: f64 = 589.3;
 
 impl Material {
-    /// Diamond (Sellmeier coefficients of DESIGN.md; n_D ≈ 2.4173, B–G ≈ 0.044).
+    /// Diamond: two-term Sellmeier, B₁ = 0.3306, C₁ = 0.175² µm², B₂ = 4.3356, C₂ = 0.106² µm²;
+    /// n_D ≈ 2.4173, B–G dispersion ≈ 0.044.
     pub fn diamond() -> Material {
         Material {
             name: "diamond".into(),

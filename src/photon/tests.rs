@@ -1,31 +1,8 @@
 //! Physics and bookkeeping tests of the photon tracer (small photon counts).
 
 use super::*;
-use crate::geometry::FacetPlane;
 use crate::optics::{fresnel, reflect, refract};
-
-fn tolkowsky() -> Polyhedron {
-    crate::io::load_cut("tolkowsky").unwrap().solid
-}
-
-/// A box of half-sizes (hx, hy, hz) centred at the origin.
-fn boxed(hx: f64, hy: f64, hz: f64) -> Polyhedron {
-    let planes: Vec<FacetPlane> = [
-        (DVec3::X, hx),
-        (DVec3::NEG_X, hx),
-        (DVec3::Y, hy),
-        (DVec3::NEG_Y, hy),
-        (DVec3::Z, hz),
-        (DVec3::NEG_Z, hz),
-    ]
-    .iter()
-    .enumerate()
-    .map(|(i, (n, h))| {
-        FacetPlane::new(*n, *h, ["+x", "-x", "+y", "-y", "top", "bottom"][i], "side")
-    })
-    .collect();
-    Polyhedron::from_planes(&planes).unwrap()
-}
+use crate::testkit::{cube, slab, tolkowsky};
 
 /// A small directed beam from above at `tilt_deg` from vertical (in the y–z plane), aimed at
 /// the point (0, 0, `z`), side `side`.
@@ -117,7 +94,7 @@ fn undirected_light_misses_are_counted_and_directed_beam_covers_stone() {
 }
 
 fn slab_transmission(pol: bool, tilt: f64, n: f64, photons: u64) -> (f64, f64, Tally) {
-    let s = boxed(40.0, 40.0, 0.05);
+    let s = slab(40.0, 0.05);
     let c = TraceConfig {
         absorption: Absorption::None,
         depth: None,
@@ -146,7 +123,7 @@ fn slab_at_normal_incidence_matches_closed_form() {
             t.counts.hit
         );
         // A cube behaves as a slab while the beam hits only its top face.
-        let cube = boxed(0.5, 0.5, 0.5);
+        let cube = cube();
         let c = TraceConfig {
             absorption: Absorption::None,
             depth: None,
@@ -184,7 +161,7 @@ fn oblique_slab_separates_polarized_from_unpolarized() {
 fn tir_keeps_light_out_of_cube_sides() {
     // Light entering a cube's top face can never leave through a side when n² > 2 (every
     // side hit is beyond the critical angle), but can when n² < 2.
-    let cube = boxed(0.5, 0.5, 0.5);
+    let cube = cube();
     let sides = |t: &Tally| (0..4).map(|i| t.counts.per_facet[i]).sum::<u64>();
     let c = TraceConfig {
         absorption: Absorption::None,

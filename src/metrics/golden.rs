@@ -1,0 +1,119 @@
+//! Golden values: every score of the `tolkowsky` preset under two fixed settings, pinned to
+//! 1e-6 (after the range checks of `tests.rs`, which hold for a wide band of wrong answers);
+//! these fail on any change of the numbers.
+//!
+//! # When a change is legitimate
+//!
+//! Only when the change is meant: a deliberate change of a score's definition (lighting, poses,
+//! bands, colour maths, image resolution, averaging — anything in this module's documentation),
+//! of a default of [`ScoreConfig`] or [`TraceOptions`], of the tracer's accuracy (its
+//! thresholds, splitting, Fresnel or polarization handling), of a material's dispersion, or of
+//! the `tolkowsky` preset or the round-brilliant builder. The commit that re-pins says which of
+//! these it is and why the new numbers are right. A refactoring that claims to keep results is
+//! not a reason: it must leave these numbers alone. (Summation order can move the last digits,
+//! far below 1e-6; a different platform's `libm` could too, and that is worth knowing.)
+//!
+//! # How to re-pin
+//!
+//! `FACETLAB_PRINT_GOLDEN=1 cargo test --lib metrics::golden -- --nocapture` prints each
+//! setting's current values as Rust constants to paste over the ones below.
+
+use super::*;
+use crate::testkit::tolkowsky;
+
+/// Tolerance of every pinned score.
+const TOL: f64 = 1e-6;
+
+/// The scores in a fixed order, with their names.
+fn fields(s: &Scores) -> [(&'static str, f64); 10] {
+    [
+        ("brilliance", s.brilliance),
+        ("brilliance_iso", s.brilliance_iso),
+        ("brilliance_cos", s.brilliance_cos),
+        ("fire", s.fire),
+        ("scintillation", s.scintillation),
+        ("aset.blue", s.aset.blue),
+        ("aset.red", s.aset.red),
+        ("aset.green", s.aset.green),
+        ("aset.leak", s.aset.leak),
+        ("overhead_light_return", s.overhead_light_return),
+    ]
+}
+
+/// Score the preset under `cfg`; print the values when `FACETLAB_PRINT_GOLDEN` is set; assert
+/// each equals `pinned` within [`TOL`].
+fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 10]) {
+    let s = score(&tolkowsky(), cfg);
+    super::tests::check_ranges(constant, &s);
+    let got = fields(&s);
+    if std::env::var_os("FACETLAB_PRINT_GOLDEN").is_some() {
+        let mut out = format!("const {constant}: [f64; 10] = [\n");
+        for (name, v) in &got {
+            out += &format!("    {v:.12}, // {name}\n");
+        }
+        println!("{out}];");
+    }
+    let off: Vec<String> = got
+        .iter()
+        .zip(pinned)
+        .filter(|((_, g), p)| (g - *p).abs().is_nan() || (g - *p).abs() > TOL)
+        .map(|((name, g), p)| format!("{name} = {g:.9}, pinned {p:.9}"))
+        .collect();
+    assert!(
+        off.is_empty(),
+        "{constant}: {} (see this file's header before re-pinning)",
+        off.join("; ")
+    );
+}
+
+/// Default [`ScoreConfig`]: diamond, polarization on, no head shadow.
+const TOLKOWSKY_DEFAULT: [f64; 10] = [
+    0.777854086672, // brilliance
+    0.884237571877, // brilliance_iso
+    0.671470601466, // brilliance_cos
+    0.723287615524, // fire
+    0.465840324576, // scintillation
+    0.227416918431, // aset.blue
+    0.499198038106, // aset.red
+    0.197556207704, // aset.green
+    0.075828835760, // aset.leak
+    0.924627657408, // overhead_light_return
+];
+
+/// Cubic zirconia, polarization off, a 15° head shadow; the rest default.
+const TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15: [f64; 10] = [
+    0.623006815085, // brilliance
+    0.709797495852, // brilliance_iso
+    0.536216134318, // brilliance_cos
+    1.087712792300, // fire
+    0.397206512950, // scintillation
+    0.256130608363, // aset.blue
+    0.554004522690, // aset.red
+    0.152928915878, // aset.green
+    0.036935953069, // aset.leak
+    0.962972629309, // overhead_light_return
+];
+
+#[test]
+fn golden_tolkowsky_default_config() {
+    check(
+        "TOLKOWSKY_DEFAULT",
+        &ScoreConfig::default(),
+        &TOLKOWSKY_DEFAULT,
+    );
+}
+
+#[test]
+fn golden_tolkowsky_cubic_zirconia_unpolarized_head_shadow_15() {
+    let cfg = ScoreConfig {
+        material: Material::cubic_zirconia(),
+        polarization: false,
+        head_shadow_deg: 15.0,
+        ..ScoreConfig::default()
+    };
+    check(
+        "TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15",
+        &cfg,
+        &TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15,
+    );
+}
