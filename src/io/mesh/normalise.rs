@@ -2,6 +2,7 @@
 //! the girdle frame (see the parent module's documentation) and tier names.
 
 use super::{hull_error, sig2, Points, CONVEX_TOL};
+use crate::cut::units::{girdle_frame, is_girdle};
 use crate::error::{Error, Result};
 use crate::geometry::{
     convex_hull_with_tolerance, facet_angle_deg, facet_azimuth_deg, DVec3, FacetPlane, Plane,
@@ -10,9 +11,6 @@ use crate::geometry::{
 
 /// Largest merge tolerance used for coarse coordinates (fraction of the size).
 const MAX_MERGE_TOL: f64 = 1e-4;
-
-/// sin 1°: facets whose normal is closer than this to horizontal are girdle facets.
-const HORIZONTAL: f64 = 0.0175;
 
 /// Hull, convexity check, normalisation and naming.
 pub(super) fn planes_from_points(points: &Points, source: &str) -> Result<Vec<FacetPlane>> {
@@ -154,7 +152,7 @@ fn named(planes: &[Plane]) -> Vec<FacetPlane> {
 /// The side (tier) of a facet from its outward normal, with its rank in the facet order.
 fn side(n: DVec3) -> (&'static str, u8) {
     let flat = facet_angle_deg(n) < 0.01;
-    if n.z.abs() < HORIZONTAL {
+    if is_girdle(n) {
         ("girdle", 2)
     } else if n.z > 0.0 {
         if flat {
@@ -167,42 +165,4 @@ fn side(n: DVec3) -> (&'static str, u8) {
     } else {
         ("pavilion", 3)
     }
-}
-
-/// The centre of the girdle plane and the largest horizontal extent of a solid.
-pub(super) fn girdle_frame(s: &Polyhedron) -> (DVec3, f64) {
-    let (lo, hi) = s.bounding_box();
-    let cx = 0.5 * (lo.x + hi.x);
-    let cy = 0.5 * (lo.y + hi.y);
-    let girdle_z: Vec<f64> = s
-        .facets
-        .iter()
-        .filter(|f| f.plane.normal.z.abs() < HORIZONTAL)
-        .flat_map(|f| f.vertices.iter().map(|&v| s.vertices[v].z))
-        .collect();
-    let zs: Vec<f64> = if girdle_z.is_empty() {
-        let r = |v: &DVec3| (v.x - cx).hypot(v.y - cy);
-        let rmax = s.vertices.iter().map(r).fold(0.0, f64::max);
-        s.vertices
-            .iter()
-            .filter(|v| r(v) >= rmax - 1e-7)
-            .map(|v| v.z)
-            .collect()
-    } else {
-        girdle_z
-    };
-    let zmin = zs.iter().copied().fold(f64::INFINITY, f64::min);
-    let zmax = zs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let cz = if zmin.is_finite() && zmax.is_finite() {
-        0.5 * (zmin + zmax)
-    } else {
-        0.0
-    };
-    let mut width: f64 = 0.0;
-    for (i, a) in s.vertices.iter().enumerate() {
-        for b in &s.vertices[i + 1..] {
-            width = width.max((a.truncate() - b.truncate()).length());
-        }
-    }
-    (DVec3::new(cx, cy, cz), width)
 }

@@ -1,8 +1,8 @@
 //! Tests of the mesh readers and writers.
 
-use super::normalise::girdle_frame;
 use super::stl::binary_stl_count;
 use super::*;
+use crate::cut::units::girdle_frame;
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 
