@@ -48,7 +48,8 @@
 //! [`AscDesign::planes`] are in the file's units. [`AscDesign::to_cut`] scales the solid about
 //! the origin so that its girdle outline is 1 wide: the largest horizontal distance between
 //! any two vertices (the outline width of [`crate::cut::units`], across corners) becomes 1, and
-//! every plane offset is scaled with it. [`write`] writes distances in the cut's own units (girdle diameter D = 1).
+//! every plane offset is scaled with it. [`write()`] writes distances in the cut's own units
+//! (girdle diameter D = 1).
 //!
 //! # Tolerated
 //!
@@ -61,12 +62,12 @@
 use crate::cut::units::outline_width;
 use crate::cut::Cut;
 use crate::error::{Error, Result};
-use crate::geometry::{facet_normal, DVec3, FacetPlane, Polyhedron};
+use crate::geometry::{facet_normal, FacetPlane, Polyhedron};
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// The index gear used when a file has no `g` line, and by [`write`] for gear 0.
+/// The index gear used when a file has no `g` line, and by [`write()`] for gear 0.
 pub const DEFAULT_GEAR: u32 = 96;
 
 /// One `a` line (with its continuation lines) as written in the file.
@@ -592,7 +593,7 @@ pub fn write(cut: &Cut, gear: u32) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{facet_angle_deg, facet_azimuth_deg};
+    use crate::geometry::{facet_angle_deg, facet_azimuth_deg, DVec3};
 
     /// A small brilliant on a 96 gear: 16 girdle facets (tier named `G`), 8 pavilion mains,
     /// 8 bezels, table, culet. Girdle radius 1 (GemCad units), girdle 0.06 thick at the mains.
