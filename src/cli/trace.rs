@@ -386,8 +386,16 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     let mut results: Vec<Vec<Tally>> = Vec::with_capacity(cuts.len());
     for cut in &cuts {
         let r = match &set.light {
-            LightChoice::Single(l) => vec![photon::trace_cut(cut, l, &set.config, progress)?],
-            LightChoice::Rotate(k) => photon::rotation_sweep(cut, *k, &set.config, progress)?,
+            LightChoice::Single(l) => vec![photon::trace_cut(
+                &cut.solid,
+                &cut.name,
+                l,
+                &set.config,
+                progress,
+            )?],
+            LightChoice::Rotate(k) => {
+                photon::rotation_sweep(&cut.solid, &cut.name, *k, &set.config, progress)?
+            }
         };
         results.push(r);
     }

@@ -3,8 +3,8 @@
 //! Lengths are in the solid's units (girdle diameters for generated and imported cuts).
 //! - table: the table's largest width over the outline's largest width (corner to corner for a
 //!   round brilliant);
-//! - girdle: the vertical extent of the girdle facets (normals within 1° of horizontal), or 0 for
-//!   a knife-edge girdle, whose plane is then at the widest vertex;
+//! - girdle: the vertical extent of the girdle facets (normals within 1° of horizontal, see
+//!   [`super::units`]), or 0 for a knife-edge girdle, whose plane is then at the widest vertex;
 //! - crown height: table plane to the girdle top; pavilion depth: girdle bottom to the lowest
 //!   point; total depth: highest to lowest point;
 //! - crown angle: mean angle of the crown tier that touches the table (or the top) and reaches
@@ -12,6 +12,7 @@
 //!   point) and reaches highest (the mains); a tier that spans all the way to the girdle is
 //!   preferred. For free-form imported designs these are heuristics: read the tier list.
 
+use super::units::{girdle_z, outline_width, HORIZONTAL};
 use crate::geometry::{facet_angle_deg, Polyhedron};
 use serde::Serialize;
 
@@ -47,8 +48,6 @@ pub struct TierSummary {
     pub side: &'static str,
 }
 
-const HORIZONTAL: f64 = 0.0175; // sin(1°)
-
 fn side_of(nz: f64) -> &'static str {
     if nz.abs() < HORIZONTAL {
         "girdle"
@@ -57,16 +56,6 @@ fn side_of(nz: f64) -> &'static str {
     } else {
         "pavilion"
     }
-}
-
-fn xy_diameter(pts: &[crate::geometry::DVec3]) -> f64 {
-    let mut d: f64 = 0.0;
-    for (i, a) in pts.iter().enumerate() {
-        for b in &pts[i + 1..] {
-            d = d.max((a.truncate() - b.truncate()).length());
-        }
-    }
-    d
 }
 
 /// Tiers in order of first appearance.
@@ -105,7 +94,7 @@ pub fn tiers(s: &Polyhedron) -> Vec<TierSummary> {
 /// Measure the proportions of a solid.
 pub fn proportions(s: &Polyhedron) -> Proportions {
     let (lo, hi) = s.bounding_box();
-    let outline = xy_diameter(&s.vertices).max(1e-300);
+    let outline = outline_width(&s.vertices).max(1e-300);
     // Table: the up-facing horizontal facet highest up.
     let table = s
         .facets
@@ -113,7 +102,7 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
         .enumerate()
         .filter(|(_, f)| f.plane.normal.z > 1.0 - 1e-9)
         .max_by(|a, b| a.1.plane.offset.total_cmp(&b.1.plane.offset))
-        .map(|(i, _)| xy_diameter(&s.facet_polygon(i)) / outline)
+        .map(|(i, _)| outline_width(&s.facet_polygon(i)) / outline)
         .unwrap_or(0.0);
     let table_z = s
         .facets
@@ -123,12 +112,7 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
         .fold(f64::NEG_INFINITY, f64::max);
     let table_z = if table_z.is_finite() { table_z } else { hi.z };
     // Girdle extent.
-    let girdle_z: Vec<f64> = s
-        .facets
-        .iter()
-        .filter(|f| f.plane.normal.z.abs() < HORIZONTAL)
-        .flat_map(|f| f.vertices.iter().map(|&v| s.vertices[v].z))
-        .collect();
+    let girdle_z = girdle_z(s);
     let (g_top, g_bot) = if girdle_z.is_empty() {
         let r = s.max_radius();
         let z = s

@@ -19,6 +19,7 @@ mod princess;
 mod round;
 mod sphere;
 mod steps;
+pub mod units;
 
 pub use families::{families, family, Family};
 pub use measure::{Proportions, TierSummary};

@@ -47,8 +47,9 @@
 //!
 //! [`AscDesign::planes`] are in the file's units. [`AscDesign::to_cut`] scales the solid about
 //! the origin so that its girdle outline is 1 wide: the largest horizontal distance between
-//! any two vertices (the outline's width across corners) becomes 1, and every plane offset is
-//! scaled with it. [`write()`] writes distances in the cut's own units (girdle diameter D = 1).
+//! any two vertices (the outline width of [`crate::cut::units`], across corners) becomes 1, and
+//! every plane offset is scaled with it. [`write()`] writes distances in the cut's own units
+//! (girdle diameter D = 1).
 //!
 //! # Tolerated
 //!
@@ -58,9 +59,10 @@
 //! unknown lines (skipped). Bytes that are not UTF-8 are read as Windows-1252 (0x80–0x9F) or
 //! Latin-1. A malformed `a`, `g`, `y` or `I` line is an error naming the file and line.
 
+use crate::cut::units::outline_width;
 use crate::cut::Cut;
 use crate::error::{Error, Result};
-use crate::geometry::{facet_normal, DVec3, FacetPlane, Polyhedron};
+use crate::geometry::{facet_normal, FacetPlane, Polyhedron};
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -153,7 +155,7 @@ fn build_cut(planes: &[FacetPlane], name: &str, ctx: &str) -> Result<Cut> {
         })
         .collect();
     let solid = Polyhedron::from_planes(&scaled).map_err(|e| e.context(ctx))?;
-    let width = xy_extent(&solid.vertices);
+    let width = outline_width(&solid.vertices);
     if !(width.is_finite() && width > 1e-12) {
         return Err(Error::Geometry(format!(
             "{ctx}: the solid has no horizontal extent, so its girdle outline cannot be scaled to width 1"
@@ -166,17 +168,6 @@ fn build_cut(planes: &[FacetPlane], name: &str, ctx: &str) -> Result<Cut> {
         solid: solid.scaled(1.0 / width),
         design_ri: None,
     })
-}
-
-/// Largest horizontal (xy) distance between two points.
-fn xy_extent(pts: &[DVec3]) -> f64 {
-    let mut d: f64 = 0.0;
-    for (i, a) in pts.iter().enumerate() {
-        for b in pts.iter().skip(i + 1) {
-            d = d.max((a.truncate() - b.truncate()).length());
-        }
-    }
-    d
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -615,7 +606,7 @@ pub fn write(cut: &Cut, gear: u32) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::{facet_angle_deg, facet_azimuth_deg};
+    use crate::geometry::{facet_angle_deg, facet_azimuth_deg, DVec3};
 
     /// A small brilliant on a 96 gear: 16 girdle facets (tier named `G`), 8 pavilion mains,
     /// 8 bezels, table, culet. Girdle radius 1 (GemCad units), girdle 0.06 thick at the mains.
@@ -699,7 +690,7 @@ F Footnote one
         assert_eq!(cut.name, "mini");
         assert_eq!(cut.solid.facets.len(), 34);
         assert!(cut.solid.volume() > 0.0);
-        let w = xy_extent(&cut.solid.vertices);
+        let w = outline_width(&cut.solid.vertices);
         assert!((w - 1.0).abs() < 1e-12, "outline width {w}");
         for f in &cut.solid.facets {
             let a = facet_angle_deg(f.plane.normal);
@@ -785,7 +776,7 @@ F Footnote one
             .unwrap()
             .to_cut("r")
             .unwrap();
-        let s = 1.0 / xy_extent(&cut.solid.vertices);
+        let s = 1.0 / outline_width(&cut.solid.vertices);
         let want: Vec<FacetPlane> = cut
             .solid
             .facet_planes()

@@ -93,11 +93,17 @@ impl Verifier for PhotonVerifier {
         };
         let mut rows = Vec::new();
         for (light, label) in [(Light::overhead(), "overhead"), (Light::offset(), "offset")] {
-            let t = photon::trace_cut(cut, &light, &thesis, None)?;
+            let t = photon::trace_cut(&cut.solid, &cut.name, &light, &thesis, None)?;
             top_rows(&mut rows, &t, label);
         }
         for &a in ROTATION_ANGLES.iter() {
-            let t = photon::trace_cut(cut, &Light::rotated(LightKind::Directed, a), &thesis, None)?;
+            let t = photon::trace_cut(
+                &cut.solid,
+                &cut.name,
+                &Light::rotated(LightKind::Directed, a),
+                &thesis,
+                None,
+            )?;
             let s45 = photon::share(t.counts.categories[0], t.counts.hit);
             rows.push(VerifyRow::new(
                 format!("top45_directed_{a:.0}"),

@@ -616,6 +616,50 @@ impl<'a> Tracer<'a> {
 mod tests {
     use super::*;
 
+    /// The kernel's own unpolarized Fresnel reflectance and refraction are the library's
+    /// (`optics::fresnel`, `optics::refract`): same reflectance, refraction cosine, total
+    /// internal reflection and refracted direction, into and out of the stone.
+    #[test]
+    fn kernel_fresnel_and_refraction_match_optics() {
+        use crate::optics::refract;
+        let pairs = [
+            (1.0, 2.4173),
+            (2.4173, 1.0),
+            (1.0, 1.5),
+            (1.77, 1.0),
+            (1.33, 1.0),
+        ];
+        let mut tir = 0;
+        for (n1, n2) in pairs {
+            let eta = n1 / n2;
+            for k in 0..=200 {
+                let cos_i = k as f64 / 200.0;
+                let lib = fresnel(cos_i, n1, n2);
+                let (r, cos_t) = reflectance(cos_i, eta);
+                assert!(
+                    (r - lib.reflectance()).abs() < 1e-12,
+                    "{n1}->{n2} cos {cos_i}: {r}"
+                );
+                assert_eq!(cos_t == 0.0, lib.tir, "{n1}->{n2} cos {cos_i}");
+                if lib.tir {
+                    tir += 1;
+                    assert_eq!(r, 1.0);
+                    continue;
+                }
+                assert!((cos_t - lib.cos_t).abs() < 1e-12);
+                // A direction with this incidence cosine on the plane z = 0, normal +z.
+                let m = DVec3::Z;
+                let sin_i = (1.0 - cos_i * cos_i).sqrt();
+                let d = DVec3::new(sin_i, 0.0, -cos_i);
+                let mine = refracted(d, m, cos_i, cos_t, eta);
+                let want = refract(d, m, n1, n2).expect("not TIR");
+                assert!(mine.distance(want) < 1e-12, "{mine} vs {want}");
+                assert!((mine.length() - 1.0).abs() < 1e-12);
+            }
+        }
+        assert!(tir > 100, "{tir}");
+    }
+
     #[test]
     fn beam_grid_entry_matches_the_general_entry() {
         let cut = crate::io::load_cut("tolkowsky").unwrap();

@@ -42,12 +42,9 @@ mod tally;
 #[cfg(test)]
 mod tests;
 
-pub use solid::TraceSolid;
-pub use tally::{
-    face_category, share, Counts, Fate, PhotonPath, Tally, CATEGORY_KEYS, CATEGORY_LABELS,
-};
+pub use solid::{face_category, TraceSolid};
+pub use tally::{share, Counts, Fate, PhotonPath, Tally, CATEGORY_KEYS, CATEGORY_LABELS};
 
-use crate::cut::Cut;
 use crate::error::{Error, Result};
 use crate::geometry::{DVec3, Polyhedron};
 use crate::optics::color::{LAMBDA_MAX, LAMBDA_MIN};
@@ -389,23 +386,26 @@ pub fn trace_weighted(
     })
 }
 
-/// [`trace`] a cut; the tally carries the cut's name.
+/// [`trace`] a named stone (a cut's solid and name); the tally carries the name, and errors
+/// start with it.
 pub fn trace_cut(
-    cut: &Cut,
+    solid: &Polyhedron,
+    name: &str,
     light: &Light,
     cfg: &TraceConfig,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Result<Tally> {
-    let mut t = trace(&cut.solid, light, cfg, progress).map_err(|e| e.context(&cut.name))?;
-    t.cut = cut.name.clone();
+    let mut t = trace(solid, light, cfg, progress).map_err(|e| e.context(name))?;
+    t.cut = name.to_string();
     Ok(t)
 }
 
-/// The thesis's rotation sweep: the light at each of [`ROTATION_ANGLES`] (see
+/// The thesis's rotation sweep of a named stone: the light at each of [`ROTATION_ANGLES`] (see
 /// [`Light::rotated`]), shooting until `cfg.photons` photons have hit the stone at each angle
 /// (`cfg.until_hit` is forced on).
 pub fn rotation_sweep(
-    cut: &Cut,
+    solid: &Polyhedron,
+    name: &str,
     kind: LightKind,
     cfg: &TraceConfig,
     progress: Option<&(dyn Fn(u64) + Sync)>,
@@ -416,7 +416,7 @@ pub fn rotation_sweep(
     };
     ROTATION_ANGLES
         .iter()
-        .map(|&a| trace_cut(cut, &Light::rotated(kind, a), &cfg, progress))
+        .map(|&a| trace_cut(solid, name, &Light::rotated(kind, a), &cfg, progress))
         .collect()
 }
 

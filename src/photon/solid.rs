@@ -2,49 +2,71 @@
 //! arrays (normals' x, y, z and offsets), padded to a multiple of [`LANES`] with planes that no
 //! ray can leave through, so the exit search is a fixed-width, branch-free loop.
 
-use super::tally::face_category;
 use crate::error::{Error, Result};
 use crate::geometry::{DVec3, Polyhedron};
+
+/// The face category (index into [`CATEGORY_KEYS`](super::CATEGORY_KEYS)) of a facet with
+/// outward normal `n`: the angle θ between `n` and up in [0, 45), [45, 90], (90, 135],
+/// (135, 180] degrees (snapped to 1e-9° so vertical girdle facets are 90° exactly).
+pub fn face_category(n: DVec3) -> u8 {
+    let th = n.z.clamp(-1.0, 1.0).acos().to_degrees();
+    let th = (th * 1e9).round() / 1e9;
+    if th < 45.0 {
+        0
+    } else if th <= 90.0 {
+        1
+    } else if th <= 135.0 {
+        2
+    } else {
+        3
+    }
+}
 
 /// Width of the padded facet arrays.
 pub const LANES: usize = 8;
 
-/// A convex stone prepared for photon tracing.
+/// A convex stone prepared for photon tracing. Its arrays are the tracer's own (crate-private);
+/// build one with [`TraceSolid::new`].
 #[derive(Clone, Debug)]
 pub struct TraceSolid {
     /// Facet count (without padding).
-    pub facets: usize,
+    pub(crate) facets: usize,
     /// Normal x components, padded with zeros.
-    pub nx: Vec<f64>,
+    pub(crate) nx: Vec<f64>,
     /// Normal y components, padded with zeros.
-    pub ny: Vec<f64>,
+    pub(crate) ny: Vec<f64>,
     /// Normal z components, padded with zeros.
-    pub nz: Vec<f64>,
+    pub(crate) nz: Vec<f64>,
     /// Plane offsets, padded with ones.
-    pub off: Vec<f64>,
+    pub(crate) off: Vec<f64>,
     /// f32 copies for the fast exit search.
     pub(crate) f: [Vec<f32>; 4],
     /// Outward unit normals.
-    pub normals: Vec<DVec3>,
+    pub(crate) normals: Vec<DVec3>,
     /// Face category (0: < 45°, 1: 45–90°, 2: 90–135°, 3: > 135° from up) of each facet.
-    pub category: Vec<u8>,
+    pub(crate) category: Vec<u8>,
     /// Facet names.
-    pub names: Vec<String>,
+    pub(crate) names: Vec<String>,
     /// Facet tiers.
-    pub tiers: Vec<String>,
+    pub(crate) tiers: Vec<String>,
     /// Vertices (for lights that cover the stone's shadow).
-    pub vertices: Vec<DVec3>,
+    pub(crate) vertices: Vec<DVec3>,
     /// Each facet's polygon as indices into `vertices`.
-    pub facet_vertices: Vec<Vec<usize>>,
+    pub(crate) facet_vertices: Vec<Vec<usize>>,
     /// Centre of the bounding sphere.
-    pub centre: DVec3,
+    pub(crate) centre: DVec3,
     /// Radius of the bounding sphere (slightly enlarged).
-    pub radius: f64,
+    pub(crate) radius: f64,
     /// Whether the CPU has AVX2 and FMA (checked once).
     pub(crate) avx2: bool,
 }
 
 impl TraceSolid {
+    /// Facet count (without padding).
+    pub fn facet_count(&self) -> usize {
+        self.facets
+    }
+
     /// Prepare `p` for tracing.
     pub fn new(p: &Polyhedron) -> Result<TraceSolid> {
         let n = p.facets.len();

@@ -10,23 +10,6 @@ pub const CATEGORY_KEYS: [&str; 4] = ["lt45", "45_90", "90_135", "gt135"];
 /// Human labels of the four face categories.
 pub const CATEGORY_LABELS: [&str; 4] = ["< 45°", "45–90°", "90–135°", "> 135°"];
 
-/// The face category (index into [`CATEGORY_KEYS`]) of a facet with outward normal `n`:
-/// the angle θ between `n` and up in [0, 45), [45, 90], (90, 135], (135, 180] degrees
-/// (snapped to 1e-9° so vertical girdle facets are 90° exactly).
-pub fn face_category(n: DVec3) -> u8 {
-    let th = n.z.clamp(-1.0, 1.0).acos().to_degrees();
-    let th = (th * 1e9).round() / 1e9;
-    if th < 45.0 {
-        0
-    } else if th <= 90.0 {
-        1
-    } else if th <= 135.0 {
-        2
-    } else {
-        3
-    }
-}
-
 /// Integer counts of a run (merged by adding).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Counts {

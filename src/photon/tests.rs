@@ -364,7 +364,14 @@ fn light_return_agrees_with_a_deterministic_ray_grid() {
 #[test]
 fn rotation_sweep_shoots_until_hit() {
     let cut = crate::io::load_cut("tolkowsky").unwrap();
-    let r = rotation_sweep(&cut, LightKind::Directed, &cfg(2_000), None).unwrap();
+    let r = rotation_sweep(
+        &cut.solid,
+        &cut.name,
+        LightKind::Directed,
+        &cfg(2_000),
+        None,
+    )
+    .unwrap();
     assert_eq!(r.len(), 7);
     for t in &r {
         assert_eq!(t.counts.hit, 2_000);

@@ -258,9 +258,10 @@ mod tests {
             record_paths: 30,
             ..TraceConfig::thesis()
         };
-        let t = trace_cut(&cut, &Light::directed(0.0), &cfg, None).unwrap();
+        let t = trace_cut(&cut.solid, &cut.name, &Light::directed(0.0), &cfg, None).unwrap();
         let sweep = rotation_sweep(
-            &cut,
+            &cut.solid,
+            &cut.name,
             LightKind::Directed,
             &TraceConfig {
                 photons: 300,

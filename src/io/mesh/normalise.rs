@@ -1,0 +1,168 @@
+//! From mesh vertices to named facet planes: convex hull, convexity check, normalisation to
+//! the girdle frame (see the parent module's documentation) and tier names.
+
+use super::{hull_error, sig2, Points, CONVEX_TOL};
+use crate::cut::units::{girdle_frame, is_girdle};
+use crate::error::{Error, Result};
+use crate::geometry::{
+    convex_hull_with_tolerance, facet_angle_deg, facet_azimuth_deg, DVec3, FacetPlane, Plane,
+    Polyhedron, MERGE_TOL,
+};
+
+/// Largest merge tolerance used for coarse coordinates (fraction of the size).
+const MAX_MERGE_TOL: f64 = 1e-4;
+
+/// Hull, convexity check, normalisation and naming.
+pub(super) fn planes_from_points(points: &Points, source: &str) -> Result<Vec<FacetPlane>> {
+    let pts = &points.pts;
+    if pts.len() < 4 {
+        return Err(Error::parse(
+            source,
+            format!(
+                "a stone needs at least 4 distinct vertices, the mesh has {}",
+                pts.len()
+            ),
+        ));
+    }
+    let (mut lo, mut hi) = (pts[0], pts[0]);
+    for p in pts {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    let size = (hi - lo).max_element();
+    let largest = lo.abs().max(hi.abs()).max_element();
+    if !size.is_finite() || largest > 1e150 {
+        return Err(Error::parse(
+            source,
+            format!("vertex coordinates up to {largest:e} are too large; allowed up to 1e150"),
+        ));
+    }
+    if !(size.is_finite() && size > 0.0) {
+        return Err(Error::parse(
+            source,
+            "all vertices coincide; a stone needs a solid",
+        ));
+    }
+    let tol = (8.0 * points.rel_noise * largest / size).clamp(MERGE_TOL, MAX_MERGE_TOL);
+    let hull = convex_hull_with_tolerance(pts, tol).map_err(|e| hull_error(e, source))?;
+
+    // Convexity: the deepest vertex inside the hull.
+    let mut deepest = (0.0, 0usize);
+    for (i, p) in pts.iter().enumerate() {
+        let depth = hull
+            .iter()
+            .map(|h| -h.distance(*p))
+            .fold(f64::INFINITY, f64::min);
+        if depth > deepest.0 {
+            deepest = (depth, i);
+        }
+    }
+    if deepest.0 > CONVEX_TOL * size {
+        let (depth, i) = deepest;
+        return Err(Error::parse(
+            source,
+            format!(
+                "mesh is not convex: a vertex ({}) lies {} ({}% of the size) inside its convex hull; allowed {}%",
+                points.locs[i].describe(),
+                sig2(depth),
+                sig2(100.0 * depth / size),
+                100.0 * CONVEX_TOL
+            ),
+        ));
+    }
+
+    // Into a unit frame first (Polyhedron works in a bounded box), then to the girdle frame.
+    let centre = 0.5 * (lo + hi);
+    let unit: Vec<Plane> = hull
+        .iter()
+        .map(|h| Plane {
+            normal: h.normal,
+            offset: (h.offset - h.normal.dot(centre)) / size,
+        })
+        .collect();
+    let solid = Polyhedron::from_planes(&named(&unit)).map_err(|e| hull_error(e, source))?;
+    let (origin, width) = girdle_frame(&solid);
+    if width <= 1e-9 {
+        return Err(Error::parse(
+            source,
+            "the mesh has no horizontal extent; the stone must stand upright, z up",
+        ));
+    }
+    let mut planes: Vec<Plane> = unit
+        .iter()
+        .map(|h| Plane {
+            normal: h.normal,
+            offset: (h.offset - h.normal.dot(origin)) / width,
+        })
+        .collect();
+    planes.sort_by(|a, b| {
+        let key = |p: &Plane| (side(p.normal).1, (facet_angle_deg(p.normal) * 1e3).round());
+        let (ka, kb) = (key(a), key(b));
+        ka.0.cmp(&kb.0)
+            .then(ka.1.total_cmp(&kb.1))
+            .then(facet_azimuth_deg(a.normal).total_cmp(&facet_azimuth_deg(b.normal)))
+    });
+    let mut out = named(&planes);
+    for f in &mut out {
+        f.tier = side(f.plane.normal).0.to_string();
+    }
+    split_tiers_by_angle(&mut out);
+    Ok(out)
+}
+
+/// Crown and pavilion facets grouped into tiers by angle: angles within 0.05° of their
+/// neighbour in sorted order form one tier, named by side and mean angle (`crown-34.50`), so
+/// that `info` reports a mesh's bezels and mains as a cutter would.
+fn split_tiers_by_angle(facets: &mut [FacetPlane]) {
+    for sidename in ["crown", "pavilion"] {
+        let mut idx: Vec<(usize, f64)> = facets
+            .iter()
+            .enumerate()
+            .filter(|(_, f)| f.tier == sidename)
+            .map(|(i, f)| (i, facet_angle_deg(f.plane.normal)))
+            .collect();
+        idx.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let mut start = 0;
+        while start < idx.len() {
+            let mut end = start + 1;
+            while end < idx.len() && idx[end].1 - idx[end - 1].1 <= 0.05 {
+                end += 1;
+            }
+            let mean = idx[start..end].iter().map(|x| x.1).sum::<f64>() / (end - start) as f64;
+            for &(i, _) in &idx[start..end] {
+                facets[i].tier = format!("{sidename}-{mean:.2}");
+            }
+            start = end;
+        }
+    }
+}
+
+fn named(planes: &[Plane]) -> Vec<FacetPlane> {
+    planes
+        .iter()
+        .enumerate()
+        .map(|(i, p)| FacetPlane {
+            plane: *p,
+            name: format!("f-{}", i + 1),
+            tier: String::new(),
+        })
+        .collect()
+}
+
+/// The side (tier) of a facet from its outward normal, with its rank in the facet order.
+fn side(n: DVec3) -> (&'static str, u8) {
+    let flat = facet_angle_deg(n) < 0.01;
+    if is_girdle(n) {
+        ("girdle", 2)
+    } else if n.z > 0.0 {
+        if flat {
+            ("table", 0)
+        } else {
+            ("crown", 1)
+        }
+    } else if flat {
+        ("culet", 4)
+    } else {
+        ("pavilion", 3)
+    }
+}
