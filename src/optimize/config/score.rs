@@ -49,29 +49,14 @@ impl ScoreSettings {
 
 /// Validate `[score]`.
 pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
-    let material = match (&rs.material, rs.ri) {
-        (Some(_), Some(_)) => {
-            return Err(Error::invalid(
-                at("score.ri"),
-                "give either score.material or score.ri, not both",
-            ))
-        }
-        (None, Some(n)) => {
-            let n = finite(&at("score.ri"), n)?;
-            if !(n > 1.0 && n <= 10.0) {
-                return Err(Error::invalid(
-                    at("score.ri"),
-                    format!("{n} is out of range; allowed (1, 10]"),
-                ));
-            }
-            crate::optics::Material::constant(n)
-        }
-        (Some(m), None) => crate::optics::Material::by_name(m).map_err(|e| match e {
-            Error::Invalid { message, .. } => Error::invalid(at("score.material"), message),
-            other => other,
-        })?,
-        (None, None) => crate::optics::Material::diamond(),
-    };
+    let material = crate::optics::Material::choose(
+        rs.material.as_deref(),
+        rs.ri,
+        crate::optics::MaterialFields {
+            material: &at("score.material"),
+            ri: &at("score.ri"),
+        },
+    )?;
     let head_shadow_deg = finite(&at("score.head_shadow"), rs.head_shadow.unwrap_or(0.0))?;
     if !(0.0..=60.0).contains(&head_shadow_deg) {
         return Err(Error::invalid(
