@@ -2,7 +2,7 @@
 //! and what is allowed.
 
 use facetlab::error::{Error, Result};
-use facetlab::optics::Material;
+use facetlab::optics::{Material, MaterialFields};
 
 /// A number in `[lo, hi]`; `what` describes it in the error.
 pub fn number(flag: &str, s: &str, lo: f64, hi: f64, what: &str) -> Result<f64> {
@@ -48,23 +48,26 @@ pub fn on_off(flag: &str, s: &str) -> Result<bool> {
     }
 }
 
-/// The material from `--ri N` or `--material NAME` (diamond when neither is given).
+/// The material from `--ri N` or `--material NAME` (diamond when neither is given), chosen by
+/// [`Material::choose`] like a config's `score.material`/`score.ri`.
 pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
-    match (ri, name) {
-        (Some(_), Some(_)) => Err(Error::invalid(
-            "--ri",
-            "give either --ri or --material, not both",
-        )),
-        (Some(r), None) => Ok(Material::constant(number(
-            "--ri",
-            r,
-            1.0001,
-            10.0,
-            "a refractive index",
-        )?)),
-        (None, Some(m)) => Material::by_name(m),
-        (None, None) => Ok(Material::diamond()),
-    }
+    let ri = match ri {
+        None => None,
+        Some(r) => Some(r.trim().parse::<f64>().map_err(|_| {
+            Error::invalid(
+                "--ri",
+                format!("`{r}` is not a number; give a refractive index"),
+            )
+        })?),
+    };
+    Material::choose(
+        name,
+        ri,
+        MaterialFields {
+            material: "--material",
+            ri: "--ri",
+        },
+    )
 }
 
 /// A note (for stderr) on each cut whose design file names a refractive index other than the
@@ -127,6 +130,38 @@ mod tests {
             .to_string()
             .starts_with("--ri:"));
         assert_eq!(material(None, Some("cz")).unwrap().name, "cubic-zirconia");
+    }
+
+    #[test]
+    fn flag_and_config_accept_the_same_indices() {
+        let config = |ri: &str| {
+            let text = format!(
+                "[cut]\nfamily = \"round-brilliant\"\n[free]\ncrown_angle = [30, 38]\n[score]\nri = {ri}\n"
+            );
+            facetlab::optimize::Config::from_str(&text, "c.toml").map(|c| c.score.material)
+        };
+        for ri in [
+            "0.5", "1", "1.00001", "1.0001", "2.4", "10", "10.0001", "11", "nan", "inf",
+        ] {
+            let flag = material(Some(ri), None);
+            let conf = config(ri);
+            assert_eq!(flag.is_ok(), conf.is_ok(), "{ri}: {flag:?} vs {conf:?}");
+            match (flag, conf) {
+                (Ok(a), Ok(b)) => assert_eq!(a, b, "{ri}"),
+                (Err(a), Err(b)) => {
+                    let (a, b) = (a.to_string(), b.to_string());
+                    assert!(a.starts_with("--ri: "), "{a}");
+                    assert!(b.starts_with("c.toml: score.ri: "), "{b}");
+                    assert_eq!(
+                        a.split_once(": ").unwrap().1,
+                        b.split_once("score.ri: ").unwrap().1
+                    );
+                }
+                _ => unreachable!(),
+            }
+        }
+        let e = material(Some("abc"), None).unwrap_err().to_string();
+        assert!(e.starts_with("--ri: `abc` is not a number"), "{e}");
     }
 
     #[test]

@@ -5,12 +5,10 @@
 
 use clap::Args;
 use facetlab::error::{Error, Result};
-use facetlab::optimize::engines::{BeamEvaluator, PhotonVerifier};
-use facetlab::optimize::guard::{Progress, Status};
-use facetlab::optimize::run::FnWriter;
-use facetlab::optimize::run::{self, CutWriter, Hooks, RunOptions};
-use facetlab::optimize::sweep::{self, Axis, SweepScore};
+use facetlab::optimize::{self as opt, Axis, SweepScore};
+use facetlab::optimize::{BeamEvaluator, PhotonVerifier, Progress, Status};
 use facetlab::optimize::{Config, Evaluator, Verifier};
+use facetlab::optimize::{CutWriter, FnWriter, Hooks, RunOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -162,7 +160,7 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     } else {
         verifier.as_deref()
     };
-    let result = run::run(&config, evaluator, verifier, &opts);
+    let result = opt::run(&config, evaluator, verifier, &opts);
     pb.finish_and_clear();
     let s = result?;
     let o = &s.outcome;
@@ -247,7 +245,7 @@ pub fn run_sweep(a: &SweepArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<()>
                     ),
                 ));
             }
-            Some(sweep::run_path(dir, &x.key, &y.key)?)
+            Some(opt::sweep_path(dir, &x.key, &y.key)?)
         }
         None => None,
     };
@@ -261,7 +259,7 @@ pub fn run_sweep(a: &SweepArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<()>
         "{spinner} {elapsed_precise} [{bar:20}] {pos}/{len} cuts  {per_sec}  eta {eta}",
     );
     let tick = || pb.inc(1);
-    let result = sweep::sweep(&config, evaluator, &x, &y, Some(&tick));
+    let result = opt::sweep(&config, evaluator, &x, &y, Some(&tick));
     pb.finish_and_clear();
     let s = result?;
     let title = format!(
@@ -275,7 +273,7 @@ pub fn run_sweep(a: &SweepArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<()>
             .map(|f| f.to_string_lossy())
             .unwrap_or_default()
     );
-    let (csv, png, svg) = sweep::write(
+    let (csv, png, svg) = opt::write_sweep(
         &s,
         &score,
         title,

@@ -22,6 +22,16 @@ pub struct Material {
     pub density: f64,
 }
 
+/// The names under which a material choice reaches [`Material::choose`] (a flag pair such as
+/// `--material`/`--ri`, or a config's `score.material`/`score.ri`), for its error messages.
+#[derive(Clone, Copy, Debug)]
+pub struct MaterialFields<'a> {
+    /// Where the material's name was given.
+    pub material: &'a str,
+    /// Where the fixed refractive index was given.
+    pub ri: &'a str,
+}
+
 /// Fraunhofer B (686.7 nm) and G (430.8 nm) lines used for "dispersion" in gemmology.
 pub const LINE_B_NM: f64 = 686.7;
 /// See [`LINE_B_NM`].
@@ -110,6 +120,47 @@ impl Material {
         }
     }
 
+    /// A fixed refractive index must be above this (1 is vacuum: nothing would refract).
+    pub const RI_ABOVE: f64 = 1.0;
+    /// The largest fixed refractive index accepted.
+    pub const RI_MAX: f64 = 10.0;
+
+    /// The one chooser of a material, for the command line (`--material`, `--ri`) and the
+    /// config (`score.material`, `score.ri`): a material by name ([`Material::by_name`]), or a
+    /// fixed index in ([`RI_ABOVE`](Material::RI_ABOVE), [`RI_MAX`](Material::RI_MAX)], or
+    /// diamond when neither is given. Errors name `fields.material` or `fields.ri`.
+    pub fn choose(
+        name: Option<&str>,
+        ri: Option<f64>,
+        fields: MaterialFields<'_>,
+    ) -> Result<Material> {
+        match (name, ri) {
+            (Some(_), Some(_)) => Err(Error::invalid(
+                fields.ri,
+                format!("give either {} or {}, not both", fields.material, fields.ri),
+            )),
+            (None, Some(n)) => {
+                if n > Material::RI_ABOVE && n <= Material::RI_MAX {
+                    Ok(Material::constant(n))
+                } else {
+                    Err(Error::invalid(
+                        fields.ri,
+                        format!(
+                            "{n} is out of range; allowed ({}, {}] (a refractive index)",
+                            Material::RI_ABOVE,
+                            Material::RI_MAX
+                        ),
+                    ))
+                }
+            }
+            (Some(m), None) => Material::by_name(m).map_err(|e| match e {
+                Error::Invalid { message, .. } => Error::invalid(fields.material, message),
+                other => other,
+            }),
+            (None, None) => Ok(Material::diamond()),
+        }
+    }
+
     /// Refractive index at `wavelength_nm`.
     #[inline]
     pub fn ri(&self, wavelength_nm: f64) -> f64 {
@@ -137,6 +188,40 @@ impl Material {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn one_chooser_for_name_index_or_default() {
+        let f = MaterialFields {
+            material: "--material",
+            ri: "--ri",
+        };
+        assert_eq!(Material::choose(None, None, f).unwrap().name, "diamond");
+        assert_eq!(
+            Material::choose(Some("cz"), None, f).unwrap().name,
+            "cubic-zirconia"
+        );
+        assert_eq!(
+            Material::choose(None, Some(10.0), f).unwrap().ri(500.0),
+            10.0
+        );
+        for bad in [1.0, 0.5, 10.001, f64::NAN, f64::INFINITY] {
+            let e = Material::choose(None, Some(bad), f)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.starts_with("--ri: ") && e.contains("allowed (1, 10]"),
+                "{e}"
+            );
+        }
+        let e = Material::choose(Some("cz"), Some(2.0), f)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("--ri: give either --material or --ri"), "{e}");
+        let e = Material::choose(Some("kryptonite"), None, f)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("--material: unknown material"), "{e}");
+    }
 
     #[test]
     fn diamond_index_and_dispersion() {

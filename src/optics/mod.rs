@@ -13,5 +13,5 @@ mod material;
 mod polarization;
 
 pub use fresnel::{critical_angle, fresnel, reflect, refract, Complex, Interface};
-pub use material::{Dispersion, Material};
+pub use material::{Dispersion, Material, MaterialFields};
 pub use polarization::{rotate_stokes, s_axis, Mueller, Stokes};

@@ -3,19 +3,24 @@
 //!
 //! Data flows one way:
 //!
-//! - [`config`] reads an `optim/*.toml` file into a validated [`Config`] (every error names the
+//! - `config/` reads an `optim/*.toml` file into a validated [`Config`] (every error names the
 //!   file and the field);
-//! - [`problem`] turns a parameter vector into a [`Cut`], scores it with an [`Evaluator`] and
+//! - `problem.rs` turns a parameter vector into a [`Cut`], scores it with an [`Evaluator`] and
 //!   returns a finite cost: `−(weighted score) + constraint penalties`;
-//! - [`nelder_mead`] (multi-start from a seeded Latin hypercube or Halton set) and [`pso`]
-//!   (particle swarm) run argmin's solvers on it, stopped by [`guard`] on the evaluation budget
-//!   or Ctrl-C;
-//! - [`history`] keeps every evaluation (Nelder–Mead) or every particle position (swarm) as
+//! - `nelder_mead.rs` (multi-start from a seeded Latin hypercube or Halton set, `design.rs`) and
+//!   `pso.rs` (particle swarm) run argmin's solvers on it, stopped by `guard.rs` on the
+//!   evaluation budget or Ctrl-C;
+//! - `history.rs` keeps every evaluation (Nelder–Mead) or every particle position (swarm) as
 //!   rows of `history.csv`;
-//! - [`verify`] re-scores the winners with a [`Verifier`] (the photon tracer) and flags any
+//! - `verify.rs` re-scores the winners with a [`Verifier`] (the photon tracer) and flags any
 //!   disagreement with the beam tracer beyond 4 standard errors;
-//! - [`run`] writes the run folder (config as used, history, plots, best cut, reports) and
-//!   [`sweep`] maps a score over two parameters.
+//! - `run.rs` writes the run folder (config as used, history, plots, best cut, reports) and
+//!   `sweep.rs` maps a score over two parameters.
+//!
+//! The modules are private; what a caller needs is re-exported here: the config and its
+//! sections, the two scorers made from a config ([`BeamEvaluator`], [`PhotonVerifier`]),
+//! [`search`], [`verify`] and [`run()`] with their [`Hooks`] and [`RunOptions`], the sweep
+//! ([`sweep()`], [`write_sweep`], [`sweep_path`]), and the verification types.
 //!
 //! The objective and the verifier are traits so the searches can be tested on analytic
 //! functions and wired to the tracers separately.
@@ -30,7 +35,7 @@
 //! # Example
 //!
 //! ```
-//! use facetlab::optimize::{config::Config, run, Evaluator, ScoreSet};
+//! use facetlab::optimize::{search, Config, Evaluator, Hooks, ScoreSet};
 //! use facetlab::cut::Cut;
 //!
 //! /// A smooth bump with its top at crown 34.5°, pavilion 40.8°.
@@ -55,26 +60,54 @@
 //!     max_evaluations = 200
 //! "#;
 //! let config = Config::from_str(text, "doc.toml").unwrap();
-//! let outcome = run::search(&config, &Bump, &run::Hooks::default()).unwrap();
+//! let outcome = search(&config, &Bump, &Hooks::default()).unwrap();
 //! let best = &outcome.best().params;
 //! assert!((best["crown_angle"] - 34.5).abs() < 0.1);
 //! assert!((best["pavilion_angle"] - 40.8).abs() < 0.05);
 //! ```
 
-pub mod config;
-pub mod design;
-pub mod engines;
-pub mod guard;
-pub mod history;
-pub mod nelder_mead;
-pub mod problem;
-pub mod pso;
-pub mod report;
-pub mod run;
-pub mod sweep;
-pub mod verify;
+mod config;
+mod design;
+mod engines;
+mod guard;
+mod history;
+mod nelder_mead;
+mod problem;
+mod pso;
+mod report;
+mod run;
+mod sweep;
+mod verify;
 
-pub use config::Config;
+// The public surface. Everything else (the solvers, the problem wrappers, the start designs,
+// the history and report rows) is internal: reach it through these.
+
+// Configs: the validated `Config`, its sections, and the file as written (`RawConfig`).
+pub use config::{
+    axis_label, defaults, Budget, Config, Constraints, Design, FreeParam, Method,
+    NelderMeadSettings, RawConfig, RawConstraints, RawCut, RawMethod, RawObjective, RawScore,
+    RawVerify, ScoreSettings, SwarmSettings, VerifySettings, Weights,
+};
+// The scorers of a config: the beam tracer's evaluator and the photon tracer's verifier.
+pub use engines::{BeamEvaluator, PhotonVerifier};
+// Progress reports and why a search stopped.
+pub use guard::{Progress, Status, Stop};
+// Searches and run folders: `search` then `verify`, or both and the folder: `run`.
+pub use run::{
+    run, search, verify, ConvergenceChart, CutWriter, FnWriter, Hooks, Outcome, RunOptions,
+    RunSummary, TOML_WRITER,
+};
+// What a run keeps and reports.
+pub use history::{History, Row, Track};
+// The cost of a cut that cannot be built or scored.
+pub use problem::FAILED_COST;
+pub use report::{Candidate, FoundAt, Report};
+// Sweeps: a score mapped over two parameters.
+pub use sweep::{
+    run_path as sweep_path, sweep, write as write_sweep, Axis, Cell, Heatmap, HeatmapChart, Sweep,
+    SweepScore,
+};
+// The photon-tracer check of the winners.
 pub use verify::{Verifier, VerifyReport, VerifyRow};
 
 use crate::cut::Cut;

@@ -295,7 +295,8 @@ impl<'a> SigmoidProblem<'a> {
             .collect()
     }
 
-    /// `u` at parameters `x` (strictly inside the bounds).
+    /// `u` at parameters `x` (strictly inside the bounds); the inverse of `to_x` (tests).
+    #[cfg(test)]
     pub fn to_u(&self, x: &[f64]) -> Vec<f64> {
         self.objective
             .config

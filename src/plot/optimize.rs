@@ -1,15 +1,13 @@
 //! The optimizer's charts: a run's convergence (best and current cost against evaluations) and a
 //! sweep's heatmap (a score over two parameters, with contour lines, a colour bar and optionally
 //! the optimizer's path). They reach the optimizer as its hooks
-//! ([`crate::optimize::run::ConvergenceChart`], [`crate::optimize::sweep::HeatmapChart`]): the
+//! ([`crate::optimize::ConvergenceChart`], [`crate::optimize::HeatmapChart`]): the
 //! binary hands [`convergence`] and [`heatmap`] to a run and a sweep.
 
 use super::contour::{nice_levels, segments};
 use super::{box_key, font, legend, line_key, save_to, DrawResult, Figure, LegendStyle, TAB10};
 use crate::error::Result;
-use crate::optimize::history::{History, Track};
-use crate::optimize::problem::FAILED_COST;
-use crate::optimize::sweep::Heatmap;
+use crate::optimize::{Heatmap, History, Track, FAILED_COST};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
@@ -427,7 +425,7 @@ impl Figure for Map<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::optimize::history::Row;
+    use crate::optimize::Row;
 
     fn history(track: Track, costs: &[(usize, f64)]) -> History {
         let mut h = History::new(track, vec!["a".into(), "b".into()]);

@@ -1,0 +1,146 @@
+//! `[free]`: the parameters the optimizer varies, `key = [min, max]`.
+
+use super::At;
+use crate::cut::{Family, Unit};
+use crate::error::{Error, Result};
+use std::collections::BTreeMap;
+
+/// One free parameter.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FreeParam {
+    /// Family parameter key.
+    pub key: String,
+    /// Lower bound.
+    pub lo: f64,
+    /// Upper bound.
+    pub hi: f64,
+    /// The start value (from `[cut.params]` or the family default).
+    pub start: f64,
+    /// Unit (for labels).
+    pub unit: Unit,
+}
+
+impl FreeParam {
+    /// Position of `x` in the box, 0 at `lo`, 1 at `hi`.
+    pub fn unit_of(&self, x: f64) -> f64 {
+        (x - self.lo) / (self.hi - self.lo)
+    }
+    /// The value at box position `f` (0 → `lo`, 1 → `hi`).
+    pub fn at(&self, f: f64) -> f64 {
+        self.lo + (self.hi - self.lo) * f
+    }
+    /// Axis label: the key with its unit.
+    pub fn label(&self) -> String {
+        axis_label(&self.key, self.unit)
+    }
+}
+
+/// An axis label for a family parameter: `crown_angle (°)`, `table (× D)`.
+pub fn axis_label(key: &str, unit: Unit) -> String {
+    match unit {
+        Unit::Degrees => format!("{key} (°)"),
+        Unit::Fraction => format!("{key} (× girdle diameter)"),
+        _ => key.to_string(),
+    }
+}
+
+/// Validate `[free]` against the family and the start cut; the result is in the family's
+/// parameter order.
+pub(super) fn validate(
+    raw: &BTreeMap<String, [f64; 2]>,
+    fam: &'static Family,
+    start: &BTreeMap<String, f64>,
+    given: &BTreeMap<String, f64>,
+    at: At,
+) -> Result<Vec<FreeParam>> {
+    if raw.is_empty() {
+        return Err(Error::invalid(
+            at("free"),
+            format!(
+                "no free parameters; give at least one as `key = [min, max]`; {} has: {}",
+                fam.name,
+                fam.keys().join(", ")
+            ),
+        ));
+    }
+    let mut free = Vec::new();
+    for def in fam.params {
+        let Some(&[lo, hi]) = raw.get(def.key) else {
+            continue;
+        };
+        let field = at(&format!("free.{}", def.key));
+        if !(lo.is_finite() && hi.is_finite()) {
+            return Err(Error::invalid(
+                field,
+                format!("bounds [{lo}, {hi}] must be finite numbers"),
+            ));
+        }
+        if lo > hi {
+            return Err(Error::invalid(
+                field,
+                format!("bounds [{lo}, {hi}] are reversed; write [min, max]"),
+            ));
+        }
+        if lo == hi {
+            return Err(Error::invalid(
+                field,
+                format!("bounds [{lo}, {hi}] are empty; fix the value in [cut.params] instead"),
+            ));
+        }
+        if def.unit == Unit::Count {
+            return Err(Error::invalid(
+                field,
+                "a whole-number parameter cannot be optimized; fix it in [cut.params]",
+            ));
+        }
+        let (l, r) = if def.open { ("(", ")") } else { ("[", "]") };
+        let inside = |v: f64| {
+            if def.open {
+                v > def.min && v < def.max
+            } else {
+                v >= def.min && v <= def.max
+            }
+        };
+        if !(inside(lo) && inside(hi)) {
+            return Err(Error::invalid(
+                field,
+                format!(
+                    "bounds [{lo}, {hi}] leave the family's allowed range {l}{}, {}{r} {}",
+                    def.min,
+                    def.max,
+                    def.unit.label()
+                ),
+            ));
+        }
+        let s = start[def.key];
+        if !(lo..=hi).contains(&s) {
+            let from = if given.contains_key(def.key) {
+                "cut.params"
+            } else {
+                "the family default"
+            };
+            return Err(Error::invalid(
+                field,
+                format!("the start value {s} (from {from}) lies outside the bounds [{lo}, {hi}]; widen them or set `{}` in [cut.params]", def.key),
+            ));
+        }
+        free.push(FreeParam {
+            key: def.key.to_string(),
+            lo,
+            hi,
+            start: s,
+            unit: def.unit,
+        });
+    }
+    if let Some(k) = raw.keys().find(|k| fam.param(k).is_none()) {
+        return Err(Error::invalid(
+            at(&format!("free.{k}")),
+            format!(
+                "unknown parameter of {}; allowed: {}",
+                fam.name,
+                fam.keys().join(", ")
+            ),
+        ));
+    }
+    Ok(free)
+}

@@ -1,0 +1,562 @@
+//! Optimization configs (`optim/*.toml`): parsed with unknown keys refused, then validated into
+//! typed settings. Every error is one line naming the file and the field, e.g.
+//! `round.toml: free.table: bounds [0.8, 0.5] are reversed; write [min, max]`.
+//!
+//! ```toml
+//! name = "round-brilliance"          # run folder prefix; default: the file's stem
+//! seed = 1                           # every random choice (start design, swarm) follows it
+//!
+//! [cut]
+//! family = "round-brilliant"
+//! [cut.params]                       # the start cut; missing keys take the family's defaults
+//! girdle = 0.03
+//!
+//! [free]                             # what the optimizer varies: key = [min, max]
+//! crown_angle = [30.0, 38.0]
+//! pavilion_angle = [39.0, 42.5]
+//!
+//! [objective]                        # score = Σ weight · score; cost = −score + penalties
+//! brilliance = 1.0
+//!
+//! [constraints]
+//! total_depth = [0.56, 0.64]
+//!
+//! [method]
+//! name = "nelder-mead"
+//! starts = 4
+//! max_evaluations = 400
+//!
+//! [verify]
+//! winners = 3
+//! photons = 100000
+//! ```
+//!
+//! The full list of fields with their defaults is the config-file table in `README.md`
+//! (section "The config file").
+//!
+//! Each section has its own file with its raw form, its validated form and its validator
+//! (`cut.rs`, `free.rs`, `objective.rs`, `constraints.rs`, `method.rs`, `verify.rs`,
+//! `score.rs`); [`Config::from_raw`] runs them in the file's order.
+
+mod constraints;
+mod cut;
+mod free;
+mod method;
+mod objective;
+mod score;
+mod verify;
+
+pub use constraints::{Constraints, RawConstraints};
+pub use cut::RawCut;
+pub use free::{axis_label, FreeParam};
+pub use method::{Budget, Design, Method, NelderMeadSettings, RawMethod, SwarmSettings};
+pub use objective::{RawObjective, Weights};
+pub use score::{RawScore, ScoreSettings};
+pub use verify::{RawVerify, VerifySettings};
+
+use crate::cut::{Cut, Family};
+use crate::error::{Error, Result};
+use crate::io::{line_of, read_bytes};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// The config file as written (every field optional where a default exists).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawConfig {
+    /// Run name (folder prefix); default: the file's stem.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Free text, copied to the report.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// Seed of every random choice; default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
+    /// The cut family and the start cut.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cut: Option<RawCut>,
+    /// Free parameters: key = [min, max].
+    #[serde(default)]
+    pub free: BTreeMap<String, [f64; 2]>,
+    /// Objective weights.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub objective: Option<RawObjective>,
+    /// Constraints.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub constraints: Option<RawConstraints>,
+    /// The search method and budgets.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub method: Option<RawMethod>,
+    /// Verification of the winners.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub verify: Option<RawVerify>,
+    /// How the cuts are scored (material, lighting).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub score: Option<RawScore>,
+}
+
+/// A validated config.
+#[derive(Clone, Debug)]
+pub struct Config {
+    /// Where it came from (file path, used in messages).
+    pub source: String,
+    /// Run name.
+    pub name: String,
+    /// Free text.
+    pub description: Option<String>,
+    /// Seed.
+    pub seed: u64,
+    /// The family.
+    pub family: &'static Family,
+    /// The start cut's full parameter set (defaults filled in).
+    pub start: BTreeMap<String, f64>,
+    /// `[cut.params]` as given.
+    pub fixed: BTreeMap<String, f64>,
+    /// Free parameters in the family's parameter order.
+    pub free: Vec<FreeParam>,
+    /// Objective weights.
+    pub weights: Weights,
+    /// Constraints.
+    pub constraints: Constraints,
+    /// Method.
+    pub method: Method,
+    /// Budgets.
+    pub budget: Budget,
+    /// Verification.
+    pub verify: VerifySettings,
+    /// Scoring settings.
+    pub score: ScoreSettings,
+}
+
+/// Defaults (also in the config-file table of `README.md`).
+pub mod defaults {
+    /// Seed.
+    pub const SEED: u64 = 1;
+    /// Penalty per percentage point of violation.
+    pub const PENALTY: f64 = 1.0;
+    /// Nelder–Mead starts.
+    pub const STARTS: u64 = 4;
+    /// Nelder–Mead iterations per start.
+    pub const NM_MAX_ITERATIONS: u64 = 1000;
+    /// Evaluation budget.
+    pub const MAX_EVALUATIONS: u64 = 400;
+    /// Simplex edge.
+    pub const SIMPLEX_STEP: f64 = 0.15;
+    /// Nelder–Mead convergence tolerance (standard deviation of the simplex's costs).
+    pub const TOLERANCE: f64 = 1e-9;
+    /// Particles.
+    pub const PARTICLES: u64 = 16;
+    /// Swarm iterations.
+    pub const PSO_MAX_ITERATIONS: u64 = 25;
+    /// Inertia (argmin's default, 1/(2 ln 2)).
+    pub const INERTIA: f64 = 0.721_347_520_444_481_7;
+    /// Cognitive and social factors (argmin's default, 1/2 + ln 2).
+    pub const PULL: f64 = 1.193_147_180_559_945_3;
+    /// Winners to verify.
+    pub const WINNERS: u64 = 3;
+    /// Photons per verified cut and light.
+    pub const PHOTONS: u64 = 100_000;
+    /// Distance between winners.
+    pub const MIN_DISTANCE: f64 = 0.05;
+    /// Disagreement threshold.
+    pub const SIGMA: f64 = 4.0;
+}
+
+fn finite(field: &str, v: f64) -> Result<f64> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::invalid(field, format!("{v} is not a finite number")))
+    }
+}
+
+/// A whole number in `[lo, hi]`, or an error naming the field.
+fn count(at: At, field: &str, v: u64, lo: u64, hi: u64) -> Result<u64> {
+    if !(lo..=hi).contains(&v) {
+        return Err(Error::invalid(
+            at(field),
+            format!("{v} is out of range; allowed {lo} to {hi}"),
+        ));
+    }
+    Ok(v)
+}
+
+/// Names a field in messages: `SOURCE: FIELD`.
+type At<'a> = &'a dyn Fn(&str) -> String;
+
+impl Config {
+    /// Read and validate a config file.
+    pub fn load(path: &Path) -> Result<Config> {
+        let bytes = read_bytes(path)?;
+        let text = String::from_utf8(bytes).map_err(|_| {
+            Error::parse(
+                path.display().to_string(),
+                "not UTF-8 text; a config is TOML",
+            )
+        })?;
+        Config::from_str(&text, &path.display().to_string())
+    }
+
+    /// Parse and validate config text; `source` (the file name) prefixes errors.
+    #[allow(clippy::should_implement_trait)]
+    pub fn from_str(text: &str, source: &str) -> Result<Config> {
+        let raw: RawConfig = toml::from_str(text).map_err(|e| {
+            let line = e
+                .span()
+                .map(|s| format!(":{}", line_of(text, s.start)))
+                .unwrap_or_default();
+            Error::parse(format!("{source}{line}"), e.message().to_string())
+        })?;
+        Config::from_raw(&raw, source)
+    }
+
+    /// Validate a parsed config; errors are `SOURCE: FIELD: message`.
+    pub fn from_raw(raw: &RawConfig, source: &str) -> Result<Config> {
+        let at = |field: &str| format!("{source}: {field}");
+        let stem = Path::new(source)
+            .file_stem()
+            .map(|s| s.to_string_lossy().to_string())
+            .unwrap_or_else(|| "run".to_string());
+        let name = raw.name.clone().unwrap_or(stem);
+        if name.trim().is_empty()
+            || name
+                .chars()
+                .any(|c| !(c.is_alphanumeric() || "-_.".contains(c)))
+        {
+            return Err(Error::invalid(
+                at("name"),
+                format!("`{name}` is not allowed; use letters, digits, `-`, `_` or `.` (it names the run folder)"),
+            ));
+        }
+        let seed = raw.seed.unwrap_or(defaults::SEED);
+
+        let (fam, start) = cut::validate(&raw.cut.clone().unwrap_or_default(), &at)?;
+        let rc_params = raw
+            .cut
+            .as_ref()
+            .map(|c| c.params.clone())
+            .unwrap_or_default();
+        let free = free::validate(&raw.free, fam, &start, &rc_params, &at)?;
+        let weights = objective::validate(&raw.objective.clone().unwrap_or_default(), &at)?;
+        let constraints = constraints::validate(&raw.constraints.clone().unwrap_or_default(), &at)?;
+        let (method, budget) =
+            method::validate(&raw.method.clone().unwrap_or_default(), free.len(), &at)?;
+        let verify = verify::validate(&raw.verify.clone().unwrap_or_default(), &at)?;
+        let score = score::validate(&raw.score.clone().unwrap_or_default(), &at)?;
+
+        Ok(Config {
+            source: source.to_string(),
+            name,
+            description: raw.description.clone(),
+            seed,
+            family: fam,
+            start,
+            fixed: rc_params,
+            free,
+            weights,
+            constraints,
+            method,
+            budget,
+            verify,
+            score,
+        })
+    }
+
+    /// The start cut.
+    pub fn start_cut(&self) -> Result<Cut> {
+        Cut::from_family(&self.name, self.family.name, &self.start)
+            .map_err(|e| e.context(&format!("{}: start cut", self.source)))
+    }
+
+    /// The family parameters with the free ones set to `x` (in [`Config::free`] order).
+    pub fn params_at(&self, x: &[f64]) -> BTreeMap<String, f64> {
+        let mut p = self.start.clone();
+        for (f, v) in self.free.iter().zip(x) {
+            p.insert(f.key.clone(), *v);
+        }
+        p
+    }
+
+    /// The free parameters' start values.
+    pub fn start_x(&self) -> Vec<f64> {
+        self.free.iter().map(|f| f.start).collect()
+    }
+
+    /// The config as used: every default written out, TOML.
+    pub fn as_used(&self) -> RawConfig {
+        let (nm, pso) = match self.method {
+            Method::NelderMead(n) => (Some(n), None),
+            Method::ParticleSwarm(s) => (None, Some(s)),
+        };
+        let c = &self.constraints;
+        RawConfig {
+            name: Some(self.name.clone()),
+            description: self.description.clone(),
+            seed: Some(self.seed),
+            cut: Some(RawCut {
+                family: Some(self.family.name.to_string()),
+                params: self.start.clone(),
+            }),
+            free: self
+                .free
+                .iter()
+                .map(|f| (f.key.clone(), [f.lo, f.hi]))
+                .collect(),
+            objective: Some(RawObjective {
+                brilliance: Some(self.weights.brilliance),
+                fire: Some(self.weights.fire),
+                scintillation: Some(self.weights.scintillation),
+            }),
+            constraints: Some(RawConstraints {
+                total_depth: c.total_depth,
+                min_crown_height: c.min_crown_height,
+                min_girdle: c.min_girdle,
+                min_weight_retention: c.min_weight_retention,
+                penalty: Some(c.penalty),
+            }),
+            method: Some(RawMethod {
+                name: Some(self.method.name().to_string()),
+                max_iterations: Some(self.budget.max_iterations),
+                max_evaluations: Some(self.budget.max_evaluations),
+                starts: nm.map(|n| n.starts as u64),
+                design: nm.map(|n| n.design.name().to_string()),
+                include_start: nm.map(|n| n.include_start),
+                simplex_step: nm.map(|n| n.simplex_step),
+                tolerance: nm.map(|n| n.tolerance),
+                particles: pso.map(|s| s.particles as u64),
+                inertia: pso.map(|s| s.inertia),
+                cognitive: pso.map(|s| s.cognitive),
+                social: pso.map(|s| s.social),
+            }),
+            verify: Some(RawVerify {
+                winners: Some(self.verify.winners as u64),
+                photons: Some(self.verify.photons),
+                min_distance: Some(self.verify.min_distance),
+                sigma: Some(self.verify.sigma),
+            }),
+            score: Some(RawScore {
+                material: self
+                    .score
+                    .ri
+                    .is_none()
+                    .then(|| self.score.material.name.clone()),
+                ri: self.score.ri,
+                head_shadow: Some(self.score.head_shadow_deg),
+                polarization: Some(self.score.polarization),
+            }),
+        }
+    }
+
+    /// TOML text of [`Config::as_used`], with a header naming the source.
+    pub fn as_used_toml(&self) -> String {
+        let body = toml::to_string(&self.as_used())
+            .unwrap_or_else(|e| format!("# could not serialise: {e}\n"));
+        format!(
+            "# The config as used, every default written out (from {}).\n# `facetlab optimize` accepts this file as it is.\n\n{body}",
+            self.source
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"
+        name = "t"
+        seed = 3
+        [cut]
+        family = "round-brilliant"
+        [cut.params]
+        girdle = 0.03
+        [free]
+        pavilion_angle = [39.0, 42.5]
+        crown_angle = [30, 38]
+        [objective]
+        brilliance = 1.0
+        fire = 0.5
+        [constraints]
+        total_depth = [0.55, 0.65]
+        [method]
+        name = "nelder-mead"
+        starts = 3
+        design = "halton"
+    "#;
+
+    fn err(text: &str) -> String {
+        Config::from_str(text, "round.toml")
+            .unwrap_err()
+            .to_string()
+    }
+
+    #[test]
+    fn good_config_validates_with_defaults() {
+        let c = Config::from_str(GOOD, "round.toml").unwrap();
+        assert_eq!(c.name, "t");
+        let keys: Vec<&str> = c.free.iter().map(|f| f.key.as_str()).collect();
+        assert_eq!(keys, ["crown_angle", "pavilion_angle"], "family order");
+        assert_eq!(c.start["girdle"], 0.03);
+        assert_eq!(c.free[0].start, 34.0);
+        assert_eq!(c.weights.scintillation, 0.0);
+        assert_eq!(c.verify.winners, 3);
+        assert!(
+            matches!(c.method, Method::NelderMead(n) if n.starts == 3 && n.design == Design::Halton)
+        );
+        // The config as used parses back to the same settings.
+        let again = Config::from_str(&c.as_used_toml(), "used.toml").unwrap();
+        assert_eq!(again.free, c.free);
+        assert_eq!(again.method, c.method);
+        assert_eq!(again.budget, c.budget);
+        assert_eq!(again.start, c.start);
+    }
+
+    #[test]
+    fn bad_configs_name_the_field() {
+        let cases: &[(&str, &str, &str)] = &[
+            (
+                "crown_angle = [30, 38]",
+                "crown_angle = [38, 30]",
+                "round.toml: free.crown_angle: bounds [38, 30] are reversed",
+            ),
+            (
+                "crown_angle = [30, 38]",
+                "crown_angle = [3, 38]",
+                "free.crown_angle: bounds [3, 38] leave the family's allowed range [5, 60]",
+            ),
+            (
+                "crown_angle = [30, 38]",
+                "crown_angle = [30, 38]\ntabel = [0.5, 0.6]",
+                "free.tabel: unknown parameter",
+            ),
+            (
+                "crown_angle = [30, 38]",
+                "crown_angle = [35, 38]",
+                "free.crown_angle: the start value 34 (from the family default) lies outside",
+            ),
+            (
+                "crown_angle = [30, 38]",
+                "girdle_facets = [16, 32]",
+                "free.girdle_facets: a whole-number parameter",
+            ),
+            (
+                "fire = 0.5",
+                "fire = -0.5",
+                "round.toml: objective.fire: -0.5 is negative",
+            ),
+            ("brilliance = 1.0\n", "brillance = 1.0\n", "round.toml:"),
+            (
+                "total_depth = [0.55, 0.65]",
+                "total_depth = [0.65, 0.55]",
+                "constraints.total_depth: range [0.65, 0.55] is reversed",
+            ),
+            (
+                "total_depth = [0.55, 0.65]",
+                "min_crown_height = 12",
+                "constraints.min_crown_height: 12 is out of range",
+            ),
+            (
+                "name = \"nelder-mead\"",
+                "name = \"simplex\"",
+                "method.name: unknown method `simplex`; allowed: nelder-mead, particle-swarm",
+            ),
+            (
+                "design = \"halton\"",
+                "design = \"sobol\"",
+                "method.design: unknown design `sobol`",
+            ),
+            (
+                "starts = 3",
+                "starts = 3\nparticles = 4",
+                "method.particles: only for method `particle-swarm`",
+            ),
+            (
+                "starts = 3",
+                "starts = 0",
+                "method.starts: 0 is out of range",
+            ),
+            (
+                "family = \"round-brilliant\"",
+                "family = \"rund\"",
+                "round.toml: cut.family: unknown family `rund`",
+            ),
+            (
+                "girdle = 0.03",
+                "girdle = 0.9",
+                "round.toml: cut.params.girdle: 0.9 is out of range",
+            ),
+            ("seed = 3", "seed = -3", "round.toml:"),
+        ];
+        for (from, to, want) in cases {
+            assert!(GOOD.contains(from), "{from}");
+            let e = err(&GOOD.replacen(from, to, 1));
+            assert!(e.contains(want), "{to}: got `{e}`, want `{want}`");
+            assert!(!e.contains('\n'), "one line: {e}");
+        }
+        let e = err(&GOOD.replace("brilliance = 1.0\n", "brillance = 1.0\n"));
+        assert!(e.contains("brillance"), "{e}");
+        let e = err("[cut]\nfamily = \"round-brilliant\"\n");
+        assert!(e.contains("round.toml: free: no free parameters"), "{e}");
+        let e = err("[free]\ntable = [0.5, 0.6]\n");
+        assert!(e.contains("round.toml: cut.family: missing"), "{e}");
+        let e = err(&GOOD
+            .replace("fire = 0.5", "fire = 0.0")
+            .replace("brilliance = 1.0", "brilliance = 0.0"));
+        assert!(e.contains("objective: every weight is 0"), "{e}");
+    }
+
+    #[test]
+    fn score_section_sets_material_and_lighting() {
+        let c = Config::from_str(
+            &format!("{GOOD}\n[score]\nmaterial = \"cz\"\nhead_shadow = 15\n"),
+            "round.toml",
+        )
+        .unwrap();
+        let sc = c.score.score_config();
+        assert_eq!(sc.material.name, "cubic-zirconia");
+        assert_eq!(sc.head_shadow_deg, 15.0);
+        assert!(sc.polarization);
+        // Written back and read again, the settings survive.
+        let back = Config::from_str(&c.as_used_toml(), "back.toml").unwrap();
+        assert_eq!(back.score, c.score);
+        let c = Config::from_str(
+            &format!("{GOOD}\n[score]\nri = 2.0\npolarization = false\n"),
+            "round.toml",
+        )
+        .unwrap();
+        assert_eq!(c.score.score_config().material.ri(400.0), 2.0);
+        assert!(!c.score.polarization);
+        for (extra, needle) in [
+            (
+                "material = \"unobtainium\"",
+                "round.toml: score.material: unknown material",
+            ),
+            ("material = \"diamond\"\nri = 2.4", "score.ri: give either"),
+            ("ri = 0.5", "score.ri: 0.5 is out of range"),
+            ("head_shadow = 75", "score.head_shadow: 75 is out of range"),
+            ("colour = 1", "colour"),
+        ] {
+            let e = Config::from_str(&format!("{GOOD}\n[score]\n{extra}\n"), "round.toml")
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(needle), "{extra}: {e}");
+        }
+    }
+
+    #[test]
+    fn swarm_settings() {
+        let t = GOOD
+            .replace("name = \"nelder-mead\"", "name = \"particle-swarm\"")
+            .replace("starts = 3", "particles = 8")
+            .replace("design = \"halton\"", "");
+        let c = Config::from_str(&t, "p.toml").unwrap();
+        assert!(matches!(c.method, Method::ParticleSwarm(s) if s.particles == 8));
+        assert_eq!(c.budget.max_iterations, defaults::PSO_MAX_ITERATIONS);
+        let e = err(&t.replace("particles = 8", "particles = 8\nstarts = 2"));
+        assert!(
+            e.contains("method.starts: only for method `nelder-mead`"),
+            "{e}"
+        );
+    }
+}
