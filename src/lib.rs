@@ -1,6 +1,7 @@
 //! facetlab: design, score and optimize cut gemstones with real optics.
 //!
-//! Data flows one way: [`geometry`] → [`cut`] → [`io`] → [`optics`] → tracers → metrics →
+//! Data flows one way: [`geometry`] → [`cut`] → [`io`] → [`optics`] → tracers → metrics → the
+//! photon cross-check of the beam tracer ([`verify`]) →
 //! optimizer → plots; the `facetlab` binary (its own `cli` module) sits on top. The library
 //! knows nothing of the command line: clap, indicatif and ctrlc are the binary's, behind the
 //! default `cli` feature.
@@ -17,5 +18,6 @@ pub mod optimize;
 
 pub mod photon;
 pub mod plot;
+pub mod verify;
 
 pub use error::{Error, Result};
