@@ -1,10 +1,9 @@
 //! facetlab: design, score and optimize cut gemstones with real optics.
 //!
 //! Data flows one way: [`geometry`] → [`cut`] → [`io`] → [`optics`] → tracers → metrics → the
-//! photon cross-check of the beam tracer ([`verify`]) →
-//! optimizer → plots; the `facetlab` binary (its own `cli` module) sits on top. The library
-//! knows nothing of the command line: clap, indicatif and ctrlc are the binary's, behind the
-//! default `cli` feature.
+//! photon cross-check of the beam tracer ([`verify`]) → optimizer → plots; the `facetlab`
+//! binary (its own `cli` module) sits on top. The library knows nothing of the command line:
+//! clap, indicatif and ctrlc are the binary's, behind the default `cli` feature.
 #![warn(missing_docs)]
 
 pub mod beam;
