@@ -1,9 +1,9 @@
 //! facetlab: design, score and optimize cut gemstones with real optics.
 //!
-//! Data flows one way: [`geometry`] → [`cut`] → [`io`] → [`optics`] → tracers → metrics →
-//! optimizer → plots; the `facetlab` binary (its own `cli` module) sits on top. The library
-//! knows nothing of the command line: clap, indicatif and ctrlc are the binary's, behind the
-//! default `cli` feature.
+//! Data flows one way: [`geometry`] → [`cut`] → [`io`] → [`optics`] → tracers → metrics → the
+//! photon cross-check of the beam tracer ([`verify`]) → optimizer → plots; the `facetlab`
+//! binary (its own `cli` module) sits on top. The library knows nothing of the command line:
+//! clap, indicatif and ctrlc are the binary's, behind the default `cli` feature.
 //!
 //! # A short tour
 //!
@@ -44,6 +44,7 @@ pub mod optimize;
 
 pub mod photon;
 pub mod plot;
+pub mod verify;
 
 #[cfg(test)]
 pub(crate) mod testkit;

@@ -24,9 +24,9 @@
 
 use super::flags;
 use facetlab::error::{Error, Result};
-use facetlab::metrics::verify::{verify_scores, Check};
 use facetlab::metrics::{score, ScoreConfig, Scores, Tilt};
 use facetlab::optics::Dispersion;
+use facetlab::verify::{verify_scores, Check, SIGMA};
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -316,7 +316,7 @@ pub fn run(a: &ScoreArgs) -> Result<()> {
             let cs = verify_scores(&cut.solid, &s.config, sc, photons, VERIFY_SEED)?;
             println!("{name}");
             for c in &cs {
-                let flag = if c.z.abs() > 4.0 {
+                let flag = if c.beyond(SIGMA) {
                     "  ⚠ beyond 4 se"
                 } else {
                     ""

@@ -60,7 +60,6 @@
 
 pub mod lighting;
 pub mod raster;
-pub mod verify;
 
 #[cfg(test)]
 mod golden;

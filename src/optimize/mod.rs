@@ -12,8 +12,9 @@
 //!   evaluation budget or Ctrl-C;
 //! - `history.rs` keeps every evaluation (Nelder–Mead) or every particle position (swarm) as
 //!   rows of `history.csv`;
-//! - `verify.rs` re-scores the winners with a [`Verifier`] (the photon tracer) and flags any
-//!   disagreement with the beam tracer beyond 4 standard errors;
+//! - `verify.rs` re-scores the winners with a [`Verifier`] (the photon tracer's cross-check of
+//!   [`crate::verify`]) and flags any disagreement with the beam tracer beyond 4 standard
+//!   errors;
 //! - `run.rs` writes the run folder (config as used, history, plots, best cut, reports) and
 //!   `sweep.rs` maps a score over two parameters.
 //!
@@ -107,8 +108,9 @@ pub use sweep::{
     run_path as sweep_path, sweep, write as write_sweep, Axis, Cell, Heatmap, HeatmapChart, Sweep,
     SweepScore,
 };
-// The photon-tracer check of the winners.
-pub use verify::{Verifier, VerifyReport, VerifyRow};
+// The photon-tracer check of the winners (its rows and report are `crate::verify`'s).
+pub use crate::verify::{VerifyReport, VerifyRow};
+pub use verify::{Verification, Verifier};
 
 use crate::cut::Cut;
 use crate::error::Result;

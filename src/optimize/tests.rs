@@ -5,10 +5,10 @@ use super::config::Config;
 use super::guard::{Progress, Status, Stop};
 use super::history::History;
 use super::run::{self, FnWriter, Hooks, RunOptions};
-use super::verify::{VerifyReport, VerifyRow};
 use super::{Evaluator, ScoreSet};
 use crate::cut::Cut;
 use crate::error::Result;
+use crate::verify::{VerifyReport, VerifyRow};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Mutex;
 

@@ -1,4 +1,8 @@
-//! The photon tracer as referee of the beam tracer's scores.
+//! The photon tracer as referee of the beam tracer: the one place where both tracers meet.
+//!
+//! The tracers know nothing of scores and nothing of each other; this module sits above both
+//! (and above [`metrics`](crate::metrics), whose scores it re-measures) and below the
+//! optimizer and the command line, which only call it:
 //!
 //! * [`overhead_light_return_mc`]: directed light straight down over the whole stone, no
 //!   absorption, unlimited depth, the scores' wavelength and polarization: the share of photons
@@ -9,16 +13,30 @@
 //!   photon that leaves in direction `w` scores the environment's radiance from `w`
 //!   ([`Lighting::iso`], [`Lighting::cos`], head shadow included). By reciprocity this is the
 //!   light the viewer sees, the quantity the beam tracer's brilliance computes exactly.
+//! * [`verify_scores`]: those figures as [`Check`] rows against a cut's beam [`Scores`]
+//!   (`facetlab score --verify`), flagged beyond [`SIGMA`] standard errors.
+//! * [`photon_report`]: the optimizer's verification of a winner, a [`VerifyReport`]: the
+//!   thesis's top-face shares ([`thesis_rows`]: top-45° and top-90° under overhead and
+//!   off-centre undirected light, top-45° under the directed light rotated 0–180°), which have
+//!   no beam value, and the Monte Carlo overhead light return and brilliance, which carry the
+//!   beam value; [`VerifyReport::disagreements`] names the rows beyond a threshold.
 //!
 //! Each figure comes with its standard error, so a disagreement can be stated in standard
-//! errors.
+//! errors. Every call to the photon tracer is in this file.
 
-use super::lighting::Lighting;
-use super::{ScoreConfig, Scores};
+use crate::cut::Cut;
 use crate::error::Result;
 use crate::geometry::{FacetPlane, Polyhedron};
-use crate::photon::{self, Absorption, Light, TraceConfig, WavelengthSampling};
+use crate::metrics::lighting::Lighting;
+use crate::metrics::{score, ScoreConfig, Scores};
+use crate::photon::{
+    self, Absorption, Light, LightKind, Tally, TraceConfig, WavelengthSampling, ROTATION_ANGLES,
+};
 use serde::Serialize;
+
+/// The threshold, in standard errors, beyond which `facetlab score --verify` flags a check
+/// (the optimizer's is `[verify] sigma`, default 4 too).
+pub const SIGMA: f64 = 4.0;
 
 /// A Monte Carlo figure: value and standard error.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -162,6 +180,13 @@ pub struct Check {
     pub z: f64,
 }
 
+impl Check {
+    /// Whether the beam value lies more than `sigma` standard errors from the estimate.
+    pub fn beyond(&self, sigma: f64) -> bool {
+        self.z.abs() > sigma
+    }
+}
+
 /// Re-measure `overhead_light_return` and brilliance (ISO, COS, mean) of `scores` with the
 /// photon tracer.
 pub fn verify_scores(
@@ -186,6 +211,155 @@ pub fn verify_scores(
         row("brilliance_iso", scores.brilliance_iso, b.brilliance_iso),
         row("brilliance_cos", scores.brilliance_cos, b.brilliance_cos),
     ])
+}
+
+/// One verified quantity.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct VerifyRow {
+    /// Name, e.g. `top45_overhead_undirected`, `brilliance_mc`.
+    pub name: String,
+    /// Monte Carlo estimate.
+    pub value: f64,
+    /// Its standard error.
+    pub stderr: f64,
+    /// The beam tracer's exact value of the same quantity, when there is one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub beam: Option<f64>,
+}
+
+impl VerifyRow {
+    /// A row without a beam value.
+    pub fn new(name: impl Into<String>, value: f64, stderr: f64) -> VerifyRow {
+        VerifyRow {
+            name: name.into(),
+            value,
+            stderr,
+            beam: None,
+        }
+    }
+
+    /// The same row compared with a beam value.
+    pub fn with_beam(mut self, beam: f64) -> VerifyRow {
+        self.beam = Some(beam);
+        self
+    }
+
+    /// `|value − beam| / stderr`, when there is a beam value. Differences within rounding
+    /// (1e-12 relative) count as 0; a real difference with a zero standard error is infinite.
+    pub fn z(&self) -> Option<f64> {
+        let b = self.beam?;
+        Some(z_score(self.value, self.stderr, b))
+    }
+
+    /// Whether the Monte Carlo value and the beam value disagree beyond `sigma` standard errors.
+    pub fn disagrees(&self, sigma: f64) -> bool {
+        self.z().is_some_and(|z| z.is_nan() || z > sigma)
+    }
+}
+
+/// `|value − reference| / stderr` (see [`VerifyRow::z`]); NaN anywhere gives infinity.
+pub fn z_score(value: f64, stderr: f64, reference: f64) -> f64 {
+    let d = (value - reference).abs();
+    if d.is_nan() || stderr.is_nan() {
+        return f64::INFINITY;
+    }
+    if d <= 1e-12 * reference.abs().max(1.0) {
+        return 0.0;
+    }
+    if stderr > 0.0 {
+        d / stderr
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// What a verifier found for one cut.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct VerifyReport {
+    /// Photons traced per light.
+    pub photons: u64,
+    /// The rows, in display order.
+    pub rows: Vec<VerifyRow>,
+}
+
+impl VerifyReport {
+    /// Names of the rows that disagree with the beam tracer beyond `sigma`.
+    pub fn disagreements(&self, sigma: f64) -> Vec<String> {
+        self.rows
+            .iter()
+            .filter(|r| r.disagrees(sigma))
+            .map(|r| r.name.clone())
+            .collect()
+    }
+}
+
+fn top_rows(rows: &mut Vec<VerifyRow>, t: &Tally, label: &str) {
+    let n = t.counts.hit;
+    let c = &t.counts.categories;
+    let s45 = photon::share(c[0], n);
+    let s90 = photon::share(c[0] + c[1], n);
+    rows.push(VerifyRow::new(format!("top45_{label}"), s45.0, s45.1));
+    rows.push(VerifyRow::new(format!("top90_{label}"), s90.0, s90.1));
+}
+
+/// The thesis's top-face shares of `cut` (thesis settings: depth 6, flat 0.1 absorption,
+/// 380–780 nm; shot until `photons` hit): `top45_`/`top90_` under overhead and off-centre
+/// undirected light, and `top45_directed_A` under the directed light rotated to each angle
+/// `A` of [`ROTATION_ANGLES`]. No beam value: the beam tracer has no such light.
+pub fn thesis_rows(cut: &Cut, photons: u64, seed: u64) -> Result<Vec<VerifyRow>> {
+    let thesis = TraceConfig {
+        photons,
+        until_hit: true,
+        seed,
+        ..TraceConfig::thesis()
+    };
+    let mut rows = Vec::new();
+    for (light, label) in [(Light::overhead(), "overhead"), (Light::offset(), "offset")] {
+        let t = photon::trace_cut(&cut.solid, &cut.name, &light, &thesis, None)?;
+        top_rows(&mut rows, &t, label);
+    }
+    for &a in ROTATION_ANGLES.iter() {
+        let t = photon::trace_cut(
+            &cut.solid,
+            &cut.name,
+            &Light::rotated(LightKind::Directed, a),
+            &thesis,
+            None,
+        )?;
+        let s45 = photon::share(t.counts.categories[0], t.counts.hit);
+        rows.push(VerifyRow::new(
+            format!("top45_directed_{a:.0}"),
+            s45.0,
+            s45.1,
+        ));
+    }
+    Ok(rows)
+}
+
+/// The optimizer's photon-tracer report on `cut` under the scoring settings `cfg`: the
+/// [`thesis_rows`], then the Monte Carlo overhead light return (`photons` photons) and
+/// brilliance (a tenth of them per pose, at least 1000), each with the beam tracer's value.
+pub fn photon_report(
+    cut: &Cut,
+    cfg: &ScoreConfig,
+    photons: u64,
+    seed: u64,
+) -> Result<VerifyReport> {
+    let mut rows = thesis_rows(cut, photons, seed)?;
+    let beam = score(&cut.solid, cfg);
+    let olr = overhead_light_return_mc(&cut.solid, cfg, photons, seed)?;
+    rows.push(
+        VerifyRow::new("overhead_light_return_mc", olr.value, olr.stderr)
+            .with_beam(beam.overhead_light_return),
+    );
+    // Brilliance averages many poses: a tenth of the photons per pose keeps the run short.
+    let per_pose = (photons / 10).max(1000);
+    let b = brilliance_mc(&cut.solid, cfg, per_pose, seed.wrapping_add(1))?;
+    rows.push(
+        VerifyRow::new("brilliance_mc", b.brilliance.value, b.brilliance.stderr)
+            .with_beam(beam.brilliance),
+    );
+    Ok(VerifyReport { photons, rows })
 }
 
 #[cfg(test)]
@@ -278,5 +452,36 @@ mod tests {
             g.brilliance.value < s.brilliance - 10.0 * g.brilliance.stderr,
             "{g:?}"
         );
+    }
+
+    #[test]
+    fn flags_beyond_four_standard_errors() {
+        let r = VerifyRow::new("brilliance_mc", 0.50, 0.01);
+        assert_eq!(r.z(), None);
+        assert!(!r.disagrees(4.0), "no beam value, nothing to compare");
+        let ok = r.clone().with_beam(0.539);
+        assert!((ok.z().unwrap() - 3.9).abs() < 1e-9);
+        assert!(!ok.disagrees(4.0));
+        let edge = r.clone().with_beam(0.54);
+        assert!(!edge.disagrees(4.0 + 1e-9) && edge.disagrees(3.99));
+        let bad = r.clone().with_beam(0.46 - 1e-6);
+        assert!(bad.disagrees(4.0));
+        // Zero standard error: equal (within rounding) is fine, different is flagged.
+        let exact = VerifyRow::new("x", 0.3, 0.0).with_beam(0.1 + 0.2);
+        assert_eq!(exact.z(), Some(0.0));
+        assert!(!exact.disagrees(4.0));
+        assert!(VerifyRow::new("x", 0.3, 0.0).with_beam(0.31).disagrees(4.0));
+        // NaN never passes.
+        assert!(VerifyRow::new("x", f64::NAN, 0.1)
+            .with_beam(0.3)
+            .disagrees(4.0));
+        assert!(VerifyRow::new("x", 0.3, f64::NAN)
+            .with_beam(0.3 + 1e-3)
+            .disagrees(4.0));
+        let rep = VerifyReport {
+            photons: 10,
+            rows: vec![ok, bad, VerifyRow::new("top45", 0.7, 0.01)],
+        };
+        assert_eq!(rep.disagreements(4.0), vec!["brilliance_mc".to_string()]);
     }
 }
