@@ -29,12 +29,17 @@
 //!
 //! The tracer knows nothing of lighting or scores; see [`crate::metrics`].
 
-mod tracer;
+mod interface;
+mod stone;
+mod symmetry;
+mod trace;
 
 #[cfg(test)]
 pub(crate) mod tests;
 
-pub use tracer::{ExitSink, Stone, TraceStats};
+pub use stone::Stone;
+pub(crate) use trace::ExitSink;
+pub use trace::TraceStats;
 
 use crate::geometry::Polyhedron;
 use crate::optics::{Material, Stokes};
