@@ -30,6 +30,7 @@
 //! The tracer knows nothing of lighting or scores; see [`crate::metrics`].
 
 mod interface;
+pub mod reference;
 mod stone;
 mod symmetry;
 mod trace;
