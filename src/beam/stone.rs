@@ -1,0 +1,250 @@
+//! A solid prepared for tracing: facet planes, polygons and adjacency in flat arrays, and the
+//! walk that finds the facet a ray inside the stone leaves by.
+
+use super::symmetry::SymOp;
+use crate::geometry::Polyhedron;
+use glam::DVec3;
+
+/// Facets with `|n · d|` below this are seen edge-on: no beam starts or ends on them.
+pub(super) const GRAZE: f64 = 1e-12;
+
+/// A solid prepared for tracing: facet planes, polygons and adjacency in flat arrays.
+#[derive(Clone, Debug)]
+pub struct Stone {
+    pub(super) normals: Vec<DVec3>,
+    pub(super) offsets: Vec<f64>,
+    pub(super) areas: Vec<f64>,
+    pub(super) vertices: Vec<DVec3>,
+    pub(super) facet_vertices: Vec<u32>,
+    pub(super) facet_range: Vec<(u32, u32)>,
+    pub(super) neighbors: Vec<u32>,
+    /// Plane `(normal, offset)` of each entry of `neighbors`, stored alongside for the walk.
+    pub(super) neighbor_planes: Vec<glam::DVec4>,
+    pub(super) neighbor_range: Vec<(u32, u32)>,
+    /// Cube map over directions: the facet whose normal is closest to each cell's direction,
+    /// where walks toward a ray's exit facet start.
+    pub(super) dir_table: Vec<u32>,
+    /// Symmetries of the solid about the z axis (identity first): rotations, then mirrors.
+    pub(super) ops: Vec<SymOp>,
+    /// Order of the rotation group about z (1 = none).
+    pub(super) rot_order: usize,
+    /// Azimuth (radians) of one mirror plane through the z axis, if any.
+    pub(super) mirror_az: Option<f64>,
+    /// Per start facet and cube-map cell: the exit facet of the ray from the facet's centroid
+    /// in the cell's central direction (a better start for walks from that facet).
+    pub(super) facet_table: Vec<u32>,
+}
+
+/// Cells per cube-map face side of [`Stone::dir_table`].
+pub(super) const CUBE_RES: usize = 8;
+
+/// Central direction of cube-map cell (i, j) of `face`.
+fn cube_dir(face: usize, i: usize, j: usize) -> DVec3 {
+    let u = (i as f64 + 0.5) / CUBE_RES as f64 * 2.0 - 1.0;
+    let v = (j as f64 + 0.5) / CUBE_RES as f64 * 2.0 - 1.0;
+    let s = if face.is_multiple_of(2) { 1.0 } else { -1.0 };
+    match face / 2 {
+        0 => DVec3::new(s, u, v),
+        1 => DVec3::new(u, s, v),
+        _ => DVec3::new(u, v, s),
+    }
+    .normalize()
+}
+
+/// Cube-map cell of a direction.
+#[inline]
+fn cube_cell(t: DVec3) -> usize {
+    let a = t.abs();
+    let (face, u, v, m) = if a.x >= a.y && a.x >= a.z {
+        (if t.x > 0.0 { 0 } else { 1 }, t.y, t.z, a.x)
+    } else if a.y >= a.z {
+        (if t.y > 0.0 { 2 } else { 3 }, t.x, t.z, a.y)
+    } else {
+        (if t.z > 0.0 { 4 } else { 5 }, t.x, t.y, a.z)
+    };
+    let cell = |c: f64| (((c / m + 1.0) * 0.5 * CUBE_RES as f64) as usize).min(CUBE_RES - 1);
+    (face * CUBE_RES + cell(u)) * CUBE_RES + cell(v)
+}
+
+impl Stone {
+    /// Prepare `solid` for tracing.
+    pub fn new(solid: &Polyhedron) -> Stone {
+        let nf = solid.facets.len();
+        let mut facet_vertices = Vec::new();
+        let mut facet_range = Vec::with_capacity(nf);
+        for f in &solid.facets {
+            let a = facet_vertices.len() as u32;
+            facet_vertices.extend(f.vertices.iter().map(|&v| v as u32));
+            facet_range.push((a, facet_vertices.len() as u32));
+        }
+        let mut adj: Vec<Vec<u32>> = vec![Vec::new(); nf];
+        for e in &solid.edges {
+            let [a, b] = e.facets;
+            adj[a].push(b as u32);
+            adj[b].push(a as u32);
+        }
+        let mut neighbors = Vec::new();
+        let mut neighbor_range = Vec::with_capacity(nf);
+        for mut l in adj {
+            l.sort_unstable();
+            l.dedup();
+            let a = neighbors.len() as u32;
+            neighbors.extend(l);
+            neighbor_range.push((a, neighbors.len() as u32));
+        }
+        let normals: Vec<DVec3> = solid.facets.iter().map(|f| f.plane.normal).collect();
+        let mut dir_table = vec![0u32; 6 * CUBE_RES * CUBE_RES];
+        for face in 0..6 {
+            for i in 0..CUBE_RES {
+                for j in 0..CUBE_RES {
+                    let t = cube_dir(face, i, j);
+                    let best = (0..nf)
+                        .max_by(|&a, &b| normals[a].dot(t).total_cmp(&normals[b].dot(t)))
+                        .unwrap_or(0);
+                    dir_table[cube_cell(t)] = best as u32;
+                }
+            }
+        }
+        let centroids: Vec<DVec3> = solid.facets.iter().map(|f| f.centroid).collect();
+        let cells = 6 * CUBE_RES * CUBE_RES;
+        let mut stone = Stone {
+            ops: Vec::new(),
+            rot_order: 1,
+            mirror_az: None,
+            dir_table,
+            facet_table: Vec::new(),
+            normals: solid.facets.iter().map(|f| f.plane.normal).collect(),
+            offsets: solid.facets.iter().map(|f| f.plane.offset).collect(),
+            areas: solid.facets.iter().map(|f| f.area).collect(),
+            vertices: solid.vertices.clone(),
+            facet_vertices,
+            facet_range,
+            neighbor_planes: Vec::new(),
+            neighbors,
+            neighbor_range,
+        };
+        stone.neighbor_planes = stone
+            .neighbors
+            .iter()
+            .map(|&h| stone.normals[h as usize].extend(stone.offsets[h as usize]))
+            .collect();
+        let mut facet_table = vec![0u32; nf * cells];
+        for f in 0..nf {
+            for face in 0..6 {
+                for i in 0..CUBE_RES {
+                    for j in 0..CUBE_RES {
+                        let t = cube_dir(face, i, j);
+                        let c = cube_cell(t);
+                        facet_table[f * cells + c] = if stone.normals[f].dot(t) < 0.0 {
+                            stone
+                                .walk(stone.dir_table[c] as usize, centroids[f], t, f)
+                                .map_or(stone.dir_table[c], |(g, _)| g as u32)
+                        } else {
+                            stone.dir_table[c]
+                        };
+                    }
+                }
+            }
+        }
+        stone.facet_table = facet_table;
+        stone.find_symmetry();
+        stone
+    }
+
+    /// Number of facets.
+    pub fn facet_count(&self) -> usize {
+        self.normals.len()
+    }
+
+    /// Outward unit normal of facet `i`.
+    pub fn normal(&self, i: usize) -> DVec3 {
+        self.normals[i]
+    }
+
+    /// The facet through which the ray `x + s·t` (from a point `x` inside or on the solid)
+    /// leaves, and the distance `s`, found by walking over adjacent facets from a cube-map
+    /// guess: each step moves to the neighbour whose plane the ray crosses first, so the
+    /// distance falls strictly and the walk ends. `exclude` is the facet `x` lies on.
+    #[inline]
+    pub(crate) fn exit_facet(&self, x: DVec3, t: DVec3, exclude: usize) -> Option<(usize, f64)> {
+        let cell = cube_cell(t);
+        let g = if exclude < self.facet_count() && !self.facet_table.is_empty() {
+            self.facet_table[exclude * 6 * CUBE_RES * CUBE_RES + cell]
+        } else {
+            self.dir_table[cell]
+        } as usize;
+        self.walk(g, x, t, exclude)
+    }
+
+    /// The walk of [`Stone::exit_facet`] from facet `g`.
+    #[inline]
+    pub(super) fn walk(
+        &self,
+        mut g: usize,
+        x: DVec3,
+        t: DVec3,
+        exclude: usize,
+    ) -> Option<(usize, f64)> {
+        let nf = self.facet_count();
+        let mut k = self.normals[g].dot(t);
+        if g == exclude || k <= GRAZE {
+            return self.exit_facet_scan(x, t, exclude);
+        }
+        for _ in 0..nf {
+            let s = (self.offsets[g] - self.normals[g].dot(x)) / k;
+            let p = (x + t * s).extend(-1.0);
+            let (mut worst, mut next) = (1e-13, usize::MAX);
+            let (a, b) = self.neighbor_range[g];
+            let (a, b) = (a as usize, b as usize);
+            for (pl, &h) in self.neighbor_planes[a..b].iter().zip(&self.neighbors[a..b]) {
+                let v = pl.dot(p);
+                if v > worst {
+                    let h = h as usize;
+                    if h != exclude && self.normals[h].dot(t) > GRAZE {
+                        worst = v;
+                        next = h;
+                    }
+                }
+            }
+            if next == usize::MAX {
+                return Some((g, s));
+            }
+            g = next;
+            k = self.normals[g].dot(t);
+        }
+        self.exit_facet_scan(x, t, exclude)
+    }
+
+    /// [`Stone::exit_facet`] by scanning every facet.
+    pub(crate) fn exit_facet_scan(
+        &self,
+        x: DVec3,
+        t: DVec3,
+        exclude: usize,
+    ) -> Option<(usize, f64)> {
+        let (mut best, mut g) = (f64::INFINITY, usize::MAX);
+        for (h, n) in self.normals.iter().enumerate() {
+            let k = n.dot(t);
+            if k > GRAZE && h != exclude {
+                let d = (self.offsets[h] - n.dot(x)) / k;
+                if d < best {
+                    best = d;
+                    g = h;
+                }
+            }
+        }
+        (g != usize::MAX).then_some((g, best))
+    }
+
+    #[inline]
+    pub(super) fn facet_verts(&self, f: usize) -> &[u32] {
+        let (a, b) = self.facet_range[f];
+        &self.facet_vertices[a as usize..b as usize]
+    }
+
+    #[inline]
+    pub(super) fn facet_neighbors(&self, f: usize) -> &[u32] {
+        let (a, b) = self.neighbor_range[f];
+        &self.neighbors[a as usize..b as usize]
+    }
+}

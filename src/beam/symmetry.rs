@@ -1,0 +1,240 @@
+//! Symmetries of a stone about the z axis: finding the group, the wedge a direction keeps, and
+//! handing each traced exit beam out once per symmetry.
+
+use super::stone::Stone;
+use super::trace::ExitSink;
+use super::{ExitBeam, Frame};
+use glam::{DMat3, DVec2, DVec3};
+
+/// A symmetry of the solid: an orthogonal map about the z axis and the facet permutation it
+/// induces.
+#[derive(Clone, Debug)]
+pub(super) struct SymOp {
+    m: DMat3,
+    mirror: bool,
+    perm: Vec<u32>,
+}
+
+/// Hands each exit beam of the traced wedge to the real sink once per symmetry, transformed.
+pub(super) struct SymSink<'a, S: ExitSink> {
+    inner: &'a mut S,
+    ops: Vec<(u16, &'a SymOp, [f64; 4])>,
+    foot: Vec<DVec2>,
+}
+
+impl<'a, S: ExitSink> SymSink<'a, S> {
+    pub(super) fn new(stone: &'a Stone, group: &[usize], frame: &Frame, inner: &'a mut S) -> Self {
+        let ops = group
+            .iter()
+            .map(|&i| {
+                let op = &stone.ops[i];
+                let (gu, gv) = (op.m * frame.u, op.m * frame.v);
+                (
+                    i as u16,
+                    op,
+                    [
+                        gu.dot(frame.u),
+                        gv.dot(frame.u),
+                        gu.dot(frame.v),
+                        gv.dot(frame.v),
+                    ],
+                )
+            })
+            .collect();
+        SymSink {
+            inner,
+            ops,
+            foot: Vec::new(),
+        }
+    }
+}
+
+impl<S: ExitSink> ExitSink for SymSink<'_, S> {
+    fn wants_footprints(&self) -> bool {
+        self.inner.wants_footprints()
+    }
+    fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+        for &(i, op, m2) in &self.ops {
+            if i == 0 {
+                self.inner.exit(e, fp);
+                continue;
+            }
+            let mut stokes = e.stokes;
+            if op.mirror {
+                // A mirror turns the s–p frame's handedness: U and V change sign.
+                stokes.z = -stokes.z;
+                stokes.w = -stokes.w;
+            }
+            let t = ExitBeam {
+                direction: op.m * e.direction,
+                axis: op.m * e.axis,
+                stokes,
+                entry_facet: op.perm[e.entry_facet] as usize,
+                exit_facet: op.perm[e.exit_facet] as usize,
+                sym: i,
+                ..*e
+            };
+            self.foot.clear();
+            self.foot.extend(
+                fp.iter()
+                    .map(|p| DVec2::new(m2[0] * p.x + m2[1] * p.y, m2[2] * p.x + m2[3] * p.y)),
+            );
+            self.inner.exit(&t, &self.foot);
+        }
+    }
+}
+
+/// Mirror across the vertical plane at azimuth `phi` (radians).
+fn mirror_matrix(phi: f64) -> DMat3 {
+    let m = DVec3::new(-phi.sin(), phi.cos(), 0.0);
+    DMat3::IDENTITY - 2.0 * DMat3::from_cols(m * m.x, m * m.y, m * m.z)
+}
+
+/// The facet permutation of `m` if it maps every facet plane onto a facet plane.
+fn facet_permutation(normals: &[DVec3], offsets: &[f64], m: &DMat3) -> Option<Vec<u32>> {
+    let tol = 1e-9;
+    let mut perm = Vec::with_capacity(normals.len());
+    for (n, o) in normals.iter().zip(offsets) {
+        let mn = *m * *n;
+        let j = (0..normals.len()).find(|&j| {
+            normals[j].distance_squared(mn) < tol * tol && (offsets[j] - o).abs() < tol
+        })?;
+        perm.push(j as u32);
+    }
+    Some(perm)
+}
+
+/// Clip a convex planar polygon by the half-space `n · x <= 0`.
+pub(super) fn clip_halfspace(poly: &[DVec3], n: DVec3, out: &mut Vec<DVec3>) {
+    out.clear();
+    let k = poly.len();
+    for i in 0..k {
+        let (p, q) = (poly[i], poly[(i + 1) % k]);
+        let (dp, dq) = (n.dot(p), n.dot(q));
+        if dp <= 0.0 {
+            out.push(p);
+        }
+        if (dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0) {
+            out.push(p + (q - p) * (dp / (dp - dq)));
+        }
+    }
+    if out.len() < 3 {
+        out.clear();
+    }
+}
+
+impl Stone {
+    /// Find the rotations about the z axis and the mirrors through it that map the solid onto
+    /// itself (the ones a face-up view shares).
+    pub(super) fn find_symmetry(&mut self) {
+        let (normals, offsets) = (&self.normals, &self.offsets);
+        let rot = |k: usize| DMat3::from_rotation_z(std::f64::consts::TAU / k as f64);
+        let k = [64, 48, 32, 24, 16, 12, 10, 9, 8, 7, 6, 5, 4, 3, 2]
+            .into_iter()
+            .find(|&k| facet_permutation(normals, offsets, &rot(k)).is_some())
+            .unwrap_or(1);
+        // Mirror candidates: bisectors between a tilted facet's normal and its look-alikes.
+        let mut mirror = None;
+        if let Some(f0) = (0..normals.len()).find(|&f| normals[f].truncate().length() > 1e-6) {
+            let a0 = normals[f0].y.atan2(normals[f0].x);
+            for j in 0..normals.len() {
+                if (normals[j].z - normals[f0].z).abs() < 1e-9
+                    && (offsets[j] - offsets[f0]).abs() < 1e-9
+                {
+                    let aj = normals[j].y.atan2(normals[j].x);
+                    let phi = 0.5 * (a0 + aj);
+                    for cand in [phi, phi + std::f64::consts::FRAC_PI_2] {
+                        if facet_permutation(normals, offsets, &mirror_matrix(cand)).is_some() {
+                            mirror = Some(cand.rem_euclid(std::f64::consts::PI / k as f64));
+                            break;
+                        }
+                    }
+                }
+                if mirror.is_some() {
+                    break;
+                }
+            }
+        }
+        let mut ops = Vec::new();
+        for j in 0..k {
+            let m = DMat3::from_rotation_z(std::f64::consts::TAU * j as f64 / k as f64);
+            if let Some(perm) = facet_permutation(normals, offsets, &m) {
+                ops.push(SymOp {
+                    m,
+                    mirror: false,
+                    perm,
+                });
+            }
+        }
+        if let Some(phi0) = mirror {
+            for j in 0..k {
+                let m = mirror_matrix(phi0 + std::f64::consts::PI * j as f64 / k as f64);
+                if let Some(perm) = facet_permutation(normals, offsets, &m) {
+                    ops.push(SymOp {
+                        m,
+                        mirror: true,
+                        perm,
+                    });
+                }
+            }
+        }
+        // Keep the symmetry only if the whole group was found consistently.
+        if ops.len() == k * if mirror.is_some() { 2 } else { 1 } {
+            self.ops = ops;
+            self.rot_order = k;
+            self.mirror_az = mirror;
+        } else {
+            self.ops = vec![SymOp {
+                m: DMat3::IDENTITY,
+                mirror: false,
+                perm: (0..normals.len() as u32).collect(),
+            }];
+            self.rot_order = 1;
+            self.mirror_az = None;
+        }
+    }
+
+    /// Facet permutation of symmetry `i` (for facet sequences of replicated exit beams).
+    pub(crate) fn permutation(&self, i: usize) -> &[u32] {
+        &self.ops[i].perm
+    }
+
+    /// Number of symmetries of the solid about the z axis (1 = none; 16 for a round brilliant).
+    pub fn symmetry_order(&self) -> usize {
+        self.ops.len()
+    }
+
+    /// The symmetries that fix direction `d` (indices into `ops`), and the half-spaces
+    /// `n · x <= 0` (planes through the z axis) cutting out a fundamental wedge whose images
+    /// under them tile space.
+    pub(super) fn frame_symmetry(&self, d: DVec3) -> (Vec<usize>, Vec<DVec3>) {
+        use std::f64::consts::{PI, TAU};
+        let k = self.rot_order;
+        let side = |a: f64| DVec3::new(a.sin(), -a.cos(), 0.0); // n·x <= 0: left of azimuth a
+        if d.truncate().length() < 1e-12 {
+            let all: Vec<usize> = (0..self.ops.len()).collect();
+            let wedge = match self.mirror_az {
+                Some(p0) if k == 1 => vec![side(p0)],
+                Some(p0) => vec![side(p0), -side(p0 + PI / k as f64)],
+                None if k == 1 => vec![],
+                None if k == 2 => vec![side(0.0)],
+                None => vec![side(0.0), -side(TAU / k as f64)],
+            };
+            return (all, wedge);
+        }
+        // A tilted direction keeps at most the mirror through it.
+        let psi = d.y.atan2(d.x);
+        if let Some(p0) = self.mirror_az {
+            let step = PI / k as f64;
+            let x = (psi - p0) / step;
+            if (x - x.round()).abs() < 1e-9 {
+                let j = (x.round() as i64).rem_euclid(k as i64) as usize;
+                let idx = k + j;
+                if idx < self.ops.len() && self.ops[idx].mirror {
+                    return (vec![0, idx], vec![side(psi)]);
+                }
+            }
+        }
+        (vec![0], vec![])
+    }
+}

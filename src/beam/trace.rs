@@ -1,0 +1,555 @@
+//! The beam-splitting core: the depth-first beam loop (roots at the entry facets, exact
+//! splitting by the facets a beam reaches, narrow beams followed as rays).
+
+use super::interface::{cross, split, Meet, Origin};
+use super::stone::{Stone, GRAZE};
+use super::symmetry::{clip_halfspace, SymSink};
+use super::{ExitBeam, Frame, TraceOptions};
+use crate::geometry::clip2d;
+use crate::optics::{fresnel, reflect, refract, s_axis, Stokes};
+use glam::{DVec2, DVec3, DVec4};
+
+/// Children with less than this share of their parent's cross-section are rounding slivers
+/// along shared edges; they are dropped and their (negligible) share goes to their siblings.
+const SLIVER: f64 = 1e-13;
+
+/// Receives exit beams as the tracer produces them.
+pub(crate) trait ExitSink {
+    /// Whether [`ExitSink::exit`] should be given footprints (computing them costs time).
+    fn wants_footprints(&self) -> bool {
+        false
+    }
+    /// One exit beam, with its footprint in the frame's image coordinates (empty unless
+    /// [`ExitSink::wants_footprints`]).
+    fn exit(&mut self, beam: &ExitBeam, footprint: &[DVec2]);
+}
+
+/// Power accounting and work counters of one trace. Powers are shares of the whole incoming
+/// beam.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TraceStats {
+    /// Cross-section of the stone across the incoming direction (its projected area).
+    pub area: f64,
+    /// Sum of the root beams' power shares: 1 to rounding (0 if the stone has no cross-section).
+    pub power_in: f64,
+    /// Power of reflected beams not followed (below the threshold or past the depth limit).
+    pub cut_off: f64,
+    /// Number of internal beams split.
+    pub beams: usize,
+    /// Number of exit beams produced.
+    pub exits: usize,
+    /// Narrow beams followed as rays (below the split threshold).
+    pub rays: usize,
+    /// Facets met by those rays (their segments inside the stone).
+    pub ray_segments: usize,
+    /// Power that entered narrow-beam (ray) mode: the share of the light whose further path was
+    /// found by one ray per narrow beam rather than by exact splitting.
+    pub ray_power: f64,
+    /// Largest relative difference between a beam's cross-section and the sum of its
+    /// children's (the clipping's tiling error; ~1e-15 when all is well).
+    pub max_tiling_error: f64,
+}
+
+/// Affine map from a point in the stone to its footprint in the frame's image coordinates:
+/// `(a1 · x + b.x, a2 · x + b.y)`.
+#[derive(Clone, Copy, Debug)]
+struct Affine {
+    a1: DVec3,
+    a2: DVec3,
+    b: DVec2,
+}
+
+impl Affine {
+    #[inline]
+    fn apply(&self, x: DVec3) -> DVec2 {
+        DVec2::new(self.a1.dot(x) + self.b.x, self.a2.dot(x) + self.b.y)
+    }
+    /// The map for points reached by travelling along `t` from the plane `n · x = o` (where
+    /// this map applies): first slide back along `t` onto that plane.
+    #[inline]
+    fn slide(&self, t: DVec3, n: DVec3, o: f64) -> Affine {
+        let k = n.dot(t);
+        let at = DVec2::new(self.a1.dot(t), self.a2.dot(t));
+        Affine {
+            a1: self.a1 - n * (at.x / k),
+            a2: self.a2 - n * (at.y / k),
+            b: self.b + at * (o / k),
+        }
+    }
+}
+
+/// A beam waiting to be split.
+#[derive(Clone, Copy, Debug)]
+struct Beam {
+    dir: DVec3,
+    stokes: Stokes,
+    axis: DVec3,
+    facet: u32,
+    entry: u32,
+    depth: u32,
+    node: u32,
+    /// Its polygon (on `facet`'s plane) is `pts[start..start + len]` of the point stack.
+    start: u32,
+    len: u32,
+    map: Affine,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Child {
+    facet: u32,
+    start: u32,
+    len: u32,
+    area: f64,
+}
+
+/// Settings of one trace, cleaned.
+pub(super) struct Ctx {
+    pub(super) ri: f64,
+    pub(super) pol: bool,
+    threshold: f64,
+    split_threshold: f64,
+    max_depth: u32,
+    want_fp: bool,
+}
+
+/// Working memory of one trace, reused across beams.
+struct Work {
+    pts: Vec<DVec3>,
+    stack: Vec<Beam>,
+    cur: Vec<DVec3>,
+    q: Vec<DVec2>,
+    g: Vec<DVec2>,
+    clip: Vec<DVec2>,
+    scratch: Vec<DVec2>,
+    proj: Vec<DVec2>,
+    vstamp: Vec<u32>,
+    fstamp: Vec<u32>,
+    stamp: u32,
+    queue: Vec<u32>,
+    children: Vec<Child>,
+    cpts: Vec<DVec2>,
+    foot: Vec<DVec2>,
+    nodes: Vec<(u32, u32)>,
+}
+
+impl Stone {
+    fn work(&self) -> Work {
+        Work {
+            pts: Vec::with_capacity(1024),
+            stack: Vec::with_capacity(128),
+            cur: Vec::with_capacity(32),
+            q: Vec::with_capacity(32),
+            g: Vec::with_capacity(32),
+            clip: Vec::with_capacity(32),
+            scratch: Vec::with_capacity(32),
+            proj: vec![DVec2::ZERO; self.vertices.len()],
+            vstamp: vec![0; self.vertices.len()],
+            fstamp: vec![0; self.normals.len()],
+            stamp: 0,
+            queue: Vec::with_capacity(self.normals.len()),
+            children: Vec::with_capacity(self.normals.len()),
+            cpts: Vec::with_capacity(256),
+            foot: Vec::with_capacity(32),
+            nodes: Vec::with_capacity(4096),
+        }
+    }
+
+    /// Trace one direction at refractive index `ri`, handing every exit beam to `sink`.
+    /// Returns the power accounting and, when `keep_nodes`, the facet-sequence tree (parent,
+    /// facet) that [`ExitBeam`]s index into.
+    pub(crate) fn trace_into<S: ExitSink>(
+        &self,
+        frame: &Frame,
+        ri: f64,
+        opts: &TraceOptions,
+        sink: &mut S,
+        keep_nodes: bool,
+    ) -> (TraceStats, Vec<(u32, u32)>) {
+        let mut st = TraceStats::default();
+        let d0 = frame.dir;
+        if !(ri.is_finite() && ri > 0.0 && d0.is_finite()) {
+            return (st, Vec::new());
+        }
+        let total: f64 = (0..self.facet_count())
+            .map(|f| {
+                let c = -self.normals[f].dot(d0);
+                if c > GRAZE {
+                    c * self.areas[f]
+                } else {
+                    0.0
+                }
+            })
+            .sum();
+        st.area = total;
+        if total.is_nan() || total <= 0.0 {
+            return (st, Vec::new());
+        }
+        let clean = |x: f64| if x.is_finite() { x.max(0.0) } else { 0.0 };
+        let cx = Ctx {
+            ri,
+            pol: opts.polarization,
+            threshold: clean(opts.threshold),
+            split_threshold: clean(opts.split_threshold),
+            max_depth: opts.max_depth,
+            want_fp: sink.wants_footprints(),
+        };
+        let mut w = self.work();
+        let map0 = Affine {
+            a1: frame.u,
+            a2: frame.v,
+            b: DVec2::ZERO,
+        };
+        // Symmetry: trace a fundamental wedge and hand out every exit once per symmetry.
+        let (group, wedge) = if opts.symmetry {
+            self.frame_symmetry(d0)
+        } else {
+            (vec![0], vec![])
+        };
+        let mut sym = SymSink::new(self, &group, frame, sink);
+        let mut piece: Vec<DVec3> = Vec::with_capacity(32);
+
+        // Entry: external reflection and refraction at every facet facing the light.
+        for f in 0..self.facet_count() {
+            let n = self.normals[f];
+            let c = -n.dot(d0);
+            if c <= GRAZE {
+                continue;
+            }
+            let verts = self.facet_verts(f);
+            w.cur.clear();
+            w.cur
+                .extend(verts.iter().map(|&v| self.vertices[v as usize]));
+            let mut p = c * self.areas[f] / total;
+            if !wedge.is_empty() {
+                for h in &wedge {
+                    clip_halfspace(&w.cur, *h, &mut piece);
+                    std::mem::swap(&mut w.cur, &mut piece);
+                    if w.cur.is_empty() {
+                        break;
+                    }
+                }
+                if w.cur.is_empty() {
+                    continue;
+                }
+                let fp: Vec<DVec2> = w.cur.iter().map(|&x| map0.apply(x)).collect();
+                p = clip2d::area(&fp) / total;
+                if p <= 0.0 {
+                    continue;
+                }
+            }
+            st.power_in += p;
+            let node = w.nodes.len() as u32;
+            w.nodes.push((u32::MAX, f as u32));
+            let fr = fresnel(c, 1.0, ri);
+            let axis = s_axis(d0, n).unwrap_or(frame.u);
+            let (sr, stt) = split(cx.pol, &fr, DVec4::new(p, 0.0, 0.0, 0.0));
+            w.foot.clear();
+            if cx.want_fp {
+                w.foot.extend(w.cur.iter().map(|&x| map0.apply(x)));
+            }
+            let ext = ExitBeam {
+                direction: reflect(d0, n),
+                power: sr.x,
+                stokes: sr,
+                axis,
+                entry_facet: f,
+                exit_facet: f,
+                reflections: 0,
+                external: true,
+                narrow: false,
+                node,
+                sym: 0,
+            };
+            st.exits += 1;
+            sym.exit(&ext, &w.foot);
+            let beam = match refract(d0, n, 1.0, ri) {
+                Some(t) if stt.x > 0.0 => Beam {
+                    dir: t,
+                    stokes: stt,
+                    axis,
+                    facet: f as u32,
+                    entry: f as u32,
+                    depth: 0,
+                    node,
+                    start: 0,
+                    len: 0,
+                    map: map0,
+                },
+                // Below the critical angle from outside (ri < 1): everything was reflected.
+                _ => {
+                    st.cut_off += stt.x;
+                    continue;
+                }
+            };
+            // `w.cur` holds the polygon, `w.foot` its footprint.
+            self.continue_beam(beam, &cx, &mut w, &mut st, &mut sym);
+            // Depth-first from this root; roots go in facet order, so the walk order (and the
+            // exit order) is deterministic.
+            while let Some(beam) = w.stack.pop() {
+                self.split_beam(beam, &cx, &mut w, &mut st, &mut sym);
+            }
+        }
+        let g = group.len() as f64;
+        st.power_in *= g;
+        st.cut_off *= g;
+        st.exits *= group.len();
+        let nodes = if keep_nodes {
+            std::mem::take(&mut w.nodes)
+        } else {
+            Vec::new()
+        };
+        (st, nodes)
+    }
+
+    /// Decide the fate of a beam about to travel inside: split exactly (pushed on the stack),
+    /// followed as a narrow beam, or cut off. Its polygon is in `w.cur` (on `beam.facet`'s
+    /// plane) and, when footprints are wanted, its footprint in `w.foot`.
+    fn continue_beam<S: ExitSink>(
+        &self,
+        beam: Beam,
+        cx: &Ctx,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) {
+        let p = beam.stokes.x;
+        if p.is_nan() || p <= 0.0 || p < cx.threshold || beam.depth > cx.max_depth {
+            st.cut_off += p.max(0.0);
+        } else if p >= cx.split_threshold {
+            let start = w.pts.len() as u32;
+            w.pts.extend_from_slice(&w.cur);
+            w.stack.push(Beam {
+                start,
+                len: w.cur.len() as u32,
+                ..beam
+            });
+        } else {
+            let c = w.cur.iter().copied().sum::<DVec3>() / w.cur.len() as f64;
+            self.follow_ray(beam, c, cx, w, st, sink);
+        }
+    }
+
+    /// Follow a narrow beam as one ray from `x` (on `beam.facet`) with exact expected-value
+    /// Fresnel branching: at each facet the transmitted part leaves (an exit beam with the
+    /// narrow beam's footprint, `w.foot`), the reflected part goes on until it is below the
+    /// threshold or past the depth limit.
+    fn follow_ray<S: ExitSink>(
+        &self,
+        beam: Beam,
+        mut x: DVec3,
+        cx: &Ctx,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) {
+        st.rays += 1;
+        st.ray_power += beam.stokes.x;
+        let (mut t, mut s, mut axis, mut facet, mut depth, mut prev) = (
+            beam.dir,
+            beam.stokes,
+            beam.axis,
+            beam.facet as usize,
+            beam.depth,
+            beam.node,
+        );
+        loop {
+            let Some((g, best)) = self.exit_facet(x, t, facet) else {
+                st.cut_off += s.x;
+                return;
+            };
+            st.ray_segments += 1;
+            x += t * best.max(0.0);
+            let n = self.normals[g];
+            let node = w.nodes.len() as u32;
+            w.nodes.push((prev, g as u32));
+            prev = node;
+            let meet = Meet {
+                t,
+                n,
+                facet: g,
+                stokes: s,
+                axis,
+            };
+            let origin = Origin {
+                entry: beam.entry as usize,
+                reflections: depth,
+                narrow: true,
+                node,
+            };
+            let (sr, ax) = cross(cx, meet, origin, &w.foot, st, sink);
+            depth += 1;
+            if sr.x.is_nan() || sr.x <= 0.0 || sr.x < cx.threshold || depth > cx.max_depth {
+                st.cut_off += sr.x.max(0.0);
+                return;
+            }
+            t = reflect(t, n);
+            s = sr;
+            axis = ax;
+            facet = g;
+        }
+    }
+
+    /// Split one internal beam by the facets it reaches.
+    fn split_beam<S: ExitSink>(
+        &self,
+        beam: Beam,
+        cx: &Ctx,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) {
+        st.beams += 1;
+        let t = beam.dir;
+        // Take the beam's polygon off the point stack (it is on top).
+        w.cur.clear();
+        let (a, b) = (beam.start as usize, (beam.start + beam.len) as usize);
+        w.cur.extend_from_slice(&w.pts[a..b]);
+        w.pts.truncate(a);
+
+        let (e1, e2) = t.any_orthonormal_pair();
+        w.q.clear();
+        w.q.extend(w.cur.iter().map(|x| DVec2::new(x.dot(e1), x.dot(e2))));
+        let aq = clip2d::area(&w.q);
+        if aq.is_nan() || aq <= 0.0 {
+            st.cut_off += beam.stokes.x;
+            return;
+        }
+        w.stamp = w.stamp.wrapping_add(1);
+        if w.stamp == 0 {
+            w.vstamp.iter_mut().for_each(|s| *s = 0);
+            w.fstamp.iter_mut().for_each(|s| *s = 0);
+            w.stamp = 1;
+        }
+        let stamp = w.stamp;
+
+        // Seed: the facet the ray through the polygon's vertex mean leaves by.
+        let c = w.cur.iter().copied().sum::<DVec3>() / w.cur.len() as f64;
+        let Some((seed, _)) = self.exit_facet(c, t, beam.facet as usize) else {
+            st.cut_off += beam.stokes.x;
+            return;
+        };
+        let seed = seed as u32;
+
+        // Flood over adjacent facets from the seed: the facets the beam reaches form a
+        // connected patch of the silhouette's tiling.
+        w.queue.clear();
+        w.children.clear();
+        w.cpts.clear();
+        w.queue.push(seed);
+        w.fstamp[seed as usize] = stamp;
+        let min_area = aq * SLIVER;
+        let mut sum = 0.0;
+        let mut qi = 0;
+        while qi < w.queue.len() {
+            let g = w.queue[qi] as usize;
+            qi += 1;
+            let a = self.clip_facet(g, e1, e2, w, min_area);
+            if a > min_area {
+                sum += a;
+                for &h in self.facet_neighbors(g) {
+                    if w.fstamp[h as usize] != stamp && self.normals[h as usize].dot(t) > GRAZE {
+                        w.fstamp[h as usize] = stamp;
+                        w.queue.push(h);
+                    }
+                }
+            }
+        }
+        if sum < aq * (1.0 - 1e-9) {
+            // Robustness net (never needed on sound solids): try every facet not yet tried.
+            for h in 0..self.facet_count() {
+                if w.fstamp[h] != stamp && self.normals[h].dot(t) > GRAZE {
+                    w.fstamp[h] = stamp;
+                    let a = self.clip_facet(h, e1, e2, w, min_area);
+                    if a > min_area {
+                        sum += a;
+                    }
+                }
+            }
+        }
+        st.max_tiling_error = st.max_tiling_error.max((sum - aq).abs() / aq);
+        if sum.is_nan() || sum <= 0.0 {
+            st.cut_off += beam.stokes.x;
+            return;
+        }
+
+        let f = beam.facet as usize;
+        let map = beam.map.slide(t, self.normals[f], self.offsets[f]);
+        let nchildren = w.children.len();
+        for ci in 0..nchildren {
+            let ch = w.children[ci];
+            let g = ch.facet as usize;
+            let n = self.normals[g];
+            let o = self.offsets[g];
+            let cos_i = n.dot(t);
+            // Lift the child's polygon onto facet g's plane.
+            w.cur.clear();
+            for p in &w.cpts[ch.start as usize..(ch.start + ch.len) as usize] {
+                let x = e1 * p.x + e2 * p.y;
+                w.cur.push(x + t * ((o - n.dot(x)) / cos_i));
+            }
+            w.foot.clear();
+            if cx.want_fp {
+                w.foot.extend(w.cur.iter().map(|&x| map.apply(x)));
+            }
+            let node = w.nodes.len() as u32;
+            w.nodes.push((beam.node, g as u32));
+            let meet = Meet {
+                t,
+                n,
+                facet: g,
+                stokes: beam.stokes * (ch.area / sum),
+                axis: beam.axis,
+            };
+            let origin = Origin {
+                entry: beam.entry as usize,
+                reflections: beam.depth,
+                narrow: false,
+                node,
+            };
+            let (sr, axis) = cross(cx, meet, origin, &w.foot, st, sink);
+            let next = Beam {
+                dir: reflect(t, n),
+                stokes: sr,
+                axis,
+                facet: g as u32,
+                entry: beam.entry,
+                depth: beam.depth + 1,
+                node,
+                start: 0,
+                len: 0,
+                map,
+            };
+            self.continue_beam(next, cx, w, st, sink);
+        }
+    }
+
+    /// Clip the current beam (`w.q`) by facet `g` projected on (e1, e2); append a child if the
+    /// overlap exceeds `keep_area` (a sliver otherwise). Returns the overlap's area.
+    #[inline]
+    fn clip_facet(&self, g: usize, e1: DVec3, e2: DVec3, w: &mut Work, keep_area: f64) -> f64 {
+        let stamp = w.stamp;
+        w.g.clear();
+        for &v in self.facet_verts(g) {
+            let v = v as usize;
+            if w.vstamp[v] != stamp {
+                w.vstamp[v] = stamp;
+                let x = self.vertices[v];
+                w.proj[v] = DVec2::new(x.dot(e1), x.dot(e2));
+            }
+            w.g.push(w.proj[v]);
+        }
+        clip2d::clip_convex_into(&w.q, &w.g, &mut w.clip, &mut w.scratch);
+        let a = clip2d::area(&w.clip);
+        if a > keep_area {
+            let start = w.cpts.len() as u32;
+            w.cpts.extend_from_slice(&w.clip);
+            w.children.push(Child {
+                facet: g as u32,
+                start,
+                len: w.clip.len() as u32,
+                area: a,
+            });
+        }
+        a
+    }
+}
