@@ -189,6 +189,12 @@ pub fn info(a: &InfoArgs) -> Result<()> {
     }
     let material = Material::by_name(&a.material)?;
     let cut = load_with_sets(&a.cut, &a.set)?;
+    let lower = a.cut.to_ascii_lowercase();
+    if lower.ends_with(".obj") || lower.ends_with(".stl") {
+        if let Ok((_, Some(note))) = facetlab::io::mesh::read_with_note(&a.cut) {
+            eprintln!("{}: {note}", a.cut);
+        }
+    }
     let j = info_json(&cut, a.diameter_mm, &material);
     if a.json {
         let text = serde_json::to_string_pretty(&j)

@@ -86,7 +86,7 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
     let verify = a
         .verify
         .as_deref()
-        .map(|v| flags::count("--verify", v, 1, 1_000_000_000_000))
+        .map(|v| flags::count("--verify", v, 1, facetlab::photon::MAX_PHOTONS))
         .transpose()?;
     let config = ScoreConfig {
         material,

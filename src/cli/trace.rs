@@ -156,7 +156,8 @@ pub struct Settings {
 
 /// Validate the flags into the library's types.
 pub fn settings(a: &TraceArgs) -> Result<Settings> {
-    let photons = flags::count("--photons", &a.photons, 1, 1_000_000_000_000)?;
+    let photons = flags::count("--photons", &a.photons, 1, u64::MAX)?;
+    photon::check_photons(photons)?;
     let depth = match a.depth.trim().to_ascii_lowercase().as_str() {
         "unlimited" | "none" | "inf" => None,
         s => Some(
@@ -687,6 +688,7 @@ mod tests {
             (&["--photons", "-5"], "--photons"),
             (&["--photons", "lots"], "--photons"),
             (&["--photons", "1.5"], "--photons"),
+            (&["--photons", "1e12"], "--photons"),
             (&["--depth", "0"], "--depth"),
             (&["--depth", "NaN"], "--depth"),
             (&["--absorption", "beer:-1"], "--absorption"),

@@ -25,7 +25,10 @@
 //! **Determinism.** Work is split into chunks of [`CHUNK`] photons; chunk `c` draws from its own
 //! RNG seeded from `(seed, c)`; tallies are integer counts, so their sum does not depend on
 //! the order or the thread count: the same seed gives the same numbers on any number of
-//! threads.
+//! threads. Chunks are traced in parallel a wave at a time and their counts added in chunk
+//! order as each wave finishes (so the float sums of [`trace_weighted`] are the same on any
+//! thread count too, and memory does not grow with the photon count). At most
+//! [`MAX_PHOTONS`] photons per run.
 //!
 //! ```
 //! use facetlab::photon::{trace, Light, TraceConfig};
@@ -56,6 +59,13 @@ use std::time::Instant;
 pub const CHUNK: u64 = 8192;
 /// Interaction cap of the "unlimited" depth mode.
 pub const UNLIMITED_CAP: u32 = 100_000;
+/// Most photons one run may shoot (or, with `until_hit`, need to hit): 1e11. At the few
+/// million photons per second a core traces, that is already hours of work, and the standard
+/// error of a share is below 2e-6, far under any difference between cuts that matters.
+pub const MAX_PHOTONS: u64 = 100_000_000_000;
+/// Chunks traced in parallel before their counts are added (in chunk order) to the total, so
+/// memory stays bounded whatever the photon count.
+const WAVE: u64 = 1024;
 /// The angles of the thesis's rotation sweep, degrees.
 pub const ROTATION_ANGLES: [f64; 7] = [0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0];
 /// Distance of the thesis's lights from the girdle centre, girdle diameters.
@@ -265,9 +275,7 @@ impl TraceConfig {
 
     /// Check every number; errors name the flag a user would set.
     pub fn validate(&self) -> Result<()> {
-        if self.photons == 0 {
-            return Err(Error::invalid("--photons", "must be at least 1"));
-        }
+        check_photons(self.photons)?;
         if let Some(d) = self.depth {
             if d == 0 || d > UNLIMITED_CAP {
                 return Err(Error::invalid(
@@ -300,6 +308,23 @@ impl TraceConfig {
         }
         Ok(())
     }
+}
+
+/// Check a photon count: at least 1, at most [`MAX_PHOTONS`]; the error names `--photons` and
+/// says why.
+pub fn check_photons(photons: u64) -> Result<()> {
+    if photons == 0 {
+        return Err(Error::invalid("--photons", "must be at least 1"));
+    }
+    if photons > MAX_PHOTONS {
+        return Err(Error::invalid(
+            "--photons",
+            format!(
+                "{photons} is too many; allowed at most {MAX_PHOTONS} (1e11): at a few million photons per second that is already hours, and shares are then known to ±2e-6"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Trace `cfg.photons` photons from `light` through `solid`. `progress`, if given, is called
@@ -425,26 +450,41 @@ fn run_shot(
     photons: u64,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Counts {
+    run_shot_waves(tracer, photons, progress, WAVE)
+}
+
+/// [`run_shot`] with `wave` chunks per wave (tests vary it).
+fn run_shot_waves(
+    tracer: &kernel::Tracer,
+    photons: u64,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    wave: u64,
+) -> Counts {
     let chunks = photons.div_ceil(CHUNK);
-    let nf = tracer.facet_count();
-    (0..chunks)
-        .into_par_iter()
-        .map(|c| {
-            let n = CHUNK.min(photons - c * CHUNK);
-            let counts = tracer.chunk(c, n, None);
-            if let Some(p) = progress {
-                p(n);
-            }
-            counts
-        })
-        // Collected, then added in chunk order: the float sums (exit weights) come out the
-        // same on any thread count.
-        .collect::<Vec<Counts>>()
-        .iter()
-        .fold(Counts::new(nf), |mut a, b| {
-            a.add(b);
-            a
-        })
+    let mut total = Counts::new(tracer.facet_count());
+    // Waves of chunks traced in parallel; each wave's counts are added in chunk order as soon
+    // as it finishes, so the float sums (exit weights) come out the same on any thread count
+    // and at most one wave of counts is held at a time.
+    let mut first = 0;
+    while first < chunks {
+        let last = chunks.min(first + wave);
+        let wave: Vec<Counts> = (first..last)
+            .into_par_iter()
+            .map(|c| {
+                let n = CHUNK.min(photons - c * CHUNK);
+                let counts = tracer.chunk(c, n, None);
+                if let Some(p) = progress {
+                    p(n);
+                }
+                counts
+            })
+            .collect();
+        for c in &wave {
+            total.add(c);
+        }
+        first = last;
+    }
+    total
 }
 
 /// Shots before giving up on a light that never reaches the stone.

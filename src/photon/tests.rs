@@ -468,3 +468,65 @@ fn weighted_exits_reproduce_light_return_on_any_thread_count() {
     let cosw = trace_weighted(&solid, &Light::directed(0.0), &c, &|d: DVec3| d.z.max(0.0)).unwrap();
     assert!(cosw.mean > 0.3 && cosw.mean < lr, "{}", cosw.mean);
 }
+
+#[test]
+fn counts_are_added_in_chunk_order_wave_by_wave_on_any_thread_count() {
+    let solid = TraceSolid::new(&tolkowsky()).unwrap();
+    let photons = 4 * CHUNK + 77;
+    let c = TraceConfig {
+        seed: 11,
+        ..cfg(photons)
+    };
+    let w = |d: DVec3| d.z.max(0.0).powf(0.3);
+    let mut tracer = kernel::Tracer::new(&solid, &Light::directed(0.0), &c).unwrap();
+    tracer.exit_weight = Some(&w);
+    // The previous reduction: every chunk's counts collected first, then added in chunk order.
+    let all: Vec<Counts> = (0..5)
+        .map(|k| tracer.chunk(k, CHUNK.min(photons - k * CHUNK), None))
+        .collect();
+    let mut old = Counts::new(tracer.facet_count());
+    for k in &all {
+        old.add(k);
+    }
+    assert_eq!(old.shot, photons);
+    assert!(old.weight_sum > 0.0);
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        for wave in [1, 2, WAVE] {
+            let new = pool.install(|| run_shot_waves(&tracer, photons, None, wave));
+            assert_eq!(new, old, "{threads} threads, waves of {wave}");
+            assert_eq!(new.weight_sum.to_bits(), old.weight_sum.to_bits());
+            assert_eq!(new.weight_sq.to_bits(), old.weight_sq.to_bits());
+        }
+    }
+}
+
+#[test]
+fn fixed_seed_gives_the_numbers_of_the_previous_code() {
+    // `facetlab trace tolkowsky --photons 50000 --seed 3` before counts were added wave by wave.
+    let c = TraceConfig {
+        seed: 3,
+        ..cfg(50_000)
+    };
+    let t = trace(&tolkowsky(), &Light::overhead(), &c, None).unwrap();
+    let k = &t.counts;
+    assert_eq!(
+        (k.shot, k.hit, k.light_return, k.absorbed),
+        (50_000, 342, 207, 88)
+    );
+}
+
+#[test]
+fn photon_counts_beyond_the_limit_are_refused() {
+    assert!(check_photons(MAX_PHOTONS).is_ok());
+    let e = check_photons(MAX_PHOTONS + 1).unwrap_err().to_string();
+    assert!(e.contains("--photons") && e.contains("100000000000"), "{e}");
+    assert!(!e.contains('\n'), "{e}");
+    let e = trace(&tolkowsky(), &Light::overhead(), &cfg(u64::MAX), None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("at most 100000000000"), "{e}");
+}

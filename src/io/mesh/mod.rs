@@ -8,6 +8,16 @@
 //! a tolerance of `1e-7` of the size, widened for coarse coordinates (single-precision binary
 //! STL, or text printed with few digits) to eight times their rounding error, at most `1e-4`.
 //!
+//! Welding (binary STL only): single-precision coordinates split a point where many facets meet
+//! (a pointed culet, the girdle corners) into a cluster of vertices with tiny edges between
+//! them. After normalisation, vertices joined by an edge shorter than 16 times the merge
+//! tolerance, at most `1e-5` (of the solid's largest bounding-box side, about 4e-6 girdle
+//! diameters for a binary STL), are welded into their cluster's mean point: a facet touching
+//! one cluster is moved parallel to itself through it, one touching several is fitted again
+//! through its welded corners, facets left with fewer than three corners are dropped, and this
+//! is repeated (at most 8 rounds) while corners are still split. [`read_with_note`] says what
+//! was welded (`facetlab info` prints it on standard error).
+//!
 //! Normalisation (the README's Conventions section: z up, origin at the centre of the girdle
 //! plane, girdle diameter 1): the stone is assumed to be upright (z up, table on
 //! top). The origin moves to the centre of the girdle plane: horizontally to the centre of the
@@ -71,6 +81,8 @@ struct Points {
     pts: Vec<DVec3>,
     locs: Vec<Loc>,
     rel_noise: f64,
+    /// Single-precision coordinates (binary STL): corners split by rounding are welded.
+    single_precision: bool,
 }
 
 impl Points {
@@ -79,6 +91,7 @@ impl Points {
             pts: Vec::new(),
             locs: Vec::new(),
             rel_noise: 0.0,
+            single_precision: false,
         }
     }
     /// Add a point unless the very same point is already there.
@@ -154,6 +167,12 @@ fn hull_error(e: Error, source: &str) -> Error {
 
 /// Read a mesh file (`.obj` or `.stl`, by extension) as a cut named after the file stem.
 pub fn read(path: impl AsRef<Path>) -> Result<Cut> {
+    read_with_note(path).map(|(cut, _)| cut)
+}
+
+/// [`read`], also returning a one-line note of what was welded, if anything (see the module
+/// documentation).
+pub fn read_with_note(path: impl AsRef<Path>) -> Result<(Cut, Option<String>)> {
     let path = path.as_ref();
     let shown = path.display().to_string();
     let ext = path
@@ -161,9 +180,10 @@ pub fn read(path: impl AsRef<Path>) -> Result<Cut> {
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    let reader: fn(&[u8], &str) -> Result<Vec<FacetPlane>> = match ext.as_str() {
-        "obj" => read_obj,
-        "stl" => read_stl,
+    type Reader = fn(&[u8], &str) -> Result<(Vec<FacetPlane>, Option<String>)>;
+    let reader: Reader = match ext.as_str() {
+        "obj" => obj::read_obj_noted,
+        "stl" => stl::read_stl_noted,
         _ => {
             return Err(Error::parse(
                 shown,
@@ -172,16 +192,17 @@ pub fn read(path: impl AsRef<Path>) -> Result<Cut> {
         }
     };
     let bytes = std::fs::read(path).map_err(|e| Error::io(&shown, e))?;
-    let planes = reader(&bytes, &shown)?;
+    let (planes, note) = reader(&bytes, &shown)?;
     let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("mesh");
     let solid = Polyhedron::from_planes(&planes).map_err(|e| hull_error(e, &shown))?;
-    Ok(Cut {
+    let cut = Cut {
         name: name.to_string(),
         family: None,
         params: Default::default(),
         solid,
         design_ri: None,
-    })
+    };
+    Ok((cut, note))
 }
 
 /// A name usable as one OBJ/STL token: whitespace and control characters become `_`.

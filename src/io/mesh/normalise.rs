@@ -13,7 +13,10 @@ use crate::geometry::{
 const MAX_MERGE_TOL: f64 = 1e-4;
 
 /// Hull, convexity check, normalisation and naming.
-pub(super) fn planes_from_points(points: &Points, source: &str) -> Result<Vec<FacetPlane>> {
+pub(super) fn planes_from_points(
+    points: &Points,
+    source: &str,
+) -> Result<(Vec<FacetPlane>, Option<String>)> {
     let pts = &points.pts;
     if pts.len() < 4 {
         return Err(Error::parse(
@@ -107,7 +110,143 @@ pub(super) fn planes_from_points(points: &Points, source: &str) -> Result<Vec<Fa
         f.tier = side(f.plane.normal).0.to_string();
     }
     split_tiers_by_angle(&mut out);
-    Ok(out)
+    if points.single_precision {
+        Ok(weld(out, tol))
+    } else {
+        Ok((out, None))
+    }
+}
+
+/// Welding tolerance as a multiple of the merge tolerance: corners split by rounding sit where
+/// nearly parallel planes meet, so their spread is many times the coordinates' rounding error.
+const WELD: f64 = 16.0;
+/// Largest welding tolerance (fraction of the size).
+const MAX_WELD: f64 = 1e-5;
+
+/// Weld clusters of vertices closer than `WELD` times the merge tolerance `tol` (at most
+/// `MAX_WELD`) of the size (coordinate rounding splits a
+/// point where many facets meet, such as a pointed culet, into a cluster of vertices with
+/// tiny edges between them): each cluster becomes its mean point; a facet touching one cluster
+/// is moved parallel to itself through that point, one touching several is fitted again through
+/// its welded corners (Newell's normal); facets left with fewer than three corners are dropped. Returns the planes and, if anything was welded, a one-line note.
+fn weld(mut planes: Vec<FacetPlane>, tol: f64) -> (Vec<FacetPlane>, Option<String>) {
+    let Ok(s) = Polyhedron::from_planes(&planes) else {
+        return (planes, None);
+    };
+    let (lo, hi) = s.bounding_box();
+    let eps = (WELD * tol).min(MAX_WELD) * (hi - lo).max_element();
+    // Moving a plane can split a corner elsewhere (again by far less than `eps`): repeat.
+    let (mut merged, mut dropped, mut spread) = (0, 0, 0.0f64);
+    for _ in 0..WELD_ROUNDS {
+        let Some((next, m, d, sp)) = weld_once(&planes, eps) else {
+            break;
+        };
+        planes = next;
+        merged += m;
+        dropped += d;
+        spread = spread.max(sp);
+    }
+    if merged == 0 {
+        return (planes, None);
+    }
+    let note = format!(
+        "welded {merged} vertices into their neighbours within {} girdle diameters (moved up to {}); {dropped} facets dropped",
+        sig2(eps),
+        sig2(spread)
+    );
+    (planes, Some(note))
+}
+
+/// Rounds of [`weld`] at most.
+const WELD_ROUNDS: usize = 8;
+
+/// One round of [`weld`]: the new planes, vertices merged, facets dropped and the largest
+/// move, or `None` when nothing is within `eps`.
+fn weld_once(planes: &[FacetPlane], eps: f64) -> Option<(Vec<FacetPlane>, usize, usize, f64)> {
+    let s = Polyhedron::from_planes(planes).ok()?;
+    let mut root: Vec<usize> = (0..s.vertices.len()).collect();
+    fn find(root: &mut [usize], mut i: usize) -> usize {
+        while root[i] != i {
+            root[i] = root[root[i]];
+            i = root[i];
+        }
+        i
+    }
+    let mut merged = 0;
+    let mut size = vec![1usize; s.vertices.len()];
+    for e in &s.edges {
+        if s.vertices[e.a].distance(s.vertices[e.b]) < eps {
+            let (a, b) = (find(&mut root, e.a), find(&mut root, e.b));
+            if a != b {
+                root[a.max(b)] = a.min(b);
+                size[a.min(b)] += size[a.max(b)];
+                merged += 1;
+            }
+        }
+    }
+    if merged == 0 {
+        return None;
+    }
+    let n = s.vertices.len();
+    let mut sum = vec![(DVec3::ZERO, 0.0); n];
+    for i in 0..n {
+        let r = find(&mut root, i);
+        sum[r].0 += s.vertices[i];
+        sum[r].1 += 1.0;
+    }
+    let mut spread: f64 = 0.0;
+    for i in 0..n {
+        let r = find(&mut root, i);
+        spread = spread.max(s.vertices[i].distance(sum[r].0 / sum[r].1));
+    }
+    let (mut out, mut dropped) = (Vec::with_capacity(planes.len()), 0);
+    for (f, p) in s.facets.iter().zip(planes.iter().cloned()) {
+        let mut ids: Vec<usize> = f.vertices.iter().map(|&v| find(&mut root, v)).collect();
+        ids.dedup();
+        while ids.len() > 1 && ids.first() == ids.last() {
+            ids.pop();
+        }
+        if ids.len() < 3 {
+            dropped += 1;
+            continue;
+        }
+        let pts: Vec<DVec3> = ids.iter().map(|&r| sum[r].0 / sum[r].1).collect();
+        let welded: Vec<DVec3> = ids
+            .iter()
+            .filter(|&&r| size[r] > 1)
+            .map(|&r| sum[r].0 / sum[r].1)
+            .collect();
+        if welded.is_empty() {
+            out.push(p);
+            continue;
+        }
+        if let [c] = welded[..] {
+            // Through the one welded point exactly: the planes meeting there meet in it.
+            let offset = p.plane.normal.dot(c);
+            let normal = p.plane.normal;
+            out.push(FacetPlane {
+                plane: Plane { normal, offset },
+                ..p
+            });
+            continue;
+        }
+        let mut normal = DVec3::ZERO;
+        for (k, a) in pts.iter().enumerate() {
+            let b = pts[(k + 1) % pts.len()];
+            normal += DVec3::new(
+                (a.y - b.y) * (a.z + b.z),
+                (a.z - b.z) * (a.x + b.x),
+                (a.x - b.x) * (a.y + b.y),
+            );
+        }
+        let normal = normal.normalize_or(p.plane.normal);
+        let offset = welded.iter().map(|q| normal.dot(*q)).sum::<f64>() / welded.len() as f64;
+        out.push(FacetPlane {
+            plane: Plane { normal, offset },
+            ..p
+        });
+    }
+    Some((out, merged, dropped, spread))
 }
 
 /// Crown and pavilion facets grouped into tiers by angle: angles within 0.05° of their

@@ -14,6 +14,14 @@ use std::fmt::Write as _;
 /// `v x y z` lines give vertices, `f a b c …` lines faces (indices from 1, negative ones count
 /// back from the last vertex, `a/t/n` forms allowed); every other line is ignored.
 pub fn read_obj(bytes: &[u8], source: &str) -> Result<Vec<FacetPlane>> {
+    read_obj_noted(bytes, source).map(|(planes, _)| planes)
+}
+
+/// [`read_obj`], also returning what was welded (see the module documentation).
+pub(super) fn read_obj_noted(
+    bytes: &[u8],
+    source: &str,
+) -> Result<(Vec<FacetPlane>, Option<String>)> {
     let mut verts: Vec<(DVec3, usize)> = Vec::new();
     let mut refs: Vec<(usize, usize)> = Vec::new(); // (0-based vertex, line)
     let mut max_sig = 1u32;

@@ -15,6 +15,14 @@ use std::fmt::Write as _;
 /// (whatever its first bytes say: some binary files start with `solid` too); otherwise it must
 /// be ASCII STL, starting with `solid`.
 pub fn read_stl(bytes: &[u8], source: &str) -> Result<Vec<FacetPlane>> {
+    read_stl_noted(bytes, source).map(|(planes, _)| planes)
+}
+
+/// [`read_stl`], also returning what was welded (see the module documentation).
+pub(super) fn read_stl_noted(
+    bytes: &[u8],
+    source: &str,
+) -> Result<(Vec<FacetPlane>, Option<String>)> {
     let points = if let Some(n) = binary_stl_count(bytes) {
         read_binary_stl(bytes, n, source)?
     } else if bytes.trim_ascii_start().starts_with(b"solid") {
@@ -48,6 +56,7 @@ pub(super) fn binary_stl_count(bytes: &[u8]) -> Option<usize> {
 fn read_binary_stl(bytes: &[u8], n: usize, source: &str) -> Result<Points> {
     let mut points = Points::new();
     points.rel_noise = f64::from(f32::EPSILON) / 2.0;
+    points.single_precision = true;
     let mut seen = HashSet::new();
     for t in 0..n {
         let rec = &bytes[84 + 50 * t..84 + 50 * (t + 1)];

@@ -418,3 +418,31 @@ fn read_by_extension() {
     assert!(e.contains("missing.obj"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn binary_stl_culet_cluster_is_welded_and_reported() {
+    let c = crate::io::load_cut("tolkowsky").unwrap();
+    let dir = std::env::temp_dir().join(format!("facetlab-weld-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (stl, obj) = (dir.join("t.stl"), dir.join("t.obj"));
+    std::fs::write(&stl, write_stl(&c)).unwrap();
+    std::fs::write(&obj, write_obj(&c)).unwrap();
+    // Single precision splits the pointed culet into a cluster; welded, the solid has the
+    // preset's vertices and facets again, with one lowest point.
+    let (a, note) = read_with_note(&stl).unwrap();
+    let note = note.expect("a weld note");
+    assert!(
+        note.starts_with("welded ") && note.contains("0 facets dropped"),
+        "{note}"
+    );
+    assert_eq!(a.solid.facets.len(), c.solid.facets.len());
+    assert_eq!(a.solid.vertices.len(), c.solid.vertices.len(), "{note}");
+    let low = a.solid.bounding_box().0.z;
+    let at_bottom = a.solid.vertices.iter().filter(|v| v.z < low + 1e-6).count();
+    assert_eq!(at_bottom, 1);
+    // Full precision: nothing to weld, the planes are read as before.
+    let (b, note) = read_with_note(&obj).unwrap();
+    assert_eq!(note, None);
+    assert_eq!(b.solid.vertices.len(), c.solid.vertices.len());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
