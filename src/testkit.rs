@@ -132,6 +132,6 @@ fn kit_solids_have_their_volumes() {
     // |x|+|y|+|z| ≤ r: volume 4r³/3.
     near(octahedron_of(1.0).volume(), 4.0 / 3.0);
     near(octahedron().volume(), 0.5 * 3f64.sqrt());
-    assert_eq!(princess().facets.len(), 25);
-    assert_eq!(cube().facets[5].name, "bottom");
+    assert_eq!(princess().facets().len(), 25);
+    assert_eq!(cube().facets()[5].name, "bottom");
 }

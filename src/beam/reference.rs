@@ -201,7 +201,7 @@ fn grid(
 /// Deterministic for given options (the rows run in parallel, their sums are added in order).
 pub fn overhead_light_return(solid: &Polyhedron, ri: f64, o: &GridOptions) -> GridEstimate {
     let planes: Vec<(DVec3, f64)> = solid
-        .facets
+        .facets()
         .iter()
         .map(|f| (f.plane.normal, f.plane.offset))
         .collect();

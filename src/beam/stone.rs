@@ -69,16 +69,16 @@ fn cube_cell(t: DVec3) -> usize {
 impl Stone {
     /// Prepare `solid` for tracing.
     pub fn new(solid: &Polyhedron) -> Stone {
-        let nf = solid.facets.len();
+        let nf = solid.facets().len();
         let mut facet_vertices = Vec::new();
         let mut facet_range = Vec::with_capacity(nf);
-        for f in &solid.facets {
+        for f in solid.facets() {
             let a = facet_vertices.len() as u32;
             facet_vertices.extend(f.vertices.iter().map(|&v| v as u32));
             facet_range.push((a, facet_vertices.len() as u32));
         }
         let mut adj: Vec<Vec<u32>> = vec![Vec::new(); nf];
-        for e in &solid.edges {
+        for e in solid.edges() {
             let [a, b] = e.facets;
             adj[a].push(b as u32);
             adj[b].push(a as u32);
@@ -92,7 +92,7 @@ impl Stone {
             neighbors.extend(l);
             neighbor_range.push((a, neighbors.len() as u32));
         }
-        let normals: Vec<DVec3> = solid.facets.iter().map(|f| f.plane.normal).collect();
+        let normals: Vec<DVec3> = solid.facets().iter().map(|f| f.plane.normal).collect();
         let mut dir_table = vec![0u32; 6 * CUBE_RES * CUBE_RES];
         for face in 0..6 {
             for i in 0..CUBE_RES {
@@ -105,7 +105,7 @@ impl Stone {
                 }
             }
         }
-        let centroids: Vec<DVec3> = solid.facets.iter().map(|f| f.centroid).collect();
+        let centroids: Vec<DVec3> = solid.facets().iter().map(|f| f.centroid).collect();
         let cells = 6 * CUBE_RES * CUBE_RES;
         let mut stone = Stone {
             ops: Vec::new(),
@@ -113,10 +113,10 @@ impl Stone {
             mirror_az: None,
             dir_table,
             facet_table: Vec::new(),
-            normals: solid.facets.iter().map(|f| f.plane.normal).collect(),
-            offsets: solid.facets.iter().map(|f| f.plane.offset).collect(),
-            areas: solid.facets.iter().map(|f| f.area).collect(),
-            vertices: solid.vertices.clone(),
+            normals: solid.facets().iter().map(|f| f.plane.normal).collect(),
+            offsets: solid.facets().iter().map(|f| f.plane.offset).collect(),
+            areas: solid.facets().iter().map(|f| f.area).collect(),
+            vertices: solid.vertices().to_vec(),
             facet_vertices,
             facet_range,
             neighbor_planes: Vec::new(),

@@ -144,7 +144,7 @@ fn footprints_times_path_fresnel_give_powers() {
                     }
                 );
                 let d0 = frame.dir;
-                let n0 = s.facets[seq[0]].plane.normal;
+                let n0 = s.facets()[seq[0]].plane.normal;
                 let r0 = fresnel(-n0.dot(d0), 1.0, ri).reflectance();
                 let expected = if e.external {
                     external_area += a;
@@ -153,7 +153,7 @@ fn footprints_times_path_fresnel_give_powers() {
                     let mut t = refract(d0, n0, 1.0, ri).unwrap();
                     let mut k = a / tree.stats.area * (1.0 - r0);
                     for (j, &f) in seq.iter().enumerate().skip(1) {
-                        let n = s.facets[f].plane.normal;
+                        let n = s.facets()[f].plane.normal;
                         let r = fresnel(n.dot(t), ri, 1.0).reflectance();
                         if j + 1 == seq.len() {
                             k *= 1.0 - r;
@@ -238,7 +238,7 @@ fn ray_grid_light_return(s: &Polyhedron, ri: f64, n: usize, max_depth: usize) ->
             let p0 = DVec3::new(ca * a - sa * b + 0.0123, sa * a + ca * b - 0.0071, top);
             let (mut tin, mut tout, mut fin) = (f64::NEG_INFINITY, f64::INFINITY, usize::MAX);
             let mut miss = false;
-            for (k, f) in s.facets.iter().enumerate() {
+            for (k, f) in s.facets().iter().enumerate() {
                 let (nd, dist) = (
                     f.plane.normal.dot(d),
                     f.plane.offset - f.plane.normal.dot(p0),
@@ -257,7 +257,7 @@ fn ray_grid_light_return(s: &Polyhedron, ri: f64, n: usize, max_depth: usize) ->
             if miss || fin == usize::MAX || tin >= tout {
                 continue;
             }
-            let n0 = s.facets[fin].plane.normal;
+            let n0 = s.facets()[fin].plane.normal;
             let r0 = fresnel(-n0.dot(d), 1.0, ri).reflectance();
             let mut up = if reflect(d, n0).z > 0.0 { r0 } else { 0.0 };
             let mut x = p0 + d * tin;
@@ -265,7 +265,7 @@ fn ray_grid_light_return(s: &Polyhedron, ri: f64, n: usize, max_depth: usize) ->
             let mut wgt = 1.0 - r0;
             for _ in 0..=max_depth {
                 let (mut best, mut g) = (f64::INFINITY, usize::MAX);
-                for (k, f) in s.facets.iter().enumerate() {
+                for (k, f) in s.facets().iter().enumerate() {
                     let nt = f.plane.normal.dot(t);
                     if nt > 0.0 {
                         let sd = (f.plane.offset - f.plane.normal.dot(x)) / nt;
@@ -276,7 +276,7 @@ fn ray_grid_light_return(s: &Polyhedron, ri: f64, n: usize, max_depth: usize) ->
                     }
                 }
                 x += t * best;
-                let nrm = s.facets[g].plane.normal;
+                let nrm = s.facets()[g].plane.normal;
                 let r = fresnel(nrm.dot(t), ri, 1.0).reflectance();
                 if let Some(out) = refract(t, nrm, ri, 1.0) {
                     if out.z > 0.0 {
@@ -464,9 +464,9 @@ fn exit_facet_walk_agrees_with_scan() {
     for s in [tolkowsky(), princess(), octahedron(), cube()] {
         let stone = Stone::new(&s);
         let mut k = 0u64;
-        for f in 0..s.facets.len() {
+        for f in 0..s.facets().len() {
             let poly = s.facet_polygon(f);
-            let c = s.facets[f].centroid;
+            let c = s.facets()[f].centroid;
             for (vi, v) in poly.iter().enumerate() {
                 let x = c + (*v - c) * 0.9;
                 for j in 0..12 {
@@ -479,12 +479,12 @@ fn exit_facet_walk_agrees_with_scan() {
                         (1.0 - z * z).sqrt() * a.sin(),
                         z,
                     );
-                    let t = if t.dot(s.facets[f].plane.normal) > 0.0 {
+                    let t = if t.dot(s.facets()[f].plane.normal) > 0.0 {
                         -t
                     } else {
                         t
                     };
-                    if t.dot(s.facets[f].plane.normal) > -1e-3 {
+                    if t.dot(s.facets()[f].plane.normal) > -1e-3 {
                         continue;
                     }
                     let (gw, dw) = stone.exit_facet(x, t, f).unwrap();

@@ -98,7 +98,7 @@ pub fn generate(a: &GenerateArgs) -> Result<()> {
     eprintln!(
         "wrote {} ({} facets)",
         a.output.display(),
-        cut.solid.facets.len()
+        cut.solid.facets().len()
     );
     Ok(())
 }
@@ -149,10 +149,10 @@ pub fn info_json(cut: &Cut, diameter_mm: f64, material: &Material) -> InfoJson {
     let volume = s.volume();
     let mm3 = volume * diameter_mm.powi(3);
     let carats = mm3 * 1e-3 * material.density / 0.2;
-    let euler = s.vertices.len() as i64 - s.edges.len() as i64 + s.facets.len() as i64;
-    let mean = s.surface_area() / s.facets.len() as f64;
+    let euler = s.vertices().len() as i64 - s.edges().len() as i64 + s.facets().len() as i64;
+    let mean = s.surface_area() / s.facets().len() as f64;
     let smallest = s
-        .facets
+        .facets()
         .iter()
         .map(|f| f.area)
         .fold(f64::INFINITY, f64::min);
@@ -160,8 +160,8 @@ pub fn info_json(cut: &Cut, diameter_mm: f64, material: &Material) -> InfoJson {
         name: cut.name.clone(),
         family: cut.family.clone(),
         params: cut.params.clone(),
-        facet_count: s.facets.len(),
-        vertex_count: s.vertices.len(),
+        facet_count: s.facets().len(),
+        vertex_count: s.vertices().len(),
         volume,
         proportions: cut.proportions(),
         tiers: cut.tiers(),

@@ -96,7 +96,7 @@ mod tests {
             ],
         );
         assert!((c.solid.volume() - r.solid.volume()).abs() < 1e-12);
-        assert!(symmetric_under(&c, |v| v) && c.solid.facets.len() == r.solid.facets.len());
+        assert!(symmetric_under(&c, |v| v) && c.solid.facets().len() == r.solid.facets().len());
     }
 
     #[test]

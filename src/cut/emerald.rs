@@ -262,16 +262,16 @@ mod tests {
         let fixed = (count(&c, "table"), count(&c, "girdle"), count(&c, "culet"));
         assert_eq!(fixed, (1, 8, 0));
         // 25 crown + 24 pavilion facets + 8 girdle facets: the classic 57 + girdle.
-        assert_eq!(c.solid.facets.len(), 49 + 8);
+        assert_eq!(c.solid.facets().len(), 49 + 8);
         assert!(symmetric_under(&c, flip_x) && symmetric_under(&c, flip_y));
         let sharp = ok("emerald", &[("corner", 0.0)]);
-        assert_eq!(sharp.solid.facets.len(), 1 + 12 + 4 + 12);
+        assert_eq!(sharp.solid.facets().len(), 1 + 12 + 4 + 12);
         let kv = [
             ("crown_steps", 4.0),
             ("pavilion_steps", 2.0),
             ("culet", 0.05),
         ];
-        assert_eq!(ok("emerald", &kv).solid.facets.len(), 1 + 32 + 8 + 16 + 1);
+        assert_eq!(ok("emerald", &kv).solid.facets().len(), 1 + 32 + 8 + 16 + 1);
     }
 
     #[test]
@@ -326,7 +326,7 @@ mod tests {
             let low = c.solid.bounding_box().0.z;
             let keel: Vec<f64> = c
                 .solid
-                .vertices
+                .vertices()
                 .iter()
                 .filter(|v| v.z < low + 1e-9)
                 .map(|v| v.x)

@@ -132,7 +132,7 @@ mod tests {
         let c = ok("marquise", &[]);
         assert_brilliant_tiers(&c);
         assert_eq!(
-            ok("marquise", &[("culet", 0.04)]).solid.facets.len(),
+            ok("marquise", &[("culet", 0.04)]).solid.facets().len(),
             58 + 16
         );
         assert!(symmetric_under(&c, flip_x) && symmetric_under(&c, flip_y));
@@ -140,7 +140,7 @@ mod tests {
         let (lo, hi) = c.solid.bounding_box();
         for v in c
             .solid
-            .vertices
+            .vertices()
             .iter()
             .filter(|v| v.x > hi.x - 1e-9 || v.x < lo.x + 1e-9)
         {
@@ -149,7 +149,7 @@ mod tests {
         // The girdle turns sharply at the tips: the two girdle flats there meet at well under 180°.
         let normal = |name: &str| {
             c.solid
-                .facets
+                .facets()
                 .iter()
                 .find(|f| f.name == name)
                 .unwrap()

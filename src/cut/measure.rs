@@ -61,7 +61,7 @@ fn side_of(nz: f64) -> &'static str {
 /// Tiers in order of first appearance.
 pub fn tiers(s: &Polyhedron) -> Vec<TierSummary> {
     let mut out: Vec<(TierSummary, f64)> = Vec::new();
-    for f in &s.facets {
+    for f in s.facets() {
         let a = facet_angle_deg(f.plane.normal);
         let side = side_of(f.plane.normal.z);
         match out
@@ -94,10 +94,10 @@ pub fn tiers(s: &Polyhedron) -> Vec<TierSummary> {
 /// Measure the proportions of a solid.
 pub fn proportions(s: &Polyhedron) -> Proportions {
     let (lo, hi) = s.bounding_box();
-    let outline = outline_width(&s.vertices).max(1e-300);
+    let outline = outline_width(s.vertices()).max(1e-300);
     // Table: the up-facing horizontal facet highest up.
     let table = s
-        .facets
+        .facets()
         .iter()
         .enumerate()
         .filter(|(_, f)| f.plane.normal.z > 1.0 - 1e-9)
@@ -105,7 +105,7 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
         .map(|(i, _)| outline_width(&s.facet_polygon(i)) / outline)
         .unwrap_or(0.0);
     let table_z = s
-        .facets
+        .facets()
         .iter()
         .filter(|f| f.plane.normal.z > 1.0 - 1e-9)
         .map(|f| f.plane.offset)
@@ -116,12 +116,12 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
     let (g_top, g_bot) = if girdle_z.is_empty() {
         let r = s.max_radius();
         let z = s
-            .vertices
+            .vertices()
             .iter()
             .filter(|v| v.truncate().length() > r - 1e-9)
             .map(|v| v.z)
             .fold(0.0, |a, b| a + b)
-            / s.vertices
+            / s.vertices()
                 .iter()
                 .filter(|v| v.truncate().length() > r - 1e-9)
                 .count()
@@ -146,8 +146,8 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
             Some((_, c)) => (k.0 && !c.0) || (k.0 == c.0 && k.1 > c.1 + tol),
         }
     };
-    for f in &s.facets {
-        let zs: Vec<f64> = f.vertices.iter().map(|&v| s.vertices[v].z).collect();
+    for f in s.facets() {
+        let zs: Vec<f64> = f.vertices.iter().map(|&v| s.vertices()[v].z).collect();
         let zmax = zs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let zmin = zs.iter().copied().fold(f64::INFINITY, f64::min);
         let nz = f.plane.normal.z;
@@ -170,7 +170,7 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
     let tier_angle = |tier: &Option<(String, (bool, f64))>, crown: bool| -> f64 {
         let Some((name, _)) = tier else { return 0.0 };
         let angles: Vec<f64> = s
-            .facets
+            .facets()
             .iter()
             .filter(|f| &f.tier == name && (f.plane.normal.z > 0.0) == crown)
             .map(|f| facet_angle_deg(f.plane.normal))

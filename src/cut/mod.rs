@@ -304,7 +304,7 @@ mod tests {
             angle("lower-half")
         );
         // 57 facets (no culet) + 16 girdle facets.
-        assert_eq!(c.solid.facets.len(), 57 + 16);
+        assert_eq!(c.solid.facets().len(), 57 + 16);
         let count = |n: &str| t.iter().find(|x| x.name == n).unwrap().count;
         assert_eq!(
             (count("bezel"), count("star"), count("upper-half")),
@@ -322,7 +322,7 @@ mod tests {
         let mut ch = BTreeMap::new();
         ch.insert("culet".to_string(), 0.02);
         let c2 = c.with_params(&ch).unwrap();
-        assert_eq!(c2.solid.facets.len(), 58 + 16);
+        assert_eq!(c2.solid.facets().len(), 58 + 16);
         ch.insert("table".into(), 57.0);
         let e = c.with_params(&ch).unwrap_err().to_string();
         assert!(e.starts_with("table:") && e.contains("0.57, not 57"), "{e}");
@@ -387,7 +387,7 @@ mod tests {
             match Cut::from_family("r", "round-brilliant", &v) {
                 Ok(c) => {
                     let s = &c.solid;
-                    assert_eq!(s.vertices.len() + s.facets.len(), s.edges.len() + 2);
+                    assert_eq!(s.vertices().len() + s.facets().len(), s.edges().len() + 2);
                     assert!(s.volume() > 0.0);
                     built += 1;
                 }
@@ -409,12 +409,12 @@ mod tests {
             let mut v = BTreeMap::new();
             v.insert("girdle_facets".to_string(), n);
             let c = Cut::from_family("r", "round-brilliant", &v).unwrap();
-            assert_eq!(c.solid.facets.len(), 57 + n as usize);
+            assert_eq!(c.solid.facets().len(), 57 + n as usize);
         }
         let mut v = BTreeMap::new();
         v.insert("girdle".to_string(), 0.0);
         let knife = Cut::from_family("r", "round-brilliant", &v).unwrap();
-        assert_eq!(knife.solid.facets.len(), 57);
+        assert_eq!(knife.solid.facets().len(), 57);
         assert!(knife.proportions().girdle.abs() < 1e-12);
         let mut v = BTreeMap::new();
         v.insert("girdle_facets".to_string(), 20.0);

@@ -123,7 +123,7 @@ mod tests {
     #[test]
     fn old_european_defaults_are_the_style() {
         let c = ok("old-european", &[]);
-        assert_eq!(c.solid.facets.len(), 58 + 16);
+        assert_eq!(c.solid.facets().len(), 58 + 16);
         let want = [
             ("table", 1),
             ("bezel", 8),

@@ -134,8 +134,8 @@ mod tests {
         assert!(!symmetric_under(&c, |v| crate::geometry::DVec3::new(
             -v.y, v.x, v.z
         )));
-        assert_eq!(ok("oval", &[("culet", 0.05)]).solid.facets.len(), 58 + 16);
-        assert_eq!(ok("oval", &[("girdle", 0.0)]).solid.facets.len(), 57);
+        assert_eq!(ok("oval", &[("culet", 0.05)]).solid.facets().len(), 58 + 16);
+        assert_eq!(ok("oval", &[("girdle", 0.0)]).solid.facets().len(), 57);
     }
 
     #[test]
@@ -150,11 +150,11 @@ mod tests {
         ];
         let oval = ok("oval", &[kv.as_slice(), &[("length_width", 1.0)]].concat());
         let round = ok("round-brilliant", &kv);
-        assert_eq!(oval.solid.facets.len(), round.solid.facets.len());
-        for f in &round.solid.facets {
+        assert_eq!(oval.solid.facets().len(), round.solid.facets().len());
+        for f in round.solid.facets() {
             let g = oval
                 .solid
-                .facets
+                .facets()
                 .iter()
                 .find(|g| g.name == f.name)
                 .unwrap_or_else(|| panic!("{}", f.name));
@@ -179,14 +179,19 @@ mod tests {
         let mut n = 0;
         for f in round
             .solid
-            .facets
+            .facets()
             .iter()
             .filter(|f| crown.contains(&f.tier.as_str()))
         {
             // The plane n·x = d maps under x → (L x, y, z) to (n.x / L, n.y, n.z)·x = d.
             let m = DVec3::new(f.plane.normal.x / lw, f.plane.normal.y, f.plane.normal.z);
             let (normal, offset) = (m / m.length(), f.plane.offset / m.length());
-            let g = oval.solid.facets.iter().find(|g| g.name == f.name).unwrap();
+            let g = oval
+                .solid
+                .facets()
+                .iter()
+                .find(|g| g.name == f.name)
+                .unwrap();
             assert!(g.plane.normal.distance(normal) < 1e-9, "{}", f.name);
             assert!((g.plane.offset - offset).abs() < 1e-9, "{}", f.name);
             n += 1;

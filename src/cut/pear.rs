@@ -132,7 +132,7 @@ mod tests {
     fn pear_default_facets_and_symmetry() {
         let c = ok("pear", &[]);
         assert_brilliant_tiers(&c);
-        assert_eq!(ok("pear", &[("culet", 0.04)]).solid.facets.len(), 58 + 16);
+        assert_eq!(ok("pear", &[("culet", 0.04)]).solid.facets().len(), 58 + 16);
         assert!(
             symmetric_under(&c, flip_y),
             "pear is symmetric about its length"
@@ -188,10 +188,10 @@ mod tests {
             let x0 = 0.5 - lw / 2.0;
             let low = c
                 .solid
-                .vertices
+                .vertices()
                 .iter()
                 .copied()
-                .fold(c.solid.vertices[0], |a, v| {
+                .fold(c.solid.vertices()[0], |a, v| {
                     if v.z < a.z - 1e-12 || (v.z < a.z + 1e-12 && v.x < a.x) {
                         v
                     } else {

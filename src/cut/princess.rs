@@ -209,7 +209,7 @@ mod tests {
         for (tier, n) in want {
             assert_eq!(count(&c, tier), n, "{tier}");
         }
-        assert_eq!(c.solid.facets.len(), 9 + 8 + 32);
+        assert_eq!(c.solid.facets().len(), 9 + 8 + 32);
         for f in [flip_x, flip_y] {
             assert!(symmetric_under(&c, f));
         }
@@ -225,7 +225,7 @@ mod tests {
             let c = ok("princess", &[("pavilion_chevrons", n as f64)]);
             let pav = c
                 .solid
-                .facets
+                .facets()
                 .iter()
                 .filter(|f| f.plane.normal.z < -1e-9)
                 .count();
@@ -303,12 +303,12 @@ mod tests {
                 p.total_depth
             );
             // The mains meet in one point under the centre, also on a rectangle.
-            let low =
-                c.solid
-                    .vertices
-                    .iter()
-                    .copied()
-                    .fold(DVec3::ZERO, |a, v| if v.z < a.z { v } else { a });
+            let low = c
+                .solid
+                .vertices()
+                .iter()
+                .copied()
+                .fold(DVec3::ZERO, |a, v| if v.z < a.z { v } else { a });
             assert!(low.truncate().length() < 1e-9);
         }
     }

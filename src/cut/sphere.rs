@@ -52,7 +52,7 @@ mod tests {
     #[test]
     fn sphere_circumscribes_and_converges() {
         let c = ok("sphere", &[]);
-        assert_eq!((c.solid.facets.len(), count(&c, "sphere")), (120, 120));
+        assert_eq!((c.solid.facets().len(), count(&c, "sphere")), (120, 120));
         let mut last = f64::INFINITY;
         for n in [20.0, 50.0, 200.0, 800.0] {
             let c = ok("sphere", &[("facets", n)]);
@@ -65,10 +65,10 @@ mod tests {
             last = v;
             // Tangent planes: every vertex is at least the radius away from the centre, every
             // facet touches the sphere (offset 1/2) and the solid stays centred on the girdle plane.
-            assert!(c.solid.vertices.iter().all(|p| p.length() >= 0.5 - 1e-12));
+            assert!(c.solid.vertices().iter().all(|p| p.length() >= 0.5 - 1e-12));
             assert!(c
                 .solid
-                .facets
+                .facets()
                 .iter()
                 .all(|f| (f.plane.offset - 0.5).abs() < 1e-12));
             assert!(c.solid.centroid().length() < 0.3 / n);

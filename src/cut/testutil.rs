@@ -19,13 +19,13 @@ pub fn ok(fam: &str, kv: &[(&str, f64)]) -> Cut {
 
 /// Facet count of `tier` (all sides).
 pub fn count(c: &Cut, tier: &str) -> usize {
-    c.solid.facets.iter().filter(|f| f.tier == tier).count()
+    c.solid.facets().iter().filter(|f| f.tier == tier).count()
 }
 
 /// Whether the plane set maps onto itself under the linear map `m` (a mirror or rotation that
 /// fixes the origin): every image plane equals some plane of the cut within 1e-9.
 pub fn symmetric_under(c: &Cut, m: impl Fn(DVec3) -> DVec3) -> bool {
-    let planes: Vec<Plane> = c.solid.facets.iter().map(|f| f.plane).collect();
+    let planes: Vec<Plane> = c.solid.facets().iter().map(|f| f.plane).collect();
     planes.iter().all(|p| {
         let n = m(p.normal);
         planes
@@ -48,7 +48,7 @@ pub fn flip_y(v: DVec3) -> DVec3 {
 pub fn facet_extent(c: &Cut, name: &str) -> (DVec3, DVec3) {
     let i = c
         .solid
-        .facets
+        .facets()
         .iter()
         .position(|f| f.name == name)
         .unwrap_or_else(|| panic!("no facet {name}"));
@@ -79,7 +79,7 @@ pub fn bbox_ratio(c: &Cut) -> f64 {
 pub fn angle_of(c: &Cut, name: &str) -> f64 {
     let f = c
         .solid
-        .facets
+        .facets()
         .iter()
         .find(|f| f.name == name)
         .unwrap_or_else(|| panic!("no facet {name}"));
@@ -165,5 +165,5 @@ pub fn assert_brilliant_tiers(c: &Cut) {
     for (tier, n) in want {
         assert_eq!(count(c, tier), n, "{tier}");
     }
-    assert_eq!(c.solid.facets.len(), 57 + 16);
+    assert_eq!(c.solid.facets().len(), 57 + 16);
 }

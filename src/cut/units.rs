@@ -37,10 +37,10 @@ pub fn outline_width(pts: &[DVec3]) -> f64 {
 /// Heights of the vertices of the girdle facets (see [`is_girdle`]), facet by facet; empty
 /// for a knife-edge girdle.
 pub fn girdle_z(s: &Polyhedron) -> Vec<f64> {
-    s.facets
+    s.facets()
         .iter()
         .filter(|f| is_girdle(f.plane.normal))
-        .flat_map(|f| f.vertices.iter().map(|&v| s.vertices[v].z))
+        .flat_map(|f| f.vertices.iter().map(|&v| s.vertices()[v].z))
         .collect()
 }
 
@@ -55,8 +55,8 @@ pub fn girdle_frame(s: &Polyhedron) -> (DVec3, f64) {
     let girdle = girdle_z(s);
     let zs: Vec<f64> = if girdle.is_empty() {
         let r = |v: &DVec3| (v.x - cx).hypot(v.y - cy);
-        let rmax = s.vertices.iter().map(r).fold(0.0, f64::max);
-        s.vertices
+        let rmax = s.vertices().iter().map(r).fold(0.0, f64::max);
+        s.vertices()
             .iter()
             .filter(|v| r(v) >= rmax - 1e-7)
             .map(|v| v.z)
@@ -71,7 +71,7 @@ pub fn girdle_frame(s: &Polyhedron) -> (DVec3, f64) {
     } else {
         0.0
     };
-    (DVec3::new(cx, cy, cz), outline_width(&s.vertices))
+    (DVec3::new(cx, cy, cz), outline_width(s.vertices()))
 }
 
 #[cfg(test)]

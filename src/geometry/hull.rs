@@ -604,7 +604,7 @@ mod tests {
         assert_eq!(planes.len(), 6);
         let s = solid(&planes);
         assert!((s.volume() - 1.0).abs() < 1e-12, "volume {}", s.volume());
-        assert_eq!(s.vertices.len(), 8);
+        assert_eq!(s.vertices().len(), 8);
     }
 
     #[test]
@@ -627,8 +627,8 @@ mod tests {
     fn round_brilliant_vertices_rebuild_the_same_solid() {
         let cut =
             crate::cut::Cut::from_family("rb", "round-brilliant", &Default::default()).unwrap();
-        let planes = convex_hull(&cut.solid.vertices).unwrap();
-        assert_eq!(planes.len(), cut.solid.facets.len());
+        let planes = convex_hull(cut.solid.vertices()).unwrap();
+        assert_eq!(planes.len(), cut.solid.facets().len());
         let s = solid(&planes);
         assert!(
             (s.volume() - cut.solid.volume()).abs() < 1e-9,
@@ -636,7 +636,7 @@ mod tests {
             s.volume(),
             cut.solid.volume()
         );
-        for f in &cut.solid.facets {
+        for f in cut.solid.facets() {
             let best = planes
                 .iter()
                 .map(|p| p.normal.distance(f.plane.normal) + (p.offset - f.plane.offset).abs())
@@ -729,8 +729,8 @@ mod tests {
             })
             .collect();
         let solid = Polyhedron::from_planes(&planes).ok()?;
-        let mut pts: Vec<DVec3> = solid.vertices.clone();
-        for i in 0..solid.facets.len() {
+        let mut pts: Vec<DVec3> = solid.vertices().to_vec();
+        for i in 0..solid.facets().len() {
             let poly = solid.facet_polygon(i);
             for _ in 0..rng.random_range(0..30) {
                 let w: Vec<f64> = poly.iter().map(|_| rng.random::<f64>()).collect();
@@ -740,7 +740,7 @@ mod tests {
         }
         let c = solid.centroid();
         for _ in 0..200 {
-            let v = solid.vertices[rng.random_range(0..solid.vertices.len())];
+            let v = solid.vertices()[rng.random_range(0..solid.vertices().len())];
             pts.push(c + (v - c) * rng.random_range(0.0..0.99));
         }
         let tol = match mode {
@@ -786,8 +786,12 @@ mod tests {
             cases += 1;
             let planes = convex_hull_with_tolerance(&pts, tol)
                 .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
-            assert_eq!(planes.len(), truth.facets.len(), "seed {seed} mode {mode}");
-            for f in &truth.facets {
+            assert_eq!(
+                planes.len(),
+                truth.facets().len(),
+                "seed {seed} mode {mode}"
+            );
+            for f in truth.facets() {
                 let off = planes
                     .iter()
                     .map(|p| {

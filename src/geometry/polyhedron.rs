@@ -42,14 +42,15 @@ pub struct Edge {
 }
 
 /// A bounded convex polyhedron with derived vertices, facet polygons and adjacency.
+///
+/// Its parts are read-only: the tracers rely on the solid being convex and closed, with facet
+/// polygons, edges and planes that agree, so a `Polyhedron` is only ever made by
+/// [`Polyhedron::from_planes`] (or a transform of one) and never edited in place.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Polyhedron {
-    /// Welded vertices.
-    pub vertices: Vec<DVec3>,
-    /// Facets, in the order of the planes given (every plane becomes one facet).
-    pub facets: Vec<Facet>,
-    /// Every edge once.
-    pub edges: Vec<Edge>,
+    vertices: Vec<DVec3>,
+    facets: Vec<Facet>,
+    edges: Vec<Edge>,
 }
 
 /// A face during construction: its plane index (`None` for the starting box) and polygon.
@@ -267,6 +268,21 @@ fn clip(faces: &mut Vec<Face>, plane: &Plane, k: usize) -> bool {
 }
 
 impl Polyhedron {
+    /// Welded vertices.
+    pub fn vertices(&self) -> &[DVec3] {
+        &self.vertices
+    }
+
+    /// Facets, in the order of the planes given (every plane becomes one facet).
+    pub fn facets(&self) -> &[Facet] {
+        &self.facets
+    }
+
+    /// Every edge once.
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+
     /// Intersect the half-spaces of `planes`. Every plane must end up as a facet of positive
     /// area; the solid must be bounded and non-empty; no two planes may coincide.
     ///

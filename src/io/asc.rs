@@ -155,7 +155,7 @@ fn build_cut(planes: &[FacetPlane], name: &str, ctx: &str) -> Result<Cut> {
         })
         .collect();
     let solid = Polyhedron::from_planes(&scaled).map_err(|e| e.context(ctx))?;
-    let width = outline_width(&solid.vertices);
+    let width = outline_width(solid.vertices());
     if !(width.is_finite() && width > 1e-12) {
         return Err(Error::Geometry(format!(
             "{ctx}: the solid has no horizontal extent, so its girdle outline cannot be scaled to width 1"
@@ -551,7 +551,7 @@ pub fn write(cut: &Cut, gear: u32) -> String {
     let g = f64::from(gear);
     // (tier, angle text, distance text) → indices
     let mut groups: Vec<((String, String, String), Vec<String>)> = Vec::new();
-    for f in &cut.solid.facets {
+    for f in cut.solid.facets() {
         let n = f.plane.normal;
         let h = n.x.hypot(n.y);
         let tilt = h.atan2(n.z.abs()).to_degrees();
@@ -688,11 +688,11 @@ F Footnote one
 
         let cut = d.to_cut("mini").unwrap();
         assert_eq!(cut.name, "mini");
-        assert_eq!(cut.solid.facets.len(), 34);
+        assert_eq!(cut.solid.facets().len(), 34);
         assert!(cut.solid.volume() > 0.0);
-        let w = outline_width(&cut.solid.vertices);
+        let w = outline_width(cut.solid.vertices());
         assert!((w - 1.0).abs() < 1e-12, "outline width {w}");
-        for f in &cut.solid.facets {
+        for f in cut.solid.facets() {
             let a = facet_angle_deg(f.plane.normal);
             let want = match f.tier.as_str() {
                 "G" => 90.0,
@@ -756,7 +756,7 @@ F Footnote one
         assert!((a.solid.volume() - b.solid.volume()).abs() < 1e-12);
         same_planes(&a.solid.facet_planes(), &b.solid.facet_planes(), 1e-12).unwrap();
         // The culet faces straight down whichever way it is written.
-        let k = b.solid.facets.iter().find(|f| f.tier == "K").unwrap();
+        let k = b.solid.facets().iter().find(|f| f.tier == "K").unwrap();
         assert!(k.plane.normal.distance(DVec3::NEG_Z) < 1e-15 && k.plane.offset > 0.0);
         let k2 = parse(b"a 0 -0.9 96", "x").unwrap();
         assert_eq!(k2.planes[0].tier, "culet");
@@ -776,7 +776,7 @@ F Footnote one
             .unwrap()
             .to_cut("r")
             .unwrap();
-        let s = 1.0 / outline_width(&cut.solid.vertices);
+        let s = 1.0 / outline_width(cut.solid.vertices());
         let want: Vec<FacetPlane> = cut
             .solid
             .facet_planes()
@@ -789,7 +789,12 @@ F Footnote one
         same_planes(&want, &back.solid.facet_planes(), 1e-9)
             .unwrap_or_else(|e| panic!("gear {gear}: {e}\n{text}"));
         // Tiers survive.
-        let tiers: HashSet<&str> = back.solid.facets.iter().map(|f| f.tier.as_str()).collect();
+        let tiers: HashSet<&str> = back
+            .solid
+            .facets()
+            .iter()
+            .map(|f| f.tier.as_str())
+            .collect();
         for t in [
             "table",
             "bezel",
@@ -828,7 +833,7 @@ F Footnote one
             .unwrap()
             .to_cut("r")
             .unwrap();
-        assert_eq!(back.solid.facets.len(), cut.solid.facets.len());
+        assert_eq!(back.solid.facets().len(), cut.solid.facets().len());
     }
 
     #[test]
@@ -881,7 +886,7 @@ F Footnote one
         std::fs::write(&p, MINI).unwrap();
         let cut = read(&p).unwrap();
         assert_eq!(cut.name, "mini brilliant");
-        assert_eq!(cut.solid.facets.len(), 34);
+        assert_eq!(cut.solid.facets().len(), 34);
         let e = read(&dir.join("missing.asc")).unwrap_err().to_string();
         assert!(e.contains("missing.asc"), "{e}");
         let _ = std::fs::remove_dir_all(&dir);

@@ -131,7 +131,7 @@ impl CutSpec {
                 name: Some(cut.name.clone()),
                 facets: cut
                     .solid
-                    .facets
+                    .facets()
                     .iter()
                     .map(|f| FacetSpec {
                         name: f.name.clone(),
@@ -183,8 +183,8 @@ mod tests {
             .unwrap()
             .to_cut("y", "x.toml")
             .unwrap();
-        assert_eq!(back.solid.facets.len(), cut.solid.facets.len());
-        for (a, b) in back.solid.facets.iter().zip(&cut.solid.facets) {
+        assert_eq!(back.solid.facets().len(), cut.solid.facets().len());
+        for (a, b) in back.solid.facets().iter().zip(cut.solid.facets()) {
             assert_eq!(a.plane, b.plane);
             assert_eq!((&a.name, &a.tier), (&b.name, &b.tier));
         }

@@ -172,7 +172,7 @@ fn facet_view(
     labels: bool,
 ) {
     let mut shown: Vec<usize> = Vec::new();
-    for (i, f) in solid.facets.iter().enumerate() {
+    for (i, f) in solid.facets().iter().enumerate() {
         if !facing(f.plane.normal) {
             continue;
         }
@@ -191,7 +191,7 @@ fn facet_view(
             esc(&f.tier)
         );
     }
-    let outline = hull2(solid.vertices.iter().map(|p| view.px(proj(*p))).collect());
+    let outline = hull2(solid.vertices().iter().map(|p| view.px(proj(*p))).collect());
     let _ = writeln!(
         out,
         r#"<polygon points="{}" fill="none" stroke="{INK}" stroke-width="1.8" stroke-linejoin="round"/>"#,
@@ -206,12 +206,12 @@ fn facet_view(
         let members: Vec<usize> = shown
             .iter()
             .copied()
-            .filter(|&i| &solid.facets[i].tier == tier)
+            .filter(|&i| &solid.facets()[i].tier == tier)
             .collect();
         if members.is_empty() {
             continue;
         }
-        let centre = |i: usize| view.px(proj(solid.facets[i].centroid));
+        let centre = |i: usize| view.px(proj(solid.facets()[i].centroid));
         let at = if members.len() == 1 {
             centre(members[0])
         } else {
@@ -293,7 +293,7 @@ pub fn diagram(cut: &Cut) -> String {
     };
     sub += &format!(
         "{} facets · lengths in girdle diameters",
-        solid.facets.len()
+        solid.facets().len()
     );
     text(
         out,
@@ -481,7 +481,7 @@ fn side_annotations(
     );
     // Table width above the stone, from the table facet's extent in x.
     if let Some(ti) = solid
-        .facets
+        .facets()
         .iter()
         .enumerate()
         .filter(|(_, f)| f.plane.normal.z > 1.0 - 1e-9)
@@ -624,7 +624,11 @@ fn text_block(
         11.0,
         "start",
         grey,
-        &format!("{} facets, {} vertices", s.facets.len(), s.vertices.len()),
+        &format!(
+            "{} facets, {} vertices",
+            s.facets().len(),
+            s.vertices().len()
+        ),
     );
     y += 16.0;
     text(
@@ -711,7 +715,7 @@ mod tests {
         let svg = diagram(&cut);
         assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"));
         let elements = check_balanced(&svg).unwrap();
-        assert!(elements > cut.solid.facets.len(), "{elements}");
+        assert!(elements > cut.solid.facets().len(), "{elements}");
         for t in cut.tiers() {
             assert!(
                 svg.contains(&format!(">{}</text>", t.name)),

@@ -489,7 +489,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
     let light = Lighting::new(cfg.head_shadow_deg, &cfg.spots);
     let spot_sets = fire_lightings(cfg);
     let half = solid
-        .vertices
+        .vertices()
         .iter()
         .map(|v| v.length())
         .fold(0.0, f64::max)

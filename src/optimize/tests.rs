@@ -177,7 +177,7 @@ fn fake_verifier(cut: &Cut, photons: u64, _seed: u64) -> Result<VerifyReport> {
 }
 
 fn obj_text(cut: &Cut) -> Result<String> {
-    Ok(format!("# {} vertices\n", cut.solid.vertices.len()))
+    Ok(format!("# {} vertices\n", cut.solid.vertices().len()))
 }
 
 /// A convergence chart that writes the number of rows it was given (the real one is the plot

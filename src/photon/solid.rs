@@ -69,8 +69,8 @@ impl TraceSolid {
 
     /// Prepare `p` for tracing.
     pub fn new(p: &Polyhedron) -> Result<TraceSolid> {
-        let n = p.facets.len();
-        if n < 4 || p.vertices.is_empty() {
+        let n = p.facets().len();
+        if n < 4 || p.vertices().is_empty() {
             return Err(Error::Geometry(
                 "the solid has too few facets to trace".into(),
             ));
@@ -80,7 +80,7 @@ impl TraceSolid {
         let mut ny = vec![0.0; padded];
         let mut nz = vec![0.0; padded];
         let mut off = vec![1.0; padded];
-        for (i, f) in p.facets.iter().enumerate() {
+        for (i, f) in p.facets().iter().enumerate() {
             let m = f.plane.normal;
             if !(m.is_finite() && f.plane.offset.is_finite()) {
                 return Err(Error::Geometry(format!(
@@ -96,7 +96,7 @@ impl TraceSolid {
         let (lo, hi) = p.bounding_box();
         let centre = 0.5 * (lo + hi);
         let radius = p
-            .vertices
+            .vertices()
             .iter()
             .map(|v| v.distance(centre))
             .fold(0.0, f64::max)
@@ -124,16 +124,16 @@ impl TraceSolid {
             nz,
             off,
             f,
-            normals: p.facets.iter().map(|f| f.plane.normal).collect(),
+            normals: p.facets().iter().map(|f| f.plane.normal).collect(),
             category: p
-                .facets
+                .facets()
                 .iter()
                 .map(|f| face_category(f.plane.normal))
                 .collect(),
-            names: p.facets.iter().map(|f| f.name.clone()).collect(),
-            tiers: p.facets.iter().map(|f| f.tier.clone()).collect(),
-            vertices: p.vertices.clone(),
-            facet_vertices: p.facets.iter().map(|f| f.vertices.clone()).collect(),
+            names: p.facets().iter().map(|f| f.name.clone()).collect(),
+            tiers: p.facets().iter().map(|f| f.tier.clone()).collect(),
+            vertices: p.vertices().to_vec(),
+            facet_vertices: p.facets().iter().map(|f| f.vertices.clone()).collect(),
             centre,
             radius,
             avx2: has_avx2(),
@@ -414,7 +414,7 @@ mod tests {
         let cut = crate::io::load_cut("tolkowsky").unwrap();
         let s = TraceSolid::new(&cut.solid).unwrap();
         let (t, f) = s.entry(DVec3::new(0.01, 0.02, 3.0), DVec3::NEG_Z).unwrap();
-        assert_eq!(cut.solid.facets[f].tier, "table");
+        assert_eq!(cut.solid.facets()[f].tier, "table");
         assert!((3.0 - t - cut.solid.bounding_box().1.z).abs() < 1e-12);
         assert!(s.entry(DVec3::new(0.8, 0.0, 3.0), DVec3::NEG_Z).is_none());
         assert!(s.entry(DVec3::new(0.0, 0.0, 3.0), DVec3::Z).is_none());

@@ -260,7 +260,7 @@ fn grid_light_return(s: &Polyhedron, n: f64, depth: u32, grid: usize) -> (f64, f
         }
         // Exit facet: smallest positive distance among facets we move toward.
         let mut best = (f64::INFINITY, 0);
-        for (i, f) in s.facets.iter().enumerate() {
+        for (i, f) in s.facets().iter().enumerate() {
             let nd = f.plane.normal.dot(d);
             if nd > 0.0 {
                 let t = (f.plane.offset - f.plane.normal.dot(p)) / nd;
@@ -270,7 +270,7 @@ fn grid_light_return(s: &Polyhedron, n: f64, depth: u32, grid: usize) -> (f64, f
             }
         }
         let q = p + best.0 * d;
-        let m = s.facets[best.1].plane.normal;
+        let m = s.facets()[best.1].plane.normal;
         let f = fresnel(m.dot(d), n, 1.0);
         let r = f.reflectance();
         if let Some(out) = refract(d, m, n, 1.0) {
@@ -293,7 +293,7 @@ fn grid_light_return(s: &Polyhedron, n: f64, depth: u32, grid: usize) -> (f64, f
             // Entry: the facet with the largest t among those facing the ray.
             let o = DVec3::new(x, y, hi.z + 1.0);
             let (mut t_in, mut f_in, mut t_out) = (f64::NEG_INFINITY, 0, f64::INFINITY);
-            for (k, f) in s.facets.iter().enumerate() {
+            for (k, f) in s.facets().iter().enumerate() {
                 let nd = f.plane.normal.dot(d);
                 let t = (f.plane.offset - f.plane.normal.dot(o)) / nd;
                 if nd < 0.0 && t > t_in {
@@ -306,7 +306,7 @@ fn grid_light_return(s: &Polyhedron, n: f64, depth: u32, grid: usize) -> (f64, f
                 continue;
             }
             hits += 1;
-            let m = s.facets[f_in].plane.normal;
+            let m = s.facets()[f_in].plane.normal;
             let p = o + t_in * d;
             let r = fresnel(-m.dot(d), 1.0, n).reflectance();
             let mut acc = [0.0; 3];

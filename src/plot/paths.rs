@@ -122,7 +122,7 @@ fn clip(
 
 /// Square view window (lo, hi) around the stone's projection, `pad` times its size.
 fn window(solid: &Polyhedron, cam: Camera, pad: f64) -> ((f64, f64), (f64, f64)) {
-    let pts: Vec<(f64, f64)> = solid.vertices.iter().map(|v| cam.project(*v)).collect();
+    let pts: Vec<(f64, f64)> = solid.vertices().iter().map(|v| cam.project(*v)).collect();
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -149,13 +149,13 @@ fn draw_edges<DB: DrawingBackend, CT: plotters::coord::CoordTranslate<From = (f6
     back: RGBAColor,
 ) -> DrawResult<DB> {
     let (_, _, toward) = cam.basis();
-    for edge in &solid.edges {
+    for edge in solid.edges() {
         let visible = edge
             .facets
             .iter()
-            .any(|&f| solid.facets[f].plane.normal.dot(toward) > 1e-12);
-        let a = cam.project(solid.vertices[edge.a]);
-        let b = cam.project(solid.vertices[edge.b]);
+            .any(|&f| solid.facets()[f].plane.normal.dot(toward) > 1e-12);
+        let a = cam.project(solid.vertices()[edge.a]);
+        let b = cam.project(solid.vertices()[edge.b]);
         let style = if visible {
             front.stroke_width(1)
         } else {
@@ -323,7 +323,7 @@ impl Facets<'_> {
             .draw()?;
         let plot = chart.plotting_area();
         let (_, _, toward) = cam.basis();
-        for (i, f) in self.solid.facets.iter().enumerate() {
+        for (i, f) in self.solid.facets().iter().enumerate() {
             let facing = f.plane.normal.dot(toward);
             if facing <= 1e-9 {
                 continue;

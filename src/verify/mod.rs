@@ -110,7 +110,7 @@ pub struct BrillianceMc {
 /// The solid turned by the rotation of a pose (stone → world).
 fn turned(solid: &Polyhedron, rot: glam::DMat3) -> Result<Polyhedron> {
     let planes: Vec<FacetPlane> = solid
-        .facets
+        .facets()
         .iter()
         .map(|f| {
             FacetPlane::new(

@@ -164,7 +164,7 @@ const WELD_ROUNDS: usize = 8;
 /// move, or `None` when nothing is within `eps`.
 fn weld_once(planes: &[FacetPlane], eps: f64) -> Option<(Vec<FacetPlane>, usize, usize, f64)> {
     let s = Polyhedron::from_planes(planes).ok()?;
-    let mut root: Vec<usize> = (0..s.vertices.len()).collect();
+    let mut root: Vec<usize> = (0..s.vertices().len()).collect();
     fn find(root: &mut [usize], mut i: usize) -> usize {
         while root[i] != i {
             root[i] = root[root[i]];
@@ -173,9 +173,9 @@ fn weld_once(planes: &[FacetPlane], eps: f64) -> Option<(Vec<FacetPlane>, usize,
         i
     }
     let mut merged = 0;
-    let mut size = vec![1usize; s.vertices.len()];
-    for e in &s.edges {
-        if s.vertices[e.a].distance(s.vertices[e.b]) < eps {
+    let mut size = vec![1usize; s.vertices().len()];
+    for e in s.edges() {
+        if s.vertices()[e.a].distance(s.vertices()[e.b]) < eps {
             let (a, b) = (find(&mut root, e.a), find(&mut root, e.b));
             if a != b {
                 root[a.max(b)] = a.min(b);
@@ -187,20 +187,20 @@ fn weld_once(planes: &[FacetPlane], eps: f64) -> Option<(Vec<FacetPlane>, usize,
     if merged == 0 {
         return None;
     }
-    let n = s.vertices.len();
+    let n = s.vertices().len();
     let mut sum = vec![(DVec3::ZERO, 0.0); n];
     for i in 0..n {
         let r = find(&mut root, i);
-        sum[r].0 += s.vertices[i];
+        sum[r].0 += s.vertices()[i];
         sum[r].1 += 1.0;
     }
     let mut spread: f64 = 0.0;
     for i in 0..n {
         let r = find(&mut root, i);
-        spread = spread.max(s.vertices[i].distance(sum[r].0 / sum[r].1));
+        spread = spread.max(s.vertices()[i].distance(sum[r].0 / sum[r].1));
     }
     let (mut out, mut dropped) = (Vec::with_capacity(planes.len()), 0);
-    for (f, p) in s.facets.iter().zip(planes.iter().cloned()) {
+    for (f, p) in s.facets().iter().zip(planes.iter().cloned()) {
         let mut ids: Vec<usize> = f.vertices.iter().map(|&v| find(&mut root, v)).collect();
         ids.dedup();
         while ids.len() > 1 && ids.first() == ids.last() {

@@ -145,14 +145,14 @@ pub fn write_obj(cut: &Cut) -> String {
     let _ = writeln!(
         out,
         "# {} vertices, {} facets (one polygon each, counter-clockwise seen from outside)",
-        s.vertices.len(),
-        s.facets.len()
+        s.vertices().len(),
+        s.facets().len()
     );
     let _ = writeln!(out, "o {}", token(&cut.name, "cut"));
-    for v in &s.vertices {
+    for v in s.vertices() {
         let _ = writeln!(out, "v {} {} {}", v.x, v.y, v.z);
     }
-    for f in &s.facets {
+    for f in s.facets() {
         let _ = writeln!(out, "g {}", token(&f.name, "facet"));
         let idx: Vec<String> = f.vertices.iter().map(|i| (i + 1).to_string()).collect();
         let _ = writeln!(out, "f {}", idx.join(" "));

@@ -142,7 +142,7 @@ fn read_ascii_stl(bytes: &[u8], source: &str) -> Result<Points> {
 /// Triangles of every facet (fans over the convex facet polygons) with the facet's normal.
 fn triangles(s: &Polyhedron) -> Vec<(DVec3, [DVec3; 3])> {
     let mut out = Vec::new();
-    for (i, f) in s.facets.iter().enumerate() {
+    for (i, f) in s.facets().iter().enumerate() {
         let p = s.facet_polygon(i);
         for k in 1..p.len().saturating_sub(1) {
             out.push((f.plane.normal, [p[0], p[k], p[k + 1]]));

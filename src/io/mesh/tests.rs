@@ -15,8 +15,8 @@ fn brilliant() -> Cut {
 /// the readers do (a round brilliant with N tangent girdle facets is 1/cos(180°/N) wide).
 fn assert_same(a: &Cut, b: &[FacetPlane], tol: f64, vol_tol: f64) {
     let a = a.solid.scaled(1.0 / girdle_frame(&a.solid).1);
-    assert_eq!(b.len(), a.facets.len());
-    for f in &a.facets {
+    assert_eq!(b.len(), a.facets().len());
+    for f in a.facets() {
         let best = b
             .iter()
             .map(|p| {
@@ -106,14 +106,14 @@ fn coarse_coordinates_still_merge_into_facets() {
     let c = brilliant();
     for decimals in [6, 4] {
         let mut obj = String::new();
-        for v in &c.solid.vertices {
+        for v in c.solid.vertices() {
             let w = *v * 6.5 + DVec3::new(1.0, 2.0, 3.0);
             obj += &format!(
                 "v {:.*} {:.*} {:.*}\n",
                 decimals, w.x, decimals, w.y, decimals, w.z
             );
         }
-        for f in &c.solid.facets {
+        for f in c.solid.facets() {
             for k in 1..f.vertices.len() - 1 {
                 let t = [f.vertices[0], f.vertices[k], f.vertices[k + 1]];
                 obj += &format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
@@ -136,7 +136,7 @@ fn binary_stl_starting_with_solid_is_read_as_binary() {
 fn moved_and_scaled_mesh_is_normalised() {
     let c = brilliant();
     let mut text = String::new();
-    for v in &c.solid.vertices {
+    for v in c.solid.vertices() {
         let w = *v * 6.5 + DVec3::new(10.0, -3.0, 2.0);
         text += &format!("v {} {} {}\n", w.x, w.y, w.z);
     }
@@ -384,17 +384,17 @@ fn many_facets_in_azimuth_order_still_make_a_solid() {
     }
     let planes = read_obj(text.as_bytes(), "ball.obj").unwrap();
     let s = Polyhedron::from_planes(&planes).unwrap();
-    assert_eq!(s.facets.len(), planes.len());
-    for (f, p) in s.facets.iter().zip(&planes) {
+    assert_eq!(s.facets().len(), planes.len());
+    for (f, p) in s.facets().iter().zip(&planes) {
         assert_eq!((&f.name, f.plane), (&p.name, p.plane));
     }
-    for e in &s.edges {
+    for e in s.edges() {
         for k in e.facets {
-            let poly = &s.facets[k].vertices;
+            let poly = &s.facets()[k].vertices;
             assert!(poly.contains(&e.a) && poly.contains(&e.b));
         }
     }
-    assert_eq!(s.vertices.len() + s.facets.len(), s.edges.len() + 2);
+    assert_eq!(s.vertices().len() + s.facets().len(), s.edges().len() + 2);
     let ball = 4.0 / 3.0 * std::f64::consts::PI * 0.125;
     assert!(s.volume() > 0.9 * ball && s.volume() < ball);
 }
@@ -411,7 +411,7 @@ fn read_by_extension() {
     let a = read(&obj).unwrap();
     assert_eq!(a.name, "gem");
     assert!((a.solid.volume() - c.solid.volume()).abs() < 1e-9);
-    assert_eq!(read(&stl).unwrap().solid.facets.len(), 73);
+    assert_eq!(read(&stl).unwrap().solid.facets().len(), 73);
     let e = read(dir.join("gem.ply")).unwrap_err().to_string();
     assert!(e.contains("allowed: .obj, .stl"), "{e}");
     let e = read(dir.join("missing.obj")).unwrap_err().to_string();
@@ -435,14 +435,19 @@ fn binary_stl_culet_cluster_is_welded_and_reported() {
         note.starts_with("welded ") && note.contains("0 facets dropped"),
         "{note}"
     );
-    assert_eq!(a.solid.facets.len(), c.solid.facets.len());
-    assert_eq!(a.solid.vertices.len(), c.solid.vertices.len(), "{note}");
+    assert_eq!(a.solid.facets().len(), c.solid.facets().len());
+    assert_eq!(a.solid.vertices().len(), c.solid.vertices().len(), "{note}");
     let low = a.solid.bounding_box().0.z;
-    let at_bottom = a.solid.vertices.iter().filter(|v| v.z < low + 1e-6).count();
+    let at_bottom = a
+        .solid
+        .vertices()
+        .iter()
+        .filter(|v| v.z < low + 1e-6)
+        .count();
     assert_eq!(at_bottom, 1);
     // Full precision: nothing to weld, the planes are read as before.
     let (b, note) = read_with_note(&obj).unwrap();
     assert_eq!(note, None);
-    assert_eq!(b.solid.vertices.len(), c.solid.vertices.len());
+    assert_eq!(b.solid.vertices().len(), c.solid.vertices().len());
     std::fs::remove_dir_all(&dir).unwrap();
 }
