@@ -297,7 +297,7 @@ impl Polyhedron {
     ///     .map(|(i, n)| FacetPlane::new(*n, 0.5, format!("f{i}"), "side"))
     ///     .collect();
     /// let cube = Polyhedron::from_planes(&planes).unwrap();
-    /// assert_eq!((cube.vertices.len(), cube.edges.len(), cube.facets.len()), (8, 12, 6));
+    /// assert_eq!((cube.vertices().len(), cube.edges().len(), cube.facets().len()), (8, 12, 6));
     /// assert!((cube.volume() - 1.0).abs() < 1e-12);
     ///
     /// // A plane that never touches the solid is an error naming the facet.

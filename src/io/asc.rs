@@ -543,7 +543,7 @@ fn token(name: &str) -> String {
 /// let text = asc::write(&cut, 96);
 /// assert!(text.starts_with("GemCad"));
 /// let back = asc::parse(text.as_bytes(), "gia.asc").unwrap().to_cut("gia").unwrap();
-/// assert_eq!(back.solid.facets.len(), cut.solid.facets.len());
+/// assert_eq!(back.solid.facets().len(), cut.solid.facets().len());
 /// assert!((back.proportions().crown_angle - 34.0).abs() < 1e-6);
 /// ```
 pub fn write(cut: &Cut, gear: u32) -> String {

@@ -68,7 +68,7 @@ pub fn line_of(text: &str, pos: usize) -> usize {
 /// let cut = facetlab::io::load_cut("tolkowsky").unwrap();
 /// assert_eq!(cut.family.as_deref(), Some("round-brilliant"));
 /// // 57 facets of the brilliant plus 16 girdle facets.
-/// assert_eq!(cut.solid.facets.len(), 73);
+/// assert_eq!(cut.solid.facets().len(), 73);
 /// // An unknown name is an error that names it.
 /// let e = facetlab::io::load_cut("nosuchcut").unwrap_err().to_string();
 /// assert!(e.contains("nosuchcut"), "{e}");
