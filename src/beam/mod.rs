@@ -61,7 +61,7 @@ use glam::{DMat3, DVec2, DVec3};
 /// that tail has hundreds of thousands of beams; cut off at 1e-6 it still loses about 0.8 % of
 /// the light. Narrow beams keep that tail's power in play at the cost of one ray each.
 ///
-/// What that costs in exactness (measured against [`reference`], `cargo bench --bench exact`):
+/// What that costs in exactness (measured against [`reference`](mod@reference), `cargo bench --bench exact`):
 /// each narrow beam's ray samples its beam at one point, so its light goes all one way where
 /// the beam would have straddled facet edges. Over a trace these errors add like noise (the
 /// largest narrow beams dominate; their sum is the whole difference from the reference), so
