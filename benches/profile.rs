@@ -37,7 +37,9 @@ fn cut(pavilion: f64) -> Cut {
 fn roughness(f: &[f64]) -> (f64, f64, f64) {
     let (lo, hi) = f
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
     let tv: f64 = f.windows(2).map(|w| (w[1] - w[0]).abs()).sum();
     let mut d2: Vec<f64> = f
         .windows(3)

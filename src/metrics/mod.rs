@@ -449,6 +449,8 @@ struct PoseResult {
 struct PoseSink<'a> {
     rot: DMat3,
     light: &'a Lighting,
+    /// Fire's placements, when this job's first images are theirs (all of them, in order).
+    lattice: Option<&'a FireLattice<'a>>,
     spots: Vec<&'a Lighting>,
     area: f64,
     face_up: bool,
@@ -479,7 +481,20 @@ impl ExitSink for PoseSink<'_> {
             r.cos += p * self.light.cos(w);
         }
         let mut a = -1.0;
-        for (img, light) in r.images.iter_mut().zip(&self.spots) {
+        let mut skip = 0;
+        if let Some(lat) = self.lattice {
+            skip = lat.lightings.len();
+            let (images, scale) = (&mut r.images[..skip], p * self.area);
+            lat.for_each(w, |k, l| {
+                if a < 0.0 {
+                    a = clip2d::area(fp);
+                }
+                if l > 0.0 && a > 0.0 {
+                    images[k].add_polygon(fp, l * scale / a);
+                }
+            });
+        }
+        for (img, light) in r.images.iter_mut().zip(&self.spots).skip(skip) {
             if light.near_spot(w) {
                 let l = light.spots(w);
                 if a < 0.0 {
@@ -495,12 +510,14 @@ impl ExitSink for PoseSink<'_> {
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 fn run_job(
     stone: &Stone,
     solid: &Polyhedron,
     job: &Job,
     light: &Lighting,
     lightings: &[Lighting],
+    lattice: &FireLattice,
     cfg: &ScoreConfig,
     half: f64,
 ) -> PoseResult {
@@ -512,10 +529,17 @@ fn run_job(
         split_threshold: job.split,
         ..cfg.trace
     };
-    let spots: Vec<&Lighting> = job.images.iter().filter_map(|&i| lightings.get(i)).collect();
+    let spots: Vec<&Lighting> = job
+        .images
+        .iter()
+        .filter_map(|&i| lightings.get(i))
+        .collect();
+    let n = lattice.lightings.len();
+    let has_fire = job.images.len() >= n && job.images[..n].iter().copied().eq(0..n);
     let mut sink = PoseSink {
         rot,
         light,
+        lattice: has_fire.then_some(lattice),
         area: solid.projected_area(-frame.dir),
         face_up: job.face_up,
         brilliance: job.brilliance,
@@ -661,9 +685,10 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
                 .collect()
         })
         .collect();
+    let lattice = FireLattice::new(&placements, &lightings[..first_turn]);
     let results: Vec<PoseResult> = jobs
         .par_iter()
-        .map(|j| run_job(&stone, solid, j, &light, &lightings, cfg, half))
+        .map(|j| run_job(&stone, solid, j, &light, &lightings, &lattice, cfg, half))
         .collect();
     let image = |k: usize, l: usize| -> Option<&Raster> {
         let pos = jobs[k].images.iter().position(|&x| x == l)?;
@@ -737,6 +762,103 @@ pub struct Placement {
     pub lift_deg: f64,
     /// Weight in fire's average (the weights need not add up to 1).
     pub weight: f64,
+}
+
+/// Fire's placements arranged for a quick lookup: for a direction, only the placements whose
+/// turned and lifted spots can reach it are visited (equal turn steps make them a short
+/// range of indices per spot), so the cost hardly grows with the number of placements.
+struct FireLattice<'a> {
+    lightings: &'a [Lighting],
+    /// Per spot of the base set: elevation and azimuth of its centre, reach (angular radius
+    /// with the soft rim, degrees), smallest cosine of its elevation over the lifts.
+    spots: Vec<(f64, f64, f64, f64)>,
+    lifts: Vec<f64>,
+    step: f64,
+}
+
+impl<'a> FireLattice<'a> {
+    fn new(placements: &[Placement], lightings: &'a [Lighting]) -> FireLattice<'a> {
+        let lifts: Vec<f64> = placements.iter().map(|p| p.lift_deg).collect();
+        let (lo, hi) = lifts
+            .iter()
+            .fold((0.0f64, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
+        let spots = placements.first().map_or_else(Vec::new, |p0| {
+            p0.spots
+                .iter()
+                .map(|s| {
+                    let base = s.elevation_deg - p0.lift_deg;
+                    let top = (base + hi)
+                        .clamp(1.0, 89.0)
+                        .max((base + lo).clamp(1.0, 89.0));
+                    (
+                        base,
+                        s.azimuth_deg - p0.turn_deg,
+                        s.radius_deg + lighting::EDGE_DEG + 1e-6,
+                        top.to_radians().cos(),
+                    )
+                })
+                .collect()
+        });
+        FireLattice {
+            lightings,
+            spots,
+            lifts,
+            step: 360.0 / placements.len().max(1) as f64,
+        }
+    }
+
+    /// Calls `f(k, radiance)` for every placement `k` whose spots light direction `w`
+    /// (each spot separately, head shadow applied).
+    #[inline]
+    fn for_each(&self, w: DVec3, mut f: impl FnMut(usize, f64)) {
+        let n = self.lightings.len();
+        if n == 0 {
+            return;
+        }
+        let e = lighting::elevation_deg(w);
+        let az = w.y.atan2(w.x).to_degrees();
+        let head = self.lightings[0].head(w);
+        if head == 0.0 {
+            return;
+        }
+        let (lo, hi) = self
+            .lifts
+            .iter()
+            .fold((0.0f64, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
+        for (i, &(base, a0, reach, cos_top)) in self.spots.iter().enumerate() {
+            if e < (base + lo).clamp(1.0, 89.0) - reach || e > (base + hi).clamp(1.0, 89.0) + reach
+            {
+                continue;
+            }
+            // 1 − cos Δa ≤ (1 − cos ρ) / (cos e · cos ε): the azimuths within reach.
+            let x = (1.0 - reach.to_radians().cos()) / (e.to_radians().cos() * cos_top).max(1e-300);
+            let half = if x >= 2.0 {
+                180.0
+            } else {
+                (1.0 - x).acos().to_degrees()
+            };
+            let t0 = az - a0;
+            let (k0, k1) = if half >= 180.0 {
+                (0, n as i64 - 1)
+            } else {
+                (
+                    ((t0 - half) / self.step).ceil() as i64,
+                    ((t0 + half) / self.step).floor() as i64,
+                )
+            };
+            for kk in k0..=k1.min(k0 + n as i64 - 1) {
+                let k = kk.rem_euclid(n as i64) as usize;
+                let ek = (base + self.lifts[k]).clamp(1.0, 89.0);
+                if (e - ek).abs() > reach {
+                    continue;
+                }
+                let l = self.lightings[k].spot(i, w);
+                if l > 0.0 {
+                    f(k, l * head);
+                }
+            }
+        }
+    }
 }
 
 /// Largest raising or lowering of the spot lights in fire's average, degrees.
