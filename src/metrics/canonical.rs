@@ -21,14 +21,16 @@
 //! * **facet order**: facets are sorted by a key that is the same for the same set of planes
 //!   (tilt, distance from the centroid, azimuth), so the tracer's first facet — and the
 //!   symmetry wedge it derives from it — is the same facet of the same solid;
-//! * **a fixed turn of [`TURN_DEG`]** about the axis. Cuts are drawn with their mirror lines
-//!   on azimuth 0; the tracer reduces the azimuth of a mirror modulo the symmetry's angle, and
-//!   a mirror at azimuth 0 lands on either end of that range by rounding, giving one of two
-//!   fundamental wedges (the same light, but split differently: the narrow-beam
-//!   approximation then differs by up to 1e-4). Mirror lines also put poses tilted toward
-//!   azimuth 0 exactly in a mirror plane, where symmetric beams send their centre rays
-//!   exactly onto edges. Turned by half a degree, neither happens. A turn is a different
-//!   pose, but the scores average over turns (see [`super`]), so it moves them very little.
+//!
+//! Rounding also settles the tracer's choice of symmetry wedge: cuts are drawn with mirror
+//! lines on azimuth 0, and the tracer reduces a mirror's azimuth modulo the symmetry's angle;
+//! a mirror at ±1e-17 lands on either end of that range and gives one of two wedges (the same
+//! light, split differently, so the narrow-beam approximation differed by up to 1e-4).
+//! Rounded, a normal on azimuth 0 has a y component of exactly 0.
+//!
+//! The stone is not turned about its axis: turning it is a different pose (see the module
+//! documentation of [`super`] for how the scores average over turning). (Turning it by half
+//! a degree away from its mirror lines was tried: it doubled the time of a score.)
 
 use crate::geometry::{FacetPlane, Polyhedron};
 use glam::DVec3;
@@ -39,10 +41,7 @@ const QUANTUM: f64 = 1e-7;
 /// Grid the canonical normals and offsets are rounded to.
 const GRID: f64 = 1.0 / (1u64 << 36) as f64;
 
-/// The fixed turn of the canonical placement about the z axis, degrees.
-pub const TURN_DEG: f64 = 0.5;
-
-/// The solid moved, scaled, turned, rounded and with its facets ordered as described in the module
+/// The solid moved, scaled, rounded and with its facets ordered as described in the module
 /// documentation; the solid itself (cloned) when it is degenerate.
 pub fn canonical(solid: &Polyhedron) -> Polyhedron {
     let c = solid.centroid();
@@ -52,7 +51,6 @@ pub fn canonical(solid: &Polyhedron) -> Polyhedron {
         return solid.clone();
     }
     let k = 1.0 / size;
-    let turn = glam::DMat3::from_rotation_z(TURN_DEG.to_radians());
     let grid = |x: f64| (x / GRID).round() * GRID;
     let mut keyed: Vec<((i64, i64, i64), FacetPlane)> = solid
         .facet_planes()
@@ -60,7 +58,6 @@ pub fn canonical(solid: &Polyhedron) -> Polyhedron {
         .map(|mut f| {
             let n = f.plane.normal;
             let offset = grid((f.plane.offset - n.dot(c)) * k);
-            let n = turn * n;
             let n = DVec3::new(grid(n.x), grid(n.y), grid(n.z)).normalize();
             f.plane.normal = n;
             f.plane.offset = offset;
