@@ -68,30 +68,30 @@ fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 10]) {
 
 /// Default [`ScoreConfig`]: diamond, polarization on, no head shadow.
 const TOLKOWSKY_DEFAULT: [f64; 10] = [
-    0.777854086672, // brilliance
-    0.884237571877, // brilliance_iso
-    0.671470601466, // brilliance_cos
-    0.723287615524, // fire
-    0.465840324576, // scintillation
-    0.227416918431, // aset.blue
-    0.499198038106, // aset.red
-    0.197556207704, // aset.green
-    0.075828835760, // aset.leak
-    0.924627657408, // overhead_light_return
+    0.777872406094, // brilliance
+    0.884244824435, // brilliance_iso
+    0.671499987753, // brilliance_cos
+    0.749192770305, // fire
+    0.599655916523, // scintillation
+    0.227416956899, // aset.blue
+    0.499197272001, // aset.red
+    0.197550446514, // aset.green
+    0.075835324586, // aset.leak
+    0.924623989549, // overhead_light_return
 ];
 
 /// Cubic zirconia, polarization off, a 15° head shadow; the rest default.
 const TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15: [f64; 10] = [
-    0.623006815085, // brilliance
-    0.709797495852, // brilliance_iso
-    0.536216134318, // brilliance_cos
-    1.087712792300, // fire
-    0.397206512950, // scintillation
-    0.256130608363, // aset.blue
-    0.554004522690, // aset.red
-    0.152928915878, // aset.green
-    0.036935953069, // aset.leak
-    0.962972629309, // overhead_light_return
+    0.623002936178, // brilliance
+    0.709793412288, // brilliance_iso
+    0.536212460068, // brilliance_cos
+    1.132176909986, // fire
+    0.512884923002, // scintillation
+    0.256002316467, // aset.blue
+    0.554106007084, // aset.red
+    0.152947204476, // aset.green
+    0.036944471974, // aset.leak
+    0.962964085871, // overhead_light_return
 ];
 
 #[test]

@@ -165,6 +165,22 @@ impl Lighting {
         }
     }
 
+    /// Radiance of spot `i` alone (soft rim), without the head shadow; 0 for a missing spot.
+    #[inline]
+    pub fn spot(&self, i: usize, w: DVec3) -> f64 {
+        let Some(&(c, inner, outer, radius)) = self.spots.get(i) else {
+            return 0.0;
+        };
+        let d = w.dot(c);
+        if d <= outer {
+            0.0
+        } else if d >= inner {
+            1.0
+        } else {
+            1.0 - soft_above(d.clamp(-1.0, 1.0).acos().to_degrees(), radius)
+        }
+    }
+
     /// Whether [`Lighting::spots`] can be non-zero for `w` (cheap pre-test).
     #[inline]
     pub fn near_spot(&self, w: DVec3) -> bool {

@@ -15,6 +15,21 @@
 //! small jumps come from the tracer's approximations below its thresholds
 //! ([`TraceOptions`]): each is at most a narrow beam's power (< 1e-4 of the light by default).
 //!
+//! # Same solid, same scores; turned stone, nearly the same scores
+//!
+//! Scores are functions of the solid, not of its numbers: it is first put in the canonical
+//! placement of [`canonical`] (centroid at the origin, unit size, facets in a canonical
+//! order), so a translated, uniformly scaled, reordered or symmetry-rotated copy of a stone
+//! scores the same to rounding. A stone turned about its axis by an arbitrary angle is a
+//! different pose under the (fixed) lights and tilted viewer, but every score is an average
+//! over evenly spaced turns: brilliance over the ring poses of [`Tilt::default_set`] (five
+//! azimuths per ring), fire over [`fire_placements`] (turns of the lights in steps of
+//! 360°/17), scintillation over [`scintillation_turns`] (five rocking azimuths). An average of
+//! N evenly spaced turns of an m-fold symmetric stone keeps only the azimuthal harmonics that
+//! are multiples of both m and N (the 40th for a round brilliant and N = 5), so turning the
+//! stone moves the scores very little; turns by multiples of 360°/N (and the stone's own
+//! symmetries) not at all.
+//!
 //! # The scores
 //!
 //! * **`overhead_light_return`** ∈ [0, 1]: the share of a parallel beam from straight above,
@@ -30,39 +45,48 @@
 //!   with equal weights over the poses [`ScoreConfig::tilts`] (face-up and two rings of
 //!   tilted poses by default) — GIA's weighted light return in spirit.
 //!   **`brilliance`** = (ISO + COS) / 2.
-//! * **`fire`** ≥ 0, in percent (0.7 for a Tolkowsky diamond, 1.2 for the same cut in cubic
-//!   zirconia): saturated colour under small light sources. The face-up view is traced at
-//!   [`ScoreConfig::bands`] wavelengths (band centres across 380–780 nm); each band's image of
-//!   the spot lights ([`lighting::Spot::default_set`], seven 5° spots of radiance 1) is
+//! * **`fire`** ≥ 0, in percent (about 0.7 for a Tolkowsky diamond, more for the same cut in
+//!   cubic zirconia): saturated colour under small light sources, as an *expectation over the
+//!   ways a face-up stone meets its lights*. The face-up view is traced at
+//!   [`ScoreConfig::bands`] wavelengths (band centres across 380–780 nm); for one placement of
+//!   the spot lights ([`Spot::default_set`], seven 5° spots of radiance 1) each band's image is
 //!   rasterised with exact footprint coverage; each pixel's spectrum becomes CIE XYZ with
 //!   D65-weighted CIE 1931 bands ([`color::band_weights_d65`]) and then CIELAB relative to
-//!   the D65 white of the spots' radiance (Y = 1). Fire is `100 · Σ Y·s` over the face-up
-//!   outline per unit of its area, `s = C*ab / L*` the pixel's saturation: coloured light per
-//!   unit of face-up area. `s` hardly depends on brightness, so fire is linear in the light
-//!   and one concentrated flash cannot dominate (luminance × chroma grows like Y^4/3 and did).
-//!   Fire is averaged over [`ScoreConfig::fire_placements`] placements of the spot set
-//!   ([`fire_lightings`]: turned by golden angles, raised or lowered by up to 4.5°), as a
-//!   viewer sees a stone under lights in many places: with one placement a coloured flash
-//!   crossing one spot's rim made fire jump sevenfold within 0.1° of pavilion angle; averaged,
-//!   the same neighbourhood varies by under 1.5×. A material without dispersion gives
-//!   identical bands, hence grey pixels, hence 0 (to rounding). Fire's traces split down to
+//!   the D65 white of the spots' radiance (Y = 1). One placement's fire is `100 · Σ Y·s` over
+//!   the face-up outline per unit of its area, `s = C*ab / L*` the pixel's saturation:
+//!   coloured light per unit of face-up area (`s` hardly depends on brightness, so fire is
+//!   linear in the light and one concentrated flash cannot dominate). Fire is the weighted
+//!   mean over [`fire_placements`]: the lights turned about the zenith in equal steps (the
+//!   stone turning under them: the face-up traces are shared, only the lights move) and
+//!   raised or lowered by up to [`FIRE_LIFT_DEG`] with a smooth raised-cosine weight (the
+//!   stone rocking a little under them). A single placement is a checkerboard of single
+//!   flashes in the cut's parameters (a dispersed fan crossing one spot's rim); the
+//!   expectation varies smoothly. A grey pixel (every band the same) contributes exactly 0, so
+//!   a material without dispersion has fire exactly 0. Fire's traces split down to
 //!   [`ScoreConfig::fire_split_threshold`] (1e-5), ten times finer than the others.
 //! * **`scintillation`** ∈ [0, 1]: how much the face-up pattern of bright and dark changes as
-//!   the stone rocks. The image of the spot lights at [`ScoreConfig::wavelength_nm`] is taken
-//!   at each tilt of [`ScoreConfig::scintillation_tilts`] (rocking about the x axis,
-//!   −6°…6° in 2° steps by default); the score is `Σₖ Σₚ |Iₖ₊₁ − Iₖ| / Σₖ Σₚ (Iₖ₊₁ + Iₖ)`: 0 when
-//!   nothing changes, 1 when consecutive patterns never overlap.
+//!   the stone rocks, in every direction. For each of [`ScoreConfig::scintillation_turns`]
+//!   evenly spaced azimuths ψ ([`scintillation_turns`]) the stone is rocked toward ψ through
+//!   [`ScoreConfig::scintillation_tilts`] (0° then 3° by default) under the spot lights
+//!   turned by ψ — a turn of the whole scene, i.e. the stone turned by −ψ — and its image of
+//!   the spots at [`ScoreConfig::wavelength_nm`] taken at each tilt. The score is
+//!   `Σ_ψ Σₖ Σₚ |Iₖ₊₁ − Iₖ| / Σ_ψ Σₖ Σₚ (Iₖ₊₁ + Iₖ)`: 0 when nothing changes, 1 when
+//!   consecutive patterns never overlap. (Rocking about one axis only made the score depend
+//!   on how the stone was turned: 0.466 → 0.509 for a round brilliant turned by 22.5°.)
 //! * **`aset`** `{blue, red, green, leak}`, each ∈ [0, 1], sum 1: the shares of the face-up
 //!   view (by power, over the traced light; cut-off light excluded) whose sight lines leave
 //!   the stone toward 75–90° elevation (blue), 45–75° (red), 0–45° (green) or below the
 //!   horizon (leak), with ±1° soft boundaries. No head obstruction is applied: in a real ASET
 //!   the viewing port at the top is dark; here that light counts as blue.
 
+pub mod canonical;
 pub mod lighting;
 pub mod raster;
 
 #[cfg(test)]
 mod golden;
+#[cfg(test)]
+mod invariance;
 #[cfg(test)]
 mod tests;
 
@@ -144,13 +168,17 @@ pub struct ScoreConfig {
     pub spots: Vec<Spot>,
     /// Wavelength bands for fire (equal bands across 380–780 nm). Default 8.
     pub bands: usize,
-    /// Rocking sequence for scintillation: tilts about the x axis, degrees, in order.
-    /// Default −6°, −4°, …, 6°.
+    /// Rocking sequence for scintillation: tilts toward each of the
+    /// [`ScoreConfig::scintillation_turns`] azimuths, degrees, in order (consecutive images
+    /// are compared; a tilt of 0 is the face-up trace, shared). Default 0°, 3°.
     pub scintillation_tilts: Vec<f64>,
+    /// Number of evenly spaced azimuths toward which scintillation rocks the stone
+    /// ([`scintillation_turns`]), the spot lights turning with it. Default 5.
+    pub scintillation_turns: usize,
     /// Pixels per side of the fire and scintillation images. Default 64.
     pub resolution: usize,
-    /// Placements of the spot lights that fire is averaged over ([`fire_lightings`]).
-    /// Default 8.
+    /// Placements of the spot lights that fire is averaged over ([`fire_placements`]).
+    /// Default 17.
     pub fire_placements: usize,
     /// Tracer settings (footprints are switched on where needed).
     pub trace: TraceOptions,
@@ -171,9 +199,10 @@ impl Default for ScoreConfig {
             tilts: Tilt::default_set(),
             spots: Spot::default_set(),
             bands: 8,
-            scintillation_tilts: (-3..=3).map(|k| 2.0 * k as f64).collect(),
+            scintillation_tilts: vec![0.0, 3.0],
+            scintillation_turns: 5,
             resolution: 64,
-            fire_placements: 8,
+            fire_placements: 17,
             trace: TraceOptions::default(),
             fire_split_threshold: 1e-5,
         }
@@ -182,7 +211,8 @@ impl Default for ScoreConfig {
 
 impl ScoreConfig {
     /// A quicker configuration for searches: narrow beams from 1e-3 of the light, 6 bands,
-    /// face-up plus five poses at 15°, five rocking steps, 48 pixels. Brilliance stays within
+    /// face-up plus five poses at 15°, rocking toward three azimuths, seven placements of the
+    /// spot lights for fire, 48 pixels. Brilliance stays within
     /// about 1e-3 of the default configuration; fire and scintillation are much coarser
     /// (tens of percent).
     pub fn fast() -> ScoreConfig {
@@ -194,9 +224,10 @@ impl ScoreConfig {
                 }))
                 .collect(),
             bands: 6,
-            scintillation_tilts: vec![-6.0, -3.0, 0.0, 3.0, 6.0],
+            scintillation_tilts: vec![0.0, 3.0],
+            scintillation_turns: 3,
             resolution: 48,
-            fire_placements: 4,
+            fire_placements: 7,
             trace: TraceOptions {
                 split_threshold: 1e-3,
                 ..TraceOptions::default()
@@ -274,6 +305,21 @@ impl ScoreConfig {
                 "at least two tilts, each within ±60°",
             ));
         }
+        if !(1..=64).contains(&self.scintillation_turns) {
+            return Err(Error::invalid(
+                "scintillation-turns",
+                format!(
+                    "{} is out of range; allowed 1 to 64",
+                    self.scintillation_turns
+                ),
+            ));
+        }
+        if !(1..=256).contains(&self.fire_placements) {
+            return Err(Error::invalid(
+                "fire-placements",
+                format!("{} is out of range; allowed 1 to 256", self.fire_placements),
+            ));
+        }
         if !(8..=1024).contains(&self.resolution) {
             return Err(Error::invalid(
                 "resolution",
@@ -346,7 +392,8 @@ pub fn overhead_light_return(
         split_threshold: ScoreConfig::default().fire_split_threshold,
         ..Default::default()
     };
-    overhead_light_return_with(&Stone::new(solid), material.ri(wavelength_nm), &opts)
+    let solid = canonical::canonical(solid);
+    overhead_light_return_with(&Stone::new(&solid), material.ri(wavelength_nm), &opts)
 }
 
 /// [`overhead_light_return`] on a prepared stone at index `ri` with explicit settings.
@@ -373,13 +420,13 @@ pub fn overhead_light_return_with(stone: &Stone, ri: f64, opts: &TraceOptions) -
 }
 
 /// One backward trace from the viewer at one pose and index, and what to measure on it.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct Job {
     tilt: Tilt,
     ri: f64,
-    /// Spot-light images: one per lighting of [`fire_lightings`] used (0 = none; 1 for
-    /// scintillation, all of them for fire).
-    images: usize,
+    /// Spot-light images: indices into the lightings of [`score`] (fire's placements, then
+    /// scintillation's turns), in the order of [`PoseResult::images`].
+    images: Vec<usize>,
     /// ISO and COS sums (brilliance).
     brilliance: bool,
     /// Upward share and ASET bins (face-up).
@@ -403,9 +450,12 @@ struct PoseResult {
 struct PoseSink<'a> {
     rot: DMat3,
     light: &'a Lighting,
-    spots: &'a [Lighting],
+    /// Fire's placements, when this job's first images are theirs (all of them, in order).
+    lattice: Option<&'a FireLattice<'a>>,
+    spots: Vec<&'a Lighting>,
     area: f64,
-    job: Job,
+    face_up: bool,
+    brilliance: bool,
     r: PoseResult,
 }
 
@@ -417,7 +467,7 @@ impl ExitSink for PoseSink<'_> {
         let w = self.rot * e.direction;
         let p = e.power;
         let r = &mut self.r;
-        if self.job.face_up {
+        if self.face_up {
             r.traced += p;
             if w.z > 0.0 {
                 r.up += p;
@@ -427,14 +477,30 @@ impl ExitSink for PoseSink<'_> {
                 *acc += p * x;
             }
         }
-        if self.job.brilliance {
+        if self.brilliance {
             r.iso += p * self.light.iso(w);
             r.cos += p * self.light.cos(w);
         }
-        for (img, light) in r.images.iter_mut().zip(self.spots) {
+        let mut a = -1.0;
+        let mut skip = 0;
+        if let Some(lat) = self.lattice {
+            skip = lat.lightings.len();
+            let (images, scale) = (&mut r.images[..skip], p * self.area);
+            lat.for_each(w, |k, l| {
+                if a < 0.0 {
+                    a = clip2d::area(fp);
+                }
+                if l > 0.0 && a > 0.0 {
+                    images[k].add_polygon(fp, l * scale / a);
+                }
+            });
+        }
+        for (img, light) in r.images.iter_mut().zip(&self.spots).skip(skip) {
             if light.near_spot(w) {
                 let l = light.spots(w);
-                let a = clip2d::area(fp);
+                if a < 0.0 {
+                    a = clip2d::area(fp);
+                }
                 if l > 0.0 && a > 0.0 {
                     // Radiance through this beam: its power per unit of footprint, relative to
                     // the incoming power per unit of cross-section.
@@ -445,12 +511,14 @@ impl ExitSink for PoseSink<'_> {
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 fn run_job(
     stone: &Stone,
     solid: &Polyhedron,
     job: &Job,
     light: &Lighting,
-    spots: &[Lighting],
+    lightings: &[Lighting],
+    lattice: &FireLattice,
     cfg: &ScoreConfig,
     half: f64,
 ) -> PoseResult {
@@ -458,22 +526,32 @@ fn run_job(
     let frame = Frame::viewer(rot);
     let opts = TraceOptions {
         polarization: cfg.polarization,
-        footprints: job.images > 0,
+        footprints: !job.images.is_empty(),
         split_threshold: job.split,
         ..cfg.trace
     };
+    let spots: Vec<&Lighting> = job
+        .images
+        .iter()
+        .filter_map(|&i| lightings.get(i))
+        .collect();
+    let n = lattice.lightings.len();
+    let has_fire = job.images.len() >= n && job.images[..n].iter().copied().eq(0..n);
     let mut sink = PoseSink {
         rot,
         light,
-        spots: &spots[..job.images.min(spots.len())],
+        lattice: has_fire.then_some(lattice),
         area: solid.projected_area(-frame.dir),
-        job: *job,
+        face_up: job.face_up,
+        brilliance: job.brilliance,
         r: PoseResult {
-            images: (0..job.images.min(spots.len()))
+            images: spots
+                .iter()
                 .map(|_| Raster::new(cfg.resolution, half))
                 .collect(),
             ..Default::default()
         },
+        spots,
     };
     let (stats, _) = stone.trace_into(&frame, job.ri, &opts, &mut sink, false);
     sink.r.power_in = stats.power_in;
@@ -485,9 +563,21 @@ fn run_job(
 /// Poses and wavelengths are traced in parallel with rayon and combined in a fixed order, so
 /// the result does not depend on the number of threads.
 pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
+    let solid = &canonical::canonical(solid);
     let stone = Stone::new(solid);
     let light = Lighting::new(cfg.head_shadow_deg, &cfg.spots);
-    let spot_sets = fire_lightings(cfg);
+    let placements = fire_placements(cfg);
+    let turns = scintillation_turns(cfg);
+    let mut lightings: Vec<Lighting> = placements
+        .iter()
+        .map(|p| Lighting::new(cfg.head_shadow_deg, &p.spots))
+        .collect();
+    let first_turn = lightings.len();
+    lightings.extend(
+        turns
+            .iter()
+            .map(|&t| Lighting::new(cfg.head_shadow_deg, &turned(&cfg.spots, t, 0.0))),
+    );
     let half = solid
         .vertices()
         .iter()
@@ -506,6 +596,17 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
         Image(usize),
     }
     let index = |tilt: Tilt, ri: f64, what: Use, split: f64, jobs: &mut Vec<Job>| -> usize {
+        // Every face-up pose is the same trace, whatever azimuth it names.
+        let tilt = if tilt.tilt_deg == 0.0 {
+            Tilt::FACE_UP
+        } else {
+            tilt
+        };
+        let split = if tilt == Tilt::FACE_UP {
+            split.min(cfg.fire_split_threshold)
+        } else {
+            split
+        };
         let same = |j: &Job| j.tilt == tilt && j.ri.to_bits() == ri.to_bits() && j.split == split;
         let k = match jobs.iter().position(same) {
             Some(k) => k,
@@ -513,7 +614,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
                 jobs.push(Job {
                     tilt,
                     ri,
-                    images: 0,
+                    images: Vec::new(),
                     brilliance: false,
                     face_up: false,
                     split,
@@ -524,13 +625,18 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
         match what {
             Use::FaceUp => jobs[k].face_up = true,
             Use::Brilliance => jobs[k].brilliance = true,
-            Use::Image(n) => jobs[k].images = jobs[k].images.max(n),
+            Use::Image(l) => {
+                if !jobs[k].images.contains(&l) {
+                    jobs[k].images.push(l);
+                }
+            }
         }
         k
     };
     let split = cfg.trace.split_threshold;
     // The face-up figures (overhead light return, ASET) are the cross-checked ones: trace them
-    // as finely as fire's images (cheap: a face-up stone traces one symmetry wedge).
+    // as finely as fire's images (cheap: a face-up stone traces one symmetry wedge). Every
+    // face-up trace uses that split threshold.
     let face_up = index(
         Tilt::FACE_UP,
         ri0,
@@ -547,35 +653,48 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
     let fire: Vec<usize> = centres
         .iter()
         .map(|&l| {
-            index(
-                Tilt::FACE_UP,
-                if constant { ri0 } else { cfg.material.ri(l) },
-                Use::Image(spot_sets.len()),
-                cfg.fire_split_threshold,
-                &mut jobs,
-            )
+            let ri = if constant { ri0 } else { cfg.material.ri(l) };
+            let mut k = 0;
+            for p in 0..placements.len() {
+                k = index(
+                    Tilt::FACE_UP,
+                    ri,
+                    Use::Image(p),
+                    cfg.fire_split_threshold,
+                    &mut jobs,
+                );
+            }
+            k
         })
         .collect();
-    let scint: Vec<usize> = cfg
-        .scintillation_tilts
+    // Scintillation: per turn, the rocking sequence toward the turn's azimuth, under the spot
+    // lights turned with it.
+    let scint: Vec<Vec<(usize, usize)>> = turns
         .iter()
-        .map(|&t| {
-            index(
-                Tilt {
-                    tilt_deg: t,
-                    azimuth_deg: 90.0,
-                },
-                ri0,
-                Use::Image(1),
-                split,
-                &mut jobs,
-            )
+        .enumerate()
+        .map(|(j, &turn)| {
+            cfg.scintillation_tilts
+                .iter()
+                .map(|&t| {
+                    let tilt = Tilt {
+                        tilt_deg: t,
+                        azimuth_deg: turn,
+                    };
+                    let l = first_turn + j;
+                    (index(tilt, ri0, Use::Image(l), split, &mut jobs), l)
+                })
+                .collect()
         })
         .collect();
+    let lattice = FireLattice::new(&placements, &lightings[..first_turn]);
     let results: Vec<PoseResult> = jobs
         .par_iter()
-        .map(|j| run_job(&stone, solid, j, &light, &spot_sets, cfg, half))
+        .map(|j| run_job(&stone, solid, j, &light, &lightings, &lattice, cfg, half))
         .collect();
+    let image = |k: usize, l: usize| -> Option<&Raster> {
+        let pos = jobs[k].images.iter().position(|&x| x == l)?;
+        results[k].images.get(pos)
+    };
 
     let norm = |r: &PoseResult, x: f64| {
         if r.power_in > 0.0 {
@@ -610,53 +729,194 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
     };
     let weights = color::band_weights_d65(bands);
     let outline = solid.projected_area(DVec3::Z);
-    let fire_value = (0..spot_sets.len())
-        .map(|s| {
-            let images: Vec<&Raster> = fire
-                .iter()
-                .filter_map(|&k| results[k].images.get(s))
-                .collect();
-            fire_of(&images, &weights, outline)
-        })
-        .sum::<f64>()
-        / spot_sets.len().max(1) as f64;
-    let scint_images: Vec<&Raster> = scint
+    let (mut fire_sum, mut fire_w) = (0.0, 0.0);
+    for (p, placement) in placements.iter().enumerate() {
+        let images: Vec<&Raster> = fire.iter().filter_map(|&k| image(k, p)).collect();
+        fire_sum += placement.weight * fire_of(&images, &weights, outline);
+        fire_w += placement.weight;
+    }
+    let fire_value = if fire_w > 0.0 { fire_sum / fire_w } else { 0.0 };
+    let sequences: Vec<Vec<&Raster>> = scint
         .iter()
-        .filter_map(|&k| results[k].images.first())
+        .map(|seq| seq.iter().filter_map(|&(k, l)| image(k, l)).collect())
         .collect();
+    let sequences: Vec<&[&Raster]> = sequences.iter().map(|s| s.as_slice()).collect();
     Scores {
         overhead_light_return: norm(fu, fu.up),
         brilliance: 0.5 * (brilliance_iso + brilliance_cos),
         brilliance_iso,
         brilliance_cos,
         fire: fire_value,
-        scintillation: scintillation_of(&scint_images),
+        scintillation: scintillation_of(&sequences),
         aset,
     }
 }
 
-/// The placements of the spot lights over which fire is averaged: the first is
-/// [`ScoreConfig::spots`] as given (scintillation uses it); placement k > 0 turns the set about
-/// the zenith by k golden angles (137.5°, so every rotational symmetry of a cut is sampled at
-/// spread-out phases) and raises or lowers it by up to 4.5°. A viewer sees a stone under lights
-/// in many places; one fixed placement makes fire jump when a single coloured flash crosses a
-/// single spot's rim.
-pub fn fire_lightings(cfg: &ScoreConfig) -> Vec<Lighting> {
-    const LIFT: [f64; 8] = [0.0, 3.0, -3.0, 1.5, -1.5, 4.5, -4.5, 0.75];
-    (0..cfg.fire_placements.max(1))
-        .map(|k| {
-            let turn = 137.507_764_050_037_85 * k as f64;
-            let lift = LIFT[k % LIFT.len()];
-            let spots: Vec<Spot> = cfg
-                .spots
+/// One placement of the spot lights for fire, and its weight in the average.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Placement {
+    /// The spots, turned about the zenith and raised or lowered.
+    pub spots: Vec<Spot>,
+    /// How far they were turned, degrees.
+    pub turn_deg: f64,
+    /// How far they were raised (negative: lowered), degrees.
+    pub lift_deg: f64,
+    /// Weight in fire's average (the weights need not add up to 1).
+    pub weight: f64,
+}
+
+/// Fire's placements arranged for a quick lookup: for a direction, only the placements whose
+/// turned and lifted spots can reach it are visited (equal turn steps make them a short
+/// range of indices per spot), so the cost hardly grows with the number of placements.
+struct FireLattice<'a> {
+    lightings: &'a [Lighting],
+    /// Per spot of the base set: elevation and azimuth of its centre, reach (angular radius
+    /// with the soft rim, degrees), smallest cosine of its elevation over the lifts.
+    spots: Vec<(f64, f64, f64, f64)>,
+    lifts: Vec<f64>,
+    step: f64,
+}
+
+impl<'a> FireLattice<'a> {
+    fn new(placements: &[Placement], lightings: &'a [Lighting]) -> FireLattice<'a> {
+        let lifts: Vec<f64> = placements.iter().map(|p| p.lift_deg).collect();
+        let (lo, hi) = lifts
+            .iter()
+            .fold((0.0f64, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
+        let spots = placements.first().map_or_else(Vec::new, |p0| {
+            p0.spots
                 .iter()
-                .map(|s| Spot {
-                    elevation_deg: (s.elevation_deg + lift).clamp(1.0, 89.0),
-                    azimuth_deg: (s.azimuth_deg + turn) % 360.0,
-                    radius_deg: s.radius_deg,
+                .map(|s| {
+                    let base = s.elevation_deg - p0.lift_deg;
+                    let top = (base + hi)
+                        .clamp(1.0, 89.0)
+                        .max((base + lo).clamp(1.0, 89.0));
+                    (
+                        base,
+                        s.azimuth_deg - p0.turn_deg,
+                        s.radius_deg + lighting::EDGE_DEG + 1e-6,
+                        top.to_radians().cos(),
+                    )
                 })
-                .collect();
-            Lighting::new(cfg.head_shadow_deg, &spots)
+                .collect()
+        });
+        FireLattice {
+            lightings,
+            spots,
+            lifts,
+            step: 360.0 / placements.len().max(1) as f64,
+        }
+    }
+
+    /// Calls `f(k, radiance)` for every placement `k` whose spots light direction `w`
+    /// (each spot separately, head shadow applied).
+    #[inline]
+    fn for_each(&self, w: DVec3, mut f: impl FnMut(usize, f64)) {
+        let n = self.lightings.len();
+        if n == 0 {
+            return;
+        }
+        let e = lighting::elevation_deg(w);
+        let az = w.y.atan2(w.x).to_degrees();
+        let head = self.lightings[0].head(w);
+        if head == 0.0 {
+            return;
+        }
+        let (lo, hi) = self
+            .lifts
+            .iter()
+            .fold((0.0f64, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
+        for (i, &(base, a0, reach, cos_top)) in self.spots.iter().enumerate() {
+            if e < (base + lo).clamp(1.0, 89.0) - reach || e > (base + hi).clamp(1.0, 89.0) + reach
+            {
+                continue;
+            }
+            // 1 − cos Δa ≤ (1 − cos ρ) / (cos e · cos ε): the azimuths within reach.
+            let x = (1.0 - reach.to_radians().cos()) / (e.to_radians().cos() * cos_top).max(1e-300);
+            let half = if x >= 2.0 {
+                180.0
+            } else {
+                (1.0 - x).acos().to_degrees()
+            };
+            let t0 = az - a0;
+            let (k0, k1) = if half >= 180.0 {
+                (0, n as i64 - 1)
+            } else {
+                (
+                    ((t0 - half) / self.step).ceil() as i64,
+                    ((t0 + half) / self.step).floor() as i64,
+                )
+            };
+            for kk in k0..=k1.min(k0 + n as i64 - 1) {
+                let k = kk.rem_euclid(n as i64) as usize;
+                let ek = (base + self.lifts[k]).clamp(1.0, 89.0);
+                if (e - ek).abs() > reach {
+                    continue;
+                }
+                let l = self.lightings[k].spot(i, w);
+                if l > 0.0 {
+                    f(k, l * head);
+                }
+            }
+        }
+    }
+}
+
+/// Largest raising or lowering of the spot lights in fire's average, degrees.
+pub const FIRE_LIFT_DEG: f64 = 8.0;
+
+/// The placements of the spot lights over which fire is averaged: the expectation over the
+/// ways a face-up stone meets the lights, as a rank-1 lattice of `P =`
+/// [`ScoreConfig::fire_placements`] points in (turn, lift). Placement k turns the set
+/// about the zenith by `360° · k / P` (turning the stone under fixed lights is turning the
+/// lights the other way: the face-up trace does not change) and raises it by
+/// `lift = FIRE_LIFT_DEG · (2 (m + ½) / P − 1)`, m = 7k mod P (a stone rocked by a few degrees
+/// sees each light higher or lower by about as much), with the smooth weight
+/// `(1 + cos(π · lift / FIRE_LIFT_DEG)) / 2`. Equal turn steps make fire exactly the same for a
+/// stone turned by a multiple of `360° / P`; an odd `P` shares no factor with the usual 4-, 8-
+/// or 16-fold symmetries, so the turns sample every phase of the stone's symmetry evenly.
+pub fn fire_placements(cfg: &ScoreConfig) -> Vec<Placement> {
+    let p = cfg.fire_placements.max(1);
+    (0..p)
+        .map(|k| {
+            let turn = 360.0 * k as f64 / p as f64;
+            let m = (7 * k) % p;
+            let lift = if p == 1 {
+                0.0
+            } else {
+                FIRE_LIFT_DEG * (2.0 * (m as f64 + 0.5) / p as f64 - 1.0)
+            };
+            let weight = if p == 1 {
+                1.0
+            } else {
+                0.5 * (1.0 + (std::f64::consts::PI * lift / FIRE_LIFT_DEG).cos())
+            };
+            Placement {
+                spots: turned(&cfg.spots, turn, lift),
+                turn_deg: turn,
+                lift_deg: lift,
+                weight,
+            }
+        })
+        .collect()
+}
+
+/// The azimuths toward which scintillation rocks the stone, degrees:
+/// `360° · j / `[`ScoreConfig::scintillation_turns`]; the spot lights turn with them.
+pub fn scintillation_turns(cfg: &ScoreConfig) -> Vec<f64> {
+    let k = cfg.scintillation_turns.max(1);
+    (0..k).map(|j| 360.0 * j as f64 / k as f64).collect()
+}
+
+/// `spots` turned about the zenith by `turn_deg` and raised by `lift_deg` (elevations kept
+/// within 1°–89°).
+fn turned(spots: &[Spot], turn_deg: f64, lift_deg: f64) -> Vec<Spot> {
+    spots
+        .iter()
+        .map(|s| Spot {
+            elevation_deg: (s.elevation_deg + lift_deg).clamp(1.0, 89.0),
+            azimuth_deg: (s.azimuth_deg + turn_deg).rem_euclid(360.0),
+            radius_deg: s.radius_deg,
         })
         .collect()
 }
@@ -675,6 +935,11 @@ pub fn fire_of(images: &[&Raster], weights: &[DVec3], area: f64) -> f64 {
     let white: DVec3 = weights.iter().copied().sum();
     let mut yc = 0.0;
     for p in 0..first.data.len() {
+        // A grey pixel (the same value in every band) has no saturation at all.
+        let v = first.data[p];
+        if images.iter().all(|img| img.data[p] == v) {
+            continue;
+        }
         let xyz: DVec3 = images
             .iter()
             .zip(weights)
@@ -690,13 +955,16 @@ pub fn fire_of(images: &[&Raster], weights: &[DVec3], area: f64) -> f64 {
     100.0 * yc * first.pixel().powi(2) / area
 }
 
-/// `Σₖ Σₚ |Iₖ₊₁ − Iₖ| / Σₖ Σₚ (Iₖ₊₁ + Iₖ)` over a sequence of images; 0 without light.
-pub fn scintillation_of(images: &[&Raster]) -> f64 {
+/// `Σⱼ Σₖ Σₚ |Iⱼ,ₖ₊₁ − Iⱼ,ₖ| / Σⱼ Σₖ Σₚ (Iⱼ,ₖ₊₁ + Iⱼ,ₖ)` over sequences `j` of images
+/// (consecutive images of each sequence are compared); 0 without light.
+pub fn scintillation_of(sequences: &[&[&Raster]]) -> f64 {
     let (mut diff, mut sum) = (0.0, 0.0);
-    for pair in images.windows(2) {
-        for (a, b) in pair[0].data.iter().zip(&pair[1].data) {
-            diff += (a - b).abs();
-            sum += a + b;
+    for images in sequences {
+        for pair in images.windows(2) {
+            for (a, b) in pair[0].data.iter().zip(&pair[1].data) {
+                diff += (a - b).abs();
+                sum += a + b;
+            }
         }
     }
     if sum > 0.0 {

@@ -15,7 +15,9 @@ fn lean() -> ScoreConfig {
             },
         ],
         bands: 4,
-        scintillation_tilts: vec![-2.0, 0.0, 2.0],
+        scintillation_tilts: vec![0.0, 2.0],
+        scintillation_turns: 2,
+        fire_placements: 5,
         resolution: 32,
         trace: TraceOptions {
             split_threshold: 1e-3,
@@ -84,7 +86,7 @@ fn zero_dispersion_has_no_fire() {
         ..lean()
     };
     let s = score(&tolkowsky(), &cfg);
-    assert!(s.fire.abs() < 1e-9, "{}", s.fire);
+    assert_eq!(s.fire, 0.0);
     // Same index with dispersion: fire.
     let d = score(&tolkowsky(), &lean());
     assert!(d.fire > 0.01, "{}", d.fire);
@@ -121,8 +123,11 @@ fn overhead_light_return_agrees_with_score_and_polarization_matters_little() {
         split_threshold: cfg.fire_split_threshold,
         ..cfg.trace
     };
-    let olr =
-        overhead_light_return_with(&Stone::new(&s), cfg.material.ri(cfg.wavelength_nm), &fine);
+    let olr = overhead_light_return_with(
+        &Stone::new(&canonical::canonical(&s)),
+        cfg.material.ri(cfg.wavelength_nm),
+        &fine,
+    );
     assert_eq!(olr, score(&s, &cfg).overhead_light_return);
     let on = overhead_light_return(&s, &Material::diamond(), 589.3, true);
     let off = overhead_light_return(&s, &Material::diamond(), 589.3, false);
@@ -180,6 +185,7 @@ fn scores_are_continuous_in_pavilion_angle() {
         tilts: vec![Tilt::FACE_UP],
         bands: 3,
         scintillation_tilts: vec![-2.0, 2.0],
+        scintillation_turns: 1,
         resolution: 24,
         polarization: false,
         trace: TraceOptions {
@@ -280,6 +286,20 @@ fn config_validation_names_the_field() {
             ..Default::default()
         },
         "scintillation-tilts",
+    );
+    bad(
+        ScoreConfig {
+            scintillation_turns: 0,
+            ..Default::default()
+        },
+        "scintillation-turns",
+    );
+    bad(
+        ScoreConfig {
+            fire_placements: 0,
+            ..Default::default()
+        },
+        "fire-placements",
     );
 }
 

@@ -1,0 +1,127 @@
+//! Smoothness profile of the scores (not a timing benchmark): the round-brilliance start cut
+//! of `optim/round-brilliance.toml` (table 0.57, crown 34.0°, girdle 0.025, star 0.5,
+//! lower half 0.8) with the pavilion angle swept 40.0° → 41.0° in 0.002° steps (501 cuts),
+//! scored with the default [`ScoreConfig`]. Run: `cargo bench --bench profile`.
+//!
+//! Prints, for brilliance, fire and scintillation (and the other scores), the total variation
+//! over the range (`Σ|f(k+1) − f(k)| / (max − min)`: 1 for a monotone profile, large for a
+//! noisy one) and the median absolute second difference (`|f(k+1) − 2f(k) + f(k−1)|`: the
+//! roughness an optimizer sees on a 0.002° scale). Writes every cut's scores to the CSV file
+//! named by the environment variable `FACETLAB_PROFILE_CSV`, or to `target/profile.csv`.
+//! `FACETLAB_PROFILE_STEPS` (default 500) sets the number of steps over the same degree, and
+//! `FACETLAB_PROFILE_SPLIT` the split threshold of the tilted poses' traces (for experiments).
+
+use facetlab::cut::Cut;
+use facetlab::metrics::{score, ScoreConfig, Scores};
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::time::Instant;
+
+fn cut(pavilion: f64) -> Cut {
+    let v: BTreeMap<String, f64> = [
+        ("table", 0.57),
+        ("crown_angle", 34.0),
+        ("pavilion_angle", pavilion),
+        ("girdle", 0.025),
+        ("star", 0.5),
+        ("lower_half", 0.8),
+    ]
+    .iter()
+    .map(|(k, v)| (k.to_string(), *v))
+    .collect();
+    Cut::from_family("profile", "round-brilliant", &v).expect("round brilliant")
+}
+
+/// Total variation over range, median |second difference|, range.
+fn roughness(f: &[f64]) -> (f64, f64, f64) {
+    let (lo, hi) = f
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    let tv: f64 = f.windows(2).map(|w| (w[1] - w[0]).abs()).sum();
+    let mut d2: Vec<f64> = f
+        .windows(3)
+        .map(|w| (w[2] - 2.0 * w[1] + w[0]).abs())
+        .collect();
+    d2.sort_by(f64::total_cmp);
+    let med = if d2.is_empty() { 0.0 } else { d2[d2.len() / 2] };
+    let range = hi - lo;
+    (if range > 0.0 { tv / range } else { 0.0 }, med, range)
+}
+
+fn main() {
+    let steps: usize = std::env::var("FACETLAB_PROFILE_STEPS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(500);
+    let mut cfg = ScoreConfig::default();
+    // Experiments: `FACETLAB_PROFILE_SPLIT` overrides the tilted poses' split threshold.
+    if let Some(x) = std::env::var("FACETLAB_PROFILE_SPLIT")
+        .ok()
+        .and_then(|s| s.parse().ok())
+    {
+        cfg.trace.split_threshold = x;
+    }
+    let angles: Vec<f64> = (0..=steps)
+        .map(|k| 40.0 + k as f64 / steps as f64)
+        .collect();
+    let t0 = Instant::now();
+    let scores: Vec<Scores> = angles
+        .par_iter()
+        .map(|&p| score(&cut(p).solid, &cfg))
+        .collect();
+    let dt = t0.elapsed().as_secs_f64();
+    println!(
+        "profile: pavilion 40.0° → 41.0°, {} cuts, default config, {:.1} s ({:.1} ms/cut on {} threads)",
+        angles.len(),
+        dt,
+        dt * 1e3 / angles.len() as f64,
+        rayon::current_num_threads()
+    );
+    type Get = fn(&Scores) -> f64;
+    let columns: [(&str, Get); 8] = [
+        ("brilliance", |s| s.brilliance),
+        ("fire", |s| s.fire),
+        ("scintillation", |s| s.scintillation),
+        ("brilliance_iso", |s| s.brilliance_iso),
+        ("brilliance_cos", |s| s.brilliance_cos),
+        ("overhead_light_return", |s| s.overhead_light_return),
+        ("aset_blue", |s| s.aset.blue),
+        ("aset_leak", |s| s.aset.leak),
+    ];
+    println!(
+        "{:<22} {:>10} {:>10} {:>10} {:>10} {:>12}",
+        "score", "min", "max", "range", "TV/range", "med|d2|"
+    );
+    for (name, get) in columns {
+        let f: Vec<f64> = scores.iter().map(get).collect();
+        let (tv, med, range) = roughness(&f);
+        let lo = f.iter().copied().fold(f64::INFINITY, f64::min);
+        println!(
+            "{name:<22} {lo:>10.6} {:>10.6} {range:>10.3e} {tv:>10.3} {med:>12.3e}",
+            lo + range
+        );
+    }
+    let mut csv = String::from("pavilion_angle");
+    for (name, _) in columns {
+        let _ = write!(csv, ",{name}");
+    }
+    csv.push('\n');
+    for (p, s) in angles.iter().zip(&scores) {
+        let _ = write!(csv, "{p:.4}");
+        for (_, get) in columns {
+            let _ = write!(csv, ",{:.9}", get(s));
+        }
+        csv.push('\n');
+    }
+    let path = std::env::var("FACETLAB_PROFILE_CSV").unwrap_or_else(|_| {
+        let dir = std::env::var("CARGO_TARGET_DIR").unwrap_or_else(|_| "target".into());
+        format!("{dir}/profile.csv")
+    });
+    match std::fs::write(&path, csv) {
+        Ok(()) => println!("wrote {path}"),
+        Err(e) => println!("could not write {path}: {e}"),
+    }
+}
