@@ -206,8 +206,10 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     let evaluator = evaluator.as_ref();
     // Fail on a bad start cut before spending any time.
     config.start_cut()?;
-    install_ctrl_c();
+    // Lower the flag before the handler exists: a signal that arrives right after the
+    // handler is installed must not be forgotten.
     STOP.store(false, Ordering::SeqCst);
+    install_ctrl_c();
     let pb = bar(
         config.budget.max_evaluations,
         a.quiet,
