@@ -575,12 +575,8 @@ impl Profile {
             series: SCORES
                 .iter()
                 .map(|score| {
-                    let name = match score {
-                        SweepScore::Objective => "objective (weighted score − penalties)",
-                        other => other.name(),
-                    };
                     let v = self.points.iter().map(|p| p.value(score)).collect();
-                    (name.to_string(), v)
+                    (score.name().to_string(), v)
                 })
                 .collect(),
         }

@@ -70,11 +70,15 @@ impl Figure for ProfileFigure<'_> {
         let p = self.0;
         let root = root.titled(&p.title, font(20))?;
         let n = p.series.len().max(1);
-        let (x0, x1) = (p.xs[0], p.xs[p.xs.len() - 1]);
+        // A margin of half a step each side, so the end points' markers are whole.
+        let half = (p.xs[p.xs.len() - 1] - p.xs[0]) / (2.0 * (p.xs.len() - 1).max(1) as f64);
+        let (x0, x1) = (p.xs[0] - half, p.xs[p.xs.len() - 1] + half);
         let panels = root.split_evenly((n, 1));
         for (k, ((name, values), area)) in p.series.iter().zip(panels.iter()).enumerate() {
             let last = k + 1 == n;
-            let (lo, hi) = padded_range(values);
+            // Room above the line for the legend.
+            let (lo, top) = padded_range(values);
+            let hi = top + 0.3 * (top - lo);
             let mut chart = ChartBuilder::on(area)
                 .margin_left(16)
                 .margin_right(24)
@@ -111,6 +115,12 @@ impl Figure for ProfileFigure<'_> {
                 .filter(|(_, v)| v.is_finite())
                 .max_by(|a, b| a.1.total_cmp(&b.1));
             if let Some(&(bx, by)) = best {
+                // The legend sits in the room above the line, away from the highest point.
+                let at = if bx > (x0 + x1) / 2.0 {
+                    SeriesLabelPosition::UpperLeft
+                } else {
+                    SeriesLabelPosition::UpperRight
+                };
                 chart
                     .draw_series(std::iter::once(TriangleMarker::new(
                         (bx, by),
@@ -124,11 +134,7 @@ impl Figure for ProfileFigure<'_> {
                         level_label(bx)
                     ))
                     .legend(|(x, y)| TriangleMarker::new((x + 11, y), 6, BLACK.filled()));
-                legend(
-                    &mut chart,
-                    SeriesLabelPosition::LowerRight,
-                    LegendStyle::Compact,
-                )?;
+                legend(&mut chart, at, LegendStyle::Compact)?;
             }
         }
         Ok(())
