@@ -1,4 +1,5 @@
-//! The `facetlab` binary: parse the command line, run, print one-line errors with exit code 2.
+//! The `facetlab` binary: parse the command line, run, print one-line errors with exit code 2;
+//! otherwise exit 0, 1 (a verification disagreement) or 130 (interrupted).
 
 use clap::error::ErrorKind;
 use clap::{CommandFactory, FromArgMatches};
@@ -51,8 +52,12 @@ fn main() {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
     let cli = parse();
-    if let Err(e) = cli::run(cli) {
-        eprintln!("facetlab: {e}");
-        std::process::exit(2);
+    match cli::run(cli) {
+        Ok(cli::Exit::Ok) => {}
+        Ok(exit) => std::process::exit(exit.code()),
+        Err(e) => {
+            eprintln!("facetlab: {e}");
+            std::process::exit(2);
+        }
     }
 }

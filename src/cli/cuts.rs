@@ -75,6 +75,11 @@ pub fn load_with_sets(arg: &str, sets: &[String]) -> Result<Cut> {
 
 /// `facetlab generate`.
 pub fn generate(a: &GenerateArgs) -> Result<()> {
+    // `generate t.toml --set … -o t.toml` would replace the design it read.
+    super::outputs::refuse_overwrite(
+        &[("-o", a.output.clone())],
+        &super::outputs::cut_files(std::slice::from_ref(&a.cut)),
+    )?;
     let cut = load_with_sets(&a.cut, &a.set)?;
     let ext = a
         .output

@@ -4,11 +4,13 @@
 mod cuts;
 mod flags;
 pub mod optimize;
+pub mod outputs;
 pub mod score;
 pub mod trace;
 
 use clap::{Parser, Subcommand};
 use facetlab::error::Result;
+pub use outputs::Exit;
 
 /// facetlab: design, score and optimize cut gemstones with real optics.
 ///
@@ -16,7 +18,14 @@ use facetlab::error::Result;
 /// or an .obj/.stl mesh (taken as its convex hull). Lengths are fractions of the girdle
 /// diameter (table 0.57), angles are degrees.
 #[derive(Debug, Parser)]
-#[command(name = "facetlab", version, about, long_about = None, propagate_version = true)]
+#[command(
+    name = "facetlab",
+    version,
+    about,
+    long_about = None,
+    propagate_version = true,
+    after_help = "Exit codes: 0 done; 1 done, but `score --verify` found a disagreement between the tracers; 2 bad input (one line on stderr); 130 interrupted (Ctrl-C or SIGTERM; `optimize` still writes what it found)."
+)]
 pub struct Cli {
     /// What to do.
     #[command(subcommand)]
@@ -40,18 +49,22 @@ pub enum Command {
     Score(score::ScoreArgs),
     /// Search a family's proportions for the best weighted brilliance, fire and scintillation
     /// (argmin Nelder–Mead or particle swarm), then verify the winners with the photon tracer.
+    /// Ctrl-C or SIGTERM stops the search and still writes the run folder (exit code 130).
     Optimize(optimize::OptimizeArgs),
-    /// Map a score over a grid of two parameters: CSV and a heatmap with contours.
+    /// Map a score over a grid of two parameters (CSV and a heatmap with contours), or, without
+    /// --y, the scores along one (CSV and a line chart).
     Sweep(optimize::SweepArgs),
 }
 
-/// Run a parsed command line.
-pub fn run(cli: Cli) -> Result<()> {
+/// Run a parsed command line; the `Exit` is the process's exit status (an `Err` is bad input,
+/// exit code 2).
+pub fn run(cli: Cli) -> Result<Exit> {
+    let done = |r: Result<()>| r.map(|()| Exit::Ok);
     match cli.command {
-        Command::Generate(a) => cuts::generate(&a),
-        Command::Info(a) => cuts::info(&a),
-        Command::List(a) => cuts::list(&a),
-        Command::Trace(a) => trace::run(&a),
+        Command::Generate(a) => done(cuts::generate(&a)),
+        Command::Info(a) => done(cuts::info(&a)),
+        Command::List(a) => done(cuts::list(&a)),
+        Command::Trace(a) => done(trace::run(&a)),
         Command::Score(a) => score::run(&a),
         Command::Optimize(a) => optimize::run_optimize(&a, &optimize::real_scorers),
         Command::Sweep(a) => optimize::run_sweep(&a, &optimize::real_scorers),

@@ -1,8 +1,10 @@
-//! `optimize` and `sweep`: flags, progress bars, Ctrl-C, and the summary printed at the end.
+//! `optimize` and `sweep`: flags, progress bars, Ctrl-C and SIGTERM, the checks of the output
+//! folder before any work, and the summary printed at the end.
 //!
 //! Both take the objective's scorer as an [`Evaluator`] (and `optimize` the photon tracer as a
 //! [`Verifier`]), so the command line stays thin and the scorers are wired in one place.
 
+use super::outputs::{refuse_overwrite, Exit};
 use clap::Args;
 use facetlab::error::{Error, Result};
 use facetlab::optimize::{self as opt, Axis, SweepScore};
@@ -11,7 +13,7 @@ use facetlab::optimize::{Config, Evaluator, Verifier};
 use facetlab::optimize::{CutWriter, FnWriter, Hooks, RunOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Once;
 
@@ -20,9 +22,15 @@ use std::sync::Once;
 pub struct OptimizeArgs {
     /// Optimization config (TOML), e.g. optim/round-brilliance.toml.
     pub config: PathBuf,
-    /// Run folder to write (default: results/NAME-UTCTIME/, NAME from the config).
+    /// Run folder to write (default: results/NAME-UTCTIME/, NAME from the config). It is
+    /// made only when the results are written; a folder that is not empty is refused unless
+    /// --force.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Write into an --out folder that is not empty (files of the same name are replaced; the
+    /// config read is never overwritten).
+    #[arg(long)]
+    pub force: bool,
     /// Override the config's seed.
     #[arg(long, value_name = "N")]
     pub seed: Option<u64>,
@@ -35,26 +43,28 @@ pub struct OptimizeArgs {
 }
 
 /// Flags of `facetlab sweep`.
-#[derive(Debug, Args)]
+#[derive(Clone, Debug, Args)]
 pub struct SweepArgs {
     /// Optimization config (TOML): the family, the other parameters' values, the objective.
     pub config: PathBuf,
     /// x axis: KEY:MIN:MAX:STEP, e.g. crown_angle:25:40:0.5.
     #[arg(long = "x", value_name = "KEY:MIN:MAX:STEP")]
     pub x: String,
-    /// y axis: KEY:MIN:MAX:STEP, e.g. pavilion_angle:38:43:0.1.
+    /// y axis: KEY:MIN:MAX:STEP, e.g. pavilion_angle:38:43:0.1. Without it the sweep is a
+    /// profile along x: a CSV and a line chart of every score.
     #[arg(long = "y", value_name = "KEY:MIN:MAX:STEP")]
-    pub y: String,
-    /// The score drawn: brilliance, fire, scintillation, or objective (the config's weighted
-    /// score minus penalties). The CSV has all of them.
+    pub y: Option<String>,
+    /// The score drawn on the map (with --y) and summarised: brilliance, fire, scintillation,
+    /// or objective (the config's weighted score minus penalties). The CSV has all of them.
     #[arg(long, default_value = "brilliance")]
     pub score: String,
-    /// A run folder of `facetlab optimize`: draw its path (best point so far) on the map.
+    /// A run folder of `facetlab optimize`: draw its path (best point so far) on the map
+    /// (with --y only).
     #[arg(long, value_name = "DIR")]
     pub run: Option<PathBuf>,
     /// Output folder (sweep.csv, sweep.png, sweep.svg in it), or a file name whose stem is
     /// used for all three (map.png → map.csv, map.png, map.svg).
-    /// Default: results/sweep-NAME-X-Y/.
+    /// Default: results/sweep-NAME-X-Y/ (results/sweep-NAME-X/ without --y).
     #[arg(long, value_name = "FILE|DIR")]
     pub out: Option<PathBuf>,
     /// No progress bar.
@@ -62,12 +72,13 @@ pub struct SweepArgs {
     pub quiet: bool,
 }
 
-/// Raised by Ctrl-C during `optimize`.
+/// Raised by Ctrl-C or SIGTERM (or SIGHUP) during `optimize`.
 static STOP: AtomicBool = AtomicBool::new(false);
 static HANDLER: Once = Once::new();
 
-/// Install the Ctrl-C handler (once): the first Ctrl-C asks the search to stop after the
-/// current iteration and still write its results; a second one quits at once.
+/// Install the Ctrl-C handler (once; ctrlc's `termination` feature makes it catch SIGTERM and
+/// SIGHUP too): the first signal asks the search to stop after the current iteration and still
+/// write its results, then exit 130; a second one quits at once, writing nothing.
 fn install_ctrl_c() {
     HANDLER.call_once(|| {
         let _ = ctrlc::set_handler(|| {
@@ -127,8 +138,66 @@ pub fn real_scorers(config: &Config) -> Scorers {
     )
 }
 
-/// `facetlab optimize`: load the config, then make its scorers with `make`.
-pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<()> {
+/// The files a run folder may hold (see `write_folder` in src/optimize/run.rs).
+const RUN_FILES: [&str; 10] = [
+    "config.toml",
+    "history.csv",
+    "convergence.png",
+    "convergence.svg",
+    "best.toml",
+    "best.asc",
+    "best.obj",
+    "best.svg",
+    "report.json",
+    "report.md",
+];
+
+/// The exit status of a finished `optimize`: 130 when a signal stopped it (its folder is
+/// written all the same), else 0.
+pub fn optimize_exit(interrupted: bool) -> Exit {
+    if interrupted {
+        Exit::Interrupted
+    } else {
+        Exit::Ok
+    }
+}
+
+/// Refuse an `--out` folder that holds the config read, or any folder that is not empty
+/// unless `force`; check that it can be written (without making it).
+fn check_run_folder(out: &Path, config: &Path, force: bool) -> Result<()> {
+    let mut outputs = vec![("--out", out.to_path_buf())];
+    outputs.extend(RUN_FILES.iter().map(|f| ("--out", out.join(f))));
+    refuse_overwrite(&outputs, &[config.to_path_buf()])?;
+    if out.is_dir() && !force {
+        let busy = std::fs::read_dir(out)
+            .map_err(|e| Error::io(out.display().to_string(), e))?
+            .next()
+            .is_some();
+        if busy {
+            return Err(Error::invalid(
+                "--out",
+                format!(
+                    "folder {} is not empty; choose a new folder, or pass --force to write into it",
+                    out.display()
+                ),
+            ));
+        }
+    }
+    if out.exists() && !out.is_dir() {
+        return Err(Error::invalid(
+            "--out",
+            format!("{} exists and is not a folder", out.display()),
+        ));
+    }
+    facetlab::io::check_writable(out)
+}
+
+/// `facetlab optimize`: load the config, then make its scorers with `make`. Exits 130 when
+/// Ctrl-C or SIGTERM stopped the search (after writing the folder).
+pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<Exit> {
+    if let Some(out) = &a.out {
+        check_run_folder(out, &a.config, a.force)?;
+    }
     let mut config = Config::load(&a.config)?;
     if let Some(s) = a.seed {
         config.seed = s;
@@ -137,8 +206,10 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     let evaluator = evaluator.as_ref();
     // Fail on a bad start cut before spending any time.
     config.start_cut()?;
-    install_ctrl_c();
+    // Lower the flag before the handler exists: a signal that arrives right after the
+    // handler is installed must not be forgotten.
     STOP.store(false, Ordering::SeqCst);
+    install_ctrl_c();
     let pb = bar(
         config.budget.max_evaluations,
         a.quiet,
@@ -163,6 +234,7 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     let result = opt::run(&config, evaluator, verifier, &opts);
     pb.finish_and_clear();
     let s = result?;
+    let exit = optimize_exit(STOP.load(Ordering::SeqCst));
     let o = &s.outcome;
     let r = &s.report;
     println!("wrote {}/", s.dir.display());
@@ -223,19 +295,51 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     } else if let Some(n) = &o.verify_note {
         println!("verification: {n}");
     }
-    Ok(())
+    if exit == Exit::Interrupted {
+        eprintln!("facetlab: interrupted; wrote what was found (exit code 130)");
+    }
+    Ok(exit)
 }
 
-/// `facetlab sweep`: load the config, then make its scorer with `make`.
-pub fn run_sweep(a: &SweepArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<()> {
+/// `facetlab sweep`: load the config, then make its scorer with `make`. Without `--y` it is a
+/// profile along `--x`.
+pub fn run_sweep(a: &SweepArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<Exit> {
     let config = Config::load(&a.config)?;
-    let (evaluator, _) = make(&config);
-    let evaluator = evaluator.as_ref();
     let x = Axis::parse("--x", &a.x, &config)?;
-    let y = Axis::parse("--y", &a.y, &config)?;
+    let y =
+        a.y.as_deref()
+            .map(|y| Axis::parse("--y", y, &config))
+            .transpose()?;
     let score = SweepScore::parse(&a.score)?;
-    let path = match &a.run {
-        Some(dir) => {
+    if y.is_none() && a.run.is_some() {
+        return Err(Error::invalid(
+            "--run",
+            "draws an optimizer's path on a 2-D map; give --y too",
+        ));
+    }
+    let out = a.out.clone().unwrap_or_else(|| {
+        let name = match &y {
+            Some(y) => format!("sweep-{}-{}-{}", config.name, x.key, y.key),
+            None => format!("sweep-{}-{}", config.name, x.key),
+        };
+        PathBuf::from("results").join(name)
+    });
+    let (csv, png, svg) = opt::sweep_output_paths(&out);
+    let mut inputs = vec![a.config.clone()];
+    if let Some(r) = &a.run {
+        inputs.extend([r.clone(), r.join("history.csv"), r.join("config.toml")]);
+    }
+    refuse_overwrite(
+        &[
+            ("--out", out.clone()),
+            ("--out", csv.clone()),
+            ("--out", png.clone()),
+            ("--out", svg.clone()),
+        ],
+        &inputs,
+    )?;
+    let path = match (&a.run, &y) {
+        (Some(dir), Some(y)) => {
             if !dir.is_dir() {
                 return Err(Error::invalid(
                     "--run",
@@ -247,18 +351,52 @@ pub fn run_sweep(a: &SweepArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<()>
             }
             Some(opt::sweep_path(dir, &x.key, &y.key)?)
         }
-        None => None,
+        _ => None,
     };
-    let out = a.out.clone().unwrap_or_else(|| {
-        PathBuf::from("results").join(format!("sweep-{}-{}-{}", config.name, x.key, y.key))
-    });
-    let n = (x.values.len() * y.values.len()) as u64;
+    if let Some(d) = csv.parent() {
+        facetlab::io::check_writable(d)?;
+    }
+    let (evaluator, _) = make(&config);
+    let evaluator = evaluator.as_ref();
+    let n = (x.values.len() * y.as_ref().map_or(1, |y| y.values.len())) as u64;
     let pb = bar(
         n,
         a.quiet,
         "{spinner} {elapsed_precise} [{bar:20}] {pos}/{len} cuts  {per_sec}  eta {eta}",
     );
     let tick = || pb.inc(1);
+    let config_file = a
+        .config
+        .file_name()
+        .map(|f| f.to_string_lossy().to_string())
+        .unwrap_or_default();
+    let Some(y) = y else {
+        let result = opt::profile(&config, evaluator, &x, Some(&tick));
+        pb.finish_and_clear();
+        let p = result?;
+        let title = format!(
+            "{}: scores of {} along {} (others as in {config_file})",
+            config.name, config.family.name, x.key
+        );
+        let (csv, png, svg) =
+            opt::write_profile(&p, title, &out, facetlab::plot::optimize::profile)?;
+        println!(
+            "wrote {}, {}, {}",
+            csv.display(),
+            png.display(),
+            svg.display()
+        );
+        let best = p
+            .points
+            .iter()
+            .map(|q| (q.x, q.value(&score)))
+            .filter(|(_, v)| v.is_finite())
+            .max_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((bx, v)) = best {
+            println!("highest {}: {v:.4} at {} = {bx}", score.name(), x.key);
+        }
+        return Ok(Exit::Ok);
+    };
     let result = opt::sweep(&config, evaluator, &x, &y, Some(&tick));
     pb.finish_and_clear();
     let s = result?;
@@ -268,10 +406,7 @@ pub fn run_sweep(a: &SweepArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<()>
         config.family.name,
         x.key,
         y.key,
-        a.config
-            .file_name()
-            .map(|f| f.to_string_lossy())
-            .unwrap_or_default()
+        config_file
     );
     let (csv, png, svg) = opt::write_sweep(
         &s,
@@ -304,7 +439,7 @@ pub fn run_sweep(a: &SweepArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<()>
             c.y
         );
     }
-    Ok(())
+    Ok(Exit::Ok)
 }
 
 #[cfg(test)]
@@ -342,15 +477,16 @@ mod tests {
             seed: Some(9),
             no_verify: false,
             quiet: true,
+            force: false,
         };
-        run_optimize(&a, &bumps).unwrap();
+        assert_eq!(run_optimize(&a, &bumps).unwrap(), Exit::Ok);
         assert!(out.join("report.md").is_file());
         let used = std::fs::read_to_string(out.join("config.toml")).unwrap();
         assert!(used.contains("seed = 9"));
         let s = SweepArgs {
             config: cfg.clone(),
             x: "crown_angle:30:38:1".into(),
-            y: "pavilion_angle:39.5:42.5:0.5".into(),
+            y: Some("pavilion_angle:39.5:42.5:0.5".into()),
             score: "objective".into(),
             run: Some(out.clone()),
             out: Some(dir.path().join("map.png")),
@@ -371,11 +507,105 @@ mod tests {
                 seed: None,
                 no_verify: true,
                 quiet: true,
+                force: false,
             },
             &bumps,
         )
         .unwrap_err()
         .to_string();
         assert!(e.contains("missing.toml: no such file"), "{e}");
+
+        // The folder of the first run is not empty: refused, unless --force.
+        let e = run_optimize(&a, &bumps).unwrap_err().to_string();
+        assert!(e.starts_with("--out: ") && e.contains("--force"), "{e}");
+        // A folder holding the config as `config.toml` is refused even with --force.
+        let inside = OptimizeArgs {
+            config: out.join("config.toml"),
+            force: true,
+            ..a
+        };
+        let before = std::fs::read_to_string(out.join("config.toml")).unwrap();
+        let e = run_optimize(&inside, &bumps).unwrap_err().to_string();
+        assert!(e.starts_with("--out: ") && e.contains("overwrite"), "{e}");
+        assert_eq!(
+            std::fs::read_to_string(out.join("config.toml")).unwrap(),
+            before
+        );
+
+        // A signal during the search: the folder is still written and the exit status is 130.
+        // (Here, not in a test of its own: the stop flag is one per process.)
+        fn pressing(cut: &Cut) -> Result<ScoreSet> {
+            static CALLS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+            if CALLS.fetch_add(1, Ordering::SeqCst) >= 10 {
+                STOP.store(true, Ordering::SeqCst);
+            }
+            bump(cut)
+        }
+        let stopped = dir.path().join("stopped");
+        let a = OptimizeArgs {
+            out: Some(stopped.clone()),
+            force: true,
+            ..inside
+        };
+        let a = OptimizeArgs {
+            config: cfg.clone(),
+            ..a
+        };
+        fn pressings(_: &Config) -> Scorers {
+            (Box::new(pressing), None)
+        }
+        let e = run_optimize(&a, &pressings).unwrap();
+        assert_eq!(e, Exit::Interrupted);
+        assert_eq!(e.code(), 130);
+        assert!(stopped.join("history.csv").is_file() && stopped.join("report.md").is_file());
+        assert_eq!(optimize_exit(false), Exit::Ok);
+    }
+
+    #[test]
+    fn a_profile_writes_one_row_per_x_and_outputs_never_overwrite_inputs() {
+        let dir = tempfile::tempdir().unwrap();
+        let cfg = dir.path().join("small.toml");
+        std::fs::write(
+            &cfg,
+            "[cut]\nfamily = \"round-brilliant\"\n[free]\ncrown_angle = [30.0, 38.0]\n",
+        )
+        .unwrap();
+        let s = SweepArgs {
+            config: cfg.clone(),
+            x: "crown_angle:30:38:2".into(),
+            y: None,
+            score: "brilliance".into(),
+            run: None,
+            out: Some(dir.path().join("prof")),
+            quiet: true,
+        };
+        assert_eq!(run_sweep(&s, &bumps).unwrap(), Exit::Ok);
+        let csv = std::fs::read_to_string(dir.path().join("prof/sweep.csv")).unwrap();
+        assert!(csv.starts_with("crown_angle,brilliance,fire,scintillation,objective\n30,"));
+        assert_eq!(csv.lines().count(), 1 + 5);
+        assert!(dir.path().join("prof/sweep.png").is_file());
+        // --run needs a map.
+        let e = run_sweep(
+            &SweepArgs {
+                run: Some(dir.path().into()),
+                ..s.clone()
+            },
+            &bumps,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("--run: ") && e.contains("--y"), "{e}");
+        // `--out small.csv` beside `small.toml` is fine; `--out small.toml` is not.
+        let e = run_sweep(
+            &SweepArgs {
+                out: Some(cfg.clone()),
+                ..s.clone()
+            },
+            &bumps,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("--out: ") && e.contains("overwrite"), "{e}");
+        assert!(std::fs::read_to_string(&cfg).unwrap().starts_with("[cut]"));
     }
 }

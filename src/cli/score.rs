@@ -23,6 +23,7 @@
 //! photons per figure and pose (seed 1).
 
 use super::flags;
+use super::outputs::{cut_files, refuse_overwrite, Exit};
 use facetlab::error::{Error, Result};
 use facetlab::metrics::{score, ScoreConfig, Scores, Tilt};
 use facetlab::optics::Dispersion;
@@ -275,9 +276,24 @@ pub fn table(config: &ScoreConfig, results: &[(String, Scores)]) -> String {
     out
 }
 
-/// Run `facetlab score`.
-pub fn run(a: &ScoreArgs) -> Result<()> {
+/// The exit status of `score`: a disagreement when any `--verify` check lies beyond
+/// [`SIGMA`] standard errors.
+pub fn verdict(checks: &[Vec<Check>]) -> Exit {
+    if checks.iter().flatten().any(|c| c.beyond(SIGMA)) {
+        Exit::Disagreement
+    } else {
+        Exit::Ok
+    }
+}
+
+/// Run `facetlab score`; with `--verify`, a disagreement beyond [`SIGMA`] standard errors
+/// exits 1 after the table and the JSON are written.
+pub fn run(a: &ScoreArgs) -> Result<Exit> {
     let s = settings(a)?;
+    if let Some(path) = &a.json {
+        // Never overwrite a cut with its scores.
+        refuse_overwrite(&[("--json", path.clone())], &cut_files(&a.cuts))?;
+    }
     let cuts = a
         .cuts
         .iter()
@@ -293,6 +309,17 @@ pub fn run(a: &ScoreArgs) -> Result<()> {
                 ));
             }
         }
+        if path.is_dir() {
+            return Err(Error::invalid(
+                "--json",
+                format!("{} is a folder; give a file name", path.display()),
+            ));
+        }
+        let dir = path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(std::path::Path::new("."));
+        facetlab::io::check_writable(dir)?;
     }
     for note in flags::design_ri_notes(
         &cuts,
@@ -335,7 +362,13 @@ pub fn run(a: &ScoreArgs) -> Result<()> {
             to_json(&s.config, &results, &checks, photons)?.as_bytes(),
         )?;
     }
-    Ok(())
+    let exit = verdict(&checks);
+    if exit == Exit::Disagreement {
+        eprintln!(
+            "facetlab: the photon tracer disagrees with the beam tracer beyond {SIGMA} standard errors (exit code 1)"
+        );
+    }
+    Ok(exit)
 }
 
 /// Seed of the photon tracer in `--verify`.
@@ -492,5 +525,29 @@ mod tests {
         .unwrap_err();
         assert!(e.to_string().contains("s.json") && !bad.exists());
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn a_flagged_check_exits_1_and_the_json_never_overwrites_a_cut() {
+        let check = |z: f64| Check {
+            name: "brilliance".into(),
+            beam: 0.5,
+            photon: 0.5 - z * 0.01,
+            stderr: 0.01,
+            z,
+        };
+        assert_eq!(verdict(&[]), Exit::Ok);
+        assert_eq!(verdict(&[vec![check(1.0), check(-3.9)]]), Exit::Ok);
+        assert_eq!(
+            verdict(&[vec![check(0.5)], vec![check(1.0), check(-SIGMA - 0.1)]]),
+            Exit::Disagreement
+        );
+        let d = tempfile::tempdir().unwrap();
+        let cut = d.path().join("t.toml");
+        std::fs::write(&cut, "not read").unwrap();
+        let c = cut.to_str().unwrap();
+        let e = run(&args(&[c, "--json", c])).unwrap_err().to_string();
+        assert!(e.starts_with("--json: ") && e.contains("overwrite"), "{e}");
+        assert_eq!(std::fs::read_to_string(&cut).unwrap(), "not read");
     }
 }

@@ -345,6 +345,14 @@ fn slug(name: &str) -> String {
 /// Run `facetlab trace`.
 pub fn run(args: &TraceArgs) -> Result<()> {
     let set = settings(args)?;
+    let mut outputs = Vec::new();
+    if let Some(j) = &args.json {
+        outputs.push(("--json", j.clone()));
+    }
+    if let Some(d) = &args.plots {
+        outputs.push(("--plots", d.clone()));
+    }
+    super::outputs::refuse_overwrite(&outputs, &super::outputs::cut_files(&args.cuts))?;
     let cuts = args
         .cuts
         .iter()
@@ -361,16 +369,20 @@ pub fn run(args: &TraceArgs) -> Result<()> {
                 "exists and is not a folder",
             ));
         }
+        facetlab::io::check_writable(dir)?;
     }
     if let Some(j) = &args.json {
-        if let Some(parent) = j.parent().filter(|p| !p.as_os_str().is_empty()) {
-            if !parent.is_dir() {
-                return Err(Error::io(
-                    j.display().to_string(),
-                    format!("folder {} does not exist", parent.display()),
-                ));
-            }
+        let parent = j
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        if !parent.is_dir() {
+            return Err(Error::io(
+                j.display().to_string(),
+                format!("folder {} does not exist", parent.display()),
+            ));
         }
+        facetlab::io::check_writable(parent)?;
     }
     let per_cut = match set.light {
         LightChoice::Single(_) => set.config.photons,

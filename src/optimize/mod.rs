@@ -16,12 +16,13 @@
 //!   [`crate::verify`]) and flags any disagreement with the beam tracer beyond 4 standard
 //!   errors;
 //! - `run.rs` writes the run folder (config as used, history, plots, best cut, reports) and
-//!   `sweep.rs` maps a score over two parameters.
+//!   `sweep.rs` maps a score over two parameters or draws the scores along one.
 //!
 //! The modules are private; what a caller needs is re-exported here: the config and its
 //! sections, the two scorers made from a config ([`BeamEvaluator`], [`PhotonVerifier`]),
 //! [`search`], [`verify`] and [`run()`] with their [`Hooks`] and [`RunOptions`], the sweep
-//! ([`sweep()`], [`write_sweep`], [`sweep_path`]), and the verification types.
+//! ([`sweep()`], [`write_sweep`], [`sweep_path`], and the one-parameter [`profile()`] with
+//! [`write_profile`]), and the verification types.
 //!
 //! The objective and the verifier are traits so the searches can be tested on analytic
 //! functions and wired to the tracers separately.
@@ -103,10 +104,11 @@ pub use history::{History, Row, Track};
 // The cost of a cut that cannot be built or scored.
 pub use problem::FAILED_COST;
 pub use report::{Candidate, FoundAt, Report};
-// Sweeps: a score mapped over two parameters.
+// Sweeps: a score mapped over two parameters, or the scores along one (a profile).
 pub use sweep::{
-    run_path as sweep_path, sweep, write as write_sweep, Axis, Cell, Heatmap, HeatmapChart, Sweep,
-    SweepScore,
+    output_paths as sweep_output_paths, profile, run_path as sweep_path, sweep,
+    write as write_sweep, write_profile, Axis, Cell, Heatmap, HeatmapChart, Point, Profile,
+    ProfileChart, ProfileLines, Sweep, SweepScore,
 };
 // The photon-tracer check of the winners (its rows and report are `crate::verify`'s).
 pub use crate::verify::{VerifyReport, VerifyRow};

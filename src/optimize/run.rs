@@ -469,8 +469,9 @@ pub fn run(
         Some(d) => d.clone(),
         None => new_run_dir(&opts.results_root, &config.name),
     };
-    // Fail before the search if the folder cannot be made.
-    std::fs::create_dir_all(&dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
+    // Fail before the search if the folder could not be written, but make it only in
+    // `write_folder`: a run killed before then leaves no empty folder behind.
+    crate::io::check_writable(&dir)?;
     let mut outcome = search(config, evaluator, &opts.hooks)?;
     match verifier {
         Some(v) => verify(&mut outcome, config, v, &opts.hooks),

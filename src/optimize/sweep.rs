@@ -7,6 +7,10 @@
 //! point, x varying fastest: `<x key>,<y key>,brilliance,fire,scintillation,objective`
 //! (+ any extra scores), where `objective = Σ weight · score − penalties` (higher is better;
 //! the negative of the optimizer's cost) and a cut that cannot be built has `NaN` scores.
+//!
+//! With one axis, [`profile`] evaluates the scores along it; its CSV is
+//! `<x key>,brilliance,fire,scintillation,objective` (+ extras), one row per x, and its chart
+//! (a [`ProfileChart`]) draws every score against x.
 
 use super::config::{axis_label, Config};
 use super::history::History;
@@ -245,6 +249,29 @@ pub struct Sweep {
     pub cells: Vec<Cell>,
 }
 
+/// The scores and the objective (NaN when not finite) of the config's start cut with `set`
+/// changed; no scores and a NaN objective when the cut cannot be built or scored.
+fn score_point(
+    config: &Config,
+    evaluator: &dyn Evaluator,
+    set: &[(&str, f64)],
+) -> (Option<ScoreSet>, f64) {
+    let mut p = config.start.clone();
+    for (k, v) in set {
+        p.insert((*k).to_string(), *v);
+    }
+    let scored = Cut::from_family(&config.name, config.family.name, &p)
+        .and_then(|cut| evaluator.evaluate(&cut).map(|s| (cut, s)));
+    match scored {
+        Ok((cut, s)) => {
+            let checks = check_constraints(&cut, &config.constraints);
+            let obj = weighted(&s, &config.weights) - penalty(&checks, &config.constraints);
+            (Some(s), if obj.is_finite() { obj } else { f64::NAN })
+        }
+        Err(_) => (None, f64::NAN),
+    }
+}
+
 /// Evaluate the grid (in parallel; the result is in grid order whatever the thread count).
 /// `tick` is called once per finished point.
 pub fn sweep(
@@ -275,33 +302,16 @@ pub fn sweep(
         .into_par_iter()
         .map(|k| {
             let (xv, yv) = (x.values[k % nx], y.values[k / nx]);
-            let mut p = config.start.clone();
-            p.insert(x.key.clone(), xv);
-            p.insert(y.key.clone(), yv);
-            let scored = Cut::from_family(&config.name, config.family.name, &p)
-                .and_then(|cut| evaluator.evaluate(&cut).map(|s| (cut, s)));
-            let cell = match scored {
-                Ok((cut, s)) => {
-                    let checks = check_constraints(&cut, &config.constraints);
-                    let obj = weighted(&s, &config.weights) - penalty(&checks, &config.constraints);
-                    Cell {
-                        x: xv,
-                        y: yv,
-                        scores: Some(s),
-                        objective: if obj.is_finite() { obj } else { f64::NAN },
-                    }
-                }
-                Err(_) => Cell {
-                    x: xv,
-                    y: yv,
-                    scores: None,
-                    objective: f64::NAN,
-                },
-            };
+            let (scores, objective) = score_point(config, evaluator, &[(&x.key, xv), (&y.key, yv)]);
             if let Some(t) = tick {
                 t();
             }
-            cell
+            Cell {
+                x: xv,
+                y: yv,
+                scores,
+                objective,
+            }
         })
         .collect();
     Ok(Sweep {
@@ -430,6 +440,164 @@ pub fn run_path(run_dir: &Path, x: &str, y: &str) -> Result<Vec<(f64, f64)>> {
         .into_iter()
         .map(|p| (cx.map_or(fx, |i| p[i]), cy.map_or(fy, |i| p[i])))
         .collect())
+}
+
+/// A score along one parameter, as a chart shows it: every score's values against x.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProfileLines {
+    /// Title.
+    pub title: String,
+    /// x values (at least 2, increasing).
+    pub xs: Vec<f64>,
+    /// x axis label.
+    pub x_label: String,
+    /// `(score name, values at xs)`: brilliance, fire, scintillation, objective; NaN where the
+    /// cut failed.
+    pub series: Vec<(String, Vec<f64>)>,
+}
+
+/// Draws a [`ProfileLines`] as the PNG `png` and the SVG `svg`. Like [`HeatmapChart`], the
+/// binary connects the plot module's `profile` here.
+pub type ProfileChart = fn(lines: &ProfileLines, png: &Path, svg: &Path) -> Result<()>;
+
+/// One point of a [`Profile`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Point {
+    /// x value.
+    pub x: f64,
+    /// Scores (None when the cut failed).
+    pub scores: Option<ScoreSet>,
+    /// Σ weight · score − penalties (NaN when the cut failed).
+    pub objective: f64,
+}
+
+impl Point {
+    /// The value of `score` (NaN when the cut failed).
+    pub fn value(&self, score: &SweepScore) -> f64 {
+        Cell {
+            x: self.x,
+            y: f64::NAN,
+            scores: self.scores.clone(),
+            objective: self.objective,
+        }
+        .value(score)
+    }
+}
+
+/// A finished one-parameter sweep (a profile).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Profile {
+    /// The swept parameter.
+    pub x: Axis,
+    /// One point per x value, in order.
+    pub points: Vec<Point>,
+}
+
+/// The scores drawn and written for every point, in order.
+const SCORES: [SweepScore; 4] = [
+    SweepScore::Brilliance,
+    SweepScore::Fire,
+    SweepScore::Scintillation,
+    SweepScore::Objective,
+];
+
+/// Evaluate the scores along one axis (in parallel; the result is in order whatever the thread
+/// count). `tick` is called once per finished point.
+pub fn profile(
+    config: &Config,
+    evaluator: &dyn Evaluator,
+    x: &Axis,
+    tick: Option<&(dyn Fn() + Sync)>,
+) -> Result<Profile> {
+    let points = x
+        .values
+        .par_iter()
+        .map(|&xv| {
+            let (scores, objective) = score_point(config, evaluator, &[(&x.key, xv)]);
+            if let Some(t) = tick {
+                t();
+            }
+            Point {
+                x: xv,
+                scores,
+                objective,
+            }
+        })
+        .collect();
+    Ok(Profile {
+        x: x.clone(),
+        points,
+    })
+}
+
+impl Profile {
+    /// The CSV text: `<x key>,brilliance,fire,scintillation,objective` (+ any extra scores),
+    /// one row per x.
+    pub fn to_csv(&self) -> String {
+        let extras: Vec<String> = self
+            .points
+            .iter()
+            .find_map(|p| p.scores.as_ref())
+            .map(|s| s.extra.iter().map(|(k, _)| k.clone()).collect())
+            .unwrap_or_default();
+        let s = |v: f64| {
+            if v.is_finite() {
+                v.to_string()
+            } else {
+                "NaN".into()
+            }
+        };
+        let mut o = format!("{},brilliance,fire,scintillation,objective", self.x.key);
+        for e in &extras {
+            let _ = write!(o, ",{e}");
+        }
+        o.push('\n');
+        for p in &self.points {
+            let _ = write!(o, "{}", p.x);
+            for score in &SCORES {
+                let _ = write!(o, ",{}", s(p.value(score)));
+            }
+            for e in &extras {
+                let v = p.scores.as_ref().and_then(|sc| sc.get(e));
+                let _ = write!(o, ",{}", s(v.unwrap_or(f64::NAN)));
+            }
+            o.push('\n');
+        }
+        o
+    }
+
+    /// The chart's lines: every score against x.
+    pub fn lines(&self, title: String) -> ProfileLines {
+        ProfileLines {
+            title,
+            xs: self.x.values.clone(),
+            x_label: self.x.label(),
+            series: SCORES
+                .iter()
+                .map(|score| {
+                    let v = self.points.iter().map(|p| p.value(score)).collect();
+                    (score.name().to_string(), v)
+                })
+                .collect(),
+        }
+    }
+}
+
+/// Write a profile's CSV and its chart (PNG and SVG, drawn by `chart`) where [`output_paths`]
+/// says.
+pub fn write_profile(
+    profile: &Profile,
+    title: String,
+    out: &Path,
+    chart: ProfileChart,
+) -> Result<(PathBuf, PathBuf, PathBuf)> {
+    let (csv, png, svg) = output_paths(out);
+    if let Some(d) = csv.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(d).map_err(|e| Error::io(d.display().to_string(), e))?;
+    }
+    write_atomic(&csv, profile.to_csv().as_bytes())?;
+    chart(&profile.lines(title), &png, &svg)?;
+    Ok((csv, png, svg))
 }
 
 /// Where a sweep's three files go: `--out` as a folder (`sweep.csv`, `.png`, `.svg` in it) or,
@@ -569,5 +737,47 @@ mod tests {
             "crown_angle,pavilion_angle,brilliance,fire,scintillation,objective\n30,39,"
         ));
         assert_eq!(output_paths(Path::new("out")).0, Path::new("out/sweep.csv"));
+    }
+
+    #[test]
+    fn a_profile_is_in_order_and_writes_one_row_per_x() {
+        let c = cfg();
+        let x = Axis::parse("--x", "crown_angle:30:36:1", &c).unwrap();
+        let bump = |cut: &Cut| -> Result<ScoreSet> {
+            let a = cut.params["crown_angle"];
+            if a == 35.0 {
+                return Err(Error::Geometry("refused".into()));
+            }
+            let mut s = ScoreSet::new((-((a - 34.0) / 2.0).powi(2)).exp(), a / 100.0, 0.25);
+            s.extra.push(("aset_red".into(), 0.5));
+            Ok(s)
+        };
+        let p = profile(&c, &bump, &x, None).unwrap();
+        let csv = p.to_csv();
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(
+            lines[0],
+            "crown_angle,brilliance,fire,scintillation,objective,aset_red"
+        );
+        assert_eq!(lines.len(), 1 + 7);
+        assert_eq!(
+            lines[5], "34,1,0.34,0.25,1,0.5",
+            "default weights: brilliance only"
+        );
+        assert_eq!(lines[6], "35,NaN,NaN,NaN,NaN,NaN");
+        let l = p.lines("t".into());
+        assert_eq!(l.series.len(), 4);
+        assert_eq!(l.series[1].0, "fire");
+        assert_eq!(l.series[0].1[4], 1.0);
+        let dir = tempfile::tempdir().unwrap();
+        let chart: ProfileChart = |l, png, svg| {
+            write_atomic(png, format!("{} points", l.xs.len()).as_bytes())?;
+            write_atomic(svg, l.x_label.as_bytes())
+        };
+        let (csv_path, png, _) =
+            write_profile(&p, "t".into(), &dir.path().join("prof"), chart).unwrap();
+        assert!(csv_path.ends_with("prof/sweep.csv"));
+        assert_eq!(std::fs::read_to_string(csv_path).unwrap(), csv);
+        assert_eq!(std::fs::read_to_string(png).unwrap(), "7 points");
     }
 }

@@ -426,3 +426,49 @@ fn a_run_where_every_cut_fails_still_writes_its_report() {
         assert!(!dir.path().join("best.toml").exists());
     }
 }
+
+#[test]
+fn the_run_folder_appears_only_when_there_is_something_to_write() {
+    // Trust issue: an interrupted or killed run used to leave an empty folder behind.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("results").join("run");
+    static SEEN: AtomicBool = AtomicBool::new(false);
+    static OUT: Mutex<Option<std::path::PathBuf>> = Mutex::new(None);
+    *OUT.lock().unwrap() = Some(out.clone());
+    let watching = |cut: &Cut| -> Result<ScoreSet> {
+        if let Some(o) = OUT.lock().unwrap().as_ref() {
+            if o.exists() || o.parent().is_some_and(|p| p.exists()) {
+                SEEN.store(true, Ordering::SeqCst);
+            }
+        }
+        bump(cut)
+    };
+    let opts = RunOptions {
+        out: Some(out.clone()),
+        ..RunOptions::default()
+    };
+    run::run(&config(NM, ""), &watching, None, &opts).unwrap();
+    assert!(
+        !SEEN.load(Ordering::SeqCst),
+        "the folder existed during the search"
+    );
+    assert!(out.join("report.md").is_file());
+    // A folder that cannot be made fails before any evaluation.
+    static CALLS: AtomicU64 = AtomicU64::new(0);
+    let counting = |cut: &Cut| -> Result<ScoreSet> {
+        CALLS.fetch_add(1, Ordering::SeqCst);
+        bump(cut)
+    };
+    let file = dir.path().join("file");
+    std::fs::write(&file, "x").unwrap();
+    let opts = RunOptions {
+        out: Some(file.join("run")),
+        ..RunOptions::default()
+    };
+    let e = run::run(&config(NM, ""), &counting, None, &opts)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("not a folder"), "{e}");
+    assert_eq!(CALLS.load(Ordering::SeqCst), 0);
+}

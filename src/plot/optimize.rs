@@ -1,13 +1,14 @@
-//! The optimizer's charts: a run's convergence (best and current cost against evaluations) and a
+//! The optimizer's charts: a run's convergence (best and current cost against evaluations), a
 //! sweep's heatmap (a score over two parameters, with contour lines, a colour bar and optionally
-//! the optimizer's path). They reach the optimizer as its hooks
-//! ([`crate::optimize::ConvergenceChart`], [`crate::optimize::HeatmapChart`]): the
-//! binary hands [`convergence`] and [`heatmap`] to a run and a sweep.
+//! the optimizer's path) and a one-parameter sweep's profile (every score against x). They
+//! reach the optimizer as its hooks ([`crate::optimize::ConvergenceChart`],
+//! [`crate::optimize::HeatmapChart`], [`crate::optimize::ProfileChart`]): the binary hands
+//! [`convergence`], [`heatmap`] and [`profile`] to a run and a sweep.
 
 use super::contour::{nice_levels, segments};
 use super::{box_key, font, legend, line_key, save_to, DrawResult, Figure, LegendStyle, TAB10};
 use crate::error::Result;
-use crate::optimize::{Heatmap, History, Track, FAILED_COST};
+use crate::optimize::{Heatmap, History, ProfileLines, Track, FAILED_COST};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
@@ -31,6 +32,113 @@ pub fn convergence(history: &History, title: &str, png: &Path, svg: &Path) -> Re
 /// failed), labelled contour lines, a colour bar, and the optimizer's path if the map has one.
 pub fn heatmap(map: &Heatmap, png: &Path, svg: &Path) -> Result<()> {
     save_to(&Map(map), png, svg)
+}
+
+/// Draw a one-parameter sweep as the PNG `png` and the SVG `svg`: one panel per score, stacked
+/// over a shared x axis, each with its own y range, its points, and its highest point marked.
+pub fn profile(lines: &ProfileLines, png: &Path, svg: &Path) -> Result<()> {
+    save_to(&ProfileFigure(lines), png, svg)
+}
+
+/// A profile as a figure.
+struct ProfileFigure<'a>(&'a ProfileLines);
+
+/// The finite range of `v` with a margin (a flat line gets a band around it).
+fn padded_range(v: &[f64]) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for x in v.iter().filter(|x| x.is_finite()) {
+        lo = lo.min(*x);
+        hi = hi.max(*x);
+    }
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let pad = if hi > lo {
+        0.08 * (hi - lo)
+    } else {
+        0.05 * lo.abs().max(1e-3)
+    };
+    (lo - pad, hi + pad)
+}
+
+impl Figure for ProfileFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        (1000, 220 * self.0.series.len().max(1) as u32 + 90)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
+        let p = self.0;
+        let root = root.titled(&p.title, font(20))?;
+        let n = p.series.len().max(1);
+        // A margin of half a step each side, so the end points' markers are whole.
+        let half = (p.xs[p.xs.len() - 1] - p.xs[0]) / (2.0 * (p.xs.len() - 1).max(1) as f64);
+        let (x0, x1) = (p.xs[0] - half, p.xs[p.xs.len() - 1] + half);
+        let panels = root.split_evenly((n, 1));
+        for (k, ((name, values), area)) in p.series.iter().zip(panels.iter()).enumerate() {
+            let last = k + 1 == n;
+            // Room above the line for the legend.
+            let (lo, top) = padded_range(values);
+            let hi = top + 0.3 * (top - lo);
+            let mut chart = ChartBuilder::on(area)
+                .margin_left(16)
+                .margin_right(24)
+                .margin_top(8)
+                .x_label_area_size(if last { 48 } else { 22 })
+                .y_label_area_size(80)
+                .build_cartesian_2d(x0..x1, lo..hi)?;
+            let ticks = |v: &f64| tidy(*v, hi - lo);
+            let mut mesh = chart.configure_mesh();
+            mesh.light_line_style(BLACK.mix(0.06))
+                .bold_line_style(BLACK.mix(0.12))
+                .y_desc(name.as_str())
+                .y_labels(5)
+                .y_label_formatter(&ticks)
+                .label_style(font(13))
+                .axis_desc_style(font(15));
+            if last {
+                mesh.x_desc(p.x_label.as_str());
+            }
+            mesh.draw()?;
+            let col = TAB10[k % TAB10.len()];
+            // A failed cut breaks the line.
+            let pts: Vec<(f64, f64)> = p.xs.iter().copied().zip(values.iter().copied()).collect();
+            for run in pts.split(|(_, v)| !v.is_finite()) {
+                chart.draw_series(LineSeries::new(run.iter().copied(), col.stroke_width(2)))?;
+            }
+            chart.draw_series(
+                pts.iter()
+                    .filter(|(_, v)| v.is_finite())
+                    .map(|p| Circle::new(*p, 3, col.filled())),
+            )?;
+            let best = pts
+                .iter()
+                .filter(|(_, v)| v.is_finite())
+                .max_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some(&(bx, by)) = best {
+                // The legend sits in the room above the line, away from the highest point.
+                let at = if bx > (x0 + x1) / 2.0 {
+                    SeriesLabelPosition::UpperLeft
+                } else {
+                    SeriesLabelPosition::UpperRight
+                };
+                chart
+                    .draw_series(std::iter::once(TriangleMarker::new(
+                        (bx, by),
+                        9,
+                        BLACK.filled(),
+                    )))?
+                    .label(format!(
+                        "highest {}: {} at {}",
+                        name.split(' ').next().unwrap_or(name),
+                        level_label(by),
+                        level_label(bx)
+                    ))
+                    .legend(|(x, y)| TriangleMarker::new((x + 11, y), 6, BLACK.filled()));
+                legend(&mut chart, at, LegendStyle::Compact)?;
+            }
+        }
+        Ok(())
+    }
 }
 
 fn quantile(sorted: &[f64], q: f64) -> f64 {
@@ -503,5 +611,40 @@ mod tests {
         assert!(!std::fs::read_to_string(&svg)
             .unwrap()
             .contains("end (best)"));
+    }
+
+    #[test]
+    fn profile_draws_one_panel_per_score_with_its_highest_point() {
+        let xs: Vec<f64> = (0..11).map(|i| 30.0 + i as f64).collect();
+        let bump: Vec<f64> = xs
+            .iter()
+            .map(|x| (-((x - 34.0) / 3.0).powi(2)).exp())
+            .collect();
+        let mut fire: Vec<f64> = xs.iter().map(|x| x / 100.0).collect();
+        fire[3] = f64::NAN;
+        let lines = ProfileLines {
+            title: "profile of t".into(),
+            xs,
+            x_label: "crown angle (°)".into(),
+            series: vec![
+                ("brilliance".into(), bump),
+                ("fire".into(), fire),
+                ("scintillation".into(), vec![0.2; 11]),
+            ],
+        };
+        assert_eq!(padded_range(&[f64::NAN]), (0.0, 1.0));
+        let (lo, hi) = padded_range(&[0.2, 0.2]);
+        assert!(lo < 0.2 && hi > 0.2);
+        let dir = tempfile::tempdir().unwrap();
+        let (png, svg) = (dir.path().join("p.png"), dir.path().join("p.svg"));
+        profile(&lines, &png, &svg).unwrap();
+        assert_eq!(&std::fs::read(&png).unwrap()[1..4], b"PNG");
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert!(text.contains("profile of t") && text.contains("crown angle"));
+        assert!(
+            text.contains("highest brilliance: 1 at 34"),
+            "the peak is marked"
+        );
+        assert!(text.contains("highest fire: 0.4 at 40"));
     }
 }

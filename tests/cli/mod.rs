@@ -2,6 +2,7 @@
 
 mod foundation;
 mod optimize;
+mod safety;
 
 use std::path::Path;
 use std::process::{Command, Output};

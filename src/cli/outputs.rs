@@ -1,0 +1,129 @@
+//! Guarding the user's files: an output that would overwrite an input is refused (naming the
+//! flag) before any work, and the exit status says how a command ended.
+
+use facetlab::error::{Error, Result};
+use std::path::{Path, PathBuf};
+
+/// How a command ended, as the process's exit code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Exit {
+    /// Done (0).
+    Ok,
+    /// Done, outputs written, but the photon tracer disagreed with the beam tracer beyond the
+    /// tolerance (1).
+    Disagreement,
+    /// Stopped by Ctrl-C or SIGTERM after writing what was found (130).
+    Interrupted,
+}
+
+impl Exit {
+    /// The process exit code. Bad input is 2 (an `Err`, not an `Exit`).
+    pub fn code(self) -> i32 {
+        match self {
+            Exit::Ok => 0,
+            Exit::Disagreement => 1,
+            Exit::Interrupted => 130,
+        }
+    }
+}
+
+/// The path as the file system resolves it: canonical when it exists; otherwise its nearest
+/// existing ancestor made canonical, with the missing rest appended.
+pub fn resolved(path: &Path) -> PathBuf {
+    let path = if path.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        path
+    };
+    if let Ok(c) = path.canonicalize() {
+        return c;
+    }
+    let mut rest = Vec::new();
+    let mut at = path;
+    loop {
+        match (at.file_name(), at.parent()) {
+            (Some(name), Some(parent)) => {
+                rest.push(name.to_os_string());
+                let parent = if parent.as_os_str().is_empty() {
+                    Path::new(".")
+                } else {
+                    parent
+                };
+                if let Ok(c) = parent.canonicalize() {
+                    let mut out = c;
+                    out.extend(rest.iter().rev());
+                    return out;
+                }
+                at = parent;
+            }
+            // `..` or a root that cannot be resolved: compare as written.
+            _ => return path.to_path_buf(),
+        }
+    }
+}
+
+/// Refuse when an output is one of the inputs. `outputs` are `(flag, path)` (a folder output
+/// is given as the folder and as each file written in it); `inputs` are the files and folders
+/// read (a CUT that is a preset name is no file and is left out by the caller).
+pub fn refuse_overwrite(outputs: &[(&str, PathBuf)], inputs: &[PathBuf]) -> Result<()> {
+    let ins: Vec<(PathBuf, &PathBuf)> = inputs.iter().map(|p| (resolved(p), p)).collect();
+    for (flag, out) in outputs {
+        let r = resolved(out);
+        if let Some((_, input)) = ins.iter().find(|(c, _)| *c == r) {
+            return Err(Error::invalid(
+                *flag,
+                format!(
+                    "{} would overwrite the input {}; write the output elsewhere",
+                    out.display(),
+                    input.display()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The CUT arguments that are files (presets are not).
+pub fn cut_files(cuts: &[String]) -> Vec<PathBuf> {
+    cuts.iter()
+        .map(PathBuf::from)
+        .filter(|p| p.is_file())
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_output_equal_to_an_input_is_refused_by_canonical_path() {
+        let d = tempfile::tempdir().unwrap();
+        let cut = d.path().join("t.toml");
+        std::fs::write(&cut, "x").unwrap();
+        std::fs::create_dir(d.path().join("sub")).unwrap();
+        // The same file spelled differently, and a new file beside it.
+        let same = d.path().join("sub").join("..").join("t.toml");
+        let e = refuse_overwrite(&[("--json", same)], std::slice::from_ref(&cut))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("--json: ") && e.contains("would overwrite"),
+            "{e}"
+        );
+        let fresh = d.path().join("sub").join("..").join("s.json");
+        assert!(refuse_overwrite(&[("--json", fresh)], std::slice::from_ref(&cut)).is_ok());
+        // Missing folders on the way are resolved through their nearest existing ancestor.
+        assert_eq!(
+            resolved(&d.path().join("a/b/c.json")),
+            d.path().canonicalize().unwrap().join("a/b/c.json")
+        );
+        assert_eq!(
+            cut_files(&["tolkowsky".into(), cut.display().to_string()]),
+            vec![cut.clone()]
+        );
+        assert_eq!(
+            [Exit::Ok, Exit::Disagreement, Exit::Interrupted].map(Exit::code),
+            [0, 1, 130]
+        );
+    }
+}
