@@ -62,7 +62,10 @@ fn cube_cell(t: DVec3) -> usize {
     } else {
         (if t.z > 0.0 { 4 } else { 5 }, t.x, t.y, a.z)
     };
-    let cell = |c: f64| (((c / m + 1.0) * 0.5 * CUBE_RES as f64) as usize).min(CUBE_RES - 1);
+    // One division: c / m ∈ [−1, 1] maps to [0, CUBE_RES].
+    let h = 0.5 * CUBE_RES as f64;
+    let s = h / m;
+    let cell = |c: f64| ((c * s + h) as usize).min(CUBE_RES - 1);
     (face * CUBE_RES + cell(u)) * CUBE_RES + cell(v)
 }
 
