@@ -176,6 +176,13 @@ pub fn clip_convex_into(
         if a.distance_squared(b) == 0.0 {
             continue;
         }
+        // Every vertex inside this edge (by clip_edge's own test): the step would hand the
+        // polygon back unchanged, so skip it.
+        let e = b - a;
+        let tol = TOL * e.length();
+        if out.iter().all(|&p| sign * cross(e, p - a) >= -tol) {
+            continue;
+        }
         clip_edge(out, a, b, sign, scratch);
         std::mem::swap(out, scratch);
         if out.len() < 3 {
