@@ -65,7 +65,8 @@ fn cube_cell(t: DVec3) -> usize {
     // One division: c / m ∈ [−1, 1] maps to [0, CUBE_RES].
     let h = 0.5 * CUBE_RES as f64;
     let s = h / m;
-    let cell = |c: f64| ((c * s + h) as usize).min(CUBE_RES - 1);
+    // Through i32, a cheaper conversion than to usize (the value is in [0, CUBE_RES]).
+    let cell = |c: f64| ((c * s + h) as i32).clamp(0, CUBE_RES as i32 - 1) as usize;
     (face * CUBE_RES + cell(u)) * CUBE_RES + cell(v)
 }
 
