@@ -6,6 +6,8 @@
 //!   wavelength for `tolkowsky`, one thread, at several split thresholds (the default is
 //!   1e-4), with the tree's size; a tilted pose (no symmetry); the paper's depth-8 setting;
 //! * `score`: the full default `score` of `tolkowsky` on the global rayon pool and on one thread;
+//! * `instructions` (only when named): ten tilted traces with no timing loop, to run under
+//!   `valgrind --tool=callgrind` for repeatable instruction counts;
 //! * `photons`: how many photons a Monte Carlo photon tracer needs to match the beam tracer's
 //!   `overhead_light_return` to 1e-4 (one standard error), and the time ratio. The photon
 //!   tracer is not on this branch, so a minimal one is built here (straight-down photons over
@@ -111,6 +113,27 @@ fn main() {
             tree.stats.beams,
             tree.stats.cut_off
         );
+    }
+
+    // Exactly ten traces of the tilted pose and nothing else, no timing loop: for instruction
+    // counts (`valgrind --tool=callgrind …/beam-… --bench instructions`), which unlike the
+    // wall clock do not swing with the machine's load. Only on request.
+    if filter.as_deref() == Some("instructions") {
+        let tilted = facetlab::beam::Frame::viewer(
+            facetlab::metrics::Tilt {
+                tilt_deg: 10.0,
+                azimuth_deg: 30.0,
+            }
+            .rotation(),
+        );
+        let opts = TraceOptions::default();
+        let mut segments = 0;
+        for _ in 0..10 {
+            segments += std::hint::black_box(stone.trace(&tilted, ri, 589.3, &opts))
+                .stats
+                .ray_segments;
+        }
+        println!("instructions: 10 tilted traces done ({segments} narrow-ray segments)");
     }
 
     if run("score") {

@@ -62,7 +62,11 @@ fn cube_cell(t: DVec3) -> usize {
     } else {
         (if t.z > 0.0 { 4 } else { 5 }, t.x, t.y, a.z)
     };
-    let cell = |c: f64| (((c / m + 1.0) * 0.5 * CUBE_RES as f64) as usize).min(CUBE_RES - 1);
+    // One division: c / m ∈ [−1, 1] maps to [0, CUBE_RES].
+    let h = 0.5 * CUBE_RES as f64;
+    let s = h / m;
+    // Through i32, a cheaper conversion than to usize (the value is in [0, CUBE_RES]).
+    let cell = |c: f64| ((c * s + h) as i32).clamp(0, CUBE_RES as i32 - 1) as usize;
     (face * CUBE_RES + cell(u)) * CUBE_RES + cell(v)
 }
 

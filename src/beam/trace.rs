@@ -13,6 +13,11 @@ use glam::{DVec2, DVec3, DVec4};
 /// along shared edges; they are dropped and their (negligible) share goes to their siblings.
 const SLIVER: f64 = 1e-13;
 
+/// Margin (girdle diameters, ~100 times [`clip2d::TOL`]) by which projected bounding boxes
+/// must miss each other for [`Stone::clip_facet`] to skip the clip: the clip keeps only points
+/// within `TOL` of both polygons, so it would find nothing there.
+const BOX_MARGIN: f64 = 1e-10;
+
 /// Receives exit beams as the tracer produces them.
 pub(crate) trait ExitSink {
     /// Whether [`ExitSink::exit`] should be given footprints (computing them costs time).
@@ -110,6 +115,8 @@ pub(super) struct Ctx {
     split_threshold: f64,
     max_depth: u32,
     want_fp: bool,
+    /// Record the facet-sequence tree (otherwise node ids are `u32::MAX`).
+    keep_nodes: bool,
 }
 
 /// Working memory of one trace, reused across beams.
@@ -122,6 +129,9 @@ struct Work {
     clip: Vec<DVec2>,
     scratch: Vec<DVec2>,
     proj: Vec<DVec2>,
+    /// Bounding box of `q` (the beam being split, projected).
+    qlo: DVec2,
+    qhi: DVec2,
     vstamp: Vec<u32>,
     fstamp: Vec<u32>,
     stamp: u32,
@@ -130,6 +140,20 @@ struct Work {
     cpts: Vec<DVec2>,
     foot: Vec<DVec2>,
     nodes: Vec<(u32, u32)>,
+}
+
+impl Work {
+    /// A new node (parent, facet) of the facet-sequence tree: its id, or `u32::MAX` when the
+    /// tree is not kept.
+    #[inline]
+    fn node(&mut self, cx: &Ctx, parent: u32, facet: usize) -> u32 {
+        if !cx.keep_nodes {
+            return u32::MAX;
+        }
+        let node = self.nodes.len() as u32;
+        self.nodes.push((parent, facet as u32));
+        node
+    }
 }
 
 impl Stone {
@@ -143,6 +167,8 @@ impl Stone {
             clip: Vec::with_capacity(32),
             scratch: Vec::with_capacity(32),
             proj: vec![DVec2::ZERO; self.vertices.len()],
+            qlo: DVec2::ZERO,
+            qhi: DVec2::ZERO,
             vstamp: vec![0; self.vertices.len()],
             fstamp: vec![0; self.normals.len()],
             stamp: 0,
@@ -192,6 +218,7 @@ impl Stone {
             split_threshold: clean(opts.split_threshold),
             max_depth: opts.max_depth,
             want_fp: sink.wants_footprints(),
+            keep_nodes,
         };
         let mut w = self.work();
         let map0 = Affine {
@@ -238,8 +265,7 @@ impl Stone {
                 }
             }
             st.power_in += p;
-            let node = w.nodes.len() as u32;
-            w.nodes.push((u32::MAX, f as u32));
+            let node = w.node(&cx, u32::MAX, f);
             let fr = fresnel(c, 1.0, ri);
             let axis = s_axis(d0, n).unwrap_or(frame.u);
             let (sr, stt) = split(cx.pol, &fr, DVec4::new(p, 0.0, 0.0, 0.0));
@@ -360,8 +386,7 @@ impl Stone {
             st.ray_segments += 1;
             x += t * best.max(0.0);
             let n = self.normals[g];
-            let node = w.nodes.len() as u32;
-            w.nodes.push((prev, g as u32));
+            let node = w.node(cx, prev, g);
             prev = node;
             let meet = Meet {
                 t,
@@ -414,6 +439,15 @@ impl Stone {
             st.cut_off += beam.stokes.x;
             return;
         }
+        let (mut lo, mut hi) = (w.q[0], w.q[0]);
+        for &p in &w.q[1..] {
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        // Widened far beyond the clip's tolerance (TOL): facets whose projected bounding box
+        // misses this one overlap the beam in nothing the clip would keep.
+        w.qlo = lo - DVec2::splat(BOX_MARGIN);
+        w.qhi = hi + DVec2::splat(BOX_MARGIN);
         w.stamp = w.stamp.wrapping_add(1);
         if w.stamp == 0 {
             w.vstamp.iter_mut().for_each(|s| *s = 0);
@@ -491,8 +525,7 @@ impl Stone {
             if cx.want_fp {
                 w.foot.extend(w.cur.iter().map(|&x| map.apply(x)));
             }
-            let node = w.nodes.len() as u32;
-            w.nodes.push((beam.node, g as u32));
+            let node = w.node(cx, beam.node, g);
             let meet = Meet {
                 t,
                 n,
@@ -529,6 +562,7 @@ impl Stone {
     fn clip_facet(&self, g: usize, e1: DVec3, e2: DVec3, w: &mut Work, keep_area: f64) -> f64 {
         let stamp = w.stamp;
         w.g.clear();
+        let (mut lo, mut hi) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
         for &v in self.facet_verts(g) {
             let v = v as usize;
             if w.vstamp[v] != stamp {
@@ -536,7 +570,14 @@ impl Stone {
                 let x = self.vertices[v];
                 w.proj[v] = DVec2::new(x.dot(e1), x.dot(e2));
             }
-            w.g.push(w.proj[v]);
+            let p = w.proj[v];
+            lo = lo.min(p);
+            hi = hi.max(p);
+            w.g.push(p);
+        }
+        if lo.x > w.qhi.x || lo.y > w.qhi.y || hi.x < w.qlo.x || hi.y < w.qlo.y {
+            // Disjoint bounding boxes: nothing to clip.
+            return 0.0;
         }
         clip2d::clip_convex_into(&w.q, &w.g, &mut w.clip, &mut w.scratch);
         let a = clip2d::area(&w.clip);

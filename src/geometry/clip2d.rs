@@ -176,6 +176,13 @@ pub fn clip_convex_into(
         if a.distance_squared(b) == 0.0 {
             continue;
         }
+        // Every vertex inside this edge (by clip_edge's own test): the step would hand the
+        // polygon back unchanged, so skip it.
+        let e = b - a;
+        let tol = TOL * e.length();
+        if out.iter().all(|&p| sign * cross(e, p - a) >= -tol) {
+            continue;
+        }
         clip_edge(out, a, b, sign, scratch);
         std::mem::swap(out, scratch);
         if out.len() < 3 {
@@ -202,17 +209,41 @@ pub fn clip_strip_x_into(
     out: &mut Vec<DVec2>,
     scratch: &mut Vec<DVec2>,
 ) {
-    // Left of the upward line x = x0 is x < x0; keep the right side (sign −1).
-    clip_edge(
-        subject,
-        DVec2::new(x0, 0.0),
-        DVec2::new(x0, 1.0),
-        -1.0,
-        scratch,
-    );
-    clip_edge(scratch, DVec2::new(x1, 0.0), DVec2::new(x1, 1.0), 1.0, out);
+    // The half-planes x ≥ x0 and x ≤ x1 (clip_edge with the lines x = x0 upward, sign −1, and
+    // x = x1 upward, sign +1, whose side values reduce to these coordinate differences).
+    clip_side(subject, |p| p.x - x0, scratch);
+    clip_side(scratch, |p| x1 - p.x, out);
     if out.len() < 3 {
         out.clear();
+    }
+}
+
+/// [`clip_edge`] for an axis-aligned line, where the side value `side(p)` is a plain
+/// coordinate difference (the same number `clip_edge`'s cross product gives for a unit edge
+/// vector along an axis): keeps the points with `side(p) ≥ −TOL`, writing to `out` (cleared
+/// first).
+#[inline(always)]
+fn clip_side(subject: &[DVec2], side: impl Fn(DVec2) -> f64, out: &mut Vec<DVec2>) {
+    out.clear();
+    let n = subject.len();
+    if n == 0 {
+        return;
+    }
+    let tol = TOL;
+    let mut p = subject[n - 1];
+    let mut sp = side(p);
+    for &q in subject {
+        let sq = side(q);
+        let (p_in, q_in) = (sp >= -tol, sq >= -tol);
+        if p_in != q_in {
+            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
+            out.push(p + (q - p) * t);
+        }
+        if q_in {
+            out.push(q);
+        }
+        p = q;
+        sp = sq;
     }
 }
 
@@ -224,14 +255,10 @@ pub fn clip_strip_y_into(
     out: &mut Vec<DVec2>,
     scratch: &mut Vec<DVec2>,
 ) {
-    clip_edge(
-        subject,
-        DVec2::new(0.0, y0),
-        DVec2::new(1.0, y0),
-        1.0,
-        scratch,
-    );
-    clip_edge(scratch, DVec2::new(0.0, y1), DVec2::new(1.0, y1), -1.0, out);
+    // The half-planes y ≥ y0 and y ≤ y1 (clip_edge with the lines y = y0 rightward, sign +1,
+    // and y = y1 rightward, sign −1).
+    clip_side(subject, |p| p.y - y0, scratch);
+    clip_side(scratch, |p| y1 - p.y, out);
     if out.len() < 3 {
         out.clear();
     }
@@ -248,6 +275,55 @@ pub fn rect_overlap_area(subject: &[DVec2], lo: DVec2, hi: DVec2) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The strip clips (side values as coordinate differences) give exactly what the general
+    /// edge clip gives for the same axis-aligned lines.
+    #[test]
+    fn strips_match_the_general_edge_clip() {
+        let mut seed = 12345u64;
+        let mut rnd = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut out, mut scratch, mut a, mut b) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let mut cut = 0;
+        for _ in 0..500 {
+            let n = 3 + (rnd() * 6.0) as usize;
+            let (cx, cy, r, ph) = (rnd() - 0.5, rnd() - 0.5, 0.05 + rnd() * 0.5, rnd() * 6.0);
+            let poly: Vec<DVec2> = (0..n)
+                .map(|i| {
+                    let th = ph + i as f64 * std::f64::consts::TAU / n as f64;
+                    DVec2::new(cx + r * th.cos(), cy + r * th.sin())
+                })
+                .collect();
+            let (lo, hi) = (rnd() - 0.6, rnd() * 0.3);
+            let (lo, hi) = (lo, lo + hi);
+            clip_strip_x_into(&poly, lo, hi, &mut out, &mut scratch);
+            clip_edge(
+                &poly,
+                DVec2::new(lo, 0.0),
+                DVec2::new(lo, 1.0),
+                -1.0,
+                &mut a,
+            );
+            clip_edge(&a, DVec2::new(hi, 0.0), DVec2::new(hi, 1.0), 1.0, &mut b);
+            if b.len() < 3 {
+                b.clear();
+            }
+            assert_eq!(out, b);
+            cut += (!out.is_empty() && out.len() != poly.len()) as usize;
+            clip_strip_y_into(&poly, lo, hi, &mut out, &mut scratch);
+            clip_edge(&poly, DVec2::new(0.0, lo), DVec2::new(1.0, lo), 1.0, &mut a);
+            clip_edge(&a, DVec2::new(0.0, hi), DVec2::new(1.0, hi), -1.0, &mut b);
+            if b.len() < 3 {
+                b.clear();
+            }
+            assert_eq!(out, b);
+        }
+        assert!(cut > 100, "too few polygons were cut: {cut}");
+    }
 
     fn sq(x0: f64, y0: f64, s: f64) -> Vec<DVec2> {
         vec![
