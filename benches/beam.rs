@@ -9,10 +9,9 @@
 //! * `instructions` (only when named): ten tilted traces with no timing loop, to run under
 //!   `valgrind --tool=callgrind` for repeatable instruction counts;
 //! * `photons`: how many photons a Monte Carlo photon tracer needs to match the beam tracer's
-//!   `overhead_light_return` to 1e-4 (one standard error), and the time ratio. The photon
-//!   tracer is not on this branch, so a minimal one is built here (straight-down photons over
-//!   the stone's shadow, Fresnel choice by roulette, unpolarized, no absorption, no depth
-//!   limit); its cost per photon stands in for the real one's.
+//!   `overhead_light_return` to 1e-4 (one standard error), and the time ratio, measured with
+//!   the real photon tracer (`facetlab::photon::trace`: directed light from above, unpolarized,
+//!   no absorption, one wavelength).
 
 use facetlab::beam::{Frame, Stone, TraceOptions};
 use facetlab::metrics::{overhead_light_return_with, score, ScoreConfig};
