@@ -96,7 +96,7 @@ use crate::geometry::{clip2d, Polyhedron};
 use crate::optics::{color, Dispersion, Material};
 use glam::{DMat3, DVec2, DVec3};
 use lighting::{aset_bins, Lighting, Spot};
-use raster::Raster;
+use raster::{Coverage, Raster};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -457,6 +457,8 @@ struct PoseSink<'a> {
     face_up: bool,
     brilliance: bool,
     r: PoseResult,
+    /// The current exit's footprint coverage (the same for every image).
+    cov: Coverage,
 }
 
 impl ExitSink for PoseSink<'_> {
@@ -481,17 +483,23 @@ impl ExitSink for PoseSink<'_> {
             r.iso += p * self.light.iso(w);
             r.cos += p * self.light.cos(w);
         }
+        // The footprint's area and pixel coverage, computed on first use: every image has
+        // the same size, so one coverage serves them all.
         let mut a = -1.0;
         let mut skip = 0;
+        let cov = &mut self.cov;
         if let Some(lat) = self.lattice {
             skip = lat.lightings.len();
             let (images, scale) = (&mut r.images[..skip], p * self.area);
             lat.for_each(w, |k, l| {
                 if a < 0.0 {
                     a = clip2d::area(fp);
+                    if a > 0.0 {
+                        images[k].coverage_into(fp, cov);
+                    }
                 }
                 if l > 0.0 && a > 0.0 {
-                    images[k].add_polygon(fp, l * scale / a);
+                    images[k].add_coverage(cov, l * scale / a);
                 }
             });
         }
@@ -500,11 +508,14 @@ impl ExitSink for PoseSink<'_> {
                 let l = light.spots(w);
                 if a < 0.0 {
                     a = clip2d::area(fp);
+                    if a > 0.0 {
+                        img.coverage_into(fp, cov);
+                    }
                 }
                 if l > 0.0 && a > 0.0 {
                     // Radiance through this beam: its power per unit of footprint, relative to
                     // the incoming power per unit of cross-section.
-                    img.add_polygon(fp, l * p * self.area / a);
+                    img.add_coverage(cov, l * p * self.area / a);
                 }
             }
         }
@@ -552,6 +563,7 @@ fn run_job(
             ..Default::default()
         },
         spots,
+        cov: Coverage::default(),
     };
     let (stats, _) = stone.trace_into(&frame, job.ri, &opts, &mut sink, false);
     sink.r.power_in = stats.power_in;

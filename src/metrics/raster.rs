@@ -5,6 +5,18 @@
 use crate::geometry::clip2d;
 use glam::DVec2;
 
+/// The exact area a convex polygon covers in each pixel it touches (pixel index, area), for
+/// images of one size: computed once by [`Raster::coverage_into`], added to any number of
+/// images of that size with [`Raster::add_coverage`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Coverage {
+    /// Row-major pixel index and covered area (≥ 0), each pixel at most once.
+    pub cells: Vec<(usize, f64)>,
+    strip: Vec<DVec2>,
+    cell: Vec<DVec2>,
+    scratch: Vec<DVec2>,
+}
+
 /// An `n × n` image over the square `[−half, half]²` of image coordinates; each pixel holds
 /// an average value (weight per unit area × covered area / pixel area).
 #[derive(Clone, Debug, PartialEq)]
@@ -15,9 +27,7 @@ pub struct Raster {
     pub half: f64,
     /// Row-major values, row 0 at the bottom (y = −half).
     pub data: Vec<f64>,
-    strip: Vec<DVec2>,
-    cell: Vec<DVec2>,
-    scratch: Vec<DVec2>,
+    cov: Coverage,
 }
 
 impl Raster {
@@ -29,9 +39,7 @@ impl Raster {
             n,
             half,
             data: vec![0.0; n * n],
-            strip: Vec::new(),
-            cell: Vec::new(),
-            scratch: Vec::new(),
+            cov: Coverage::default(),
         }
     }
 
@@ -43,11 +51,33 @@ impl Raster {
     /// Add `value` (per unit area, i.e. the pixel average where fully covered) over the convex
     /// polygon `poly`, pixel by pixel by exact clipping.
     pub fn add_polygon(&mut self, poly: &[DVec2], value: f64) {
-        if poly.len() < 3
-            || value == 0.0
-            || !value.is_finite()
-            || !(self.half > 0.0 && self.half.is_finite())
-        {
+        if value == 0.0 || !value.is_finite() {
+            return;
+        }
+        let mut cov = std::mem::take(&mut self.cov);
+        self.coverage_into(poly, &mut cov);
+        self.add_coverage(&cov, value);
+        self.cov = cov;
+    }
+
+    /// Add `value` per unit area over a coverage computed by [`Raster::coverage_into`] for an
+    /// image of this size: the same as [`Raster::add_polygon`] with the polygon.
+    pub fn add_coverage(&mut self, cov: &Coverage, value: f64) {
+        if cov.cells.is_empty() || value == 0.0 || !value.is_finite() {
+            return;
+        }
+        let h = self.pixel();
+        let scale = value / (h * h);
+        for &(k, a) in &cov.cells {
+            self.data[k] += a * scale;
+        }
+    }
+
+    /// The pixels the convex polygon `poly` covers in this image, with the exact covered
+    /// areas, into `cov` (cleared first; empty when nothing is covered).
+    pub fn coverage_into(&self, poly: &[DVec2], cov: &mut Coverage) {
+        cov.cells.clear();
+        if poly.len() < 3 || !(self.half > 0.0 && self.half.is_finite()) {
             return;
         }
         let h = self.pixel();
@@ -63,7 +93,6 @@ impl Raster {
         let idx = |c: f64| ((c + self.half) / h).floor() as isize;
         let (i0, i1) = (idx(lo.x).clamp(0, n - 1), idx(hi.x).clamp(0, n - 1));
         let (j0, j1) = (idx(lo.y).clamp(0, n - 1), idx(hi.y).clamp(0, n - 1));
-        let scale = value / (h * h);
         if i0 == i1 && j0 == j1 {
             // Inside one pixel (the common case for small beams): no clipping needed unless it
             // sticks out of the imaged square.
@@ -76,27 +105,21 @@ impl Raster {
                 let y0 = -self.half + j0 as f64 * h;
                 clip2d::rect_overlap_area(poly, DVec2::new(x0, y0), DVec2::new(x0 + h, y0 + h))
             };
-            self.data[j0 as usize * self.n + i0 as usize] += a * scale;
+            cov.cells.push((j0 as usize * self.n + i0 as usize, a));
             return;
         }
         for j in j0..=j1 {
             let y0 = -self.half + j as f64 * h;
-            clip2d::clip_strip_y_into(poly, y0, y0 + h, &mut self.strip, &mut self.scratch);
-            if self.strip.is_empty() {
+            clip2d::clip_strip_y_into(poly, y0, y0 + h, &mut cov.strip, &mut cov.scratch);
+            if cov.strip.is_empty() {
                 continue;
             }
             for i in i0..=i1 {
                 let x0 = -self.half + i as f64 * h;
-                clip2d::clip_strip_x_into(
-                    &self.strip,
-                    x0,
-                    x0 + h,
-                    &mut self.cell,
-                    &mut self.scratch,
-                );
-                let a = clip2d::area(&self.cell);
+                clip2d::clip_strip_x_into(&cov.strip, x0, x0 + h, &mut cov.cell, &mut cov.scratch);
+                let a = clip2d::area(&cov.cell);
                 if a > 0.0 {
-                    self.data[j as usize * self.n + i as usize] += a * scale;
+                    cov.cells.push((j as usize * self.n + i as usize, a));
                 }
             }
         }
