@@ -5,6 +5,79 @@
 use crate::geometry::clip2d;
 use glam::DVec2;
 
+/// `clip2d::area` of `clip2d::clip_strip_x_into(subject, x0, x1)`, with the very same
+/// arithmetic in the same order (so the same number to the last bit), but without building
+/// the clipped polygon: the first half-plane's output goes to `buf` (indexed, grown only when
+/// too short), the second's straight into the shoelace sum.
+#[inline]
+fn slab_area(subject: &[DVec2], x0: f64, x1: f64, buf: &mut Vec<DVec2>) -> f64 {
+    let n = subject.len();
+    if n == 0 {
+        return 0.0;
+    }
+    // Each edge emits at most two points.
+    if buf.len() < 2 * n {
+        buf.resize(2 * n, DVec2::ZERO);
+    }
+    let tol = clip2d::TOL;
+    // x ≥ x0, as clip2d's clip_side with side value p.x − x0.
+    let mut m = 0;
+    let mut p = subject[n - 1];
+    let mut sp = p.x - x0;
+    for &q in subject {
+        let sq = q.x - x0;
+        let (p_in, q_in) = (sp >= -tol, sq >= -tol);
+        if p_in != q_in {
+            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
+            buf[m] = p + (q - p) * t;
+            m += 1;
+        }
+        if q_in {
+            buf[m] = q;
+            m += 1;
+        }
+        p = q;
+        sp = sq;
+    }
+    if m == 0 {
+        return 0.0;
+    }
+    // x ≤ x1, side value x1 − p.x, each emitted vertex fed to the shoelace sum of
+    // `clip2d::signed_area` (relative to the first vertex; pairs (1, 2), (2, 3), …).
+    let first = &buf[..m];
+    let (mut count, mut o, mut prev, mut s) = (0usize, DVec2::ZERO, DVec2::ZERO, 0.0);
+    let mut emit = |v: DVec2| {
+        if count == 0 {
+            o = v;
+        } else if count >= 2 {
+            s += clip2d::cross(prev - o, v - o);
+        }
+        prev = v;
+        count += 1;
+    };
+    let mut p = first[m - 1];
+    let mut sp = x1 - p.x;
+    for &q in first {
+        let sq = x1 - q.x;
+        let (p_in, q_in) = (sp >= -tol, sq >= -tol);
+        if p_in != q_in {
+            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
+            emit(p + (q - p) * t);
+        }
+        if q_in {
+            emit(q);
+        }
+        p = q;
+        sp = sq;
+    }
+    // Fewer than three points: clip_strip_x_into gives an empty polygon, of area 0.
+    if count < 3 {
+        0.0
+    } else {
+        (0.5 * s).abs()
+    }
+}
+
 /// The exact area a convex polygon covers in each pixel it touches (pixel index, area), for
 /// images of one size: computed once by [`Raster::coverage_into`], added to any number of
 /// images of that size with [`Raster::add_coverage`].
@@ -116,8 +189,7 @@ impl Raster {
             }
             for i in i0..=i1 {
                 let x0 = -self.half + i as f64 * h;
-                clip2d::clip_strip_x_into(&cov.strip, x0, x0 + h, &mut cov.cell, &mut cov.scratch);
-                let a = clip2d::area(&cov.cell);
+                let a = slab_area(&cov.strip, x0, x0 + h, &mut cov.cell);
                 if a > 0.0 {
                     cov.cells.push((j as usize * self.n + i as usize, a));
                 }
