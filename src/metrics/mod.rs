@@ -785,6 +785,10 @@ struct FireLattice<'a> {
     /// Per spot of the base set: elevation and azimuth of its centre, reach (angular radius
     /// with the soft rim, degrees), smallest cosine of its elevation over the lifts.
     spots: Vec<(f64, f64, f64, f64)>,
+    /// Per spot, hoisted out of [`FireLattice::for_each`] (the same numbers it computed per
+    /// exit): the elevations below and above which no placement's spot reaches, and
+    /// `1 − cos(reach)`.
+    bounds: Vec<(f64, f64, f64)>,
     lifts: Vec<f64>,
     step: f64,
 }
@@ -812,9 +816,20 @@ impl<'a> FireLattice<'a> {
                 })
                 .collect()
         });
+        let bounds = spots
+            .iter()
+            .map(|&(base, _, reach, _)| {
+                (
+                    (base + lo).clamp(1.0, 89.0) - reach,
+                    (base + hi).clamp(1.0, 89.0) + reach,
+                    1.0 - reach.to_radians().cos(),
+                )
+            })
+            .collect();
         FireLattice {
             lightings,
             spots,
+            bounds,
             lifts,
             step: 360.0 / placements.len().max(1) as f64,
         }
@@ -829,22 +844,22 @@ impl<'a> FireLattice<'a> {
             return;
         }
         let e = lighting::elevation_deg(w);
-        let az = w.y.atan2(w.x).to_degrees();
         let head = self.lightings[0].head(w);
         if head == 0.0 {
             return;
         }
-        let (lo, hi) = self
-            .lifts
-            .iter()
-            .fold((0.0f64, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
-        for (i, &(base, a0, reach, cos_top)) in self.spots.iter().enumerate() {
-            if e < (base + lo).clamp(1.0, 89.0) - reach || e > (base + hi).clamp(1.0, 89.0) + reach
-            {
+        // The azimuth and cos e, computed once the first spot is within reach of elevation e.
+        let mut az_cos: Option<(f64, f64)> = None;
+        for (i, (&(base, a0, reach, cos_top), &(e_lo, e_hi, one_minus_cos_reach))) in
+            self.spots.iter().zip(&self.bounds).enumerate()
+        {
+            if e < e_lo || e > e_hi {
                 continue;
             }
+            let (az, cos_e) =
+                *az_cos.get_or_insert_with(|| (w.y.atan2(w.x).to_degrees(), e.to_radians().cos()));
             // 1 − cos Δa ≤ (1 − cos ρ) / (cos e · cos ε): the azimuths within reach.
-            let x = (1.0 - reach.to_radians().cos()) / (e.to_radians().cos() * cos_top).max(1e-300);
+            let x = one_minus_cos_reach / (cos_e * cos_top).max(1e-300);
             let half = if x >= 2.0 {
                 180.0
             } else {
