@@ -9,42 +9,50 @@ use glam::DVec2;
 /// arithmetic in the same order (so the same number to the last bit), but without building
 /// the clipped polygon: the first half-plane's output goes to `buf` (indexed, grown only when
 /// too short), the second's straight into the shoelace sum.
+///
+/// `sx0`, `sx1` are the smallest and largest x of `subject`: where a half-plane holds all of
+/// it (with room to spare for rounding) its clip would copy the polygon unchanged, and is
+/// skipped.
 #[inline]
-fn slab_area(subject: &[DVec2], x0: f64, x1: f64, buf: &mut Vec<DVec2>) -> f64 {
+fn slab_area(
+    subject: &[DVec2],
+    x0: f64,
+    x1: f64,
+    (sx0, sx1): (f64, f64),
+    buf: &mut Vec<DVec2>,
+) -> f64 {
     let n = subject.len();
     if n == 0 {
         return 0.0;
+    }
+    // Every point has x − x0 ≥ sx0 − x0 ≥ 0 (rounding is monotone): all kept.
+    let left_all = sx0 - x0 >= 0.0;
+    // x1 − x ≥ 0 for every point of the subject, and the first clip's new points lie within
+    // rounding of x0 < x1 or of the subject's x-range: all kept (tolerance 1e-12).
+    let right_all = x1 - sx1 >= 0.0;
+    if left_all && right_all {
+        return clip2d::area(subject);
     }
     // Each edge emits at most two points.
     if buf.len() < 2 * n {
         buf.resize(2 * n, DVec2::ZERO);
     }
     let tol = clip2d::TOL;
-    // x ≥ x0, as clip2d's clip_side with side value p.x − x0.
-    let mut m = 0;
-    let mut p = subject[n - 1];
-    let mut sp = p.x - x0;
-    for &q in subject {
-        let sq = q.x - x0;
-        let (p_in, q_in) = (sp >= -tol, sq >= -tol);
-        if p_in != q_in {
-            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
-            buf[m] = p + (q - p) * t;
-            m += 1;
-        }
-        if q_in {
-            buf[m] = q;
-            m += 1;
-        }
-        p = q;
-        sp = sq;
-    }
-    if m == 0 {
+    let m = if left_all {
+        0
+    } else {
+        clip_x0(subject, x0, buf)
+    };
+    let first = if left_all { subject } else { &buf[..m] };
+    if first.is_empty() {
         return 0.0;
+    }
+    if right_all {
+        return clip2d::area(first);
     }
     // x ≤ x1, side value x1 − p.x, each emitted vertex fed to the shoelace sum of
     // `clip2d::signed_area` (relative to the first vertex; pairs (1, 2), (2, 3), …).
-    let first = &buf[..m];
+    let m = first.len();
     let (mut count, mut o, mut prev, mut s) = (0usize, DVec2::ZERO, DVec2::ZERO, 0.0);
     let mut emit = |v: DVec2| {
         if count == 0 {
@@ -75,6 +83,89 @@ fn slab_area(subject: &[DVec2], x0: f64, x1: f64, buf: &mut Vec<DVec2>) -> f64 {
         0.0
     } else {
         (0.5 * s).abs()
+    }
+}
+
+/// The x ≥ x0 clip of clip2d's clip_side (side value p.x − x0), written by index into
+/// `buf` (at least twice as long as `subject`); returns the number of points.
+#[inline]
+fn clip_x0(subject: &[DVec2], x0: f64, buf: &mut [DVec2]) -> usize {
+    let n = subject.len();
+    let tol = clip2d::TOL;
+    let mut m = 0;
+    let mut p = subject[n - 1];
+    let mut sp = p.x - x0;
+    for &q in subject {
+        let sq = q.x - x0;
+        let (p_in, q_in) = (sp >= -tol, sq >= -tol);
+        if p_in != q_in {
+            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
+            buf[m] = p + (q - p) * t;
+            m += 1;
+        }
+        if q_in {
+            buf[m] = q;
+            m += 1;
+        }
+        p = q;
+        sp = sq;
+    }
+    m
+}
+
+/// `clip2d::clip_strip_y_into(poly, y0, y1)` (the same points to the last bit), skipping
+/// either half-plane clip that would keep every point: `lo_y`, `hi_y` are the polygon's
+/// smallest and largest y.
+fn strip_y(
+    poly: &[DVec2],
+    (lo_y, hi_y): (f64, f64),
+    (y0, y1): (f64, f64),
+    out: &mut Vec<DVec2>,
+    scratch: &mut Vec<DVec2>,
+) {
+    // As in slab_area: all points (and the first clip's new points, within rounding) kept.
+    let bottom_all = lo_y - y0 >= 0.0;
+    let top_all = y1 - hi_y >= 0.0;
+    match (bottom_all, top_all) {
+        (true, true) => {
+            out.clear();
+            out.extend_from_slice(poly);
+        }
+        (true, false) => clip_side(poly, |p| y1 - p.y, out),
+        (false, true) => clip_side(poly, |p| p.y - y0, out),
+        (false, false) => {
+            clip_side(poly, |p| p.y - y0, scratch);
+            clip_side(scratch, |p| y1 - p.y, out);
+        }
+    }
+    if out.len() < 3 {
+        out.clear();
+    }
+}
+
+/// clip2d's clip_side: keeps the points with `side(p) ≥ −TOL`, into `out` (cleared first).
+#[inline(always)]
+fn clip_side(subject: &[DVec2], side: impl Fn(DVec2) -> f64, out: &mut Vec<DVec2>) {
+    out.clear();
+    let n = subject.len();
+    if n == 0 {
+        return;
+    }
+    let tol = clip2d::TOL;
+    let mut p = subject[n - 1];
+    let mut sp = side(p);
+    for &q in subject {
+        let sq = side(q);
+        let (p_in, q_in) = (sp >= -tol, sq >= -tol);
+        if p_in != q_in {
+            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
+            out.push(p + (q - p) * t);
+        }
+        if q_in {
+            out.push(q);
+        }
+        p = q;
+        sp = sq;
     }
 }
 
@@ -183,13 +274,24 @@ impl Raster {
         }
         for j in j0..=j1 {
             let y0 = -self.half + j as f64 * h;
-            clip2d::clip_strip_y_into(poly, y0, y0 + h, &mut cov.strip, &mut cov.scratch);
+            strip_y(
+                poly,
+                (lo.y, hi.y),
+                (y0, y0 + h),
+                &mut cov.strip,
+                &mut cov.scratch,
+            );
             if cov.strip.is_empty() {
                 continue;
             }
+            let (mut sx0, mut sx1) = (f64::INFINITY, f64::NEG_INFINITY);
+            for p in &cov.strip {
+                sx0 = sx0.min(p.x);
+                sx1 = sx1.max(p.x);
+            }
             for i in i0..=i1 {
                 let x0 = -self.half + i as f64 * h;
-                let a = slab_area(&cov.strip, x0, x0 + h, &mut cov.cell);
+                let a = slab_area(&cov.strip, x0, x0 + h, (sx0, sx1), &mut cov.cell);
                 if a > 0.0 {
                     cov.cells.push((j as usize * self.n + i as usize, a));
                 }
@@ -238,6 +340,55 @@ mod tests {
         r.add_polygon(&t, 1.0);
         assert!((r.integral() - 5e-5).abs() < 1e-18);
         assert_eq!(r.data.iter().filter(|&&v| v > 0.0).count(), 1);
+    }
+
+    /// The coverage is bit for bit the per-pixel clip with clip2d's strip clips.
+    #[test]
+    fn coverage_matches_the_plain_clip_bit_for_bit() {
+        let mut seed = 987654321u64;
+        let mut rnd = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let r = Raster::new(16, 0.5);
+        let h = r.pixel();
+        let mut cov = Coverage::default();
+        let (mut strip, mut cell, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
+        for _ in 0..2000 {
+            let n = 3 + (rnd() * 6.0) as usize;
+            let (cx, cy, rad, ph) = (rnd() - 0.5, rnd() - 0.5, rnd() * 0.2, rnd() * 6.0);
+            // Some vertices exactly on pixel lines.
+            let snap = rnd() < 0.3;
+            let poly: Vec<DVec2> = (0..n)
+                .map(|i| {
+                    let th = ph + i as f64 * std::f64::consts::TAU / n as f64;
+                    let p = DVec2::new(cx + rad * th.cos(), cy + rad * th.sin());
+                    if snap {
+                        ((p + 0.5) / h).round() * h - 0.5
+                    } else {
+                        p
+                    }
+                })
+                .collect();
+            r.coverage_into(&poly, &mut cov);
+            let mut want = Vec::new();
+            for j in 0..16 {
+                let y0 = -0.5 + j as f64 * h;
+                clip2d::clip_strip_y_into(&poly, y0, y0 + h, &mut strip, &mut scratch);
+                for i in 0..16 {
+                    let x0 = -0.5 + i as f64 * h;
+                    clip2d::clip_strip_x_into(&strip, x0, x0 + h, &mut cell, &mut scratch);
+                    let a = clip2d::area(&cell);
+                    if a > 0.0 {
+                        want.push((j * 16 + i, a));
+                    }
+                }
+            }
+            let got: Vec<(usize, f64)> = cov.cells.iter().copied().filter(|c| c.1 > 0.0).collect();
+            assert_eq!(got, want, "{poly:?}");
+        }
     }
 
     #[test]
