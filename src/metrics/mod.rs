@@ -503,7 +503,13 @@ impl ExitSink for PoseSink<'_> {
                 }
             });
         }
-        for (img, light) in r.images.iter_mut().zip(&self.spots).skip(skip) {
+        // Skipping on each slice iterator is O(1), unlike skipping the zipped pairs.
+        for (img, light) in r
+            .images
+            .iter_mut()
+            .skip(skip)
+            .zip(self.spots.iter().skip(skip))
+        {
             if light.near_spot(w) {
                 let l = light.spots(w);
                 if a < 0.0 {
