@@ -876,8 +876,8 @@ impl<'a> FireLattice<'a> {
                 (0, n as i64 - 1)
             } else {
                 (
-                    ((t0 - half) / self.step).ceil() as i64,
-                    ((t0 + half) / self.step).floor() as i64,
+                    raster::ceil_i64((t0 - half) / self.step),
+                    raster::floor_i64((t0 + half) / self.step),
                 )
             };
             for kk in k0..=k1.min(k0 + n as i64 - 1) {

@@ -86,6 +86,29 @@ fn slab_area(
     }
 }
 
+/// `v.floor() as i64` (saturating; 0 for NaN) without a call to the `floor` routine (the
+/// default x86-64 target has no rounding instruction).
+#[inline]
+pub(crate) fn floor_i64(v: f64) -> i64 {
+    let t = v as i64;
+    if (t as f64) > v {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
+}
+
+/// `v.ceil() as i64` (saturating; 0 for NaN), as [`floor_i64`].
+#[inline]
+pub(crate) fn ceil_i64(v: f64) -> i64 {
+    let t = v as i64;
+    if (t as f64) < v {
+        t.saturating_add(1)
+    } else {
+        t
+    }
+}
+
 /// The x ≥ x0 clip of clip2d's clip_side (side value p.x − x0), written by index into
 /// `buf` (at least twice as long as `subject`); returns the number of points.
 #[inline]
@@ -254,7 +277,7 @@ impl Raster {
             return;
         }
         let n = self.n as isize;
-        let idx = |c: f64| ((c + self.half) / h).floor() as isize;
+        let idx = |c: f64| floor_i64((c + self.half) / h) as isize;
         let (i0, i1) = (idx(lo.x).clamp(0, n - 1), idx(hi.x).clamp(0, n - 1));
         let (j0, j1) = (idx(lo.y).clamp(0, n - 1), idx(hi.y).clamp(0, n - 1));
         if i0 == i1 && j0 == j1 {
@@ -388,6 +411,33 @@ mod tests {
             }
             let got: Vec<(usize, f64)> = cov.cells.iter().copied().filter(|c| c.1 > 0.0).collect();
             assert_eq!(got, want, "{poly:?}");
+        }
+    }
+
+    #[test]
+    fn integer_floor_and_ceil() {
+        for v in [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            2.5,
+            -2.5,
+            1e300,
+            -1e300,
+            9.3e18,
+            -9.3e18,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            1e-300,
+            -1e-300,
+            4503599627370497.0,
+        ] {
+            assert_eq!(floor_i64(v), v.floor() as i64, "{v}");
+            assert_eq!(ceil_i64(v), v.ceil() as i64, "{v}");
         }
     }
 
