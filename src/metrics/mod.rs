@@ -96,7 +96,7 @@ use crate::geometry::{clip2d, Polyhedron};
 use crate::optics::{color, Dispersion, Material};
 use glam::{DMat3, DVec2, DVec3};
 use lighting::{aset_bins, Lighting, Spot};
-use raster::Raster;
+use raster::{Coverage, Raster};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -457,6 +457,8 @@ struct PoseSink<'a> {
     face_up: bool,
     brilliance: bool,
     r: PoseResult,
+    /// The current exit's footprint coverage (the same for every image).
+    cov: Coverage,
 }
 
 impl ExitSink for PoseSink<'_> {
@@ -481,30 +483,45 @@ impl ExitSink for PoseSink<'_> {
             r.iso += p * self.light.iso(w);
             r.cos += p * self.light.cos(w);
         }
+        // The footprint's area and pixel coverage, computed on first use: every image has
+        // the same size, so one coverage serves them all.
         let mut a = -1.0;
         let mut skip = 0;
+        let cov = &mut self.cov;
         if let Some(lat) = self.lattice {
             skip = lat.lightings.len();
             let (images, scale) = (&mut r.images[..skip], p * self.area);
             lat.for_each(w, |k, l| {
                 if a < 0.0 {
                     a = clip2d::area(fp);
+                    if a > 0.0 {
+                        images[k].coverage_into(fp, cov);
+                    }
                 }
                 if l > 0.0 && a > 0.0 {
-                    images[k].add_polygon(fp, l * scale / a);
+                    images[k].add_coverage(cov, l * scale / a);
                 }
             });
         }
-        for (img, light) in r.images.iter_mut().zip(&self.spots).skip(skip) {
+        // Skipping on each slice iterator is O(1), unlike skipping the zipped pairs.
+        for (img, light) in r
+            .images
+            .iter_mut()
+            .skip(skip)
+            .zip(self.spots.iter().skip(skip))
+        {
             if light.near_spot(w) {
                 let l = light.spots(w);
                 if a < 0.0 {
                     a = clip2d::area(fp);
+                    if a > 0.0 {
+                        img.coverage_into(fp, cov);
+                    }
                 }
                 if l > 0.0 && a > 0.0 {
                     // Radiance through this beam: its power per unit of footprint, relative to
                     // the incoming power per unit of cross-section.
-                    img.add_polygon(fp, l * p * self.area / a);
+                    img.add_coverage(cov, l * p * self.area / a);
                 }
             }
         }
@@ -552,6 +569,7 @@ fn run_job(
             ..Default::default()
         },
         spots,
+        cov: Coverage::default(),
     };
     let (stats, _) = stone.trace_into(&frame, job.ri, &opts, &mut sink, false);
     sink.r.power_in = stats.power_in;
@@ -773,6 +791,10 @@ struct FireLattice<'a> {
     /// Per spot of the base set: elevation and azimuth of its centre, reach (angular radius
     /// with the soft rim, degrees), smallest cosine of its elevation over the lifts.
     spots: Vec<(f64, f64, f64, f64)>,
+    /// Per spot, hoisted out of [`FireLattice::for_each`] (the same numbers it computed per
+    /// exit): the elevations below and above which no placement's spot reaches, and
+    /// `1 − cos(reach)`.
+    bounds: Vec<(f64, f64, f64)>,
     lifts: Vec<f64>,
     step: f64,
 }
@@ -800,9 +822,20 @@ impl<'a> FireLattice<'a> {
                 })
                 .collect()
         });
+        let bounds = spots
+            .iter()
+            .map(|&(base, _, reach, _)| {
+                (
+                    (base + lo).clamp(1.0, 89.0) - reach,
+                    (base + hi).clamp(1.0, 89.0) + reach,
+                    1.0 - reach.to_radians().cos(),
+                )
+            })
+            .collect();
         FireLattice {
             lightings,
             spots,
+            bounds,
             lifts,
             step: 360.0 / placements.len().max(1) as f64,
         }
@@ -817,22 +850,22 @@ impl<'a> FireLattice<'a> {
             return;
         }
         let e = lighting::elevation_deg(w);
-        let az = w.y.atan2(w.x).to_degrees();
         let head = self.lightings[0].head(w);
         if head == 0.0 {
             return;
         }
-        let (lo, hi) = self
-            .lifts
-            .iter()
-            .fold((0.0f64, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
-        for (i, &(base, a0, reach, cos_top)) in self.spots.iter().enumerate() {
-            if e < (base + lo).clamp(1.0, 89.0) - reach || e > (base + hi).clamp(1.0, 89.0) + reach
-            {
+        // The azimuth and cos e, computed once the first spot is within reach of elevation e.
+        let mut az_cos: Option<(f64, f64)> = None;
+        for (i, (&(base, a0, reach, cos_top), &(e_lo, e_hi, one_minus_cos_reach))) in
+            self.spots.iter().zip(&self.bounds).enumerate()
+        {
+            if e < e_lo || e > e_hi {
                 continue;
             }
+            let (az, cos_e) =
+                *az_cos.get_or_insert_with(|| (w.y.atan2(w.x).to_degrees(), e.to_radians().cos()));
             // 1 − cos Δa ≤ (1 − cos ρ) / (cos e · cos ε): the azimuths within reach.
-            let x = (1.0 - reach.to_radians().cos()) / (e.to_radians().cos() * cos_top).max(1e-300);
+            let x = one_minus_cos_reach / (cos_e * cos_top).max(1e-300);
             let half = if x >= 2.0 {
                 180.0
             } else {
@@ -843,8 +876,8 @@ impl<'a> FireLattice<'a> {
                 (0, n as i64 - 1)
             } else {
                 (
-                    ((t0 - half) / self.step).ceil() as i64,
-                    ((t0 + half) / self.step).floor() as i64,
+                    raster::ceil_i64((t0 - half) / self.step),
+                    raster::floor_i64((t0 + half) / self.step),
                 )
             };
             for kk in k0..=k1.min(k0 + n as i64 - 1) {

@@ -5,6 +5,205 @@
 use crate::geometry::clip2d;
 use glam::DVec2;
 
+/// `clip2d::area` of `clip2d::clip_strip_x_into(subject, x0, x1)`, with the very same
+/// arithmetic in the same order (so the same number to the last bit), but without building
+/// the clipped polygon: the first half-plane's output goes to `buf` (indexed, grown only when
+/// too short), the second's straight into the shoelace sum.
+///
+/// `sx0`, `sx1` are the smallest and largest x of `subject`: where a half-plane holds all of
+/// it (with room to spare for rounding) its clip would copy the polygon unchanged, and is
+/// skipped.
+#[inline]
+fn slab_area(
+    subject: &[DVec2],
+    x0: f64,
+    x1: f64,
+    (sx0, sx1): (f64, f64),
+    buf: &mut Vec<DVec2>,
+) -> f64 {
+    let n = subject.len();
+    if n == 0 {
+        return 0.0;
+    }
+    // Every point has x − x0 ≥ sx0 − x0 ≥ 0 (rounding is monotone): all kept.
+    let left_all = sx0 - x0 >= 0.0;
+    // x1 − x ≥ 0 for every point of the subject, and the first clip's new points lie within
+    // rounding of x0 < x1 or of the subject's x-range: all kept (tolerance 1e-12).
+    let right_all = x1 - sx1 >= 0.0;
+    if left_all && right_all {
+        return clip2d::area(subject);
+    }
+    // Each edge emits at most two points.
+    if buf.len() < 2 * n {
+        buf.resize(2 * n, DVec2::ZERO);
+    }
+    let tol = clip2d::TOL;
+    let m = if left_all {
+        0
+    } else {
+        clip_x0(subject, x0, buf)
+    };
+    let first = if left_all { subject } else { &buf[..m] };
+    if first.is_empty() {
+        return 0.0;
+    }
+    if right_all {
+        return clip2d::area(first);
+    }
+    // x ≤ x1, side value x1 − p.x, each emitted vertex fed to the shoelace sum of
+    // `clip2d::signed_area` (relative to the first vertex; pairs (1, 2), (2, 3), …).
+    let m = first.len();
+    let (mut count, mut o, mut prev, mut s) = (0usize, DVec2::ZERO, DVec2::ZERO, 0.0);
+    let mut emit = |v: DVec2| {
+        if count == 0 {
+            o = v;
+        } else if count >= 2 {
+            s += clip2d::cross(prev - o, v - o);
+        }
+        prev = v;
+        count += 1;
+    };
+    let mut p = first[m - 1];
+    let mut sp = x1 - p.x;
+    for &q in first {
+        let sq = x1 - q.x;
+        let (p_in, q_in) = (sp >= -tol, sq >= -tol);
+        if p_in != q_in {
+            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
+            emit(p + (q - p) * t);
+        }
+        if q_in {
+            emit(q);
+        }
+        p = q;
+        sp = sq;
+    }
+    // Fewer than three points: clip_strip_x_into gives an empty polygon, of area 0.
+    if count < 3 {
+        0.0
+    } else {
+        (0.5 * s).abs()
+    }
+}
+
+/// `v.floor() as i64` (saturating; 0 for NaN) without a call to the `floor` routine (the
+/// default x86-64 target has no rounding instruction).
+#[inline]
+pub(crate) fn floor_i64(v: f64) -> i64 {
+    let t = v as i64;
+    if (t as f64) > v {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
+}
+
+/// `v.ceil() as i64` (saturating; 0 for NaN), as [`floor_i64`].
+#[inline]
+pub(crate) fn ceil_i64(v: f64) -> i64 {
+    let t = v as i64;
+    if (t as f64) < v {
+        t.saturating_add(1)
+    } else {
+        t
+    }
+}
+
+/// The x ≥ x0 clip of clip2d's clip_side (side value p.x − x0), written by index into
+/// `buf` (at least twice as long as `subject`); returns the number of points.
+#[inline]
+fn clip_x0(subject: &[DVec2], x0: f64, buf: &mut [DVec2]) -> usize {
+    let n = subject.len();
+    let tol = clip2d::TOL;
+    let mut m = 0;
+    let mut p = subject[n - 1];
+    let mut sp = p.x - x0;
+    for &q in subject {
+        let sq = q.x - x0;
+        let (p_in, q_in) = (sp >= -tol, sq >= -tol);
+        if p_in != q_in {
+            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
+            buf[m] = p + (q - p) * t;
+            m += 1;
+        }
+        if q_in {
+            buf[m] = q;
+            m += 1;
+        }
+        p = q;
+        sp = sq;
+    }
+    m
+}
+
+/// `clip2d::clip_strip_y_into(poly, y0, y1)` (the same points to the last bit), skipping
+/// either half-plane clip that would keep every point: `lo_y`, `hi_y` are the polygon's
+/// smallest and largest y.
+fn strip_y(
+    poly: &[DVec2],
+    (lo_y, hi_y): (f64, f64),
+    (y0, y1): (f64, f64),
+    out: &mut Vec<DVec2>,
+    scratch: &mut Vec<DVec2>,
+) {
+    // As in slab_area: all points (and the first clip's new points, within rounding) kept.
+    let bottom_all = lo_y - y0 >= 0.0;
+    let top_all = y1 - hi_y >= 0.0;
+    match (bottom_all, top_all) {
+        (true, true) => {
+            out.clear();
+            out.extend_from_slice(poly);
+        }
+        (true, false) => clip_side(poly, |p| y1 - p.y, out),
+        (false, true) => clip_side(poly, |p| p.y - y0, out),
+        (false, false) => {
+            clip_side(poly, |p| p.y - y0, scratch);
+            clip_side(scratch, |p| y1 - p.y, out);
+        }
+    }
+    if out.len() < 3 {
+        out.clear();
+    }
+}
+
+/// clip2d's clip_side: keeps the points with `side(p) ≥ −TOL`, into `out` (cleared first).
+#[inline(always)]
+fn clip_side(subject: &[DVec2], side: impl Fn(DVec2) -> f64, out: &mut Vec<DVec2>) {
+    out.clear();
+    let n = subject.len();
+    if n == 0 {
+        return;
+    }
+    let tol = clip2d::TOL;
+    let mut p = subject[n - 1];
+    let mut sp = side(p);
+    for &q in subject {
+        let sq = side(q);
+        let (p_in, q_in) = (sp >= -tol, sq >= -tol);
+        if p_in != q_in {
+            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
+            out.push(p + (q - p) * t);
+        }
+        if q_in {
+            out.push(q);
+        }
+        p = q;
+        sp = sq;
+    }
+}
+
+/// The exact area a convex polygon covers in each pixel it touches (pixel index, area), for
+/// images of one size: computed once by [`Raster::coverage_into`], added to any number of
+/// images of that size with [`Raster::add_coverage`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Coverage {
+    /// Row-major pixel index and covered area (≥ 0), each pixel at most once.
+    pub cells: Vec<(usize, f64)>,
+    strip: Vec<DVec2>,
+    cell: Vec<DVec2>,
+    scratch: Vec<DVec2>,
+}
+
 /// An `n × n` image over the square `[−half, half]²` of image coordinates; each pixel holds
 /// an average value (weight per unit area × covered area / pixel area).
 #[derive(Clone, Debug, PartialEq)]
@@ -15,9 +214,7 @@ pub struct Raster {
     pub half: f64,
     /// Row-major values, row 0 at the bottom (y = −half).
     pub data: Vec<f64>,
-    strip: Vec<DVec2>,
-    cell: Vec<DVec2>,
-    scratch: Vec<DVec2>,
+    cov: Coverage,
 }
 
 impl Raster {
@@ -29,9 +226,7 @@ impl Raster {
             n,
             half,
             data: vec![0.0; n * n],
-            strip: Vec::new(),
-            cell: Vec::new(),
-            scratch: Vec::new(),
+            cov: Coverage::default(),
         }
     }
 
@@ -43,11 +238,33 @@ impl Raster {
     /// Add `value` (per unit area, i.e. the pixel average where fully covered) over the convex
     /// polygon `poly`, pixel by pixel by exact clipping.
     pub fn add_polygon(&mut self, poly: &[DVec2], value: f64) {
-        if poly.len() < 3
-            || value == 0.0
-            || !value.is_finite()
-            || !(self.half > 0.0 && self.half.is_finite())
-        {
+        if value == 0.0 || !value.is_finite() {
+            return;
+        }
+        let mut cov = std::mem::take(&mut self.cov);
+        self.coverage_into(poly, &mut cov);
+        self.add_coverage(&cov, value);
+        self.cov = cov;
+    }
+
+    /// Add `value` per unit area over a coverage computed by [`Raster::coverage_into`] for an
+    /// image of this size: the same as [`Raster::add_polygon`] with the polygon.
+    pub fn add_coverage(&mut self, cov: &Coverage, value: f64) {
+        if cov.cells.is_empty() || value == 0.0 || !value.is_finite() {
+            return;
+        }
+        let h = self.pixel();
+        let scale = value / (h * h);
+        for &(k, a) in &cov.cells {
+            self.data[k] += a * scale;
+        }
+    }
+
+    /// The pixels the convex polygon `poly` covers in this image, with the exact covered
+    /// areas, into `cov` (cleared first; empty when nothing is covered).
+    pub fn coverage_into(&self, poly: &[DVec2], cov: &mut Coverage) {
+        cov.cells.clear();
+        if poly.len() < 3 || !(self.half > 0.0 && self.half.is_finite()) {
             return;
         }
         let h = self.pixel();
@@ -60,10 +277,9 @@ impl Raster {
             return;
         }
         let n = self.n as isize;
-        let idx = |c: f64| ((c + self.half) / h).floor() as isize;
+        let idx = |c: f64| floor_i64((c + self.half) / h) as isize;
         let (i0, i1) = (idx(lo.x).clamp(0, n - 1), idx(hi.x).clamp(0, n - 1));
         let (j0, j1) = (idx(lo.y).clamp(0, n - 1), idx(hi.y).clamp(0, n - 1));
-        let scale = value / (h * h);
         if i0 == i1 && j0 == j1 {
             // Inside one pixel (the common case for small beams): no clipping needed unless it
             // sticks out of the imaged square.
@@ -76,27 +292,31 @@ impl Raster {
                 let y0 = -self.half + j0 as f64 * h;
                 clip2d::rect_overlap_area(poly, DVec2::new(x0, y0), DVec2::new(x0 + h, y0 + h))
             };
-            self.data[j0 as usize * self.n + i0 as usize] += a * scale;
+            cov.cells.push((j0 as usize * self.n + i0 as usize, a));
             return;
         }
         for j in j0..=j1 {
             let y0 = -self.half + j as f64 * h;
-            clip2d::clip_strip_y_into(poly, y0, y0 + h, &mut self.strip, &mut self.scratch);
-            if self.strip.is_empty() {
+            strip_y(
+                poly,
+                (lo.y, hi.y),
+                (y0, y0 + h),
+                &mut cov.strip,
+                &mut cov.scratch,
+            );
+            if cov.strip.is_empty() {
                 continue;
+            }
+            let (mut sx0, mut sx1) = (f64::INFINITY, f64::NEG_INFINITY);
+            for p in &cov.strip {
+                sx0 = sx0.min(p.x);
+                sx1 = sx1.max(p.x);
             }
             for i in i0..=i1 {
                 let x0 = -self.half + i as f64 * h;
-                clip2d::clip_strip_x_into(
-                    &self.strip,
-                    x0,
-                    x0 + h,
-                    &mut self.cell,
-                    &mut self.scratch,
-                );
-                let a = clip2d::area(&self.cell);
+                let a = slab_area(&cov.strip, x0, x0 + h, (sx0, sx1), &mut cov.cell);
                 if a > 0.0 {
-                    self.data[j as usize * self.n + i as usize] += a * scale;
+                    cov.cells.push((j as usize * self.n + i as usize, a));
                 }
             }
         }
@@ -143,6 +363,82 @@ mod tests {
         r.add_polygon(&t, 1.0);
         assert!((r.integral() - 5e-5).abs() < 1e-18);
         assert_eq!(r.data.iter().filter(|&&v| v > 0.0).count(), 1);
+    }
+
+    /// The coverage is bit for bit the per-pixel clip with clip2d's strip clips.
+    #[test]
+    fn coverage_matches_the_plain_clip_bit_for_bit() {
+        let mut seed = 987654321u64;
+        let mut rnd = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let r = Raster::new(16, 0.5);
+        let h = r.pixel();
+        let mut cov = Coverage::default();
+        let (mut strip, mut cell, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
+        for _ in 0..2000 {
+            let n = 3 + (rnd() * 6.0) as usize;
+            let (cx, cy, rad, ph) = (rnd() - 0.5, rnd() - 0.5, rnd() * 0.2, rnd() * 6.0);
+            // Some vertices exactly on pixel lines.
+            let snap = rnd() < 0.3;
+            let poly: Vec<DVec2> = (0..n)
+                .map(|i| {
+                    let th = ph + i as f64 * std::f64::consts::TAU / n as f64;
+                    let p = DVec2::new(cx + rad * th.cos(), cy + rad * th.sin());
+                    if snap {
+                        ((p + 0.5) / h).round() * h - 0.5
+                    } else {
+                        p
+                    }
+                })
+                .collect();
+            r.coverage_into(&poly, &mut cov);
+            let mut want = Vec::new();
+            for j in 0..16 {
+                let y0 = -0.5 + j as f64 * h;
+                clip2d::clip_strip_y_into(&poly, y0, y0 + h, &mut strip, &mut scratch);
+                for i in 0..16 {
+                    let x0 = -0.5 + i as f64 * h;
+                    clip2d::clip_strip_x_into(&strip, x0, x0 + h, &mut cell, &mut scratch);
+                    let a = clip2d::area(&cell);
+                    if a > 0.0 {
+                        want.push((j * 16 + i, a));
+                    }
+                }
+            }
+            let got: Vec<(usize, f64)> = cov.cells.iter().copied().filter(|c| c.1 > 0.0).collect();
+            assert_eq!(got, want, "{poly:?}");
+        }
+    }
+
+    #[test]
+    fn integer_floor_and_ceil() {
+        for v in [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            2.5,
+            -2.5,
+            1e300,
+            -1e300,
+            9.3e18,
+            -9.3e18,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            1e-300,
+            -1e-300,
+            4503599627370497.0,
+        ] {
+            assert_eq!(floor_i64(v), v.floor() as i64, "{v}");
+            assert_eq!(ceil_i64(v), v.ceil() as i64, "{v}");
+        }
     }
 
     #[test]
