@@ -106,29 +106,8 @@ pub fn is_convex(poly: &[DVec2]) -> bool {
 /// first).
 #[inline]
 fn clip_edge(subject: &[DVec2], a: DVec2, b: DVec2, sign: f64, out: &mut Vec<DVec2>) {
-    out.clear();
-    let n = subject.len();
-    if n == 0 {
-        return;
-    }
     let e = b - a;
-    let tol = TOL * e.length();
-    let side = |p: DVec2| sign * cross(e, p - a);
-    let mut p = subject[n - 1];
-    let mut sp = side(p);
-    for &q in subject {
-        let sq = side(q);
-        let (p_in, q_in) = (sp >= -tol, sq >= -tol);
-        if p_in != q_in {
-            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
-            out.push(p + (q - p) * t);
-        }
-        if q_in {
-            out.push(q);
-        }
-        p = q;
-        sp = sq;
-    }
+    clip_by(subject, |p| sign * cross(e, p - a), TOL * e.length(), out);
 }
 
 /// Drop consecutive vertices closer than [`TOL`] (also across the wrap); clear the polygon if
@@ -223,13 +202,20 @@ pub fn clip_strip_x_into(
 /// vector along an axis): keeps the points with `side(p) ≥ −TOL`, writing to `out` (cleared
 /// first).
 #[inline(always)]
-fn clip_side(subject: &[DVec2], side: impl Fn(DVec2) -> f64, out: &mut Vec<DVec2>) {
+pub(crate) fn clip_side(subject: &[DVec2], side: impl Fn(DVec2) -> f64, out: &mut Vec<DVec2>) {
+    clip_by(subject, side, TOL, out);
+}
+
+/// The one Sutherland–Hodgman step behind [`clip_edge`] and [`clip_side`]: keeps the points
+/// with `side(p) ≥ −tol`, with the crossing points of the boundary between, writing to `out`
+/// (cleared first).
+#[inline(always)]
+fn clip_by(subject: &[DVec2], side: impl Fn(DVec2) -> f64, tol: f64, out: &mut Vec<DVec2>) {
     out.clear();
     let n = subject.len();
     if n == 0 {
         return;
     }
-    let tol = TOL;
     let mut p = subject[n - 1];
     let mut sp = side(p);
     for &q in subject {

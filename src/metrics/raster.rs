@@ -2,7 +2,7 @@
 //! times the exact area it covers in each pixel, so an image changes continuously as the
 //! polygons move.
 
-use crate::geometry::clip2d;
+use crate::geometry::clip2d::{self, clip_side};
 use glam::DVec2;
 
 /// `clip2d::area` of `clip2d::clip_strip_x_into(subject, x0, x1)`, with the very same
@@ -163,32 +163,6 @@ fn strip_y(
     }
     if out.len() < 3 {
         out.clear();
-    }
-}
-
-/// clip2d's clip_side: keeps the points with `side(p) ≥ −TOL`, into `out` (cleared first).
-#[inline(always)]
-fn clip_side(subject: &[DVec2], side: impl Fn(DVec2) -> f64, out: &mut Vec<DVec2>) {
-    out.clear();
-    let n = subject.len();
-    if n == 0 {
-        return;
-    }
-    let tol = clip2d::TOL;
-    let mut p = subject[n - 1];
-    let mut sp = side(p);
-    for &q in subject {
-        let sq = side(q);
-        let (p_in, q_in) = (sp >= -tol, sq >= -tol);
-        if p_in != q_in {
-            let t = (sp / (sp - sq)).clamp(0.0, 1.0);
-            out.push(p + (q - p) * t);
-        }
-        if q_in {
-            out.push(q);
-        }
-        p = q;
-        sp = sq;
     }
 }
 
