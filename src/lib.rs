@@ -44,6 +44,7 @@ pub mod optimize;
 
 pub mod photon;
 pub mod plot;
+pub mod render;
 pub mod verify;
 
 #[cfg(test)]

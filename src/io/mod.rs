@@ -2,6 +2,7 @@
 
 pub mod asc;
 pub mod mesh;
+pub mod png;
 pub mod presets;
 pub mod spec;
 pub mod svg;

@@ -79,9 +79,8 @@
 //!   horizon (leak), with ±1° soft boundaries. No head obstruction is applied: in a real ASET
 //!   the viewing port at the top is dark; here that light counts as blue.
 
-pub mod canonical;
-pub mod lighting;
-pub mod raster;
+pub use crate::geometry::canonical;
+pub use crate::render::{fire_of, lighting, raster, Tilt};
 
 #[cfg(test)]
 mod golden;
@@ -102,53 +101,6 @@ use serde::{Deserialize, Serialize};
 
 /// Wavelength of the single-wavelength scores: the sodium D line, nm.
 pub const REFERENCE_WAVELENGTH_NM: f64 = 589.3;
-
-/// One pose of the stone: its table normal tipped by `tilt_deg` toward azimuth
-/// `azimuth_deg` (a negative tilt tips it the other way).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Tilt {
-    /// Tilt angle, degrees.
-    pub tilt_deg: f64,
-    /// Azimuth the table normal tips toward, degrees from +x toward +y.
-    pub azimuth_deg: f64,
-}
-
-impl Tilt {
-    /// Face-up.
-    pub const FACE_UP: Tilt = Tilt {
-        tilt_deg: 0.0,
-        azimuth_deg: 0.0,
-    };
-
-    /// Rotation taking stone coordinates to world coordinates.
-    pub fn rotation(&self) -> DMat3 {
-        let a = self.azimuth_deg.to_radians();
-        DMat3::from_axis_angle(
-            DVec3::new(-a.sin(), a.cos(), 0.0),
-            self.tilt_deg.to_radians(),
-        )
-    }
-
-    /// The default brilliance poses: face-up, five at 10° (azimuths 0°, 72°, …) and five at
-    /// 20° (azimuths 36°, 108°, …). Five-fold azimuths sample every orientation of a 4- or
-    /// 8-fold symmetric cut differently.
-    pub fn default_set() -> Vec<Tilt> {
-        let mut v = vec![Tilt::FACE_UP];
-        for k in 0..5 {
-            v.push(Tilt {
-                tilt_deg: 10.0,
-                azimuth_deg: 72.0 * k as f64,
-            });
-        }
-        for k in 0..5 {
-            v.push(Tilt {
-                tilt_deg: 20.0,
-                azimuth_deg: 36.0 + 72.0 * k as f64,
-            });
-        }
-        v
-    }
-}
 
 /// What to score and how.
 #[derive(Clone, Debug, PartialEq)]
@@ -952,40 +904,6 @@ fn turned(spots: &[Spot], turn_deg: f64, lift_deg: f64) -> Vec<Spot> {
             radius_deg: s.radius_deg,
         })
         .collect()
-}
-
-/// Saturated light of a spectral image in percent: `100 · Σ Y·s` over the pixels, times the
-/// pixel area, divided by `area`, where `s = C*ab / L*` is the pixel's CIELAB saturation
-/// (nearly independent of brightness, so the sum is linear in the light): `images[b]` is band `b`'s radiance image (relative to the
-/// sources' radiance), `weights[b]` its XYZ weight (their sum is the white, Y = 1).
-pub fn fire_of(images: &[&Raster], weights: &[DVec3], area: f64) -> f64 {
-    let Some(first) = images.first() else {
-        return 0.0;
-    };
-    if area.is_nan() || area <= 0.0 {
-        return 0.0;
-    }
-    let white: DVec3 = weights.iter().copied().sum();
-    let mut yc = 0.0;
-    for p in 0..first.data.len() {
-        // A grey pixel (the same value in every band) has no saturation at all.
-        let v = first.data[p];
-        if images.iter().all(|img| img.data[p] == v) {
-            continue;
-        }
-        let xyz: DVec3 = images
-            .iter()
-            .zip(weights)
-            .map(|(img, w)| *w * img.data[p])
-            .sum();
-        if xyz.y > 0.0 {
-            let lab = color::xyz_to_lab(xyz, white);
-            if lab.x > 0.0 {
-                yc += xyz.y * color::chroma(lab) / lab.x;
-            }
-        }
-    }
-    100.0 * yc * first.pixel().powi(2) / area
 }
 
 /// `Σⱼ Σₖ Σₚ |Iⱼ,ₖ₊₁ − Iⱼ,ₖ| / Σⱼ Σₖ Σₚ (Iⱼ,ₖ₊₁ + Iⱼ,ₖ)` over sequences `j` of images

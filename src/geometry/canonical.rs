@@ -1,7 +1,7 @@
 //! The canonical placement of a solid for scoring, which makes every score depend on the
 //! solid only, not on how it is written down.
 //!
-//! The same stone can reach [`super::score`] as different lists of numbers: moved or scaled
+//! The same stone can reach `metrics::score` as different lists of numbers: moved or scaled
 //! (an OBJ exported in millimetres, a design not centred on the girdle), rotated onto itself
 //! by one of its symmetries (a round brilliant turned by 45°, or by 90° through a coordinate
 //! swap in an OBJ), or with its facets in another order. The tracer's work depends on those
@@ -29,7 +29,7 @@
 //! Rounded, a normal on azimuth 0 has a y component of exactly 0.
 //!
 //! The stone is not turned about its axis: turning it is a different pose (see the module
-//! documentation of [`super`] for how the scores average over turning). (Turning it by half
+//! documentation of `metrics` for how the scores average over turning). (Turning it by half
 //! a degree away from its mirror lines was tried: it doubled the time of a score.)
 
 use crate::geometry::{FacetPlane, Polyhedron};
