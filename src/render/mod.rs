@@ -40,7 +40,7 @@ use crate::geometry::{canonical::canonical, clip2d, Polyhedron};
 use crate::optics::{color, Dispersion, Material};
 use glam::{DMat3, DVec2, DVec3};
 use lighting::{aset_bins, soft_above, Lighting, Spot};
-use raster::{Coverage, Raster};
+use raster::{Accumulator, Raster};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -531,7 +531,7 @@ impl Layer {
 }
 
 /// Rows per band of the parallel fill.
-const BAND_ROWS: usize = 32;
+const BAND_ROWS: usize = 64;
 
 /// Fill `channels` images of `size` pixels over `[−half, half]²` from the layers (each
 /// layer's channel values added to the same images), in bands of rows in parallel; each
@@ -548,25 +548,17 @@ fn fill(layers: &[Layer], channels: usize, size: usize, half: f64) -> Vec<Raster
         .par_iter()
         .map(|&(j0, j1)| {
             let (ylo, yhi) = (-half + j0 as f64 * h, -half + j1 as f64 * h);
-            let mut data = vec![vec![0.0; (j1 - j0) * size]; channels];
-            let mut cov = Coverage::default();
-            let scale = 1.0 / (h * h);
+            let mut acc = Accumulator::new(size, half, (j0, j1), channels);
             for layer in layers {
                 for (i, v) in layer.values.iter().enumerate() {
                     let (lo, hi) = layer.ys[i];
                     if hi < ylo || lo > yhi || v[..channels].iter().all(|&x| x == 0.0) {
                         continue;
                     }
-                    proto.coverage_rows_into(layer.tree.footprint(i), (j0, j1), &mut cov);
-                    for &(k, a) in &cov.cells {
-                        let k = k - j0 * size;
-                        for ch in 0..channels {
-                            data[ch][k] += a * scale * v[ch];
-                        }
-                    }
+                    acc.add_polygon(layer.tree.footprint(i), &v[..channels]);
                 }
             }
-            data
+            acc.finish()
         })
         .collect();
     (0..channels)
