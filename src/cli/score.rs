@@ -13,7 +13,9 @@
 //!
 //! **JSON** (`--json FILE`, written atomically). One cut: a single object with `cut` (its
 //! name), `overhead_light_return`, `brilliance`, `brilliance_iso`, `brilliance_cos`, `fire`,
-//! `scintillation`, `aset.{blue,red,green,leak}` (the keys of [`Scores`]) and `settings` (the
+//! `scintillation`, `aset.{blue,red,green,leak}`, `poses[].{tilt_deg,azimuth_deg,iso,cos}` (each
+//! pose of the brilliance average with its ISO and COS light return: the mean of the picture
+//! `facetlab render` draws of that pose) (the keys of [`Scores`]) and `settings` (the
 //! run's configuration as understood: `material`, `ri` (null unless `--ri`), `polarization`,
 //! `head_shadow_deg`, `wavelength_nm`, `bands`, `tilts`, `scintillation_tilts`, `resolution`,
 //! `split_threshold`, `fire_split_threshold`, `threshold`). Several cuts: `{"settings": {...}, "results": [one such
@@ -463,9 +465,15 @@ mod tests {
         let cfg = ScoreConfig::default();
         let s = Scores {
             fire: 0.25,
+            poses: vec![facetlab::metrics::PoseScore {
+                tilt_deg: 10.0,
+                azimuth_deg: 72.0,
+                iso: 0.8,
+                cos: 0.7,
+            }],
             ..Default::default()
         };
-        let one = to_json(&cfg, &[("tolkowsky".into(), s)], &[], 0).unwrap();
+        let one = to_json(&cfg, &[("tolkowsky".into(), s.clone())], &[], 0).unwrap();
         let v: serde_json::Value = serde_json::from_str(&one).unwrap();
         for k in [
             "overhead_light_return",
@@ -480,17 +488,20 @@ mod tests {
         for k in ["blue", "red", "green", "leak"] {
             assert!(v["aset"][k].is_number(), "aset.{k}");
         }
+        for k in ["tilt_deg", "azimuth_deg", "iso", "cos"] {
+            assert!(v["poses"][0][k].is_number(), "poses[].{k}");
+        }
         assert_eq!(v["cut"], "tolkowsky");
         assert_eq!(v["settings"]["material"], "diamond");
         assert!(v["settings"]["ri"].is_null());
-        let two = to_json(&cfg, &[("a".into(), s), ("b".into(), s)], &[], 0).unwrap();
+        let two = to_json(&cfg, &[("a".into(), s.clone()), ("b".into(), s.clone())], &[], 0).unwrap();
         let v: serde_json::Value = serde_json::from_str(&two).unwrap();
         assert_eq!(v["results"][1]["cut"], "b");
         assert_eq!(v["results"][0]["fire"], 0.25);
         assert!(v["results"][0].get("settings").is_none() && v["settings"].is_object());
         let t = table(
             &cfg,
-            &[("tolkowsky".into(), s), ("gia-reference".into(), s)],
+            &[("tolkowsky".into(), s.clone()), ("gia-reference".into(), s)],
         );
         assert_eq!(t.lines().count(), 12);
         assert!(t.lines().nth(1).unwrap().contains("gia-reference") && t.contains("0.2500"));

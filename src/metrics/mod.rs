@@ -311,8 +311,22 @@ pub struct Aset {
     pub leak: f64,
 }
 
-/// The scores of one cut (see the module documentation for definitions and ranges).
+/// Light return of one pose of the brilliance average: the mean of the pose's ISO and COS
+/// pictures ([`crate::render::Stats::mean`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PoseScore {
+    /// Tilt of the pose, degrees.
+    pub tilt_deg: f64,
+    /// Azimuth the table tips toward, degrees.
+    pub azimuth_deg: f64,
+    /// Light return under ISO lighting, [0, 1].
+    pub iso: f64,
+    /// Light return under COS lighting, [0, 1].
+    pub cos: f64,
+}
+
+/// The scores of one cut (see the module documentation for definitions and ranges).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Scores {
     /// Share of overhead parallel light leaving upward, [0, 1].
     pub overhead_light_return: f64,
@@ -328,6 +342,10 @@ pub struct Scores {
     pub scintillation: f64,
     /// ASET-style shares of the face-up view.
     pub aset: Aset,
+    /// The poses of the brilliance average, in [`ScoreConfig::tilts`] order, each with its
+    /// ISO and COS light return (brilliance_iso and brilliance_cos are their means).
+    #[serde(default)]
+    pub poses: Vec<PoseScore>,
 }
 
 /// Share of a parallel beam from straight above, over the stone's projected area, that leaves
@@ -675,16 +693,18 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
     };
     let fu = &results[face_up];
     let n = brill.len().max(1) as f64;
-    let brilliance_iso = brill
+    let poses: Vec<PoseScore> = brill
         .iter()
-        .map(|&k| norm(&results[k], results[k].iso))
-        .sum::<f64>()
-        / n;
-    let brilliance_cos = brill
-        .iter()
-        .map(|&k| norm(&results[k], results[k].cos))
-        .sum::<f64>()
-        / n;
+        .zip(&cfg.tilts)
+        .map(|(&k, t)| PoseScore {
+            tilt_deg: t.tilt_deg,
+            azimuth_deg: t.azimuth_deg,
+            iso: norm(&results[k], results[k].iso),
+            cos: norm(&results[k], results[k].cos),
+        })
+        .collect();
+    let brilliance_iso = poses.iter().map(|p| p.iso).sum::<f64>() / n;
+    let brilliance_cos = poses.iter().map(|p| p.cos).sum::<f64>() / n;
     let a = fu.aset;
     let at: f64 = a.iter().sum();
     let aset = if at > 0.0 {
@@ -719,6 +739,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
         fire: fire_value,
         scintillation: scintillation_of(&sequences),
         aset,
+        poses,
     }
 }
 

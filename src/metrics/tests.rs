@@ -378,3 +378,53 @@ fn fire_has_no_single_flash_peaks() {
         .collect();
     assert!(spiky[0] > 1.8 * spiky[1], "{spiky:?}");
 }
+
+/// One truth: each pose's ISO and COS light return in the scores is the mean of the picture
+/// the renderer draws of that pose (the same trace, the same lighting functions), face-up and
+/// tilted, for a round brilliant and a princess.
+#[test]
+fn pose_scores_are_the_means_of_the_pictures() {
+    use crate::render::{render, Light, RenderOptions};
+    let cfg = lean();
+    for solid in [tolkowsky(), princess()] {
+        let s = score(&solid, &cfg);
+        assert_eq!(s.poses.len(), cfg.tilts.len());
+        let n = s.poses.len() as f64;
+        let mean_iso = s.poses.iter().map(|p| p.iso).sum::<f64>() / n;
+        assert!((mean_iso - s.brilliance_iso).abs() < 1e-15);
+        for (p, t) in s.poses.iter().zip(&cfg.tilts) {
+            assert_eq!((p.tilt_deg, p.azimuth_deg), (t.tilt_deg, t.azimuth_deg));
+            // Face-up poses are traced at fire's split threshold, the others at the trace's.
+            let split = if t.tilt_deg == 0.0 {
+                cfg.fire_split_threshold
+            } else {
+                cfg.trace.split_threshold
+            };
+            for (light, want) in [(Light::Iso, p.iso), (Light::Cos, p.cos)] {
+                let mut o = RenderOptions::new(light);
+                o.size = 48;
+                o.tilt = *t;
+                o.polarization = cfg.polarization;
+                o.trace = TraceOptions {
+                    split_threshold: split,
+                    ..cfg.trace
+                };
+                let img = render(&solid, &o);
+                assert!(
+                    (img.stats.mean - want).abs() < 1e-6,
+                    "{light:?} {t:?}: picture {} vs score {want}",
+                    img.stats.mean
+                );
+                // And the mean is the picture's: its integral over the outline's area.
+                let h = img.coverage.pixel();
+                let outline = img.coverage.integral();
+                let integral: f64 = img.channels[0].data.iter().sum::<f64>() * h * h;
+                assert!(
+                    (integral / outline - want).abs() < 1e-9,
+                    "{light:?} {t:?}: {} vs {want}",
+                    integral / outline
+                );
+            }
+        }
+    }
+}
