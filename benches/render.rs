@@ -2,7 +2,8 @@
 //! 8-band fire picture, and a 31-frame 512² rocking animation (the frames `facetlab render
 //! --rock 10:31` draws). Prints each time with the trace's share.
 //!
-//! `cargo bench --bench render` (add `-- quick` for fewer repetitions).
+//! `cargo bench --bench render` (add `-- quick` for fewer repetitions, `-- instructions` for
+//! one picture to count under callgrind).
 
 use facetlab::beam::{Frame, Stone};
 use facetlab::geometry::canonical::canonical;
@@ -20,6 +21,20 @@ fn best_of(reps: usize, mut f: impl FnMut()) -> f64 {
 }
 
 fn main() {
+    // `instructions`: one 800² ISO picture and nothing else, to count instructions under
+    // callgrind (`valgrind --tool=callgrind target/release/deps/render-… instructions`), which
+    // unlike times does not depend on what else the machine is doing.
+    if std::env::args().any(|a| a == "instructions") {
+        let cut = facetlab::io::load_cut("tolkowsky").expect("preset");
+        let mut iso = RenderOptions::new(Light::Iso);
+        iso.size = 800;
+        let img = render(&cut.solid, &iso);
+        println!(
+            "instructions: one 800² iso picture, mean {:.6}",
+            img.stats.mean
+        );
+        return;
+    }
     let quick = std::env::args().any(|a| a == "quick");
     let reps = if quick { 3 } else { 10 };
     let cut = facetlab::io::load_cut("tolkowsky").expect("preset");

@@ -494,7 +494,13 @@ mod tests {
         assert_eq!(v["cut"], "tolkowsky");
         assert_eq!(v["settings"]["material"], "diamond");
         assert!(v["settings"]["ri"].is_null());
-        let two = to_json(&cfg, &[("a".into(), s.clone()), ("b".into(), s.clone())], &[], 0).unwrap();
+        let two = to_json(
+            &cfg,
+            &[("a".into(), s.clone()), ("b".into(), s.clone())],
+            &[],
+            0,
+        )
+        .unwrap();
         let v: serde_json::Value = serde_json::from_str(&two).unwrap();
         assert_eq!(v["results"][1]["cut"], "b");
         assert_eq!(v["results"][0]["fire"], 0.25);

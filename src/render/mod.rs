@@ -700,8 +700,8 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         (fill(&layers, n, size, half), layers)
     };
     // The outline: the facets facing the viewer tile it.
-    let mut coverage = Raster::new(size, half);
     let entry = &layers[0].tree.frame;
+    let mut outline = Accumulator::new(size, half, (0, size), 1);
     for (f, facet) in solid.facets().iter().enumerate() {
         if facet.plane.normal.dot(entry.dir) < 0.0 {
             let poly: Vec<DVec2> = solid
@@ -709,8 +709,12 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                 .iter()
                 .map(|p| DVec2::new(p.dot(entry.u), p.dot(entry.v)))
                 .collect();
-            coverage.add_polygon(&poly, 1.0);
+            outline.add_polygon(&poly, &[1.0]);
         }
+    }
+    let mut coverage = Raster::new(size, half);
+    if let Some(c) = outline.finish().pop() {
+        coverage.data = c;
     }
     Image {
         light: opts.light,

@@ -229,6 +229,8 @@ pub struct Accumulator {
     /// Per row of the band: n + 2 cells (the last ones take carries past the right edge),
     /// `channels` values each.
     acc: Vec<f64>,
+    /// Runs of equal values along a row (their running sum is added to `acc`'s).
+    acc2: Vec<f64>,
 }
 
 impl Accumulator {
@@ -242,6 +244,7 @@ impl Accumulator {
             rows,
             channels,
             acc: vec![0.0; (rows.1 - rows.0) * (n + 2) * channels],
+            acc2: vec![0.0; (rows.1 - rows.0) * (n + 2) * channels],
         }
     }
 
@@ -291,6 +294,9 @@ impl Accumulator {
         }
         let n = self.n as f64;
         let dxdy = (q.x - p.x) / (q.y - p.y);
+        // Height per unit of width, for the pieces of a row that cross several columns (there
+        // dxdy ≠ 0).
+        let dydx = 1.0 / dxdy.abs();
         let width = self.n + 2;
         let j_first = floor_i64(y_lo) as usize;
         let j_last = (ceil_i64(y_hi) as usize).min(self.rows.1);
@@ -322,27 +328,71 @@ impl Accumulator {
                 continue;
             }
             // Across several columns: split at every column line it crosses.
-            let dydx = dy / (xr - xl);
             if xl < 0.0 {
                 self.put(row, dir * (xr.min(0.0) - xl) * dydx, 0.0, v);
             }
-            let mut xa = xl.max(0.0);
+            let xa = xl.max(0.0);
             let end = xr.min(n);
-            let mut i = floor_i64(xa) as usize;
-            while xa < end {
-                let xb = ((i + 1) as f64).min(end);
-                let m = 0.5 * (xa + xb) - i as f64;
-                self.put(row + i, dir * (xb - xa) * dydx, m, v);
-                xa = xb;
-                i += 1;
+            if xa >= end {
+                continue;
             }
+            // The first cell's piece, then whole cells (each the same height, crossed in its
+            // middle), then the last cell's piece.
+            let ia = floor_i64(xa) as usize;
+            let xb = ((ia + 1) as f64).min(end);
+            self.put(
+                row + ia,
+                dir * (xb - xa) * dydx,
+                0.5 * (xa + xb) - ia as f64,
+                v,
+            );
+            if xb >= end {
+                continue;
+            }
+            let ie = (floor_i64(end) as usize).min(self.n);
+            if ie >= ia + 2 {
+                // Whole cells ia+1 ..= ie−1, each crossed in its middle with the same height
+                // d: each keeps d/2 and passes d/2 on, so ia+1 and ie get d/2 and the cells
+                // between get d, that run as a start and an end in the second-order buffer.
+                let d = dir * dydx;
+                self.put(row + ia + 1, 0.5 * d, 0.0, v);
+                self.put(row + ie, 0.5 * d, 0.0, v);
+                if ie >= ia + 3 {
+                    self.run(row + ia + 2, row + ie, d, v);
+                }
+            }
+            if end > ie as f64 {
+                self.put(
+                    row + ie,
+                    dir * (end - ie as f64) * dydx,
+                    0.5 * (ie as f64 + end) - ie as f64,
+                    v,
+                );
+            }
+        }
+    }
+
+    /// Add `d` to every cell from `from` to `to` (excluded) through the second-order buffer.
+    #[inline(always)]
+    fn run(&mut self, from: usize, to: usize, d: f64, v: &[f64]) {
+        let ch = self.channels;
+        for (k, &val) in v.iter().enumerate() {
+            self.acc2[from * ch + k] += val * d;
+            self.acc2[to * ch + k] -= val * d;
         }
     }
 
     /// Add height `d` crossing cell `cell` (index within the band) at `m` of its width: the
     /// cell takes `d (1 − m)`, the next one `d m`.
-    #[inline]
+    #[inline(always)]
     fn put(&mut self, cell: usize, d: f64, m: f64, v: &[f64]) {
+        if let [val] = v {
+            let w = val * d;
+            let r = w * m;
+            self.acc[cell] += w - r;
+            self.acc[cell + 1] += r;
+            return;
+        }
         let ch = self.channels;
         let (c0, c1) = (cell * ch, (cell + 1) * ch);
         for (k, &val) in v.iter().enumerate() {
@@ -359,9 +409,11 @@ impl Accumulator {
         let mut out = vec![Vec::with_capacity((self.rows.1 - self.rows.0) * self.n); ch];
         for r in 0..self.rows.1 - self.rows.0 {
             for (k, o) in out.iter_mut().enumerate() {
-                let mut run = 0.0;
+                let (mut run, mut run2) = (0.0, 0.0);
                 for i in 0..self.n {
-                    run += self.acc[(r * width + i) * ch + k];
+                    let c = (r * width + i) * ch + k;
+                    run2 += self.acc2[c];
+                    run += self.acc[c] + run2;
                     o.push(run);
                 }
             }
@@ -665,7 +717,7 @@ mod tests {
             }
         }
         let got = whole.finish();
-        let mut banded = vec![Vec::new(), Vec::new()];
+        let mut banded = [Vec::new(), Vec::new()];
         for b in &bands {
             for (c, rows) in b.finish().into_iter().enumerate() {
                 banded[c].extend(rows);
