@@ -566,12 +566,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
             .iter()
             .map(|&t| Lighting::new(cfg.head_shadow_deg, &turned(&cfg.spots, t, 0.0))),
     );
-    let half = solid
-        .vertices()
-        .iter()
-        .map(|v| v.length())
-        .fold(0.0, f64::max)
-        * 1.001;
+    let half = crate::render::picture_half(solid);
     let ri0 = cfg.material.ri(cfg.wavelength_nm);
     let bands = cfg.bands.max(1);
     let centres = color::band_centres(bands);

@@ -428,3 +428,47 @@ fn pose_scores_are_the_means_of_the_pictures() {
         }
     }
 }
+
+/// One truth for ASET and fire: the face-up ASET shares of the scores are the shares of the
+/// ASET picture (without the viewer's port), and fire with one placement of the lights is the
+/// fire of the fire picture under those lights at the scores' resolution.
+#[test]
+fn aset_and_fire_are_statistics_of_the_pictures() {
+    use crate::render::{render, Light, RenderOptions};
+    let cfg = ScoreConfig {
+        fire_placements: 1,
+        bands: 8,
+        resolution: 48,
+        ..lean()
+    };
+    for solid in [tolkowsky(), princess()] {
+        let s = score(&solid, &cfg);
+        let mut o = RenderOptions::new(Light::Aset);
+        o.size = 48;
+        o.head_shadow_deg = Some(0.0);
+        o.trace = TraceOptions {
+            split_threshold: cfg.fire_split_threshold,
+            ..cfg.trace
+        };
+        let a = render(&solid, &o).stats.aset.unwrap();
+        assert_eq!(a.port, 0.0);
+        for (x, y) in [
+            (a.blue, s.aset.blue),
+            (a.red, s.aset.red),
+            (a.green, s.aset.green),
+            (a.leak, s.aset.leak),
+        ] {
+            assert!((x - y).abs() < 1e-9, "{a:?} vs {:?}", s.aset);
+        }
+        o.light = Light::Fire;
+        o.head_shadow_deg = None;
+        o.bands = cfg.bands;
+        o.spots = fire_placements(&cfg)[0].spots.clone();
+        let f = render(&solid, &o).stats.fire.unwrap();
+        assert!(
+            (f - s.fire).abs() < 1e-6 * s.fire.max(1.0),
+            "picture {f} vs score {}",
+            s.fire
+        );
+    }
+}

@@ -490,6 +490,19 @@ pub fn view_rotation(light: Light, tilt: Tilt) -> DMat3 {
     }
 }
 
+/// Half the side of the square a picture of `solid` (in its canonical placement) spans: its
+/// largest distance from the centroid, plus 0.1 %. The same for every pose, so that the
+/// frames of a rocking stone share one pixel grid (scintillation compares them pixel by
+/// pixel), and the same for the scores' images and the pictures.
+pub fn picture_half(solid: &Polyhedron) -> f64 {
+    solid
+        .vertices()
+        .iter()
+        .map(|v| v.length())
+        .fold(0.0, f64::max)
+        * 1.001
+}
+
 /// One traced picture layer: its exits with footprints and each exit's values per unit of
 /// footprint (one per channel).
 struct Layer {
@@ -575,7 +588,7 @@ fn fill(layers: &[Layer], channels: usize, size: usize, half: f64) -> Vec<Raster
 
 /// Draw `solid` as `opts` says. The solid is first put in its canonical placement
 /// ([`canonical`]: centred, unit size; not turned), so a moved or rescaled copy gives the
-/// same picture; the picture spans the stone's outline with a small margin. Options should
+/// same picture; the picture spans [`picture_half`] around the centroid. Options should
 /// have passed [`RenderOptions::validate`]; out-of-range values never panic.
 pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     let solid = canonical(solid);
@@ -583,12 +596,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     let rot = view_rotation(opts.light, opts.tilt);
     let frame = Frame::viewer(rot);
     let size = opts.size.max(1);
-    let half = solid
-        .vertices()
-        .iter()
-        .map(|v| v.dot(frame.u).abs().max(v.dot(frame.v).abs()))
-        .fold(0.0, f64::max)
-        * 1.04;
+    let half = picture_half(&solid);
     let trace_opts = TraceOptions {
         polarization: opts.polarization,
         footprints: true,
