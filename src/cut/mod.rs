@@ -9,6 +9,7 @@ mod construct;
 mod cushion;
 mod emerald;
 mod families;
+pub mod grade;
 mod marquise;
 mod measure;
 mod old_european;
