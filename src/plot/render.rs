@@ -16,7 +16,7 @@ use plotters::prelude::*;
 
 /// Ground around the stones (sRGB-encoded, 0–1): a mid grey, so that black (ASET leakage, the
 /// port, a dark pavilion) and white (IdealScope leakage) both stand out from it.
-pub const BACKGROUND: [f64; 3] = [0.5, 0.5, 0.5];
+pub const BACKGROUND: [f64; 3] = [0.4, 0.4, 0.4];
 
 /// Ground of the caption and legend strip (8-bit sRGB): a light grey for dark text.
 pub const CAPTION_GROUND: [u8; 3] = [236, 236, 236];
@@ -81,12 +81,12 @@ pub struct Layout {
 
 impl Layout {
     /// The layout for pictures of `size` pixels: `pad = max(4, size/32)`, text
-    /// `clamp(size/24, 10, 22)` pixels.
+    /// `clamp(size/22, 11, 24)` pixels.
     pub fn new(size: u32) -> Layout {
         Layout {
             size,
             pad: (size / 32).max(4),
-            text: (size / 24).clamp(10, 22),
+            text: (size / 22).clamp(11, 24),
         }
     }
 
@@ -279,7 +279,7 @@ mod tests {
         let c = lay.pad + size / 2;
         assert_eq!(px(&plain, c, c), [200, 10, 10]);
         assert_eq!(px(&plain, lay.panel_width() + c, c), [10, 10, 200]);
-        assert_eq!(px(&plain, 0, 0), [128, 128, 128]);
+        assert_eq!(px(&plain, 0, 0), [102, 102, 102]);
         // Text was drawn in the caption strip.
         let strip = (size + 2 * lay.pad) as usize;
         let dark = plain.rgb[strip * plain.width as usize * 3..]
