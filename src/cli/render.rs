@@ -353,6 +353,25 @@ pub fn stats_lines(light: Light, s: &Stats) -> Vec<String> {
     }
 }
 
+/// A caption line with the settings that change the picture from the light's defaults: a head
+/// shadow (or port/head half-angle) other than the light's default, an exposure other than 1.
+pub fn settings_line(opts: &RenderOptions, exposure: f64) -> Option<String> {
+    let mut parts = Vec::new();
+    let light = opts.light;
+    let head = opts.head_shadow();
+    if head != light.default_head_shadow_deg() {
+        parts.push(match light {
+            Light::Aset => format!("port {head}°"),
+            Light::IdealScope => format!("head {head}°"),
+            _ => format!("head shadow {head}°"),
+        });
+    }
+    if exposure != 1.0 && light.false_colours().is_empty() {
+        parts.push(format!("exposure ×{exposure}"));
+    }
+    (!parts.is_empty()).then(|| parts.join(", "))
+}
+
 fn tilt_text(t: Tilt) -> String {
     if t.tilt_deg == 0.0 {
         "face-up".to_string()
@@ -477,6 +496,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let nframes = s.frames();
     // Every frame has the same caption lines (an animation's frames share one size).
     let show_tilt = s.rock.is_some() || s.opts.tilt.tilt_deg != 0.0;
+    let note = settings_line(&s.opts, s.exposure);
     let legend = legend_for(light);
     let bar = progress_bar((nframes * cuts.len()) as u64, a.quiet);
     let mut sheets = Vec::with_capacity(nframes);
@@ -501,6 +521,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             ));
             let mut lines = vec![cut.name.clone()];
             lines.extend(stats_lines(light, &img.stats));
+            lines.extend(note.clone());
             if show_tilt {
                 lines.push(tilt_text(tilt));
             }
@@ -711,5 +732,20 @@ mod tests {
             ..s
         };
         assert!(stats_lines(Light::Fire, &f)[0].starts_with("fire 0.75"));
+        let s = settings(&parse(&[
+            "--light",
+            "cos",
+            "--head-shadow",
+            "15",
+            "--exposure",
+            "2",
+        ]))
+        .unwrap();
+        assert_eq!(
+            settings_line(&s.opts, s.exposure).as_deref(),
+            Some("head shadow 15°, exposure ×2")
+        );
+        let s = settings(&parse(&["--light", "aset", "--exposure", "2"])).unwrap();
+        assert_eq!(settings_line(&s.opts, s.exposure), None);
     }
 }
