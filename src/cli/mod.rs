@@ -55,10 +55,11 @@ pub enum Command {
     /// Map a score over a grid of two parameters (CSV and a heatmap with contours), or, without
     /// --y, the scores along one (CSV and a line chart).
     Sweep(optimize::SweepArgs),
-    /// Draw cuts as a cutter sees them, side by side in one PNG with their statistics below:
-    /// iso or cos light (GemRay), ASET and IdealScope false colours (with a legend), the hearts
-    /// & arrows viewer, or fire under spot lights; face-up, tilted (--tilt 10@45) or rocking
-    /// as an animated PNG (--rock 15:24). --json writes the statistics.
+    /// Draw cuts as a cutter sees them: one PNG, side by side, statistics below each.
+    ///
+    /// Lights: iso or cos (GemRay), aset and idealscope false colours (with a legend), the
+    /// hearts & arrows viewer, or fire under spot lights. Face-up, tilted (--tilt 10@45) or
+    /// rocking as an animated PNG (--rock 15:24). --json writes the statistics.
     Render(Box<render::RenderArgs>),
 }
 
