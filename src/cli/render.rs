@@ -140,6 +140,9 @@ impl Settings {
     }
 }
 
+/// Largest animation: frames × cuts × size² pixels (about 1.2 GB of 8-bit RGB in memory).
+pub const MAX_ANIMATION_PIXELS: f64 = 400e6;
+
 /// `DEG` or `DEG@AZ`.
 pub fn parse_tilt(s: &str) -> Result<Tilt> {
     let bad = || {
@@ -217,6 +220,22 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
                 format!(
                     "rocking {deg}° about the --tilt of {}° would pass 90°; keep |tilt| + DEG <= 90",
                     opts.tilt.tilt_deg
+                ),
+            ));
+        }
+    }
+    if let Some((_, n)) = rock {
+        // Every frame of the animation is held in memory until the file is written.
+        let pixels = (n * a.cuts.len()) as f64 * (opts.size as f64).powi(2);
+        if pixels > MAX_ANIMATION_PIXELS {
+            return Err(Error::invalid(
+                "--rock",
+                format!(
+                    "{n} frames of {} picture(s) of {} px would hold {:.0} million pixels; allowed {:.0} million: use fewer frames or a smaller --size",
+                    a.cuts.len(),
+                    opts.size,
+                    pixels / 1e6,
+                    MAX_ANIMATION_PIXELS / 1e6
                 ),
             ));
         }
@@ -696,6 +715,7 @@ mod tests {
             (&["--rock", "10:241"], "--rock"),
             (&["--rock", "10"], "--rock"),
             (&["--rock", "40:10", "--tilt", "60"], "--rock"),
+            (&["--rock", "10:240", "--size", "2048"], "--rock"),
             (&["--head-shadow", "70"], "--head-shadow"),
             (&["--ri", "0.5"], "--ri"),
             (&["--material", "kryptonite"], "--material"),
