@@ -5,6 +5,7 @@ mod cuts;
 mod flags;
 pub mod optimize;
 pub mod outputs;
+pub mod render;
 pub mod score;
 pub mod trace;
 
@@ -54,6 +55,12 @@ pub enum Command {
     /// Map a score over a grid of two parameters (CSV and a heatmap with contours), or, without
     /// --y, the scores along one (CSV and a line chart).
     Sweep(optimize::SweepArgs),
+    /// Draw cuts as a cutter sees them: one PNG, side by side, statistics below each.
+    ///
+    /// Lights: iso or cos (GemRay), aset and idealscope false colours (with a legend), the
+    /// hearts & arrows viewer, or fire under spot lights. Face-up, tilted (--tilt 10@45) or
+    /// rocking as an animated PNG (--rock 15:24). --json writes the statistics.
+    Render(Box<render::RenderArgs>),
 }
 
 /// Run a parsed command line; the `Exit` is the process's exit status (an `Err` is bad input,
@@ -68,5 +75,6 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::Score(a) => score::run(&a),
         Command::Optimize(a) => optimize::run_optimize(&a, &optimize::real_scorers),
         Command::Sweep(a) => optimize::run_sweep(&a, &optimize::real_scorers),
+        Command::Render(a) => done(render::run(&a)),
     }
 }

@@ -431,8 +431,16 @@ pub fn run(args: &TraceArgs) -> Result<()> {
             .map_err(|e| Error::io(j.display().to_string(), e))?;
         facetlab::io::write_atomic(j, text.as_bytes())?;
     }
+    if let Some(j) = &args.json {
+        println!("results → {}", j.display());
+    }
     if let Some(dir) = &args.plots {
-        write_plots(dir, &set, &cuts, &results)?;
+        for stem in write_plots(dir, &set, &cuts, &results)? {
+            println!(
+                "plot → {} (and .svg)",
+                plot::with_ext(&stem, "png").display()
+            );
+        }
     }
     Ok(())
 }
@@ -551,36 +559,46 @@ fn print_table(set: &Settings, results: &[Vec<Tally>]) {
     }
 }
 
+/// Write the charts and pictures; returns their stems (each written as STEM.png and STEM.svg).
 fn write_plots(
     dir: &Path,
     set: &Settings,
     cuts: &[facetlab::cut::Cut],
     results: &[Vec<Tally>],
-) -> Result<()> {
+) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
     let firsts: Vec<&Tally> = results.iter().map(|r| &r[0]).collect();
     let light = match &set.light {
         LightChoice::Single(l) => l.label.clone(),
         LightChoice::Rotate(k) => format!("{} light from above (0°)", kind_name(*k)),
     };
-    plot::face_categories(&firsts, &light, &dir.join("face_categories"))?;
-    plot::exit_angle_cdf(&firsts, &light, &dir.join("exit_angle_cdf"))?;
+    let mut stems = Vec::new();
+    let stem = dir.join("face_categories");
+    plot::face_categories(&firsts, &light, &stem)?;
+    stems.push(stem);
+    let stem = dir.join("exit_angle_cdf");
+    plot::exit_angle_cdf(&firsts, &light, &stem)?;
+    stems.push(stem);
     if let LightChoice::Rotate(k) = set.light {
         let sweeps: Vec<(&str, &[Tally])> = results
             .iter()
             .map(|r| (r[0].cut.as_str(), r.as_slice()))
             .collect();
-        plot::rotation(&sweeps, kind_name(k), &dir.join("rotation"))?;
+        let stem = dir.join("rotation");
+        plot::rotation(&sweeps, kind_name(k), &stem)?;
+        stems.push(stem);
     }
     for (cut, r) in cuts.iter().zip(results) {
         let s = slug(&cut.name);
         let t = &r[0];
+        let stem = dir.join(format!("facets_{s}"));
         plot::facet_categories(
             &cut.solid,
             set.camera,
             &format!("{}: facets by normal category", cut.name),
-            &dir.join(format!("facets_{s}")),
+            &stem,
         )?;
+        stems.push(stem);
         if t.paths.is_empty() {
             continue;
         }
@@ -629,15 +647,12 @@ fn write_plots(
             ),
         ];
         for (name, st) in variants {
-            plot::photon_paths(
-                &cut.solid,
-                &t.paths,
-                &st,
-                &dir.join(format!("paths_{s}_{name}")),
-            )?;
+            let stem = dir.join(format!("paths_{s}_{name}"));
+            plot::photon_paths(&cut.solid, &t.paths, &st, &stem)?;
+            stems.push(stem);
         }
     }
-    Ok(())
+    Ok(stems)
 }
 
 #[cfg(test)]

@@ -15,11 +15,15 @@
 //! * [`optimize`]: the optimizer's charts — [`optimize::convergence`] (a run's cost against
 //!   evaluations) and [`optimize::heatmap`] (a sweep's score map with [`contour`] lines and the
 //!   optimizer's path). The optimizer draws no charts itself: the binary hands these two
-//!   functions to a run and a sweep.
+//!   functions to a run and a sweep;
+//! * [`render`]: sheets of stone pictures — [`render::compose`] puts already-encoded pictures
+//!   side by side on a grey ground with their captions and a false-colour legend
+//!   ([`render::legend_for`]).
 
 pub mod contour;
 pub mod optimize;
 pub mod paths;
+pub mod render;
 pub mod trace;
 
 pub use paths::{

@@ -2,6 +2,7 @@
 
 mod foundation;
 mod optimize;
+mod render;
 mod safety;
 
 use std::path::Path;

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Regenerate the gallery of `facetlab render` pictures in results/gallery/ (run from anywhere):
+#   bash results/gallery/make.sh
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+out=results/gallery
+render() { cargo run --quiet --release -- render "$@" --force --quiet; }
+
+render tolkowsky --light iso --size 360 -o "$out/tolkowsky-iso.png"
+render tolkowsky --light cos --head-shadow 15 --size 360 -o "$out/tolkowsky-cos-head15.png"
+render tolkowsky princess emerald --light aset --size 280 -o "$out/aset-round-princess-emerald.png" \
+    --json "$out/aset-round-princess-emerald.json"
+render tolkowsky --light fire --exposure 3 --size 360 -o "$out/tolkowsky-fire.png"
+render tolkowsky --light hearts --size 320 -o "$out/tolkowsky-hearts.png"
+render tolkowsky --light arrows --size 320 -o "$out/tolkowsky-arrows.png"
+render tolkowsky gia-reference --light idealscope --size 320 -o "$out/idealscope-tolkowsky-gia.png"
+render tolkowsky --light iso --tilt 20 --size 360 -o "$out/tolkowsky-iso-tilt20.png"
+render tolkowsky --light cos --head-shadow 15 --rock 15:8 --size 180 -o "$out/tolkowsky-cos-rock.png"
+ls -l "$out"

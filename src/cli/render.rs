@@ -1,0 +1,771 @@
+//! `facetlab render CUT... -o FILE.png`: pictures of stones under the lights cutters use, side
+//! by side, each captioned with its statistics; `--rock` makes an animated PNG of the stone
+//! rocking.
+//!
+//! ```text
+//! facetlab render tolkowsky -o tolkowsky.png                          # ISO, 512 px, face-up
+//! facetlab render tolkowsky princess emerald --light aset -o aset.png
+//! facetlab render tolkowsky --light fire --tilt 10@45 --size 400 -o fire.png
+//! facetlab render tolkowsky --rock 15:24 --json rock.json -o rock.png  # animated PNG
+//! ```
+//!
+//! Flags are read as text and validated here into [`RenderOptions`], so every bad value ends
+//! in a one-line error naming the flag and what is allowed. The pictures are made by
+//! [`facetlab::render::render`]; the sheet (panels, captions, legend) by
+//! [`facetlab::plot::render::compose`].
+//!
+//! **JSON** (`--json FILE`, written atomically): one object per cut (an array of them when
+//! several cuts are given, in the order given) with `name` (the cut's name), `input` (CUT as
+//! given), `light`, `size` (pixels per side), `mean` (the picture's mean over the stone's
+//! outline relative to a white diffuser: the pose's brilliance for iso and cos, the returned
+//! share for idealscope, luminance for fire), `aset.{blue,red,green,leak,port}` (ASET shares,
+//! summing to 1; aset only), `fire` (saturated light in percent; fire only), `tilt_deg`,
+//! `azimuth_deg` (the pose), `head_shadow_deg` (in use), `material`, `ri` (null unless
+//! `--ri`), `polarization`, `exposure`, `cut_off` (share of light below the tracer's
+//! thresholds), `exits` (exit beams drawn), `elapsed_s` (rendering time of this cut, all
+//! frames), `output` (the PNG written). With `--rock`: `rock_deg` and `frames`, one object per
+//! frame with `frame`, `tilt_deg`, `azimuth_deg`, `mean`, `aset`, `fire`, `cut_off`, `exits`,
+//! `elapsed_s`; the top-level statistics are frame 0's (the centre of the rock).
+
+use super::flags;
+use super::outputs::{cut_files, refuse_overwrite};
+use facetlab::error::{Error, Result};
+use facetlab::optics::Dispersion;
+use facetlab::plot::render::{compose, legend_for, Panel, BACKGROUND};
+use facetlab::render::{self, Light, RenderOptions, Stats, Tilt};
+use serde::Serialize;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Flags of `facetlab render`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct RenderArgs {
+    /// Cuts to draw side by side: preset names (tolkowsky, princess) or .toml/.asc/.obj/.stl
+    /// files.
+    #[arg(required = true, value_name = "CUT")]
+    pub cuts: Vec<String>,
+    /// Lighting: iso (uniform sky), cos (cosine sky), aset (false colour by the elevation the
+    /// light comes from), idealscope (red returned, white leak), hearts (face-down in the
+    /// hearts & arrows viewer), arrows (face-up in it), fire (spectral, under spot lights).
+    #[arg(
+        long,
+        default_value = "iso",
+        value_name = "iso|cos|aset|idealscope|hearts|arrows|fire"
+    )]
+    pub light: String,
+    /// Pixels per side of each picture (8–8192).
+    #[arg(
+        long,
+        default_value = "512",
+        value_name = "PX",
+        allow_hyphen_values = true
+    )]
+    pub size: String,
+    /// Tilt the stone DEG degrees (−90 to 90) toward azimuth AZ (degrees from +x, default 0):
+    /// `--tilt 10@45`.
+    #[arg(long, value_name = "DEG[@AZ]", allow_hyphen_values = true)]
+    pub tilt: Option<String>,
+    /// Half-angle of the viewer's head shadow, the ASET port or the IdealScope head, degrees
+    /// (0–60; default 10 for aset and idealscope, 0 otherwise).
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub head_shadow: Option<String>,
+    /// Material: diamond (default), cubic-zirconia (cz), sapphire, glass.
+    #[arg(long, value_name = "NAME")]
+    pub material: Option<String>,
+    /// A fixed refractive index instead of the material's dispersion curve (no fire).
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub ri: Option<String>,
+    /// Track polarization (on) or use the unpolarized average (off).
+    #[arg(long, default_value = "on", value_name = "on|off")]
+    pub polarization: String,
+    /// Change a parameter of family cuts, e.g. `--set crown_angle=34.5` (repeatable; applied
+    /// to every CUT).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Animated PNG of the stone rocking: frame k tilted DEG·sin(2πk/FRAMES) more toward the
+    /// --tilt azimuth; DEG in (0, 60], FRAMES in 2–240; loops forever.
+    #[arg(long, value_name = "DEG:FRAMES", allow_hyphen_values = true)]
+    pub rock: Option<String>,
+    /// Brightness factor of the iso, cos, hearts, arrows and fire pictures (0.01–100).
+    #[arg(
+        long,
+        default_value = "1",
+        value_name = "X",
+        allow_hyphen_values = true
+    )]
+    pub exposure: String,
+    /// Write the statistics as JSON to this file (keys in the README).
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Replace -o and --json files that already exist (an input is never replaced).
+    #[arg(long)]
+    pub force: bool,
+    /// The picture to write (.png).
+    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    pub output: PathBuf,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// The flags, validated.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    /// Options of the face-up (or `--tilt`) picture.
+    pub opts: RenderOptions,
+    /// `--rock`: amplitude in degrees and number of frames.
+    pub rock: Option<(f64, usize)>,
+    /// `--exposure`.
+    pub exposure: f64,
+}
+
+impl Settings {
+    /// The pose of frame `k`: the `--tilt` pose rocked by `DEG·sin(2πk/FRAMES)` toward its
+    /// azimuth.
+    pub fn frame_tilt(&self, k: usize) -> Tilt {
+        let base = self.opts.tilt;
+        match self.rock {
+            None => base,
+            Some((deg, n)) => Tilt {
+                tilt_deg: base.tilt_deg + deg * (std::f64::consts::TAU * k as f64 / n as f64).sin(),
+                azimuth_deg: base.azimuth_deg,
+            },
+        }
+    }
+
+    /// Number of frames (1 without `--rock`).
+    pub fn frames(&self) -> usize {
+        self.rock.map_or(1, |r| r.1)
+    }
+}
+
+/// Largest animation: frames × cuts × size² pixels (about 1.2 GB of 8-bit RGB in memory).
+pub const MAX_ANIMATION_PIXELS: f64 = 400e6;
+
+/// `DEG` or `DEG@AZ`.
+pub fn parse_tilt(s: &str) -> Result<Tilt> {
+    let bad = || {
+        Error::invalid(
+            "--tilt",
+            format!("`{s}` is not allowed; give DEG or DEG@AZ: a tilt in [-90, 90] degrees toward azimuth AZ in [-360, 360] degrees (10@45)"),
+        )
+    };
+    let (t, az) = match s.split_once('@') {
+        Some((t, az)) => (t, az),
+        None => (s, "0"),
+    };
+    let tilt_deg = flags::number("--tilt", t, -90.0, 90.0, "degrees").map_err(|_| bad())?;
+    let azimuth_deg = flags::number("--tilt", az, -360.0, 360.0, "degrees").map_err(|_| bad())?;
+    Ok(Tilt {
+        tilt_deg,
+        azimuth_deg,
+    })
+}
+
+/// `DEG:FRAMES`.
+pub fn parse_rock(s: &str) -> Result<(f64, usize)> {
+    let bad = || {
+        Error::invalid(
+            "--rock",
+            format!("`{s}` is not allowed; give DEG:FRAMES with DEG in (0, 60] degrees and FRAMES in 2..=240 (15:24)"),
+        )
+    };
+    let (d, n) = s.split_once(':').ok_or_else(bad)?;
+    let deg = flags::number("--rock", d, 0.0, 60.0, "degrees").map_err(|_| bad())?;
+    if deg <= 0.0 {
+        return Err(bad());
+    }
+    let n = flags::count("--rock", n, 2, 240).map_err(|_| bad())? as usize;
+    Ok((deg, n))
+}
+
+/// Validate the flags into the library's types.
+pub fn settings(a: &RenderArgs) -> Result<Settings> {
+    let light = Light::parse(a.light.trim().to_ascii_lowercase().as_str()).map_err(|_| {
+        Error::invalid(
+            "--light",
+            format!(
+                "`{}` is not allowed; use {}",
+                a.light,
+                Light::ALL.map(Light::name).join(", ")
+            ),
+        )
+    })?;
+    let mut opts = RenderOptions::new(light);
+    opts.size = flags::count("--size", &a.size, 8, 8192)? as usize;
+    if let Some(t) = &a.tilt {
+        opts.tilt = parse_tilt(t)?;
+    }
+    opts.head_shadow_deg = a
+        .head_shadow
+        .as_deref()
+        .map(|h| {
+            flags::number(
+                "--head-shadow",
+                h,
+                0.0,
+                60.0,
+                "a half-angle in degrees (0 = none)",
+            )
+        })
+        .transpose()?;
+    opts.material = flags::material(a.ri.as_deref(), a.material.as_deref())?;
+    opts.polarization = flags::on_off("--polarization", &a.polarization)?;
+    let rock = a.rock.as_deref().map(parse_rock).transpose()?;
+    if let Some((deg, _)) = rock {
+        if opts.tilt.tilt_deg.abs() + deg > 90.0 {
+            return Err(Error::invalid(
+                "--rock",
+                format!(
+                    "rocking {deg}° about the --tilt of {}° would pass 90°; keep |tilt| + DEG <= 90",
+                    opts.tilt.tilt_deg
+                ),
+            ));
+        }
+    }
+    if let Some((_, n)) = rock {
+        // Every frame of the animation is held in memory until the file is written.
+        let pixels = (n * a.cuts.len()) as f64 * (opts.size as f64).powi(2);
+        if pixels > MAX_ANIMATION_PIXELS {
+            return Err(Error::invalid(
+                "--rock",
+                format!(
+                    "{n} frames of {} picture(s) of {} px would hold {:.0} million pixels; allowed {:.0} million: use fewer frames or a smaller --size",
+                    a.cuts.len(),
+                    opts.size,
+                    pixels / 1e6,
+                    MAX_ANIMATION_PIXELS / 1e6
+                ),
+            ));
+        }
+    }
+    let exposure = flags::number("--exposure", &a.exposure, 0.01, 100.0, "a factor")?;
+    // The library names its fields; on the command line they are flags.
+    let material_flag = if a.ri.is_some() { "--ri" } else { "--material" };
+    opts.validate().map_err(|e| match e {
+        Error::Invalid { field, message } => Error::Invalid {
+            field: match field.as_str() {
+                "material" => material_flag.to_string(),
+                f => format!("--{f}"),
+            },
+            message,
+        },
+        other => other,
+    })?;
+    Ok(Settings {
+        opts,
+        rock,
+        exposure,
+    })
+}
+
+/// Statistics of one frame.
+#[derive(Clone, Debug, Serialize)]
+pub struct FrameJson {
+    /// Frame number, from 0.
+    pub frame: usize,
+    /// Tilt of this frame, degrees.
+    pub tilt_deg: f64,
+    /// Azimuth the stone tips toward, degrees.
+    pub azimuth_deg: f64,
+    /// Mean of the picture over the outline (relative to a white diffuser).
+    pub mean: f64,
+    /// ASET shares (aset only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aset: Option<render::AsetShares>,
+    /// Fire in percent (fire only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fire: Option<f64>,
+    /// Share of light below the tracer's thresholds.
+    pub cut_off: f64,
+    /// Exit beams drawn.
+    pub exits: usize,
+    /// Rendering time, seconds.
+    pub elapsed_s: f64,
+}
+
+impl FrameJson {
+    fn new(frame: usize, tilt: Tilt, s: &Stats, elapsed_s: f64) -> FrameJson {
+        FrameJson {
+            frame,
+            tilt_deg: tilt.tilt_deg,
+            azimuth_deg: tilt.azimuth_deg,
+            mean: s.mean,
+            aset: s.aset,
+            fire: s.fire,
+            cut_off: s.cut_off,
+            exits: s.exits,
+            elapsed_s,
+        }
+    }
+}
+
+/// Statistics of one cut (see the module documentation for the keys).
+#[derive(Clone, Debug, Serialize)]
+pub struct CutJson {
+    /// The cut's name.
+    pub name: String,
+    /// CUT as given.
+    pub input: String,
+    /// Light name.
+    pub light: &'static str,
+    /// Pixels per side.
+    pub size: usize,
+    /// Mean of the picture over the outline (frame 0 with --rock).
+    pub mean: f64,
+    /// ASET shares (aset only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aset: Option<render::AsetShares>,
+    /// Fire in percent (fire only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fire: Option<f64>,
+    /// Tilt, degrees.
+    pub tilt_deg: f64,
+    /// Azimuth of the tilt, degrees.
+    pub azimuth_deg: f64,
+    /// Head shadow / port / head half-angle in use, degrees.
+    pub head_shadow_deg: f64,
+    /// Material name.
+    pub material: String,
+    /// The fixed index of `--ri`, else null.
+    pub ri: Option<f64>,
+    /// Polarization tracked.
+    pub polarization: bool,
+    /// `--exposure`.
+    pub exposure: f64,
+    /// Share of light below the tracer's thresholds.
+    pub cut_off: f64,
+    /// Exit beams drawn.
+    pub exits: usize,
+    /// Rendering time of this cut, all frames, seconds.
+    pub elapsed_s: f64,
+    /// The PNG written.
+    pub output: String,
+    /// `--rock` amplitude, degrees.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rock_deg: Option<f64>,
+    /// Per-frame statistics (with --rock).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frames: Option<Vec<FrameJson>>,
+}
+
+fn pct(v: f64) -> String {
+    format!("{:.1} %", 100.0 * v)
+}
+
+/// The statistics as caption lines (after the name).
+pub fn stats_lines(light: Light, s: &Stats) -> Vec<String> {
+    match (light, s.aset, s.fire) {
+        (Light::Aset, Some(a), _) => vec![
+            format!(
+                "blue {:.1}, red {:.1}, green {:.1} %",
+                100.0 * a.blue,
+                100.0 * a.red,
+                100.0 * a.green
+            ),
+            format!("leak {:.1}, port {:.1} %", 100.0 * a.leak, 100.0 * a.port),
+        ],
+        (Light::Fire, _, Some(f)) => vec![format!("fire {f:.2}, mean {}", pct(s.mean))],
+        (Light::IdealScope, _, _) => vec![format!("returned {}", pct(s.mean))],
+        (l, _, _) => vec![format!("{} mean {}", l.name(), pct(s.mean))],
+    }
+}
+
+/// A caption line with the settings that change the picture from the light's defaults: a head
+/// shadow (or port/head half-angle) other than the light's default, an exposure other than 1.
+pub fn settings_line(opts: &RenderOptions, exposure: f64) -> Option<String> {
+    let mut parts = Vec::new();
+    let light = opts.light;
+    let head = opts.head_shadow();
+    if head != light.default_head_shadow_deg() {
+        parts.push(match light {
+            Light::Aset => format!("port {head}°"),
+            Light::IdealScope => format!("head {head}°"),
+            _ => format!("head shadow {head}°"),
+        });
+    }
+    if exposure != 1.0 && light.false_colours().is_empty() {
+        parts.push(format!("exposure ×{exposure}"));
+    }
+    (!parts.is_empty()).then(|| parts.join(", "))
+}
+
+fn tilt_text(t: Tilt) -> String {
+    if t.tilt_deg == 0.0 {
+        "face-up".to_string()
+    } else {
+        format!("tilt {:.1}° toward {}°", t.tilt_deg, t.azimuth_deg)
+    }
+}
+
+/// The one-line summary printed per cut.
+fn summary(light: Light, s: &Stats) -> String {
+    match (light, s.aset, s.fire) {
+        (Light::Aset, Some(a), _) => format!(
+            "aset blue {} red {} green {} leak {} port {}",
+            pct(a.blue),
+            pct(a.red),
+            pct(a.green),
+            pct(a.leak),
+            pct(a.port)
+        ),
+        (Light::Fire, _, Some(f)) => format!("fire {f:.3}, mean {}", pct(s.mean)),
+        (Light::IdealScope, _, _) => format!("idealscope returned {}", pct(s.mean)),
+        (l, _, _) => format!("{} mean {}", l.name(), pct(s.mean)),
+    }
+}
+
+fn parent_dir(p: &Path) -> &Path {
+    p.parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+}
+
+/// Check the outputs before any work: not an input, -o a .png, not a folder, existing files
+/// only with --force, folders present and writable.
+fn check_outputs(a: &RenderArgs) -> Result<()> {
+    let mut outs = vec![("-o", a.output.clone())];
+    if let Some(j) = &a.json {
+        outs.push(("--json", j.clone()));
+    }
+    refuse_overwrite(&outs, &cut_files(&a.cuts))?;
+    let is_png = a
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !is_png {
+        return Err(Error::invalid(
+            "-o",
+            format!(
+                "{} does not end in .png; the picture is a PNG (an animated PNG with --rock)",
+                a.output.display()
+            ),
+        ));
+    }
+    if let Some(j) = &a.json {
+        if super::outputs::resolved(j) == super::outputs::resolved(&a.output) {
+            return Err(Error::invalid(
+                "--json",
+                format!("{} is also the -o picture; give another file", j.display()),
+            ));
+        }
+    }
+    for (flag, p) in &outs {
+        if p.is_dir() {
+            return Err(Error::invalid(
+                *flag,
+                format!("{} is a folder; give a file name", p.display()),
+            ));
+        }
+        if p.exists() && !a.force {
+            return Err(Error::invalid(
+                *flag,
+                format!(
+                    "{} exists; pass --force to replace it, or choose another name",
+                    p.display()
+                ),
+            ));
+        }
+        let dir = parent_dir(p);
+        if !dir.is_dir() {
+            return Err(Error::io(
+                p.display().to_string(),
+                format!("folder {} does not exist", dir.display()),
+            ));
+        }
+        facetlab::io::check_writable(dir)?;
+    }
+    Ok(())
+}
+
+fn progress_bar(total: u64, quiet: bool) -> indicatif::ProgressBar {
+    if quiet || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(total);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{spinner} rendering [{bar:30}] {pos}/{len} pictures, eta {eta}",
+    ) {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar
+}
+
+/// Frame delay of the animation: the whole rock takes about 2.4 s.
+fn delay_ms(frames: usize) -> u16 {
+    (2400 / frames.max(1)).clamp(20, 1000) as u16
+}
+
+/// Run `facetlab render`.
+pub fn run(a: &RenderArgs) -> Result<()> {
+    let s = settings(a)?;
+    check_outputs(a)?;
+    let cuts = a
+        .cuts
+        .iter()
+        .map(|c| super::cuts::load_with_sets(c, &a.set))
+        .collect::<Result<Vec<_>>>()?;
+    let chosen = a.ri.is_some() || a.material.is_some();
+    for note in flags::design_ri_notes(&cuts, &s.opts.material, chosen) {
+        eprintln!("{note}");
+    }
+    let light = s.opts.light;
+    let size = s.opts.size;
+    let nframes = s.frames();
+    // Every frame has the same caption lines (an animation's frames share one size).
+    let show_tilt = s.rock.is_some() || s.opts.tilt.tilt_deg != 0.0;
+    let note = settings_line(&s.opts, s.exposure);
+    let legend = legend_for(light);
+    let bar = progress_bar((nframes * cuts.len()) as u64, a.quiet);
+    let mut sheets = Vec::with_capacity(nframes);
+    // frames[cut] = per-frame statistics.
+    let mut stats: Vec<Vec<FrameJson>> = vec![Vec::with_capacity(nframes); cuts.len()];
+    for k in 0..nframes {
+        let tilt = s.frame_tilt(k);
+        let opts = RenderOptions {
+            tilt,
+            ..s.opts.clone()
+        };
+        let mut pictures = Vec::with_capacity(cuts.len());
+        for (c, cut) in cuts.iter().enumerate() {
+            let t0 = Instant::now();
+            let img = render::render(&cut.solid, &opts);
+            let rgb = img.to_srgb8(s.exposure, BACKGROUND);
+            stats[c].push(FrameJson::new(
+                k,
+                tilt,
+                &img.stats,
+                t0.elapsed().as_secs_f64(),
+            ));
+            let mut lines = vec![cut.name.clone()];
+            lines.extend(stats_lines(light, &img.stats));
+            lines.extend(note.clone());
+            if show_tilt {
+                lines.push(tilt_text(tilt));
+            }
+            pictures.push((rgb, lines));
+            bar.inc(1);
+        }
+        let panels: Vec<Panel> = pictures
+            .iter()
+            .map(|(rgb, lines)| Panel {
+                rgb,
+                lines: lines.clone(),
+            })
+            .collect();
+        sheets.push(compose(&panels, size as u32, &legend)?);
+    }
+    bar.finish_and_clear();
+    let (w, h) = (sheets[0].width, sheets[0].height);
+    let frames: Vec<&[u8]> = sheets.iter().map(|f| f.rgb.as_slice()).collect();
+    facetlab::io::png::write_rgb8(&a.output, w, h, &frames, delay_ms(nframes))?;
+    let out = a.output.display().to_string();
+    let ri = match s.opts.material.dispersion {
+        Dispersion::Constant(n) => Some(n),
+        _ => None,
+    };
+    let records: Vec<CutJson> = cuts
+        .iter()
+        .zip(&a.cuts)
+        .zip(stats)
+        .map(|((cut, input), fr)| {
+            let f0 = &fr[0];
+            CutJson {
+                name: cut.name.clone(),
+                input: input.clone(),
+                light: light.name(),
+                size,
+                mean: f0.mean,
+                aset: f0.aset,
+                fire: f0.fire,
+                tilt_deg: f0.tilt_deg,
+                azimuth_deg: f0.azimuth_deg,
+                head_shadow_deg: s.opts.head_shadow(),
+                material: s.opts.material.name.clone(),
+                ri,
+                polarization: s.opts.polarization,
+                exposure: s.exposure,
+                cut_off: f0.cut_off,
+                exits: f0.exits,
+                elapsed_s: fr.iter().map(|f| f.elapsed_s).sum(),
+                output: out.clone(),
+                rock_deg: s.rock.map(|r| r.0),
+                frames: s.rock.is_some().then_some(fr),
+            }
+        })
+        .collect();
+    for r in &records {
+        let stats = Stats {
+            mean: r.mean,
+            aset: r.aset,
+            fire: r.fire,
+            ..Stats::default()
+        };
+        let pose = tilt_text(Tilt {
+            tilt_deg: r.tilt_deg,
+            azimuth_deg: r.azimuth_deg,
+        });
+        let rock = match (&r.frames, s.rock) {
+            (Some(fr), Some((deg, n))) => {
+                let lo = fr.iter().map(|f| f.mean).fold(f64::INFINITY, f64::min);
+                let hi = fr.iter().map(|f| f.mean).fold(f64::NEG_INFINITY, f64::max);
+                format!(
+                    ", rocking ±{deg}° toward {}° in {n} frames (mean {}–{})",
+                    r.azimuth_deg,
+                    pct(lo),
+                    pct(hi)
+                )
+            }
+            _ => String::new(),
+        };
+        println!(
+            "{}: {}, {pose}{rock}, {size} px, {:.2} s → {out}",
+            r.name,
+            summary(light, &stats),
+            r.elapsed_s
+        );
+    }
+    if let Some(j) = &a.json {
+        let text = if let [one] = records.as_slice() {
+            serde_json::to_string_pretty(one)
+        } else {
+            serde_json::to_string_pretty(&records)
+        }
+        .map_err(|e| Error::io(j.display().to_string(), e))?;
+        facetlab::io::write_atomic(j, text.as_bytes())?;
+        println!("statistics → {}", j.display());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(clap::Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: RenderArgs,
+    }
+
+    fn parse(extra: &[&str]) -> RenderArgs {
+        let mut v = vec!["render", "tolkowsky", "-o", "x.png"];
+        v.extend_from_slice(extra);
+        Cli::try_parse_from(v).unwrap().args
+    }
+
+    #[test]
+    fn defaults_and_flags_become_render_options() {
+        let s = settings(&parse(&[])).unwrap();
+        assert_eq!(s.opts.light, Light::Iso);
+        assert_eq!(s.opts.size, 512);
+        assert_eq!(s.opts.tilt, Tilt::FACE_UP);
+        assert_eq!((s.exposure, s.frames()), (1.0, 1));
+        let s = settings(&parse(&[
+            "--light",
+            "ASET",
+            "--size",
+            "64",
+            "--tilt",
+            "10@45",
+            "--rock",
+            "15:24",
+            "--head-shadow",
+            "12",
+            "--ri",
+            "1.54",
+            "--polarization",
+            "off",
+        ]))
+        .unwrap();
+        assert_eq!(s.opts.light, Light::Aset);
+        assert_eq!(
+            s.opts.tilt,
+            Tilt {
+                tilt_deg: 10.0,
+                azimuth_deg: 45.0
+            }
+        );
+        assert_eq!(s.rock, Some((15.0, 24)));
+        assert_eq!(s.opts.head_shadow(), 12.0);
+        assert!(!s.opts.polarization && s.opts.material.ri(500.0) == 1.54);
+        // A quarter period in: the full amplitude on top of the base tilt.
+        assert!((s.frame_tilt(6).tilt_deg - 25.0).abs() < 1e-9);
+        assert!((s.frame_tilt(18).tilt_deg + 5.0).abs() < 1e-9);
+        assert_eq!(s.frame_tilt(0).azimuth_deg, 45.0);
+        assert_eq!(delay_ms(24), 100);
+    }
+
+    #[test]
+    fn bad_flags_are_one_line_naming_the_flag() {
+        for (extra, flag) in [
+            (&["--light", "sun"][..], "--light"),
+            (&["--size", "4"], "--size"),
+            (&["--size", "big"], "--size"),
+            (&["--tilt", "x"], "--tilt"),
+            (&["--tilt", "95"], "--tilt"),
+            (&["--tilt", "10@"], "--tilt"),
+            (&["--tilt", "10@45@3"], "--tilt"),
+            (&["--tilt", "NaN"], "--tilt"),
+            (&["--rock", "0:10"], "--rock"),
+            (&["--rock", "61:10"], "--rock"),
+            (&["--rock", "10:1"], "--rock"),
+            (&["--rock", "10:241"], "--rock"),
+            (&["--rock", "10"], "--rock"),
+            (&["--rock", "40:10", "--tilt", "60"], "--rock"),
+            (&["--rock", "10:240", "--size", "2048"], "--rock"),
+            (&["--head-shadow", "70"], "--head-shadow"),
+            (&["--ri", "0.5"], "--ri"),
+            (&["--material", "kryptonite"], "--material"),
+            (&["--polarization", "maybe"], "--polarization"),
+            (&["--exposure", "0"], "--exposure"),
+        ] {
+            let e = settings(&parse(extra)).unwrap_err().to_string();
+            assert!(e.starts_with(flag), "{extra:?}: {e}");
+            assert!(!e.contains('\n'), "{e}");
+        }
+    }
+
+    #[test]
+    fn captions_carry_the_statistics() {
+        let s = Stats {
+            mean: 0.5,
+            aset: Some(render::AsetShares {
+                blue: 0.4,
+                red: 0.3,
+                green: 0.1,
+                leak: 0.15,
+                port: 0.05,
+            }),
+            ..Stats::default()
+        };
+        let l = stats_lines(Light::Aset, &s);
+        assert!(
+            l[0].contains("blue 40.0") && l[1].contains("port 5.0"),
+            "{l:?}"
+        );
+        assert_eq!(stats_lines(Light::Iso, &s), vec!["iso mean 50.0 %"]);
+        let f = Stats {
+            fire: Some(0.75),
+            ..s
+        };
+        assert!(stats_lines(Light::Fire, &f)[0].starts_with("fire 0.75"));
+        let s = settings(&parse(&[
+            "--light",
+            "cos",
+            "--head-shadow",
+            "15",
+            "--exposure",
+            "2",
+        ]))
+        .unwrap();
+        assert_eq!(
+            settings_line(&s.opts, s.exposure).as_deref(),
+            Some("head shadow 15°, exposure ×2")
+        );
+        let s = settings(&parse(&["--light", "aset", "--exposure", "2"])).unwrap();
+        assert_eq!(settings_line(&s.opts, s.exposure), None);
+    }
+}

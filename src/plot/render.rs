@@ -1,0 +1,299 @@
+//! Sheets of stone pictures: already-encoded RGB panels (from
+//! [`Image::to_srgb8`](crate::render::Image::to_srgb8)) side by side on a grey ground, each with
+//! its caption lines below the picture, and an optional colour legend under them (the ASET and
+//! IdealScope false colours, [`legend_for`]). Drawn with plotters on a bitmap buffer in memory;
+//! the caller encodes the result ([`crate::io::png`]).
+//!
+//! Layout of a sheet of `n` panels of `size` pixels ([`Layout`]): each panel is
+//! `size + 2·pad` wide (`pad` = [`Layout::pad`]), the picture at the top with `pad` of grey
+//! around it, then the caption lines; the legend, when there is one, wraps across the whole
+//! width below the captions. The sheet is so `n·(size + 2·pad)` pixels wide, whatever the text.
+
+use super::{font, register_font};
+use crate::error::{Error, Result};
+use crate::render::{Light, ASET_COLOURS, IDEALSCOPE_COLOURS};
+use plotters::prelude::*;
+
+/// Ground around the stones (sRGB-encoded, 0–1): a mid grey, so that black (ASET leakage, the
+/// port, a dark pavilion) and white (IdealScope leakage) both stand out from it.
+pub const BACKGROUND: [f64; 3] = [0.4, 0.4, 0.4];
+
+/// Ground of the caption and legend strip (8-bit sRGB): a light grey for dark text.
+pub const CAPTION_GROUND: [u8; 3] = [236, 236, 236];
+
+/// One picture with its caption.
+#[derive(Clone, Debug)]
+pub struct Panel<'a> {
+    /// `size × size` pixels, 8-bit sRGB, rows from the top, 3 bytes per pixel.
+    pub rgb: &'a [u8],
+    /// Caption lines drawn below the picture (the first one larger: the cut's name).
+    pub lines: Vec<String>,
+}
+
+/// One legend entry: a colour swatch (sRGB-encoded, 0–1) and its text.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegendEntry {
+    /// Swatch colour.
+    pub colour: [f64; 3],
+    /// Text beside the swatch.
+    pub label: String,
+}
+
+/// The legend of a light's false colours: ASET's five bins, IdealScope's three; none for the
+/// radiance pictures (iso, cos, hearts, arrows, fire).
+pub fn legend_for(light: Light) -> Vec<LegendEntry> {
+    let labels: &[&str] = match light {
+        Light::Aset => &[
+            "75–90° (blue)",
+            "45–75° (red)",
+            "0–45° (green)",
+            "leak (black)",
+            "port (black)",
+        ],
+        Light::IdealScope => &["returned (red)", "leak (white)", "head (black)"],
+        _ => &[],
+    };
+    let colours: &[[f64; 3]] = match light {
+        Light::Aset => &ASET_COLOURS,
+        Light::IdealScope => &IDEALSCOPE_COLOURS,
+        _ => &[],
+    };
+    labels
+        .iter()
+        .zip(colours)
+        .map(|(l, c)| LegendEntry {
+            colour: *c,
+            label: (*l).to_string(),
+        })
+        .collect()
+}
+
+/// Sizes of a sheet, from the panel size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Layout {
+    /// Pixels per side of each picture.
+    pub size: u32,
+    /// Grey margin around each picture.
+    pub pad: u32,
+    /// Caption text height (the first line is 1.2× larger).
+    pub text: u32,
+}
+
+impl Layout {
+    /// The layout for pictures of `size` pixels: `pad = max(4, size/32)`, text
+    /// `clamp(size/22, 11, 24)` pixels.
+    pub fn new(size: u32) -> Layout {
+        Layout {
+            size,
+            pad: (size / 32).max(4),
+            text: (size / 22).clamp(11, 24),
+        }
+    }
+
+    /// Width of one panel.
+    pub fn panel_width(&self) -> u32 {
+        self.size + 2 * self.pad
+    }
+
+    fn line_height(&self, first: bool) -> u32 {
+        let t = if first { self.text * 6 / 5 } else { self.text };
+        t + t / 3 + 1
+    }
+
+    fn caption_height(&self, lines: usize) -> u32 {
+        if lines == 0 {
+            return 0;
+        }
+        self.pad
+            + self.line_height(true)
+            + (lines as u32 - 1) * self.line_height(false)
+            + self.pad / 2
+    }
+}
+
+/// A finished sheet: 8-bit sRGB, rows from the top, 3 bytes per pixel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sheet {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// The pixels.
+    pub rgb: Vec<u8>,
+}
+
+fn srgb8(c: [f64; 3]) -> RGBColor {
+    let b = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+    RGBColor(b(c[0]), b(c[1]), b(c[2]))
+}
+
+/// Legend rows: each a list of (x offset, entry index), wrapped to `width`.
+fn legend_rows(entries: &[LegendEntry], lay: &Layout, width: u32) -> Vec<Vec<(u32, usize)>> {
+    let swatch = lay.text;
+    let gap = lay.text;
+    let mut rows: Vec<Vec<(u32, usize)>> = Vec::new();
+    let mut x = lay.pad;
+    let mut row = Vec::new();
+    for (i, e) in entries.iter().enumerate() {
+        let tw = font(lay.text)
+            .font
+            .box_size(&e.label)
+            .map(|(w, _)| w)
+            .unwrap_or(lay.text * e.label.chars().count() as u32 * 3 / 5);
+        let w = swatch + lay.text / 3 + tw;
+        if !row.is_empty() && x + w > width.saturating_sub(lay.pad) {
+            rows.push(std::mem::take(&mut row));
+            x = lay.pad;
+        }
+        row.push((x, i));
+        x += w + gap;
+    }
+    if !row.is_empty() {
+        rows.push(row);
+    }
+    rows
+}
+
+/// Compose `panels` (each `size × size`) side by side with their captions and `legend` below;
+/// see the [module documentation](self) for the layout. An error names `panels` when a panel
+/// has the wrong number of bytes, or says what could not be drawn.
+pub fn compose(panels: &[Panel], size: u32, legend: &[LegendEntry]) -> Result<Sheet> {
+    let want = size as usize * size as usize * 3;
+    if panels.is_empty() || size == 0 || panels.iter().any(|p| p.rgb.len() != want) {
+        return Err(Error::invalid(
+            "panels",
+            format!("give at least one panel of {want} bytes ({size}×{size} RGB)"),
+        ));
+    }
+    register_font();
+    let lay = Layout::new(size);
+    let pw = lay.panel_width();
+    let width = pw * panels.len() as u32;
+    let lines = panels.iter().map(|p| p.lines.len()).max().unwrap_or(0);
+    let top = size + 2 * lay.pad;
+    let caption = lay.caption_height(lines);
+    let rows = legend_rows(legend, &lay, width);
+    let legend_h = if rows.is_empty() {
+        0
+    } else {
+        rows.len() as u32 * lay.line_height(false) + lay.pad
+    };
+    let height = top + caption + legend_h;
+    let (w, h) = (width as usize, height as usize);
+    // The grounds and the pictures, straight into the buffer.
+    let grey = srgb8(BACKGROUND);
+    let mut buf = vec![0u8; w * h * 3];
+    for y in 0..h {
+        let c = if y < top as usize {
+            [grey.0, grey.1, grey.2]
+        } else {
+            CAPTION_GROUND
+        };
+        for px in buf[y * w * 3..(y + 1) * w * 3].chunks_exact_mut(3) {
+            px.copy_from_slice(&c);
+        }
+    }
+    let s = size as usize;
+    for (k, p) in panels.iter().enumerate() {
+        let x0 = k * pw as usize + lay.pad as usize;
+        let y0 = lay.pad as usize;
+        for j in 0..s {
+            let dst = ((y0 + j) * w + x0) * 3;
+            buf[dst..dst + s * 3].copy_from_slice(&p.rgb[j * s * 3..(j + 1) * s * 3]);
+        }
+    }
+    let draw_err =
+        |e: &dyn std::fmt::Display| Error::invalid("picture", format!("could not draw: {e}"));
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (width, height)).into_drawing_area();
+        let big = font(lay.text * 6 / 5);
+        let small = font(lay.text).color(&RGBColor(40, 40, 40));
+        for (k, p) in panels.iter().enumerate() {
+            let x = (k as u32 * pw + lay.pad) as i32;
+            let mut y = (top + lay.pad) as i32;
+            for (i, line) in p.lines.iter().enumerate() {
+                let style = if i == 0 { &big } else { &small };
+                root.draw_text(line, style, (x, y))
+                    .map_err(|e| draw_err(&e))?;
+                y += lay.line_height(i == 0) as i32;
+            }
+        }
+        let sw = lay.text as i32;
+        for (r, row) in rows.iter().enumerate() {
+            let y = (top + caption + r as u32 * lay.line_height(false)) as i32;
+            for &(x, i) in row {
+                let e = &legend[i];
+                let x = x as i32;
+                root.draw(&Rectangle::new(
+                    [(x, y), (x + sw, y + sw)],
+                    srgb8(e.colour).filled(),
+                ))
+                .map_err(|e| draw_err(&e))?;
+                root.draw(&Rectangle::new(
+                    [(x, y), (x + sw, y + sw)],
+                    RGBColor(60, 60, 60).stroke_width(1),
+                ))
+                .map_err(|e| draw_err(&e))?;
+                root.draw_text(&e.label, &small, (x + sw + sw / 3, y))
+                    .map_err(|e| draw_err(&e))?;
+            }
+        }
+        root.present().map_err(|e| draw_err(&e))?;
+    }
+    Ok(Sheet {
+        width,
+        height,
+        rgb: buf,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn panels_sit_side_by_side_with_captions_and_legend_below() {
+        let size = 40u32;
+        let red: Vec<u8> = [200u8, 10, 10].repeat((size * size) as usize);
+        let blue: Vec<u8> = [10u8, 10, 200].repeat((size * size) as usize);
+        let panels = [
+            Panel {
+                rgb: &red,
+                lines: vec!["Tolkowsky".into(), "mean 78.0 %".into()],
+            },
+            Panel {
+                rgb: &blue,
+                lines: vec!["Princess".into()],
+            },
+        ];
+        let plain = compose(&panels, size, &[]).unwrap();
+        let lay = Layout::new(size);
+        assert_eq!(plain.width, 2 * lay.panel_width());
+        assert!(plain.height > size + 2 * lay.pad);
+        assert_eq!(plain.rgb.len(), (plain.width * plain.height * 3) as usize);
+        let px = |s: &Sheet, x: u32, y: u32| {
+            let k = ((y * s.width + x) * 3) as usize;
+            [s.rgb[k], s.rgb[k + 1], s.rgb[k + 2]]
+        };
+        // The pictures are copied unchanged, the ground around them is grey.
+        let c = lay.pad + size / 2;
+        assert_eq!(px(&plain, c, c), [200, 10, 10]);
+        assert_eq!(px(&plain, lay.panel_width() + c, c), [10, 10, 200]);
+        assert_eq!(px(&plain, 0, 0), [102, 102, 102]);
+        // Text was drawn in the caption strip.
+        let strip = (size + 2 * lay.pad) as usize;
+        let dark = plain.rgb[strip * plain.width as usize * 3..]
+            .chunks_exact(3)
+            .filter(|p| p[0] < 100)
+            .count();
+        assert!(dark > 10, "{dark}");
+        let with = compose(&panels, size, &legend_for(Light::Aset)).unwrap();
+        assert_eq!(with.width, plain.width);
+        assert!(with.height > plain.height);
+        assert_eq!(legend_for(Light::Aset).len(), 5);
+        assert_eq!(legend_for(Light::IdealScope).len(), 3);
+        assert!(legend_for(Light::Iso).is_empty());
+        assert!(compose(&panels, size + 1, &[]).is_err());
+        assert!(compose(&[], size, &[]).is_err());
+    }
+}

@@ -1,0 +1,203 @@
+//! "See the stone": `facetlab render` writes PNG sheets (panels side by side, captions, legend),
+//! animated PNGs with --rock, and the statistics as JSON; bad flags are one line, exit 2.
+
+use super::{bad, files, ok};
+use tempfile::tempdir;
+
+/// Width, height and frame count (1 for a still PNG) of a PNG file.
+fn png_info(path: &std::path::Path) -> (u32, u32, u32) {
+    let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut r = dec.read_info().expect("a PNG");
+    let frames = r.info().animation_control().map_or(1, |c| c.num_frames);
+    let (w, h) = (r.info().width, r.info().height);
+    let mut buf = vec![0; r.output_buffer_size()];
+    // Every frame decodes.
+    for _ in 0..frames {
+        r.next_frame(&mut buf).expect("frame decodes");
+    }
+    (w, h, frames)
+}
+
+fn json(path: &std::path::Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap()
+}
+
+#[test]
+fn one_cut_and_three_side_by_side_with_statistics() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    let out = ok(
+        p,
+        &[
+            "render",
+            "tolkowsky",
+            "--size",
+            "64",
+            "--json",
+            "one.json",
+            "-o",
+            "one.png",
+        ],
+    );
+    assert!(
+        out.contains("Tolkowsky") && out.contains("iso mean") && out.contains("one.png"),
+        "{out}"
+    );
+    let (w1, h1, n) = png_info(&p.join("one.png"));
+    assert_eq!(n, 1);
+    assert!(w1 >= 64 && h1 > 64, "{w1}×{h1}");
+    let j = json(&p.join("one.json"));
+    assert_eq!(j["name"], "Tolkowsky");
+    assert_eq!(j["light"], "iso");
+    assert_eq!(j["size"], 64);
+    let mean = j["mean"].as_f64().unwrap();
+    assert!(mean > 0.3 && mean < 1.0, "{mean}");
+    for k in ["tilt_deg", "azimuth_deg", "elapsed_s", "cut_off", "exits"] {
+        assert!(j[k].is_number(), "{k}: {j}");
+    }
+    assert!(j.get("aset").is_none() && j.get("fire").is_none() && j.get("frames").is_none());
+
+    // Three cuts under ASET: three panels wide, an array of records whose shares sum to 1.
+    let out = ok(
+        p,
+        &[
+            "render",
+            "tolkowsky",
+            "princess",
+            "emerald",
+            "--light",
+            "aset",
+            "--size",
+            "64",
+            "--json",
+            "three.json",
+            "-o",
+            "three.png",
+        ],
+    );
+    assert_eq!(out.lines().filter(|l| l.contains("three.png")).count(), 3);
+    let (w3, h3, _) = png_info(&p.join("three.png"));
+    assert_eq!(w3, 3 * w1);
+    assert!(h3 > h1, "the legend adds rows: {h3} vs {h1}");
+    let j = json(&p.join("three.json"));
+    let arr = j.as_array().unwrap();
+    assert_eq!(arr.len(), 3);
+    for r in arr {
+        assert_eq!(r["light"], "aset");
+        let a = &r["aset"];
+        let sum: f64 = ["blue", "red", "green", "leak", "port"]
+            .iter()
+            .map(|k| a[k].as_f64().unwrap())
+            .sum();
+        assert!((sum - 1.0).abs() < 1e-3, "{sum}: {a}");
+    }
+    assert_eq!(arr[1]["input"], "princess");
+}
+
+#[test]
+fn fire_and_tilt_record_their_pose_and_value() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    ok(
+        p,
+        &[
+            "render",
+            "tolkowsky",
+            "--light",
+            "fire",
+            "--size",
+            "64",
+            "--tilt",
+            "10@45",
+            "--json",
+            "f.json",
+            "-o",
+            "f.png",
+        ],
+    );
+    let j = json(&p.join("f.json"));
+    assert!(j["fire"].as_f64().unwrap() > 0.0, "{j}");
+    assert_eq!(j["tilt_deg"], 10.0);
+    assert_eq!(j["azimuth_deg"], 45.0);
+    assert!(j.get("aset").is_none());
+    assert_eq!(png_info(&p.join("f.png")).2, 1);
+}
+
+#[test]
+fn rock_writes_an_animated_png_with_one_record_per_frame() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    let out = ok(
+        p,
+        &[
+            "render",
+            "tolkowsky",
+            "--size",
+            "64",
+            "--rock",
+            "12:6",
+            "--json",
+            "r.json",
+            "-o",
+            "r.png",
+        ],
+    );
+    assert!(out.contains("6 frames"), "{out}");
+    let (_, _, n) = png_info(&p.join("r.png"));
+    assert_eq!(n, 6);
+    let j = json(&p.join("r.json"));
+    let frames = j["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 6);
+    assert_eq!(j["rock_deg"], 12.0);
+    // Frame k is tilted 12·sin(2πk/6).
+    let t1 = frames[1]["tilt_deg"].as_f64().unwrap();
+    assert!((t1 - 12.0 * (std::f64::consts::TAU / 6.0).sin()).abs() < 1e-9);
+    assert_eq!(frames[0]["tilt_deg"], 0.0);
+}
+
+#[test]
+fn bad_flags_and_unsafe_outputs_are_refused_without_output() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    let base = ["render", "tolkowsky", "--size", "64"];
+    let with = |extra: &[&'static str]| {
+        let mut v: Vec<&str> = base.to_vec();
+        v.extend_from_slice(extra);
+        v
+    };
+    bad(p, &with(&["--tilt", "10@x", "-o", "a.png"]), &["--tilt"]);
+    bad(p, &with(&["--tilt", "120", "-o", "a.png"]), &["--tilt"]);
+    bad(p, &with(&["--rock", "90:10", "-o", "a.png"]), &["--rock"]);
+    bad(p, &with(&["--rock", "10:1", "-o", "a.png"]), &["--rock"]);
+    bad(
+        p,
+        &with(&["--light", "sun", "-o", "a.png"]),
+        &["--light", "aset"],
+    );
+    bad(p, &with(&["--size", "0", "-o", "a.png"]), &["--size"]);
+    bad(
+        p,
+        &with(&["--exposure", "-1", "-o", "a.png"]),
+        &["--exposure"],
+    );
+    bad(p, &with(&["-o", "a.jpg"]), &["-o", ".png"]);
+    bad(p, &with(&[]), &["--output"]);
+    // An output that is an input is refused, --force or not.
+    ok(p, &["generate", "tolkowsky", "-o", "t.toml"]);
+    bad(
+        p,
+        &["render", "t.toml", "--force", "-o", "t.toml"],
+        &["-o", "would overwrite"],
+    );
+    bad(
+        p,
+        &["render", "t.toml", "--json", "./t.toml", "-o", "a.png"],
+        &["--json", "would overwrite"],
+    );
+    assert_eq!(files(p), vec!["t.toml".to_string()]);
+    // An existing picture is replaced only with --force.
+    ok(p, &with(&["-o", "a.png"]));
+    bad(p, &with(&["-o", "a.png"]), &["-o", "--force"]);
+    ok(p, &with(&["-o", "a.png", "--force"]));
+    assert_eq!(files(p), vec!["a.png".to_string(), "t.toml".to_string()]);
+}
