@@ -509,11 +509,13 @@ impl Raster {
         let idx = |c: f64| floor_i64((c + self.half) / h) as isize;
         let (i0, i1) = (idx(lo.x).clamp(0, n - 1), idx(hi.x).clamp(0, n - 1));
         let (j0, j1) = (idx(lo.y).clamp(0, n - 1), idx(hi.y).clamp(0, n - 1));
+        // One pixel holds the whole polygon only if its own rows (not the band's) are one.
+        let single = i0 == i1 && j0 == j1;
         let (j0, j1) = (j0.max(rows.0 as isize), j1.min(rows.1 as isize - 1));
         if j0 > j1 {
             return;
         }
-        if i0 == i1 && j0 == j1 {
+        if single {
             // Inside one pixel (the common case for small beams): no clipping needed unless it
             // sticks out of the imaged square.
             let inside =
