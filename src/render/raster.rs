@@ -294,9 +294,6 @@ impl Accumulator {
         }
         let n = self.n as f64;
         let dxdy = (q.x - p.x) / (q.y - p.y);
-        // Height per unit of width, for the pieces of a row that cross several columns (there
-        // dxdy ≠ 0).
-        let dydx = 1.0 / dxdy.abs();
         let width = self.n + 2;
         let j_first = floor_i64(y_lo) as usize;
         let j_last = (ceil_i64(y_hi) as usize).min(self.rows.1);
@@ -327,7 +324,10 @@ impl Accumulator {
                 self.put(row + i, dir * dy, m, v);
                 continue;
             }
-            // Across several columns: split at every column line it crosses.
+            // Across several columns: split at every column line it crosses, the row's height
+            // shared in proportion to width (per row, so that the pieces add up to dy even for
+            // a nearly vertical edge whose x-range in the row is rounding).
+            let dydx = dy / (xr - xl);
             if xl < 0.0 {
                 self.put(row, dir * (xr.min(0.0) - xl) * dydx, 0.0, v);
             }
