@@ -135,6 +135,11 @@ pub struct InfoJson {
     pub carats: f64,
     /// Geometric checks: closed surface (V − E + F = 2).
     pub checks: Checks,
+    /// Proportion grade estimate (round brilliants of the `round-brilliant` family only):
+    /// `estimate` (`excellent` … `poor`), `limiting` (the parameters that set it),
+    /// `parameters` (each with its value, grade and that grade's range), `note`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub grade: Option<facetlab::cut::grade::GradeEstimate>,
 }
 
 /// Geometric checks reported by `info`.
@@ -178,6 +183,7 @@ pub fn info_json(cut: &Cut, diameter_mm: f64, material: &Material) -> InfoJson {
             closed: euler == 2,
             smallest_facet_ratio: smallest / mean,
         },
+        grade: facetlab::cut::grade::estimate(cut),
     }
 }
 
@@ -257,6 +263,19 @@ pub fn info_text(j: &InfoJson) -> String {
         c.euler_characteristic,
         c.smallest_facet_ratio
     );
+    if let Some(g) = &j.grade {
+        let limit = if g.limiting.is_empty() {
+            String::new()
+        } else {
+            format!(", limited by {}", g.limiting.join(", "))
+        };
+        let _ = writeln!(
+            o,
+            "Grade estimate: {}{limit} ({})",
+            g.estimate.name(),
+            g.note
+        );
+    }
     if !j.params.is_empty() {
         let _ = writeln!(o, "\nParameters (--set KEY=VALUE)");
         for (k, v) in &j.params {

@@ -260,6 +260,23 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
         .map(|(k, v)| format!("{k} = {v:.4}"))
         .collect();
     println!("      {}", free.join(", "));
+    if let Some(g) = &best.grade {
+        let limit = if g.limiting.is_empty() {
+            String::new()
+        } else {
+            format!(", limited by {}", g.limiting.join(", "))
+        };
+        println!(
+            "      grade estimate {}{limit} (published proportion ranges; not a laboratory grade)",
+            g.estimate.name()
+        );
+    }
+    for b in &best.at_bounds {
+        println!(
+            "      {} = {:.4} is at its {} bound {}: the optimum may lie beyond the range searched",
+            b.key, b.value, b.side, b.bound
+        );
+    }
     println!(
         "search: {} evaluations in {:.1} s ({:.1}/s); {}",
         r.search.evaluations,

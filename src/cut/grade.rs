@@ -134,6 +134,14 @@ const RANGES: [(&str, [[f64; 2]; 4]); 8] = [
     ("culet", [[0.0, 2.0], [0.0, 4.0], [0.0, 6.0], [0.0, 10.0]]),
 ];
 
+/// The range of parameter `name` for grade `g` (units of [`GradedParameter`]); `None` for
+/// a name not graded or for [`Grade::Poor`] (no range).
+pub fn range(name: &str, g: Grade) -> Option<[f64; 2]> {
+    let (_, ranges) = RANGES.iter().find(|(n, _)| *n == name)?;
+    let k = Grade::ALL.iter().position(|x| *x == g)?;
+    ranges.get(k).copied()
+}
+
 /// Grade one parameter by name (units of [`GradedParameter`]); `None` for a name not graded.
 pub fn grade_parameter(name: &str, value: f64) -> Option<GradedParameter> {
     let (_, ranges) = RANGES.iter().find(|(n, _)| *n == name)?;

@@ -70,7 +70,8 @@ pub fn check_constraints(cut: &Cut, c: &Constraints) -> Vec<ConstraintCheck> {
     let any = c.total_depth.is_some()
         || c.min_crown_height.is_some()
         || c.min_girdle.is_some()
-        || c.min_weight_retention.is_some();
+        || c.min_weight_retention.is_some()
+        || c.grade.is_some();
     if !any {
         return out;
     }
@@ -104,6 +105,23 @@ pub fn check_constraints(cut: &Cut, c: &Constraints) -> Vec<ConstraintCheck> {
             weight_retention(cut),
             c.min_weight_retention,
         );
+    }
+    if let (Some(target), Some(est)) = (c.grade, crate::cut::grade::estimate(cut)) {
+        // Each parameter graded worse than the target, by how far it is outside the target
+        // grade's range: percentage points and degrees both count as points (0.01).
+        for g in &est.parameters {
+            let Some(r) = crate::cut::grade::range(&g.name, target) else {
+                continue;
+            };
+            let off = (r[0] - g.value).max(g.value - r[1]).max(0.0);
+            out.push(ConstraintCheck {
+                name: format!("grade.{}", g.name),
+                value: g.value,
+                limit: format!("[{}, {}] ({})", r[0], r[1], target.name()),
+                violation: off * POINT,
+                ok: g.grade <= target,
+            });
+        }
     }
     out
 }
@@ -402,6 +420,36 @@ mod tests {
         assert_eq!(checks[0].name, "weight_retention");
         assert!((checks[0].violation - (0.9 - w)).abs() < 1e-12);
         assert!(!checks[0].ok);
+    }
+
+    /// `[constraints] grade` penalises each parameter outside the grade's range by its
+    /// distance (points and degrees alike), names it, and keeps a cut inside at no cost.
+    #[test]
+    fn grade_constraint_names_and_penalises_what_is_outside() {
+        let c = cfg("[constraints]\ngrade = \"excellent\"\npenalty = 2\n");
+        let o = Objective::new(&c, &crown);
+        // Table 57 %, crown 34°: inside; crown 30°: 1.5° under Excellent's 31.5°.
+        let e = o.evaluate(&[0.57, 34.0]);
+        assert!(
+            e.checks.iter().all(|k| k.ok) && e.penalty == 0.0,
+            "{:?}",
+            e.checks
+        );
+        let e = o.evaluate(&[0.57, 30.0]);
+        let bad: Vec<&ConstraintCheck> = e.checks.iter().filter(|k| !k.ok).collect();
+        assert_eq!(bad.len(), 1, "{bad:?}");
+        assert_eq!(bad[0].name, "grade.crown_angle");
+        assert!((e.penalty - 2.0 * 1.5).abs() < 1e-9, "{}", e.penalty);
+        // Only for round brilliants, and only real grades.
+        let text = "[cut]\nfamily = \"princess\"\n[free]\ntable = [0.5, 0.7]\n[constraints]\ngrade = \"excellent\"\n";
+        let err = Config::from_str(text, "p.toml").unwrap_err().to_string();
+        assert!(err.contains("constraints.grade"), "{err}");
+        let text = "[cut]\nfamily = \"round-brilliant\"\n[free]\ntable = [0.5, 0.7]\n[constraints]\ngrade = \"ideal\"\n";
+        let err = Config::from_str(text, "r.toml").unwrap_err().to_string();
+        assert!(
+            err.contains("constraints.grade") && err.contains("very-good"),
+            "{err}"
+        );
     }
 
     #[test]

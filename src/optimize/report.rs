@@ -21,6 +21,7 @@ use super::config::{Config, Constraints, Method, Weights};
 use super::guard::Stop;
 use super::problem::{weight_retention, ConstraintCheck, Evaluation};
 use super::verify::Verification;
+use crate::cut::grade::GradeEstimate;
 use crate::cut::Proportions;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -66,9 +67,56 @@ pub struct Candidate {
     pub found_at: Option<FoundAt>,
     /// The photon tracer's verification, when run.
     pub verification: Option<Verification>,
+    /// Proportion grade estimate (round brilliants; [`crate::cut::grade`]).
+    pub grade: Option<GradeEstimate>,
+    /// Free parameters that ended within 1 % of their range from a bound: the optimum may
+    /// lie beyond the range searched.
+    pub at_bounds: Vec<AtBound>,
     /// Score names in display order (not serialised; JSON maps are sorted).
     #[serde(skip)]
     pub score_order: Vec<String>,
+}
+
+/// A free parameter at (within 1 % of its range from) one of its bounds.
+#[derive(Clone, Debug, Serialize)]
+pub struct AtBound {
+    /// Key.
+    pub key: String,
+    /// Its value.
+    pub value: f64,
+    /// The bound it is at.
+    pub bound: f64,
+    /// `min` or `max`.
+    pub side: &'static str,
+}
+
+/// The free parameters of `x` within 1 % of their range from a bound.
+pub fn at_bounds(config: &Config, x: &[f64]) -> Vec<AtBound> {
+    config
+        .free
+        .iter()
+        .zip(x)
+        .filter_map(|(f, &v)| {
+            let tol = 0.01 * (f.hi - f.lo);
+            if v - f.lo <= tol {
+                Some(AtBound {
+                    key: f.key.clone(),
+                    value: v,
+                    bound: f.lo,
+                    side: "min",
+                })
+            } else if f.hi - v <= tol {
+                Some(AtBound {
+                    key: f.key.clone(),
+                    value: v,
+                    bound: f.hi,
+                    side: "max",
+                })
+            } else {
+                None
+            }
+        })
+        .collect()
 }
 
 impl Candidate {
@@ -95,6 +143,8 @@ impl Candidate {
             error: e.error.clone(),
             found_at,
             verification: None,
+            grade: e.cut.as_ref().and_then(crate::cut::grade::estimate),
+            at_bounds: at_bounds(config, &e.x),
             score_order: all.into_iter().map(|(k, _)| k).collect(),
         }
     }
@@ -431,5 +481,35 @@ fn fmt_param(v: f64, unit: crate::cut::Unit) -> String {
         crate::cut::Unit::Degrees => format!("{v:.3}°"),
         crate::cut::Unit::Fraction => format!("{v:.4}"),
         _ => format!("{v}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A winner within 1 % of a bound is reported at it, on the right side; one inside is not.
+    #[test]
+    fn at_bounds_flags_values_near_a_bound() {
+        let text = "[cut]\nfamily = \"round-brilliant\"\n[free]\ncrown_angle = [30.0, 36.0]\ntable = [0.5, 0.6]\n";
+        let c = Config::from_str(text, "b.toml").unwrap();
+        let keys: Vec<&str> = c.free.iter().map(|f| f.key.as_str()).collect();
+        let x: Vec<f64> = keys
+            .iter()
+            .map(|k| if *k == "crown_angle" { 30.05 } else { 0.55 })
+            .collect();
+        let b = at_bounds(&c, &x);
+        assert_eq!(b.len(), 1, "{b:?}");
+        assert_eq!(
+            (b[0].key.as_str(), b[0].side, b[0].bound),
+            ("crown_angle", "min", 30.0)
+        );
+        let x: Vec<f64> = keys
+            .iter()
+            .map(|k| if *k == "crown_angle" { 33.0 } else { 0.5995 })
+            .collect();
+        let b = at_bounds(&c, &x);
+        assert_eq!(b.len(), 1);
+        assert_eq!((b[0].key.as_str(), b[0].side), ("table", "max"));
     }
 }

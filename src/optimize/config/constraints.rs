@@ -1,6 +1,7 @@
 //! `[constraints]`: limits on the cut's measurements, enforced by penalties.
 
 use super::{defaults, finite, At};
+use crate::cut::grade::Grade;
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -20,6 +21,10 @@ pub struct RawConstraints {
     /// Smallest allowed weight retention from a round rough (volume / containing cylinder).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_weight_retention: Option<f64>,
+    /// Keep round brilliants inside a proportion grade estimate ([`crate::cut::grade`]):
+    /// `excellent`, `very-good`, `good` or `fair`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grade: Option<String>,
     /// Cost added per percentage point (0.01) of violation; default 1.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub penalty: Option<f64>,
@@ -36,6 +41,8 @@ pub struct Constraints {
     pub min_girdle: Option<f64>,
     /// Smallest weight retention.
     pub min_weight_retention: Option<f64>,
+    /// Worst proportion grade estimate allowed (round brilliants).
+    pub grade: Option<Grade>,
     /// Cost per percentage point of violation.
     pub penalty: f64,
 }
@@ -89,6 +96,19 @@ pub(super) fn validate(rk: &RawConstraints, at: At) -> Result<Constraints> {
             ),
         ));
     }
+    let grade =
+        match rk.grade.as_deref() {
+            None => None,
+            Some(g) => match Grade::parse(g) {
+                Some(Grade::Poor) | None => return Err(Error::invalid(
+                    at("constraints.grade"),
+                    format!(
+                        "{g:?} is not a grade to keep to; allowed excellent, very-good, good, fair"
+                    ),
+                )),
+                Some(g) => Some(g),
+            },
+        };
     let constraints = Constraints {
         total_depth,
         min_crown_height: frac("constraints.min_crown_height", rk.min_crown_height, 1.0)?,
@@ -98,6 +118,7 @@ pub(super) fn validate(rk: &RawConstraints, at: At) -> Result<Constraints> {
             rk.min_weight_retention,
             1.0,
         )?,
+        grade,
         penalty,
     };
     Ok(constraints)

@@ -241,6 +241,15 @@ impl Config {
         let free = free::validate(&raw.free, fam, &start, &rc_params, &at)?;
         let weights = objective::validate(&raw.objective.clone().unwrap_or_default(), &at)?;
         let constraints = constraints::validate(&raw.constraints.clone().unwrap_or_default(), &at)?;
+        if constraints.grade.is_some() && fam.name != "round-brilliant" {
+            return Err(Error::invalid(
+                at("constraints.grade"),
+                format!(
+                    "grade estimates exist for the round-brilliant family only, not {}",
+                    fam.name
+                ),
+            ));
+        }
         let (method, budget) =
             method::validate(&raw.method.clone().unwrap_or_default(), free.len(), &at)?;
         let verify = verify::validate(&raw.verify.clone().unwrap_or_default(), &at)?;
@@ -314,6 +323,7 @@ impl Config {
                 min_crown_height: c.min_crown_height,
                 min_girdle: c.min_girdle,
                 min_weight_retention: c.min_weight_retention,
+                grade: c.grade.map(|g| g.name().to_string()),
                 penalty: Some(c.penalty),
             }),
             method: Some(RawMethod {
