@@ -36,7 +36,7 @@ pub struct InfoArgs {
     /// Girdle diameter in millimetres, for the carat weight.
     #[arg(long, value_name = "MM", default_value_t = 6.5)]
     pub diameter_mm: f64,
-    /// Material, for the carat weight (diamond, cubic-zirconia, sapphire, glass).
+    /// Material, for the carat weight: a name from `facetlab materials` or ri:N[:BG].
     #[arg(long, default_value = "diamond")]
     pub material: String,
 }

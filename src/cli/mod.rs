@@ -3,6 +3,7 @@
 
 mod cuts;
 mod flags;
+pub mod materials;
 pub mod optimize;
 pub mod outputs;
 pub mod render;
@@ -42,6 +43,9 @@ pub enum Command {
     Info(cuts::InfoArgs),
     /// List the bundled presets and the families with their parameters (defaults, ranges).
     List(cuts::ListArgs),
+    /// List the materials: n_D, B–G dispersion, density, which ray of a birefringent stone,
+    /// the dispersion formula and its source; `--material ri:N[:BG]` gives any index.
+    Materials(materials::MaterialsArgs),
     /// Shoot photons through cuts (the thesis's forward Monte Carlo): face categories, exit
     /// angles, light return; overhead, offset, directed or rotating light.
     Trace(Box<trace::TraceArgs>),
@@ -71,6 +75,7 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::Generate(a) => done(cuts::generate(&a)),
         Command::Info(a) => done(cuts::info(&a)),
         Command::List(a) => done(cuts::list(&a)),
+        Command::Materials(a) => done(materials::run(&a)),
         Command::Trace(a) => done(trace::run(&a)),
         Command::Score(a) => score::run(&a),
         Command::Optimize(a) => optimize::run_optimize(&a, &optimize::real_scorers),

@@ -42,7 +42,7 @@ pub struct ScoreArgs {
     /// A fixed refractive index instead of the material's dispersion curve (no fire).
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub ri: Option<String>,
-    /// Material: diamond (default), cubic-zirconia (cz), sapphire, glass.
+    /// Material: diamond (default), a name from `facetlab materials`, or ri:N[:BG].
     #[arg(long, value_name = "NAME")]
     pub material: Option<String>,
     /// Track polarization with Stokes vectors and Mueller matrices (on) or use the

@@ -87,7 +87,7 @@ pub struct TraceArgs {
     /// A fixed refractive index instead of the material's dispersion curve.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub ri: Option<String>,
-    /// Material: diamond, cubic-zirconia (cz), sapphire, glass.
+    /// Material: diamond (default), a name from `facetlab materials`, or ri:N[:BG].
     #[arg(long, value_name = "NAME")]
     pub material: Option<String>,
     /// Wavelengths: uniform over 380–780 nm (the thesis), weighted by D65, or one fixed

@@ -1,6 +1,7 @@
 //! Shared helpers for running the `facetlab` binary.
 
 mod foundation;
+mod materials;
 mod optimize;
 mod render;
 mod safety;
