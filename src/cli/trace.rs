@@ -724,7 +724,7 @@ mod tests {
             (&["--ri", "0.9"], "--ri"),
             (&["--ri", "nan"], "--ri"),
             (&["--ri", "2.4", "--material", "glass"], "--ri"),
-            (&["--material", "moissanite"], "--material"),
+            (&["--material", "unobtainium"], "--material"),
             (&["--angle", "200", "--light", "directed"], "--angle"),
             (&["--angle", "30", "--light", "offset"], "--angle"),
             (&["--angle", "30", "--rotate"], "--angle"),

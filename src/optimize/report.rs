@@ -345,6 +345,26 @@ impl Report {
                 .map(|w| format!("{:.1} %", 100.0 * w))
                 .unwrap_or("—".into())
         });
+        if cands.iter().any(|c| c.grade.is_some()) {
+            row(&mut o, "grade estimate", &|c| match &c.grade {
+                Some(g) if g.limiting.is_empty() => g.estimate.name().to_string(),
+                Some(g) => format!("{} ({})", g.estimate.name(), g.limiting.join(", ")),
+                None => "—".into(),
+            });
+        }
+        if cands.iter().any(|c| !c.at_bounds.is_empty()) {
+            row(&mut o, "at a bound", &|c| {
+                if c.at_bounds.is_empty() {
+                    "—".into()
+                } else {
+                    c.at_bounds
+                        .iter()
+                        .map(|b| format!("{} at {} {}", b.key, b.side, b.bound))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                }
+            });
+        }
         section(&mut o, "scores");
         let mut names: Vec<String> = Vec::new();
         for c in &cands {

@@ -45,6 +45,41 @@ fn info_gia_reference_shows_published_proportions() {
     );
 }
 
+/// `info` estimates a proportion grade for round brilliants and names what limits it.
+#[test]
+fn info_grade_estimate() {
+    let d = tempdir().unwrap();
+    for preset in ["gia-reference", "tolkowsky"] {
+        let j: serde_json::Value =
+            serde_json::from_str(&ok(d.path(), &["info", preset, "--json"])).unwrap();
+        assert_eq!(j["grade"]["estimate"], "excellent", "{preset}");
+        assert_eq!(j["grade"]["limiting"].as_array().map(Vec::len), Some(0));
+    }
+    let args = [
+        "info",
+        "gia-reference",
+        "--set",
+        "pavilion_angle=43",
+        "--json",
+    ];
+    let j: serde_json::Value = serde_json::from_str(&ok(d.path(), &args)).unwrap();
+    assert_ne!(j["grade"]["estimate"], "excellent");
+    assert_eq!(j["grade"]["limiting"][0], "pavilion_angle");
+    let text = ok(
+        d.path(),
+        &["info", "gia-reference", "--set", "pavilion_angle=43"],
+    );
+    assert!(
+        text.contains("Grade estimate: good, limited by pavilion_angle")
+            && text.contains("not a laboratory grade"),
+        "{text}"
+    );
+    // Other shapes have no estimate.
+    let j: serde_json::Value =
+        serde_json::from_str(&ok(d.path(), &["info", "princess", "--json"])).unwrap();
+    assert!(j.get("grade").is_none());
+}
+
 #[test]
 fn generate_toml_round_trips_through_info() {
     let d = tempdir().unwrap();

@@ -96,19 +96,20 @@ pub(super) fn validate(rk: &RawConstraints, at: At) -> Result<Constraints> {
             ),
         ));
     }
-    let grade =
-        match rk.grade.as_deref() {
-            None => None,
-            Some(g) => match Grade::parse(g) {
-                Some(Grade::Poor) | None => return Err(Error::invalid(
+    let grade = match rk.grade.as_deref() {
+        None => None,
+        Some(g) => match Grade::parse(g) {
+            Some(Grade::Poor) | None => {
+                return Err(Error::invalid(
                     at("constraints.grade"),
                     format!(
                         "{g:?} is not a grade to keep to; allowed excellent, very-good, good, fair"
                     ),
-                )),
-                Some(g) => Some(g),
-            },
-        };
+                ))
+            }
+            Some(g) => Some(g),
+        },
+    };
     let constraints = Constraints {
         total_depth,
         min_crown_height: frac("constraints.min_crown_height", rk.min_crown_height, 1.0)?,
