@@ -45,6 +45,7 @@ pub mod optimize;
 pub mod photon;
 pub mod plot;
 pub mod render;
+pub mod report;
 pub mod verify;
 
 #[cfg(test)]

@@ -7,6 +7,7 @@ pub mod materials;
 pub mod optimize;
 pub mod outputs;
 pub mod render;
+pub mod report;
 pub mod score;
 pub mod trace;
 
@@ -59,6 +60,9 @@ pub enum Command {
     /// Map a score over a grid of two parameters (CSV and a heatmap with contours), or, without
     /// --y, the scores along one (CSV and a line chart).
     Sweep(optimize::SweepArgs),
+    /// One self-contained HTML page per cut or comparing cuts: ISO, ASET and fire pictures, the
+    /// diagram, proportions with the grade estimate, every score explained, `--verify N`.
+    Report(report::ReportArgs),
     /// Draw cuts as a cutter sees them: one PNG, side by side, statistics below each.
     ///
     /// Lights: iso or cos (GemRay), aset and idealscope false colours (with a legend), the
@@ -81,5 +85,6 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::Optimize(a) => optimize::run_optimize(&a, &optimize::real_scorers),
         Command::Sweep(a) => optimize::run_sweep(&a, &optimize::real_scorers),
         Command::Render(a) => done(render::run(&a)),
+        Command::Report(a) => done(report::run(&a)),
     }
 }

@@ -224,6 +224,7 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
             stop: Some(&STOP),
             progress: Some(&progress),
         },
+        html_report: true,
         ..RunOptions::default()
     };
     let verifier = if a.no_verify {

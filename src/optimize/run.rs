@@ -298,6 +298,10 @@ pub struct RunOptions<'a> {
     pub convergence: Option<ConvergenceChart>,
     /// Stop flag and progress.
     pub hooks: Hooks<'a>,
+    /// Write `report.html`: the one-page report of the start and the winners
+    /// ([`crate::report`]: pictures, diagram, proportions with the grade estimate, scores).
+    /// Default off (it scores and draws every candidate once more).
+    pub html_report: bool,
 }
 
 impl Default for RunOptions<'_> {
@@ -308,6 +312,7 @@ impl Default for RunOptions<'_> {
             writers: Vec::new(),
             convergence: None,
             hooks: Hooks::default(),
+            html_report: false,
         }
     }
 }
@@ -414,6 +419,7 @@ pub fn write_folder(
     outcome: &Outcome,
     writers: &[&dyn CutWriter],
     convergence: Option<ConvergenceChart>,
+    html_report: bool,
 ) -> Result<Report> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
     let mut files = Vec::new();
@@ -450,12 +456,59 @@ pub fn write_folder(
             files.push(name);
         }
     }
+    if html_report {
+        write_atomic(
+            &dir.join("report.html"),
+            html_page(config, outcome)?.as_bytes(),
+        )?;
+        files.push("report.html".into());
+    }
     files.push("report.json".into());
     files.push("report.md".into());
     let rep = report(config, outcome, files);
     write_atomic(&dir.join("report.json"), rep.to_json().as_bytes())?;
     write_atomic(&dir.join("report.md"), rep.to_markdown(config).as_bytes())?;
     Ok(rep)
+}
+
+/// `report.html` of a run: the start and the winners side by side, scored with the run's
+/// score settings, with the photon tracer's checks when the run verified.
+fn html_page(config: &Config, outcome: &Outcome) -> Result<String> {
+    let o = crate::report::ReportOptions {
+        score: config.score.score_config(),
+        size: 240,
+        title: format!("facetlab optimize: {}", config.name),
+        ..Default::default()
+    };
+    let mut cuts = Vec::new();
+    for c in std::iter::once(&outcome.start).chain(&outcome.winners) {
+        let cut = Cut::from_family(&c.label, config.family.name, &c.params)?;
+        let mut r = crate::report::measure(&c.label, &cut, &o)?;
+        r.checks.clear();
+        if let Some(v) = &c.verification {
+            r.checks = v
+                .report
+                .rows
+                .iter()
+                .filter_map(|row| {
+                    let beam = row.beam?;
+                    Some(crate::verify::Check {
+                        name: row.name.clone(),
+                        beam,
+                        photon: row.value,
+                        stderr: row.stderr,
+                        z: if row.stderr > 0.0 {
+                            (beam - row.value) / row.stderr
+                        } else {
+                            0.0
+                        },
+                    })
+                })
+                .collect();
+        }
+        cuts.push(r);
+    }
+    crate::report::html(&cuts, &o)
 }
 
 /// Search, verify (when a verifier is given) and write the run folder.
@@ -477,7 +530,14 @@ pub fn run(
         Some(v) => verify(&mut outcome, config, v, &opts.hooks),
         None => outcome.verify_note = Some("no photon tracer connected".into()),
     }
-    let report = write_folder(&dir, config, &outcome, &opts.writers, opts.convergence)?;
+    let report = write_folder(
+        &dir,
+        config,
+        &outcome,
+        &opts.writers,
+        opts.convergence,
+        opts.html_report,
+    )?;
     Ok(RunSummary {
         dir,
         outcome,

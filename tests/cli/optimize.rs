@@ -45,10 +45,15 @@ fn short_real_run_improves_and_writes_every_file() {
         "best.svg",
         "report.md",
         "report.json",
+        "report.html",
     ] {
         let meta = std::fs::metadata(run.join(f)).unwrap_or_else(|_| panic!("{f} missing"));
         assert!(meta.len() > 0, "{f} is empty");
     }
+    // The HTML report shows the start and the winners, each with its pictures.
+    let page = std::fs::read_to_string(run.join("report.html")).unwrap();
+    assert!(page.contains("<h2>start</h2>") && page.contains("<h2>winner 1</h2>"));
+    assert!(page.matches("data:image/png;base64,").count() >= 6);
     let j: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(run.join("report.json")).unwrap()).unwrap();
     let start = j["start"]["cost"].as_f64().unwrap();

@@ -201,3 +201,39 @@ fn bad_flags_and_unsafe_outputs_are_refused_without_output() {
     ok(p, &with(&["-o", "a.png", "--force"]));
     assert_eq!(files(p), vec!["a.png".to_string(), "t.toml".to_string()]);
 }
+
+/// `report` writes one self-contained page with every cut's pictures, and refuses to write
+/// over an input.
+#[test]
+fn report_writes_a_self_contained_page() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    let out = ok(
+        p,
+        &[
+            "report",
+            "tolkowsky",
+            "princess",
+            "--size",
+            "64",
+            "-o",
+            "r.html",
+        ],
+    );
+    assert!(
+        out.contains("grade estimate excellent") && out.contains("wrote r.html"),
+        "{out}"
+    );
+    let page = std::fs::read_to_string(p.join("r.html")).unwrap();
+    assert_eq!(page.matches("data:image/png;base64,").count(), 6);
+    assert!(page.contains("<h2>Tolkowsky</h2>") && page.contains("<h2>Princess</h2>"));
+    ok(p, &["generate", "tolkowsky", "-o", "t.asc"]);
+    bad(p, &["report", "t.asc", "-o", "t.asc"], &["-o"]);
+    bad(p, &["report", "tolkowsky", "-o", "r.txt"], &["-o", ".html"]);
+    bad(p, &["report", "tolkowsky", "-o", "r.html"], &["--force"]);
+    bad(
+        p,
+        &["report", "tolkowsky", "--size", "9", "-o", "s.html"],
+        &["--size"],
+    );
+}

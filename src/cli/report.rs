@@ -1,0 +1,146 @@
+//! `facetlab report CUT... -o FILE.html`: a one-page report per cut, or comparing cuts side by
+//! side, as one self-contained HTML file (pictures embedded, no network): ISO, ASET and fire
+//! pictures, the facet diagram, proportions with the grade estimate (round brilliants), every
+//! score with one line on what it means, and with `--verify N` the photon tracer's check.
+
+use super::flags;
+use super::outputs::{cut_files, refuse_overwrite};
+use facetlab::error::{Error, Result};
+use facetlab::metrics::ScoreConfig;
+use facetlab::report::{html, measure, ReportOptions};
+use std::path::PathBuf;
+
+/// Flags of `facetlab report`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct ReportArgs {
+    /// Cuts to report, side by side: preset names or .toml/.asc/.obj/.stl files.
+    #[arg(required = true, value_name = "CUT")]
+    pub cuts: Vec<String>,
+    /// Change a parameter of family cuts, e.g. `--set crown_angle=34.5` (repeatable; applied
+    /// to every CUT).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Material (see `facetlab materials`; default diamond).
+    #[arg(long, value_name = "NAME")]
+    pub material: Option<String>,
+    /// A fixed refractive index instead of the material's dispersion curve (no fire).
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub ri: Option<String>,
+    /// Re-measure light return and brilliance with the photon tracer using this many photons
+    /// (e.g. 200000); 0 = no check.
+    #[arg(
+        long,
+        default_value = "0",
+        value_name = "PHOTONS",
+        allow_hyphen_values = true
+    )]
+    pub verify: String,
+    /// Pixels per side of each picture (64–1024).
+    #[arg(
+        long,
+        default_value = "320",
+        value_name = "PX",
+        allow_hyphen_values = true
+    )]
+    pub size: String,
+    /// Title of the page.
+    #[arg(long, value_name = "TEXT")]
+    pub title: Option<String>,
+    /// Replace -o if it exists (an input is never replaced).
+    #[arg(long)]
+    pub force: bool,
+    /// The page to write (.html).
+    #[arg(short = 'o', long = "output", value_name = "FILE.html")]
+    pub output: PathBuf,
+}
+
+/// Run `facetlab report`.
+pub fn run(a: &ReportArgs) -> Result<()> {
+    let size = flags::count("--size", &a.size, 64, 1024)? as usize;
+    let photons = flags::count("--verify", &a.verify, 0, 1_000_000_000)?;
+    let material = flags::material(a.ri.as_deref(), a.material.as_deref())?;
+    refuse_overwrite(&[("-o", a.output.clone())], &cut_files(&a.cuts))?;
+    let is_html = a
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"));
+    if !is_html {
+        return Err(Error::invalid(
+            "-o",
+            format!("{} does not end in .html", a.output.display()),
+        ));
+    }
+    if a.output.is_dir() {
+        return Err(Error::invalid(
+            "-o",
+            format!("{} is a folder; give a file name", a.output.display()),
+        ));
+    }
+    if a.output.exists() && !a.force {
+        return Err(Error::invalid(
+            "-o",
+            format!(
+                "{} exists; pass --force to replace it, or choose another name",
+                a.output.display()
+            ),
+        ));
+    }
+    let parent = a
+        .output
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(std::path::Path::new("."));
+    facetlab::io::check_writable(parent)?;
+    let cuts = a
+        .cuts
+        .iter()
+        .map(|c| super::cuts::load_with_sets(c, &a.set))
+        .collect::<Result<Vec<_>>>()?;
+    let chosen = a.ri.is_some() || a.material.is_some();
+    for note in flags::design_ri_notes(&cuts, &material, chosen) {
+        eprintln!("{note}");
+    }
+    let score = ScoreConfig {
+        material,
+        ..ScoreConfig::default()
+    };
+    score.validate().map_err(|e| match e {
+        Error::Invalid { message, .. } => Error::invalid("--material", message),
+        other => other,
+    })?;
+    let o = ReportOptions {
+        score,
+        size,
+        verify_photons: photons,
+        title: a.title.clone().unwrap_or_else(|| {
+            format!(
+                "facetlab report: {}",
+                cuts.iter()
+                    .map(|c| c.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        }),
+        ..ReportOptions::default()
+    };
+    let reports = cuts
+        .iter()
+        .map(|c| measure(&c.name, c, &o))
+        .collect::<Result<Vec<_>>>()?;
+    for r in &reports {
+        println!(
+            "{}: brilliance {:.4}, fire {:.4}, scintillation {:.4}{}",
+            r.label,
+            r.scores.brilliance,
+            r.scores.fire,
+            r.scores.scintillation,
+            facetlab::cut::grade::estimate(&r.cut)
+                .map(|g| format!(", grade estimate {}", g.estimate.name()))
+                .unwrap_or_default()
+        );
+    }
+    let page = html(&reports, &o)?;
+    facetlab::io::write_atomic(&a.output, page.as_bytes())?;
+    println!("wrote {}", a.output.display());
+    Ok(())
+}

@@ -1,0 +1,355 @@
+//! One-page cut reports: a self-contained HTML page (pictures embedded, no network) per cut or
+//! comparing cuts side by side — what a cutter sends a client.
+//!
+//! For each cut: face-up pictures under ISO light, in ASET false colour and under the spot
+//! lights for fire ([`crate::render`]), the facet diagram ([`crate::io::svg`]), the
+//! proportions with the grade estimate for round brilliants ([`crate::cut::grade`]), every
+//! score with one line on what it means ([`crate::metrics`]), and, when asked, the photon
+//! tracer's check of the beam tracer's numbers ([`crate::verify`]).
+
+use crate::cut::grade::{self, Grade};
+use crate::cut::Cut;
+use crate::error::Result;
+use crate::metrics::{score, ScoreConfig, Scores};
+use crate::render::{render, Image, Light, RenderOptions};
+use crate::verify::{verify_scores, Check};
+use std::fmt::Write;
+
+/// What a report shows and how it is made.
+#[derive(Clone, Debug)]
+pub struct ReportOptions {
+    /// Scoring settings (material, lighting, poses).
+    pub score: ScoreConfig,
+    /// Pixels per side of the pictures.
+    pub size: usize,
+    /// Photons for the photon tracer's check; 0 = no check.
+    pub verify_photons: u64,
+    /// Seed of the check.
+    pub seed: u64,
+    /// Standard errors beyond which a check is flagged.
+    pub sigma: f64,
+    /// Title of the page.
+    pub title: String,
+}
+
+impl Default for ReportOptions {
+    fn default() -> Self {
+        ReportOptions {
+            score: ScoreConfig::default(),
+            size: 320,
+            verify_photons: 0,
+            seed: 1,
+            sigma: 4.0,
+            title: "facetlab cut report".into(),
+        }
+    }
+}
+
+/// Everything a report shows of one cut.
+#[derive(Clone, Debug)]
+pub struct CutReport {
+    /// The cut's label on the page.
+    pub label: String,
+    /// The cut.
+    pub cut: Cut,
+    /// Its scores.
+    pub scores: Scores,
+    /// The photon tracer's checks (empty without a check).
+    pub checks: Vec<Check>,
+    /// Its pictures: ISO, ASET, fire.
+    pub pictures: Vec<(Light, Image)>,
+}
+
+/// Score, draw and (optionally) verify `cut` for a report.
+pub fn measure(label: &str, cut: &Cut, o: &ReportOptions) -> Result<CutReport> {
+    let scores = score(&cut.solid, &o.score);
+    let checks = if o.verify_photons > 0 {
+        verify_scores(&cut.solid, &o.score, &scores, o.verify_photons, o.seed)?
+    } else {
+        Vec::new()
+    };
+    let pictures = [Light::Iso, Light::Aset, Light::Fire]
+        .into_iter()
+        .map(|light| {
+            let mut r = RenderOptions::new(light);
+            r.size = o.size;
+            r.material = o.score.material.clone();
+            r.polarization = o.score.polarization;
+            (light, render(&cut.solid, &r))
+        })
+        .collect();
+    Ok(CutReport {
+        label: label.to_string(),
+        cut: cut.clone(),
+        scores,
+        checks,
+        pictures,
+    })
+}
+
+/// Exposure of each picture in the report (fire's flashes are small: brighter).
+fn exposure(light: Light) -> f64 {
+    if light == Light::Fire {
+        3.0
+    } else {
+        1.0
+    }
+}
+
+/// Standard base64 (RFC 4648, with padding).
+pub fn base64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for c in bytes.chunks(3) {
+        let b = [c[0], *c.get(1).unwrap_or(&0), *c.get(2).unwrap_or(&0)];
+        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
+        for k in 0..4 {
+            if k <= c.len() {
+                out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+/// `text` with HTML's special characters escaped.
+pub fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// One line on what each score means, in the order shown.
+pub const SCORE_LINES: [(&str, &str); 6] = [
+    ("brilliance", "light returned to a viewer under even ISO and COS skies, averaged over face-up and tilted poses; 1 = a white diffuser"),
+    ("brilliance_iso", "the same under an evenly bright sky"),
+    ("brilliance_cos", "the same under a sky brightest overhead"),
+    ("fire", "coloured light per unit of face-up area under small spot lights (about 0.7 for an ideal diamond)"),
+    ("scintillation", "how much the pattern of flashes changes as the stone rocks by 3°: 0 none, 1 all"),
+    ("overhead_light_return", "share of light from straight above that leaves upward"),
+];
+
+fn score_value(s: &Scores, name: &str) -> f64 {
+    match name {
+        "brilliance" => s.brilliance,
+        "brilliance_iso" => s.brilliance_iso,
+        "brilliance_cos" => s.brilliance_cos,
+        "fire" => s.fire,
+        "scintillation" => s.scintillation,
+        _ => s.overhead_light_return,
+    }
+}
+
+/// The page for `cuts` (side by side when several).
+pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\
+         <title>{}</title><style>{STYLE}</style></head><body>\n<h1>{}</h1>\n",
+        escape(&o.title),
+        escape(&o.title)
+    );
+    let m = &o.score.material;
+    let _ = writeln!(
+        h,
+        "<p class=\"sub\">{} cut{} in {} (n<sub>D</sub> = {:.4}); scores by facetlab's beam tracer at {} nm, polarization {}.</p>",
+        cuts.len(),
+        if cuts.len() == 1 { "" } else { "s" },
+        escape(&m.name),
+        m.ri_d(),
+        o.score.wavelength_nm,
+        if o.score.polarization { "on" } else { "off" }
+    );
+    h.push_str("<div class=\"cuts\">\n");
+    for c in cuts {
+        h.push_str("<section class=\"cut\">\n");
+        let fam = c.cut.family.as_deref().unwrap_or("mesh");
+        let _ = writeln!(
+            h,
+            "<h2>{}</h2><p class=\"sub\">{} · {} facets</p>",
+            escape(&c.label),
+            escape(fam),
+            c.cut.solid.facets().len()
+        );
+        h.push_str("<div class=\"pics\">");
+        for (light, img) in &c.pictures {
+            let n = img.size() as u32;
+            let rgb = img.to_srgb8(exposure(*light), crate::plot::render::BACKGROUND);
+            let png = crate::io::png::encode_rgb8(n, n, &[&rgb], 0)?;
+            let caption = match light {
+                Light::Iso => format!(
+                    "ISO light: {:.1} % of a white diffuser",
+                    100.0 * img.stats.mean
+                ),
+                Light::Aset => {
+                    let a = img.stats.aset.unwrap_or_default();
+                    format!(
+                        "ASET: red {:.0} %, blue {:.0} %, green {:.0} %, leak {:.0} %",
+                        100.0 * a.red,
+                        100.0 * a.blue,
+                        100.0 * a.green,
+                        100.0 * a.leak
+                    )
+                }
+                _ => format!(
+                    "Fire under spot lights (exposure ×{}): {:.2}",
+                    exposure(*light),
+                    img.stats.fire.unwrap_or(0.0)
+                ),
+            };
+            let _ = write!(
+                h,
+                "<figure><img alt=\"{} picture\" width=\"{n}\" height=\"{n}\" src=\"data:image/png;base64,{}\"><figcaption>{}</figcaption></figure>",
+                light.name(),
+                base64(&png),
+                escape(&caption)
+            );
+        }
+        h.push_str("</div>\n<p class=\"legend\"><span style=\"background:#1a4dff\"></span>75–90° <span style=\"background:#e61414\"></span>45–75° <span style=\"background:#1ab829\"></span>0–45° <span style=\"background:#000\"></span>leak or viewer's port (ASET)</p>\n");
+        // The diagram, inline.
+        let svg = crate::io::svg::diagram(&c.cut);
+        let svg = svg
+            .find("<svg")
+            .map(|i| svg[i..].to_string())
+            .unwrap_or(svg);
+        let _ = writeln!(h, "<div class=\"diagram\">{svg}</div>");
+        // Proportions.
+        let p = c.cut.proportions();
+        h.push_str("<h3>Proportions</h3><table>");
+        for (k, v) in [
+            ("table", format!("{:.1} %", 100.0 * p.table)),
+            ("crown angle", format!("{:.2}°", p.crown_angle)),
+            ("pavilion angle", format!("{:.2}°", p.pavilion_angle)),
+            ("crown height", format!("{:.1} %", 100.0 * p.crown_height)),
+            (
+                "pavilion depth",
+                format!("{:.1} %", 100.0 * p.pavilion_depth),
+            ),
+            ("total depth", format!("{:.1} %", 100.0 * p.total_depth)),
+            ("girdle", format!("{:.1} %", 100.0 * p.girdle)),
+        ] {
+            let _ = write!(h, "<tr><th>{k}</th><td>{v}</td></tr>");
+        }
+        h.push_str("</table>\n");
+        if let Some(g) = grade::estimate(&c.cut) {
+            let cls = if g.estimate <= Grade::VeryGood {
+                "ok"
+            } else {
+                "warn"
+            };
+            let limit = if g.limiting.is_empty() {
+                String::new()
+            } else {
+                format!(", limited by {}", g.limiting.join(", "))
+            };
+            let _ = writeln!(
+                h,
+                "<p class=\"{cls}\">Grade estimate: <b>{}</b>{} — {}.</p>",
+                g.estimate.name(),
+                escape(&limit),
+                g.note
+            );
+        }
+        // Scores.
+        h.push_str("<h3>Scores</h3><table>");
+        for (name, line) in SCORE_LINES {
+            let _ = write!(
+                h,
+                "<tr><th>{name}</th><td class=\"num\">{:.4}</td><td class=\"what\">{}</td></tr>",
+                score_value(&c.scores, name),
+                escape(line)
+            );
+        }
+        h.push_str("</table>\n");
+        if !c.checks.is_empty() {
+            let _ = write!(
+                h,
+                "<h3>Verification</h3><p class=\"sub\">The photon tracer ({} photons) re-measures the beam tracer's numbers; flagged beyond {} standard errors.</p><table><tr><th></th><th>beam</th><th>photon</th><th>z</th></tr>",
+                o.verify_photons, o.sigma
+            );
+            for k in &c.checks {
+                let cls = if k.beyond(o.sigma) { "warn" } else { "ok" };
+                let _ = write!(
+                    h,
+                    "<tr class=\"{cls}\"><th>{}</th><td class=\"num\">{:.4}</td><td class=\"num\">{:.4} ± {:.4}</td><td class=\"num\">{:+.1}</td></tr>",
+                    escape(&k.name),
+                    k.beam,
+                    k.photon,
+                    k.stderr,
+                    k.z
+                );
+            }
+            h.push_str("</table>\n");
+        }
+        h.push_str("</section>\n");
+    }
+    h.push_str("</div>\n<p class=\"foot\">Made by facetlab. Pictures: orthographic face-up views, each pixel the exact mean of the light over its square. The grade estimate comes from published proportion ranges and is not a laboratory grade.</p>\n</body></html>\n");
+    Ok(h)
+}
+
+const STYLE: &str = "body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:24px;color:#222;background:#fafafa}\
+h1{font-size:22px;margin:0 0 4px}h2{font-size:18px;margin:0}h3{font-size:14px;margin:14px 0 4px;color:#555}\
+.sub{color:#666;font-size:13px;margin:2px 0 8px}.cuts{display:flex;flex-wrap:wrap;gap:24px}\
+.cut{background:#fff;border:1px solid #ddd;border-radius:6px;padding:16px;flex:1 1 420px;max-width:1040px}\
+.pics{display:grid;grid-template-columns:repeat(3,minmax(0,1fr));gap:8px}figure{margin:0}figure img{display:block;width:100%;height:auto;border-radius:3px}\
+figcaption{font-size:12px;color:#555}.legend{font-size:12px;color:#555}\
+.legend span{display:inline-block;width:10px;height:10px;margin:0 3px 0 8px;vertical-align:middle}\
+.diagram svg{max-width:100%;height:auto;max-height:360px}table{border-collapse:collapse;font-size:13px}\
+th{text-align:left;font-weight:600;padding:2px 10px 2px 0}td{padding:2px 10px 2px 0}.num{text-align:right;font-variant-numeric:tabular-nums}\
+.what{color:#666}.ok{color:#1b6e20}.warn{color:#a33}.foot{color:#888;font-size:12px;margin-top:20px}";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_matches_the_rfc_examples() {
+        for (plain, enc) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(base64(plain.as_bytes()), enc);
+        }
+    }
+
+    /// A report is one self-contained page: three pictures per cut, embedded; the diagram;
+    /// the grade estimate of a round brilliant; every score; no external address.
+    #[test]
+    fn page_is_self_contained_and_complete() {
+        let o = ReportOptions {
+            score: ScoreConfig::fast(),
+            size: 48,
+            ..Default::default()
+        };
+        let cuts: Vec<CutReport> = ["tolkowsky", "princess"]
+            .iter()
+            .map(|n| measure(n, &crate::io::load_cut(n).unwrap(), &o).unwrap())
+            .collect();
+        let page = html(&cuts, &o).unwrap();
+        assert_eq!(page.matches("data:image/png;base64,").count(), 6);
+        assert_eq!(page.matches("<svg").count(), 2);
+        assert!(page.contains("Grade estimate: <b>excellent</b>"));
+        for (name, _) in SCORE_LINES {
+            assert_eq!(
+                page.matches(&format!("<th>{name}</th>")).count(),
+                2,
+                "{name}"
+            );
+        }
+        // Nothing fetched from elsewhere (the SVG's xmlns is a name, not a download).
+        for external in ["src=\"http", "href=\"http", "url(http", "<link", "<script"] {
+            assert!(!page.contains(external), "{external}");
+        }
+        assert!(page.ends_with("</html>\n"));
+    }
+}
