@@ -232,6 +232,48 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     } else {
         verifier.as_deref()
     };
+    if config.pareto.is_some() {
+        let dir = a
+            .out
+            .clone()
+            .unwrap_or_else(|| opt::new_run_dir(&opts.results_root, &config.name));
+        facetlab::io::check_writable(&dir)?;
+        let front = opt::run_pareto(
+            &config,
+            evaluator,
+            verifier,
+            &dir,
+            Some(facetlab::plot::pareto::pareto),
+            &opts.hooks,
+        );
+        pb.finish_and_clear();
+        let front = front?;
+        println!("wrote {}/", dir.display());
+        println!(
+            "trade-off {}: {} searches, {} evaluations in {:.1} s; {} non-dominated cuts",
+            front.scores.join(" / "),
+            front.searches,
+            front.evaluations,
+            front.seconds,
+            front.front.len()
+        );
+        for p in front.front.iter().filter(|p| !p.roles.is_empty()) {
+            let scores: Vec<String> = front
+                .scores
+                .iter()
+                .filter_map(|k| p.scores.get(k).map(|v| format!("{k} {v:.4}")))
+                .collect();
+            let check = match &p.verification {
+                Some(v) if v.disagreements.is_empty() && v.error.is_none() => {
+                    "; photon tracer agrees".to_string()
+                }
+                Some(v) => format!("; photon tracer DISAGREES: {}", v.disagreements.join(", ")),
+                None => String::new(),
+            };
+            println!("  {}: {}{check}", p.roles.join(", "), scores.join(", "));
+        }
+        return Ok(optimize_exit(STOP.load(Ordering::SeqCst)));
+    }
     let result = opt::run(&config, evaluator, verifier, &opts);
     pb.finish_and_clear();
     let s = result?;

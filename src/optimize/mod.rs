@@ -74,6 +74,7 @@ mod engines;
 mod guard;
 mod history;
 mod nelder_mead;
+mod pareto;
 mod problem;
 mod pso;
 mod report;
@@ -87,8 +88,8 @@ mod verify;
 // Configs: the validated `Config`, its sections, and the file as written (`RawConfig`).
 pub use config::{
     axis_label, defaults, Budget, Config, Constraints, Design, FreeParam, Method,
-    NelderMeadSettings, RawConfig, RawConstraints, RawCut, RawMethod, RawObjective, RawScore,
-    RawVerify, ScoreSettings, SwarmSettings, VerifySettings, Weights,
+    NelderMeadSettings, ParetoSpec, RawConfig, RawConstraints, RawCut, RawMethod, RawObjective,
+    RawScore, RawVerify, ScoreSettings, SwarmSettings, VerifySettings, Weights, PARETO_SCORES,
 };
 // The scorers of a config: the beam tracer's evaluator and the photon tracer's verifier.
 pub use engines::{BeamEvaluator, PhotonVerifier};
@@ -96,9 +97,11 @@ pub use engines::{BeamEvaluator, PhotonVerifier};
 pub use guard::{Progress, Status, Stop};
 // Searches and run folders: `search` then `verify`, or both and the folder: `run`.
 pub use run::{
-    run, search, verify, ConvergenceChart, CutWriter, FnWriter, Hooks, Outcome, RunOptions,
-    RunSummary, TOML_WRITER,
+    new_run_dir, run, search, verify, ConvergenceChart, CutWriter, FnWriter, Hooks, Outcome,
+    RunOptions, RunSummary, TOML_WRITER,
 };
+// The trade-off between scores (`[objective] pareto`).
+pub use pareto::{non_dominated, run_pareto, weight_grid, FrontPoint, ParetoChart, ParetoOutcome};
 // What a run keeps and reports.
 pub use history::{History, Row, Track};
 // The cost of a cut that cannot be built or scored.

@@ -472,3 +472,78 @@ fn the_run_folder_appears_only_when_there_is_something_to_write() {
     assert!(e.contains("not a folder"), "{e}");
     assert_eq!(CALLS.load(Ordering::SeqCst), 0);
 }
+
+/// `[objective] pareto` traces the brilliance–fire front of the bump (brilliance peaks at a
+/// crown of 34.5°, fire grows with the crown): the front runs from the bump's top to the
+/// steepest crown, its cuts are mutually non-dominated, the corners and knee are marked and
+/// verified, and the files are written.
+#[test]
+fn pareto_front_of_the_bump() {
+    let c = config(
+        "name = \"nelder-mead\"\nstarts = 1\nmax_evaluations = 150",
+        "[objective]\npareto = [\"brilliance\", \"fire\"]\npareto_points = 4\n",
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let verifier = |_: &Cut, photons: u64, _: u64| -> Result<VerifyReport> {
+        Ok(VerifyReport {
+            photons,
+            rows: vec![VerifyRow::new("brilliance_mc", 0.5, 0.01)],
+        })
+    };
+    let o = super::run_pareto(
+        &c,
+        &bump,
+        Some(&verifier),
+        dir.path(),
+        None,
+        &Hooks::default(),
+    )
+    .unwrap();
+    assert_eq!(o.searches, 4);
+    assert!(o.front.len() >= 2, "{:?}", o.front.len());
+    let pts: Vec<Vec<f64>> = o
+        .front
+        .iter()
+        .map(|p| vec![p.scores["brilliance"], p.scores["fire"]])
+        .collect();
+    assert_eq!(super::non_dominated(&pts).len(), pts.len());
+    // One corner is near the bump's top, the other at the steepest crown allowed (40°).
+    let top = o
+        .front
+        .iter()
+        .find(|p| p.roles.iter().any(|r| r == "corner:brilliance"))
+        .unwrap();
+    assert!(top.scores["brilliance"] > 0.95, "{:?}", top.scores);
+    let steep = o
+        .front
+        .iter()
+        .find(|p| p.roles.iter().any(|r| r == "corner:fire"))
+        .unwrap();
+    assert!(steep.free["crown_angle"] > 39.5, "{:?}", steep.free);
+    assert!(o.front.iter().any(|p| p.roles.iter().any(|r| r == "knee")));
+    for p in o.front.iter().filter(|p| !p.roles.is_empty()) {
+        assert!(p.verification.is_some(), "{}", p.label);
+    }
+    let csv = std::fs::read_to_string(dir.path().join("pareto.csv")).unwrap();
+    assert!(csv.starts_with("label,roles,weight_brilliance,weight_fire,"));
+    assert_eq!(csv.lines().count(), o.front.len() + 1);
+    assert!(dir.path().join("pareto.json").is_file() && dir.path().join("config.toml").is_file());
+}
+
+#[test]
+fn pareto_config_is_validated() {
+    let bad = |obj: &str, needle: &str| {
+        let text = format!(
+            "[cut]\nfamily = \"round-brilliant\"\n[free]\ntable = [0.5, 0.6]\n[objective]\n{obj}\n"
+        );
+        let e = Config::from_str(&text, "p.toml").unwrap_err().to_string();
+        assert!(e.contains(needle), "{e}");
+    };
+    bad("pareto = [\"brilliance\"]", "objective.pareto");
+    bad("pareto = [\"brilliance\", \"sparkle\"]", "sparkle");
+    bad("pareto = [\"fire\", \"fire\"]", "twice");
+    bad(
+        "pareto = [\"fire\", \"brilliance\"]\npareto_points = 1",
+        "objective.pareto_points",
+    );
+}

@@ -22,6 +22,7 @@
 
 pub mod contour;
 pub mod optimize;
+pub mod pareto;
 pub mod paths;
 pub mod render;
 pub mod trace;

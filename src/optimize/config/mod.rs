@@ -50,7 +50,7 @@ pub use constraints::{Constraints, RawConstraints};
 pub use cut::RawCut;
 pub use free::{axis_label, FreeParam};
 pub use method::{Budget, Design, Method, NelderMeadSettings, RawMethod, SwarmSettings};
-pub use objective::{RawObjective, Weights};
+pub use objective::{ParetoSpec, RawObjective, Weights, PARETO_SCORES};
 pub use score::{RawScore, ScoreSettings};
 pub use verify::{RawVerify, VerifySettings};
 
@@ -118,6 +118,8 @@ pub struct Config {
     pub free: Vec<FreeParam>,
     /// Objective weights.
     pub weights: Weights,
+    /// `[objective] pareto`: trace a trade-off instead of one weighted search.
+    pub pareto: Option<ParetoSpec>,
     /// Constraints.
     pub constraints: Constraints,
     /// Method.
@@ -240,6 +242,7 @@ impl Config {
             .unwrap_or_default();
         let free = free::validate(&raw.free, fam, &start, &rc_params, &at)?;
         let weights = objective::validate(&raw.objective.clone().unwrap_or_default(), &at)?;
+        let pareto = objective::validate_pareto(&raw.objective.clone().unwrap_or_default(), &at)?;
         let constraints = constraints::validate(&raw.constraints.clone().unwrap_or_default(), &at)?;
         if constraints.grade.is_some() && fam.name != "round-brilliant" {
             return Err(Error::invalid(
@@ -265,6 +268,7 @@ impl Config {
             fixed: rc_params,
             free,
             weights,
+            pareto,
             constraints,
             method,
             budget,
@@ -317,6 +321,8 @@ impl Config {
                 brilliance: Some(self.weights.brilliance),
                 fire: Some(self.weights.fire),
                 scintillation: Some(self.weights.scintillation),
+                pareto: self.pareto.as_ref().map(|p| p.scores.clone()),
+                pareto_points: self.pareto.as_ref().map(|p| p.points as u64),
             }),
             constraints: Some(RawConstraints {
                 total_depth: c.total_depth,

@@ -17,6 +17,64 @@ pub struct RawObjective {
     /// Weight of scintillation (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scintillation: Option<f64>,
+    /// Trace the trade-off between two or three scores instead of one weighted search:
+    /// `pareto = ["brilliance", "fire"]` (see [`crate::optimize::pareto`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pareto: Option<Vec<String>>,
+    /// Weight steps per edge of the trade-off (2 scores: that many runs; default 7).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pareto_points: Option<u64>,
+}
+
+/// The scores a trade-off may name.
+pub const PARETO_SCORES: [&str; 3] = ["brilliance", "fire", "scintillation"];
+
+/// A validated `[objective] pareto`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ParetoSpec {
+    /// The scores traded off (2 or 3 of [`PARETO_SCORES`]).
+    pub scores: Vec<String>,
+    /// Weight steps per edge (≥ 2).
+    pub points: usize,
+}
+
+/// Validate `[objective] pareto` (None when absent).
+pub(super) fn validate_pareto(ro: &RawObjective, at: At) -> Result<Option<ParetoSpec>> {
+    let Some(names) = &ro.pareto else {
+        return Ok(None);
+    };
+    let f = "objective.pareto";
+    if !(2..=3).contains(&names.len()) {
+        return Err(Error::invalid(
+            at(f),
+            format!(
+                "{} scores given; trade off two or three of brilliance, fire, scintillation",
+                names.len()
+            ),
+        ));
+    }
+    for (i, n) in names.iter().enumerate() {
+        if !PARETO_SCORES.contains(&n.as_str()) {
+            return Err(Error::invalid(
+                at(f),
+                format!("{n:?} is not a score; allowed brilliance, fire, scintillation"),
+            ));
+        }
+        if names[..i].contains(n) {
+            return Err(Error::invalid(at(f), format!("{n:?} is named twice")));
+        }
+    }
+    let points = ro.pareto_points.unwrap_or(7);
+    if !(2..=50).contains(&points) {
+        return Err(Error::invalid(
+            at("objective.pareto_points"),
+            format!("{points} is out of range; allowed 2 to 50"),
+        ));
+    }
+    Ok(Some(ParetoSpec {
+        scores: names.clone(),
+        points: points as usize,
+    }))
 }
 
 /// Objective weights: score = Σ weight · score.
