@@ -6,6 +6,7 @@ mod flags;
 pub mod optimize;
 pub mod outputs;
 pub mod score;
+pub mod serve;
 pub mod trace;
 
 use clap::{Parser, Subcommand};
@@ -54,6 +55,10 @@ pub enum Command {
     /// Map a score over a grid of two parameters (CSV and a heatmap with contours), or, without
     /// --y, the scores along one (CSV and a line chart).
     Sweep(optimize::SweepArgs),
+    /// The cutter's workbench in the browser: a local web server with one page (presets and
+    /// uploads, parameter sliders, live render, diagram, scores, a second cut to compare,
+    /// downloads). Listens on 127.0.0.1 unless --bind says otherwise; prints the URL.
+    Serve(serve::ServeArgs),
 }
 
 /// Run a parsed command line; the `Exit` is the process's exit status (an `Err` is bad input,
@@ -68,5 +73,6 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::Score(a) => score::run(&a),
         Command::Optimize(a) => optimize::run_optimize(&a, &optimize::real_scorers),
         Command::Sweep(a) => optimize::run_sweep(&a, &optimize::real_scorers),
+        Command::Serve(a) => done(serve::run(&a)),
     }
 }

@@ -3,6 +3,7 @@
 mod foundation;
 mod optimize;
 mod safety;
+mod serve;
 
 use std::path::Path;
 use std::process::{Command, Output};
