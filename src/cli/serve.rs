@@ -42,7 +42,7 @@ use serde_json::{json, Map, Value};
 use std::collections::BTreeMap;
 use std::net::IpAddr;
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 use tokio::sync::Semaphore;
 
 /// Flags of `facetlab serve`.
@@ -779,7 +779,8 @@ async fn score_cut(
     body: std::result::Result<Bytes, BytesRejection>,
 ) -> ApiResult<Response> {
     let r = parse_req(body, &["quick"])?;
-    let text = heavy(&st, move || {
+    let (text, timing) = heavy(&st, move || {
+        let t0 = Instant::now();
         let cut = build(&r)?;
         let cfg = if r.quick {
             ScoreConfig::fast()
@@ -797,10 +798,15 @@ async fn score_cut(
         if let Value::Object(m) = &mut v {
             m.insert("quick".into(), Value::Bool(r.quick));
         }
-        Ok(v)
+        let timing = format!("score;dur={:.1}", t0.elapsed().as_secs_f64() * 1e3);
+        Ok((v, timing))
     })
     .await?;
-    Ok(no_store(axum::Json(text).into_response()))
+    let mut resp = axum::Json(text).into_response();
+    if let Ok(h) = HeaderValue::from_str(&timing) {
+        resp.headers_mut().insert("server-timing", h);
+    }
+    Ok(no_store(resp))
 }
 
 /// `POST /api/render`: a PNG.
@@ -809,8 +815,10 @@ async fn render_cut(
     body: std::result::Result<Bytes, BytesRejection>,
 ) -> ApiResult<Response> {
     let r = parse_req(body, &["light", "size", "tilt", "exposure"])?;
-    let (png, stats) = heavy(&st, move || {
+    let (png, stats, timing) = heavy(&st, move || {
+        let t0 = Instant::now();
         let cut = build(&r)?;
+        let t1 = Instant::now();
         let mut o = RenderOptions::new(r.light);
         o.size = r.size;
         o.tilt = Tilt {
@@ -820,16 +828,28 @@ async fn render_cut(
         o.validate()
             .map_err(|e| ApiError::bad("render", e.to_string()))?;
         let img = render(&cut.solid, &o);
+        let t2 = Instant::now();
         let rgb = img.to_srgb8(r.exposure, BACKGROUND);
         let n = r.size as u32;
         let png = io::png::encode_rgb8(n, n, &[&rgb], 0).map_err(|e| {
             ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "render", e.to_string())
         })?;
         let stats = serde_json::to_string(&img.stats).unwrap_or_default();
-        Ok((png, stats))
+        let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;
+        let t3 = Instant::now();
+        let timing = format!(
+            "build;dur={:.1}, trace;dur={:.1}, png;dur={:.1}",
+            ms(t0, t1),
+            ms(t1, t2),
+            ms(t2, t3)
+        );
+        Ok((png, stats, timing))
     })
     .await?;
     let mut resp = ([(header::CONTENT_TYPE, "image/png")], png).into_response();
+    if let Ok(h) = HeaderValue::from_str(&timing) {
+        resp.headers_mut().insert("server-timing", h);
+    }
     if let Ok(h) = HeaderValue::from_str(&stats) {
         resp.headers_mut().insert("x-facetlab-stats", h);
     }

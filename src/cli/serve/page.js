@@ -30,7 +30,8 @@ const LIGHT_NAMES = {
   iso: 'ISO (uniform sky)', cos: 'COS (cosine sky)', aset: 'ASET', fire: 'Fire (spot lights)',
   idealscope: 'IdealScope', hearts: 'Hearts (face down)', arrows: 'Arrows (face up)',
 };
-const QUICK_DELAY = 40;     // ms of quiet before a request leaves (debounce)
+const QUICK_DELAY = 15;     // ms of quiet before a request leaves (debounce) …
+const MAX_WAIT = 100;       // … but while a slider keeps moving, one leaves at least this often
 const FULL_DELAY = 700;     // ms of quiet before the full (slow) scores are asked for
 
 const state = {
@@ -87,21 +88,35 @@ function requestBody(s, extra) {
 
 const timers = {};
 
+const firstCall = {};
+
+// Debounce with a longest wait: quiet for QUICK_DELAY ms, or MAX_WAIT ms since the first
+// change not yet sent, whichever comes first. A newer request aborts the stale one (api()).
 function schedule(name, what, delay) {
   const k = name + what;
   clearTimeout(timers[k]);
-  timers[k] = setTimeout(() => refresh(name, what), delay === undefined ? QUICK_DELAY : delay);
+  const now = performance.now();
+  if (firstCall[k] === undefined) firstCall[k] = now;
+  let wait = delay === undefined ? QUICK_DELAY : delay;
+  wait = Math.max(0, Math.min(wait, firstCall[k] + MAX_WAIT - now));
+  timers[k] = setTimeout(() => {
+    delete firstCall[k];
+    refresh(name, what);
+  }, wait);
 }
 
 function refresh(name, what) {
   const s = state.slots[name];
   if (!s) return;
-  if (what === 'all' || what === 'render') doRender(name);
+  if (what === 'render') doRender(name);
   if (what === 'all') {
+    // The picture first, then the quick scores: both use every core of the server, so
+    // asking for them one after the other shows the picture sooner and the scores no later.
     clearTimeout(timers[name + 'full']);
     markStale(name);
-    doScore(name, true);
+    s.needScore = true;
     doInfo(name);
+    doRender(name);
   }
 }
 
@@ -115,7 +130,7 @@ async function doRender(name) {
   frame.classList.add('busy');
   try {
     const { blob, headers } = await api('render-' + name, '/api/render', requestBody(s, Object.assign({ size: 512 }, want)), 'blob');
-    if (state.slots[name] !== s) return;
+    if (state.slots[name] !== s) return false;
     const url = URL.createObjectURL(blob);
     const old = s.img;
     s.img = url;
@@ -136,11 +151,18 @@ async function doRender(name) {
     };
     img.src = url;
     clearError(name);
+    if (s.needScore) {
+      s.needScore = false;
+      doScore(name, true);
+    }
+    return true;
   } catch (e) {
     if (!aborted(e)) {
       frame.classList.remove('busy');
+      s.needScore = false;
       showError(name, e);
     }
+    return false;
   }
 }
 
@@ -156,7 +178,10 @@ async function doScore(name, quick) {
     $('#scores').dataset[name] = quick ? 'quick' : 'full';
     const now = performance.now();
     s.ms[quick ? 'quick' : 'full'] = Math.round(now - t);
-    if (quick) s.ms.scoreSlider = Math.round(now - t0);
+    if (quick) {
+      s.ms.scoreSlider = Math.round(now - t0);
+      $('#scores').dataset.ms = String(s.ms.scoreSlider);
+    }
     fillScores();
     showStatus();
     if (quick) {
@@ -307,7 +332,10 @@ function buildParams() {
     });
     num.addEventListener('change', () => {
       const v = num.value.trim() === '' ? NaN : Number(num.value);
-      if (Number.isFinite(v)) range.value = String(v);
+      if (Number.isFinite(v)) {
+        range.value = String(v);
+        num.value = v.toFixed(Math.max(dec, decimals(v)));
+      }
       setParam(p.key, Number.isFinite(v) ? v : null);
     });
     box.appendChild(row);
@@ -448,6 +476,7 @@ function showStatus() {
     if (m.quick !== undefined) t.push(`quick scores ${m.quick} ms`);
     if (m.full !== undefined) t.push(`full scores ${m.full} ms`);
     if (m.slider !== undefined && s.t0) t.push(`last change → picture ${m.slider} ms`);
+    if (m.scoreSlider !== undefined && s.t0) t.push(`→ scores ${m.scoreSlider} ms`);
     if (t.length) bits.push(name.toUpperCase() + ': ' + t.join(', '));
   }
   el.textContent = bits.join('   ·   ');
