@@ -349,6 +349,10 @@ fn serve_api_answers_and_refuses_bad_requests() {
         "light",
     );
     assert_error(
+        &s.post("/api/render", r#"{"cut": "tolkowsky", "exposure": 0}"#),
+        "exposure",
+    );
+    assert_error(
         &s.post("/api/render", r#"{"cut": "tolkowsky", "colour": 1}"#),
         "colour",
     );
@@ -459,6 +463,7 @@ fn serve_survives_a_fuzz_loop() {
     ];
     let keys = [
         "cut", "format", "encoding", "name", "set", "light", "size", "tilt", "quick", "to",
+        "exposure",
     ];
     let paths = [
         "/api/cut",

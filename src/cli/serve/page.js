@@ -30,6 +30,10 @@ const LIGHT_NAMES = {
   iso: 'ISO (uniform sky)', cos: 'COS (cosine sky)', aset: 'ASET', fire: 'Fire (spot lights)',
   idealscope: 'IdealScope', hearts: 'Hearts (face down)', arrows: 'Arrows (face up)',
 };
+// Exposure each light starts with (the slider changes it): the ISO sky returns ~0.9 of a white
+// diffuser from a good stone, so at 1 the picture is nearly white and its contrast pattern is
+// hard to see; the fire picture is dark flashes on black. False-colour lights ignore exposure.
+const LIGHT_EXPOSURE = { iso: 0.7, cos: 1, fire: 1.5, hearts: 1, arrows: 1 };
 const QUICK_DELAY = 15;     // ms of quiet before a request leaves (debounce) …
 const MAX_WAIT = 100;       // … but while a slider keeps moving, one leaves at least this often
 const FULL_DELAY = 700;     // ms of quiet before the full (slow) scores are asked for
@@ -38,7 +42,7 @@ const state = {
   meta: null,
   light: 'iso',
   tilt: 0,
-  exposure: 1,
+  exposure: LIGHT_EXPOSURE.iso,
   slots: { a: null, b: null },
 };
 
@@ -457,8 +461,9 @@ function caption(name) {
   if (v.changed) parts.push(`(${v.changed} changed)`);
   parts.push('· ' + (LIGHT_NAMES[v.light] || v.light));
   if (v.tilt) parts.push(`· tilt ${v.tilt}°`);
-  if (v.exposure !== 1) parts.push(`· exposure ${v.exposure}`);
-  if (v.stats && typeof v.stats.mean === 'number') parts.push(`· mean ${v.stats.mean.toFixed(3)}`);
+  const st = v.stats || {};
+  if (typeof st.fire === 'number') parts.push(`· face-up fire ${st.fire.toFixed(3)}`);
+  else if (!st.aset && typeof st.mean === 'number') parts.push(`· face-up mean ${st.mean.toFixed(3)}`);
   el.textContent = parts.join(' ');
   el.title = el.textContent;
 }
@@ -625,6 +630,7 @@ async function start() {
     light.appendChild(o);
   }
   light.value = state.light;
+  const exposure = $('#exposure');
   buildTables();
 
   sel.addEventListener('change', () => {
@@ -638,11 +644,19 @@ async function start() {
     if (f) readFile(f);
     ev.target.value = '';
   });
+  const setExposure = (v) => {
+    state.exposure = v;
+    exposure.value = String(v);
+    const falseColour = !(state.light in LIGHT_EXPOSURE);
+    exposure.disabled = falseColour;
+    $('#exposure-val').textContent = falseColour ? 'n/a' : v.toFixed(2);
+  };
+  setExposure(state.exposure);
   light.addEventListener('change', () => {
     state.light = light.value;
+    setExposure(LIGHT_EXPOSURE[state.light] || 1);
     for (const n of ['a', 'b']) if (state.slots[n]) { state.slots[n].t0 = performance.now(); schedule(n, 'render', 0); }
   });
-  const exposure = $('#exposure');
   exposure.addEventListener('input', () => {
     state.exposure = Number(exposure.value);
     $('#exposure-val').textContent = state.exposure.toFixed(2);
