@@ -271,6 +271,18 @@ impl ApiError {
                 }
             }
             Error::Geometry(m) => Self::new(StatusCode::UNPROCESSABLE_ENTITY, "set", m),
+            other => Self::from_load(other),
+        }
+    }
+    /// A library error while reading the cut itself (a preset or an uploaded file): about
+    /// `cut`, even when the file names a parameter.
+    fn from_load(e: Error) -> Self {
+        match e {
+            Error::Invalid { field, message } => Self::new(
+                StatusCode::UNPROCESSABLE_ENTITY,
+                "cut",
+                format!("{field}: {message}"),
+            ),
             other => {
                 let text = other.to_string();
                 let msg = text.strip_prefix("cut:").unwrap_or(&text).trim_start();
@@ -666,14 +678,14 @@ fn decode_base64(s: &str) -> Option<Vec<u8>> {
 fn build(r: &Req) -> ApiResult<Cut> {
     let cut = match &r.source {
         Source::Preset(n) => match io::presets::load(n) {
-            Some(c) => c.map_err(ApiError::from_cut)?,
+            Some(c) => c.map_err(ApiError::from_load)?,
             None => return Err(ApiError::bad("cut", "unknown preset")),
         },
         Source::File {
             format,
             bytes,
             name,
-        } => load_bytes(format, bytes, name).map_err(ApiError::from_cut)?,
+        } => load_bytes(format, bytes, name).map_err(ApiError::from_load)?,
     };
     if !r.set.is_empty() && cut.family.is_none() {
         return Err(ApiError::new(
@@ -944,7 +956,13 @@ mod tests {
             .unwrap_err();
         assert_eq!(ApiError::from_cut(e).field, "set.crown_angle");
         let e = load_bytes("asc", b"g 96 0\na x3 1 2\n", "u").unwrap_err();
-        let a = ApiError::from_cut(e);
+        let a = ApiError::from_load(e);
         assert_eq!(a.field, "cut", "{a:?}");
+        assert!(a.message.starts_with("line 2"), "{a:?}");
+        // A parameter out of range inside an uploaded spec is about the upload.
+        let spec = b"family = \"round-brilliant\"\n[params]\ncrown_angle = 75.0\n";
+        let a = ApiError::from_load(load_bytes("toml", spec, "u").unwrap_err());
+        assert_eq!(a.field, "cut", "{a:?}");
+        assert!(a.message.contains("crown_angle"), "{a:?}");
     }
 }
