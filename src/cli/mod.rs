@@ -9,6 +9,7 @@ pub mod outputs;
 pub mod render;
 pub mod report;
 pub mod score;
+pub mod serve;
 pub mod trace;
 
 use clap::{Parser, Subcommand};
@@ -69,6 +70,10 @@ pub enum Command {
     /// hearts & arrows viewer, or fire under spot lights. Face-up, tilted (--tilt 10@45) or
     /// rocking as an animated PNG (--rock 15:24). --json writes the statistics.
     Render(Box<render::RenderArgs>),
+    /// The cutter's workbench in the browser: a local web server with one page (presets and
+    /// uploads, parameter sliders, live render, diagram, scores, a second cut to compare,
+    /// downloads). Listens on 127.0.0.1 unless --bind says otherwise; prints the URL.
+    Serve(serve::ServeArgs),
 }
 
 /// Run a parsed command line; the `Exit` is the process's exit status (an `Err` is bad input,
@@ -86,5 +91,6 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::Sweep(a) => optimize::run_sweep(&a, &optimize::real_scorers),
         Command::Render(a) => done(render::run(&a)),
         Command::Report(a) => done(report::run(&a)),
+        Command::Serve(a) => done(serve::run(&a)),
     }
 }

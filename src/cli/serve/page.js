@@ -1,0 +1,704 @@
+// facetlab workbench: plain JavaScript over the JSON API of `facetlab serve`.
+'use strict';
+
+const $ = (sel) => document.querySelector(sel);
+
+// Score rows: key in `score --json`, label, whether higher is better (null: neither).
+const SCORE_ROWS = [
+  ['overhead_light_return', 'Overhead return', true],
+  ['brilliance', 'Brilliance', true],
+  ['brilliance_iso', 'ISO', true, true],
+  ['brilliance_cos', 'COS', true, true],
+  ['fire', 'Fire', true],
+  ['scintillation', 'Scintillation', true],
+  ['aset.blue', 'ASET blue 75–90°', null],
+  ['aset.red', 'ASET red 45–75°', null],
+  ['aset.green', 'ASET green 0–45°', null],
+  ['aset.leak', 'ASET leak <0°', false],
+];
+// Proportion rows: key in `info --json` proportions, label, unit.
+const PROP_ROWS = [
+  ['table', 'Table', '%'],
+  ['crown_angle', 'Crown angle', '°'],
+  ['pavilion_angle', 'Pavilion angle', '°'],
+  ['crown_height', 'Crown height', '%'],
+  ['pavilion_depth', 'Pavilion depth', '%'],
+  ['total_depth', 'Total depth', '%'],
+  ['girdle', 'Girdle', '%'],
+];
+const LIGHT_NAMES = {
+  iso: 'ISO (uniform sky)', cos: 'COS (cosine sky)', aset: 'ASET', fire: 'Fire (spot lights)',
+  idealscope: 'IdealScope', hearts: 'Hearts (face down)', arrows: 'Arrows (face up)',
+};
+// Exposure each light starts with (the slider changes it): the ISO sky returns ~0.9 of a white
+// diffuser from a good stone, so at 1 the picture is nearly white and its contrast pattern is
+// hard to see; the fire picture is dark flashes on black. False-colour lights ignore exposure.
+const LIGHT_EXPOSURE = { iso: 0.7, cos: 1, fire: 1.5, hearts: 1, arrows: 1 };
+const QUICK_DELAY = 15;     // ms of quiet before a request leaves (debounce) …
+const MAX_WAIT = 100;       // … but while a slider keeps moving, one leaves at least this often
+const FULL_DELAY = 700;     // ms of quiet before the full (slow) scores are asked for
+
+const state = {
+  meta: null,
+  light: 'iso',
+  tilt: 0,
+  exposure: LIGHT_EXPOSURE.iso,
+  slots: { a: null, b: null },
+};
+
+function newSlot(source) {
+  return { source, base: {}, set: {}, family: null, info: null, scores: null, quick: true, t0: 0, img: null, ms: {} };
+}
+
+// ---- requests -------------------------------------------------------------------------------
+
+const inflight = new Map();
+
+// POST `body` to `path`; a newer request with the same `key` aborts this one.
+async function api(key, path, body, as) {
+  const prev = inflight.get(key);
+  if (prev) prev.abort();
+  const ctl = new AbortController();
+  inflight.set(key, ctl);
+  try {
+    const r = await fetch(path, {
+      method: 'POST',
+      headers: { 'content-type': 'application/json' },
+      body: JSON.stringify(body),
+      signal: ctl.signal,
+    });
+    if (!r.ok) {
+      let e;
+      try { e = await r.json(); } catch (_) { e = { error: `HTTP ${r.status}`, field: '' }; }
+      const err = new Error(e.error || `HTTP ${r.status}`);
+      err.field = e.field || '';
+      err.api = true;
+      throw err;
+    }
+    if (as === 'blob') return { blob: await r.blob(), headers: r.headers };
+    return await r.json();
+  } finally {
+    if (inflight.get(key) === ctl) inflight.delete(key);
+  }
+}
+
+const aborted = (e) => e && e.name === 'AbortError';
+
+function requestBody(s, extra) {
+  return Object.assign({}, s.source, { set: s.set }, extra || {});
+}
+
+// ---- refreshing a slot ----------------------------------------------------------------------
+
+const timers = {};
+
+const firstCall = {};
+
+// Debounce with a longest wait: quiet for QUICK_DELAY ms, or MAX_WAIT ms since the first
+// change not yet sent, whichever comes first. A newer request aborts the stale one (api()).
+function schedule(name, what, delay) {
+  const k = name + what;
+  clearTimeout(timers[k]);
+  const now = performance.now();
+  if (firstCall[k] === undefined) firstCall[k] = now;
+  let wait = delay === undefined ? QUICK_DELAY : delay;
+  wait = Math.max(0, Math.min(wait, firstCall[k] + MAX_WAIT - now));
+  timers[k] = setTimeout(() => {
+    delete firstCall[k];
+    refresh(name, what);
+  }, wait);
+}
+
+function refresh(name, what) {
+  const s = state.slots[name];
+  if (!s) return;
+  if (what === 'render') doRender(name);
+  if (what === 'all') {
+    // The picture first, then the quick scores: both use every core of the server, so
+    // asking for them one after the other shows the picture sooner and the scores no later.
+    clearTimeout(timers[name + 'full']);
+    markStale(name);
+    s.needScore = true;
+    doInfo(name);
+    doRender(name);
+  }
+}
+
+async function doRender(name) {
+  const s = state.slots[name];
+  const t = performance.now();
+  const t0 = s.t0 || t;
+  const img = $('#render-' + name);
+  const frame = img.parentElement;
+  const want = { light: state.light, tilt: state.tilt, exposure: state.exposure };
+  frame.classList.add('busy');
+  try {
+    const { blob, headers } = await api('render-' + name, '/api/render', requestBody(s, Object.assign({ size: 512 }, want)), 'blob');
+    if (state.slots[name] !== s) return false;
+    const url = URL.createObjectURL(blob);
+    const old = s.img;
+    s.img = url;
+    let stats = null;
+    try { stats = JSON.parse(headers.get('x-facetlab-stats') || 'null'); } catch (_) { stats = null; }
+    img.onload = () => {
+      if (old && old !== url) URL.revokeObjectURL(old);
+      const now = performance.now();
+      s.ms.render = Math.round(now - t);
+      s.ms.slider = Math.round(now - t0);
+      img.dataset.ms = String(s.ms.slider);
+      img.dataset.light = want.light;
+      img.dataset.name = s.info ? s.info.name : '';
+      s.shown = Object.assign({ stats, name: s.info ? s.info.name : '', changed: Object.keys(s.set).length }, want);
+      frame.classList.remove('busy');
+      caption(name);
+      showStatus();
+    };
+    img.src = url;
+    clearError(name);
+    if (s.needScore) {
+      s.needScore = false;
+      doScore(name, true);
+    }
+    return true;
+  } catch (e) {
+    if (!aborted(e)) {
+      frame.classList.remove('busy');
+      s.needScore = false;
+      showError(name, e);
+    }
+    return false;
+  }
+}
+
+async function doScore(name, quick) {
+  const s = state.slots[name];
+  const t = performance.now();
+  const t0 = s.t0 || t;
+  try {
+    const j = await api('score-' + name, '/api/score', requestBody(s, { quick }));
+    if (state.slots[name] !== s) return;
+    s.scores = j;
+    s.quick = quick;
+    $('#scores').dataset[name] = quick ? 'quick' : 'full';
+    const now = performance.now();
+    s.ms[quick ? 'quick' : 'full'] = Math.round(now - t);
+    if (quick) {
+      s.ms.scoreSlider = Math.round(now - t0);
+      $('#scores').dataset.ms = String(s.ms.scoreSlider);
+    }
+    fillScores();
+    showStatus();
+    if (quick) {
+      clearTimeout(timers[name + 'full']);
+      timers[name + 'full'] = setTimeout(() => doScore(name, false), FULL_DELAY);
+    }
+  } catch (e) {
+    if (!aborted(e)) showError(name, e);
+  }
+}
+
+async function doInfo(name) {
+  const s = state.slots[name];
+  try {
+    const j = await api('info-' + name, '/api/cut', requestBody(s));
+    if (state.slots[name] !== s) return;
+    s.info = j;
+    fillProps();
+    caption(name);
+    if (name === 'a') showDiagram(j.svg);
+  } catch (e) {
+    if (!aborted(e)) showError(name, e);
+  }
+}
+
+let diagramUrl = null;
+function showDiagram(svg) {
+  const url = URL.createObjectURL(new Blob([svg], { type: 'image/svg+xml' }));
+  const img = $('#diagram');
+  img.onload = () => { if (diagramUrl && diagramUrl !== url) URL.revokeObjectURL(diagramUrl); diagramUrl = url; };
+  img.src = url;
+  $('#diagram-link').href = url;
+}
+
+// ---- loading a cut --------------------------------------------------------------------------
+
+async function loadSource(source, label) {
+  $('#source-err').textContent = '';
+  const s = newSlot(source);
+  let info;
+  try {
+    info = await api('load', '/api/cut', Object.assign({}, source));
+  } catch (e) {
+    if (!aborted(e)) $('#source-err').textContent = e.message;
+    return false;
+  }
+  s.info = info;
+  s.family = info.family || null;
+  s.base = Object.assign({}, info.params || {});
+  state.slots.a = s;
+  if (label) setFileOption(label);
+  buildParams();
+  fillProps();
+  showDiagram(info.svg);
+  caption('a');
+  refresh('a', 'all');
+  return true;
+}
+
+function setFileOption(label) {
+  const sel = $('#preset');
+  let opt = sel.querySelector('option[value="__file"]');
+  if (!opt) {
+    opt = document.createElement('option');
+    opt.value = '__file';
+    sel.prepend(opt);
+  }
+  opt.textContent = 'File: ' + label;
+  sel.value = '__file';
+}
+
+function readFile(file) {
+  const ext = (file.name.split('.').pop() || '').toLowerCase();
+  if (!state.meta.formats.includes(ext)) {
+    $('#source-err').textContent = `cut: ${file.name} is not a .asc, .obj, .stl or .toml file`;
+    return;
+  }
+  const limit = state.meta.limits.body_bytes;
+  if (file.size > (ext === 'stl' ? limit * 0.7 : limit * 0.9)) {
+    $('#source-err').textContent = `cut: ${file.name} is too large (over ${Math.round(limit / 1048576)} MB)`;
+    return;
+  }
+  const reader = new FileReader();
+  reader.onerror = () => { $('#source-err').textContent = `cut: could not read ${file.name}`; };
+  if (ext === 'stl') {
+    reader.onload = () => {
+      const bytes = new Uint8Array(reader.result);
+      let bin = '';
+      for (let i = 0; i < bytes.length; i += 0x8000) bin += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+      loadSource({ cut: btoa(bin), format: ext, encoding: 'base64', name: file.name }, file.name);
+    };
+    reader.readAsArrayBuffer(file);
+  } else {
+    reader.onload = () => loadSource({ cut: String(reader.result), format: ext, name: file.name }, file.name);
+    reader.readAsText(file);
+  }
+}
+
+// ---- parameters -----------------------------------------------------------------------------
+
+function decimals(step) {
+  const s = String(step);
+  return s.includes('.') ? s.length - s.indexOf('.') - 1 : 0;
+}
+
+function buildParams() {
+  const s = state.slots.a;
+  const box = $('#params');
+  box.textContent = '';
+  $('#params-note').textContent = '';
+  const fam = s.family && state.meta.families.find((f) => f.name === s.family);
+  $('#reset').hidden = !fam;
+  if (!fam) {
+    $('#params-note').textContent = 'An explicit facet design: it has no family parameters to change. Pin it as B and load a preset to compare.';
+    return;
+  }
+  for (const p of fam.params) {
+    const value = p.key in s.set ? s.set[p.key] : (p.key in s.base ? s.base[p.key] : p.default);
+    const dec = decimals(p.step);
+    const lo = p.open ? p.min + p.step : p.min;
+    const hi = p.open ? p.max - p.step : p.max;
+    const row = document.createElement('div');
+    row.className = 'param' + (p.key in s.set ? ' changed' : '');
+    row.dataset.key = p.key;
+    const unit = p.unit === 'degrees' ? '°' : p.unit === 'fraction' ? '× D' : p.unit === 'ratio' ? 'ratio' : '';
+    row.innerHTML = `<div class="head"><label class="key"></label><span class="unit"></span></div>
+      <div class="ctl"><input type="range"><input type="number"></div><div class="err" role="alert"></div>`;
+    const label = row.querySelector('label');
+    label.textContent = p.key.replace(/_/g, ' ');
+    label.title = p.doc;
+    label.htmlFor = 'num-' + p.key;
+    row.querySelector('.unit').textContent = `${unit} ${p.open ? '(' : '['}${p.min}, ${p.max}${p.open ? ')' : ']'}`;
+    const range = row.querySelector('input[type=range]');
+    const num = row.querySelector('input[type=number]');
+    num.id = 'num-' + p.key;
+    range.setAttribute('aria-label', p.key);
+    for (const el of [range, num]) {
+      el.min = String(lo);
+      el.max = String(hi);
+      el.step = String(p.step);
+      el.dataset.key = p.key;
+    }
+    range.value = String(value);
+    num.value = Number(value).toFixed(dec);
+    range.addEventListener('input', () => {
+      num.value = Number(range.value).toFixed(dec);
+      setParam(p.key, Number(range.value));
+    });
+    num.addEventListener('change', () => {
+      const v = num.value.trim() === '' ? NaN : Number(num.value);
+      if (Number.isFinite(v)) {
+        range.value = String(v);
+        num.value = v.toFixed(Math.max(dec, decimals(v)));
+      }
+      setParam(p.key, Number.isFinite(v) ? v : null);
+    });
+    box.appendChild(row);
+  }
+}
+
+function setParam(key, v) {
+  const s = state.slots.a;
+  if (v !== null && s.base[key] !== undefined && Math.abs(v - s.base[key]) < 1e-12) delete s.set[key];
+  else s.set[key] = v;
+  const row = document.querySelector(`.param[data-key="${key}"]`);
+  if (row) row.classList.toggle('changed', key in s.set);
+  s.t0 = performance.now();
+  schedule('a', 'all');
+}
+
+// ---- showing results ------------------------------------------------------------------------
+
+function get(obj, path) {
+  return path.split('.').reduce((o, k) => (o == null ? undefined : o[k]), obj);
+}
+
+function fmtScore(key, v) {
+  if (typeof v !== 'number') return '—';
+  return v.toFixed(key === 'fire' ? 3 : 4);
+}
+
+function buildTables() {
+  const tb = $('#scores tbody');
+  tb.textContent = '';
+  for (const [key, label, , indent] of SCORE_ROWS) {
+    const tr = document.createElement('tr');
+    const id = key.replace('.', '-');
+    tr.innerHTML = `<td></td><td id="score-a-${id}">—</td><td class="b-col" id="score-b-${id}">—</td><td class="b-col" id="score-d-${id}"></td>`;
+    tr.firstChild.textContent = label;
+    if (indent) tr.firstChild.classList.add('indent');
+    tb.appendChild(tr);
+  }
+  const pb = $('#props tbody');
+  pb.textContent = '';
+  const rows = PROP_ROWS.concat([['facet_count', 'Facets', ''], ['carats', 'Weight at 6.5 mm', 'ct']]);
+  for (const [key, label] of rows) {
+    const tr = document.createElement('tr');
+    tr.innerHTML = `<td></td><td id="prop-a-${key}">—</td><td class="b-col" id="prop-b-${key}">—</td>`;
+    tr.firstChild.textContent = label;
+    pb.appendChild(tr);
+  }
+}
+
+function markStale(name) {
+  for (const [key] of SCORE_ROWS) {
+    const el = document.getElementById(`score-${name}-${key.replace('.', '-')}`);
+    if (el) el.classList.add('stale');
+  }
+}
+
+function fillScores() {
+  const a = state.slots.a, b = state.slots.b;
+  for (const [key, , better] of SCORE_ROWS) {
+    const id = key.replace('.', '-');
+    const va = a && a.scores ? get(a.scores, key) : undefined;
+    const vb = b && b.scores ? get(b.scores, key) : undefined;
+    const ea = $('#score-a-' + id), eb = $('#score-b-' + id), ed = $('#score-d-' + id);
+    ea.textContent = fmtScore(key, va);
+    eb.textContent = fmtScore(key, vb);
+    ea.classList.remove('stale');
+    eb.classList.remove('stale');
+    ed.className = 'b-col';
+    if (typeof va === 'number' && typeof vb === 'number') {
+      const d = va - vb;
+      ed.textContent = (d >= 0 ? '+' : '−') + fmtScore(key, Math.abs(d));
+      if (better !== null && Math.abs(d) > 5e-5) ed.classList.add((d > 0) === better ? 'up' : 'down');
+    } else {
+      ed.textContent = '';
+    }
+  }
+  const kinds = ['a', 'b'].map((n) => state.slots[n]).filter((s) => s && s.scores).map((s) => s.quick);
+  $('#score-kind').textContent = kinds.length === 0 ? '' : kinds.some((q) => q) ? 'quick' : 'full';
+  if (!b) delete $('#scores').dataset.b;
+  $('#score-kind').title = 'quick: fewer poses, bands and pixels while you move a slider; full: the same settings as `facetlab score`';
+}
+
+function fmtProp(key, unit, v) {
+  if (typeof v !== 'number') return '—';
+  if (unit === '%') return (100 * v).toFixed(1) + ' %';
+  if (unit === '°') return v.toFixed(2) + ' °';
+  if (unit === 'ct') return v.toFixed(3) + ' ct';
+  return String(v);
+}
+
+function fillProps() {
+  for (const name of ['a', 'b']) {
+    const s = state.slots[name];
+    const info = s && s.info;
+    for (const [key, , unit] of PROP_ROWS) {
+      $(`#prop-${name}-${key}`).textContent = fmtProp(key, unit, info ? info.proportions[key] : undefined);
+    }
+    $(`#prop-${name}-facet_count`).textContent = info ? String(info.facet_count) : '—';
+    $(`#prop-${name}-carats`).textContent = fmtProp('carats', 'ct', info ? info.carats : undefined);
+  }
+  const a = state.slots.a;
+  if (a && a.info) {
+    $('#cut-name').textContent = a.info.name;
+    $('#cut-family').textContent = a.info.family ? '· ' + a.info.family : '· explicit facets';
+  }
+}
+
+// The caption says what the picture shows (not what is being asked for).
+function caption(name) {
+  const s = state.slots[name];
+  if (!s) return;
+  const v = s.shown;
+  const el = $('#cap-' + name);
+  if (!v) {
+    el.textContent = (s.info ? s.info.name : '') + ' · rendering…';
+    return;
+  }
+  const parts = [v.name];
+  if (v.changed) parts.push(`(${v.changed} changed)`);
+  parts.push('· ' + (LIGHT_NAMES[v.light] || v.light));
+  if (v.tilt) parts.push(`· tilt ${v.tilt}°`);
+  const st = v.stats || {};
+  if (typeof st.fire === 'number') parts.push(`· face-up fire ${st.fire.toFixed(3)}`);
+  else if (!st.aset && typeof st.mean === 'number') parts.push(`· face-up mean ${st.mean.toFixed(3)}`);
+  el.textContent = parts.join(' ');
+  el.title = el.textContent;
+}
+
+function showStatus() {
+  const el = $('#status');
+  el.classList.remove('bad');
+  const bits = [];
+  for (const name of ['a', 'b']) {
+    const s = state.slots[name];
+    if (!s) continue;
+    const m = s.ms;
+    const t = [];
+    if (m.render !== undefined) t.push(`render ${m.render} ms`);
+    if (m.quick !== undefined) t.push(`quick scores ${m.quick} ms`);
+    if (m.full !== undefined) t.push(`full scores ${m.full} ms`);
+    if (m.slider !== undefined && s.t0) t.push(`last change → picture ${m.slider} ms`);
+    if (m.scoreSlider !== undefined && s.t0) t.push(`→ scores ${m.scoreSlider} ms`);
+    if (t.length) bits.push(name.toUpperCase() + ': ' + t.join(', '));
+  }
+  el.textContent = bits.join('   ·   ');
+}
+
+// ---- errors ---------------------------------------------------------------------------------
+
+function showError(name, e) {
+  const field = e.field || '';
+  const msg = e.message || String(e);
+  if (name === 'a' && field.startsWith('set.')) {
+    const row = document.querySelector(`.param[data-key="${field.slice(4)}"]`);
+    if (row) {
+      row.classList.add('invalid');
+      row.querySelector('.err').textContent = msg.replace(/^set\.[^:]*:\s*/, '');
+    } else {
+      $('#params-note').textContent = msg;
+    }
+  } else if (name === 'a' && field === 'cut') {
+    $('#source-err').textContent = msg;
+  } else if (name === 'a' && field === 'set') {
+    $('#params-note').textContent = msg;
+  } else {
+    const el = $('#status');
+    el.textContent = name.toUpperCase() + ': ' + msg;
+    el.classList.add('bad');
+  }
+  const veil = $('#veil-' + name);
+  veil.textContent = 'Not a valid cut: ' + msg;
+  veil.classList.add('on');
+}
+
+function clearError(name) {
+  $('#veil-' + name).classList.remove('on');
+  if (name !== 'a') return;
+  for (const row of document.querySelectorAll('.param.invalid')) {
+    row.classList.remove('invalid');
+    row.querySelector('.err').textContent = '';
+  }
+  if (!state.slots.a.family) return;
+  $('#params-note').textContent = '';
+  $('#source-err').textContent = '';
+}
+
+// ---- compare, downloads ---------------------------------------------------------------------
+
+function pinB() {
+  const a = state.slots.a;
+  if (!a) return;
+  const b = newSlot(a.source);
+  b.base = Object.assign({}, a.base);
+  b.set = Object.assign({}, a.set);
+  b.family = a.family;
+  b.info = a.info;
+  b.scores = a.scores;
+  b.quick = a.quick;
+  b.shown = a.shown;
+  state.slots.b = b;
+  document.body.classList.add('comparing');
+  $('#view-b').hidden = false;
+  $('#render-b').src = $('#render-a').src;
+  fillScores();
+  fillProps();
+  caption('b');
+  refresh('b', 'all');
+}
+
+function clearB() {
+  state.slots.b = null;
+  document.body.classList.remove('comparing');
+  $('#view-b').hidden = true;
+  fillScores();
+  fillProps();
+  showStatus();
+}
+
+function swap() {
+  const { a, b } = state.slots;
+  if (!a || !b) return;
+  state.slots.a = b;
+  state.slots.b = a;
+  const ia = $('#render-a').src;
+  $('#render-a').src = $('#render-b').src;
+  $('#render-b').src = ia;
+  [a.img, b.img] = [b.img, a.img];
+  buildParams();
+  fillScores();
+  fillProps();
+  caption('a');
+  caption('b');
+  if (b.info) showDiagram(b.info.svg);
+  refresh('a', 'render');
+  refresh('b', 'render');
+}
+
+async function download(to) {
+  const s = state.slots.a;
+  if (!s) return;
+  try {
+    const { blob, headers } = await api('export', '/api/export', requestBody(s, { to }), 'blob');
+    const m = /filename="([^"]+)"/.exec(headers.get('content-disposition') || '');
+    const a = document.createElement('a');
+    a.href = URL.createObjectURL(blob);
+    a.download = m ? m[1] : 'cut.' + to;
+    document.body.appendChild(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(a.href), 2000);
+  } catch (e) {
+    if (!aborted(e)) showError('a', e);
+  }
+}
+
+// ---- start ----------------------------------------------------------------------------------
+
+function setTilt(v) {
+  if (!Number.isFinite(v)) return;
+  const lim = state.meta.limits.tilt[1];
+  v = Math.max(-lim, Math.min(lim, v));
+  state.tilt = v;
+  $('#tilt').value = String(v);
+  $('#tilt-num').value = String(v);
+  for (const n of ['a', 'b']) {
+    if (state.slots[n]) {
+      state.slots[n].t0 = performance.now();
+      schedule(n, 'render');
+    }
+  }
+}
+
+async function start() {
+  const r = await fetch('/api/presets');
+  state.meta = await r.json();
+  const sel = $('#preset');
+  for (const p of state.meta.presets) {
+    const o = document.createElement('option');
+    o.value = p.name;
+    o.textContent = `${p.name} — ${p.family || 'facets'}`;
+    sel.appendChild(o);
+  }
+  const light = $('#light');
+  for (const l of state.meta.lights) {
+    const o = document.createElement('option');
+    o.value = l;
+    o.textContent = LIGHT_NAMES[l] || l;
+    light.appendChild(o);
+  }
+  light.value = state.light;
+  const exposure = $('#exposure');
+  buildTables();
+
+  sel.addEventListener('change', () => {
+    if (sel.value === '__file') return;
+    const opt = sel.querySelector('option[value="__file"]');
+    if (opt) opt.remove();
+    loadSource({ cut: sel.value });
+  });
+  $('#file').addEventListener('change', (ev) => {
+    const f = ev.target.files && ev.target.files[0];
+    if (f) readFile(f);
+    ev.target.value = '';
+  });
+  const setExposure = (v) => {
+    state.exposure = v;
+    exposure.value = String(v);
+    const falseColour = !(state.light in LIGHT_EXPOSURE);
+    exposure.disabled = falseColour;
+    $('#exposure-val').textContent = falseColour ? 'n/a' : v.toFixed(2);
+  };
+  setExposure(state.exposure);
+  light.addEventListener('change', () => {
+    state.light = light.value;
+    setExposure(LIGHT_EXPOSURE[state.light] || 1);
+    for (const n of ['a', 'b']) if (state.slots[n]) { state.slots[n].t0 = performance.now(); schedule(n, 'render', 0); }
+  });
+  exposure.addEventListener('input', () => {
+    state.exposure = Number(exposure.value);
+    $('#exposure-val').textContent = state.exposure.toFixed(2);
+    for (const n of ['a', 'b']) if (state.slots[n]) { state.slots[n].t0 = performance.now(); schedule(n, 'render'); }
+  });
+  $('#tilt').addEventListener('input', () => setTilt(Number($('#tilt').value)));
+  $('#tilt-num').addEventListener('change', () => setTilt(Number($('#tilt-num').value)));
+  $('#reset').addEventListener('click', () => {
+    const s = state.slots.a;
+    if (!s) return;
+    s.set = {};
+    s.t0 = performance.now();
+    buildParams();
+    schedule('a', 'all', 0);
+  });
+  $('#compare').addEventListener('click', pinB);
+  $('#clear-b').addEventListener('click', clearB);
+  $('#swap').addEventListener('click', swap);
+  for (const b of document.querySelectorAll('.downloads button')) {
+    b.addEventListener('click', () => download(b.dataset.to));
+  }
+  // Drop a file anywhere.
+  const drop = $('#drop');
+  let depth = 0;
+  window.addEventListener('dragenter', (e) => { e.preventDefault(); depth++; drop.hidden = false; });
+  window.addEventListener('dragleave', () => { depth = Math.max(0, depth - 1); if (!depth) drop.hidden = true; });
+  window.addEventListener('dragover', (e) => e.preventDefault());
+  window.addEventListener('drop', (e) => {
+    e.preventDefault();
+    depth = 0;
+    drop.hidden = true;
+    const f = e.dataTransfer && e.dataTransfer.files && e.dataTransfer.files[0];
+    if (f) readFile(f);
+  });
+
+  const first = state.meta.presets.find((p) => p.name === 'tolkowsky') || state.meta.presets[0];
+  sel.value = first.name;
+  await loadSource({ cut: first.name });
+}
+
+start().catch((e) => {
+  const el = $('#status');
+  el.textContent = 'Could not start: ' + e.message;
+  el.classList.add('bad');
+});
