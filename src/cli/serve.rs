@@ -380,6 +380,10 @@ fn presets_json() -> Value {
 /// File formats accepted as `format` and produced as `to`.
 const FORMATS: [&str; 4] = ["asc", "obj", "stl", "toml"];
 
+/// What `POST /api/export` writes: the cut's files, and `html`, its one-page report
+/// ([`facetlab::report`]).
+const EXPORTS: [&str; 5] = ["asc", "obj", "stl", "toml", "html"];
+
 /// Where a cut comes from.
 #[derive(Clone, Debug)]
 enum Source {
@@ -511,13 +515,13 @@ fn parse_req(body: std::result::Result<Bytes, BytesRejection>, extra: &[&str]) -
         },
         to: match m.get("to") {
             None | Some(Value::Null) => None,
-            Some(Value::String(s)) => Some(format_of(s).ok_or_else(|| {
+            Some(Value::String(s)) => Some(export_of(s).ok_or_else(|| {
                 ApiError::bad(
                     "to",
-                    format!("cannot write {:?}; allowed: {}", short(s), FORMATS.join(", ")),
+                    format!("cannot write {:?}; allowed: {}", short(s), EXPORTS.join(", ")),
                 )
             })?),
-            Some(_) => return Err(ApiError::bad("to", "must be one of asc, obj, stl, toml")),
+            Some(_) => return Err(ApiError::bad("to", "must be one of asc, obj, stl, toml, html")),
         },
     })
 }
@@ -533,6 +537,11 @@ fn short(s: &str) -> String {
         out.push('…');
     }
     out
+}
+
+fn export_of(s: &str) -> Option<&'static str> {
+    let s = s.trim().trim_start_matches('.').to_ascii_lowercase();
+    EXPORTS.into_iter().find(|f| *f == s)
 }
 
 fn format_of(s: &str) -> Option<&'static str> {
@@ -880,7 +889,7 @@ async fn export_cut(
     let Some(to) = r.to else {
         return Err(ApiError::bad(
             "to",
-            format!("missing; give the file format: {}", FORMATS.join(", ")),
+            format!("missing; give the file format: {}", EXPORTS.join(", ")),
         ));
     };
     let (bytes, name) = heavy(&st, move || {
@@ -889,6 +898,18 @@ async fn export_cut(
             "toml" => io::spec::write(&cut).into_bytes(),
             "asc" => io::asc::write(&cut, io::asc::DEFAULT_GEAR).into_bytes(),
             "obj" => io::mesh::write_obj(&cut).into_bytes(),
+            "html" => {
+                let o = facetlab::report::ReportOptions {
+                    title: format!("facetlab report: {}", cut.name),
+                    ..Default::default()
+                };
+                let page = facetlab::report::measure(&cut.name, &cut, &o)
+                    .and_then(|r| facetlab::report::html(&[r], &o))
+                    .map_err(|e| {
+                        ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "to", e.to_string())
+                    })?;
+                page.into_bytes()
+            }
             _ => io::mesh::write_stl(&cut),
         };
         let stem: String = cut
@@ -911,10 +932,10 @@ async fn export_cut(
         Ok((bytes, format!("{stem}.{to}")))
     })
     .await?;
-    let kind = if to == "stl" {
-        "model/stl"
-    } else {
-        "text/plain; charset=utf-8"
+    let kind = match to {
+        "stl" => "model/stl",
+        "html" => "text/html; charset=utf-8",
+        _ => "text/plain; charset=utf-8",
     };
     let mut resp = ([(header::CONTENT_TYPE, kind)], bytes).into_response();
     if let Ok(h) = HeaderValue::from_str(&format!("attachment; filename=\"{name}\"")) {

@@ -303,6 +303,13 @@ fn serve_api_answers_and_refuses_bad_requests() {
         );
         assert_eq!(back.json()["facet_count"], 73, "{to}");
     }
+    // The one-page report, self-contained.
+    let r = s.post("/api/export", r#"{"cut": "tolkowsky", "to": "html"}"#);
+    assert_eq!(r.status, 200);
+    assert!(r.header("content-type").unwrap().starts_with("text/html"));
+    let page = String::from_utf8(r.body).unwrap();
+    assert_eq!(page.matches("data:image/png;base64,").count(), 3);
+    assert!(page.contains("Grade estimate"));
 
     // Bad bodies and fields: 4xx JSON naming the field.
     assert_error(&s.post("/api/score", "not json"), "body");
