@@ -71,6 +71,7 @@
 mod config;
 mod design;
 mod engines;
+mod grid;
 mod guard;
 mod history;
 mod nelder_mead;
@@ -109,6 +110,13 @@ pub use sweep::{
     output_paths as sweep_output_paths, profile, run_path as sweep_path, sweep,
     write as write_sweep, write_profile, Axis, Cell, Heatmap, HeatmapChart, Point, Profile,
     ProfileChart, ProfileLines, Sweep, SweepScore,
+};
+// N-axis sweeps, their shards (`--shard K/N`, job arrays) and the exact merge.
+pub use grid::{
+    assemble as assemble_shards, best as grid_best, evaluate as evaluate_grid, fixed_at,
+    hash as config_hash, heatmap as grid_heatmap, map_axes, parse_at, profile_lines,
+    read_rows, rows_header, shard_row, to_csv as grid_csv, AxisRecord, Grid, GridCell, Shard,
+    ShardRecord,
 };
 // The photon-tracer check of the winners (its rows and report are `crate::verify`'s).
 pub use crate::verify::{VerifyReport, VerifyRow};

@@ -251,7 +251,7 @@ pub struct Sweep {
 
 /// The scores and the objective (NaN when not finite) of the config's start cut with `set`
 /// changed; no scores and a NaN objective when the cut cannot be built or scored.
-fn score_point(
+pub(crate) fn score_point(
     config: &Config,
     evaluator: &dyn Evaluator,
     set: &[(&str, f64)],
@@ -494,7 +494,7 @@ pub struct Profile {
 }
 
 /// The scores drawn and written for every point, in order.
-const SCORES: [SweepScore; 4] = [
+pub(crate) const SCORES: [SweepScore; 4] = [
     SweepScore::Brilliance,
     SweepScore::Fire,
     SweepScore::Scintillation,
