@@ -124,7 +124,11 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
 pub fn run_env(a: &ScoreArgs, env: &dyn Fn(&str) -> Option<String>) -> Result<Exit> {
     let (Some(batch), Some(out)) = (&a.batch, &a.jsonl) else {
         return Err(Error::invalid(
-            if a.batch.is_some() { "--batch" } else { "--jsonl" },
+            if a.batch.is_some() {
+                "--batch"
+            } else {
+                "--jsonl"
+            },
             "--batch FILE and --jsonl OUT go together",
         ));
     };

@@ -211,8 +211,7 @@ pub fn run(a: &MergeArgs) -> Result<Exit> {
             cells.push((shown(i), c));
         }
     }
-    let cells =
-        opt::assemble_shards(&grid, cells).map_err(|e| Error::invalid("SHARD_DIR", e))?;
+    let cells = opt::assemble_shards(&grid, cells).map_err(|e| Error::invalid("SHARD_DIR", e))?;
     if let Some(d) = csv.parent() {
         facetlab::io::check_writable(d)?;
     }

@@ -7,7 +7,9 @@
 use super::outputs::{refuse_overwrite, Exit};
 use clap::Args;
 use facetlab::error::{Error, Result};
-use facetlab::optimize::{self as opt, Axis, AxisRecord, Grid, GridCell, Shard, ShardRecord, SweepScore};
+use facetlab::optimize::{
+    self as opt, Axis, AxisRecord, Grid, GridCell, Shard, ShardRecord, SweepScore,
+};
 use facetlab::optimize::{BeamEvaluator, PhotonVerifier, Progress, Status};
 use facetlab::optimize::{Config, Evaluator, Verifier};
 use facetlab::optimize::{CutWriter, FnWriter, Hooks, RunOptions};
@@ -706,8 +708,8 @@ fn run_shard(
     record.indices_done = done.iter().copied().collect();
     record.complete = record.done == record.points;
     let write_record = |r: &ShardRecord| -> Result<()> {
-        let text = serde_json::to_string_pretty(r)
-            .map_err(|e| Error::invalid("--out", e.to_string()))?;
+        let text =
+            serde_json::to_string_pretty(r).map_err(|e| Error::invalid("--out", e.to_string()))?;
         facetlab::io::write_atomic(&record_path, (text + "\n").as_bytes())
     };
     write_record(&record)?;
@@ -747,25 +749,18 @@ fn run_shard(
         a.quiet,
         "{spinner} {elapsed_precise} [{bar:20}] {pos}/{len} cuts  {per_sec}  eta {eta}",
     );
-    let cells = opt::evaluate_grid(
-        config,
-        evaluator.as_ref(),
-        grid,
-        &todo,
-        Some(&STOP),
-        &|c| {
-            use std::io::Write;
-            // One write per row: a row is in the file whole or (after a hard kill) cut short
-            // at the end, where a resume drops it.
-            let row = opt::shard_row(c);
-            let mut f = file.lock().unwrap_or_else(|p| p.into_inner());
-            if let Err(e) = f.write_all(row.as_bytes()) {
-                *failed.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
-                STOP.store(true, Ordering::SeqCst);
-            }
-            pb.inc(1);
-        },
-    );
+    let cells = opt::evaluate_grid(config, evaluator.as_ref(), grid, &todo, Some(&STOP), &|c| {
+        use std::io::Write;
+        // One write per row: a row is in the file whole or (after a hard kill) cut short
+        // at the end, where a resume drops it.
+        let row = opt::shard_row(c);
+        let mut f = file.lock().unwrap_or_else(|p| p.into_inner());
+        if let Err(e) = f.write_all(row.as_bytes()) {
+            *failed.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
+            STOP.store(true, Ordering::SeqCst);
+        }
+        pb.inc(1);
+    });
     pb.finish_and_clear();
     if let Some(e) = failed.into_inner().unwrap_or_else(|p| p.into_inner()) {
         return Err(Error::io(rows_path.display().to_string(), e));

@@ -45,10 +45,7 @@ impl Grid {
             if axes[..i].iter().any(|b| b.key == a.key) {
                 return Err(Error::invalid(
                     "--axis",
-                    format!(
-                        "sweeps `{}` on two axes; give different parameters",
-                        a.key
-                    ),
+                    format!("sweeps `{}` on two axes; give different parameters", a.key),
                 ));
             }
         }
@@ -343,9 +340,11 @@ impl Shard {
             match get(name) {
                 None => Ok(None),
                 Some(v) if v.trim().is_empty() => Ok(None),
-                Some(v) => v.trim().parse::<usize>().map(Some).map_err(|_| {
-                    Error::invalid(name, format!("`{v}` is not a whole number"))
-                }),
+                Some(v) => v
+                    .trim()
+                    .parse::<usize>()
+                    .map(Some)
+                    .map_err(|_| Error::invalid(name, format!("`{v}` is not a whole number"))),
             }
         };
         if let Some(id) = int("SLURM_ARRAY_TASK_ID")? {
@@ -393,7 +392,10 @@ impl Shard {
                 ));
             }
             return Ok(Some((
-                Shard { k: ix + 1, n: count },
+                Shard {
+                    k: ix + 1,
+                    n: count,
+                },
                 format!("JOB_COMPLETION_INDEX={ix}, JOB_COMPLETION_COUNT={count}"),
             )));
         }
@@ -516,7 +518,10 @@ pub fn fixed_at(grid: &Grid, at: &[(String, f64)]) -> Result<Vec<usize>> {
             let keys: Vec<&str> = grid.axes.iter().map(|a| a.key.as_str()).collect();
             return Err(Error::invalid(
                 "--at",
-                format!("`{k}` is not an axis of this sweep; axes: {}", keys.join(", ")),
+                format!(
+                    "`{k}` is not an axis of this sweep; axes: {}",
+                    keys.join(", ")
+                ),
             ));
         };
         let a = &grid.axes[ai];
@@ -548,12 +553,13 @@ pub fn parse_at(specs: &[String]) -> Result<Vec<(String, f64)>> {
     specs
         .iter()
         .map(|s| {
-            let (k, v) = s.split_once('=').ok_or_else(|| {
-                Error::invalid("--at", format!("`{s}` is not KEY=VALUE"))
-            })?;
-            let v: f64 = v.trim().parse().map_err(|_| {
-                Error::invalid("--at", format!("`{v}` in `{s}` is not a number"))
-            })?;
+            let (k, v) = s
+                .split_once('=')
+                .ok_or_else(|| Error::invalid("--at", format!("`{s}` is not KEY=VALUE")))?;
+            let v: f64 = v
+                .trim()
+                .parse()
+                .map_err(|_| Error::invalid("--at", format!("`{v}` in `{s}` is not a number")))?;
             Ok((k.trim().to_string(), v))
         })
         .collect()
@@ -682,7 +688,10 @@ pub fn map_axes(grid: &Grid, map: Option<&str>) -> Result<Vec<usize>> {
             let all: Vec<&str> = grid.axes.iter().map(|a| a.key.as_str()).collect();
             return Err(Error::invalid(
                 "--map",
-                format!("`{k}` is not an axis of this sweep; axes: {}", all.join(", ")),
+                format!(
+                    "`{k}` is not an axis of this sweep; axes: {}",
+                    all.join(", ")
+                ),
             ));
         };
         if out.contains(&i) {
@@ -743,11 +752,19 @@ mod tests {
         let all: Vec<usize> = (0..two.len()).collect();
         let cells = evaluate(&c, &bump, &two, &all, None, &|_| {});
         let old = super::super::sweep::sweep(&c, &bump, &x, &y, None).unwrap();
-        assert_eq!(to_csv(&two, &cells), old.to_csv(), "same bytes as the 2-axis sweep");
+        assert_eq!(
+            to_csv(&two, &cells),
+            old.to_csv(),
+            "same bytes as the 2-axis sweep"
+        );
         let one = Grid::new(vec![x.clone()]).unwrap();
         let p = super::super::sweep::profile(&c, &bump, &x, None).unwrap();
         let cells1 = evaluate(&c, &bump, &one, &[0, 1, 2, 3], None, &|_| {});
-        assert_eq!(to_csv(&one, &cells1), p.to_csv(), "same bytes as the profile");
+        assert_eq!(
+            to_csv(&one, &cells1),
+            p.to_csv(),
+            "same bytes as the profile"
+        );
 
         let three = Grid::new(vec![x.clone(), y.clone(), t]).unwrap();
         assert_eq!(three.len(), 36);
@@ -796,12 +813,18 @@ mod tests {
         assert!((m.z[2][0] - 0.57 / 3.0).abs() < 1e-12);
         assert!(fixed_at(&three, &[("table".into(), 0.9)]).is_err());
         assert!(map_axes(&three, Some("table,nope")).is_err());
-        assert_eq!(map_axes(&three, Some("table,crown_angle")).unwrap(), vec![2, 0]);
+        assert_eq!(
+            map_axes(&three, Some("table,crown_angle")).unwrap(),
+            vec![2, 0]
+        );
     }
 
     #[test]
     fn shards_parse_and_come_from_job_arrays() {
-        assert_eq!(Shard::parse("--shard", "2/3").unwrap(), Shard { k: 2, n: 3 });
+        assert_eq!(
+            Shard::parse("--shard", "2/3").unwrap(),
+            Shard { k: 2, n: 3 }
+        );
         for bad in ["0/3", "4/3", "3", "a/b", "1/0"] {
             assert!(Shard::parse("--shard", bad)
                 .unwrap_err()
@@ -821,9 +844,15 @@ mod tests {
             ("SLURM_ARRAY_TASK_MIN", "4"),
             ("SLURM_ARRAY_TASK_COUNT", "3"),
         ]);
-        assert_eq!(Shard::from_env(&slurm).unwrap().unwrap().0, Shard { k: 2, n: 3 });
+        assert_eq!(
+            Shard::from_env(&slurm).unwrap().unwrap().0,
+            Shard { k: 2, n: 3 }
+        );
         let k8s = env(&[("JOB_COMPLETION_INDEX", "0"), ("JOB_COMPLETION_COUNT", "4")]);
-        assert_eq!(Shard::from_env(&k8s).unwrap().unwrap().0, Shard { k: 1, n: 4 });
+        assert_eq!(
+            Shard::from_env(&k8s).unwrap().unwrap().0,
+            Shard { k: 1, n: 4 }
+        );
         let half = env(&[("JOB_COMPLETION_INDEX", "0")]);
         assert!(Shard::from_env(&half).is_err());
         assert!(Shard::from_env(&env(&[])).unwrap().is_none());

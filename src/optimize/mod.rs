@@ -114,9 +114,8 @@ pub use sweep::{
 // N-axis sweeps, their shards (`--shard K/N`, job arrays) and the exact merge.
 pub use grid::{
     assemble as assemble_shards, best as grid_best, evaluate as evaluate_grid, fixed_at,
-    hash as config_hash, heatmap as grid_heatmap, map_axes, parse_at, profile_lines,
-    read_rows, rows_header, shard_row, to_csv as grid_csv, AxisRecord, Grid, GridCell, Shard,
-    ShardRecord,
+    hash as config_hash, heatmap as grid_heatmap, map_axes, parse_at, profile_lines, read_rows,
+    rows_header, shard_row, to_csv as grid_csv, AxisRecord, Grid, GridCell, Shard, ShardRecord,
 };
 // The photon-tracer check of the winners (its rows and report are `crate::verify`'s).
 pub use crate::verify::{VerifyReport, VerifyRow};

@@ -5,6 +5,7 @@ mod materials;
 mod optimize;
 mod render;
 mod safety;
+mod shards;
 
 use std::path::Path;
 use std::process::{Command, Output};
