@@ -145,7 +145,7 @@ pub fn run_env(a: &ScoreArgs, env: &dyn Fn(&str) -> Option<String>) -> Result<Ex
         ));
     }
     let s = settings(a)?;
-    refuse_overwrite(&[("--jsonl", out.clone())], &[batch.clone()])?;
+    refuse_overwrite(&[("--jsonl", out.clone())], std::slice::from_ref(batch))?;
     if out.is_dir() {
         return Err(Error::invalid(
             "--jsonl",

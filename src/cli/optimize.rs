@@ -622,7 +622,7 @@ fn run_shard(
             ("--out", record_path.clone()),
             ("--out", rows_path.clone()),
         ],
-        &[a.config.clone()],
+        std::slice::from_ref(&a.config),
     )?;
     facetlab::io::check_writable(&dir)?;
     let config_bytes = facetlab::io::read_bytes(&a.config)?;

@@ -567,6 +567,7 @@ pub fn parse_at(specs: &[String]) -> Result<Vec<(String, f64)>> {
 
 /// A heatmap of `score` over the axes `mx`, `my` with the others at `fixed` (value indices;
 /// see [`fixed_at`]). `cells` are all of the grid's, in grid order; `labels` the axis labels.
+#[allow(clippy::too_many_arguments)]
 pub fn heatmap(
     grid: &Grid,
     cells: &[GridCell],
@@ -768,7 +769,7 @@ mod tests {
 
         let three = Grid::new(vec![x.clone(), y.clone(), t]).unwrap();
         assert_eq!(three.len(), 36);
-        assert_eq!(three.indices(3 + 4 * 2 + 12 * 1), vec![3, 2, 1]);
+        assert_eq!(three.indices(23), vec![3, 2, 1]);
         assert_eq!(three.index(&[3, 2, 1]), 23);
         let all: Vec<usize> = (0..three.len()).collect();
         let cells = evaluate(&c, &bump, &three, &all, None, &|_| {});
