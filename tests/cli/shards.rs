@@ -311,3 +311,68 @@ fn batch_scores_every_line_records_errors_and_resumes() {
     assert_eq!(read(&p.join("two.jsonl")).lines().count(), 1);
     bad(p, &["score", "--batch", "cuts.txt"], &["--jsonl"]);
 }
+
+#[test]
+fn sigterm_stops_a_shard_which_resumes_where_it_stopped() {
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let d = tempdir().unwrap();
+    let p = d.path();
+    std::fs::write(p.join("tiny.toml"), CONFIG).unwrap();
+    let args = [
+        "sweep",
+        "tiny.toml",
+        "--x",
+        "crown_angle:30:38:0.5",
+        "--y",
+        "pavilion_angle:39.5:42.5:0.5",
+        "--shard",
+        "1/1",
+        "--out",
+        "s",
+        "--quiet",
+    ];
+    let mut child = Command::new(env!("CARGO_BIN_EXE_facetlab"))
+        .args(args)
+        .current_dir(p)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Rows are appended only after the handler is installed: wait for two.
+    let rows = p.join("s/shard-1-of-1/rows.csv");
+    let start = Instant::now();
+    while std::fs::read_to_string(&rows).map_or(0, |t| t.lines().count()) < 3 {
+        assert!(child.try_wait().unwrap().is_none(), "the shard ended early");
+        assert!(start.elapsed() < Duration::from_secs(120), "no rows");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    // SAFETY: kill with a valid signal on our own child's pid.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGTERM) }, 0);
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(130),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let rec: serde_json::Value =
+        serde_json::from_str(&read(&p.join("s/shard-1-of-1/shard.json"))).unwrap();
+    let done = rec["done"].as_u64().unwrap();
+    assert_eq!(rec["complete"], false);
+    assert!(done >= 2 && done < 119, "{rec}");
+    assert_eq!(read(&rows).lines().count() as u64, 1 + done);
+    let again = ok(p, &args);
+    assert!(
+        again.contains(&format!("resumed: {done} of 119 done")),
+        "{again}"
+    );
+    assert!(
+        again.contains(&format!("computed {};", 119 - done)),
+        "{again}"
+    );
+    ok(p, &["merge", "s", "-o", "m.csv"]);
+    let merged = read(&p.join("m.csv"));
+    assert_eq!(merged.lines().count(), 1 + 119);
+    assert!(merged.lines().nth(1).unwrap().starts_with("30,39.5,"));
+}
