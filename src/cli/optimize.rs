@@ -962,4 +962,106 @@ mod tests {
         assert!(e.starts_with("--out: ") && e.contains("overwrite"), "{e}");
         assert!(std::fs::read_to_string(&cfg).unwrap().starts_with("[cut]"));
     }
+
+    #[test]
+    fn three_axes_map_any_two_held_where_asked() {
+        let dir = tempfile::tempdir().unwrap();
+        let cfg = dir.path().join("small.toml");
+        std::fs::write(
+            &cfg,
+            "[cut]\nfamily = \"round-brilliant\"\n[free]\ncrown_angle = [30.0, 38.0]\n",
+        )
+        .unwrap();
+        let s = SweepArgs {
+            config: cfg.clone(),
+            x: Some("crown_angle:30:38:2".into()),
+            y: Some("pavilion_angle:40:41:0.5".into()),
+            axis: vec!["table:0.55:0.58:0.01".into()],
+            map: Some("table,crown_angle".into()),
+            at: vec!["pavilion_angle=40.9".into()],
+            shard: None,
+            score: "brilliance".into(),
+            run: None,
+            out: Some(dir.path().join("three")),
+            quiet: true,
+        };
+        let no_env = |_: &str| None;
+        assert_eq!(run_sweep_env(&s, &bumps, &no_env).unwrap(), Exit::Ok);
+        let csv = std::fs::read_to_string(dir.path().join("three/sweep.csv")).unwrap();
+        assert!(csv.starts_with("crown_angle,pavilion_angle,table,brilliance,"));
+        assert_eq!(csv.lines().count(), 1 + 5 * 3 * 4);
+        let grid = Grid::new(vec![
+            Axis::parse("--x", "crown_angle:30:38:2", &Config::load(&cfg).unwrap()).unwrap(),
+            Axis::parse(
+                "--y",
+                "pavilion_angle:40:41:0.5",
+                &Config::load(&cfg).unwrap(),
+            )
+            .unwrap(),
+            Axis::parse(
+                "--axis",
+                "table:0.55:0.58:0.01",
+                &Config::load(&cfg).unwrap(),
+            )
+            .unwrap(),
+        ])
+        .unwrap();
+        let spec = map_spec(&grid, s.map.as_deref(), &s.at).unwrap();
+        assert_eq!(
+            (spec.axes.clone(), spec.fixed.clone()),
+            (vec![2, 0], vec![2, 2, 1]),
+            "a tie at the middle (0.565) goes to the lower value"
+        );
+        let names = Names {
+            name: "n".into(),
+            family: "round-brilliant".into(),
+            file: "small.toml".into(),
+        };
+        assert_eq!(
+            map_title(&names, &grid, &SweepScore::Fire, &spec),
+            "fire of round-brilliant over table and crown_angle at pavilion_angle = 41 (others as in small.toml)"
+        );
+        for (change, want) in [
+            (
+                SweepArgs {
+                    map: Some("table,girdle".into()),
+                    ..s.clone()
+                },
+                "--map: `girdle` is not an axis",
+            ),
+            (
+                SweepArgs {
+                    at: vec!["table=0.9".into()],
+                    ..s.clone()
+                },
+                "--at: table = 0.9 is outside",
+            ),
+            (
+                SweepArgs {
+                    axis: vec!["crown_angle:30:31:1".into()],
+                    ..s.clone()
+                },
+                "sweeps `crown_angle` on two axes",
+            ),
+            (
+                SweepArgs {
+                    x: None,
+                    ..s.clone()
+                },
+                "--y: needs --x",
+            ),
+            (
+                SweepArgs {
+                    shard: Some("0/2".into()),
+                    ..s.clone()
+                },
+                "--shard: `0/2` is not K/N",
+            ),
+        ] {
+            let e = run_sweep_env(&change, &bumps, &no_env)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(want), "{e}");
+        }
+    }
 }

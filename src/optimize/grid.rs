@@ -503,7 +503,8 @@ impl ShardRecord {
 
 /// Where the map's other axes are held: the value index on each axis (`None` for the two
 /// mapped axes). Default: the grid value nearest each axis' middle; `at` gives `(key, value)`
-/// choices, each snapped to the nearest grid value (a value off the axis' range is refused).
+/// choices, each snapped to the nearest grid value (a value off the axis' range is refused;
+/// a tie goes to the lower value).
 pub fn fixed_at(grid: &Grid, at: &[(String, f64)]) -> Result<Vec<usize>> {
     let mut idx: Vec<usize> = grid
         .axes

@@ -16,7 +16,8 @@
 //!   [`crate::verify`]) and flags any disagreement with the beam tracer beyond 4 standard
 //!   errors;
 //! - `run.rs` writes the run folder (config as used, history, plots, best cut, reports) and
-//!   `sweep.rs` maps a score over two parameters or draws the scores along one.
+//!   `sweep.rs` maps a score over two parameters or draws the scores along one; `grid.rs`
+//!   sweeps any number of axes, in shards (`--shard K/N`) that a merge joins exactly.
 //!
 //! The modules are private; what a caller needs is re-exported here: the config and its
 //! sections, the two scorers made from a config ([`BeamEvaluator`], [`PhotonVerifier`]),

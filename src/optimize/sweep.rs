@@ -11,6 +11,9 @@
 //! With one axis, [`profile`] evaluates the scores along it; its CSV is
 //! `<x key>,brilliance,fire,scintillation,objective` (+ extras), one row per x, and its chart
 //! (a [`ProfileChart`]) draws every score against x.
+//!
+//! Sweeps of any number of axes, and their shards, are in `grid.rs`; they write the same CSV
+//! for one and two axes.
 
 use super::config::{axis_label, Config};
 use super::history::History;
