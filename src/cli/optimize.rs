@@ -72,8 +72,8 @@ pub struct SweepArgs {
     /// i mod N == K-1, into OUT/shard-K-of-N/ (shard.json, rows.csv), resuming what it already
     /// wrote; `facetlab merge` joins the shards. Without it, Slurm's SLURM_ARRAY_TASK_ID
     /// (- SLURM_ARRAY_TASK_MIN) of SLURM_ARRAY_TASK_COUNT, or Kubernetes' JOB_COMPLETION_INDEX
-    /// of JOB_COMPLETION_COUNT, choose the shard when set.
-    #[arg(long, value_name = "K/N")]
+    /// of JOB_COMPLETION_COUNT, choose the shard when set; `--shard off` ignores them.
+    #[arg(long, value_name = "K/N|off")]
     pub shard: Option<String>,
     /// The score drawn on the map and summarised: brilliance, fire, scintillation,
     /// or objective (the config's weighted score minus penalties). The CSV has all of them.
@@ -486,12 +486,14 @@ pub(crate) fn map_spec(grid: &Grid, map: Option<&str>, at: &[String]) -> Result<
     Ok(MapSpec { axes, fixed })
 }
 
-/// The shard of `--shard`, else of a job array's environment (`env` reads a variable).
+/// The shard of `--shard` (`off`: none, whatever the environment), else of a job array's
+/// environment (`env` reads a variable).
 pub(crate) fn choose_shard(
     flag: Option<&str>,
     env: &dyn Fn(&str) -> Option<String>,
 ) -> Result<Option<(Shard, String)>> {
     match flag {
+        Some("off") => Ok(None),
         Some(s) => Ok(Some((Shard::parse("--shard", s)?, "--shard".into()))),
         None => Shard::from_env(env),
     }

@@ -47,8 +47,9 @@ pub struct ScoreArgs {
     #[arg(long, value_name = "OUT")]
     pub jsonl: Option<PathBuf>,
     /// With --batch: score only shard K of N (1-based), the cuts whose ordinal i has
-    /// i mod N == K-1; default from a Slurm or Kubernetes job array's environment.
-    #[arg(long, value_name = "K/N")]
+    /// i mod N == K-1; default from a Slurm or Kubernetes job array's environment (`off`:
+    /// all cuts, whatever the environment).
+    #[arg(long, value_name = "K/N|off")]
     pub shard: Option<String>,
     /// A fixed refractive index instead of the material's dispersion curve (no fire).
     #[arg(long, value_name = "N", allow_hyphen_values = true)]

@@ -192,9 +192,9 @@ fn job_array_environments_pick_the_shard() {
     let d = tempdir().unwrap();
     let p = d.path();
     std::fs::write(p.join("tiny.toml"), CONFIG).unwrap();
-    let run = |env: &[(&str, &str)]| {
+    let run_with = |extra: &[&str], env: &[(&str, &str)]| {
         let mut c = Command::new(env!("CARGO_BIN_EXE_facetlab"));
-        c.args(sweep_args(&["--out", "arr"])).current_dir(p);
+        c.args(sweep_args(extra)).current_dir(p);
         for v in [
             "SLURM_ARRAY_TASK_ID",
             "SLURM_ARRAY_TASK_MIN",
@@ -207,6 +207,7 @@ fn job_array_environments_pick_the_shard() {
         }
         c.envs(env.iter().copied()).output().unwrap()
     };
+    let run = |env: &[(&str, &str)]| run_with(&["--out", "arr"], env);
     let out = run(&[
         ("SLURM_ARRAY_TASK_ID", "11"),
         ("SLURM_ARRAY_TASK_MIN", "10"),
@@ -231,6 +232,13 @@ fn job_array_environments_pick_the_shard() {
     let out = run(&[("JOB_COMPLETION_INDEX", "3")]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("JOB_COMPLETION_COUNT"));
+    // `--shard off`: an ordinary sweep inside an array job.
+    let out = run_with(
+        &["--shard", "off", "--out", "plain"],
+        &[("JOB_COMPLETION_INDEX", "3"), ("JOB_COMPLETION_COUNT", "4")],
+    );
+    assert!(out.status.success());
+    assert_eq!(read(&p.join("plain/sweep.csv")).lines().count(), 1 + 8);
     bad(p, &sweep_args(&["--shard", "5/4"]), &["--shard", "K/N"]);
 }
 
