@@ -1,9 +1,11 @@
 //! The command line: a thin layer that validates flags into the library's own types and calls
 //! it. Each subcommand lives in its own module.
 
+mod batch;
 mod cuts;
 mod flags;
 pub mod materials;
+pub mod merge;
 pub mod optimize;
 pub mod outputs;
 pub mod render;
@@ -60,10 +62,16 @@ pub enum Command {
     Optimize(optimize::OptimizeArgs),
     /// Map a score over a grid of two parameters (CSV and a heatmap with contours), or, without
     /// --y, the scores along one (CSV and a line chart).
+    ///
+    /// More axes with --axis (the map shows two of them: --map, --at); --shard K/N (or a Slurm
+    /// or Kubernetes job array) evaluates a share of the grid, resumably, for `merge`.
     Sweep(optimize::SweepArgs),
     /// One self-contained HTML page per cut or comparing cuts: ISO, ASET and fire pictures, the
     /// diagram, proportions with the grade estimate, every score explained, `--verify N`.
     Report(report::ReportArgs),
+    /// Join the shards of one sweep (`sweep --shard K/N`) into the CSV and map one unsharded
+    /// run writes, after checking they cover the grid exactly once.
+    Merge(merge::MergeArgs),
     /// Draw cuts as a cutter sees them: one PNG, side by side, statistics below each.
     ///
     /// Lights: iso or cos (GemRay), aset and idealscope false colours (with a legend), the
@@ -89,6 +97,7 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::Score(a) => score::run(&a),
         Command::Optimize(a) => optimize::run_optimize(&a, &optimize::real_scorers),
         Command::Sweep(a) => optimize::run_sweep(&a, &optimize::real_scorers),
+        Command::Merge(a) => merge::run(&a),
         Command::Render(a) => done(render::run(&a)),
         Command::Report(a) => done(report::run(&a)),
         Command::Serve(a) => done(serve::run(&a)),

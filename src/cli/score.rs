@@ -37,8 +37,20 @@ use std::path::PathBuf;
 #[derive(clap::Args, Debug, Clone)]
 pub struct ScoreArgs {
     /// Cuts to score: preset names (tolkowsky, gia-reference) or .toml/.asc/.obj/.stl files.
-    #[arg(required = true, value_name = "CUT")]
+    #[arg(required_unless_present = "batch", value_name = "CUT")]
     pub cuts: Vec<String>,
+    /// Score the cuts listed in FILE, one per line (a preset or path, optionally with
+    /// `--set KEY=VALUE` pairs; `#` comments), into --jsonl OUT, resumably.
+    #[arg(long, value_name = "FILE")]
+    pub batch: Option<PathBuf>,
+    /// With --batch: the JSON Lines file written, one line per cut (its scores or its error).
+    #[arg(long, value_name = "OUT")]
+    pub jsonl: Option<PathBuf>,
+    /// With --batch: score only shard K of N (1-based), the cuts whose ordinal i has
+    /// i mod N == K-1; default from a Slurm or Kubernetes job array's environment (`off`:
+    /// all cuts, whatever the environment).
+    #[arg(long, value_name = "K/N|off")]
+    pub shard: Option<String>,
     /// A fixed refractive index instead of the material's dispersion curve (no fire).
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub ri: Option<String>,
@@ -291,6 +303,9 @@ pub fn verdict(checks: &[Vec<Check>]) -> Exit {
 /// Run `facetlab score`; with `--verify`, a disagreement beyond [`SIGMA`] standard errors
 /// exits 1 after the table and the JSON are written.
 pub fn run(a: &ScoreArgs) -> Result<Exit> {
+    if a.batch.is_some() || a.jsonl.is_some() || a.shard.is_some() {
+        return super::batch::run(a);
+    }
     let s = settings(a)?;
     if let Some(path) = &a.json {
         // Never overwrite a cut with its scores.

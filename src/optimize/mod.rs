@@ -16,7 +16,8 @@
 //!   [`crate::verify`]) and flags any disagreement with the beam tracer beyond 4 standard
 //!   errors;
 //! - `run.rs` writes the run folder (config as used, history, plots, best cut, reports) and
-//!   `sweep.rs` maps a score over two parameters or draws the scores along one.
+//!   `sweep.rs` maps a score over two parameters or draws the scores along one; `grid.rs`
+//!   sweeps any number of axes, in shards (`--shard K/N`) that a merge joins exactly.
 //!
 //! The modules are private; what a caller needs is re-exported here: the config and its
 //! sections, the two scorers made from a config ([`BeamEvaluator`], [`PhotonVerifier`]),
@@ -71,6 +72,7 @@
 mod config;
 mod design;
 mod engines;
+mod grid;
 mod guard;
 mod history;
 mod nelder_mead;
@@ -112,6 +114,12 @@ pub use sweep::{
     output_paths as sweep_output_paths, profile, run_path as sweep_path, sweep,
     write as write_sweep, write_profile, Axis, Cell, Heatmap, HeatmapChart, Point, Profile,
     ProfileChart, ProfileLines, Sweep, SweepScore,
+};
+// N-axis sweeps, their shards (`--shard K/N`, job arrays) and the exact merge.
+pub use grid::{
+    assemble as assemble_shards, best as grid_best, evaluate as evaluate_grid, fixed_at,
+    hash as config_hash, heatmap as grid_heatmap, map_axes, parse_at, profile_lines, read_rows,
+    rows_header, shard_row, to_csv as grid_csv, AxisRecord, Grid, GridCell, Shard, ShardRecord,
 };
 // The photon-tracer check of the winners (its rows and report are `crate::verify`'s).
 pub use crate::verify::{VerifyReport, VerifyRow};

@@ -11,6 +11,9 @@
 //! With one axis, [`profile`] evaluates the scores along it; its CSV is
 //! `<x key>,brilliance,fire,scintillation,objective` (+ extras), one row per x, and its chart
 //! (a [`ProfileChart`]) draws every score against x.
+//!
+//! Sweeps of any number of axes, and their shards, are in `grid.rs`; they write the same CSV
+//! for one and two axes.
 
 use super::config::{axis_label, Config};
 use super::history::History;
@@ -251,7 +254,7 @@ pub struct Sweep {
 
 /// The scores and the objective (NaN when not finite) of the config's start cut with `set`
 /// changed; no scores and a NaN objective when the cut cannot be built or scored.
-fn score_point(
+pub(crate) fn score_point(
     config: &Config,
     evaluator: &dyn Evaluator,
     set: &[(&str, f64)],
@@ -494,7 +497,7 @@ pub struct Profile {
 }
 
 /// The scores drawn and written for every point, in order.
-const SCORES: [SweepScore; 4] = [
+pub(crate) const SCORES: [SweepScore; 4] = [
     SweepScore::Brilliance,
     SweepScore::Fire,
     SweepScore::Scintillation,

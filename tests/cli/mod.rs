@@ -6,6 +6,7 @@ mod optimize;
 mod render;
 mod safety;
 mod serve;
+mod shards;
 
 use std::path::Path;
 use std::process::{Command, Output};

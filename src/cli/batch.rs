@@ -1,0 +1,276 @@
+//! `facetlab score --batch FILE --jsonl OUT [--shard K/N]`: score many cuts, one per line of
+//! FILE, into one JSON line each, resumably.
+//!
+//! **FILE.** One cut per line: a preset name or a path (.toml, .asc, .obj, .stl), optionally
+//! followed by `--set KEY=VALUE` pairs (`tolkowsky --set crown_angle=34.5 --set table=0.55`).
+//! Blank lines and lines starting with `#` are skipped. Lines are numbered from 1 as in the file.
+//!
+//! **OUT** (JSON Lines, appended). Per cut: `{"line": n, "input": "<the line>", "cut": NAME,
+//! …scores}` with the same score keys as `score --json`'s per-cut object, or, when the cut
+//! cannot be loaded or scored, `{"line": n, "input": …, "cut": "<first word>", "error": "…"}`.
+//! Each line is written with one write as soon as its cut is scored, so an interrupted run
+//! keeps every finished cut; running the same command again skips the lines already in OUT (a
+//! last line cut short is dropped and redone).
+//!
+//! **Shards.** With `--shard K/N` (or a Slurm / Kubernetes job array's environment, as for
+//! `sweep`), only the cuts whose ordinal `i` (0-based, counting cut lines only) has
+//! `i mod N == K − 1` are scored; concatenate the shards' OUT files (or sort by `line`).
+
+use super::cuts::load_with_sets;
+use super::optimize::choose_shard;
+use super::outputs::{refuse_overwrite, Exit};
+use super::score::{settings, ScoreArgs};
+use facetlab::error::{Error, Result};
+use facetlab::metrics::{score, Scores};
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::Path;
+
+#[derive(Serialize)]
+struct Scored<'a> {
+    line: usize,
+    input: &'a str,
+    cut: &'a str,
+    #[serde(flatten)]
+    scores: &'a Scores,
+}
+
+#[derive(Serialize)]
+struct Failed<'a> {
+    line: usize,
+    input: &'a str,
+    cut: &'a str,
+    error: String,
+}
+
+/// The cut lines of a batch file: `(line number, text)`.
+pub fn cut_lines(text: &str) -> Vec<(usize, String)> {
+    text.lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim().to_string()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'))
+        .collect()
+}
+
+/// A line's cut and its `--set` pairs.
+pub fn parse_line(line: &str) -> Result<(String, Vec<String>)> {
+    let mut words = line.split_whitespace();
+    let cut = words.next().unwrap_or_default().to_string();
+    let mut sets = Vec::new();
+    while let Some(w) = words.next() {
+        if w == "--set" {
+            match words.next() {
+                Some(kv) => sets.push(kv.to_string()),
+                None => return Err(Error::invalid("--set", "needs KEY=VALUE after it")),
+            }
+        } else if let Some(kv) = w.strip_prefix("--set=") {
+            sets.push(kv.to_string());
+        } else {
+            return Err(Error::invalid(
+                "batch line",
+                format!("`{w}` is not allowed; give CUT [--set KEY=VALUE]..."),
+            ));
+        }
+    }
+    Ok((cut, sets))
+}
+
+/// The lines already in OUT (`line` → `input`) and the byte length of its complete lines.
+fn done_lines(path: &Path) -> Result<(BTreeMap<usize, String>, usize, usize)> {
+    let mut done = BTreeMap::new();
+    if !path.exists() {
+        return Ok((done, 0, 0));
+    }
+    let bytes = facetlab::io::read_bytes(path)?;
+    let text = String::from_utf8_lossy(&bytes);
+    let mut good = 0;
+    for (n, line) in text.split_inclusive('\n').enumerate() {
+        let Some(body) = line.strip_suffix('\n') else {
+            break; // cut short by an interruption: redone
+        };
+        let v: serde_json::Value = serde_json::from_str(body).map_err(|_| {
+            Error::invalid(
+                "--jsonl",
+                format!(
+                    "{} line {} is not a line of `score --batch`; write to a new file",
+                    path.display(),
+                    n + 1
+                ),
+            )
+        })?;
+        let (Some(l), Some(input)) = (v["line"].as_u64(), v["input"].as_str()) else {
+            return Err(Error::invalid(
+                "--jsonl",
+                format!(
+                    "{} line {} has no `line` and `input`; write to a new file",
+                    path.display(),
+                    n + 1
+                ),
+            ));
+        };
+        done.insert(l as usize, input.to_string());
+        good += line.len();
+    }
+    Ok((done, good, bytes.len()))
+}
+
+/// Run `facetlab score --batch FILE --jsonl OUT`.
+pub fn run(a: &ScoreArgs) -> Result<Exit> {
+    run_env(a, &|k| std::env::var(k).ok())
+}
+
+/// [`run`] with the environment read through `env`.
+pub fn run_env(a: &ScoreArgs, env: &dyn Fn(&str) -> Option<String>) -> Result<Exit> {
+    let (Some(batch), Some(out)) = (&a.batch, &a.jsonl) else {
+        return Err(Error::invalid(
+            if a.batch.is_some() {
+                "--batch"
+            } else {
+                "--jsonl"
+            },
+            "--batch FILE and --jsonl OUT go together",
+        ));
+    };
+    if !a.cuts.is_empty() {
+        return Err(Error::invalid(
+            "--batch",
+            "the cuts come from the batch file; give no CUT arguments",
+        ));
+    }
+    if a.json.is_some() || a.verify.is_some() {
+        return Err(Error::invalid(
+            "--batch",
+            "writes --jsonl; --json and --verify are for CUT arguments",
+        ));
+    }
+    let s = settings(a)?;
+    refuse_overwrite(&[("--jsonl", out.clone())], std::slice::from_ref(batch))?;
+    if out.is_dir() {
+        return Err(Error::invalid(
+            "--jsonl",
+            format!("{} is a folder; give a file name", out.display()),
+        ));
+    }
+    let text = String::from_utf8_lossy(&facetlab::io::read_bytes(batch)?).to_string();
+    let lines = cut_lines(&text);
+    let shard = choose_shard(a.shard.as_deref(), env)?;
+    let mine: Vec<&(usize, String)> = lines
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| shard.as_ref().is_none_or(|(s, _)| s.owns(*i)))
+        .map(|(_, l)| l)
+        .collect();
+    let (done, good, len) = done_lines(out)?;
+    for (n, input) in &done {
+        match lines.iter().find(|(l, _)| l == n) {
+            Some((_, now)) if now == input => {}
+            _ => {
+                return Err(Error::invalid(
+                    "--jsonl",
+                    format!(
+                        "{} holds line {n} `{input}`, which is not that line of {}; write to a new file",
+                        out.display(),
+                        batch.display()
+                    ),
+                ))
+            }
+        }
+    }
+    let dir = out
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    facetlab::io::check_writable(dir)?;
+    if good < len {
+        let f = std::fs::OpenOptions::new()
+            .write(true)
+            .open(out)
+            .map_err(|e| Error::io(out.display().to_string(), e))?;
+        f.set_len(good as u64)
+            .map_err(|e| Error::io(out.display().to_string(), e))?;
+    }
+    let mut file = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(out)
+        .map_err(|e| Error::io(out.display().to_string(), e))?;
+    let skipped = mine.iter().filter(|(n, _)| done.contains_key(n)).count();
+    if let Some((sh, from)) = &shard {
+        println!(
+            "shard {}/{} (from {from}): {} of {} cuts (ordinal mod {} == {})",
+            sh.k,
+            sh.n,
+            mine.len(),
+            lines.len(),
+            sh.n,
+            sh.k - 1
+        );
+    }
+    println!(
+        "resumed: {skipped} of {} done (already in {})",
+        mine.len(),
+        out.display()
+    );
+    let (mut scored, mut failed) = (0, 0);
+    for (n, input) in mine {
+        if done.contains_key(n) {
+            continue;
+        }
+        let (name, _) = parse_line(input).unwrap_or_default();
+        let result = parse_line(input).and_then(|(cut, sets)| load_with_sets(&cut, &sets));
+        let json = match result {
+            Ok(cut) => {
+                let sc = score(&cut.solid, &s.config);
+                scored += 1;
+                serde_json::to_string(&Scored {
+                    line: *n,
+                    input,
+                    cut: &cut.name,
+                    scores: &sc,
+                })
+            }
+            Err(e) => {
+                failed += 1;
+                eprintln!("facetlab: {} line {n}: {e}", batch.display());
+                serde_json::to_string(&Failed {
+                    line: *n,
+                    input,
+                    cut: &name,
+                    error: e.to_string(),
+                })
+            }
+        }
+        .map_err(|e| Error::invalid("--jsonl", e.to_string()))?;
+        file.write_all((json + "\n").as_bytes())
+            .map_err(|e| Error::io(out.display().to_string(), e))?;
+    }
+    println!(
+        "scored {scored}, errors {failed}, skipped {skipped}; wrote {}",
+        out.display()
+    );
+    Ok(Exit::Ok)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_and_words() {
+        let l = cut_lines("# head\n\ntolkowsky\n  gia-reference --set table=0.55 \n");
+        assert_eq!(
+            l,
+            vec![
+                (3, "tolkowsky".to_string()),
+                (4, "gia-reference --set table=0.55".to_string())
+            ]
+        );
+        assert_eq!(
+            parse_line("t --set a=1 --set=b=2").unwrap(),
+            ("t".to_string(), vec!["a=1".to_string(), "b=2".to_string()])
+        );
+        assert!(parse_line("t a=1").is_err());
+        assert!(parse_line("t --set").is_err());
+    }
+}
