@@ -88,7 +88,7 @@ pub fn generate(a: &GenerateArgs) -> Result<()> {
         .unwrap_or_default();
     let bytes: Vec<u8> = match ext.as_str() {
         "toml" => io::spec::write(&cut).into_bytes(),
-        "asc" => io::asc::write(&cut, io::asc::DEFAULT_GEAR).into_bytes(),
+        "asc" => io::asc::write(&cut, 0).into_bytes(),
         "obj" => io::mesh::write_obj(&cut).into_bytes(),
         "stl" => io::mesh::write_stl(&cut),
         "svg" => io::svg::diagram(&cut).into_bytes(),

@@ -84,7 +84,7 @@ pub fn design_ri_notes(
     let n = material.ri_d();
     cuts.iter()
         .filter_map(|c| {
-            let d = c.design_ri?;
+            let d = c.design_ri()?;
             ((d - n).abs() > 0.005).then(|| {
                 format!(
                     "note: {} was designed for refractive index {d}; it is traced as {} (n = {n:.4}); pass --ri {d} to trace it as designed",
@@ -167,9 +167,15 @@ mod tests {
     #[test]
     fn design_index_is_mentioned_only_when_it_differs_and_nothing_was_chosen() {
         let mut quartz = facetlab::io::load_cut("tolkowsky").unwrap();
-        quartz.design_ri = Some(1.54);
+        quartz.design = Some(facetlab::cut::Design {
+            ri: Some(1.54),
+            ..Default::default()
+        });
         let mut dia = quartz.clone();
-        dia.design_ri = Some(2.418);
+        dia.design = Some(facetlab::cut::Design {
+            ri: Some(2.418),
+            ..Default::default()
+        });
         let plain = facetlab::io::load_cut("gia-reference").unwrap();
         let cuts = [quartz, dia, plain];
         let notes = design_ri_notes(&cuts, &Material::diamond(), false);

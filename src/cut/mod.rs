@@ -7,6 +7,7 @@
 
 mod construct;
 mod cushion;
+pub mod design;
 mod emerald;
 mod families;
 pub mod grade;
@@ -22,6 +23,7 @@ mod sphere;
 mod steps;
 pub mod units;
 
+pub use design::Design;
 pub use families::{families, family, Family};
 pub use measure::{Proportions, TierSummary};
 
@@ -149,9 +151,9 @@ pub struct Cut {
     pub params: BTreeMap<String, f64>,
     /// The solid.
     pub solid: Polyhedron,
-    /// The refractive index the design file was cut for (GemCad's `I` line), if it names one.
-    /// Scores use the material chosen on the command line; this is for telling the user.
-    pub design_ri: Option<f64>,
+    /// What the design file said about itself (GemCad's index, titles, notes, gear, symmetry,
+    /// instructions; see [`Design`]), for imports that carry it; `None` for generated cuts.
+    pub design: Option<Design>,
 }
 
 impl Cut {
@@ -196,7 +198,7 @@ impl Cut {
             family: Some(fam.name.to_string()),
             params: params.values,
             solid,
-            design_ri: None,
+            design: None,
         })
     }
 
@@ -208,7 +210,7 @@ impl Cut {
             family: None,
             params: BTreeMap::new(),
             solid,
-            design_ri: None,
+            design: None,
         })
     }
 
@@ -230,6 +232,11 @@ impl Cut {
             values.insert(k.clone(), *v);
         }
         Cut::from_family(&self.name, fam, &values)
+    }
+
+    /// The refractive index the design file was cut for (GemCad's `I` line), if it names one.
+    pub fn design_ri(&self) -> Option<f64> {
+        self.design.as_ref().and_then(|d| d.ri)
     }
 
     /// Proportions measured on the solid (table, crown angle, depths …).

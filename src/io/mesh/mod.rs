@@ -200,7 +200,7 @@ pub fn read_with_note(path: impl AsRef<Path>) -> Result<(Cut, Option<String>)> {
         family: None,
         params: Default::default(),
         solid,
-        design_ri: None,
+        design: None,
     };
     Ok((cut, note))
 }
