@@ -36,9 +36,10 @@ pub struct InfoArgs {
     /// Girdle diameter in millimetres, for the carat weight.
     #[arg(long, value_name = "MM", default_value_t = 6.5)]
     pub diameter_mm: f64,
-    /// Material, for the carat weight: a name from `facetlab materials` or ri:N[:BG].
-    #[arg(long, default_value = "diamond")]
-    pub material: String,
+    /// Material, for the carat weight: a name from `facetlab materials` or ri:N[:BG]; default
+    /// the design's own (a GemCad file's `I` index), else diamond.
+    #[arg(long)]
+    pub material: Option<String>,
 }
 
 /// Parse `--set key=value` flags.
@@ -140,6 +141,11 @@ pub struct InfoJson {
     /// `parameters` (each with its value, grade and that grade's range), `note`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grade: Option<facetlab::cut::grade::GradeEstimate>,
+    /// What a GemCad design file says about itself: `ri`, `title`, `footnotes`, `gear`,
+    /// `gear_offset`, `symmetry`, `mirror`, `instructions` (by facet name), `scale` (file
+    /// units per girdle width); absent for generated cuts.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub design: Option<facetlab::cut::Design>,
 }
 
 /// Geometric checks reported by `info`.
@@ -184,6 +190,7 @@ pub fn info_json(cut: &Cut, diameter_mm: f64, material: &Material) -> InfoJson {
             smallest_facet_ratio: smallest / mean,
         },
         grade: facetlab::cut::grade::estimate(cut),
+        design: cut.design.clone(),
     }
 }
 
@@ -198,8 +205,15 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             ),
         ));
     }
-    let material = Material::by_name(&a.material)?;
+    let chosen = a.material.as_deref().map(Material::by_name).transpose()?;
     let cut = load_with_sets(&a.cut, &a.set)?;
+    let default = chosen.clone().unwrap_or_else(Material::diamond);
+    let (materials, notes) =
+        super::flags::design_materials(std::slice::from_ref(&cut), &default, chosen.is_some());
+    for note in notes {
+        eprintln!("{note}");
+    }
+    let material = materials.into_iter().next().unwrap_or(default);
     let lower = a.cut.to_ascii_lowercase();
     if lower.ends_with(".obj") || lower.ends_with(".stl") {
         if let Ok((_, Some(note))) = facetlab::io::mesh::read_with_note(&a.cut) {

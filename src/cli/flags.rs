@@ -70,6 +70,40 @@ pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
     )
 }
 
+/// The material each cut is traced in, and a line (for stderr) per cut traced in its design's
+/// material. When the user chose a material (`chosen`), every cut gets `default`; otherwise a
+/// design read from a file with an index (GemCad's `I` line) is traced in the material of that
+/// index ([`facetlab::optics::design_material`]: the listed stone within ±0.005, else `ri:N`),
+/// and any other cut in `default`.
+pub fn design_materials(
+    cuts: &[facetlab::cut::Cut],
+    default: &Material,
+    chosen: bool,
+) -> (Vec<Material>, Vec<String>) {
+    let mut notes = Vec::new();
+    let materials = cuts
+        .iter()
+        .map(|c| {
+            let own = (!chosen)
+                .then(|| c.design_ri())
+                .flatten()
+                .and_then(|n| facetlab::optics::design_material(n).map(|m| (n, m)));
+            match own {
+                Some((n, m)) => {
+                    notes.push(format!(
+                        "{}: {}; --material or --ri overrides",
+                        c.name,
+                        facetlab::optics::design_material_note(n, &m)
+                    ));
+                    m
+                }
+                None => default.clone(),
+            }
+        })
+        .collect();
+    (materials, notes)
+}
+
 /// A note (for stderr) on each cut whose design file names a refractive index other than the
 /// material's, when the user chose no material: GemCad designs are cut for one material, and
 /// scoring a quartz design as diamond without saying so would mislead.
@@ -186,5 +220,12 @@ mod tests {
             notes[0]
         );
         assert!(design_ri_notes(&cuts, &Material::diamond(), true).is_empty());
+        let (m, notes) = design_materials(&cuts, &Material::diamond(), false);
+        let names: Vec<&str> = m.iter().map(|m| m.name.as_str()).collect();
+        assert_eq!(names, ["quartz", "diamond", "diamond"]);
+        assert_eq!(notes.len(), 2, "{notes:?}");
+        assert!(notes[0].contains("traced as quartz (the design's index 1.54)"));
+        let (m, notes) = design_materials(&cuts, &Material::cubic_zirconia(), true);
+        assert!(notes.is_empty() && m.iter().all(|m| m.name == "cubic-zirconia"));
     }
 }

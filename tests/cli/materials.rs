@@ -59,3 +59,62 @@ fn ri_n_bg_reaches_the_commands_and_bad_names_list_the_allowed_ones() {
         &["--material", "BG `x` is not a number"],
     );
 }
+
+/// A small quartz design of our own (gear 80, index 1.54) with titles, notes and instructions.
+const QUARTZ_STAR: &str = "GemCad 5.0
+g 80 0.0
+y 5 y
+I 1.54
+H Test Star 80
+a -41.000000 0.66000000 80 n P 16 32 48 64 G Cut to a point
+a -90.000000 1.00000000 80 n G 16 32 48 64 8 24 40 56 72 G Size stone
+a -43.000000 0.68000000 8 n Q 24 40 56 72 G Meet P, G
+a 40.000000 0.80000000 80 n A 16 32 48 64 8 24 40 56 72
+a 0.000000 0.55000000 80 n T
+F Leave the table polished
+";
+
+#[test]
+fn a_design_is_traced_in_its_own_material_unless_told_otherwise() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    std::fs::write(p.join("star.asc"), QUARTZ_STAR).unwrap();
+    let out = super::run_in(p, &["info", "star.asc", "--json"]);
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("traced as quartz (the design's index 1.54)"),
+        "{err}"
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["material"], "quartz");
+    assert_eq!(j["design"]["ri"], 1.54);
+    assert_eq!(j["design"]["gear"], 80.0);
+    assert_eq!(j["design"]["title"][0], "Test Star 80");
+    let quartz_ct = j["carats"].as_f64().unwrap();
+    // --material overrides, silently.
+    let out = super::run_in(p, &["info", "star.asc", "--material", "diamond", "--json"]);
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("traced as"));
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["material"], "diamond");
+    // Weight scales with density: diamond 3.52, quartz 2.65 g/cm³.
+    let ratio = j["carats"].as_f64().unwrap() / quartz_ct;
+    assert!((ratio - 3.52 / 2.65).abs() < 0.02, "{ratio}");
+    // trace says which material, and uses it.
+    let out = super::run_in(p, &["trace", "star.asc", "--photons", "2000"]);
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("traced as quartz"), "{err}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("material quartz"));
+    // An index without a listed stone: ri:N with generic dispersion.
+    std::fs::write(p.join("t161.asc"), QUARTZ_STAR.replace("I 1.54", "I 1.61")).unwrap();
+    let j: serde_json::Value =
+        serde_json::from_str(&ok(p, &["info", "t161.asc", "--json"])).unwrap();
+    assert_eq!(j["material"], "ri:1.61");
+    // The design's record survives .asc export.
+    ok(p, &["generate", "star.asc", "-o", "again.asc"]);
+    assert_eq!(
+        std::fs::read_to_string(p.join("again.asc")).unwrap(),
+        QUARTZ_STAR
+    );
+}
