@@ -25,7 +25,7 @@ pub mod units;
 
 pub use design::Design;
 pub use families::{families, family, Family};
-pub use measure::{Proportions, TierSummary};
+pub use measure::{Proportions, Ratios, TierSummary};
 
 use crate::error::{Error, Result};
 use crate::geometry::{FacetPlane, Polyhedron};
@@ -242,6 +242,11 @@ impl Cut {
     /// Proportions measured on the solid (table, crown angle, depths …).
     pub fn proportions(&self) -> Proportions {
         measure::proportions(&self.solid)
+    }
+
+    /// GemCad's ratios: L/W, T/W, P/W, C/W, H/W, Vol/W³.
+    pub fn ratios(&self) -> Ratios {
+        measure::ratios(&self.solid)
     }
 
     /// Each tier's mean angle and facet count, in order of first appearance.

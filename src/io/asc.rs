@@ -46,9 +46,9 @@
 //! # Units
 //!
 //! [`AscDesign::planes`] are in the file's units. [`AscDesign::to_cut`] scales the solid about
-//! the origin so that its girdle outline is 1 wide: the largest horizontal distance between
-//! any two vertices (the outline width of [`crate::cut::units`], across corners) becomes 1, and
-//! every plane offset is scaled with it; the factor is kept in the design's record
+//! the origin so that its width W is 1, like every preset and every other import (the unit
+//! convention of [`crate::cut::units`]: W is the outline's smaller extent along x and y, the
+//! diameter of a round), and every plane offset is scaled with it; the factor is kept in the design's record
 //! ([`Design::scale`]), with the index, titles, notes, gear, symmetry and instructions, on
 //! [`Cut::design`]. [`write()`] writes a design's distances back in its file's units, a
 //! generated cut's in its own.
@@ -61,10 +61,11 @@
 //! unknown lines (skipped). Bytes that are not UTF-8 are read as Windows-1252 (0x80–0x9F) or
 //! Latin-1. A malformed `a`, `g`, `y` or `I` line is an error naming the file and line.
 
-use crate::cut::units::outline_width;
+use crate::cut::units::outline_size;
 use crate::cut::{Cut, Design};
 use crate::error::{Error, Result};
 use crate::geometry::{facet_normal, FacetPlane, Polyhedron};
+use serde::Serialize;
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -116,7 +117,7 @@ pub struct AscDesign {
 }
 
 impl AscDesign {
-    /// Build the solid and scale it so that its girdle outline is 1 wide (see the module
+    /// Build the solid and scale it so that its width W is 1 (see the module
     /// docs). Errors if the planes do not make a bounded convex solid in which every facet
     /// has an area.
     pub fn to_cut(&self, name: &str) -> Result<Cut> {
@@ -177,7 +178,7 @@ fn build_cut(planes: &[FacetPlane], name: &str, ctx: &str) -> Result<(Cut, f64)>
         })
         .collect();
     let solid = Polyhedron::from_planes(&scaled).map_err(|e| e.context(ctx))?;
-    let width = outline_width(solid.vertices());
+    let width = outline_size(solid.vertices()).1;
     if !(width.is_finite() && width > 1e-12) {
         return Err(Error::Geometry(format!(
             "{ctx}: the solid has no horizontal extent, so its girdle outline cannot be scaled to width 1"
@@ -608,39 +609,8 @@ struct Line {
     facets: Vec<(String, String)>,
 }
 
-/// Write `cut` as a GemCad `.asc` design on a gear of `gear` teeth; `0` means the design's
-/// own gear (and offset) when the cut came from a design file ([`Cut::design`]), else 96.
-///
-/// A design read from a file keeps its record: `I` (index), `H` (titles), `F` (footnotes),
-/// `y` (symmetry and mirror), `g` (gear and offset) and each line's `G` instructions, and its
-/// distances are written back in the file's own units ([`Design::scale`]). A generated cut is
-/// written with `g 96 0.0`, `y 1 n`, its name as the title, no `I` line, distances in girdle
-/// widths (W = 1).
-///
-/// Facets are grouped into one `a` line per (tier, angle, distance) as written, in order of
-/// first appearance; a tier's angle is written once, with 6 decimals as GemCad does (pavilion
-/// negative, girdle −90; a culet GemCad's way, as angle 0 with a negative distance),
-/// distances with 8. Each azimuth becomes an index (`i = offset + g · (azimuth + 90°) /
-/// 360°`, index 0 written as the tooth count): a whole number when the azimuth is on the gear,
-/// else the fewest decimals that keep it (a fractional index, as GemCad allows). The tier is
-/// written as `n TIER` after the first index unless it is the name the reader would generate
-/// anyway (`table`, `girdle`, `crown-34.00` …); a facet with a name of its own (not `TIER` or
-/// `TIER-K`) gets `n NAME` after its index. Planes with a negative offset (the origin outside
-/// the solid) cannot be expressed in GemCad's convention and do not read back the same.
-///
-/// A round trip through the text:
-///
-/// ```
-/// use facetlab::io::{asc, load_cut};
-///
-/// let cut = load_cut("gia-reference").unwrap();
-/// let text = asc::write(&cut, 96);
-/// assert!(text.starts_with("GemCad"));
-/// let back = asc::parse(text.as_bytes(), "gia.asc").unwrap().to_cut("gia").unwrap();
-/// assert_eq!(back.solid.facets().len(), cut.solid.facets().len());
-/// assert!((back.proportions().crown_angle - 34.0).abs() < 1e-6);
-/// ```
-pub fn write(cut: &Cut, gear: u32) -> String {
+/// The design record to write with, the gear teeth and offset, and the `a` lines.
+fn gear_lines(cut: &Cut, gear: u32) -> (Design, f64, f64, Vec<Line>) {
     let design = cut.design.clone().unwrap_or_default();
     let (g, offset) = if gear == 0 || f64::from(gear) == design.gear.abs() {
         (design.gear, design.gear_offset)
@@ -696,6 +666,43 @@ pub fn write(cut: &Cut, gear: u32) -> String {
             }),
         }
     }
+    (design, g, offset, lines)
+}
+
+/// Write `cut` as a GemCad `.asc` design on a gear of `gear` teeth; `0` means the design's
+/// own gear (and offset) when the cut came from a design file ([`Cut::design`]), else 96.
+///
+/// A design read from a file keeps its record: `I` (index), `H` (titles), `F` (footnotes),
+/// `y` (symmetry and mirror), `g` (gear and offset) and each line's `G` instructions, and its
+/// distances are written back in the file's own units ([`Design::scale`]). A generated cut is
+/// written with `g 96 0.0`, `y 1 n`, its name as the title, no `I` line, distances in girdle
+/// widths (W = 1).
+///
+/// Facets are grouped into one `a` line per (tier, angle, distance) as written, in order of
+/// first appearance; a tier's angle is written once, with 6 decimals as GemCad does (pavilion
+/// negative, girdle −90; a culet GemCad's way, as angle 0 with a negative distance),
+/// distances with 8. Each azimuth becomes an index (`i = offset + g · (azimuth + 90°) /
+/// 360°`, index 0 written as the tooth count): a whole number when the azimuth is on the gear,
+/// else the fewest decimals that keep it (a fractional index, as GemCad allows). The tier is
+/// written as `n TIER` after the first index unless it is the name the reader would generate
+/// anyway (`table`, `girdle`, `crown-34.00` …); a facet with a name of its own (not `TIER` or
+/// `TIER-K`) gets `n NAME` after its index. Planes with a negative offset (the origin outside
+/// the solid) cannot be expressed in GemCad's convention and do not read back the same.
+///
+/// A round trip through the text:
+///
+/// ```
+/// use facetlab::io::{asc, load_cut};
+///
+/// let cut = load_cut("gia-reference").unwrap();
+/// let text = asc::write(&cut, 96);
+/// assert!(text.starts_with("GemCad"));
+/// let back = asc::parse(text.as_bytes(), "gia.asc").unwrap().to_cut("gia").unwrap();
+/// assert_eq!(back.solid.facets().len(), cut.solid.facets().len());
+/// assert!((back.proportions().crown_angle - 34.0).abs() < 1e-6);
+/// ```
+pub fn write(cut: &Cut, gear: u32) -> String {
+    let (design, g, offset, lines) = gear_lines(cut, gear);
     let mut out = String::new();
     let _ = writeln!(out, "GemCad 5.0");
     let _ = writeln!(
@@ -750,6 +757,154 @@ pub fn write(cut: &Cut, gear: u32) -> String {
         let _ = writeln!(out, "F {f}");
     }
     out
+}
+
+/// One tier of the cutting instructions: one `a` line of the design.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CuttingStep {
+    /// Place in the cutting order, from 1.
+    pub step: usize,
+    /// `pavilion` (girdle and culet included, as GemCad prints them) or `crown`.
+    pub side: &'static str,
+    /// Tier name.
+    pub tier: String,
+    /// Angle to the girdle plane in degrees, at 0.01° (girdle 90, table and culet 0).
+    pub angle: f64,
+    /// The facets' gear indices, as a cutter sets them: whole numbers when on the gear, else
+    /// to 0.01 of a tooth.
+    pub indices: Vec<String>,
+    /// The design's instruction for the line (`G`), if any.
+    pub note: Option<String>,
+}
+
+/// Cutting instructions: the gear, the design's index and the tiers in cutting order.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CuttingInstructions {
+    /// Gear teeth (negative: clockwise).
+    pub gear: f64,
+    /// Gear offset (the index at 6 o'clock).
+    pub gear_offset: f64,
+    /// The design's refractive index, if it names one.
+    pub ri: Option<f64>,
+    /// Pavilion first, then crown, each in the design's order.
+    pub steps: Vec<CuttingStep>,
+}
+
+/// The cutting instructions of `cut` on its design's gear (or `gear`, as [`write()`]): each
+/// tier (one line of the `.asc` file) with its angle at 0.01°, its indices on the gear and its
+/// instruction, pavilion first (girdle and culet with it), then crown, as GemCad prints them;
+/// within a side the design's order (for a generated cut its facet order, the table and the
+/// culet last).
+///
+/// ```
+/// let cut = facetlab::io::load_cut("tolkowsky").unwrap();
+/// let c = facetlab::io::asc::cutting_instructions(&cut, 0);
+/// assert_eq!(c.gear, 96.0);
+/// assert_eq!(c.steps[0].side, "pavilion");
+/// let bezel = c.steps.iter().find(|s| s.tier == "bezel").unwrap();
+/// assert_eq!((bezel.angle, bezel.indices.len()), (34.5, 8));
+/// ```
+pub fn cutting_instructions(cut: &Cut, gear: u32) -> CuttingInstructions {
+    let (design, g, offset, lines) = gear_lines(cut, gear);
+    let mut steps: Vec<CuttingStep> = Vec::new();
+    for want in ["pavilion", "crown"] {
+        for l in &lines {
+            let angle: f64 = l.angle.parse().unwrap_or(0.0);
+            let dist: f64 = l.dist.parse().unwrap_or(0.0);
+            let pavilion = l.angle.starts_with('-') || (angle == 0.0 && dist < 0.0);
+            let side = if pavilion { "pavilion" } else { "crown" };
+            if side != want {
+                continue;
+            }
+            let tier = if l.tier.is_empty() {
+                reader_tier(&l.angle, &l.dist)
+            } else {
+                l.tier.clone()
+            };
+            steps.push(CuttingStep {
+                step: steps.len() + 1,
+                side,
+                tier,
+                angle: (angle.abs() * 100.0).round() / 100.0,
+                // Off-gear indices at 0.01 of a tooth: what a cutter can set with a cheater.
+                indices: l
+                    .facets
+                    .iter()
+                    .map(|(i, _)| match i.parse::<f64>() {
+                        Ok(v) if i.contains('.') => fmt_short(v, 1, 2, 1e-9),
+                        _ => i.clone(),
+                    })
+                    .collect(),
+                note: l
+                    .facets
+                    .iter()
+                    .find_map(|(_, name)| design.instructions.get(name).cloned()),
+            });
+        }
+    }
+    if cut.design.is_none() {
+        // A generated cut lists its table first; a cutter polishes the table and the culet
+        // last on their side.
+        let flat = |s: &CuttingStep| s.angle == 0.0;
+        steps.sort_by_key(|s| (s.side == "crown", flat(s)));
+        for (k, s) in steps.iter_mut().enumerate() {
+            s.step = k + 1;
+        }
+    }
+    CuttingInstructions {
+        gear: g,
+        gear_offset: offset,
+        ri: design.ri,
+        steps,
+    }
+}
+
+impl CuttingInstructions {
+    /// The instructions as a cutter reads them: a header with the gear and index, then one
+    /// line per tier: step, tier, angle (0.01°), indices joined by `-` (two digits, as GemCad
+    /// prints them), instruction.
+    pub fn text(&self) -> String {
+        let mut o = String::new();
+        let ri = self.ri.map(|n| format!(", index {n}")).unwrap_or_default();
+        let _ = writeln!(
+            o,
+            "Cutting instructions: gear {} (offset {}){ri}; pavilion first, then crown",
+            fmt_short(self.gear, 0, 6, 1e-9),
+            fmt_short(self.gear_offset, 0, 6, 1e-9)
+        );
+        let mut side = "";
+        for s in &self.steps {
+            if s.side != side {
+                side = s.side;
+                let _ = writeln!(o, "{}", side.to_uppercase());
+            }
+            let idx: Vec<String> = s
+                .indices
+                .iter()
+                .map(|i| {
+                    if i.len() == 1 {
+                        format!("0{i}")
+                    } else {
+                        i.clone()
+                    }
+                })
+                .collect();
+            let note = s
+                .note
+                .as_deref()
+                .map(|n| format!("  {n}"))
+                .unwrap_or_default();
+            let _ = writeln!(
+                o,
+                "  {:>3}  {:<14} {:>6.2}°  {}{note}",
+                s.step,
+                s.tier,
+                s.angle,
+                idx.join("-")
+            );
+        }
+        o
+    }
 }
 
 #[cfg(test)]
@@ -839,7 +994,7 @@ F Footnote one
         assert_eq!(cut.name, "mini");
         assert_eq!(cut.solid.facets().len(), 34);
         assert!(cut.solid.volume() > 0.0);
-        let w = outline_width(cut.solid.vertices());
+        let w = outline_size(cut.solid.vertices()).1;
         assert!((w - 1.0).abs() < 1e-12, "outline width {w}");
         for f in cut.solid.facets() {
             let a = facet_angle_deg(f.plane.normal);
@@ -925,7 +1080,7 @@ F Footnote one
             .unwrap()
             .to_cut("r")
             .unwrap();
-        let s = 1.0 / outline_width(cut.solid.vertices());
+        let s = 1.0 / outline_size(cut.solid.vertices()).1;
         let want: Vec<FacetPlane> = cut
             .solid
             .facet_planes()
@@ -1093,6 +1248,48 @@ F Leave the table polished
                 assert!(!text.contains(".5 ") && text.contains(" 93"), "{text}");
             }
         }
+    }
+
+    #[test]
+    fn asc_cutting_instructions_pavilion_first_at_cutters_precision() {
+        let cut = parse(STAR80.as_bytes(), "s").unwrap().to_cut("s").unwrap();
+        let c = cutting_instructions(&cut, 0);
+        assert_eq!((c.gear, c.ri), (80.0, Some(1.61)));
+        let order: Vec<(&str, &str, f64)> = c
+            .steps
+            .iter()
+            .map(|s| (s.side, s.tier.as_str(), s.angle))
+            .collect();
+        assert_eq!(
+            order,
+            [
+                ("pavilion", "P", 41.0),
+                ("pavilion", "G", 90.0),
+                ("pavilion", "Q", 43.0),
+                ("crown", "A", 40.0),
+                ("crown", "T", 0.0)
+            ]
+        );
+        assert_eq!(c.steps[2].indices, ["8", "24", "40", "56", "72"]);
+        assert_eq!(c.steps[2].note.as_deref(), Some("Meet P, G"));
+        let text = c.text();
+        assert!(text.contains("gear 80 (offset 0), index 1.61"), "{text}");
+        assert!(
+            text.contains("  43.00°  08-24-40-56-72  Meet P, G"),
+            "{text}"
+        );
+        assert!(text.find("PAVILION") < text.find("CROWN"), "{text}");
+        // A preset: angles at 0.01°, no long decimals anywhere.
+        let cut = crate::io::load_cut("marquise").unwrap();
+        let c = cutting_instructions(&cut, 0);
+        for s in &c.steps {
+            assert_eq!(s.angle, (s.angle * 100.0).round() / 100.0);
+        }
+        assert!(
+            c.text().lines().all(|l| !l.contains("00000")),
+            "{}",
+            c.text()
+        );
     }
 
     #[test]

@@ -118,3 +118,90 @@ fn a_design_is_traced_in_its_own_material_unless_told_otherwise() {
         QUARTZ_STAR
     );
 }
+
+#[test]
+fn fancy_shapes_keep_their_size_through_every_format_and_info_gives_mm_and_ratios() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    let info = |cut: &str, extra: &[&str]| -> serde_json::Value {
+        let mut args = vec!["info", cut, "--json"];
+        args.extend_from_slice(extra);
+        serde_json::from_str(&ok(p, &args)).unwrap()
+    };
+    for preset in ["marquise", "princess"] {
+        let want = info(preset, &[]);
+        for ext in ["asc", "obj", "stl"] {
+            let file = format!("{preset}.{ext}");
+            ok(p, &["generate", preset, "-o", &file]);
+            let got = info(&file, &["--material", "diamond"]);
+            let (a, b) = (
+                want["carats"].as_f64().unwrap(),
+                got["carats"].as_f64().unwrap(),
+            );
+            assert!((b / a - 1.0).abs() < 0.005, "{file}: {a} ct vs {b} ct");
+            for (k, tol) in [
+                ("total_depth", 0.002),
+                ("crown_angle", 0.05),
+                ("pavilion_angle", 0.05),
+            ] {
+                let (a, b) = (
+                    want["proportions"][k].as_f64().unwrap(),
+                    got["proportions"][k].as_f64().unwrap(),
+                );
+                assert!((a - b).abs() < tol, "{file}: {k} {a} vs {b}");
+            }
+        }
+    }
+    // The marquise preset: L/W 2, table 57 % of the width; 10 mm long is 5 mm wide.
+    let j = info("marquise", &["--size-mm", "10"]);
+    assert!((j["ratios"]["l_w"].as_f64().unwrap() - 2.0).abs() < 1e-9);
+    assert!((j["ratios"]["t_w"].as_f64().unwrap() - 0.57).abs() < 1e-9);
+    assert!((j["size_mm"]["length"].as_f64().unwrap() - 10.0).abs() < 1e-9);
+    assert!((j["size_mm"]["width"].as_f64().unwrap() - 5.0).abs() < 1e-9);
+    let h_w = j["ratios"]["h_w"].as_f64().unwrap();
+    assert!((j["size_mm"]["depth"].as_f64().unwrap() - 5.0 * h_w).abs() < 1e-9);
+    let j2 = info("marquise", &["--size-mm", "10x5"]);
+    let (a, b) = (
+        j["carats"].as_f64().unwrap(),
+        j2["carats"].as_f64().unwrap(),
+    );
+    assert!((a - b).abs() < 1e-9, "{a} vs {b}");
+    let text = ok(p, &["info", "marquise", "--size-mm", "10"]);
+    assert!(
+        text.contains("10.00 × 5.00 ×") && text.contains("L/W 2.000"),
+        "{text}"
+    );
+    bad(
+        p,
+        &["info", "marquise", "--size-mm", "10x7"],
+        &["--size-mm", "L/W", "2.000"],
+    );
+    bad(p, &["info", "marquise", "--size-mm", "ten"], &["--size-mm"]);
+}
+
+#[test]
+fn info_lists_cutting_instructions_pavilion_first() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    std::fs::write(p.join("star.asc"), QUARTZ_STAR).unwrap();
+    let text = ok(p, &["info", "star.asc", "--instructions"]);
+    let pav = text.find("PAVILION").unwrap();
+    let crown = text.find("CROWN").unwrap();
+    assert!(pav < crown, "{text}");
+    assert!(
+        text.contains("gear 80 (offset 0), index 1.54")
+            && text.contains("  43.00°  08-24-40-56-72  Meet P, G"),
+        "{text}"
+    );
+    let j: serde_json::Value =
+        serde_json::from_str(&ok(p, &["info", "star.asc", "--instructions", "--json"])).unwrap();
+    let steps = j["instructions"]["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 5);
+    assert_eq!(steps[0]["side"], "pavilion");
+    assert_eq!(steps[0]["note"], "Cut to a point");
+    assert_eq!(steps[4]["tier"], "T");
+    // Without the flag, no instructions key.
+    let j: serde_json::Value =
+        serde_json::from_str(&ok(p, &["info", "star.asc", "--json"])).unwrap();
+    assert!(j.get("instructions").is_none());
+}
