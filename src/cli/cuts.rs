@@ -130,7 +130,7 @@ pub struct InfoJson {
     pub facet_count: usize,
     /// Number of vertices.
     pub vertex_count: usize,
-    /// Volume in girdle diameters cubed.
+    /// Volume in widths W cubed (girdle diameters for a round).
     pub volume: f64,
     /// Measured proportions.
     pub proportions: facetlab::cut::Proportions,

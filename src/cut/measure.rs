@@ -1,6 +1,7 @@
 //! Proportions measured on a solid, the way a cutter or a grading lab reads them.
 //!
-//! Lengths are in the solid's units (girdle diameters for generated and imported cuts).
+//! Lengths are in the solid's units: the width W of [`super::units`] (a round's girdle
+//! diameter) for generated and imported cuts.
 //! - table: the table's largest width over the outline's largest width (corner to corner for a
 //!   round brilliant);
 //! - girdle: the vertical extent of the girdle facets (normals within 1° of horizontal, see
