@@ -317,6 +317,23 @@ pub fn info_text(j: &InfoJson) -> String {
         .map(|f| format!(" ({f})"))
         .unwrap_or_default();
     let _ = writeln!(o, "{}{fam}", j.name);
+    if let Some(d) = &j.design {
+        for t in d.title.iter().filter(|t| !t.trim().is_empty()) {
+            let _ = writeln!(o, "  {}", t.trim());
+        }
+        let ri = d.ri.map(|n| format!(", index {n}")).unwrap_or_default();
+        let _ = writeln!(
+            o,
+            "  GemCad design: gear {} (offset {}), {}-fold symmetry{}{ri}",
+            d.gear,
+            d.gear_offset,
+            d.symmetry,
+            if d.mirror { " with mirror" } else { "" }
+        );
+        for f in &d.footnotes {
+            let _ = writeln!(o, "  note: {f}");
+        }
+    }
     let p = &j.proportions;
     let pct = |v: f64| format!("{:6.1} %", v * 100.0);
     let _ = writeln!(o, "\nProportions (lengths as % of the width W)");

@@ -185,6 +185,14 @@ fn info_lists_cutting_instructions_pavilion_first() {
     let p = d.path();
     std::fs::write(p.join("star.asc"), QUARTZ_STAR).unwrap();
     let text = ok(p, &["info", "star.asc", "--instructions"]);
+    assert!(
+        text.contains("  Test Star 80\n")
+            && text.contains(
+                "GemCad design: gear 80 (offset 0), 5-fold symmetry with mirror, index 1.54"
+            )
+            && text.contains("note: Leave the table polished"),
+        "{text}"
+    );
     let pav = text.find("PAVILION").unwrap();
     let crown = text.find("CROWN").unwrap();
     assert!(pav < crown, "{text}");
