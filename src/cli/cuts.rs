@@ -369,6 +369,13 @@ pub fn info_text(j: &InfoJson) -> String {
         "Size {:.2} × {:.2} × {:.2} mm (L × W × D)   weight {:.3} ct in {}",
         z.length, z.width, z.depth, j.carats, j.material
     );
+    if j.material.starts_with("ri:") {
+        let _ = writeln!(
+            o,
+            "  ({} has no density of its own: the weight uses diamond's, 3.515 g/cm³)",
+            j.material
+        );
+    }
     let c = &j.checks;
     let _ = writeln!(
         o,
