@@ -33,12 +33,21 @@ pub struct InfoArgs {
     /// Print JSON instead of a table (keys documented in the README).
     #[arg(long)]
     pub json: bool,
-    /// Girdle diameter in millimetres, for the carat weight.
+    /// Girdle width W (a round's diameter) in millimetres, for the carat weight.
     #[arg(long, value_name = "MM", default_value_t = 6.5)]
     pub diameter_mm: f64,
-    /// Material, for the carat weight: a name from `facetlab materials` or ri:N[:BG].
-    #[arg(long, default_value = "diamond")]
-    pub material: String,
+    /// The stone's size in millimetres instead: its length L (the width follows from the
+    /// design's L/W), or LxW (which must match the design's L/W within 1 %).
+    #[arg(long, value_name = "L[xW]", conflicts_with = "diameter_mm")]
+    pub size_mm: Option<String>,
+    /// Also list the cutting instructions: each tier with its angle (0.01°), its indices on the
+    /// design's gear (96 for generated cuts) and its note, pavilion first, then crown.
+    #[arg(long)]
+    pub instructions: bool,
+    /// Material, for the carat weight: a name from `facetlab materials` or ri:N[:BG]; default
+    /// the design's own (a GemCad file's `I` index), else diamond.
+    #[arg(long)]
+    pub material: Option<String>,
 }
 
 /// Parse `--set key=value` flags.
@@ -88,7 +97,7 @@ pub fn generate(a: &GenerateArgs) -> Result<()> {
         .unwrap_or_default();
     let bytes: Vec<u8> = match ext.as_str() {
         "toml" => io::spec::write(&cut).into_bytes(),
-        "asc" => io::asc::write(&cut, io::asc::DEFAULT_GEAR).into_bytes(),
+        "asc" => io::asc::write(&cut, 0).into_bytes(),
         "obj" => io::mesh::write_obj(&cut).into_bytes(),
         "stl" => io::mesh::write_stl(&cut),
         "svg" => io::svg::diagram(&cut).into_bytes(),
@@ -121,14 +130,18 @@ pub struct InfoJson {
     pub facet_count: usize,
     /// Number of vertices.
     pub vertex_count: usize,
-    /// Volume in girdle diameters cubed.
+    /// Volume in widths W cubed (girdle diameters for a round).
     pub volume: f64,
     /// Measured proportions.
     pub proportions: facetlab::cut::Proportions,
     /// Tiers: name, mean angle, count, side.
     pub tiers: Vec<facetlab::cut::TierSummary>,
-    /// Girdle diameter used for the weight, mm.
+    /// Girdle width W used for the weight, mm (a round's diameter).
     pub diameter_mm: f64,
+    /// The stone's length, width and depth in mm for that width.
+    pub size_mm: SizeMm,
+    /// GemCad's ratios over the width: `l_w`, `t_w`, `p_w`, `c_w`, `h_w`, `vol_w3`.
+    pub ratios: facetlab::cut::Ratios,
     /// Material used for the weight.
     pub material: String,
     /// Weight in carats for that diameter and material.
@@ -140,6 +153,53 @@ pub struct InfoJson {
     /// `parameters` (each with its value, grade and that grade's range), `note`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grade: Option<facetlab::cut::grade::GradeEstimate>,
+    /// Cutting instructions (with `--instructions`): `gear`, `gear_offset`, `ri`, and
+    /// `steps[]` with `step`, `side`, `tier`, `angle`, `indices`, `note`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub instructions: Option<facetlab::io::asc::CuttingInstructions>,
+    /// What a GemCad design file says about itself: `ri`, `title`, `footnotes`, `gear`,
+    /// `gear_offset`, `symmetry`, `mirror`, `instructions` (by facet name), `scale` (file
+    /// units per girdle width); absent for generated cuts.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub design: Option<facetlab::cut::Design>,
+}
+
+/// A stone's size in millimetres.
+#[derive(Debug, Serialize)]
+pub struct SizeMm {
+    /// Length (the outline's larger extent along x and y).
+    pub length: f64,
+    /// Width (its smaller extent).
+    pub width: f64,
+    /// Depth (top to bottom).
+    pub depth: f64,
+}
+
+/// The width W in mm from `--size-mm L[xW]` for a design of length/width `l_w`.
+pub fn width_from_size(size: &str, l_w: f64) -> Result<f64> {
+    let bad = |why: String| Error::invalid("--size-mm", format!("`{size}` {why}"));
+    let num = |t: &str| -> Result<f64> {
+        match t.trim().parse::<f64>() {
+            Ok(v) if v.is_finite() && v > 0.0 && v < 1000.0 => Ok(v),
+            _ => Err(bad(
+                "is not allowed; give L or LxW in millimetres, each in (0, 1000), e.g. 10x5".into(),
+            )),
+        }
+    };
+    let lower = size.to_ascii_lowercase();
+    match lower.split_once(['x', '×']) {
+        None => Ok(num(&lower)? / l_w),
+        Some((l, w)) => {
+            let (l, w) = (num(l)?, num(w)?);
+            if ((l / w) / l_w - 1.0).abs() > 0.01 {
+                return Err(bad(format!(
+                    "has L/W {:.3}, but the design's is {l_w:.3}; give L alone or LxW with that ratio",
+                    l / w
+                )));
+            }
+            Ok(w)
+        }
+    }
 }
 
 /// Geometric checks reported by `info`.
@@ -157,7 +217,12 @@ pub struct Checks {
 pub fn info_json(cut: &Cut, diameter_mm: f64, material: &Material) -> InfoJson {
     let s = &cut.solid;
     let volume = s.volume();
-    let mm3 = volume * diameter_mm.powi(3);
+    let ratios = cut.ratios();
+    // Lengths are per width W (the unit convention); W is `diameter_mm` millimetres.
+    let w = facetlab::cut::units::outline_size(s.vertices())
+        .1
+        .max(1e-300);
+    let mm3 = volume / (w * w * w) * diameter_mm.powi(3);
     let carats = mm3 * 1e-3 * material.density / 0.2;
     let euler = s.vertices().len() as i64 - s.edges().len() as i64 + s.facets().len() as i64;
     let mean = s.surface_area() / s.facets().len() as f64;
@@ -176,6 +241,12 @@ pub fn info_json(cut: &Cut, diameter_mm: f64, material: &Material) -> InfoJson {
         proportions: cut.proportions(),
         tiers: cut.tiers(),
         diameter_mm,
+        size_mm: SizeMm {
+            length: ratios.l_w * diameter_mm,
+            width: diameter_mm,
+            depth: ratios.h_w * diameter_mm,
+        },
+        ratios,
         material: material.name.clone(),
         carats,
         checks: Checks {
@@ -184,6 +255,8 @@ pub fn info_json(cut: &Cut, diameter_mm: f64, material: &Material) -> InfoJson {
             smallest_facet_ratio: smallest / mean,
         },
         grade: facetlab::cut::grade::estimate(cut),
+        design: cut.design.clone(),
+        instructions: None,
     }
 }
 
@@ -198,15 +271,29 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             ),
         ));
     }
-    let material = Material::by_name(&a.material)?;
+    let chosen = a.material.as_deref().map(Material::by_name).transpose()?;
     let cut = load_with_sets(&a.cut, &a.set)?;
+    let default = chosen.clone().unwrap_or_else(Material::diamond);
+    let (materials, notes) =
+        super::flags::design_materials(std::slice::from_ref(&cut), &default, chosen.is_some());
+    for note in notes {
+        eprintln!("{note}");
+    }
+    let material = materials.into_iter().next().unwrap_or(default);
     let lower = a.cut.to_ascii_lowercase();
     if lower.ends_with(".obj") || lower.ends_with(".stl") {
         if let Ok((_, Some(note))) = facetlab::io::mesh::read_with_note(&a.cut) {
             eprintln!("{}: {note}", a.cut);
         }
     }
-    let j = info_json(&cut, a.diameter_mm, &material);
+    let width_mm = match &a.size_mm {
+        Some(size) => width_from_size(size, cut.ratios().l_w)?,
+        None => a.diameter_mm,
+    };
+    let mut j = info_json(&cut, width_mm, &material);
+    if a.instructions {
+        j.instructions = Some(io::asc::cutting_instructions(&cut, 0));
+    }
     if a.json {
         let text = serde_json::to_string_pretty(&j)
             .map_err(|e| Error::invalid("--json", e.to_string()))?;
@@ -214,6 +301,9 @@ pub fn info(a: &InfoArgs) -> Result<()> {
         return Ok(());
     }
     print!("{}", info_text(&j));
+    if let Some(c) = &j.instructions {
+        print!("\n{}", c.text());
+    }
     Ok(())
 }
 
@@ -227,9 +317,26 @@ pub fn info_text(j: &InfoJson) -> String {
         .map(|f| format!(" ({f})"))
         .unwrap_or_default();
     let _ = writeln!(o, "{}{fam}", j.name);
+    if let Some(d) = &j.design {
+        for t in d.title.iter().filter(|t| !t.trim().is_empty()) {
+            let _ = writeln!(o, "  {}", t.trim());
+        }
+        let ri = d.ri.map(|n| format!(", index {n}")).unwrap_or_default();
+        let _ = writeln!(
+            o,
+            "  GemCad design: gear {} (offset {}), {}-fold symmetry{}{ri}",
+            d.gear,
+            d.gear_offset,
+            d.symmetry,
+            if d.mirror { " with mirror" } else { "" }
+        );
+        for f in &d.footnotes {
+            let _ = writeln!(o, "  note: {f}");
+        }
+    }
     let p = &j.proportions;
     let pct = |v: f64| format!("{:6.1} %", v * 100.0);
-    let _ = writeln!(o, "\nProportions (lengths as % of girdle diameter)");
+    let _ = writeln!(o, "\nProportions (lengths as % of the width W)");
     let _ = writeln!(o, "  table            {}", pct(p.table));
     let _ = writeln!(o, "  crown angle      {:6.2} °", p.crown_angle);
     let _ = writeln!(o, "  pavilion angle   {:6.2} °", p.pavilion_angle);
@@ -247,14 +354,28 @@ pub fn info_text(j: &InfoJson) -> String {
     }
     let _ = writeln!(
         o,
-        "\nFacets {}   vertices {}   volume {:.5} D³",
+        "\nFacets {}   vertices {}   volume {:.5} W³",
         j.facet_count, j.vertex_count, j.volume
     );
+    let r = &j.ratios;
     let _ = writeln!(
         o,
-        "Weight {:.3} ct for a {:.2} mm {} stone",
-        j.carats, j.diameter_mm, j.material
+        "Ratios L/W {:.3}   T/W {:.3}   P/W {:.3}   C/W {:.3}   H/W {:.3}   Vol/W³ {:.4}",
+        r.l_w, r.t_w, r.p_w, r.c_w, r.h_w, r.vol_w3
     );
+    let z = &j.size_mm;
+    let _ = writeln!(
+        o,
+        "Size {:.2} × {:.2} × {:.2} mm (L × W × D)   weight {:.3} ct in {}",
+        z.length, z.width, z.depth, j.carats, j.material
+    );
+    if j.material.starts_with("ri:") {
+        let _ = writeln!(
+            o,
+            "  ({} has no density of its own: the weight uses diamond's, 3.515 g/cm³)",
+            j.material
+        );
+    }
     let c = &j.checks;
     let _ = writeln!(
         o,

@@ -70,29 +70,38 @@ pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
     )
 }
 
-/// A note (for stderr) on each cut whose design file names a refractive index other than the
-/// material's, when the user chose no material: GemCad designs are cut for one material, and
-/// scoring a quartz design as diamond without saying so would mislead.
-pub fn design_ri_notes(
+/// The material each cut is traced in, and a line (for stderr) per cut traced in its design's
+/// material. When the user chose a material (`chosen`), every cut gets `default`; otherwise a
+/// design read from a file with an index (GemCad's `I` line) is traced in the material of that
+/// index ([`facetlab::optics::design_material`]: the listed stone within ±0.005, else `ri:N`),
+/// and any other cut in `default`.
+pub fn design_materials(
     cuts: &[facetlab::cut::Cut],
-    material: &Material,
+    default: &Material,
     chosen: bool,
-) -> Vec<String> {
-    if chosen {
-        return Vec::new();
-    }
-    let n = material.ri_d();
-    cuts.iter()
-        .filter_map(|c| {
-            let d = c.design_ri?;
-            ((d - n).abs() > 0.005).then(|| {
-                format!(
-                    "note: {} was designed for refractive index {d}; it is traced as {} (n = {n:.4}); pass --ri {d} to trace it as designed",
-                    c.name, material.name
-                )
-            })
+) -> (Vec<Material>, Vec<String>) {
+    let mut notes = Vec::new();
+    let materials = cuts
+        .iter()
+        .map(|c| {
+            let own = (!chosen)
+                .then(|| c.design_ri())
+                .flatten()
+                .and_then(|n| facetlab::optics::design_material(n).map(|m| (n, m)));
+            match own {
+                Some((n, m)) => {
+                    notes.push(format!(
+                        "{}: {}; --material or --ri overrides",
+                        c.name,
+                        facetlab::optics::design_material_note(n, &m)
+                    ));
+                    m
+                }
+                None => default.clone(),
+            }
         })
-        .collect()
+        .collect();
+    (materials, notes)
 }
 
 #[cfg(test)]
@@ -167,18 +176,23 @@ mod tests {
     #[test]
     fn design_index_is_mentioned_only_when_it_differs_and_nothing_was_chosen() {
         let mut quartz = facetlab::io::load_cut("tolkowsky").unwrap();
-        quartz.design_ri = Some(1.54);
+        quartz.design = Some(facetlab::cut::Design {
+            ri: Some(1.54),
+            ..Default::default()
+        });
         let mut dia = quartz.clone();
-        dia.design_ri = Some(2.418);
+        dia.design = Some(facetlab::cut::Design {
+            ri: Some(2.418),
+            ..Default::default()
+        });
         let plain = facetlab::io::load_cut("gia-reference").unwrap();
         let cuts = [quartz, dia, plain];
-        let notes = design_ri_notes(&cuts, &Material::diamond(), false);
-        assert_eq!(notes.len(), 1, "{notes:?}");
-        assert!(
-            notes[0].contains("--ri 1.54") && notes[0].contains("Tolkowsky"),
-            "{}",
-            notes[0]
-        );
-        assert!(design_ri_notes(&cuts, &Material::diamond(), true).is_empty());
+        let (m, notes) = design_materials(&cuts, &Material::diamond(), false);
+        let names: Vec<&str> = m.iter().map(|m| m.name.as_str()).collect();
+        assert_eq!(names, ["quartz", "diamond", "diamond"]);
+        assert_eq!(notes.len(), 2, "{notes:?}");
+        assert!(notes[0].contains("traced as quartz (the design's index 1.54)"));
+        let (m, notes) = design_materials(&cuts, &Material::cubic_zirconia(), true);
+        assert!(notes.is_empty() && m.iter().all(|m| m.name == "cubic-zirconia"));
     }
 }

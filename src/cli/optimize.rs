@@ -140,9 +140,7 @@ impl Progress for Bar {
 
 /// The writers of the best cut besides `best.toml`: GemCad, OBJ and the SVG diagram.
 fn cut_writers() -> Vec<&'static dyn CutWriter> {
-    static ASC: FnWriter = FnWriter::new("asc", |c| {
-        Ok(facetlab::io::asc::write(c, facetlab::io::asc::DEFAULT_GEAR))
-    });
+    static ASC: FnWriter = FnWriter::new("asc", |c| Ok(facetlab::io::asc::write(c, 0)));
     static OBJ: FnWriter = FnWriter::new("obj", |c| Ok(facetlab::io::mesh::write_obj(c)));
     static SVG: FnWriter = FnWriter::new("svg", |c| Ok(facetlab::io::svg::diagram(c)));
     vec![&ASC, &OBJ, &SVG]

@@ -507,7 +507,9 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         .map(|c| super::cuts::load_with_sets(c, &a.set))
         .collect::<Result<Vec<_>>>()?;
     let chosen = a.ri.is_some() || a.material.is_some();
-    for note in flags::design_ri_notes(&cuts, &s.opts.material, chosen) {
+    // A design is traced in its own material (GemCad's `I` index) unless one was chosen.
+    let (materials, notes) = flags::design_materials(&cuts, &s.opts.material, chosen);
+    for note in notes {
         eprintln!("{note}");
     }
     let light = s.opts.light;
@@ -530,6 +532,10 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         let mut pictures = Vec::with_capacity(cuts.len());
         for (c, cut) in cuts.iter().enumerate() {
             let t0 = Instant::now();
+            let opts = RenderOptions {
+                material: materials[c].clone(),
+                ..opts.clone()
+            };
             let img = render::render(&cut.solid, &opts);
             let rgb = img.to_srgb8(s.exposure, BACKGROUND);
             stats[c].push(FrameJson::new(

@@ -97,9 +97,13 @@ pub fn run(a: &ReportArgs) -> Result<()> {
         .map(|c| super::cuts::load_with_sets(c, &a.set))
         .collect::<Result<Vec<_>>>()?;
     let chosen = a.ri.is_some() || a.material.is_some();
-    for note in flags::design_ri_notes(&cuts, &material, chosen) {
+    // A design is traced in its own material (GemCad's `I` index) unless one was chosen; the
+    // page names the first cut's.
+    let (materials, notes) = flags::design_materials(&cuts, &material, chosen);
+    for note in notes {
         eprintln!("{note}");
     }
+    let material = materials.first().cloned().unwrap_or(material);
     let score = ScoreConfig {
         material,
         ..ScoreConfig::default()
@@ -125,7 +129,12 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     };
     let reports = cuts
         .iter()
-        .map(|c| measure(&c.name, c, &o))
+        .zip(&materials)
+        .map(|(c, m)| {
+            let mut oc = o.clone();
+            oc.score.material = m.clone();
+            measure(&c.name, c, &oc)
+        })
         .collect::<Result<Vec<_>>>()?;
     for r in &reports {
         println!(

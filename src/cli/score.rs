@@ -306,7 +306,7 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
     if a.batch.is_some() || a.jsonl.is_some() || a.shard.is_some() {
         return super::batch::run(a);
     }
-    let s = settings(a)?;
+    let mut s = settings(a)?;
     if let Some(path) = &a.json {
         // Never overwrite a cut with its scores.
         refuse_overwrite(&[("--json", path.clone())], &cut_files(&a.cuts))?;
@@ -338,16 +338,30 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
             .unwrap_or(std::path::Path::new("."));
         facetlab::io::check_writable(dir)?;
     }
-    for note in flags::design_ri_notes(
+    // A design is traced in its own material unless the user chose one; the table's header
+    // and the JSON settings name the first cut's.
+    let (materials, notes) = flags::design_materials(
         &cuts,
         &s.config.material,
         a.ri.is_some() || a.material.is_some(),
-    ) {
+    );
+    for note in notes {
         eprintln!("{note}");
+    }
+    let configs: Vec<ScoreConfig> = materials
+        .into_iter()
+        .map(|m| ScoreConfig {
+            material: m,
+            ..s.config.clone()
+        })
+        .collect();
+    if let Some(first) = configs.first() {
+        s.config.material = first.material.clone();
     }
     let results: Vec<(String, Scores)> = cuts
         .iter()
-        .map(|c| (c.name.clone(), score(&c.solid, &s.config)))
+        .zip(&configs)
+        .map(|(c, cfg)| (c.name.clone(), score(&c.solid, cfg)))
         .collect();
     print!("{}", table(&s.config, &results));
     let mut checks: Vec<Vec<Check>> = Vec::new();
@@ -356,8 +370,8 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
         println!(
             "\nphoton-tracer check, {photons} photons per figure and pose (value ± standard error; beam − photon in standard errors)"
         );
-        for (cut, (name, sc)) in cuts.iter().zip(&results) {
-            let cs = verify_scores(&cut.solid, &s.config, sc, photons, VERIFY_SEED)?;
+        for ((cut, (name, sc)), cfg) in cuts.iter().zip(&results).zip(&configs) {
+            let cs = verify_scores(&cut.solid, cfg, sc, photons, VERIFY_SEED)?;
             println!("{name}");
             for c in &cs {
                 let flag = if c.beyond(SIGMA) {

@@ -733,7 +733,7 @@ fn load_bytes(format: &str, bytes: &[u8], name: &str) -> Result<Cut> {
                 family: None,
                 params: Default::default(),
                 solid,
-                design_ri: None,
+                design: None,
             })
         }
         other => Err(Error::invalid("format", format!("unknown format {other}"))),

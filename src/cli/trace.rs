@@ -344,7 +344,7 @@ fn slug(name: &str) -> String {
 
 /// Run `facetlab trace`.
 pub fn run(args: &TraceArgs) -> Result<()> {
-    let set = settings(args)?;
+    let mut set = settings(args)?;
     let mut outputs = Vec::new();
     if let Some(j) = &args.json {
         outputs.push(("--json", j.clone()));
@@ -358,9 +358,22 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         .iter()
         .map(|c| facetlab::io::load_cut(c))
         .collect::<Result<Vec<_>>>()?;
+    // A design is traced in its own material unless the user chose one; the table and the
+    // JSON settings name the first cut's.
     let chosen = args.ri.is_some() || args.material.is_some();
-    for note in flags::design_ri_notes(&cuts, &set.config.material, chosen) {
+    let (materials, notes) = flags::design_materials(&cuts, &set.config.material, chosen);
+    for note in notes {
         eprintln!("{note}");
+    }
+    let configs: Vec<TraceConfig> = materials
+        .into_iter()
+        .map(|m| TraceConfig {
+            material: m,
+            ..set.config.clone()
+        })
+        .collect();
+    if let Some(first) = configs.first() {
+        set.config.material = first.material.clone();
     }
     if let Some(dir) = &args.plots {
         if dir.exists() && !dir.is_dir() {
@@ -397,17 +410,13 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     let progress: Option<&(dyn Fn(u64) + Sync)> = Some(&tick);
     // results[cut] = one tally, or one per rotation angle.
     let mut results: Vec<Vec<Tally>> = Vec::with_capacity(cuts.len());
-    for cut in &cuts {
+    for (cut, config) in cuts.iter().zip(&configs) {
         let r = match &set.light {
             LightChoice::Single(l) => vec![photon::trace_cut(
-                &cut.solid,
-                &cut.name,
-                l,
-                &set.config,
-                progress,
+                &cut.solid, &cut.name, l, config, progress,
             )?],
             LightChoice::Rotate(k) => {
-                photon::rotation_sweep(&cut.solid, &cut.name, *k, &set.config, progress)?
+                photon::rotation_sweep(&cut.solid, &cut.name, *k, config, progress)?
             }
         };
         results.push(r);

@@ -7,6 +7,7 @@
 
 mod construct;
 mod cushion;
+pub mod design;
 mod emerald;
 mod families;
 pub mod grade;
@@ -22,8 +23,9 @@ mod sphere;
 mod steps;
 pub mod units;
 
+pub use design::Design;
 pub use families::{families, family, Family};
-pub use measure::{Proportions, TierSummary};
+pub use measure::{Proportions, Ratios, TierSummary};
 
 use crate::error::{Error, Result};
 use crate::geometry::{FacetPlane, Polyhedron};
@@ -149,9 +151,9 @@ pub struct Cut {
     pub params: BTreeMap<String, f64>,
     /// The solid.
     pub solid: Polyhedron,
-    /// The refractive index the design file was cut for (GemCad's `I` line), if it names one.
-    /// Scores use the material chosen on the command line; this is for telling the user.
-    pub design_ri: Option<f64>,
+    /// What the design file said about itself (GemCad's index, titles, notes, gear, symmetry,
+    /// instructions; see [`Design`]), for imports that carry it; `None` for generated cuts.
+    pub design: Option<Design>,
 }
 
 impl Cut {
@@ -196,7 +198,7 @@ impl Cut {
             family: Some(fam.name.to_string()),
             params: params.values,
             solid,
-            design_ri: None,
+            design: None,
         })
     }
 
@@ -208,7 +210,7 @@ impl Cut {
             family: None,
             params: BTreeMap::new(),
             solid,
-            design_ri: None,
+            design: None,
         })
     }
 
@@ -232,9 +234,19 @@ impl Cut {
         Cut::from_family(&self.name, fam, &values)
     }
 
+    /// The refractive index the design file was cut for (GemCad's `I` line), if it names one.
+    pub fn design_ri(&self) -> Option<f64> {
+        self.design.as_ref().and_then(|d| d.ri)
+    }
+
     /// Proportions measured on the solid (table, crown angle, depths …).
     pub fn proportions(&self) -> Proportions {
         measure::proportions(&self.solid)
+    }
+
+    /// GemCad's ratios: L/W, T/W, P/W, C/W, H/W, Vol/W³.
+    pub fn ratios(&self) -> Ratios {
+        measure::ratios(&self.solid)
     }
 
     /// Each tier's mean angle and facet count, in order of first appearance.

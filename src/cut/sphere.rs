@@ -7,10 +7,14 @@
 //! about z = 0, so the girdle plane is the equator. Every tangent plane touches the solid at its
 //! tangent point, so every facet exists for any N; the solid circumscribes the sphere, so its
 //! volume is above π/6 and approaches it as N grows. All facets are in the tier `sphere`.
+//!
+//! Like every family, the ball is then scaled so that its width W (the outline's smaller extent
+//! along x and y, [`super::units`]) is 1: the tangent sphere's diameter is 1/W₀, where W₀ ≈ 1.02
+//! (120 facets) is the width of the ball around the unit sphere, and tends to 1 as N grows.
 
 use super::{Family, ParamDef, Params, Unit};
 use crate::error::Result;
-use crate::geometry::{DVec3, FacetPlane};
+use crate::geometry::{DVec3, FacetPlane, Polyhedron};
 
 const PARAMS: &[ParamDef] = &[ParamDef {
     key: "facets",
@@ -25,7 +29,7 @@ const PARAMS: &[ParamDef] = &[ParamDef {
 /// The sphere family.
 pub const FAMILY: Family = Family {
     name: "sphere",
-    doc: "faceted sphere: N planes tangent to a sphere of diameter 1 at Fibonacci-spiral points",
+    doc: "faceted sphere: N planes tangent to a sphere at Fibonacci-spiral points, width 1",
     params: PARAMS,
     build,
 };
@@ -33,7 +37,7 @@ pub const FAMILY: Family = Family {
 fn build(p: &Params) -> Result<Vec<FacetPlane>> {
     let n = p.get("facets") as usize;
     let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    Ok((0..n)
+    let mut planes: Vec<FacetPlane> = (0..n)
         .map(|i| {
             let z = 1.0 - (2 * i + 1) as f64 / n as f64;
             let r = (1.0 - z * z).max(0.0).sqrt();
@@ -41,7 +45,17 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
             let normal = DVec3::new(r * phi.cos(), r * phi.sin(), z);
             FacetPlane::new(normal, 0.5, format!("sphere-{}", i + 1), "sphere")
         })
-        .collect())
+        .collect();
+    // Scale to width 1 (the unit convention).
+    if let Ok(s) = Polyhedron::from_planes(&planes) {
+        let w = super::units::outline_size(s.vertices()).1;
+        if w.is_finite() && w > 0.0 {
+            for p in &mut planes {
+                p.plane.offset /= w;
+            }
+        }
+    }
+    Ok(planes)
 }
 
 #[cfg(test)]
@@ -56,7 +70,13 @@ mod tests {
         let mut last = f64::INFINITY;
         for n in [20.0, 50.0, 200.0, 800.0] {
             let c = ok("sphere", &[("facets", n)]);
-            let v = c.solid.volume();
+            // Width 1; the tangent sphere's radius r = the common offset.
+            let (_, w) = crate::cut::units::outline_size(c.solid.vertices());
+            assert!((w - 1.0).abs() < 1e-9, "{n}: width {w}");
+            let r = c.solid.facets()[0].plane.offset;
+            assert!(r < 0.5 && r > 0.4, "{n}: {r}");
+            // Volume per tangent-sphere diameter cubed.
+            let v = c.solid.volume() / (2.0 * r).powi(3);
             assert!(v > PI / 6.0, "{n}: {v}");
             assert!(
                 v < last,
@@ -65,12 +85,12 @@ mod tests {
             last = v;
             // Tangent planes: every vertex is at least the radius away from the centre, every
             // facet touches the sphere (offset 1/2) and the solid stays centred on the girdle plane.
-            assert!(c.solid.vertices().iter().all(|p| p.length() >= 0.5 - 1e-12));
+            assert!(c.solid.vertices().iter().all(|p| p.length() >= r - 1e-12));
             assert!(c
                 .solid
                 .facets()
                 .iter()
-                .all(|f| (f.plane.offset - 0.5).abs() < 1e-12));
+                .all(|f| (f.plane.offset - r).abs() < 1e-12));
             assert!(c.solid.centroid().length() < 0.3 / n);
         }
         assert!(

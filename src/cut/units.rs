@@ -6,11 +6,16 @@
 //!   (|n_z| < [`HORIZONTAL`]) is a girdle facet; [`crate::cut::Proportions`] measures the girdle
 //!   with it and the mesh import names such facets `girdle`.
 //! - **Girdle band**: the heights of the girdle facets' vertices ([`girdle_z`]).
-//! - **Outline width**: the largest distance between two vertices seen from above
-//!   ([`outline_width`]), corner to corner. Imports (GemCad `.asc`, OBJ/STL) are scaled so that it
-//!   is 1; proportions are measured against it.
+//! - **Width W, the unit of length** ([`outline_size`]): the outline's smaller extent along the
+//!   x and y axes (seen from above), its larger extent being the length L. A round's W is its
+//!   diameter, a marquise's or an oval's its width across, a princess's its side. Every family
+//!   builds its presets with W = 1, and every import (GemCad `.asc`, OBJ/STL) is scaled so that
+//!   W = 1, so a preset written to any format reads back at the same size, depths and weight.
+//!   Lengths, depths and carat weights are per W (GemCad's ratios L/W, C/W, P/W, H/W, Vol/W³).
+//! - **Outline width** ([`outline_width`]): the largest distance between two vertices seen
+//!   from above, corner to corner; [`crate::cut::Proportions::table`] is measured against it.
 //! - **Girdle frame** ([`girdle_frame`]): where an imported mesh's origin goes (the centre of the
-//!   outline's bounding box, at the middle of the girdle band) and its outline width.
+//!   outline's bounding box, at the middle of the girdle band) and its width W.
 
 use crate::geometry::{DVec3, Polyhedron};
 
@@ -34,6 +39,23 @@ pub fn outline_width(pts: &[DVec3]) -> f64 {
     d
 }
 
+/// The outline's extents along x and y, as (length, width): the larger and the smaller.
+pub fn outline_size(pts: &[DVec3]) -> (f64, f64) {
+    let (mut lo, mut hi) = (
+        crate::geometry::DVec2::splat(f64::INFINITY),
+        crate::geometry::DVec2::splat(f64::NEG_INFINITY),
+    );
+    for p in pts {
+        lo = lo.min(p.truncate());
+        hi = hi.max(p.truncate());
+    }
+    let e = hi - lo;
+    if !(e.x.is_finite() && e.y.is_finite()) {
+        return (0.0, 0.0);
+    }
+    (e.x.max(e.y), e.x.min(e.y))
+}
+
 /// Heights of the vertices of the girdle facets (see [`is_girdle`]), facet by facet; empty
 /// for a knife-edge girdle.
 pub fn girdle_z(s: &Polyhedron) -> Vec<f64> {
@@ -44,7 +66,8 @@ pub fn girdle_z(s: &Polyhedron) -> Vec<f64> {
         .collect()
 }
 
-/// The centre of the girdle plane and the outline width of a solid, for normalising an import:
+/// The centre of the girdle plane and the width W ([`outline_size`]) of a solid, for
+/// normalising an import:
 /// horizontally the centre of the outline's bounding box, vertically the middle of the girdle
 /// band or, for a knife-edge girdle, the middle of the heights of the vertices farthest (within
 /// 1e-7) from the vertical axis through that centre.
@@ -71,7 +94,7 @@ pub fn girdle_frame(s: &Polyhedron) -> (DVec3, f64) {
     } else {
         0.0
     };
-    (DVec3::new(cx, cy, cz), outline_width(s.vertices()))
+    (DVec3::new(cx, cy, cz), outline_size(s.vertices()).1)
 }
 
 #[cfg(test)]

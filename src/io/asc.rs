@@ -46,10 +46,12 @@
 //! # Units
 //!
 //! [`AscDesign::planes`] are in the file's units. [`AscDesign::to_cut`] scales the solid about
-//! the origin so that its girdle outline is 1 wide: the largest horizontal distance between
-//! any two vertices (the outline width of [`crate::cut::units`], across corners) becomes 1, and
-//! every plane offset is scaled with it. [`write()`] writes distances in the cut's own units
-//! (girdle diameter D = 1).
+//! the origin so that its width W is 1, like every preset and every other import (the unit
+//! convention of [`crate::cut::units`]: W is the outline's smaller extent along x and y, the
+//! diameter of a round), and every plane offset is scaled with it; the factor is kept in the design's record
+//! ([`Design::scale`]), with the index, titles, notes, gear, symmetry and instructions, on
+//! [`Cut::design`]. [`write()`] writes a design's distances back in its file's units, a
+//! generated cut's in its own.
 //!
 //! # Tolerated
 //!
@@ -59,15 +61,17 @@
 //! unknown lines (skipped). Bytes that are not UTF-8 are read as Windows-1252 (0x80–0x9F) or
 //! Latin-1. A malformed `a`, `g`, `y` or `I` line is an error naming the file and line.
 
-use crate::cut::units::outline_width;
-use crate::cut::Cut;
+use crate::cut::units::outline_size;
+use crate::cut::{Cut, Design};
 use crate::error::{Error, Result};
 use crate::geometry::{facet_normal, FacetPlane, Polyhedron};
+use serde::Serialize;
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// The index gear used when a file has no `g` line, and by [`write()`] for gear 0.
+/// The index gear used when a file has no `g` line, and by [`write()`] for a cut without a
+/// design record.
 pub const DEFAULT_GEAR: u32 = 96;
 
 /// One `a` line (with its continuation lines) as written in the file.
@@ -108,19 +112,38 @@ pub struct AscDesign {
     pub planes: Vec<FacetPlane>,
     /// The `F` lines, in order.
     pub footnotes: Vec<String>,
+    /// Cutting instructions (`G`) by the name of the first facet of their line.
+    pub instructions: BTreeMap<String, String>,
 }
 
 impl AscDesign {
-    /// Build the solid and scale it so that its girdle outline is 1 wide (see the module
+    /// Build the solid and scale it so that its width W is 1 (see the module
     /// docs). Errors if the planes do not make a bounded convex solid in which every facet
     /// has an area.
     pub fn to_cut(&self, name: &str) -> Result<Cut> {
-        build_cut(&self.planes, name, name)
+        self.build(name, name)
+    }
+
+    /// The solid, scaled, with the design's record ([`Design`]) attached.
+    fn build(&self, name: &str, ctx: &str) -> Result<Cut> {
+        let (mut cut, scale) = build_cut(&self.planes, name, ctx)?;
+        cut.design = Some(Design {
+            ri: self.ri,
+            title: self.title.clone(),
+            footnotes: self.footnotes.clone(),
+            gear: self.gear,
+            gear_offset: self.gear_offset,
+            symmetry: self.symmetry,
+            mirror: self.mirror,
+            instructions: self.instructions.clone(),
+            scale,
+        });
+        Ok(cut)
     }
 }
 
-/// Read a GemCad `.asc` file into a cut named after the file stem. The design's title lines
-/// are dropped here; use [`parse`] to keep them.
+/// Read a GemCad `.asc` file into a cut named after the file stem, with the design's record
+/// (index, titles, notes, gear, symmetry, instructions) in [`Cut::design`].
 pub fn read(path: &Path) -> Result<Cut> {
     let shown = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| Error::io(&shown, e))?;
@@ -129,12 +152,12 @@ pub fn read(path: &Path) -> Result<Cut> {
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "design".into());
-    let mut cut = build_cut(&design.planes, &stem, &shown)?;
-    cut.design_ri = design.ri;
-    Ok(cut)
+    design.build(&stem, &shown)
 }
 
-fn build_cut(planes: &[FacetPlane], name: &str, ctx: &str) -> Result<Cut> {
+/// The solid of `planes`, scaled to the unit convention, and the length of one cut unit in
+/// the planes' units.
+fn build_cut(planes: &[FacetPlane], name: &str, ctx: &str) -> Result<(Cut, f64)> {
     // Pre-scale so the largest distance is 1: the solid then fits the clipping box whatever
     // the file's units.
     let big = planes
@@ -155,19 +178,20 @@ fn build_cut(planes: &[FacetPlane], name: &str, ctx: &str) -> Result<Cut> {
         })
         .collect();
     let solid = Polyhedron::from_planes(&scaled).map_err(|e| e.context(ctx))?;
-    let width = outline_width(solid.vertices());
+    let width = outline_size(solid.vertices()).1;
     if !(width.is_finite() && width > 1e-12) {
         return Err(Error::Geometry(format!(
             "{ctx}: the solid has no horizontal extent, so its girdle outline cannot be scaled to width 1"
         )));
     }
-    Ok(Cut {
+    let cut = Cut {
         name: name.to_string(),
         family: None,
         params: BTreeMap::new(),
         solid: solid.scaled(1.0 / width),
-        design_ri: None,
-    })
+        design: None,
+    };
+    Ok((cut, width / pre))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -274,6 +298,7 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
         tiers: Vec::new(),
         planes: Vec::new(),
         footnotes: Vec::new(),
+        instructions: BTreeMap::new(),
     };
     let mut open: Option<OpenTier> = None;
     for (i, raw) in lines(&text).into_iter().enumerate() {
@@ -355,7 +380,9 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
     if let Some(o) = open.take() {
         d.tiers.push(parse_tier(&o, source)?);
     }
-    d.planes = planes_of(&d);
+    let (planes, instructions) = planes_of(&d);
+    d.planes = planes;
+    d.instructions = instructions;
     Ok(d)
 }
 
@@ -434,10 +461,12 @@ fn generated_tier(angle: f64, crown: bool) -> String {
     }
 }
 
-/// Facet planes of all tiers, exact repeats dropped, names made unique.
-fn planes_of(d: &AscDesign) -> Vec<FacetPlane> {
+/// Facet planes of all tiers, exact repeats dropped, names made unique; and each line's
+/// instructions keyed by the name of its first facet.
+fn planes_of(d: &AscDesign) -> (Vec<FacetPlane>, BTreeMap<String, String>) {
     let mut planes: Vec<FacetPlane> = Vec::new();
-    for t in &d.tiers {
+    let mut line_of: Vec<usize> = Vec::new();
+    for (k, t) in d.tiers.iter().enumerate() {
         let a = t.angle.abs();
         let crown = !t.angle.is_sign_negative();
         // A negative distance puts the plane on the other side of the origin: flip it.
@@ -461,13 +490,23 @@ fn planes_of(d: &AscDesign) -> Vec<FacetPlane> {
             }
             let base = name.clone().unwrap_or_else(|| tier.clone());
             planes.push(FacetPlane::new(normal, offset, base, tier.clone()));
+            line_of.push(k);
         }
     }
     let names = unique_names(planes.iter().map(|p| p.name.as_str()));
     for (p, n) in planes.iter_mut().zip(names) {
         p.name = n;
     }
-    planes
+    let mut instructions = BTreeMap::new();
+    for (k, t) in d.tiers.iter().enumerate() {
+        let Some(text) = t.instructions.as_ref().filter(|s| !s.is_empty()) else {
+            continue;
+        };
+        if let Some(i) = line_of.iter().position(|&l| l == k) {
+            instructions.insert(planes[i].name.clone(), text.clone());
+        }
+    }
+    (planes, instructions)
 }
 
 /// Names used once stay; names used several times become `NAME-1`, `NAME-2`, … skipping any
@@ -504,35 +543,151 @@ fn unique_names<'a>(bases: impl Iterator<Item = &'a str> + Clone) -> Vec<String>
 // ---------------------------------------------------------------------------------------------
 // Writing
 
-/// A number with 6 decimals when that is exact, else the shortest text that reads back to
-/// the same `f64`.
-fn fmt_num(x: f64) -> String {
-    let x = if x == 0.0 { 0.0 } else { x }; // no "-0"
-    let six = format!("{x:.6}");
-    if six.parse::<f64>().ok() == Some(x) {
-        six
-    } else {
-        format!("{x}")
-    }
-}
-
 /// A name as one `.asc` token.
 fn token(name: &str) -> String {
     name.split_whitespace().collect::<Vec<_>>().join("_")
 }
 
-/// Write `cut` as a GemCad `.asc` design on a gear of `gear` teeth (0 means 96), gear offset
-/// 0, symmetry `y 1 n`, the cut's name as the title, no `I` line (a cut carries no material).
+/// A number with at most `max` decimals: the fewest (at least `min`) that come within `tol`
+/// of `x`, else `max`. `-0` is written `0`.
+fn fmt_short(x: f64, min: usize, max: usize, tol: f64) -> String {
+    let x = if x == 0.0 { 0.0 } else { x };
+    for d in min..max {
+        let t = format!("{x:.d$}");
+        if t.parse::<f64>().is_ok_and(|v| (v - x).abs() <= tol) {
+            return tidy(t);
+        }
+    }
+    tidy(format!("{x:.max$}"))
+}
+
+/// No `-0`, `-0.00` …
+fn tidy(t: String) -> String {
+    if t.starts_with('-') && t.trim_start_matches(['-', '0', '.']).is_empty() {
+        t[1..].to_string()
+    } else {
+        t
+    }
+}
+
+/// A gear index: a whole number when the azimuth is on the gear (within 1e-6 of a tooth),
+/// else the fewest decimals (up to 10) that give the azimuth within 1e-9 of a tooth.
+fn fmt_index(i: f64) -> String {
+    let r = i.round();
+    if (i - r).abs() < 1e-6 {
+        format!("{r:.0}")
+    } else {
+        fmt_short(i, 1, 10, 1e-9)
+    }
+}
+
+/// The tier name the reader generates for an unnamed line (see [`generated_tier`]), for the
+/// angle and distance as written.
+fn reader_tier(angle: &str, dist: &str) -> String {
+    let a: f64 = angle.parse().unwrap_or(0.0);
+    let d: f64 = dist.parse().unwrap_or(0.0);
+    let crown = !a.is_sign_negative() && !angle.starts_with('-');
+    generated_tier(a.abs(), crown != (d < 0.0))
+}
+
+/// Whether `name` is what the reader makes of an unnamed facet of tier `tier` (`tier` or
+/// `tier-K`).
+fn derived_name(name: &str, tier: &str) -> bool {
+    name == tier
+        || name
+            .strip_prefix(tier)
+            .and_then(|r| r.strip_prefix('-'))
+            .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// One `a` line being assembled: tier, angle and distance as written, and the facets'
+/// (index text, facet name).
+struct Line {
+    tier: String,
+    angle: String,
+    dist: String,
+    facets: Vec<(String, String)>,
+}
+
+/// The design record to write with, the gear teeth and offset, and the `a` lines.
+fn gear_lines(cut: &Cut, gear: u32) -> (Design, f64, f64, Vec<Line>) {
+    let design = cut.design.clone().unwrap_or_default();
+    let (g, offset) = if gear == 0 || f64::from(gear) == design.gear.abs() {
+        (design.gear, design.gear_offset)
+    } else {
+        (f64::from(gear), 0.0)
+    };
+    let teeth = g.abs();
+    let scale = if design.scale.is_finite() && design.scale > 0.0 {
+        design.scale
+    } else {
+        1.0
+    };
+    let mut lines: Vec<Line> = Vec::new();
+    for f in cut.solid.facets() {
+        let n = f.plane.normal;
+        let h = n.x.hypot(n.y);
+        let tilt = h.atan2(n.z.abs()).to_degrees();
+        let crown = n.z > 1e-12;
+        let d = f.plane.offset * scale;
+        let (angle, dist) = if h <= 1e-12 && !crown {
+            (0.0, -d) // culet: `a 0 -d`
+        } else if crown {
+            (tilt, d)
+        } else {
+            (-tilt, d)
+        };
+        let index = if h <= 1e-12 {
+            let i = offset.rem_euclid(teeth);
+            fmt_index(if i == 0.0 { teeth } else { i })
+        } else {
+            let az = n.y.atan2(n.x).to_degrees();
+            let i = (offset + g * (az + 90.0) / 360.0).rem_euclid(teeth);
+            let i = if i.round() == 0.0 || i.round() == teeth && (i - teeth).abs() < 1e-6 {
+                teeth
+            } else {
+                i
+            };
+            fmt_index(i)
+        };
+        let angle = tidy(format!("{angle:.6}"));
+        let dist = tidy(format!("{dist:.8}"));
+        let tier = token(&f.tier);
+        match lines
+            .iter_mut()
+            .find(|l| l.tier == tier && l.angle == angle && l.dist == dist)
+        {
+            Some(l) => l.facets.push((index, f.name.clone())),
+            None => lines.push(Line {
+                tier,
+                angle,
+                dist,
+                facets: vec![(index, f.name.clone())],
+            }),
+        }
+    }
+    (design, g, offset, lines)
+}
+
+/// Write `cut` as a GemCad `.asc` design on a gear of `gear` teeth; `0` means the design's
+/// own gear (and offset) when the cut came from a design file ([`Cut::design`]), else 96.
 ///
-/// Facets are grouped into one `a` line per (tier, angle, distance), in order of first
-/// appearance, the tier written as `n TIER` after the first index. Angles are degrees
-/// (pavilion negative, girdle −90); a culet is written GemCad's way, as angle 0 with a
-/// negative distance. Each azimuth becomes an index by the module's convention
-/// (`i = g · (azimuth + 90°) / 360°`, index 0 written as `g`); an azimuth off the gear gives a
-/// fractional index. Numbers are written with 6 decimals when exact, else with all the digits
-/// needed to read back the same value. Distances are in the cut's units (D = 1). Planes with
-/// a negative offset (the origin outside the solid) cannot be expressed in GemCad's
-/// convention and do not read back the same.
+/// A design read from a file keeps its record: `I` (index), `H` (titles), `F` (footnotes),
+/// `y` (symmetry and mirror), `g` (gear and offset) and each line's `G` instructions, and its
+/// distances are written back in the file's own units ([`Design::scale`]). A generated cut is
+/// written with `g 96 0.0`, `y 1 n`, its name as the title, no `I` line, distances in girdle
+/// widths (W = 1).
+///
+/// Facets are grouped into one `a` line per (tier, angle, distance) as written, in order of
+/// first appearance; a tier's angle is written once, with 6 decimals as GemCad does (pavilion
+/// negative, girdle −90; a culet GemCad's way, as angle 0 with a negative distance),
+/// distances with 8. Each azimuth becomes an index (`i = offset + g · (azimuth + 90°) /
+/// 360°`, index 0 written as the tooth count): a whole number when the azimuth is on the gear,
+/// else the fewest decimals that keep it (a fractional index, as GemCad allows). The tier is
+/// written as `n TIER` after the first index unless it is the name the reader would generate
+/// anyway (`table`, `girdle`, `crown-34.00` …); a facet with a name of its own (not `TIER` or
+/// `TIER-K`) gets `n NAME` after its index. Planes with a negative offset (the origin outside
+/// the solid) cannot be expressed in GemCad's convention and do not read back the same.
 ///
 /// A round trip through the text:
 ///
@@ -547,60 +702,209 @@ fn token(name: &str) -> String {
 /// assert!((back.proportions().crown_angle - 34.0).abs() < 1e-6);
 /// ```
 pub fn write(cut: &Cut, gear: u32) -> String {
-    let gear = if gear == 0 { DEFAULT_GEAR } else { gear };
-    let g = f64::from(gear);
-    // (tier, angle text, distance text) → indices
-    let mut groups: Vec<((String, String, String), Vec<String>)> = Vec::new();
-    for f in cut.solid.facets() {
-        let n = f.plane.normal;
-        let h = n.x.hypot(n.y);
-        let tilt = h.atan2(n.z.abs()).to_degrees();
-        let crown = n.z > 1e-12;
-        let (angle, dist) = if h <= 1e-12 && !crown {
-            (0.0, -f.plane.offset) // culet: `a 0 -d`
-        } else if crown {
-            (tilt, f.plane.offset)
-        } else {
-            (-tilt, f.plane.offset)
-        };
-        let index = if h <= 1e-12 {
-            gear.to_string()
-        } else {
-            let az = n.y.atan2(n.x).to_degrees();
-            let i = (g * (az + 90.0) / 360.0).rem_euclid(g);
-            let r = i.round();
-            if (i - r).abs() < 1e-9 {
-                let r = if r == 0.0 || r == g { g } else { r };
-                format!("{r:.0}")
-            } else {
-                fmt_num(i)
-            }
-        };
-        let key = (token(&f.tier), fmt_num(angle), fmt_num(dist));
-        match groups.iter_mut().find(|(k, _)| *k == key) {
-            Some((_, v)) => v.push(index),
-            None => groups.push((key, vec![index])),
-        }
-    }
+    let (design, g, offset, lines) = gear_lines(cut, gear);
     let mut out = String::new();
     let _ = writeln!(out, "GemCad 5.0");
-    let _ = writeln!(out, "g {gear} 0.0");
-    let _ = writeln!(out, "y 1 n");
-    let title = cut.name.split_whitespace().collect::<Vec<_>>().join(" ");
-    if !title.is_empty() {
-        let _ = writeln!(out, "H {title}");
+    let _ = writeln!(
+        out,
+        "g {} {}",
+        fmt_short(g, 0, 6, 1e-9),
+        fmt_short(offset, 1, 6, 1e-9)
+    );
+    let _ = writeln!(
+        out,
+        "y {} {}",
+        design.symmetry.max(1),
+        if design.mirror { "y" } else { "n" }
+    );
+    if let Some(ri) = design.ri {
+        let _ = writeln!(out, "I {}", fmt_short(ri, 2, 6, 1e-9));
     }
-    for ((tier, angle, dist), indices) in &groups {
-        let _ = write!(out, "a {angle} {dist}");
-        for (k, i) in indices.iter().enumerate() {
-            let _ = write!(out, " {i}");
-            if k == 0 && !tier.is_empty() {
-                let _ = write!(out, " n {tier}");
+    if cut.design.is_some() {
+        for t in &design.title {
+            let _ = writeln!(out, "H {t}");
+        }
+    } else {
+        let title = cut.name.split_whitespace().collect::<Vec<_>>().join(" ");
+        if !title.is_empty() {
+            let _ = writeln!(out, "H {title}");
+        }
+    }
+    for l in &lines {
+        let _ = write!(out, "a {} {}", l.angle, l.dist);
+        let generated = l.tier.is_empty() || l.tier == reader_tier(&l.angle, &l.dist);
+        for (k, (index, name)) in l.facets.iter().enumerate() {
+            let _ = write!(out, " {index}");
+            if generated {
+                continue;
             }
+            if k == 0 {
+                let _ = write!(out, " n {}", l.tier);
+            } else if !derived_name(name, &l.tier) {
+                let _ = write!(out, " n {}", token(name));
+            }
+        }
+        if let Some(text) = l
+            .facets
+            .iter()
+            .find_map(|(_, name)| design.instructions.get(name))
+        {
+            let _ = write!(out, " G {text}");
         }
         out.push('\n');
     }
+    for f in &design.footnotes {
+        let _ = writeln!(out, "F {f}");
+    }
     out
+}
+
+/// One tier of the cutting instructions: one `a` line of the design.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CuttingStep {
+    /// Place in the cutting order, from 1.
+    pub step: usize,
+    /// `pavilion` (girdle and culet included, as GemCad prints them) or `crown`.
+    pub side: &'static str,
+    /// Tier name.
+    pub tier: String,
+    /// Angle to the girdle plane in degrees, at 0.01° (girdle 90, table and culet 0).
+    pub angle: f64,
+    /// The facets' gear indices, as a cutter sets them: whole numbers when on the gear, else
+    /// to 0.01 of a tooth.
+    pub indices: Vec<String>,
+    /// The design's instruction for the line (`G`), if any.
+    pub note: Option<String>,
+}
+
+/// Cutting instructions: the gear, the design's index and the tiers in cutting order.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CuttingInstructions {
+    /// Gear teeth (negative: clockwise).
+    pub gear: f64,
+    /// Gear offset (the index at 6 o'clock).
+    pub gear_offset: f64,
+    /// The design's refractive index, if it names one.
+    pub ri: Option<f64>,
+    /// Pavilion first, then crown, each in the design's order.
+    pub steps: Vec<CuttingStep>,
+}
+
+/// The cutting instructions of `cut` on its design's gear (or `gear`, as [`write()`]): each
+/// tier (one line of the `.asc` file) with its angle at 0.01°, its indices on the gear and its
+/// instruction, pavilion first (girdle and culet with it), then crown, as GemCad prints them;
+/// within a side the design's order (for a generated cut its facet order, the table and the
+/// culet last).
+///
+/// ```
+/// let cut = facetlab::io::load_cut("tolkowsky").unwrap();
+/// let c = facetlab::io::asc::cutting_instructions(&cut, 0);
+/// assert_eq!(c.gear, 96.0);
+/// assert_eq!(c.steps[0].side, "pavilion");
+/// let bezel = c.steps.iter().find(|s| s.tier == "bezel").unwrap();
+/// assert_eq!((bezel.angle, bezel.indices.len()), (34.5, 8));
+/// ```
+pub fn cutting_instructions(cut: &Cut, gear: u32) -> CuttingInstructions {
+    let (design, g, offset, lines) = gear_lines(cut, gear);
+    let mut steps: Vec<CuttingStep> = Vec::new();
+    for want in ["pavilion", "crown"] {
+        for l in &lines {
+            let angle: f64 = l.angle.parse().unwrap_or(0.0);
+            let dist: f64 = l.dist.parse().unwrap_or(0.0);
+            let pavilion = l.angle.starts_with('-') || (angle == 0.0 && dist < 0.0);
+            let side = if pavilion { "pavilion" } else { "crown" };
+            if side != want {
+                continue;
+            }
+            let tier = if l.tier.is_empty() {
+                reader_tier(&l.angle, &l.dist)
+            } else {
+                l.tier.clone()
+            };
+            steps.push(CuttingStep {
+                step: steps.len() + 1,
+                side,
+                tier,
+                angle: (angle.abs() * 100.0).round() / 100.0,
+                // Off-gear indices at 0.01 of a tooth: what a cutter can set with a cheater.
+                indices: l
+                    .facets
+                    .iter()
+                    .map(|(i, _)| match i.parse::<f64>() {
+                        Ok(v) if i.contains('.') => fmt_short(v, 1, 2, 1e-9),
+                        _ => i.clone(),
+                    })
+                    .collect(),
+                note: l
+                    .facets
+                    .iter()
+                    .find_map(|(_, name)| design.instructions.get(name).cloned()),
+            });
+        }
+    }
+    if cut.design.is_none() {
+        // A generated cut lists its table first; a cutter polishes the table and the culet
+        // last on their side.
+        let flat = |s: &CuttingStep| s.angle == 0.0;
+        steps.sort_by_key(|s| (s.side == "crown", flat(s)));
+        for (k, s) in steps.iter_mut().enumerate() {
+            s.step = k + 1;
+        }
+    }
+    CuttingInstructions {
+        gear: g,
+        gear_offset: offset,
+        ri: design.ri,
+        steps,
+    }
+}
+
+impl CuttingInstructions {
+    /// The instructions as a cutter reads them: a header with the gear and index, then one
+    /// line per tier: step, tier, angle (0.01°), indices joined by `-` (two digits, as GemCad
+    /// prints them), instruction.
+    pub fn text(&self) -> String {
+        let mut o = String::new();
+        let ri = self.ri.map(|n| format!(", index {n}")).unwrap_or_default();
+        let _ = writeln!(
+            o,
+            "Cutting instructions: gear {} (offset {}){ri}; pavilion first, then crown",
+            fmt_short(self.gear, 0, 6, 1e-9),
+            fmt_short(self.gear_offset, 0, 6, 1e-9)
+        );
+        let mut side = "";
+        for s in &self.steps {
+            if s.side != side {
+                side = s.side;
+                let _ = writeln!(o, "{}", side.to_uppercase());
+            }
+            let idx: Vec<String> = s
+                .indices
+                .iter()
+                .map(|i| {
+                    if i.len() == 1 {
+                        format!("0{i}")
+                    } else {
+                        i.clone()
+                    }
+                })
+                .collect();
+            let note = s
+                .note
+                .as_deref()
+                .map(|n| format!("  {n}"))
+                .unwrap_or_default();
+            let _ = writeln!(
+                o,
+                "  {:>3}  {:<14} {:>6.2}°  {}{note}",
+                s.step,
+                s.tier,
+                s.angle,
+                idx.join("-")
+            );
+        }
+        o
+    }
 }
 
 #[cfg(test)]
@@ -690,7 +994,7 @@ F Footnote one
         assert_eq!(cut.name, "mini");
         assert_eq!(cut.solid.facets().len(), 34);
         assert!(cut.solid.volume() > 0.0);
-        let w = outline_width(cut.solid.vertices());
+        let w = outline_size(cut.solid.vertices()).1;
         assert!((w - 1.0).abs() < 1e-12, "outline width {w}");
         for f in cut.solid.facets() {
             let a = facet_angle_deg(f.plane.normal);
@@ -776,7 +1080,7 @@ F Footnote one
             .unwrap()
             .to_cut("r")
             .unwrap();
-        let s = 1.0 / outline_width(cut.solid.vertices());
+        let s = 1.0 / outline_size(cut.solid.vertices()).1;
         let want: Vec<FacetPlane> = cut
             .solid
             .facet_planes()
@@ -786,7 +1090,7 @@ F Footnote one
                 p
             })
             .collect();
-        same_planes(&want, &back.solid.facet_planes(), 1e-9)
+        same_planes(&want, &back.solid.facet_planes(), 1e-7)
             .unwrap_or_else(|e| panic!("gear {gear}: {e}\n{text}"));
         // Tiers survive.
         let tiers: HashSet<&str> = back
@@ -821,14 +1125,182 @@ F Footnote one
         assert!(text.contains("a 0.000000 "), "{text}");
     }
 
+    /// A gear-80 design of our own with every kind of metadata GemCad writes.
+    const STAR80: &str = "GemCad 5.0
+g 80 0.0
+y 5 y
+I 1.61
+H Test Star 80
+H by facetlab tests
+a -41.000000 0.66000000 80 n P 16 32 48 64 G Cut to a point
+a -90.000000 1.00000000 80 n G 16 32 48 64 8 24 40 56 72 G Size stone
+a -43.000000 0.68000000 8 n Q 24 40 56 72 G Meet P, G
+a 40.000000 0.80000000 80 n A 16 32 48 64 8 24 40 56 72 G Set girdle thickness
+a 0.000000 0.55000000 80 n T
+F Leave the table polished
+";
+
+    #[test]
+    fn asc_design_keeps_its_record_and_comes_back_byte_for_byte() {
+        let d = parse(STAR80.as_bytes(), "star80.asc").unwrap();
+        let cut = d.to_cut("star80").unwrap();
+        let rec = cut.design.as_ref().unwrap();
+        assert_eq!((rec.gear, rec.gear_offset), (80.0, 0.0));
+        assert_eq!((rec.symmetry, rec.mirror, rec.ri), (5, true, Some(1.61)));
+        assert_eq!(rec.title, vec!["Test Star 80", "by facetlab tests"]);
+        assert_eq!(rec.footnotes, vec!["Leave the table polished"]);
+        assert_eq!(
+            rec.instructions.get("P-1").map(String::as_str),
+            Some("Cut to a point")
+        );
+        assert_eq!(rec.instructions.len(), 4);
+        assert_eq!(cut.design_ri(), Some(1.61));
+        // Its own gear, whole indices, its own distances, one line per tier: the same text.
+        assert_eq!(write(&cut, 0), STAR80);
+        // Asked for another gear, the azimuths keep their places: 80-gear index 8 is 9.6 on 96.
+        let on96 = write(&cut, 96);
+        assert!(
+            on96.contains("g 96 0.0") && on96.contains(" 9.6 n Q"),
+            "{on96}"
+        );
+        let back = parse(on96.as_bytes(), "x").unwrap();
+        same_planes(&d.planes, &back.planes, 1e-9).unwrap();
+    }
+
+    #[test]
+    fn asc_designs_survive_asc_to_asc() {
+        // MINI (gear 96, a culet written `a 0 -d`, `n G` as a name), the messy variant and a
+        // design on a gear with an offset and a fractional index.
+        let shifted = "g 64 64.0\ny 1 n\nI 1.54\nH Shifted\na -90.00 1.00000 16 48\n\
+                       a -90.00 0.9 0 32\na -42 0.75 0 16 32 48\na 0.00 -0.6 0\n\
+                       a 38.5 0.85 0 16 32 48 8.5\na 0 0.4 0\nF note\n";
+        for (name, bytes) in [
+            ("mini", MINI.as_bytes().to_vec()),
+            ("messy", messy()),
+            ("shifted", shifted.as_bytes().to_vec()),
+        ] {
+            let d = parse(&bytes, name).unwrap();
+            let cut = d.to_cut(name).unwrap();
+            let text = write(&cut, 0);
+            let e = parse(text.as_bytes(), name).unwrap();
+            same_planes(&d.planes, &e.planes, 1e-7)
+                .unwrap_or_else(|m| panic!("{name}: {m}\n{text}"));
+            assert_eq!(
+                (&d.title, &d.footnotes, d.ri, d.gear, d.symmetry, d.mirror),
+                (&e.title, &e.footnotes, e.ri, e.gear, e.symmetry, e.mirror),
+                "{name}"
+            );
+            assert_eq!(
+                d.gear_offset.rem_euclid(d.gear),
+                e.gear_offset.rem_euclid(e.gear)
+            );
+            let tiers = |x: &AscDesign| {
+                let mut t: Vec<String> = x.planes.iter().map(|p| p.tier.clone()).collect();
+                t.sort();
+                t.dedup();
+                t
+            };
+            assert_eq!(tiers(&d), tiers(&e), "{name}");
+            assert_eq!(d.instructions, e.instructions, "{name}");
+            let names: Vec<&str> = d.planes.iter().map(|p| p.name.as_str()).collect();
+            let names2: Vec<&str> = e.planes.iter().map(|p| p.name.as_str()).collect();
+            let (mut a, mut b) = (names.clone(), names2.clone());
+            a.sort_unstable();
+            b.sort_unstable();
+            assert_eq!(a, b, "{name}");
+            // Written again: the same text.
+            assert_eq!(write(&e.to_cut(name).unwrap(), 0), text, "{name}");
+        }
+    }
+
+    #[test]
+    fn asc_tier_angle_written_once_at_cutters_precision() {
+        for preset in [
+            "tolkowsky",
+            "gia-reference",
+            "princess",
+            "marquise",
+            "emerald",
+        ] {
+            let cut = crate::io::load_cut(preset).unwrap();
+            let text = write(&cut, 0);
+            let mut seen: Vec<(String, String, String)> = Vec::new();
+            for l in text.lines().filter(|l| l.starts_with("a ")) {
+                let w: Vec<&str> = l.split_whitespace().collect();
+                let decimals = w[1].split('.').nth(1).map_or(0, str::len);
+                assert!(decimals <= 6, "{preset}: {l}");
+                let tier = l
+                    .split(" n ")
+                    .nth(1)
+                    .map_or("", |t| t.split(' ').next().unwrap_or(""));
+                let key = (tier.to_string(), w[1].to_string(), w[2].to_string());
+                assert!(!seen.contains(&key), "{preset}: tier split: {l}");
+                seen.push(key);
+            }
+            if preset == "tolkowsky" || preset == "gia-reference" {
+                // One line per tier: one angle, one distance.
+                for t in ["bezel", "star", "upper-half", "pavilion-main", "lower-half"] {
+                    assert_eq!(seen.iter().filter(|k| k.0 == t).count(), 1, "{t}\n{text}");
+                }
+            }
+            // Indices on the gear are whole numbers.
+            if preset == "tolkowsky" {
+                assert!(!text.contains(".5 ") && text.contains(" 93"), "{text}");
+            }
+        }
+    }
+
+    #[test]
+    fn asc_cutting_instructions_pavilion_first_at_cutters_precision() {
+        let cut = parse(STAR80.as_bytes(), "s").unwrap().to_cut("s").unwrap();
+        let c = cutting_instructions(&cut, 0);
+        assert_eq!((c.gear, c.ri), (80.0, Some(1.61)));
+        let order: Vec<(&str, &str, f64)> = c
+            .steps
+            .iter()
+            .map(|s| (s.side, s.tier.as_str(), s.angle))
+            .collect();
+        assert_eq!(
+            order,
+            [
+                ("pavilion", "P", 41.0),
+                ("pavilion", "G", 90.0),
+                ("pavilion", "Q", 43.0),
+                ("crown", "A", 40.0),
+                ("crown", "T", 0.0)
+            ]
+        );
+        assert_eq!(c.steps[2].indices, ["8", "24", "40", "56", "72"]);
+        assert_eq!(c.steps[2].note.as_deref(), Some("Meet P, G"));
+        let text = c.text();
+        assert!(text.contains("gear 80 (offset 0), index 1.61"), "{text}");
+        assert!(
+            text.contains("  43.00°  08-24-40-56-72  Meet P, G"),
+            "{text}"
+        );
+        assert!(text.find("PAVILION") < text.find("CROWN"), "{text}");
+        // A preset: angles at 0.01°, no long decimals anywhere.
+        let cut = crate::io::load_cut("marquise").unwrap();
+        let c = cutting_instructions(&cut, 0);
+        for s in &c.steps {
+            assert_eq!(s.angle, (s.angle * 100.0).round() / 100.0);
+        }
+        assert!(
+            c.text().lines().all(|l| !l.contains("00000")),
+            "{}",
+            c.text()
+        );
+    }
+
     #[test]
     fn asc_culet_round_trips_as_gemcad_writes_it() {
         let mut v = BTreeMap::new();
         v.insert("culet".to_string(), 0.03);
         let cut = Cut::from_family("r", "round-brilliant", &v).unwrap();
         let text = write(&cut, 96);
-        let culet = text.lines().find(|l| l.ends_with("n culet")).unwrap();
-        assert!(culet.starts_with("a 0.000000 -"), "{culet}");
+        // The culet is written GemCad's way, `a 0 -d`, and named `culet` again when read.
+        let culet = text.lines().find(|l| l.starts_with("a 0.000000 -"));
+        assert!(culet.is_some(), "{text}");
         let back = parse(text.as_bytes(), "r.asc")
             .unwrap()
             .to_cut("r")

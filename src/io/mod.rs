@@ -167,3 +167,40 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
         },
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cut::Cut;
+
+    /// One normalisation: every preset written as `.asc`, `.obj` and `.stl` and read back has
+    /// the preset's size (W = 1), total depth (±0.2 % of W), crown and pavilion angles
+    /// (±0.05°) and weight (±0.5 %).
+    #[test]
+    fn every_preset_reads_back_from_every_format_at_the_same_size() {
+        for name in presets::names() {
+            let cut = presets::load(name).unwrap().unwrap();
+            let p = cut.proportions();
+            let (_, w) = crate::cut::units::outline_size(cut.solid.vertices());
+            assert!((w - 1.0).abs() < 1e-9, "{name}: preset width {w}");
+            let vol = cut.solid.volume();
+            let asc = asc::parse(asc::write(&cut, 0).as_bytes(), name)
+                .unwrap()
+                .to_cut(name)
+                .unwrap();
+            let obj = mesh::read_obj(mesh::write_obj(&cut).as_bytes(), name).unwrap();
+            let stl = mesh::read_stl(&mesh::write_stl(&cut), name).unwrap();
+            let obj = Cut::from_planes(name, &obj).unwrap();
+            let stl = Cut::from_planes(name, &stl).unwrap();
+            for (fmt, back) in [("asc", asc), ("obj", obj), ("stl", stl)] {
+                let q = back.proportions();
+                let why = format!("{name} via .{fmt}: {p:?} vs {q:?}");
+                assert!((q.total_depth - p.total_depth).abs() < 0.002, "{why}");
+                assert!((q.crown_angle - p.crown_angle).abs() < 0.05, "{why}");
+                assert!((q.pavilion_angle - p.pavilion_angle).abs() < 0.05, "{why}");
+                let v = back.solid.volume();
+                assert!((v / vol - 1.0).abs() < 0.005, "{why}: volume {vol} vs {v}");
+            }
+        }
+    }
+}

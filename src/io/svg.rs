@@ -7,7 +7,9 @@
 //! - side view (seen from the front, −y): the facets facing the viewer, the silhouette, the
 //!   girdle plane, crown and pavilion angles, and dimension lines for the table width, crown
 //!   height, pavilion depth and total depth;
-//! - a text block with the proportions and each tier's angle and facet count.
+//! - a text block with the proportions, each tier's angle and facet count, and the cutting
+//!   instructions ([`crate::io::asc::cutting_instructions`]: each tier in cutting order,
+//!   pavilion first, with its angle at 0.01° and its indices on the design's gear).
 //!
 //! The SVG is written by hand (no drawing library) and every name is escaped, so the output is
 //! well-formed XML.
@@ -637,7 +639,7 @@ fn text_block(
         11.0,
         "start",
         grey,
-        &format!("volume {:.4} D³", s.volume()),
+        &format!("volume {:.4} W³", s.volume()),
     );
     if !cut.params.is_empty() {
         y += 26.0;
@@ -654,6 +656,80 @@ fn text_block(
                 &format!("{v}"),
             );
             y += 16.0;
+        }
+    }
+    // Cutting instructions: tiers in cutting order, pavilion first, angles at 0.01°, indices
+    // on the design's gear (96 for generated cuts), eight to a line.
+    let c = crate::io::asc::cutting_instructions(cut, 0);
+    y += 26.0;
+    let gear = if c.gear.fract() == 0.0 {
+        format!("{:.0}", c.gear)
+    } else {
+        format!("{}", c.gear)
+    };
+    text(
+        out,
+        DVec2::new(x, y),
+        13.0,
+        "start",
+        bold,
+        &format!("Cutting order (gear {gear})"),
+    );
+    let mut side = "";
+    for st in &c.steps {
+        if st.side != side {
+            side = st.side;
+            y += 18.0;
+            text(
+                out,
+                DVec2::new(x, y),
+                11.0,
+                "start",
+                grey,
+                &side.to_uppercase(),
+            );
+        }
+        y += 15.0;
+        text(
+            out,
+            DVec2::new(x, y),
+            11.0,
+            "start",
+            "",
+            &format!("{}. {}", st.step, st.tier),
+        );
+        text(
+            out,
+            DVec2::new(x + 150.0, y),
+            11.0,
+            "end",
+            "",
+            &format!("{:.2}°", st.angle),
+        );
+        // Two digits, as GemCad prints them (03-09-15).
+        let idx: Vec<String> = st
+            .indices
+            .iter()
+            .map(|i| {
+                if i.len() == 1 {
+                    format!("0{i}")
+                } else {
+                    i.clone()
+                }
+            })
+            .collect();
+        for (k, chunk) in idx.chunks(8).enumerate() {
+            if k > 0 {
+                y += 13.0;
+            }
+            text(
+                out,
+                DVec2::new(x + 158.0, y),
+                10.0,
+                "start",
+                grey,
+                &chunk.join("-"),
+            );
         }
     }
     y
@@ -727,6 +803,12 @@ mod tests {
         // Proportions in the text block and on the side view.
         let p = cut.proportions();
         assert!(svg.contains(&format!("{:.2}°", p.crown_angle)));
+        // The cutting instructions: tiers in cutting order with their indices on gear 96.
+        assert!(svg.contains("Cutting order (gear 96)") && svg.contains(">PAVILION<"));
+        assert!(
+            svg.contains(">24-36-48-60-72-84-96-12<"),
+            "bezel/main indices"
+        );
         assert!(svg.contains(&format!("crown height {:.1}%", 100.0 * p.crown_height)));
         assert!(svg.contains(&format!("table {:.1}%", 100.0 * p.table)));
         // One polygon per facet shown in each view: crown (33) + pavilion (24) + front half.

@@ -8,10 +8,12 @@
 //! incidence, and there the Mueller matrices have the block form of [`Mueller`].
 
 pub mod color;
+mod design;
 mod fresnel;
 mod material;
 mod polarization;
 
+pub use design::{design_material, design_material_note, DESIGN_INDEX_TOL};
 pub use fresnel::{critical_angle, fresnel, reflect, refract, Complex, Interface};
 pub use material::{Dispersion, Material, MaterialFields};
 pub use polarization::{rotate_stokes, s_axis, Mueller, Stokes};

@@ -24,9 +24,8 @@
 //! outline's bounding box; vertically to the middle of the girdle, i.e. of the near-vertical
 //! facets (normals within 1° of horizontal, the same rule [`crate::cut::Proportions`] uses to
 //! measure the girdle) or, for a knife-edge girdle, the middle of the vertices at the largest
-//! distance from the vertical axis. The solid is then scaled so that its largest horizontal
-//! extent (the largest distance between two vertices seen from above, the outline width
-//! `Proportions` uses) is 1.
+//! distance from the vertical axis. The solid is then scaled so that its width W (the outline's
+//! smaller extent along x and y, the unit every preset is built in, [`crate::cut::units`]) is 1.
 //!
 //! Facets are named `f-1`, `f-2`, … in the order table, crown, girdle, pavilion, culet (then by
 //! angle and azimuth), and their tier is that side: `table` and `culet` are the horizontal
@@ -200,7 +199,7 @@ pub fn read_with_note(path: impl AsRef<Path>) -> Result<(Cut, Option<String>)> {
         family: None,
         params: Default::default(),
         solid,
-        design_ri: None,
+        design: None,
     };
     Ok((cut, note))
 }
