@@ -33,7 +33,7 @@ pub struct Grid {
 }
 
 impl Grid {
-    /// A grid of `axes`: at least one, distinct keys, at most [`MAX_POINTS`] points.
+    /// A grid of `axes`: at least one, distinct keys, at most `MAX_POINTS` (250 000) points.
     pub fn new(axes: Vec<Axis>) -> Result<Grid> {
         if axes.is_empty() {
             return Err(Error::invalid(

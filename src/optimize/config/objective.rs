@@ -18,7 +18,7 @@ pub struct RawObjective {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scintillation: Option<f64>,
     /// Trace the trade-off between two or three scores instead of one weighted search:
-    /// `pareto = ["brilliance", "fire"]` (see [`crate::optimize::pareto`]).
+    /// `pareto = ["brilliance", "fire"]` (see [`crate::optimize::run_pareto`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pareto: Option<Vec<String>>,
     /// Weight steps per edge of the trade-off (2 scores: that many runs; default 7).

@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawScore {
-    /// Material: a name from `facetlab materials` or ri:N[:BG]; default diamond.
+    /// Material: a name from `facetlab materials` or `ri:N[:BG]`; default diamond.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
     /// A fixed refractive index instead of a material (no dispersion, no fire).
