@@ -23,6 +23,8 @@
 //! most [`jobs`] at a time; a request waiting for its turn that the client gives up on never
 //! starts.
 
+mod runs;
+
 use super::cuts::info_json;
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
@@ -183,6 +185,7 @@ async fn shutdown() {
 struct AppState {
     jobs: Arc<Semaphore>,
     presets: String,
+    runs: runs::Runs,
 }
 
 /// The router: the page, its assets and the API.
@@ -190,6 +193,7 @@ pub fn app() -> Router {
     let state = Arc::new(AppState {
         jobs: Arc::new(Semaphore::new(jobs())),
         presets: presets_json().to_string(),
+        runs: runs::Runs::default(),
     });
     Router::new()
         .route(
@@ -209,6 +213,10 @@ pub fn app() -> Router {
         .route("/api/score", post(score_cut))
         .route("/api/render", post(render_cut))
         .route("/api/export", post(export_cut))
+        .route("/api/configs", get(runs::configs))
+        .route("/api/optimize", post(runs::start).get(runs::status))
+        .route("/api/optimize/stop", post(runs::stop))
+        .route("/api/optimize/report", get(runs::report))
         .fallback(|| async {
             ApiError::new(StatusCode::NOT_FOUND, "path", "no such page or endpoint")
         })

@@ -401,6 +401,67 @@ fn serve_api_answers_and_refuses_bad_requests() {
 }
 
 /// Standard base64 (for sending a binary STL).
+/// An optimization from the page's API: the bundled configs are listed; a small config runs
+/// to the end with its convergence curve and report; a second start while one runs is
+/// refused (409); a long run stops when asked and still reports; bad configs name the field.
+#[test]
+fn serve_runs_an_optimization() {
+    let s = Server::start();
+    let list = s.get("/api/configs").json();
+    let names: Vec<&str> = list["configs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|c| c["name"].as_str())
+        .collect();
+    assert!(names.contains(&"round-brilliance"), "{names:?}");
+    assert_error(&s.get("/api/optimize"), "run");
+    assert_error(
+        &s.post("/api/optimize", r#"{"config": "../etc/passwd"}"#),
+        "config",
+    );
+    assert_error(
+        &s.post("/api/optimize", r#"{"config_text": "[cut]\nfamily = 3"}"#),
+        "config_text",
+    );
+    assert_error(&s.post("/api/optimize", r#"{"path": "x"}"#), "path");
+    let small = |evals: u32| {
+        let text = format!(
+            "name = \"small\"\n[cut]\nfamily = \"round-brilliant\"\n[free]\ntable = [0.52, 0.6]\n\
+             [method]\nname = \"nelder-mead\"\nstarts = 1\nmax_evaluations = {evals}\n\
+             [verify]\nwinners = 1\nphotons = 2000\n"
+        );
+        serde_json::json!({ "config_text": text }).to_string()
+    };
+    let wait = |want: &[&str]| -> serde_json::Value {
+        for _ in 0..600 {
+            let st = s.get("/api/optimize").json();
+            if want.contains(&st["state"].as_str().unwrap_or("")) {
+                return st;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(200));
+        }
+        panic!("the run did not end");
+    };
+    let r = s.post("/api/optimize", &small(6));
+    assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
+    let st = wait(&["done", "failed"]);
+    assert_eq!(st["state"], "done", "{st}");
+    assert!(st["evaluations"].as_u64().unwrap() >= 6);
+    assert!(!st["curve"].as_array().unwrap().is_empty());
+    assert!(st["best"]["free"]["table"].is_number(), "{st}");
+    let page = s.get("/api/optimize/report");
+    assert_eq!(page.status, 200);
+    assert!(String::from_utf8_lossy(&page.body).contains("<h2>winner 1</h2>"));
+    // A long run: a second start is refused while it goes; stop ends it.
+    assert_eq!(s.post("/api/optimize", &small(100_000)).status, 200);
+    assert_eq!(s.post("/api/optimize", &small(6)).status, 409);
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    assert_eq!(s.post("/api/optimize/stop", "").status, 200);
+    let st = wait(&["stopped", "done", "failed"]);
+    assert_eq!(st["state"], "stopped", "{st}");
+}
+
 fn b64(bytes: &[u8]) -> String {
     const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::new();

@@ -697,7 +697,99 @@ async function start() {
   await loadSource({ cut: first.name });
 }
 
-start().catch((e) => {
+
+// ---- optimization runs --------------------------------------------------------------------------
+
+const opt = { configs: [], timer: null };
+
+function drawCurve(curve) {
+  const c = $('#opt-chart');
+  const g = c.getContext('2d');
+  g.clearRect(0, 0, c.width, c.height);
+  if (!curve || curve.length < 1) return;
+  const xs = curve.map((p) => p[0]);
+  const ys = curve.map((p) => p[1]);
+  const x0 = Math.min(...xs), x1 = Math.max(...xs, x0 + 1);
+  let y0 = Math.min(...ys), y1 = Math.max(...ys);
+  if (y1 - y0 < 1e-9) { y0 -= 0.01; y1 += 0.01; }
+  const px = (x) => 6 + (c.width - 12) * (x - x0) / (x1 - x0);
+  const py = (y) => 6 + (c.height - 12) * (y1 - y) / (y1 - y0);
+  g.strokeStyle = '#6aa9ff';
+  g.lineWidth = 2;
+  g.beginPath();
+  curve.forEach((p, i) => (i ? g.lineTo(px(p[0]), py(p[1])) : g.moveTo(px(p[0]), py(p[1]))));
+  g.stroke();
+}
+
+async function pollRun() {
+  let s;
+  try {
+    const r = await fetch('/api/optimize');
+    if (!r.ok) return;
+    s = await r.json();
+  } catch (e) {
+    return;
+  }
+  drawCurve(s.curve);
+  const best = s.best_cost == null ? '—' : (-s.best_cost).toFixed(4);
+  let text = `${s.name}: ${s.state}, ${s.evaluations}/${s.budget} evaluations, best score ${best}, ${s.elapsed_s.toFixed(1)} s`;
+  if (s.error) text += ' — ' + s.error;
+  $('#opt-status').textContent = text;
+  const running = s.state === 'running';
+  $('#opt-run').disabled = running;
+  $('#opt-stop').disabled = !running;
+  $('#opt-report').hidden = !s.report;
+  if (!running && opt.timer) {
+    clearInterval(opt.timer);
+    opt.timer = null;
+  }
+}
+
+async function startRun() {
+  const name = $('#opt-config').value;
+  try {
+    const r = await fetch('/api/optimize', {
+      method: 'POST',
+      headers: { 'content-type': 'application/json' },
+      body: JSON.stringify({ config: name }),
+    });
+    const j = await r.json();
+    if (!r.ok) throw new Error(j.error || r.statusText);
+  } catch (e) {
+    $('#opt-status').textContent = 'Could not start: ' + e.message;
+    return;
+  }
+  $('#opt-report').hidden = true;
+  if (!opt.timer) opt.timer = setInterval(pollRun, 500);
+  pollRun();
+}
+
+async function setupRuns() {
+  try {
+    const r = await fetch('/api/configs');
+    opt.configs = (await r.json()).configs;
+  } catch (e) {
+    return;
+  }
+  const sel = $('#opt-config');
+  for (const c of opt.configs) {
+    const o = document.createElement('option');
+    o.value = c.name;
+    o.textContent = c.name;
+    sel.appendChild(o);
+  }
+  const describe = () => {
+    const c = opt.configs.find((x) => x.name === sel.value);
+    $('#opt-desc').textContent = c ? (c.description || '') + (c.budget ? ` (${c.budget} evaluations)` : '') : '';
+  };
+  sel.addEventListener('change', describe);
+  describe();
+  $('#opt-run').addEventListener('click', startRun);
+  $('#opt-stop').addEventListener('click', () => fetch('/api/optimize/stop', { method: 'POST' }).then(pollRun));
+  pollRun();
+}
+
+start().then(setupRuns).catch((e) => {
   const el = $('#status');
   el.textContent = 'Could not start: ' + e.message;
   el.classList.add('bad');

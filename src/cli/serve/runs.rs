@@ -1,0 +1,314 @@
+//! Optimization runs from the page: one at a time, started from a bundled `optim/` config (or
+//! a config's text), watched by polling, stoppable, with its one-page report at the end.
+//!
+//! `GET /api/configs` lists the bundled configs; `POST /api/optimize` with `{"config": NAME}`
+//! or `{"config_text": TOML}` starts a run (409 while one is going); `GET /api/optimize` gives
+//! its status (`state`: `running`, `done`, `stopped` or `failed`; `evaluations`, `budget`,
+//! `best_cost`, `elapsed_s`, `curve`: `[[evaluations, best cost], …]`, `best`: the winner's
+//! free parameters and scores, `error`, `report`); `POST /api/optimize/stop` stops it (the
+//! run still writes what it found); `GET /api/optimize/report` is its `report.html`.
+//! The run folder goes to a temporary folder that is removed once the report is read in.
+
+use super::{ApiError, ApiResult, AppState};
+use axum::body::Bytes;
+use axum::extract::rejection::BytesRejection;
+use axum::extract::State;
+use axum::http::{header, StatusCode};
+use axum::response::{IntoResponse, Response};
+use facetlab::optimize::{self as opt, Config, Hooks, Progress, RunOptions, Status};
+use serde::Serialize;
+use serde_json::{json, Value};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+
+/// The bundled configs, embedded: a client names one, never a path.
+pub const CONFIGS: [(&str, &str); 5] = [
+    (
+        "round-brilliance",
+        include_str!("../../../optim/round-brilliance.toml"),
+    ),
+    (
+        "round-balanced",
+        include_str!("../../../optim/round-balanced.toml"),
+    ),
+    ("pso-round", include_str!("../../../optim/pso-round.toml")),
+    ("princess", include_str!("../../../optim/princess.toml")),
+    (
+        "pareto-round",
+        include_str!("../../../optim/pareto-round.toml"),
+    ),
+];
+
+/// Largest config text accepted.
+const MAX_CONFIG: usize = 64 * 1024;
+
+/// Points kept of the convergence curve (thinned by half when full).
+const MAX_CURVE: usize = 2000;
+
+/// What the page polls.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct RunStatus {
+    id: u64,
+    name: String,
+    state: &'static str,
+    evaluations: u64,
+    budget: u64,
+    best_cost: Option<f64>,
+    elapsed_s: f64,
+    curve: Vec<(u64, f64)>,
+    best: Option<Value>,
+    error: Option<String>,
+    report: bool,
+}
+
+/// A run in progress or finished.
+pub struct Run {
+    stop: Arc<AtomicBool>,
+    status: Mutex<RunStatus>,
+    report: Mutex<Option<String>>,
+}
+
+/// The runs of one server: the current (or last) one.
+#[derive(Default)]
+pub struct Runs {
+    current: Mutex<Option<Arc<Run>>>,
+    next: AtomicU64,
+}
+
+struct Watch(Arc<Run>);
+
+impl Progress for Watch {
+    fn update(&self, s: &Status) {
+        let Ok(mut st) = self.0.status.lock() else {
+            return;
+        };
+        st.evaluations = s.evaluations;
+        st.budget = s.budget;
+        st.elapsed_s = s.elapsed;
+        if s.best_cost.is_finite() {
+            st.best_cost = Some(s.best_cost);
+            if st.curve.last().map(|p| p.0) != Some(s.evaluations) {
+                st.curve.push((s.evaluations, s.best_cost));
+                if st.curve.len() > MAX_CURVE {
+                    let thinned: Vec<(u64, f64)> = st.curve.iter().copied().step_by(2).collect();
+                    st.curve = thinned;
+                }
+            }
+        }
+    }
+}
+
+fn lock_err() -> ApiError {
+    ApiError::new(
+        StatusCode::INTERNAL_SERVER_ERROR,
+        "server",
+        "a lock was poisoned",
+    )
+}
+
+/// `GET /api/configs`.
+pub async fn configs() -> Response {
+    let list: Vec<Value> = CONFIGS
+        .iter()
+        .map(|(name, text)| {
+            let c = Config::from_str(text, &format!("{name}.toml")).ok();
+            json!({
+                "name": name,
+                "description": c.as_ref().and_then(|c| c.description.clone()),
+                "family": c.as_ref().map(|c| c.family.name),
+                "budget": c.as_ref().map(|c| c.budget.max_evaluations),
+                "pareto": c.as_ref().map(|c| c.pareto.is_some()),
+            })
+        })
+        .collect();
+    axum::Json(json!({ "configs": list })).into_response()
+}
+
+/// `POST /api/optimize`: start a run.
+pub async fn start(
+    State(st): State<Arc<AppState>>,
+    body: std::result::Result<Bytes, BytesRejection>,
+) -> ApiResult<Response> {
+    let body = body.map_err(|e| ApiError::bad("body", e.body_text()))?;
+    let v: Value = serde_json::from_slice(&body)
+        .map_err(|e| ApiError::bad("body", format!("not JSON: {e}")))?;
+    let Value::Object(m) = v else {
+        return Err(ApiError::bad("body", "must be a JSON object"));
+    };
+    for k in m.keys() {
+        if k != "config" && k != "config_text" {
+            return Err(ApiError::bad(
+                k.clone(),
+                "unknown field; give config or config_text",
+            ));
+        }
+    }
+    let (name, text) = match (m.get("config"), m.get("config_text")) {
+        (Some(Value::String(n)), None) => {
+            let Some((name, text)) = CONFIGS.iter().find(|(c, _)| c == n) else {
+                return Err(ApiError::bad(
+                    "config",
+                    format!(
+                        "no bundled config {:?}; allowed: {}",
+                        n.chars().take(40).collect::<String>(),
+                        CONFIGS.map(|c| c.0).join(", ")
+                    ),
+                ));
+            };
+            (name.to_string(), text.to_string())
+        }
+        (None, Some(Value::String(t))) if t.len() <= MAX_CONFIG => {
+            ("config".to_string(), t.clone())
+        }
+        (None, Some(Value::String(_))) => {
+            return Err(ApiError::bad("config_text", "longer than 64 KB"))
+        }
+        _ => return Err(ApiError::bad(
+            "config",
+            "give one of config (a bundled config's name) or config_text (a config file's text)",
+        )),
+    };
+    let config = Config::from_str(&text, &format!("{name}.toml")).map_err(|e| {
+        ApiError::bad(
+            if m.contains_key("config") {
+                "config"
+            } else {
+                "config_text"
+            },
+            e.to_string(),
+        )
+    })?;
+    let runs = &st.runs;
+    let mut cur = runs.current.lock().map_err(|_| lock_err())?;
+    if let Some(r) = cur.as_ref() {
+        if r.status.lock().map_err(|_| lock_err())?.state == "running" {
+            return Err(ApiError::new(
+                StatusCode::CONFLICT,
+                "config",
+                "a run is going; stop it first (POST /api/optimize/stop)",
+            ));
+        }
+    }
+    let id = runs.next.fetch_add(1, Ordering::SeqCst) + 1;
+    let run = Arc::new(Run {
+        stop: Arc::new(AtomicBool::new(false)),
+        status: Mutex::new(RunStatus {
+            id,
+            name: config.name.clone(),
+            state: "running",
+            budget: config.budget.max_evaluations,
+            ..Default::default()
+        }),
+        report: Mutex::new(None),
+    });
+    *cur = Some(run.clone());
+    drop(cur);
+    std::thread::spawn(move || execute(run, config, id));
+    Ok(axum::Json(json!({ "id": id })).into_response())
+}
+
+/// Run the search and the verification into a temporary folder; keep the report.
+fn execute(run: Arc<Run>, config: Config, id: u64) {
+    let dir = std::env::temp_dir().join(format!("facetlab-serve-{}-run-{id}", std::process::id()));
+    let watch = Watch(run.clone());
+    let (evaluator, verifier) = super::super::optimize::real_scorers(&config);
+    let result = if config.pareto.is_some() {
+        opt::run_pareto(
+            &config,
+            evaluator.as_ref(),
+            verifier.as_deref(),
+            &dir,
+            None,
+            &Hooks {
+                stop: Some(&run.stop),
+                progress: Some(&watch),
+            },
+        )
+        .map(|front| {
+            let best = front
+                .front
+                .last()
+                .map(|p| json!({ "free": p.free, "scores": p.scores }));
+            (best, None)
+        })
+    } else {
+        let opts = RunOptions {
+            out: Some(dir.clone()),
+            html_report: true,
+            hooks: Hooks {
+                stop: Some(&run.stop),
+                progress: Some(&watch),
+            },
+            ..RunOptions::default()
+        };
+        opt::run(&config, evaluator.as_ref(), verifier.as_deref(), &opts).map(|s| {
+            let b = s.outcome.best();
+            let best = json!({ "free": b.free, "scores": b.scores, "label": b.label });
+            let page = std::fs::read_to_string(dir.join("report.html")).ok();
+            (Some(best), page)
+        })
+    };
+    let _ = std::fs::remove_dir_all(&dir);
+    let stopped = run.stop.load(Ordering::SeqCst);
+    let mut report_out = None;
+    if let Ok(mut st) = run.status.lock() {
+        match result {
+            Ok((best, page)) => {
+                st.state = if stopped { "stopped" } else { "done" };
+                st.best = best;
+                st.report = page.is_some();
+                report_out = page;
+            }
+            Err(e) => {
+                st.state = "failed";
+                st.error = Some(e.to_string());
+            }
+        }
+    }
+    if let Ok(mut r) = run.report.lock() {
+        *r = report_out;
+    }
+}
+
+fn current(st: &AppState) -> ApiResult<Arc<Run>> {
+    st.runs
+        .current
+        .lock()
+        .map_err(|_| lock_err())?
+        .clone()
+        .ok_or_else(|| {
+            ApiError::new(
+                StatusCode::NOT_FOUND,
+                "run",
+                "no run yet; POST /api/optimize",
+            )
+        })
+}
+
+/// `GET /api/optimize`: the current run's status.
+pub async fn status(State(st): State<Arc<AppState>>) -> ApiResult<Response> {
+    let run = current(&st)?;
+    let s = run.status.lock().map_err(|_| lock_err())?.clone();
+    Ok(axum::Json(s).into_response())
+}
+
+/// `POST /api/optimize/stop`.
+pub async fn stop(State(st): State<Arc<AppState>>) -> ApiResult<Response> {
+    let run = current(&st)?;
+    run.stop.store(true, Ordering::SeqCst);
+    Ok(axum::Json(json!({ "stopping": true })).into_response())
+}
+
+/// `GET /api/optimize/report`: the finished run's `report.html`.
+pub async fn report(State(st): State<Arc<AppState>>) -> ApiResult<Response> {
+    let run = current(&st)?;
+    let page = run.report.lock().map_err(|_| lock_err())?.clone();
+    match page {
+        Some(p) => Ok(([(header::CONTENT_TYPE, "text/html; charset=utf-8")], p).into_response()),
+        None => Err(ApiError::new(
+            StatusCode::NOT_FOUND,
+            "run",
+            "no report (yet): the run is going, failed, or traced a trade-off",
+        )),
+    }
+}
