@@ -10,6 +10,7 @@ pub mod optimize;
 pub mod outputs;
 pub mod render;
 pub mod report;
+pub mod retarget;
 pub mod score;
 pub mod serve;
 pub mod trace;
@@ -69,6 +70,9 @@ pub enum Command {
     /// One self-contained HTML page per cut or comparing cuts: ISO, ASET and fire pictures, the
     /// diagram, proportions with the grade estimate, every score explained, `--verify N`.
     Report(report::ReportArgs),
+    /// Adapt a design to another refractive index: the tangent-ratio rule and an optimized
+    /// pair of ratios that restores its light return there; both reported, one written.
+    Retarget(retarget::RetargetArgs),
     /// Join the shards of one sweep (`sweep --shard K/N`) into the CSV and map one unsharded
     /// run writes, after checking they cover the grid exactly once.
     Merge(merge::MergeArgs),
@@ -100,6 +104,7 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::Merge(a) => merge::run(&a),
         Command::Render(a) => done(render::run(&a)),
         Command::Report(a) => done(report::run(&a)),
+        Command::Retarget(a) => done(retarget::run(&a)),
         Command::Serve(a) => done(serve::run(&a)),
     }
 }

@@ -18,6 +18,7 @@ mod outline;
 mod oval;
 mod pear;
 mod princess;
+pub mod retarget;
 mod round;
 mod sphere;
 mod steps;

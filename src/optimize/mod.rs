@@ -80,6 +80,7 @@ mod pareto;
 mod problem;
 mod pso;
 mod report;
+mod retarget;
 mod run;
 mod sweep;
 mod verify;
@@ -104,6 +105,8 @@ pub use run::{
 };
 // The trade-off between scores (`[objective] pareto`).
 pub use pareto::{non_dominated, run_pareto, weight_grid, FrontPoint, ParetoChart, ParetoOutcome};
+// Adapting a design to another index (tangent ratio, and its optimized variant).
+pub use retarget::{retarget, Retarget, Variant};
 // What a run keeps and reports.
 pub use history::{History, Row, Track};
 // The cost of a cut that cannot be built or scored.

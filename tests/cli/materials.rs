@@ -213,3 +213,47 @@ fn info_lists_cutting_instructions_pavilion_first() {
         serde_json::from_str(&ok(p, &["info", "star.asc", "--json"])).unwrap();
     assert!(j.get("instructions").is_none());
 }
+
+/// `retarget` adapts a diamond design to quartz: the report lists the design, the
+/// tangent-ratio rule and the optimized variant, the optimized one returns at least the
+/// design's light at quartz's index, and the written `.asc` carries the new index.
+#[test]
+fn retarget_a_diamond_design_to_quartz() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    let out = ok(
+        p,
+        &[
+            "retarget",
+            "tolkowsky",
+            "--material",
+            "quartz",
+            "-o",
+            "q.asc",
+        ],
+    );
+    let b = |label: &str| -> f64 {
+        let line = out
+            .lines()
+            .find(|l| l.trim_start().starts_with(label))
+            .unwrap();
+        line.split_whitespace().last().unwrap().parse().unwrap()
+    };
+    assert!(
+        b("optimized") >= b("design") && b("optimized") >= b("tangent-ratio"),
+        "{out}"
+    );
+    let asc = std::fs::read_to_string(p.join("q.asc")).unwrap();
+    assert!(asc.lines().any(|l| l.starts_with("I 1.54")), "{asc}");
+    bad(p, &["retarget", "tolkowsky", "-o", "x.asc"], &["--ri"]);
+    bad(
+        p,
+        &["retarget", "tolkowsky", "--ri", "0.5", "-o", "x.asc"],
+        &["--ri"],
+    );
+    bad(
+        p,
+        &["retarget", "q.asc", "--ri", "1.7", "-o", "q.asc"],
+        &["-o"],
+    );
+}

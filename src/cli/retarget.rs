@@ -1,0 +1,117 @@
+//! `facetlab retarget CUT (--ri N | --material NAME) -o OUT`: adapt a design to another index,
+//! by the tangent-ratio rule and by an optimized pair of ratios that restores the design's
+//! light return at the new index ([`facetlab::optimize::retarget`]); both are reported, the
+//! optimized one is written (the rule's with `--tangent-only`).
+
+use super::flags;
+use super::outputs::{cut_files, refuse_overwrite};
+use facetlab::error::{Error, Result};
+use facetlab::io;
+use facetlab::metrics::ScoreConfig;
+use facetlab::optics::Material;
+use std::path::PathBuf;
+
+/// Flags of `facetlab retarget`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct RetargetArgs {
+    /// The design: a preset name or a .toml/.asc/.obj/.stl file.
+    #[arg(value_name = "CUT")]
+    pub cut: String,
+    /// The new refractive index (n_D, 1–10), with a generic dispersion (as `ri:N`).
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub ri: Option<String>,
+    /// The new material by name (see `facetlab materials`).
+    #[arg(long, value_name = "NAME")]
+    pub material: Option<String>,
+    /// The index the design was cut for (default: the file's `I` index, else diamond's).
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub from: Option<String>,
+    /// Write the tangent-ratio variant instead of the optimized one.
+    #[arg(long)]
+    pub tangent_only: bool,
+    /// Replace -o if it exists (an input is never replaced).
+    #[arg(long)]
+    pub force: bool,
+    /// The retargeted design (.asc, .toml, .obj, .stl or .svg, by extension).
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub output: PathBuf,
+}
+
+/// Run `facetlab retarget`.
+pub fn run(a: &RetargetArgs) -> Result<()> {
+    let to =
+        match (&a.ri, &a.material) {
+            (Some(r), None) => {
+                let n = flags::number("--ri", r, 1.0001, 10.0, "a refractive index")?;
+                Material::by_name(&format!("ri:{n}"))
+                    .map_err(|e| Error::invalid("--ri", e.to_string()))?
+            }
+            (None, Some(m)) => Material::by_name(m)?,
+            _ => return Err(Error::invalid(
+                "--ri",
+                "give the new index with --ri N or a material with --material NAME (one of them)",
+            )),
+        };
+    refuse_overwrite(
+        &[("-o", a.output.clone())],
+        &cut_files(std::slice::from_ref(&a.cut)),
+    )?;
+    let ext = a
+        .output
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    if !["asc", "toml", "obj", "stl", "svg"].contains(&ext.as_str()) {
+        return Err(Error::invalid(
+            "-o",
+            format!("cannot write `.{ext}`; allowed extensions: .asc, .toml, .obj, .stl, .svg"),
+        ));
+    }
+    if a.output.exists() && !a.force {
+        return Err(Error::invalid(
+            "-o",
+            format!("{} exists; pass --force to replace it", a.output.display()),
+        ));
+    }
+    let cut = super::cuts::load_with_sets(&a.cut, &[])?;
+    let from = match &a.from {
+        Some(f) => flags::number("--from", f, 1.0001, 10.0, "a refractive index")?,
+        None => cut
+            .design_ri()
+            .unwrap_or_else(|| Material::diamond().ri_d()),
+    };
+    let r = facetlab::optimize::retarget(&cut, from, &to, &ScoreConfig::default())?;
+    println!(
+        "{}: cut for n = {from:.4}, retargeted to {} (n = {:.4}); brilliance at the new index:",
+        cut.name, r.material, r.to_ri
+    );
+    for v in &r.variants {
+        println!(
+            "  {:<14} crown {:6.2}°  pavilion {:6.2}°  tangent ratios {:.4} / {:.4}  brilliance {:.4}",
+            v.label, v.crown_angle, v.pavilion_angle, v.k_crown, v.k_pavilion, v.brilliance
+        );
+    }
+    let chosen = if a.tangent_only {
+        &r.variants[1]
+    } else {
+        &r.variants[2]
+    };
+    let mut out = chosen.cut.clone();
+    let mut design = out.design.clone().unwrap_or_default();
+    design.ri = Some((r.to_ri * 1e4).round() / 1e4);
+    out.design = Some(design);
+    let bytes: Vec<u8> = match ext.as_str() {
+        "toml" => io::spec::write(&out).into_bytes(),
+        "asc" => io::asc::write(&out, 0).into_bytes(),
+        "obj" => io::mesh::write_obj(&out).into_bytes(),
+        "stl" => io::mesh::write_stl(&out),
+        _ => io::svg::diagram(&out).into_bytes(),
+    };
+    io::write_atomic(&a.output, &bytes)?;
+    println!(
+        "wrote {} (the {} variant)",
+        a.output.display(),
+        chosen.label
+    );
+    Ok(())
+}
