@@ -1,4 +1,4 @@
-//! `facetlab retarget CUT (--ri N | --material NAME) -o OUT`: adapt a design to another index,
+//! `facetlab retarget CUT --ri N [--material NAME] -o OUT` (either flag alone, or both when they agree): adapt a design to another index,
 //! by the tangent-ratio rule and by an optimized pair of ratios that restores the design's
 //! light return at the new index ([`facetlab::optimize::retarget`]); both are reported, the
 //! optimized one is written (the rule's with `--tangent-only`).
@@ -39,19 +39,36 @@ pub struct RetargetArgs {
 
 /// Run `facetlab retarget`.
 pub fn run(a: &RetargetArgs) -> Result<()> {
-    let to =
-        match (&a.ri, &a.material) {
-            (Some(r), None) => {
-                let n = flags::number("--ri", r, 1.0001, 10.0, "a refractive index")?;
-                Material::by_name(&format!("ri:{n}"))
-                    .map_err(|e| Error::invalid("--ri", e.to_string()))?
+    let to = match (&a.ri, &a.material) {
+        (Some(r), None) => {
+            let n = flags::number("--ri", r, 1.0001, 10.0, "a refractive index")?;
+            Material::by_name(&format!("ri:{n}"))
+                .map_err(|e| Error::invalid("--ri", e.to_string()))?
+        }
+        (None, Some(m)) => Material::by_name(m)?,
+        (Some(r), Some(m)) => {
+            // Both: the material, which must have that index.
+            let n = flags::number("--ri", r, 1.0001, 10.0, "a refractive index")?;
+            let mat = Material::by_name(m)?;
+            if (mat.ri_d() - n).abs() > 0.01 {
+                return Err(Error::invalid(
+                        "--ri",
+                        format!(
+                            "{n} is not the index of {} (n_D {:.4}); give one of --ri and --material, or matching ones",
+                            mat.name,
+                            mat.ri_d()
+                        ),
+                    ));
             }
-            (None, Some(m)) => Material::by_name(m)?,
-            _ => return Err(Error::invalid(
+            mat
+        }
+        (None, None) => {
+            return Err(Error::invalid(
                 "--ri",
-                "give the new index with --ri N or a material with --material NAME (one of them)",
-            )),
-        };
+                "give the new index with --ri N, a material with --material NAME, or both",
+            ))
+        }
+    };
     refuse_overwrite(
         &[("-o", a.output.clone())],
         &cut_files(std::slice::from_ref(&a.cut)),
