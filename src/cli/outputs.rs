@@ -83,6 +83,37 @@ pub fn refuse_overwrite(outputs: &[(&str, PathBuf)], inputs: &[PathBuf]) -> Resu
     Ok(())
 }
 
+/// Check a file output before any work: not a folder, replaced only with `force`, its folder
+/// present and writable. (Outputs equal to an input are [`refuse_overwrite`]'s.)
+pub fn check_new_file(flag: &str, path: &Path, force: bool) -> Result<()> {
+    if path.is_dir() {
+        return Err(Error::invalid(
+            flag,
+            format!("{} is a folder; give a file name", path.display()),
+        ));
+    }
+    if path.exists() && !force {
+        return Err(Error::invalid(
+            flag,
+            format!(
+                "{} exists; pass --force to replace it, or choose another name",
+                path.display()
+            ),
+        ));
+    }
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if !dir.is_dir() {
+        return Err(Error::io(
+            path.display().to_string(),
+            format!("folder {} does not exist", dir.display()),
+        ));
+    }
+    facetlab::io::check_writable(dir)
+}
+
 /// The CUT arguments that are files (presets are not).
 pub fn cut_files(cuts: &[String]) -> Vec<PathBuf> {
     cuts.iter()

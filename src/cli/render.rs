@@ -35,7 +35,7 @@ use facetlab::plot::render::{compose, legend_for, Panel, BACKGROUND};
 use facetlab::render::{self, Light, RenderOptions, Stats, Tilt};
 use serde::Serialize;
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 /// Flags of `facetlab render`.
@@ -416,12 +416,6 @@ fn summary(light: Light, s: &Stats) -> String {
     }
 }
 
-fn parent_dir(p: &Path) -> &Path {
-    p.parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."))
-}
-
 /// Check the outputs before any work: not an input, -o a .png, not a folder, existing files
 /// only with --force, folders present and writable.
 fn check_outputs(a: &RenderArgs) -> Result<()> {
@@ -452,29 +446,7 @@ fn check_outputs(a: &RenderArgs) -> Result<()> {
         }
     }
     for (flag, p) in &outs {
-        if p.is_dir() {
-            return Err(Error::invalid(
-                *flag,
-                format!("{} is a folder; give a file name", p.display()),
-            ));
-        }
-        if p.exists() && !a.force {
-            return Err(Error::invalid(
-                *flag,
-                format!(
-                    "{} exists; pass --force to replace it, or choose another name",
-                    p.display()
-                ),
-            ));
-        }
-        let dir = parent_dir(p);
-        if !dir.is_dir() {
-            return Err(Error::io(
-                p.display().to_string(),
-                format!("folder {} does not exist", dir.display()),
-            ));
-        }
-        facetlab::io::check_writable(dir)?;
+        super::outputs::check_new_file(flag, p, a.force)?;
     }
     Ok(())
 }

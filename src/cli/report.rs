@@ -70,27 +70,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
             format!("{} does not end in .html", a.output.display()),
         ));
     }
-    if a.output.is_dir() {
-        return Err(Error::invalid(
-            "-o",
-            format!("{} is a folder; give a file name", a.output.display()),
-        ));
-    }
-    if a.output.exists() && !a.force {
-        return Err(Error::invalid(
-            "-o",
-            format!(
-                "{} exists; pass --force to replace it, or choose another name",
-                a.output.display()
-            ),
-        ));
-    }
-    let parent = a
-        .output
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(std::path::Path::new("."));
-    facetlab::io::check_writable(parent)?;
+    super::outputs::check_new_file("-o", &a.output, a.force)?;
     let cuts = a
         .cuts
         .iter()

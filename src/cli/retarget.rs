@@ -84,12 +84,7 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
             format!("cannot write `.{ext}`; allowed extensions: .asc, .toml, .obj, .stl, .svg"),
         ));
     }
-    if a.output.exists() && !a.force {
-        return Err(Error::invalid(
-            "-o",
-            format!("{} exists; pass --force to replace it", a.output.display()),
-        ));
-    }
+    super::outputs::check_new_file("-o", &a.output, a.force)?;
     let cut = super::cuts::load_with_sets(&a.cut, &[])?;
     let from = match &a.from {
         Some(f) => flags::number("--from", f, 1.0001, 10.0, "a refractive index")?,

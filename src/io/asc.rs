@@ -777,6 +777,22 @@ pub struct CuttingStep {
     pub note: Option<String>,
 }
 
+impl CuttingStep {
+    /// The indices with two digits at least, as GemCad prints them (03-09-15).
+    pub fn padded_indices(&self) -> Vec<String> {
+        self.indices
+            .iter()
+            .map(|i| {
+                if i.len() == 1 {
+                    format!("0{i}")
+                } else {
+                    i.clone()
+                }
+            })
+            .collect()
+    }
+}
+
 /// Cutting instructions: the gear, the design's index and the tiers in cutting order.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CuttingInstructions {
@@ -878,17 +894,7 @@ impl CuttingInstructions {
                 side = s.side;
                 let _ = writeln!(o, "{}", side.to_uppercase());
             }
-            let idx: Vec<String> = s
-                .indices
-                .iter()
-                .map(|i| {
-                    if i.len() == 1 {
-                        format!("0{i}")
-                    } else {
-                        i.clone()
-                    }
-                })
-                .collect();
+            let idx = s.padded_indices();
             let note = s
                 .note
                 .as_deref()

@@ -707,17 +707,7 @@ fn text_block(
             &format!("{:.2}°", st.angle),
         );
         // Two digits, as GemCad prints them (03-09-15).
-        let idx: Vec<String> = st
-            .indices
-            .iter()
-            .map(|i| {
-                if i.len() == 1 {
-                    format!("0{i}")
-                } else {
-                    i.clone()
-                }
-            })
-            .collect();
+        let idx = st.padded_indices();
         for (k, chunk) in idx.chunks(8).enumerate() {
             if k > 0 {
                 y += 13.0;

@@ -127,13 +127,7 @@ pub struct GridCell {
 impl GridCell {
     /// The value of `score` (NaN when the cut failed).
     pub fn value(&self, score: &SweepScore) -> f64 {
-        match (score, &self.scores) {
-            (SweepScore::Objective, _) => self.objective,
-            (_, None) => f64::NAN,
-            (SweepScore::Brilliance, Some(s)) => s.brilliance,
-            (SweepScore::Fire, Some(s)) => s.fire,
-            (SweepScore::Scintillation, Some(s)) => s.scintillation,
-        }
+        score.of(self.scores.as_ref(), self.objective)
     }
 }
 

@@ -188,6 +188,18 @@ pub enum SweepScore {
 }
 
 impl SweepScore {
+    /// This score of a grid point with `scores` (None when the cut failed: NaN) and
+    /// `objective`.
+    pub fn of(&self, scores: Option<&ScoreSet>, objective: f64) -> f64 {
+        match (self, scores) {
+            (SweepScore::Objective, _) => objective,
+            (_, None) => f64::NAN,
+            (SweepScore::Brilliance, Some(s)) => s.brilliance,
+            (SweepScore::Fire, Some(s)) => s.fire,
+            (SweepScore::Scintillation, Some(s)) => s.scintillation,
+        }
+    }
+
     /// Parse `brilliance`, `fire`, `scintillation` or `objective`.
     pub fn parse(s: &str) -> Result<SweepScore> {
         match s {
@@ -231,13 +243,7 @@ pub struct Cell {
 impl Cell {
     /// The value of `score` (NaN when the cut failed).
     pub fn value(&self, score: &SweepScore) -> f64 {
-        match (score, &self.scores) {
-            (SweepScore::Objective, _) => self.objective,
-            (_, None) => f64::NAN,
-            (SweepScore::Brilliance, Some(s)) => s.brilliance,
-            (SweepScore::Fire, Some(s)) => s.fire,
-            (SweepScore::Scintillation, Some(s)) => s.scintillation,
-        }
+        score.of(self.scores.as_ref(), self.objective)
     }
 }
 
