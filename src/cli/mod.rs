@@ -61,8 +61,9 @@ pub enum Command {
     /// (argmin Nelder–Mead or particle swarm), then verify the winners with the photon tracer.
     /// Ctrl-C or SIGTERM stops the search and still writes the run folder (exit code 130).
     Optimize(optimize::OptimizeArgs),
-    /// Map a score over a grid of two parameters (CSV and a heatmap with contours), or, without
-    /// --y, the scores along one (CSV and a line chart).
+    /// Map a score over a grid of parameters (--x, --y, more with --axis; CSV and a heatmap
+    /// with contours of any two), or, without --y, the scores along one (CSV and a line
+    /// chart); --shard K/N evaluates one resumable share of the grid for job arrays.
     ///
     /// More axes with --axis (the map shows two of them: --map, --at); --shard K/N (or a Slurm
     /// or Kubernetes job array) evaluates a share of the grid, resumably, for `merge`.
@@ -84,7 +85,7 @@ pub enum Command {
     Render(Box<render::RenderArgs>),
     /// The cutter's workbench in the browser: a local web server with one page (presets and
     /// uploads, parameter sliders, live render, diagram, scores, a second cut to compare,
-    /// downloads). Listens on 127.0.0.1 unless --bind says otherwise; prints the URL.
+    /// downloads and reports, optimization runs with live convergence). Listens on 127.0.0.1 unless --bind says otherwise; prints the URL.
     Serve(serve::ServeArgs),
 }
 
