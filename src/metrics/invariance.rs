@@ -178,34 +178,17 @@ fn turned_scores() -> (Scores, Vec<(f64, Scores)>) {
     (base, turned)
 }
 
-/// Brilliance, overhead light return and ASET move by under 5e-3 when the stone is turned
-/// (with this test's coarse tracing; `benches/profile.rs`-style default tracing: under 6e-4);
-/// scintillation (rocked toward five azimuths) by under 1e-2 (rocked about one axis it
-/// moved by 0.04 at 22.5°); fire by under 15 % of its value.
+/// A stone turned about its axis by any angle is placed at the same canonical azimuth
+/// (`geometry::canonical`), so every score, fire and scintillation included, stays within the
+/// issue's 2e-3 (in fact the turned solids agree to ~1e-13, so the scores agree to the
+/// tracer's response to such a change).
 #[test]
-fn turning_the_stone_hardly_moves_its_scores() {
-    let (base, turned) = turned_scores();
-    for (deg, s) in &turned {
-        for ((name, x), (_, y)) in fields(s).iter().zip(fields(&base)) {
-            let tol = match *name {
-                "fire" => 0.15 * base.fire,
-                "scintillation" => 1e-2,
-                _ => 5e-3,
-            };
-            assert!((x - y).abs() <= tol, "turned {deg}°: {name} {y} → {x}");
-        }
-    }
-}
-
-/// The target for every score, fire and scintillation included: within 2e-3.
-#[test]
-#[ignore = "fire's 17 placements and scintillation's 5 rocking azimuths are too few"]
 fn turning_the_stone_moves_no_score_by_more_than_2e_3() {
     let (base, turned) = turned_scores();
     for (deg, s) in &turned {
-        for ((name, x), (_, y)) in fields(s).iter().zip(fields(&base)) {
-            assert!((x - y).abs() <= 2e-3, "turned {deg}°: {name} {y} → {x}");
-        }
+        let (d, which) = max_diff(s, &base);
+        eprintln!("turned {deg}°: largest change {d:.2e} ({which})");
+        assert!(d <= 2e-3, "turned {deg}°: {which} moved by {d:e}");
     }
 }
 

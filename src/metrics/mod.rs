@@ -15,20 +15,22 @@
 //! small jumps come from the tracer's approximations below its thresholds
 //! ([`TraceOptions`]): each is at most a narrow beam's power (< 1e-4 of the light by default).
 //!
-//! # Same solid, same scores; turned stone, nearly the same scores
+//! # Same solid, same scores; a turned stone too
 //!
 //! Scores are functions of the solid, not of its numbers: it is first put in the canonical
-//! placement of [`canonical`] (centroid at the origin, unit size, facets in a canonical
-//! order), so a translated, uniformly scaled, reordered or symmetry-rotated copy of a stone
-//! scores the same to rounding. A stone turned about its axis by an arbitrary angle is a
-//! different pose under the (fixed) lights and tilted viewer, but every score is an average
-//! over evenly spaced turns: brilliance over the ring poses of [`Tilt::default_set`] (five
-//! azimuths per ring), fire over [`fire_placements`] (turns of the lights in steps of
-//! 360°/17), scintillation over [`scintillation_turns`] (five rocking azimuths). An average of
-//! N evenly spaced turns of an m-fold symmetric stone keeps only the azimuthal harmonics that
-//! are multiples of both m and N (the 40th for a round brilliant and N = 5), so turning the
-//! stone moves the scores very little; turns by multiples of 360°/N (and the stone's own
-//! symmetries) not at all.
+//! placement of [`canonical`] (centroid at the origin, unit size, turned about its axis to a
+//! canonical azimuth, facets in a canonical order), so a translated, uniformly scaled,
+//! reordered, symmetry-rotated or arbitrarily turned copy of a stone scores the same. The
+//! canonical azimuth ([`canonical::azimuth_turn`]) is where the stone's k-th azimuthal harmonic
+//! (k its rotation order) is real: it puts a mirror line on azimuth 0, and leaves the bundled
+//! presets as drawn. Turned copies agree exactly when the turn is one of the stone's
+//! symmetries, and otherwise to the ~1e-13 of the turn's arithmetic (so, at worst, to the
+//! tracer's response to such a change; see [`TraceOptions`]).
+//!
+//! Turning a stone under the lights is still a real change of pose, and the scores average
+//! over it from that canonical start: brilliance over the ring poses of [`Tilt::default_set`]
+//! (five azimuths per ring), fire over [`fire_placements`] (turns of the lights in steps of
+//! 360°/17), scintillation over [`scintillation_turns`] (five rocking azimuths).
 //!
 //! # The scores
 //!
