@@ -7,13 +7,14 @@
 //! rays straight down over the stone, each split deterministically at every interface until
 //! less than 1e-9 of its power is left; it shares no code with the beam tracer but the optics.
 //! Its standard error is the grids' spread over √R. Printed in percentage points: the reference,
-//! then the beam tracer at its default settings and at finer split thresholds (difference from
-//! the reference, in points and in standard errors, and the time of one trace).
+//! then the beam tracer at its default settings and at finer split thresholds, the finest being
+//! the one `score` uses for its overhead light return (difference from the reference, in points
+//! and in standard errors, and the time of one trace).
 
 use facetlab::beam::reference::{overhead_light_return as reference, GridOptions};
 use facetlab::beam::{Stone, TraceOptions};
 use facetlab::geometry::{FacetPlane, Polyhedron};
-use facetlab::metrics::overhead_light_return_with;
+use facetlab::metrics::{overhead_light_return_with, ScoreConfig};
 use facetlab::optics::Material;
 use glam::DVec3;
 use std::time::Instant;
@@ -93,7 +94,10 @@ fn main() {
                 r.lost,
                 dt
             );
-            for split in [TraceOptions::SPLIT_THRESHOLD, 1e-5, 1e-6] {
+            // The tracer's default, fire's face-up traces, and the score's face-up trace at
+            // the reference wavelength (where `score`'s overhead light return comes from).
+            let scored = ScoreConfig::default().face_up_split_threshold;
+            for split in [TraceOptions::SPLIT_THRESHOLD, 1e-5, scored] {
                 let opts = TraceOptions {
                     polarization: p,
                     split_threshold: split,
@@ -102,8 +106,9 @@ fn main() {
                 let t1 = Instant::now();
                 let b = overhead_light_return_with(&stone, ri, &opts);
                 let bt = t1.elapsed().as_secs_f64() * 1e3;
+                let tag = if split == scored { " (score)" } else { "" };
                 line += &format!(
-                    "; beam split {split:.0e} {:.4} ({:+.4}, {:+.1} SE, {bt:.1} ms)",
+                    "; beam split {split:.0e}{tag} {:.4} ({:+.4}, {:+.1} SE, {bt:.1} ms)",
                     100.0 * b,
                     100.0 * (b - r.value),
                     (b - r.value) / r.stderr

@@ -160,6 +160,13 @@ impl Stone {
         self.normals.len()
     }
 
+    /// The solid's symmetry about the z axis: the order of its rotation group (1 = none) and
+    /// the azimuth (radians, in [0, π/order)) of one of its mirror lines through the axis, if
+    /// it has any.
+    pub fn symmetry(&self) -> (usize, Option<f64>) {
+        (self.rot_order, self.mirror_az)
+    }
+
     /// Outward unit normal of facet `i`.
     pub fn normal(&self, i: usize) -> DVec3 {
         self.normals[i]

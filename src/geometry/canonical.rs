@@ -207,7 +207,14 @@ mod tests {
                 assert!((a.plane.offset - b.plane.offset).abs() < 1e-10);
             }
         }
-        for name in ["princess", "marquise", "emerald", "oval", "pear", "gia-reference"] {
+        for name in [
+            "princess",
+            "marquise",
+            "emerald",
+            "oval",
+            "pear",
+            "gia-reference",
+        ] {
             let cut = crate::io::load_cut(name).unwrap();
             assert_eq!(azimuth_turn(&cut.solid), 0.0, "{name}");
         }

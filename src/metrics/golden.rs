@@ -68,30 +68,30 @@ fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 10]) {
 
 /// Default [`ScoreConfig`]: diamond, polarization on, no head shadow.
 const TOLKOWSKY_DEFAULT: [f64; 10] = [
-    0.777872406094, // brilliance
-    0.884244824435, // brilliance_iso
-    0.671499987753, // brilliance_cos
+    0.777886970747, // brilliance
+    0.884261737349, // brilliance_iso
+    0.671512204146, // brilliance_cos
     0.749192770305, // fire
-    0.599655916523, // scintillation
-    0.227416956899, // aset.blue
-    0.499197272001, // aset.red
-    0.197550446514, // aset.green
-    0.075835324586, // aset.leak
-    0.924623989549, // overhead_light_return
+    0.599514346411, // scintillation
+    0.227440879113, // aset.blue
+    0.499186259292, // aset.red
+    0.197622148564, // aset.green
+    0.075750713030, // aset.leak
+    0.924671341075, // overhead_light_return
 ];
 
 /// Cubic zirconia, polarization off, a 15° head shadow; the rest default.
 const TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15: [f64; 10] = [
-    0.623002936178, // brilliance
-    0.709793412288, // brilliance_iso
-    0.536212460068, // brilliance_cos
+    0.622993071069, // brilliance
+    0.709789115053, // brilliance_iso
+    0.536197027084, // brilliance_cos
     1.132176909986, // fire
-    0.512884923002, // scintillation
-    0.256002316467, // aset.blue
-    0.554106007084, // aset.red
-    0.152947204476, // aset.green
-    0.036944471974, // aset.leak
-    0.962964085871, // overhead_light_return
+    0.512885392007, // scintillation
+    0.256104637600, // aset.blue
+    0.554054930671, // aset.red
+    0.152978794234, // aset.green
+    0.036861637494, // aset.leak
+    0.963032976779, // overhead_light_return
 ];
 
 #[test]

@@ -65,6 +65,7 @@ fn cfg() -> ScoreConfig {
             ..Default::default()
         },
         fire_split_threshold: 1e-4,
+        face_up_split_threshold: 1e-4,
         ..ScoreConfig::default()
     }
 }

@@ -24,6 +24,7 @@ fn lean() -> ScoreConfig {
             threshold: 1e-7,
             ..Default::default()
         },
+        face_up_split_threshold: 1e-5,
         ..ScoreConfig::default()
     }
 }
@@ -120,7 +121,7 @@ fn overhead_light_return_agrees_with_score_and_polarization_matters_little() {
     let s = tolkowsky();
     let cfg = lean();
     let fine = TraceOptions {
-        split_threshold: cfg.fire_split_threshold,
+        split_threshold: cfg.face_up_split_threshold,
         ..cfg.trace
     };
     let olr = overhead_light_return_with(
@@ -379,6 +380,45 @@ fn fire_has_no_single_flash_peaks() {
     assert!(spiky[0] > 1.8 * spiky[1], "{spiky:?}");
 }
 
+/// The poses a stone's symmetry maps onto each other return the same light: pictures of a
+/// round brilliant and a princess tilted 10° toward several azimuths have the means of their
+/// representatives' pictures ([`symmetric_pose`]) within the narrow-beam approximation, while
+/// the azimuths that are not equivalent differ by far more.
+#[test]
+fn symmetric_poses_return_the_same_light() {
+    use crate::render::{render, Light, RenderOptions};
+    let mean = |solid: &Polyhedron, t: Tilt| {
+        let mut o = RenderOptions::new(Light::Iso);
+        o.size = 32;
+        o.tilt = t;
+        o.trace.split_threshold = 1e-5;
+        render(solid, &o).stats.mean
+    };
+    for (solid, order) in [(tolkowsky(), 8), (princess(), 4)] {
+        let symmetry = Stone::new(&crate::geometry::canonical::canonical(&solid)).symmetry();
+        assert_eq!(symmetry.0, order);
+        assert!(symmetry.1.is_some());
+        let (mut worst, mut spread) = (0.0f64, (f64::INFINITY, f64::NEG_INFINITY));
+        for az in [72.0, 144.0, 216.0, 288.0, 100.0] {
+            let t = Tilt {
+                tilt_deg: 10.0,
+                azimuth_deg: az,
+            };
+            let r = symmetric_pose(t, symmetry);
+            assert!(r.azimuth_deg >= 0.0 && r.azimuth_deg <= 180.0 / order as f64 + 1e-9);
+            let (a, b) = (mean(&solid, t), mean(&solid, r));
+            worst = worst.max((a - b).abs());
+            spread = (spread.0.min(b), spread.1.max(b));
+        }
+        eprintln!(
+            "order {order}: worst {worst:.2e}, spread {:.2e}",
+            spread.1 - spread.0
+        );
+        assert!(worst < 3e-4, "order {order}: {worst}");
+        assert!(spread.1 - spread.0 > 10.0 * worst, "{spread:?} vs {worst}");
+    }
+}
+
 /// One truth: each pose's ISO and COS light return in the scores is the mean of the picture
 /// the renderer draws of that pose (the same trace, the same lighting functions), face-up and
 /// tilted, for a round brilliant and a princess.
@@ -392,11 +432,14 @@ fn pose_scores_are_the_means_of_the_pictures() {
         let n = s.poses.len() as f64;
         let mean_iso = s.poses.iter().map(|p| p.iso).sum::<f64>() / n;
         assert!((mean_iso - s.brilliance_iso).abs() < 1e-15);
+        let symmetry = Stone::new(&crate::geometry::canonical::canonical(&solid)).symmetry();
         for (p, t) in s.poses.iter().zip(&cfg.tilts) {
             assert_eq!((p.tilt_deg, p.azimuth_deg), (t.tilt_deg, t.azimuth_deg));
-            // Face-up poses are traced at fire's split threshold, the others at the trace's.
+            let t = &symmetric_pose(*t, symmetry);
+            // Face-up poses are traced at the face-up split threshold, the others at the
+            // trace's.
             let split = if t.tilt_deg == 0.0 {
-                cfg.fire_split_threshold
+                cfg.face_up_split_threshold
             } else {
                 cfg.trace.split_threshold
             };
@@ -447,7 +490,7 @@ fn aset_and_fire_are_statistics_of_the_pictures() {
         o.size = 48;
         o.head_shadow_deg = Some(0.0);
         o.trace = TraceOptions {
-            split_threshold: cfg.fire_split_threshold,
+            split_threshold: cfg.face_up_split_threshold,
             ..cfg.trace
         };
         let a = render(&solid, &o).stats.aset.unwrap();
