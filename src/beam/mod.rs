@@ -49,7 +49,7 @@ use glam::{DMat3, DVec2, DVec3};
 /// How far the tracer follows light, and what it records.
 ///
 /// Beams with at least `split_threshold` of the incoming power are split exactly. Smaller
-/// ones (narrow beams) are followed as one ray each, through their polygon's centre, with the
+/// ones (narrow beams) are followed as one ray each, from their polygon's area centroid, with the
 /// same expected-value Fresnel branching: their exit beams carry the narrow beam's footprint
 /// and exact power bookkeeping, but the narrow beam is no longer divided where it straddles
 /// facet edges. Light below `threshold`, or past `max_depth` internal reflections, is cut off
@@ -61,13 +61,19 @@ use glam::{DMat3, DVec2, DVec3};
 /// that tail has hundreds of thousands of beams; cut off at 1e-6 it still loses about 0.8 % of
 /// the light. Narrow beams keep that tail's power in play at the cost of one ray each.
 ///
-/// What that costs in exactness (measured against [`reference`](mod@reference), `cargo bench --bench exact`):
-/// each narrow beam's ray samples its beam at one point, so its light goes all one way where
-/// the beam would have straddled facet edges. Over a trace these errors add like noise (the
-/// largest narrow beams dominate; their sum is the whole difference from the reference), so
-/// the overhead light return is off by a few hundredths to a few tenths of a percentage point
-/// at the default split threshold (tolkowsky −0.04, princess +0.23), by up to ~0.04 at 1e-5
-/// and by ~0.01 at 1e-6 (about 30 times the default's time).
+/// What that costs in exactness (measured against [`reference`](mod@reference), `cargo bench --bench exact`,
+/// overhead light return of tolkowsky, gia-reference, princess and an octahedron): each narrow
+/// beam's ray samples its beam at one point (its area centroid), so its light goes all one way
+/// where the beam would have straddled facet edges. Over a trace these errors add like noise
+/// (the largest narrow beams dominate), and face-up a symmetric stone repeats them in every
+/// wedge: the overhead light return is off by −0.18 to −0.016 percentage points at the default
+/// split threshold, by −0.012 to +0.055 at 1e-5 and by −0.006 to +0.008 at 1e-6 (the split
+/// threshold of the scores' face-up trace, `ScoreConfig::face_up_split_threshold`).
+///
+/// A narrow beam's ray changes its path only where the ray crosses a facet edge, so a trace
+/// is piecewise continuous in the solid: a 1e-10 change of a cut's proportions moves no score
+/// by more than a few 1e-9 (`metrics` tests), though a change large enough to move a narrow
+/// beam's ray across an edge moves the result by up to that beam's power.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceOptions {
     /// Track polarization with Stokes vectors and Mueller matrices (default). Off: every

@@ -350,9 +350,13 @@ fn exact_beam_tree_is_the_limit_of_a_ray_grid() {
     }
 }
 
-/// The default tracer (narrow beams below the split threshold, followed to 1e-9): its full
+/// The default tracer (narrow beams below the split threshold, followed to 1e-8): its full
 /// light return agrees with the full-depth ray grid to the grid's error plus the narrow-beam
-/// approximation (measured below 6e-4 for these solids; see `TraceOptions`).
+/// approximation. Face-up, a symmetric stone's narrow-beam errors repeat in every wedge, so
+/// they add up rather than average out: 1.6e-3 for this princess against the jittered
+/// reference of `reference.rs` (0.79863 ± 5e-5; at split 1e-6 the tracer gives 0.79861).
+/// The midpoint grid's own error can exceed its two-resolution estimate: at 320² it reads
+/// 0.79914 for that princess.
 #[test]
 fn default_beam_tracer_matches_deterministic_ray_grid() {
     for (name, s) in [
@@ -368,7 +372,7 @@ fn default_beam_tracer_matches_deterministic_ray_grid() {
         let err = (beam - fine).abs();
         eprintln!("{name}: beam {beam:.6} grid160 {coarse:.6} grid320 {fine:.6} |beam-grid| {err:.1e} est {est:.1e} cut {cut:.1e}");
         assert!(
-            err <= 2.0 * est + 1e-3,
+            err <= 2.0 * est + 3e-3,
             "{name}: beam {beam} vs grid {fine} (coarse {coarse})"
         );
         // Polarization changes the answer only a little.

@@ -83,6 +83,24 @@ impl Affine {
     }
 }
 
+/// Area centroid of the planar polygon `poly` (normal `n`): unlike the mean of its vertices,
+/// it moves continuously when a clip adds a vertex. The vertex mean for a degenerate polygon.
+fn area_centroid(poly: &[DVec3], n: DVec3) -> DVec3 {
+    let mean = poly.iter().copied().sum::<DVec3>() / poly.len().max(1) as f64;
+    let (mut a, mut c) = (0.0, DVec3::ZERO);
+    for i in 1..poly.len().saturating_sub(1) {
+        let (p, q) = (poly[i] - poly[0], poly[i + 1] - poly[0]);
+        let ai = n.dot(p.cross(q));
+        a += ai;
+        c += (p + q) * ai;
+    }
+    if a != 0.0 && a.is_finite() {
+        poly[0] + c / (3.0 * a)
+    } else {
+        mean
+    }
+}
+
 /// A beam waiting to be split.
 #[derive(Clone, Copy, Debug)]
 struct Beam {
@@ -350,7 +368,11 @@ impl Stone {
                 ..beam
             });
         } else {
-            let c = w.cur.iter().copied().sum::<DVec3>() / w.cur.len() as f64;
+            // From the area centroid, not the vertex mean: clipping adds and drops vertices
+            // (rounding slivers along shared edges among them), which moved the vertex mean,
+            // and with it the ray's whole path, by a sizeable part of the beam when the solid
+            // changed by 1e-10.
+            let c = area_centroid(&w.cur, self.normals[beam.facet as usize]);
             self.follow_ray(beam, c, cx, w, st, sink);
         }
     }

@@ -68,30 +68,30 @@ fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 10]) {
 
 /// Default [`ScoreConfig`]: diamond, polarization on, no head shadow.
 const TOLKOWSKY_DEFAULT: [f64; 10] = [
-    0.777886970747, // brilliance
-    0.884261737349, // brilliance_iso
-    0.671512204146, // brilliance_cos
-    0.749192770305, // fire
-    0.599514346411, // scintillation
-    0.227440879113, // aset.blue
-    0.499186259292, // aset.red
-    0.197622148564, // aset.green
-    0.075750713030, // aset.leak
-    0.924671341075, // overhead_light_return
+    0.777888294396, // brilliance
+    0.884243839275, // brilliance_iso
+    0.671532749516, // brilliance_cos
+    0.751772117624, // fire
+    0.599394346837, // scintillation
+    0.227448515839, // aset.blue
+    0.499176332909, // aset.red
+    0.197588644352, // aset.green
+    0.075786506899, // aset.leak
+    0.924634029256, // overhead_light_return
 ];
 
 /// Cubic zirconia, polarization off, a 15° head shadow; the rest default.
 const TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15: [f64; 10] = [
-    0.622993071069, // brilliance
-    0.709789115053, // brilliance_iso
-    0.536197027084, // brilliance_cos
-    1.132176909986, // fire
-    0.512885392007, // scintillation
-    0.256104637600, // aset.blue
-    0.554054930671, // aset.red
-    0.152978794234, // aset.green
-    0.036861637494, // aset.leak
-    0.963032976779, // overhead_light_return
+    0.623116407813, // brilliance
+    0.709937935621, // brilliance_iso
+    0.536294880005, // brilliance_cos
+    1.132939400235, // fire
+    0.512739778840, // scintillation
+    0.256105151810, // aset.blue
+    0.554046132440, // aset.red
+    0.153027602524, // aset.green
+    0.036821113226, // aset.leak
+    0.963073970003, // overhead_light_return
 ];
 
 #[test]
