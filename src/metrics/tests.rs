@@ -380,6 +380,39 @@ fn fire_has_no_single_flash_peaks() {
     assert!(spiky[0] > 1.8 * spiky[1], "{spiky:?}");
 }
 
+/// Leaving fire and scintillation out (what an optimizer does when its objective does not
+/// weigh them) gives NaN for them and exactly the same other scores.
+#[test]
+fn scores_left_out_are_nan_and_the_rest_unchanged() {
+    let cfg = lean();
+    let solid = tolkowsky();
+    let all = score(&solid, &cfg);
+    for (fire, scintillation) in [(false, false), (true, false), (false, true)] {
+        let part = score(
+            &solid,
+            &ScoreConfig {
+                parts: Parts {
+                    fire,
+                    scintillation,
+                },
+                ..cfg.clone()
+            },
+        );
+        assert_eq!(part.fire.is_nan(), !fire);
+        assert_eq!(part.scintillation.is_nan(), !scintillation);
+        if fire {
+            assert_eq!(part.fire, all.fire);
+        }
+        if scintillation {
+            assert_eq!(part.scintillation, all.scintillation);
+        }
+        assert_eq!(part.brilliance, all.brilliance);
+        assert_eq!(part.overhead_light_return, all.overhead_light_return);
+        assert_eq!(part.aset, all.aset);
+        assert_eq!(part.poses, all.poses);
+    }
+}
+
 /// The poses a stone's symmetry maps onto each other return the same light: pictures of a
 /// round brilliant and a princess tilted 10° toward several azimuths have the means of their
 /// representatives' pictures ([`symmetric_pose`]) within the narrow-beam approximation, while

@@ -4,7 +4,7 @@
 use super::{Config, Evaluator, ScoreSet, Verifier};
 use crate::cut::Cut;
 use crate::error::Result;
-use crate::metrics::{score, ScoreConfig, Scores};
+use crate::metrics::{score, Parts, ScoreConfig, Scores};
 use crate::verify::VerifyReport;
 
 /// Scores a cut with the beam tracer ([`crate::metrics::score`]). Brilliance, fire and
@@ -15,19 +15,45 @@ use crate::verify::VerifyReport;
 #[derive(Clone, Debug)]
 pub struct BeamEvaluator {
     config: ScoreConfig,
+    /// The same, computing only what the objective weighs (fire and scintillation are left
+    /// out while the search does not need them).
+    search: ScoreConfig,
 }
 
 impl BeamEvaluator {
     /// The evaluator for a config: its `[score]` settings (material, head shadow, polarization).
+    /// While searching it computes fire and scintillation only when the objective weighs them
+    /// (or trades them off in `pareto`).
     pub fn new(config: &Config) -> Self {
+        let full = config.score.score_config();
+        let needs = |name: &str, weight: f64| {
+            weight != 0.0
+                || config
+                    .pareto
+                    .as_ref()
+                    .is_some_and(|p| p.scores.iter().any(|s| s == name))
+        };
+        let search = ScoreConfig {
+            parts: Parts {
+                fire: needs("fire", config.weights.fire),
+                scintillation: needs("scintillation", config.weights.scintillation),
+            },
+            ..full.clone()
+        };
         BeamEvaluator {
-            config: config.score.score_config(),
+            config: full,
+            search,
         }
     }
 
-    /// The scoring settings in use.
+    /// The scoring settings in use (for the reported cuts: every score).
     pub fn score_config(&self) -> &ScoreConfig {
         &self.config
+    }
+
+    /// What the search computes of fire and scintillation.
+    pub fn search_parts(&self) -> Parts {
+        self.search.parts
     }
 
     /// The scores as the optimizer reports them.
@@ -49,6 +75,9 @@ impl BeamEvaluator {
 impl Evaluator for BeamEvaluator {
     fn evaluate(&self, cut: &Cut) -> Result<ScoreSet> {
         Ok(Self::score_set(&score(&cut.solid, &self.config)))
+    }
+    fn evaluate_for_search(&self, cut: &Cut) -> Result<ScoreSet> {
+        Ok(Self::score_set(&score(&cut.solid, &self.search)))
     }
 }
 

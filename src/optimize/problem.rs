@@ -133,7 +133,16 @@ pub fn penalty(checks: &[ConstraintCheck], c: &Constraints) -> f64 {
 
 /// The weighted score `Σ weight · score`.
 pub fn weighted(s: &ScoreSet, w: &Weights) -> f64 {
-    w.brilliance * s.brilliance + w.fire * s.fire + w.scintillation * s.scintillation
+    // A score weighed 0 may not have been computed (NaN): it takes no part.
+    [
+        (w.brilliance, s.brilliance),
+        (w.fire, s.fire),
+        (w.scintillation, s.scintillation),
+    ]
+    .iter()
+    .filter(|(w, _)| *w != 0.0)
+    .map(|(w, x)| w * x)
+    .sum()
 }
 
 /// Everything known about one evaluated point.
@@ -180,8 +189,19 @@ impl<'a> Objective<'a> {
         )
     }
 
-    /// Build, score and charge the cut at `x`.
+    /// Build, score (for the search: [`Evaluator::evaluate_for_search`]) and charge the cut
+    /// at `x`.
     pub fn evaluate(&self, x: &[f64]) -> Evaluation {
+        self.evaluate_with(x, false)
+    }
+
+    /// [`Objective::evaluate`] with every score ([`Evaluator::evaluate`]): for the cuts a run
+    /// reports.
+    pub fn evaluate_full(&self, x: &[f64]) -> Evaluation {
+        self.evaluate_with(x, true)
+    }
+
+    fn evaluate_with(&self, x: &[f64], full: bool) -> Evaluation {
         let failed = |e: String, cut: Option<Cut>| Evaluation {
             x: x.to_vec(),
             cost: FAILED_COST,
@@ -199,7 +219,12 @@ impl<'a> Objective<'a> {
             Ok(c) => c,
             Err(e) => return failed(e.to_string(), None),
         };
-        let scores = match self.evaluator.evaluate(&cut) {
+        let scored = if full {
+            self.evaluator.evaluate(&cut)
+        } else {
+            self.evaluator.evaluate_for_search(&cut)
+        };
+        let scores = match scored {
             Ok(s) => s,
             Err(e) => return failed(e.to_string(), Some(cut)),
         };

@@ -158,7 +158,7 @@ pub fn search(config: &Config, evaluator: &dyn Evaluator, hooks: &Hooks<'_>) -> 
     let seconds = t.elapsed().as_secs_f64();
     let evaluations = history.rows.len() as u64;
 
-    let start_eval = objective.evaluate(&config.start_x());
+    let start_eval = objective.evaluate_full(&config.start_x());
     let start = Candidate::new("start", config, &start_eval, None);
     let picks = pick_winners(
         config,
@@ -170,7 +170,7 @@ pub fn search(config: &Config, evaluator: &dyn Evaluator, hooks: &Hooks<'_>) -> 
     let mut best_cut = None;
     for (k, &i) in picks.iter().enumerate() {
         let r = &history.rows[i];
-        let e = objective.evaluate(&r.x);
+        let e = objective.evaluate_full(&r.x);
         if k == 0 {
             best_cut = e.cut.clone();
         }

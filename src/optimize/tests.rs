@@ -547,3 +547,47 @@ fn pareto_config_is_validated() {
         "objective.pareto_points",
     );
 }
+
+/// An evaluator that leaves fire out while searching (as the beam evaluator does when the
+/// objective does not weigh it): the search climbs brilliance alone, and the start and the
+/// winners the run reports carry every score.
+struct SearchLean;
+
+impl Evaluator for SearchLean {
+    fn evaluate(&self, cut: &Cut) -> Result<ScoreSet> {
+        bump(cut)
+    }
+    fn evaluate_for_search(&self, cut: &Cut) -> Result<ScoreSet> {
+        let mut s = bump(cut)?;
+        s.fire = f64::NAN;
+        s.scintillation = f64::NAN;
+        Ok(s)
+    }
+}
+
+#[test]
+fn scores_left_out_of_the_search_are_reported_for_the_winners() {
+    let c = config(NM, "[objective]\nbrilliance = 1.0\nfire = 0.0");
+    let lean = run::search(&c, &SearchLean, &Hooks::default()).unwrap();
+    let full = run::search(&c, &bump, &Hooks::default()).unwrap();
+    // The same search (NaN weighs nothing), the same winners.
+    assert_eq!(lean.history, full.history);
+    for (a, b) in std::iter::once(&lean.start)
+        .chain(&lean.winners)
+        .zip(std::iter::once(&full.start).chain(&full.winners))
+    {
+        let (sa, sb) = (a.scores.as_ref().unwrap(), b.scores.as_ref().unwrap());
+        assert_eq!(sa, sb);
+        assert!(sa["fire"].is_finite() && sa["fire"] > 0.0);
+    }
+    // A weighed score is never left out: the beam evaluator's search settings.
+    let weighs_fire = config(NM, "[objective]\nbrilliance = 1.0\nfire = 0.2");
+    let e = super::BeamEvaluator::new(&weighs_fire);
+    assert!(e.search_parts().fire && !e.search_parts().scintillation);
+    let brilliance_only = super::BeamEvaluator::new(&c);
+    assert!(!brilliance_only.search_parts().fire && !brilliance_only.search_parts().scintillation);
+    assert_eq!(
+        brilliance_only.score_config().parts,
+        crate::metrics::Parts::default()
+    );
+}
