@@ -5,7 +5,8 @@
 //! * `pose`: one pose (overhead / face-up, where the stone's 16 symmetries apply) at one
 //!   wavelength for `tolkowsky`, one thread, at several split thresholds (the default is
 //!   1e-4), with the tree's size; a tilted pose (no symmetry); the paper's depth-8 setting;
-//! * `score`: the full default `score` of `tolkowsky` on the global rayon pool and on one thread;
+//! * `score`: the full default `score` of `tolkowsky` on the global rayon pool and on one thread,
+//!   and without fire and scintillation (what the default optimize's search computes);
 //! * `instructions` (only when named): ten tilted traces with no timing loop, to run under
 //!   `valgrind --tool=callgrind` for repeatable instruction counts;
 //! * `photons`: how many photons a Monte Carlo photon tracer needs to match the beam tracer's
@@ -156,6 +157,25 @@ fn main() {
         println!(
             "score tolkowsky, default config: {:.1} ms ({n1} runs, 1 thread)",
             dt1.as_secs_f64() * 1e3
+        );
+        // What the default optimize climbs: brilliance alone (fire and scintillation left out).
+        let lean = ScoreConfig {
+            parts: facetlab::metrics::Parts {
+                fire: false,
+                scintillation: false,
+            },
+            ..ScoreConfig::default()
+        };
+        let (dt, n) = time(
+            || {
+                std::hint::black_box(score(solid, &lean));
+            },
+            Duration::from_secs(4),
+        );
+        println!(
+            "score tolkowsky, default config without fire and scintillation (the default \
+             optimize's search): {:.1} ms ({n} runs, global pool)",
+            dt.as_secs_f64() * 1e3
         );
         let fast = ScoreConfig::fast();
         let (dt, n) = time(
