@@ -9,7 +9,9 @@
 //! roughness an optimizer sees on a 0.002° scale). Writes every cut's scores to the CSV file
 //! named by the environment variable `FACETLAB_PROFILE_CSV`, or to `target/profile.csv`.
 //! `FACETLAB_PROFILE_STEPS` (default 500) sets the number of steps over the same degree, and
-//! `FACETLAB_PROFILE_SPLIT` the split threshold of the tilted poses' traces (for experiments).
+//! `FACETLAB_PROFILE_SPLIT` the split threshold of the tilted poses' traces,
+//! `FACETLAB_PROFILE_FIRE_SPLIT` that of fire's face-up traces, and `FACETLAB_PROFILE_DEGREES`
+//! the profile's width (default 1°) (for experiments).
 
 use facetlab::cut::Cut;
 use facetlab::metrics::{score, ScoreConfig, Scores};
@@ -64,8 +66,20 @@ fn main() {
     {
         cfg.trace.split_threshold = x;
     }
+    // `FACETLAB_PROFILE_FIRE_SPLIT`: fire's face-up traces' split threshold.
+    if let Some(x) = std::env::var("FACETLAB_PROFILE_FIRE_SPLIT")
+        .ok()
+        .and_then(|s| s.parse().ok())
+    {
+        cfg.fire_split_threshold = x;
+    }
+    // `FACETLAB_PROFILE_DEGREES`: the width of the profile (default 1°, from 40.0°).
+    let degrees: f64 = std::env::var("FACETLAB_PROFILE_DEGREES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1.0);
     let angles: Vec<f64> = (0..=steps)
-        .map(|k| 40.0 + k as f64 / steps as f64)
+        .map(|k| 40.0 + degrees * k as f64 / steps as f64)
         .collect();
     let t0 = Instant::now();
     let scores: Vec<Scores> = angles
@@ -74,8 +88,11 @@ fn main() {
         .collect();
     let dt = t0.elapsed().as_secs_f64();
     println!(
-        "profile: pavilion 40.0° → 41.0°, {} cuts, default config, {:.1} s ({:.1} ms/cut on {} threads)",
+        "profile: pavilion 40.0° → {:.3}°, {} cuts, split {:e} (fire {:e}), {:.1} s ({:.1} ms/cut on {} threads)",
+        40.0 + degrees,
         angles.len(),
+        cfg.trace.split_threshold,
+        cfg.fire_split_threshold,
         dt,
         dt * 1e3 / angles.len() as f64,
         rayon::current_num_threads()

@@ -361,6 +361,8 @@ impl Config {
                 ri: self.score.ri,
                 head_shadow: Some(self.score.head_shadow_deg),
                 polarization: Some(self.score.polarization),
+                split_threshold: Some(self.score.split_threshold),
+                fire_split_threshold: Some(self.score.fire_split_threshold),
             }),
         }
     }
@@ -543,6 +545,26 @@ mod tests {
         .unwrap();
         assert_eq!(c.score.score_config().material.ri(400.0), 2.0);
         assert!(!c.score.polarization);
+        // The split thresholds: defaults, or the config's, and back.
+        let d = crate::metrics::ScoreConfig::default();
+        assert_eq!(c.score.score_config().trace, d.trace);
+        assert_eq!(
+            c.score.score_config().fire_split_threshold,
+            d.fire_split_threshold
+        );
+        let c = Config::from_str(
+            &format!("{GOOD}\n[score]\nsplit_threshold = 1e-5\nfire_split_threshold = 1e-6\n"),
+            "round.toml",
+        )
+        .unwrap();
+        let sc = c.score.score_config();
+        assert_eq!(
+            (sc.trace.split_threshold, sc.fire_split_threshold),
+            (1e-5, 1e-6)
+        );
+        assert_eq!(sc.trace.threshold, d.trace.threshold);
+        let back = Config::from_str(&c.as_used_toml(), "back.toml").unwrap();
+        assert_eq!(back.score, c.score);
         for (extra, needle) in [
             (
                 "material = \"unobtainium\"",
@@ -551,6 +573,14 @@ mod tests {
             ("material = \"diamond\"\nri = 2.4", "score.ri: give either"),
             ("ri = 0.5", "score.ri: 0.5 is out of range"),
             ("head_shadow = 75", "score.head_shadow: 75 is out of range"),
+            (
+                "split_threshold = 0.5",
+                "round.toml: score.split_threshold: 0.5 is out of range; allowed [1e-9, 1e-2]",
+            ),
+            (
+                "fire_split_threshold = 0",
+                "score.fire_split_threshold: 0 is out of range",
+            ),
             ("colour = 1", "colour"),
         ] {
             let e = Config::from_str(&format!("{GOOD}\n[score]\n{extra}\n"), "round.toml")

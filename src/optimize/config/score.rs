@@ -20,6 +20,12 @@ pub struct RawScore {
     /// Track polarization; default true.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub polarization: Option<bool>,
+    /// Split threshold of the tilted poses' traces (brilliance, scintillation); default 1e-4.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub split_threshold: Option<f64>,
+    /// Split threshold of fire's face-up traces; default 1e-5.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fire_split_threshold: Option<f64>,
 }
 
 /// Validated `[score]`.
@@ -33,6 +39,10 @@ pub struct ScoreSettings {
     pub head_shadow_deg: f64,
     /// Track polarization.
     pub polarization: bool,
+    /// Split threshold of the tilted poses' traces.
+    pub split_threshold: f64,
+    /// Split threshold of fire's face-up traces.
+    pub fire_split_threshold: f64,
 }
 
 impl ScoreSettings {
@@ -42,6 +52,11 @@ impl ScoreSettings {
             material: self.material.clone(),
             head_shadow_deg: self.head_shadow_deg,
             polarization: self.polarization,
+            fire_split_threshold: self.fire_split_threshold,
+            trace: crate::beam::TraceOptions {
+                split_threshold: self.split_threshold,
+                ..crate::beam::TraceOptions::default()
+            },
             ..crate::metrics::ScoreConfig::default()
         }
     }
@@ -64,11 +79,35 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
             format!("{head_shadow_deg} is out of range; allowed [0, 60] degrees (0 = none)"),
         ));
     }
+    let defaults = crate::metrics::ScoreConfig::default();
+    let split = |field: &str, value: Option<f64>, default: f64| -> Result<f64> {
+        let x = finite(&at(field), value.unwrap_or(default))?;
+        if !(1e-9..=1e-2).contains(&x) {
+            return Err(Error::invalid(
+                at(field),
+                format!(
+                    "{x} is out of range; allowed [1e-9, 1e-2] (a share of the light; smaller is \
+                     smoother and slower)"
+                ),
+            ));
+        }
+        Ok(x)
+    };
     let score = ScoreSettings {
         material,
         ri: rs.ri,
         head_shadow_deg,
         polarization: rs.polarization.unwrap_or(true),
+        split_threshold: split(
+            "score.split_threshold",
+            rs.split_threshold,
+            defaults.trace.split_threshold,
+        )?,
+        fire_split_threshold: split(
+            "score.fire_split_threshold",
+            rs.fire_split_threshold,
+            defaults.fire_split_threshold,
+        )?,
     };
     Ok(score)
 }
