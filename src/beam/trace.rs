@@ -601,6 +601,9 @@ impl Stone {
             // Disjoint bounding boxes: nothing to clip.
             return 0.0;
         }
+        if self.fragile[g] {
+            clip2d::make_convex(&mut w.g);
+        }
         clip2d::clip_convex_into(&w.q, &w.g, &mut w.clip, &mut w.scratch);
         let a = clip2d::area(&w.clip);
         if a > keep_area {

@@ -101,6 +101,26 @@ pub fn is_convex(poly: &[DVec2]) -> bool {
     })
 }
 
+/// Drop the vertices of a nearly convex polygon that turn against its orientation (a hair's
+/// notch left by rounding), until every turn agrees: clipping against a short edge that turns
+/// the wrong way would cut along its line far beyond the notch.
+pub fn make_convex(poly: &mut Vec<DVec2>) {
+    let sign = signed_area(poly).signum();
+    while poly.len() > 3 {
+        let m = poly.len();
+        let bad = (0..m).find(|&k| {
+            let (a, b, c) = (poly[(k + m - 1) % m], poly[k], poly[(k + 1) % m]);
+            sign * cross(b - a, c - b) < 0.0
+        });
+        match bad {
+            Some(k) => {
+                poly.remove(k);
+            }
+            None => break,
+        }
+    }
+}
+
 /// Clip `subject` by the half-plane to the left of the directed line `a → b` (times `sign`:
 /// `+1` keeps the left side, `−1` the right side), appending the result to `out` (cleared
 /// first).
@@ -261,6 +281,33 @@ pub fn rect_overlap_area(subject: &[DVec2], lo: DVec2, hi: DVec2) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn make_convex_drops_a_notch_and_keeps_convex_polygons() {
+        // A square whose corner (1, 1) is split into two vertices 1e-7 apart that turn the
+        // wrong way: clipping against that short edge cut the square along its line.
+        let mut notched = vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(1.0, 0.0),
+            DVec2::new(1.0, 1.0),
+            DVec2::new(1.0 - 1e-7, 1.0 - 2e-7),
+            DVec2::new(0.0, 1.0),
+        ];
+        let subject = [
+            DVec2::new(0.2, 0.2),
+            DVec2::new(0.8, 0.2),
+            DVec2::new(0.8, 0.8),
+            DVec2::new(0.2, 0.8),
+        ];
+        let broken = area(&clip_convex(&subject, &notched));
+        assert!(broken < 0.3, "{broken}");
+        make_convex(&mut notched);
+        assert_eq!(notched.len(), 4);
+        assert!((area(&clip_convex(&subject, &notched)) - 0.36).abs() < 1e-12);
+        let mut square = subject.to_vec();
+        make_convex(&mut square);
+        assert_eq!(square, subject.to_vec());
+    }
 
     /// The strip clips (side values as coordinate differences) give exactly what the general
     /// edge clip gives for the same axis-aligned lines.
