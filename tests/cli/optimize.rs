@@ -59,6 +59,19 @@ fn short_real_run_improves_and_writes_every_file() {
     let start = j["start"]["cost"].as_f64().unwrap();
     let best = j["winners"][0]["cost"].as_f64().unwrap();
     assert!(best < start - 1e-3, "best {best} vs start {start}");
+    // The search left out what the objective does not weigh, but the reported cuts carry
+    // every score.
+    for c in std::iter::once(&j["start"]).chain(j["winners"].as_array().unwrap()) {
+        for k in [
+            "brilliance",
+            "fire",
+            "scintillation",
+            "overhead_light_return",
+        ] {
+            let v = c["scores"][k].as_f64();
+            assert!(v.is_some_and(|v| v > 0.0 && v.is_finite()), "{k}: {v:?}");
+        }
+    }
     // The winner was re-scored by the photon tracer, with beam values beside the estimates.
     let rows = j["winners"][0]["verification"]["rows"].as_array().unwrap();
     assert!(rows
