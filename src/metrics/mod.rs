@@ -857,8 +857,23 @@ struct FireLattice<'a> {
     /// exit): the elevations below and above which no placement's spot reaches, and
     /// `1 − cos(reach)`.
     bounds: Vec<(f64, f64, f64)>,
-    lifts: Vec<f64>,
+    /// Per spot `i` and placement `k` (at `i · P + k`): the sines of the lowest and highest
+    /// elevations that spot reaches there (so that no arcsine is needed per exit).
+    zband: Vec<(f64, f64)>,
     step: f64,
+}
+
+/// The sine of an elevation in degrees, clamped to the sphere.
+fn sin_deg(e: f64) -> f64 {
+    e.clamp(-90.0, 90.0).to_radians().sin()
+}
+
+/// An upper bound of `acos(1 − x)` for `x` in [0, 2], in radians, without the arc-cosine:
+/// `√(2x) · (1 + 0.3x)` (the series is `√(2x) · (1 + x/12 + …)`; the bound is tight at 0 and
+/// 2% above π at 2).
+#[inline]
+fn acos_one_minus_upper(x: f64) -> f64 {
+    (2.0 * x).sqrt() * (1.0 + 0.3 * x)
 }
 
 impl<'a> FireLattice<'a> {
@@ -888,17 +903,26 @@ impl<'a> FireLattice<'a> {
             .iter()
             .map(|&(base, _, reach, _)| {
                 (
-                    (base + lo).clamp(1.0, 89.0) - reach,
-                    (base + hi).clamp(1.0, 89.0) + reach,
+                    sin_deg((base + lo).clamp(1.0, 89.0) - reach),
+                    sin_deg((base + hi).clamp(1.0, 89.0) + reach),
                     1.0 - reach.to_radians().cos(),
                 )
+            })
+            .collect();
+        let zband = spots
+            .iter()
+            .flat_map(|&(base, _, reach, _)| {
+                lifts.iter().map(move |&lift| {
+                    let ek = (base + lift).clamp(1.0, 89.0);
+                    (sin_deg(ek - reach), sin_deg(ek + reach))
+                })
             })
             .collect();
         FireLattice {
             lightings,
             spots,
             bounds,
-            lifts,
+            zband,
             step: 360.0 / placements.len().max(1) as f64,
         }
     }
@@ -911,27 +935,30 @@ impl<'a> FireLattice<'a> {
         if n == 0 {
             return;
         }
-        let e = lighting::elevation_deg(w);
+        // Elevations are compared through their sines (sin e = w.z), with the reach's margin
+        // of 1e-6° far above rounding: the same placements are visited as with the angles.
+        let z = w.z.clamp(-1.0, 1.0);
         let head = self.lightings[0].head(w);
         if head == 0.0 {
             return;
         }
         // The azimuth and cos e, computed once the first spot is within reach of elevation e.
         let mut az_cos: Option<(f64, f64)> = None;
-        for (i, (&(base, a0, reach, cos_top), &(e_lo, e_hi, one_minus_cos_reach))) in
+        for (i, (&(_, a0, _, cos_top), &(z_lo, z_hi, one_minus_cos_reach))) in
             self.spots.iter().zip(&self.bounds).enumerate()
         {
-            if e < e_lo || e > e_hi {
+            if z < z_lo || z > z_hi {
                 continue;
             }
             let (az, cos_e) =
-                *az_cos.get_or_insert_with(|| (w.y.atan2(w.x).to_degrees(), e.to_radians().cos()));
-            // 1 − cos Δa ≤ (1 − cos ρ) / (cos e · cos ε): the azimuths within reach.
+                *az_cos.get_or_insert_with(|| (w.y.atan2(w.x).to_degrees(), (1.0 - z * z).sqrt()));
+            // 1 − cos Δa ≤ (1 − cos ρ) / (cos e · cos ε): the azimuths within reach (an upper
+            // bound of the arc-cosine visits a few more placements, whose light is 0).
             let x = one_minus_cos_reach / (cos_e * cos_top).max(1e-300);
             let half = if x >= 2.0 {
                 180.0
             } else {
-                (1.0 - x).acos().to_degrees()
+                acos_one_minus_upper(x).to_degrees().min(180.0)
             };
             let t0 = az - a0;
             let (k0, k1) = if half >= 180.0 {
@@ -944,8 +971,8 @@ impl<'a> FireLattice<'a> {
             };
             for kk in k0..=k1.min(k0 + n as i64 - 1) {
                 let k = kk.rem_euclid(n as i64) as usize;
-                let ek = (base + self.lifts[k]).clamp(1.0, 89.0);
-                if (e - ek).abs() > reach {
+                let (lo, hi) = self.zband[i * n + k];
+                if z < lo || z > hi {
                     continue;
                 }
                 let l = self.lightings[k].spot(i, w);
