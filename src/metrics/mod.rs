@@ -136,10 +136,10 @@ pub struct ScoreConfig {
     pub fire_placements: usize,
     /// Tracer settings (footprints are switched on where needed).
     pub trace: TraceOptions,
-    /// Split threshold of the face-up traces for fire, overhead light return and ASET (see
-    /// [`TraceOptions::split_threshold`]): fire's spot images are the most sensitive to the
-    /// narrow-beam approximation, overhead light return is the figure checked against the
-    /// photon tracer, and face-up traces of symmetric stones are cheap. Default 1e-5.
+    /// Split threshold of the face-up traces (fire's bands, and at most this for the face-up
+    /// trace at the reference wavelength; see [`TraceOptions::split_threshold`]): fire's spot
+    /// images are the most sensitive to the narrow-beam approximation, and face-up traces of
+    /// symmetric stones are cheap. Default 1e-5.
     pub fire_split_threshold: f64,
     /// Split threshold of the face-up trace at the reference wavelength: overhead light
     /// return, ASET, and the face-up pose of brilliance and of scintillation. Default 1e-6,
