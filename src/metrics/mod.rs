@@ -850,17 +850,26 @@ pub struct Placement {
 /// range of indices per spot), so the cost hardly grows with the number of placements.
 struct FireLattice<'a> {
     lightings: &'a [Lighting],
-    /// Per spot of the base set: elevation and azimuth of its centre, reach (angular radius
-    /// with the soft rim, degrees), smallest cosine of its elevation over the lifts.
-    spots: Vec<(f64, f64, f64, f64)>,
-    /// Per spot, hoisted out of [`FireLattice::for_each`] (the same numbers it computed per
-    /// exit): the elevations below and above which no placement's spot reaches, and
-    /// `1 − cos(reach)`.
-    bounds: Vec<(f64, f64, f64)>,
+    /// Per spot of the base set, what [`FireLattice::for_each`] needs of it.
+    spots: Vec<SpotReach>,
     /// Per spot `i` and placement `k` (at `i · P + k`): the sines of the lowest and highest
     /// elevations that spot reaches there (so that no arcsine is needed per exit).
     zband: Vec<(f64, f64)>,
     step: f64,
+}
+
+/// One spot of fire's base set, hoisted out of [`FireLattice::for_each`].
+#[derive(Clone, Copy, Debug)]
+struct SpotReach {
+    /// Azimuth of its centre at the first placement, degrees.
+    azimuth: f64,
+    /// Smallest cosine of its elevation over the lifts.
+    cos_top: f64,
+    /// Sines of the elevations below and above which no placement's spot reaches.
+    z_lo: f64,
+    z_hi: f64,
+    /// `1 − cos(reach)`, the reach being the angular radius with the soft rim.
+    one_minus_cos_reach: f64,
 }
 
 /// The sine of an elevation in degrees, clamped to the sphere.
@@ -882,36 +891,30 @@ impl<'a> FireLattice<'a> {
         let (lo, hi) = lifts
             .iter()
             .fold((0.0f64, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
-        let spots = placements.first().map_or_else(Vec::new, |p0| {
+        // Per spot: elevation at lift 0, azimuth, reach (degrees) and its SpotReach.
+        let base: Vec<(f64, f64, SpotReach)> = placements.first().map_or_else(Vec::new, |p0| {
             p0.spots
                 .iter()
                 .map(|s| {
                     let base = s.elevation_deg - p0.lift_deg;
+                    let reach = s.radius_deg + lighting::EDGE_DEG + 1e-6;
                     let top = (base + hi)
                         .clamp(1.0, 89.0)
                         .max((base + lo).clamp(1.0, 89.0));
-                    (
-                        base,
-                        s.azimuth_deg - p0.turn_deg,
-                        s.radius_deg + lighting::EDGE_DEG + 1e-6,
-                        top.to_radians().cos(),
-                    )
+                    let spot = SpotReach {
+                        azimuth: s.azimuth_deg - p0.turn_deg,
+                        cos_top: top.to_radians().cos(),
+                        z_lo: sin_deg((base + lo).clamp(1.0, 89.0) - reach),
+                        z_hi: sin_deg((base + hi).clamp(1.0, 89.0) + reach),
+                        one_minus_cos_reach: 1.0 - reach.to_radians().cos(),
+                    };
+                    (base, reach, spot)
                 })
                 .collect()
         });
-        let bounds = spots
+        let zband = base
             .iter()
-            .map(|&(base, _, reach, _)| {
-                (
-                    sin_deg((base + lo).clamp(1.0, 89.0) - reach),
-                    sin_deg((base + hi).clamp(1.0, 89.0) + reach),
-                    1.0 - reach.to_radians().cos(),
-                )
-            })
-            .collect();
-        let zband = spots
-            .iter()
-            .flat_map(|&(base, _, reach, _)| {
+            .flat_map(|&(base, reach, _)| {
                 lifts.iter().map(move |&lift| {
                     let ek = (base + lift).clamp(1.0, 89.0);
                     (sin_deg(ek - reach), sin_deg(ek + reach))
@@ -920,8 +923,7 @@ impl<'a> FireLattice<'a> {
             .collect();
         FireLattice {
             lightings,
-            spots,
-            bounds,
+            spots: base.iter().map(|b| b.2).collect(),
             zband,
             step: 360.0 / placements.len().max(1) as f64,
         }
@@ -944,23 +946,21 @@ impl<'a> FireLattice<'a> {
         }
         // The azimuth and cos e, computed once the first spot is within reach of elevation e.
         let mut az_cos: Option<(f64, f64)> = None;
-        for (i, (&(_, a0, _, cos_top), &(z_lo, z_hi, one_minus_cos_reach))) in
-            self.spots.iter().zip(&self.bounds).enumerate()
-        {
-            if z < z_lo || z > z_hi {
+        for (i, sp) in self.spots.iter().enumerate() {
+            if z < sp.z_lo || z > sp.z_hi {
                 continue;
             }
             let (az, cos_e) =
                 *az_cos.get_or_insert_with(|| (w.y.atan2(w.x).to_degrees(), (1.0 - z * z).sqrt()));
             // 1 − cos Δa ≤ (1 − cos ρ) / (cos e · cos ε): the azimuths within reach (an upper
             // bound of the arc-cosine visits a few more placements, whose light is 0).
-            let x = one_minus_cos_reach / (cos_e * cos_top).max(1e-300);
+            let x = sp.one_minus_cos_reach / (cos_e * sp.cos_top).max(1e-300);
             let half = if x >= 2.0 {
                 180.0
             } else {
                 acos_one_minus_upper(x).to_degrees().min(180.0)
             };
-            let t0 = az - a0;
+            let t0 = az - sp.azimuth;
             let (k0, k1) = if half >= 180.0 {
                 (0, n as i64 - 1)
             } else {
