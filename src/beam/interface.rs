@@ -26,6 +26,7 @@ pub(super) struct Origin {
     pub entry: usize,
     pub reflections: u32,
     pub narrow: bool,
+    pub late: bool,
     pub node: u32,
 }
 
@@ -64,6 +65,7 @@ pub(super) fn cross<S: ExitSink>(
                     reflections: o.reflections,
                     external: false,
                     narrow: o.narrow,
+                    late: o.late,
                     node: o.node,
                     sym: 0,
                 };

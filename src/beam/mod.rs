@@ -98,6 +98,17 @@ pub struct TraceOptions {
     /// round brilliant has 16 symmetries. The result is the same light, split along the
     /// wedge's edges too.
     pub symmetry: bool,
+    /// A narrow beam's ray stops once its power falls below this share of the power it
+    /// started with (default 0: it goes on down to `threshold`). The power it still carries
+    /// is accounted in [`TraceStats::ray_closed`] (and in [`TraceStats::cut_off`]), for a
+    /// caller that integrates over the exits to hand back with the narrow exits' mean: the
+    /// scores do (`ScoreConfig::trace`, with the mean of the [`ExitBeam::late`] exits),
+    /// pictures do not. Most of a ray's segments are spent in its last few percent of power,
+    /// bouncing by total internal reflection: at 0.05 a tilted pose's rays need 0.48 of
+    /// their segments, and with that closure the ISO light return of 30 tilted poses of six
+    /// presets errs by 4.71e-4 on average against a trace split down to 1e-6 (4.84e-4
+    /// without a floor).
+    pub ray_floor: f64,
 }
 
 impl TraceOptions {
@@ -124,6 +135,7 @@ impl Default for TraceOptions {
             max_depth: 1000,
             footprints: false,
             symmetry: true,
+            ray_floor: 0.0,
         }
     }
 }
@@ -203,6 +215,10 @@ pub struct ExitBeam {
     /// the whole narrow beam's, so it is less exact than the others where the narrow beam
     /// would have straddled an edge.
     pub narrow: bool,
+    /// From a narrow beam's ray that had already lost at least half of its starting power
+    /// before this crossing: the light most like what [`TraceOptions::ray_floor`] stops (its
+    /// mean is that light's closure; the narrow exits as a whole leave brighter).
+    pub late: bool,
     pub(crate) node: u32,
     /// Index of the symmetry that maps the traced beam to this one (0 = identity).
     pub(crate) sym: u16,

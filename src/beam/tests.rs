@@ -601,3 +601,47 @@ fn a_solid_with_split_corners_still_tiles_every_beam() {
     assert!(ta < 1e-6 && tb < 1e-4, "tiling errors {ta:e} {tb:e}");
     assert!((a - b).abs() < 1e-4, "preset {a} vs STL {b}");
 }
+
+/// The ray floor stops narrow beams' rays once they have lost 95 % of their power: power is
+/// still accounted for exactly (what it stopped is in `cut_off` and `ray_closed`), the rays
+/// take far fewer segments, the light before the stop is the same light, and only narrow
+/// exits are late.
+#[test]
+fn ray_floor_stops_rays_and_accounts_their_power() {
+    let stone = Stone::new(&tolkowsky());
+    // Tilted 10° toward azimuth 30°: no symmetry left.
+    let a = 30f64.to_radians();
+    let frame = Frame::viewer(glam::DMat3::from_axis_angle(
+        DVec3::new(-a.sin(), a.cos(), 0.0),
+        10f64.to_radians(),
+    ));
+    let full = stone.trace(&frame, 2.4173, 589.3, &TraceOptions::default());
+    let opts = TraceOptions {
+        ray_floor: 0.05,
+        ..Default::default()
+    };
+    let cut = stone.trace(&frame, 2.4173, 589.3, &opts);
+    for t in [&full, &cut] {
+        assert!(t.balance().abs() < 1e-12, "balance {}", t.balance());
+        assert!(t.stats.ray_closed <= t.stats.cut_off);
+        assert!(t.exits.iter().all(|e| e.narrow || !e.late));
+    }
+    assert_eq!(full.stats.ray_closed, 0.0);
+    assert!(cut.stats.ray_closed > 1e-3, "{}", cut.stats.ray_closed);
+    assert_eq!(
+        (full.stats.beams, full.stats.rays),
+        (cut.stats.beams, cut.stats.rays)
+    );
+    let ratio = cut.stats.ray_segments as f64 / full.stats.ray_segments as f64;
+    assert!(ratio < 0.6, "segments {ratio}");
+    assert!(cut.exits.iter().any(|e| e.late));
+    // What left before a stop left the same way: the stopped trace's exits are the full
+    // trace's, in order, with only the stopped rays' later exits missing.
+    let mut rest = full.exits.iter();
+    for e in &cut.exits {
+        assert!(
+            rest.any(|f| f.power == e.power && f.direction == e.direction && f.late == e.late),
+            "an exit of the stopped trace is not in the full one"
+        );
+    }
+}

@@ -53,6 +53,9 @@ pub struct TraceStats {
     /// Largest relative difference between a beam's cross-section and the sum of its
     /// children's (the clipping's tiling error; ~1e-15 when all is well).
     pub max_tiling_error: f64,
+    /// Power of narrow beams' rays stopped by [`TraceOptions::ray_floor`](super::TraceOptions::ray_floor)
+    /// (part of `cut_off`).
+    pub ray_closed: f64,
 }
 
 /// Affine map from a point in the stone to its footprint in the frame's image coordinates:
@@ -131,6 +134,7 @@ pub(super) struct Ctx {
     pub(super) pol: bool,
     threshold: f64,
     split_threshold: f64,
+    ray_floor: f64,
     max_depth: u32,
     want_fp: bool,
     /// Record the facet-sequence tree (otherwise node ids are `u32::MAX`).
@@ -234,6 +238,7 @@ impl Stone {
             pol: opts.polarization,
             threshold: clean(opts.threshold),
             split_threshold: clean(opts.split_threshold),
+            ray_floor: clean(opts.ray_floor),
             max_depth: opts.max_depth,
             want_fp: sink.wants_footprints(),
             keep_nodes,
@@ -301,6 +306,7 @@ impl Stone {
                 reflections: 0,
                 external: true,
                 narrow: false,
+                late: false,
                 node,
                 sym: 0,
             };
@@ -336,6 +342,7 @@ impl Stone {
         let g = group.len() as f64;
         st.power_in *= g;
         st.cut_off *= g;
+        st.ray_closed *= g;
         st.exits *= group.len();
         let nodes = if keep_nodes {
             std::mem::take(&mut w.nodes)
@@ -392,6 +399,7 @@ impl Stone {
     ) {
         st.rays += 1;
         st.ray_power += beam.stokes.x;
+        let floor = cx.threshold.max(cx.ray_floor * beam.stokes.x);
         let (mut t, mut s, mut axis, mut facet, mut depth, mut prev) = (
             beam.dir,
             beam.stokes,
@@ -421,12 +429,16 @@ impl Stone {
                 entry: beam.entry as usize,
                 reflections: depth,
                 narrow: true,
+                late: s.x <= 0.5 * beam.stokes.x,
                 node,
             };
             let (sr, ax) = cross(cx, meet, origin, &w.foot, st, sink);
             depth += 1;
-            if sr.x.is_nan() || sr.x <= 0.0 || sr.x < cx.threshold || depth > cx.max_depth {
+            if sr.x.is_nan() || sr.x <= 0.0 || sr.x < floor || depth > cx.max_depth {
                 st.cut_off += sr.x.max(0.0);
+                if sr.x >= cx.threshold && depth <= cx.max_depth {
+                    st.ray_closed += sr.x;
+                }
                 return;
             }
             t = reflect(t, n);
@@ -559,6 +571,7 @@ impl Stone {
                 entry: beam.entry as usize,
                 reflections: beam.depth,
                 narrow: false,
+                late: false,
                 node,
             };
             let (sr, axis) = cross(cx, meet, origin, &w.foot, st, sink);

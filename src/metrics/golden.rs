@@ -68,11 +68,11 @@ fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 10]) {
 
 /// Default [`ScoreConfig`]: diamond, polarization on, no head shadow.
 const TOLKOWSKY_DEFAULT: [f64; 10] = [
-    0.777888294396, // brilliance
-    0.884243839275, // brilliance_iso
-    0.671532749516, // brilliance_cos
-    0.751772117624, // fire
-    0.599394346837, // scintillation
+    0.777931357457, // brilliance
+    0.884305341885, // brilliance_iso
+    0.671557373029, // brilliance_cos
+    0.751141423569, // fire
+    0.599534973043, // scintillation
     0.227448515839, // aset.blue
     0.499176332909, // aset.red
     0.197588644352, // aset.green
@@ -82,11 +82,11 @@ const TOLKOWSKY_DEFAULT: [f64; 10] = [
 
 /// Cubic zirconia, polarization off, a 15° head shadow; the rest default.
 const TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15: [f64; 10] = [
-    0.623116407813, // brilliance
-    0.709937935621, // brilliance_iso
-    0.536294880005, // brilliance_cos
-    1.132939400235, // fire
-    0.512739778840, // scintillation
+    0.623154840245, // brilliance
+    0.709990902468, // brilliance_iso
+    0.536318778023, // brilliance_cos
+    1.132565145098, // fire
+    0.512784591410, // scintillation
     0.256105151810, // aset.blue
     0.554046132440, // aset.red
     0.153027602524, // aset.green

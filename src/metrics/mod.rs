@@ -134,7 +134,10 @@ pub struct ScoreConfig {
     /// Placements of the spot lights that fire is averaged over ([`fire_placements`]).
     /// Default 17.
     pub fire_placements: usize,
-    /// Tracer settings (footprints are switched on where needed).
+    /// Tracer settings (footprints are switched on where needed). The split threshold is the
+    /// tilted poses'; the ray floor ([`ScoreConfig::RAY_FLOOR`] by default) applies to every
+    /// trace but the face-up one at the reference wavelength, and the power it stops is handed
+    /// back with the narrow exits' mean (brilliance, not the pictures).
     pub trace: TraceOptions,
     /// Split threshold of the face-up traces (fire's bands, and at most this for the face-up
     /// trace at the reference wavelength; see [`TraceOptions::split_threshold`]): fire's spot
@@ -187,7 +190,10 @@ impl Default for ScoreConfig {
             scintillation_turns: 5,
             resolution: 64,
             fire_placements: 17,
-            trace: TraceOptions::default(),
+            trace: TraceOptions {
+                ray_floor: Self::RAY_FLOOR,
+                ..TraceOptions::default()
+            },
             fire_split_threshold: 1e-5,
             face_up_split_threshold: 1e-6,
             parts: Parts::default(),
@@ -196,6 +202,14 @@ impl Default for ScoreConfig {
 }
 
 impl ScoreConfig {
+    /// Default [`TraceOptions::ray_floor`] of the scores' traces. Measured on 30 tilted poses
+    /// of six presets against traces split down to 1e-6: the ISO light return errs by 4.71e-4
+    /// on average (4.84e-4 without a floor) while the rays need 0.48 of their segments; the
+    /// default brilliance of tolkowsky, princess and oval is within 7e-5 of the same scores
+    /// split down to 2e-6 (within 1.3e-4 without a floor). A default score of tolkowsky takes
+    /// 0.67 of its time (CPU time, one thread), brilliance alone 0.65.
+    pub const RAY_FLOOR: f64 = 0.05;
+
     /// A quicker configuration for searches: narrow beams from 1e-3 of the light, 6 bands,
     /// face-up plus five poses at 15°, rocking toward three azimuths, seven placements of the
     /// spot lights for fire, 48 pixels. Brilliance stays within
@@ -216,6 +230,7 @@ impl ScoreConfig {
             fire_placements: 7,
             trace: TraceOptions {
                 split_threshold: 1e-3,
+                ray_floor: Self::RAY_FLOOR,
                 ..TraceOptions::default()
             },
             fire_split_threshold: 1e-4,
@@ -324,7 +339,9 @@ impl ScoreConfig {
             && self.face_up_split_threshold >= 0.0
             && self.face_up_split_threshold < 1.0
             && t.split_threshold >= 0.0
-            && t.split_threshold < 1.0)
+            && t.split_threshold < 1.0
+            && t.ray_floor >= 0.0
+            && t.ray_floor < 1.0)
         {
             return Err(Error::invalid(
                 "threshold",
@@ -455,7 +472,44 @@ struct PoseResult {
     iso: f64,
     cos: f64,
     aset: [f64; 4],
+    /// The same sums over the late exits of narrow beams' rays only ([`ExitBeam::late`];
+    /// `traced` is their power), for the closure of the rays' stopped power.
+    late: Sums,
     images: Vec<Raster>,
+}
+
+/// Power-weighted sums over exits.
+#[derive(Clone, Copy, Debug, Default)]
+struct Sums {
+    traced: f64,
+    up: f64,
+    iso: f64,
+    cos: f64,
+    aset: [f64; 4],
+}
+
+impl PoseResult {
+    /// Hand the power of rays stopped by the ray floor (`closed`) back with the mean of the
+    /// late narrow exits (of rays that had already lost half their power): the light a ray
+    /// still carries after losing most of it leaves like that, and dimmer than the narrow
+    /// exits as a whole (measured on 8 tilted poses of four presets, brilliance's radiance of
+    /// the stopped light when followed to the end: 0.386–0.449; the late exits' mean is within
+    /// 0.04 of it, all narrow exits' 0.02–0.12 above it). Pictures are not closed (the
+    /// closed light is a few tenths of a percent, spread thin).
+    fn close(&mut self, closed: f64) {
+        let n = self.late;
+        if !(closed > 0.0 && n.traced > 0.0) {
+            return;
+        }
+        let k = closed / n.traced;
+        self.traced += closed;
+        self.up += k * n.up;
+        self.iso += k * n.iso;
+        self.cos += k * n.cos;
+        for (a, b) in self.aset.iter_mut().zip(n.aset) {
+            *a += k * b;
+        }
+    }
 }
 
 struct PoseSink<'a> {
@@ -482,17 +536,30 @@ impl ExitSink for PoseSink<'_> {
         let r = &mut self.r;
         if self.face_up {
             r.traced += p;
-            if w.z > 0.0 {
-                r.up += p;
-            }
+            let up = if w.z > 0.0 { p } else { 0.0 };
+            r.up += up;
             let b = aset_bins(w);
             for (acc, x) in r.aset.iter_mut().zip(b) {
                 *acc += p * x;
             }
+            if e.late {
+                r.late.up += up;
+                for (acc, x) in r.late.aset.iter_mut().zip(b) {
+                    *acc += p * x;
+                }
+            }
         }
         if self.brilliance {
-            r.iso += p * self.light.iso(w);
-            r.cos += p * self.light.cos(w);
+            let (iso, cos) = (p * self.light.iso(w), p * self.light.cos(w));
+            r.iso += iso;
+            r.cos += cos;
+            if e.late {
+                r.late.iso += iso;
+                r.late.cos += cos;
+            }
+        }
+        if e.late {
+            r.late.traced += p;
         }
         // The footprint's area and pixel coverage, computed on first use: every image has
         // the same size, so one coverage serves them all.
@@ -556,6 +623,12 @@ fn run_job(
         polarization: cfg.polarization,
         footprints: !job.images.is_empty(),
         split_threshold: job.split,
+        // The face-up figures are the cross-checked exact ones: no closure there.
+        ray_floor: if job.face_up {
+            0.0
+        } else {
+            cfg.trace.ray_floor
+        },
         ..cfg.trace
     };
     let spots: Vec<&Lighting> = job
@@ -584,6 +657,7 @@ fn run_job(
     };
     let (stats, _) = stone.trace_into(&frame, job.ri, &opts, &mut sink, false);
     sink.r.power_in = stats.power_in;
+    sink.r.close(stats.ray_closed);
     sink.r
 }
 

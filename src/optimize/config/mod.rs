@@ -363,6 +363,7 @@ impl Config {
                 polarization: Some(self.score.polarization),
                 split_threshold: Some(self.score.split_threshold),
                 fire_split_threshold: Some(self.score.fire_split_threshold),
+                ray_floor: Some(self.score.ray_floor),
             }),
         }
     }
@@ -553,14 +554,21 @@ mod tests {
             d.fire_split_threshold
         );
         let c = Config::from_str(
-            &format!("{GOOD}\n[score]\nsplit_threshold = 1e-5\nfire_split_threshold = 1e-6\n"),
+            &format!(
+                "{GOOD}\n[score]\nsplit_threshold = 1e-5\nfire_split_threshold = 1e-6\n\
+                 ray_floor = 0\n"
+            ),
             "round.toml",
         )
         .unwrap();
         let sc = c.score.score_config();
         assert_eq!(
-            (sc.trace.split_threshold, sc.fire_split_threshold),
-            (1e-5, 1e-6)
+            (
+                sc.trace.split_threshold,
+                sc.fire_split_threshold,
+                sc.trace.ray_floor
+            ),
+            (1e-5, 1e-6, 0.0)
         );
         assert_eq!(sc.trace.threshold, d.trace.threshold);
         let back = Config::from_str(&c.as_used_toml(), "back.toml").unwrap();
@@ -580,6 +588,10 @@ mod tests {
             (
                 "fire_split_threshold = 0",
                 "score.fire_split_threshold: 0 is out of range",
+            ),
+            (
+                "ray_floor = 0.7",
+                "score.ray_floor: 0.7 is out of range; allowed [0, 0.5]",
             ),
             ("colour = 1", "colour"),
         ] {

@@ -26,6 +26,10 @@ pub struct RawScore {
     /// Split threshold of fire's face-up traces; default 1e-5.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fire_split_threshold: Option<f64>,
+    /// Share of its starting power below which a narrow beam's ray stops (its rest handed
+    /// back with the narrow exits' mean); default 0.05, 0 = follow every ray to 1e-8.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ray_floor: Option<f64>,
 }
 
 /// Validated `[score]`.
@@ -43,6 +47,8 @@ pub struct ScoreSettings {
     pub split_threshold: f64,
     /// Split threshold of fire's face-up traces.
     pub fire_split_threshold: f64,
+    /// The narrow beams' ray floor ([`crate::beam::TraceOptions::ray_floor`]).
+    pub ray_floor: f64,
 }
 
 impl ScoreSettings {
@@ -55,7 +61,8 @@ impl ScoreSettings {
             fire_split_threshold: self.fire_split_threshold,
             trace: crate::beam::TraceOptions {
                 split_threshold: self.split_threshold,
-                ..crate::beam::TraceOptions::default()
+                ray_floor: self.ray_floor,
+                ..crate::metrics::ScoreConfig::default().trace
             },
             ..crate::metrics::ScoreConfig::default()
         }
@@ -108,6 +115,22 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
             rs.fire_split_threshold,
             defaults.fire_split_threshold,
         )?,
+        ray_floor: {
+            let x = finite(
+                &at("score.ray_floor"),
+                rs.ray_floor.unwrap_or(defaults.trace.ray_floor),
+            )?;
+            if !(0.0..=0.5).contains(&x) {
+                return Err(Error::invalid(
+                    at("score.ray_floor"),
+                    format!(
+                        "{x} is out of range; allowed [0, 0.5] (a share of a narrow beam's \
+                         power; 0 follows every ray to the end)"
+                    ),
+                ));
+            }
+            x
+        },
     };
     Ok(score)
 }
