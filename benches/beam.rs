@@ -4,7 +4,8 @@
 //! Reports:
 //! * `pose`: one pose (overhead / face-up, where the stone's 16 symmetries apply) at one
 //!   wavelength for `tolkowsky`, one thread, at several split thresholds (the default is
-//!   1e-4), with the tree's size; a tilted pose (no symmetry); the paper's depth-8 setting;
+//!   1e-4), with the tree's size; a tilted pose (no symmetry), also at the scores' settings (their
+//!   ray floor); the paper's depth-8 setting;
 //! * `score`: the full default `score` of `tolkowsky` on the global rayon pool and on one thread,
 //!   and without fire and scintillation (what the default optimize's search computes);
 //! * `instructions` (only when named): ten tilted traces with no timing loop, to run under
@@ -94,6 +95,26 @@ fn main() {
             tree.stats.rays,
             tree.stats.ray_segments,
             tree.stats.exits
+        );
+        // The same pose as the scores trace it: narrow beams' rays stop at the score's ray
+        // floor (the rest is handed back with the late exits' mean).
+        let opts = facetlab::metrics::ScoreConfig::default().trace;
+        let tree = stone.trace(&tilted, ri, 589.3, &opts);
+        let (dt2, n) = time(
+            || {
+                std::hint::black_box(stone.trace(&tilted, ri, 589.3, &opts));
+            },
+            Duration::from_secs(2),
+        );
+        println!(
+            "pose tolkowsky tilted 10°, the scores' settings (ray floor {}): {:.3} ms/trace ({n} \
+             runs, {:.2} of the above); rays {} ({} segments), closed {:.1e}",
+            opts.ray_floor,
+            dt2.as_secs_f64() * 1e3,
+            dt2.as_secs_f64() / dt.as_secs_f64(),
+            tree.stats.rays,
+            tree.stats.ray_segments,
+            tree.stats.ray_closed
         );
         // The paper's setting: exact splitting, depth 8, nothing below 1e-6.
         let opts = TraceOptions {
