@@ -25,6 +25,7 @@ fn lean() -> ScoreConfig {
             ..Default::default()
         },
         face_up_split_threshold: 1e-5,
+        fire_split_threshold: 1e-5,
         ..ScoreConfig::default()
     }
 }

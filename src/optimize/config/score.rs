@@ -23,7 +23,7 @@ pub struct RawScore {
     /// Split threshold of the tilted poses' traces (brilliance, scintillation); default 1e-4.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub split_threshold: Option<f64>,
-    /// Split threshold of fire's face-up traces; default 1e-5.
+    /// Split threshold of fire's face-up traces; default 3e-6.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fire_split_threshold: Option<f64>,
     /// Share of its starting power below which a narrow beam's ray stops (its rest handed
