@@ -48,6 +48,39 @@ pub fn on_off(flag: &str, s: &str) -> Result<bool> {
     }
 }
 
+/// `--material` and `--ri`, shared by the commands that trace (`score`, `render`, `report`,
+/// `trace`).
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct MaterialArgs {
+    /// Material: diamond (default), a name from `facetlab materials`, or ri:N[:BG].
+    #[arg(long, value_name = "NAME")]
+    pub material: Option<String>,
+    /// A fixed refractive index instead of the material's dispersion curve (no fire).
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub ri: Option<String>,
+}
+
+impl MaterialArgs {
+    /// The material the flags name ([`material`]).
+    pub fn material(&self) -> Result<Material> {
+        material(self.ri.as_deref(), self.material.as_deref())
+    }
+
+    /// Whether the user chose a material (else a design is traced in its own).
+    pub fn chosen(&self) -> bool {
+        self.ri.is_some() || self.material.is_some()
+    }
+
+    /// The flag that chose it (`--ri` over `--material`).
+    pub fn flag(&self) -> &'static str {
+        if self.ri.is_some() {
+            "--ri"
+        } else {
+            "--material"
+        }
+    }
+}
+
 /// The material from `--ri N` or `--material NAME` (diamond when neither is given), chosen by
 /// [`Material::choose`] like a config's `score.material`/`score.ri`.
 pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {

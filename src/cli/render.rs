@@ -70,12 +70,8 @@ pub struct RenderArgs {
     /// (0–60; default 10 for aset and idealscope, 0 otherwise).
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     pub head_shadow: Option<String>,
-    /// Material: diamond (default), cubic-zirconia (cz), sapphire, glass.
-    #[arg(long, value_name = "NAME")]
-    pub material: Option<String>,
-    /// A fixed refractive index instead of the material's dispersion curve (no fire).
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub ri: Option<String>,
+    #[command(flatten)]
+    pub material: super::flags::MaterialArgs,
     /// Track polarization (on) or use the unpolarized average (off).
     #[arg(long, default_value = "on", value_name = "on|off")]
     pub polarization: String,
@@ -210,7 +206,7 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
             )
         })
         .transpose()?;
-    opts.material = flags::material(a.ri.as_deref(), a.material.as_deref())?;
+    opts.material = a.material.material()?;
     opts.polarization = flags::on_off("--polarization", &a.polarization)?;
     let rock = a.rock.as_deref().map(parse_rock).transpose()?;
     if let Some((deg, _)) = rock {
@@ -242,7 +238,7 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
     }
     let exposure = flags::number("--exposure", &a.exposure, 0.01, 100.0, "a factor")?;
     // The library names its fields; on the command line they are flags.
-    let material_flag = if a.ri.is_some() { "--ri" } else { "--material" };
+    let material_flag = a.material.flag();
     opts.validate().map_err(|e| match e {
         Error::Invalid { field, message } => Error::Invalid {
             field: match field.as_str() {
@@ -478,7 +474,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         .iter()
         .map(|c| super::cuts::load_with_sets(c, &a.set))
         .collect::<Result<Vec<_>>>()?;
-    let chosen = a.ri.is_some() || a.material.is_some();
+    let chosen = a.material.chosen();
     // A design is traced in its own material (GemCad's `I` index) unless one was chosen.
     let (materials, notes) = flags::design_materials(&cuts, &s.opts.material, chosen);
     for note in notes {

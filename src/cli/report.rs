@@ -20,12 +20,8 @@ pub struct ReportArgs {
     /// to every CUT).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
-    /// Material (see `facetlab materials`; default diamond).
-    #[arg(long, value_name = "NAME")]
-    pub material: Option<String>,
-    /// A fixed refractive index instead of the material's dispersion curve (no fire).
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub ri: Option<String>,
+    #[command(flatten)]
+    pub material: super::flags::MaterialArgs,
     /// Re-measure light return and brilliance with the photon tracer using this many photons
     /// (e.g. 200000); 0 = no check.
     #[arg(
@@ -58,7 +54,7 @@ pub struct ReportArgs {
 pub fn run(a: &ReportArgs) -> Result<()> {
     let size = flags::count("--size", &a.size, 64, 1024)? as usize;
     let photons = flags::count("--verify", &a.verify, 0, 1_000_000_000)?;
-    let material = flags::material(a.ri.as_deref(), a.material.as_deref())?;
+    let material = a.material.material()?;
     refuse_overwrite(&[("-o", a.output.clone())], &cut_files(&a.cuts))?;
     let is_html = a
         .output
@@ -76,7 +72,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
         .iter()
         .map(|c| super::cuts::load_with_sets(c, &a.set))
         .collect::<Result<Vec<_>>>()?;
-    let chosen = a.ri.is_some() || a.material.is_some();
+    let chosen = a.material.chosen();
     // A design is traced in its own material (GemCad's `I` index) unless one was chosen; the
     // page names the first cut's.
     let (materials, notes) = flags::design_materials(&cuts, &material, chosen);

@@ -51,12 +51,8 @@ pub struct ScoreArgs {
     /// all cuts, whatever the environment).
     #[arg(long, value_name = "K/N|off")]
     pub shard: Option<String>,
-    /// A fixed refractive index instead of the material's dispersion curve (no fire).
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub ri: Option<String>,
-    /// Material: diamond (default), a name from `facetlab materials`, or ri:N[:BG].
-    #[arg(long, value_name = "NAME")]
-    pub material: Option<String>,
+    #[command(flatten)]
+    pub material: super::flags::MaterialArgs,
     /// Track polarization with Stokes vectors and Mueller matrices (on) or use the
     /// unpolarized average (off).
     #[arg(long, default_value = "on", value_name = "on|off")]
@@ -89,7 +85,7 @@ pub struct Settings {
 
 /// Validate the flags into the library's types.
 pub fn settings(a: &ScoreArgs) -> Result<Settings> {
-    let material = flags::material(a.ri.as_deref(), a.material.as_deref())?;
+    let material = a.material.material()?;
     let polarization = flags::on_off("--polarization", &a.polarization)?;
     let head = flags::number(
         "--head-shadow",
@@ -344,11 +340,8 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
     }
     // A design is traced in its own material unless the user chose one; the table's header
     // and the JSON settings name the first cut's.
-    let (materials, notes) = flags::design_materials(
-        &cuts,
-        &s.config.material,
-        a.ri.is_some() || a.material.is_some(),
-    );
+    let (materials, notes) =
+        flags::design_materials(&cuts, &s.config.material, a.material.chosen());
     for note in notes {
         eprintln!("{note}");
     }

@@ -84,12 +84,8 @@ pub struct TraceArgs {
     /// unpolarized average (off, the thesis).
     #[arg(long, default_value = "on", value_name = "on|off")]
     pub polarization: String,
-    /// A fixed refractive index instead of the material's dispersion curve.
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub ri: Option<String>,
-    /// Material: diamond (default), a name from `facetlab materials`, or ri:N[:BG].
-    #[arg(long, value_name = "NAME")]
-    pub material: Option<String>,
+    #[command(flatten)]
+    pub material: super::flags::MaterialArgs,
     /// Wavelengths: uniform over 380–780 nm (the thesis), weighted by D65, or one fixed
     /// wavelength in nm.
     #[arg(
@@ -194,7 +190,7 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
         }
     };
     let polarization = flags::on_off("--polarization", &a.polarization)?;
-    let material = flags::material(a.ri.as_deref(), a.material.as_deref())?;
+    let material = a.material.material()?;
     let wavelengths = match a.spectrum.trim().to_ascii_lowercase().as_str() {
         "uniform" => WavelengthSampling::Uniform,
         "d65" => WavelengthSampling::D65,
@@ -360,7 +356,7 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         .collect::<Result<Vec<_>>>()?;
     // A design is traced in its own material unless the user chose one; the table and the
     // JSON settings name the first cut's.
-    let chosen = args.ri.is_some() || args.material.is_some();
+    let chosen = args.material.chosen();
     let (materials, notes) = flags::design_materials(&cuts, &set.config.material, chosen);
     for note in notes {
         eprintln!("{note}");
