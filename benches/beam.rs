@@ -116,6 +116,26 @@ fn main() {
             tree.stats.ray_segments,
             tree.stats.ray_closed
         );
+        // The same without the narrow beams' disc forks (one ray per narrow beam).
+        let opts = TraceOptions {
+            narrow_forks: false,
+            ..opts
+        };
+        let tree = stone.trace(&tilted, ri, 589.3, &opts);
+        let (dt3, n) = time(
+            || {
+                std::hint::black_box(stone.trace(&tilted, ri, 589.3, &opts));
+            },
+            Duration::from_secs(2),
+        );
+        println!(
+            "pose tolkowsky tilted 10°, the scores' settings without disc forks: {:.3} ms/trace \
+             ({n} runs; with forks {:.2} of this); rays {} ({} segments)",
+            dt3.as_secs_f64() * 1e3,
+            dt2.as_secs_f64() / dt3.as_secs_f64(),
+            tree.stats.rays,
+            tree.stats.ray_segments,
+        );
         // The paper's setting: exact splitting, depth 8, nothing below 1e-6.
         let opts = TraceOptions {
             max_depth: 8,

@@ -73,6 +73,22 @@ fn main() {
     {
         cfg.fire_split_threshold = x;
     }
+    // `FACETLAB_PROFILE_FLOOR`: the ray floor of the tilted poses' and fire's traces.
+    if let Some(x) = std::env::var("FACETLAB_PROFILE_FLOOR")
+        .ok()
+        .and_then(|s| s.parse().ok())
+    {
+        cfg.trace.ray_floor = x;
+    }
+    // `FACETLAB_PROFILE_FORKS=0`: narrow beams followed as single rays (no disc forks).
+    if std::env::var("FACETLAB_PROFILE_FORKS").as_deref() == Ok("0") {
+        cfg.trace.narrow_forks = false;
+    }
+    // `FACETLAB_PROFILE_PARTS=brilliance`: brilliance (and the face-up scores) only.
+    if std::env::var("FACETLAB_PROFILE_PARTS").as_deref() == Ok("brilliance") {
+        cfg.parts.fire = false;
+        cfg.parts.scintillation = false;
+    }
     // `FACETLAB_PROFILE_DEGREES`: the width of the profile (default 1°, from 40.0°).
     let degrees: f64 = std::env::var("FACETLAB_PROFILE_DEGREES")
         .ok()

@@ -20,6 +20,8 @@ pub struct Stone {
     pub(super) neighbors: Vec<u32>,
     /// Plane `(normal, offset)` of each entry of `neighbors`, stored alongside for the walk.
     pub(super) neighbor_planes: Vec<glam::DVec4>,
+    /// The shared edge's end points of each entry of `neighbors` (for narrow beams' forks).
+    pub(super) neighbor_edges: Vec<(DVec3, DVec3)>,
     pub(super) neighbor_range: Vec<(u32, u32)>,
     /// Cube map over directions: the facet whose normal is closest to each cell's direction,
     /// where walks toward a ray's exit facet start.
@@ -85,10 +87,12 @@ impl Stone {
             facet_range.push((a, facet_vertices.len() as u32));
         }
         let mut adj: Vec<Vec<u32>> = vec![Vec::new(); nf];
+        let mut edge_of = std::collections::HashMap::new();
         for e in solid.edges() {
             let [a, b] = e.facets;
             adj[a].push(b as u32);
             adj[b].push(a as u32);
+            edge_of.insert((a.min(b), a.max(b)), (e.a, e.b));
         }
         let mut neighbors = Vec::new();
         let mut neighbor_range = Vec::with_capacity(nf);
@@ -99,6 +103,18 @@ impl Stone {
             neighbors.extend(l);
             neighbor_range.push((a, neighbors.len() as u32));
         }
+        let neighbor_edges = neighbor_range
+            .iter()
+            .enumerate()
+            .flat_map(|(f, &(a, b))| {
+                let edge_of = &edge_of;
+                neighbors[a as usize..b as usize].iter().map(move |&h| {
+                    let h = h as usize;
+                    let (u, v) = edge_of[&(f.min(h), f.max(h))];
+                    (solid.vertices()[u], solid.vertices()[v])
+                })
+            })
+            .collect();
         let normals: Vec<DVec3> = solid.facets().iter().map(|f| f.plane.normal).collect();
         let mut dir_table = vec![0u32; 6 * CUBE_RES * CUBE_RES];
         for face in 0..6 {
@@ -146,6 +162,7 @@ impl Stone {
             facet_vertices,
             facet_range,
             neighbor_planes: Vec::new(),
+            neighbor_edges,
             neighbors,
             neighbor_range,
         };

@@ -86,9 +86,10 @@ impl Affine {
     }
 }
 
-/// Area centroid of the planar polygon `poly` (normal `n`): unlike the mean of its vertices,
-/// it moves continuously when a clip adds a vertex. The vertex mean for a degenerate polygon.
-fn area_centroid(poly: &[DVec3], n: DVec3) -> DVec3 {
+/// Area centroid and area of the planar polygon `poly` (normal `n`): unlike the mean of its
+/// vertices, the centroid moves continuously when a clip adds a vertex. The vertex mean (and
+/// area 0) for a degenerate polygon.
+fn area_centroid(poly: &[DVec3], n: DVec3) -> (DVec3, f64) {
     let mean = poly.iter().copied().sum::<DVec3>() / poly.len().max(1) as f64;
     let (mut a, mut c) = (0.0, DVec3::ZERO);
     for i in 1..poly.len().saturating_sub(1) {
@@ -98,10 +99,71 @@ fn area_centroid(poly: &[DVec3], n: DVec3) -> DVec3 {
         c += (p + q) * ai;
     }
     if a != 0.0 && a.is_finite() {
-        poly[0] + c / (3.0 * a)
+        (poly[0] + c / (3.0 * a), 0.5 * a.abs())
     } else {
-        mean
+        (mean, 0.0)
     }
+}
+
+/// Share of a disc beyond a chord at signed distance `u` radii from its centre (1 at
+/// `u = −1`, ½ at 0, 0 at 1; continuously differentiable), and the distance of that part's
+/// centroid from the centre, in radii.
+#[inline]
+fn disc_segment(u: f64) -> (f64, f64) {
+    let u = u.clamp(-1.0, 1.0);
+    let s = (1.0 - u * u).max(0.0).sqrt();
+    let f = (u.acos() - u * s) / std::f64::consts::PI;
+    let c = if f > 0.0 {
+        2.0 * s * s * s / (3.0 * std::f64::consts::PI * f)
+    } else {
+        1.0
+    };
+    (f, c)
+}
+
+/// `3x² − 2x³`: 0 at 0, 1 at 1, flat at both.
+#[inline]
+fn smooth(x: f64) -> f64 {
+    x * x * (3.0 - 2.0 * x)
+}
+
+/// A narrow beam's forks carry at least this share of its starting power; smaller parts
+/// beyond a facet edge stay with the main ray (an error of at most this share of a narrow
+/// beam, against [`TraceOptions::ray_floor`]'s 5 %).
+const FORK_MIN: f64 = 1e-3;
+
+/// Forks onto facets met at a grazing angle fade in over `n · t` ∈ [0, FORK_GRAZE] (a disc
+/// is not the beam: near the silhouette it overhangs facets the beam itself does not reach).
+const FORK_GRAZE: f64 = 0.02;
+
+/// At most this share of a narrow beam forks off at one crossing (near a corner the disc can
+/// overhang several edges).
+const FORK_MAX: f64 = 0.95;
+
+/// One part of a narrow beam followed as a ray: at `x` on `facet`'s plane, travelling along
+/// `t`, a disc of radius `r` carrying `share` of the narrow beam's cross-section.
+#[derive(Clone, Copy, Debug)]
+struct Part {
+    x: DVec3,
+    t: DVec3,
+    s: Stokes,
+    axis: DVec3,
+    facet: u32,
+    depth: u32,
+    prev: u32,
+    r: f64,
+    share: f64,
+}
+
+/// A fork of a narrow beam's disc across an edge of its exit facet onto facet `h`: its share
+/// `f`, the unit direction `m` (across the beam) toward the edge and its centroid's distance
+/// `c` from the disc's centre.
+#[derive(Clone, Copy, Debug)]
+struct Fork {
+    h: u32,
+    f: f64,
+    m: DVec3,
+    c: f64,
 }
 
 /// A beam waiting to be split.
@@ -135,6 +197,7 @@ pub(super) struct Ctx {
     threshold: f64,
     split_threshold: f64,
     ray_floor: f64,
+    forks: bool,
     max_depth: u32,
     want_fp: bool,
     /// Record the facet-sequence tree (otherwise node ids are `u32::MAX`).
@@ -162,6 +225,8 @@ struct Work {
     cpts: Vec<DVec2>,
     foot: Vec<DVec2>,
     nodes: Vec<(u32, u32)>,
+    parts: Vec<Part>,
+    forks: Vec<Fork>,
 }
 
 impl Work {
@@ -199,6 +264,8 @@ impl Stone {
             cpts: Vec::with_capacity(256),
             foot: Vec::with_capacity(32),
             nodes: Vec::with_capacity(4096),
+            parts: Vec::with_capacity(32),
+            forks: Vec::with_capacity(8),
         }
     }
 
@@ -239,6 +306,7 @@ impl Stone {
             threshold: clean(opts.threshold),
             split_threshold: clean(opts.split_threshold),
             ray_floor: clean(opts.ray_floor),
+            forks: opts.narrow_forks,
             max_depth: opts.max_depth,
             want_fp: sink.wants_footprints(),
             keep_nodes,
@@ -379,72 +447,182 @@ impl Stone {
             // (rounding slivers along shared edges among them), which moved the vertex mean,
             // and with it the ray's whole path, by a sizeable part of the beam when the solid
             // changed by 1e-10.
-            let c = area_centroid(&w.cur, self.normals[beam.facet as usize]);
-            self.follow_ray(beam, c, cx, w, st, sink);
+            let n = self.normals[beam.facet as usize];
+            let (c, area) = area_centroid(&w.cur, n);
+            // The disc of the beam's cross-section (kept by mirror reflections).
+            let r = (area * n.dot(beam.dir).abs() / std::f64::consts::PI).sqrt();
+            self.follow_ray(beam, c, r, cx, w, st, sink);
         }
     }
 
     /// Follow a narrow beam as one ray from `x` (on `beam.facet`) with exact expected-value
     /// Fresnel branching: at each facet the transmitted part leaves (an exit beam with the
     /// narrow beam's footprint, `w.foot`), the reflected part goes on until it is below the
-    /// threshold or past the depth limit.
+    /// floor or past the depth limit. With [`TraceOptions::narrow_forks`] the ray stands for a
+    /// disc of radius `r` (the beam's cross-section): where the disc overhangs an edge of the
+    /// facet the ray meets, the overhanging segment forks off onto the neighbouring facet as a
+    /// ray of its own (from the segment's centroid, with its share of the power and a disc of
+    /// its area) and the rest goes on from its own centroid, so that a beam sliding across an
+    /// edge hands its light over continuously instead of all at once.
+    #[allow(clippy::too_many_arguments)]
     fn follow_ray<S: ExitSink>(
         &self,
         beam: Beam,
-        mut x: DVec3,
+        x: DVec3,
+        r: f64,
         cx: &Ctx,
         w: &mut Work,
         st: &mut TraceStats,
         sink: &mut S,
     ) {
         st.rays += 1;
-        st.ray_power += beam.stokes.x;
-        let floor = cx.threshold.max(cx.ray_floor * beam.stokes.x);
-        let (mut t, mut s, mut axis, mut facet, mut depth, mut prev) = (
-            beam.dir,
-            beam.stokes,
-            beam.axis,
-            beam.facet as usize,
-            beam.depth,
-            beam.node,
-        );
-        loop {
-            let Some((g, best)) = self.exit_facet(x, t, facet) else {
-                st.cut_off += s.x;
-                return;
+        let p0 = beam.stokes.x;
+        st.ray_power += p0;
+        let floor = cx.threshold.max(cx.ray_floor * p0);
+        w.parts.clear();
+        w.parts.push(Part {
+            x,
+            t: beam.dir,
+            s: beam.stokes,
+            axis: beam.axis,
+            facet: beam.facet,
+            depth: beam.depth,
+            prev: beam.node,
+            r: if cx.forks && r.is_finite() { r } else { 0.0 },
+            share: 1.0,
+        });
+        while let Some(part) = w.parts.pop() {
+            let t = part.t;
+            let Some((g, best)) = self.exit_facet(part.x, t, part.facet as usize) else {
+                st.cut_off += part.s.x;
+                continue;
             };
-            st.ray_segments += 1;
-            x += t * best.max(0.0);
-            let n = self.normals[g];
-            let node = w.node(cx, prev, g);
-            prev = node;
-            let meet = Meet {
-                t,
-                n,
-                facet: g,
-                stokes: s,
-                axis,
-            };
-            let origin = Origin {
-                entry: beam.entry as usize,
-                reflections: depth,
-                narrow: true,
-                late: s.x <= 0.5 * beam.stokes.x,
-                node,
-            };
-            let (sr, ax) = cross(cx, meet, origin, &w.foot, st, sink);
-            depth += 1;
-            if sr.x.is_nan() || sr.x <= 0.0 || sr.x < floor || depth > cx.max_depth {
-                st.cut_off += sr.x.max(0.0);
-                if sr.x >= cx.threshold && depth <= cx.max_depth {
-                    st.ray_closed += sr.x;
+            let p = part.x + t * best.max(0.0);
+            let ng = self.normals[g];
+            let kg = ng.dot(t);
+            // The disc's segments beyond the edges of facet g.
+            w.forks.clear();
+            let mut total = 0.0;
+            if part.r > 0.0 {
+                let (a, b) = self.neighbor_range[g];
+                let (a, b) = (a as usize, b as usize);
+                for (j, (pl, &h)) in self.neighbor_planes[a..b]
+                    .iter()
+                    .zip(&self.neighbors[a..b])
+                    .enumerate()
+                {
+                    let nh = pl.truncate();
+                    let kh = nh.dot(t);
+                    if kh <= GRAZE {
+                        continue;
+                    }
+                    // The plane through the edge along t: m · y = 0 there, m ⊥ t.
+                    let m = nh - ng * (kh / kg);
+                    let ml = m.length();
+                    if ml.is_nan() || ml <= 0.0 {
+                        continue;
+                    }
+                    let d = (pl.w - nh.dot(p)) / ml;
+                    if d >= part.r {
+                        continue;
+                    }
+                    let u = d / part.r;
+                    let (f, c) = disc_segment(u);
+                    // Only the stretch of the chord that the edge itself spans overhangs onto
+                    // h (a short edge's line may cross the disc far from the edge).
+                    let (ea, eb) = self.neighbor_edges[a + j];
+                    let e = (eb - ea).reject_from_normalized(t);
+                    let el = e.length();
+                    let half = part.r * (1.0 - u * u).max(0.0).sqrt();
+                    let span = if el > 0.0 && half > 0.0 {
+                        let e = e / el;
+                        let (sa, sb) = ((ea - p).dot(e), (eb - p).dot(e));
+                        (sa.max(sb).min(half) - sa.min(sb).max(-half)).max(0.0) / (2.0 * half)
+                    } else {
+                        0.0
+                    };
+                    let f = f * span;
+                    let fade = (kh / FORK_GRAZE).min(1.0);
+                    // Small forks fade out (between FORK_MIN and twice that share of the
+                    // narrow beam) rather than stop at once.
+                    let small = (f * part.s.x / (FORK_MIN * p0) - 1.0).clamp(0.0, 1.0);
+                    let f = f * smooth(fade) * smooth(small);
+                    if f.is_nan() || f <= 0.0 {
+                        continue;
+                    }
+                    total += f;
+                    w.forks.push(Fork {
+                        h,
+                        f,
+                        m: m / ml,
+                        c: c * part.r,
+                    });
                 }
-                return;
             }
-            t = reflect(t, n);
-            s = sr;
-            axis = ax;
-            facet = g;
+            let scale = if total > FORK_MAX {
+                FORK_MAX / total
+            } else {
+                1.0
+            };
+            let main = 1.0 - total * scale;
+            let mut shift = DVec3::ZERO;
+            for k in &w.forks {
+                shift -= k.m * (k.c * k.f * scale / main);
+            }
+            let nforks = w.forks.len();
+            for i in 0..=nforks {
+                // The main part last (it is followed first).
+                let (h, f, y) = if i < nforks {
+                    let k = w.forks[i];
+                    (k.h as usize, k.f * scale, p + k.m * k.c)
+                } else {
+                    (g, main, p + shift)
+                };
+                let nh = self.normals[h];
+                let y = if nforks == 0 {
+                    y
+                } else {
+                    y + t * ((self.offsets[h] - nh.dot(y)) / nh.dot(t))
+                };
+                st.ray_segments += 1;
+                let node = w.node(cx, part.prev, h);
+                let share = part.share * f;
+                let s_in = part.s * f;
+                let meet = Meet {
+                    t,
+                    n: nh,
+                    facet: h,
+                    stokes: s_in,
+                    axis: part.axis,
+                };
+                let origin = Origin {
+                    entry: beam.entry as usize,
+                    reflections: part.depth,
+                    narrow: true,
+                    late: s_in.x <= 0.5 * share * p0,
+                    node,
+                };
+                let (sr, ax) = cross(cx, meet, origin, &w.foot, st, sink);
+                let depth = part.depth + 1;
+                if sr.x.is_nan() || sr.x <= 0.0 || sr.x < floor || depth > cx.max_depth {
+                    st.cut_off += sr.x.max(0.0);
+                    if sr.x >= cx.threshold && depth <= cx.max_depth {
+                        st.ray_closed += sr.x;
+                    }
+                    continue;
+                }
+                w.parts.push(Part {
+                    x: y,
+                    t: reflect(t, nh),
+                    s: sr,
+                    axis: ax,
+                    facet: h as u32,
+                    depth,
+                    prev: node,
+                    r: part.r * f.sqrt(),
+                    share,
+                });
+            }
         }
     }
 

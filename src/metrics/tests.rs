@@ -550,9 +550,10 @@ fn aset_and_fire_are_statistics_of_the_pictures() {
     }
 }
 
-/// The ray floor's closure: narrow beams' rays stopped at 5 % of their power hand the rest
+/// The ray floor's closure: narrow beams' rays stopped at 2 % of their power hand the rest
 /// back with the late narrow exits' mean, and brilliance stays where following every ray to
-/// the end puts it (within 1.5e-4 on a round brilliant and a princess, tilted 10° and 20°),
+/// the end puts it (within 1.5e-4 on a round brilliant and a princess, tilted 10° and 20°;
+/// 5e-4 with the narrow beams' forks),
 /// although the stopped light is worth several times that: dropping it, or closing it with
 /// a mean twice as far off, would fail.
 #[test]
@@ -570,7 +571,7 @@ fn ray_floor_closure_keeps_brilliance() {
                 azimuth_deg: 40.0,
             },
         ] {
-            let cfg = |floor: f64| ScoreConfig {
+            let cfg = |floor: f64, forks: bool| ScoreConfig {
                 tilts: vec![t],
                 parts: Parts {
                     fire: false,
@@ -578,12 +579,26 @@ fn ray_floor_closure_keeps_brilliance() {
                 },
                 trace: TraceOptions {
                     ray_floor: floor,
+                    narrow_forks: forks,
                     ..ScoreConfig::default().trace
                 },
                 ..ScoreConfig::default()
             };
-            let (closed, full) = (score(&solid, &cfg(0.05)), score(&solid, &cfg(0.0)));
-            let opts = cfg(0.05).trace;
+            let floor = ScoreConfig::RAY_FLOOR;
+            // With the narrow beams' forks, small forks are stopped before they have lost
+            // much: the closure errs more (measured up to 3.5e-4).
+            for (forks, allowed) in [(false, 1.5e-4), (true, 5e-4)] {
+                let closed = score(&solid, &cfg(floor, forks)).brilliance;
+                let full = score(&solid, &cfg(0.0, forks)).brilliance;
+                let d = (closed - full).abs();
+                eprintln!("{t:?}, forks {forks}: brilliance {closed:.6} vs {full:.6}");
+                assert!(d < allowed, "{t:?}, forks {forks}: {d:.2e}");
+            }
+            let (closed, full) = (
+                score(&solid, &cfg(floor, false)),
+                score(&solid, &cfg(0.0, false)),
+            );
+            let opts = cfg(floor, false).trace;
             let ri = ScoreConfig::default().material.ri(REFERENCE_WAVELENGTH_NM);
             let stats = stone
                 .trace(
@@ -594,14 +609,7 @@ fn ray_floor_closure_keeps_brilliance() {
                 )
                 .stats;
             let d = (closed.brilliance - full.brilliance).abs();
-            eprintln!(
-                "{t:?}: closed {:.2e} of the light, brilliance {:.6} vs {:.6}",
-                stats.ray_closed, closed.brilliance, full.brilliance
-            );
-            assert!(stats.ray_closed > 1e-3 && stats.ray_closed <= stats.cut_off);
-            assert!(d < 1.5e-4, "{t:?}: {d:.2e}");
-            // Brilliance's radiance is at least 0.3 where the stopped light goes (measured
-            // 0.39–0.45), so the closure adds more than 3e-4: several times its error.
+            assert!(stats.ray_closed > 2e-4 && stats.ray_closed <= stats.cut_off);
             assert!(0.3 * stats.ray_closed > 2.0 * d, "{t:?}: {d:.2e}");
         }
     }
