@@ -10,7 +10,9 @@
 //! named by the environment variable `FACETLAB_PROFILE_CSV`, or to `target/profile.csv`.
 //! `FACETLAB_PROFILE_STEPS` (default 500) sets the number of steps over the same degree, and
 //! `FACETLAB_PROFILE_SPLIT` the split threshold of the tilted poses' traces,
-//! `FACETLAB_PROFILE_FIRE_SPLIT` that of fire's face-up traces, and `FACETLAB_PROFILE_DEGREES`
+//! `FACETLAB_PROFILE_FIRE_SPLIT` that of fire's face-up traces, `FACETLAB_PROFILE_FLOOR` the
+//! ray floor, `FACETLAB_PROFILE_FORKS=0` follows narrow beams as single rays,
+//! `FACETLAB_PROFILE_PARTS=brilliance` leaves fire and scintillation out, and `FACETLAB_PROFILE_DEGREES`
 //! the profile's width (default 1°) (for experiments).
 
 use facetlab::cut::Cut;
