@@ -11,7 +11,7 @@
 //! `FACETLAB_PROFILE_STEPS` (default 500) sets the number of steps over the same degree, and
 //! `FACETLAB_PROFILE_SPLIT` the split threshold of the tilted poses' traces,
 //! `FACETLAB_PROFILE_FIRE_SPLIT` that of fire's face-up traces, `FACETLAB_PROFILE_FLOOR` the
-//! ray floor, `FACETLAB_PROFILE_FORKS=0` follows narrow beams as single rays,
+//! ray floor, `FACETLAB_PROFILE_FORKS=1` follows narrow beams as forking discs,
 //! `FACETLAB_PROFILE_PARTS=brilliance` leaves fire and scintillation out, and `FACETLAB_PROFILE_DEGREES`
 //! the profile's width (default 1°) (for experiments).
 
@@ -82,9 +82,9 @@ fn main() {
     {
         cfg.trace.ray_floor = x;
     }
-    // `FACETLAB_PROFILE_FORKS=0`: narrow beams followed as single rays (no disc forks).
-    if std::env::var("FACETLAB_PROFILE_FORKS").as_deref() == Ok("0") {
-        cfg.trace.narrow_forks = false;
+    // `FACETLAB_PROFILE_FORKS=1`: narrow beams followed as forking discs.
+    if std::env::var("FACETLAB_PROFILE_FORKS").as_deref() == Ok("1") {
+        cfg.trace.narrow_forks = true;
     }
     // `FACETLAB_PROFILE_PARTS=brilliance`: brilliance (and the face-up scores) only.
     if std::env::var("FACETLAB_PROFILE_PARTS").as_deref() == Ok("brilliance") {

@@ -110,13 +110,14 @@ pub struct TraceOptions {
     /// without a floor).
     pub ray_floor: f64,
     /// Follow a narrow beam as a disc of its cross-section's area around its ray (default
-    /// off; on in the scores, `ScoreConfig::trace`): where the disc overhangs an edge of the
+    /// off; `[score] narrow_forks` in a config): where the disc overhangs an edge of the
     /// facet the ray meets, the overhanging segment (the stretch the edge spans) forks off
     /// onto the neighbouring facet with its share of the power, as a ray and disc of its own.
     /// Off: one ray carries the whole narrow beam to whichever facet it meets, so a narrow
     /// beam's light jumps from one facet to the next as the cut changes. Forks cost segments:
-    /// 2× at a ray floor of 0.05, and without a floor they multiply (a tilted pose's rays
-    /// take 24× the segments), so use them with a floor.
+    /// about 3× at a ray floor of 0.02, and without a floor they multiply (a tilted pose's
+    /// rays take 24× the segments), so use them with a floor. Their smoothness and their
+    /// error are measured in the `metrics` module's documentation.
     pub narrow_forks: bool,
 }
 

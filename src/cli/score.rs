@@ -18,7 +18,7 @@
 //! `facetlab render` draws of that pose) (the keys of [`Scores`]) and `settings` (the
 //! run's configuration as understood: `material`, `ri` (null unless `--ri`), `polarization`,
 //! `head_shadow_deg`, `wavelength_nm`, `bands`, `tilts`, `scintillation_tilts`, `resolution`,
-//! `split_threshold`, `fire_split_threshold`, `face_up_split_threshold`, `threshold`, `ray_floor`). Several cuts: `{"settings": {...}, "results": [one such
+//! `split_threshold`, `fire_split_threshold`, `face_up_split_threshold`, `threshold`, `ray_floor`, `narrow_forks`). Several cuts: `{"settings": {...}, "results": [one such
 //! object per cut, without settings]}` in the order given. With `--verify` each object also gets `verify.{overhead_light_return, brilliance,
 //! brilliance_iso, brilliance_cos}.{beam, photon, stderr, z, photons}`: the beam tracer's
 //! value, the photon tracer's estimate and standard error, (beam − photon)/stderr, and the
@@ -126,6 +126,7 @@ struct SettingsJson<'a> {
     face_up_split_threshold: f64,
     threshold: f64,
     ray_floor: f64,
+    narrow_forks: bool,
 }
 
 impl<'a> SettingsJson<'a> {
@@ -148,6 +149,7 @@ impl<'a> SettingsJson<'a> {
             face_up_split_threshold: c.face_up_split_threshold,
             threshold: c.trace.threshold,
             ray_floor: c.trace.ray_floor,
+            narrow_forks: c.trace.narrow_forks,
         }
     }
 }

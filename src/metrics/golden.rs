@@ -68,11 +68,11 @@ fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 10]) {
 
 /// Default [`ScoreConfig`]: diamond, polarization on, no head shadow.
 const TOLKOWSKY_DEFAULT: [f64; 10] = [
-    0.778282746526, // brilliance
-    0.884657009841, // brilliance_iso
-    0.671908483211, // brilliance_cos
-    0.737537578014, // fire
-    0.597523201541, // scintillation
+    0.777931357457, // brilliance
+    0.884305341885, // brilliance_iso
+    0.671557373029, // brilliance_cos
+    0.740731471957, // fire
+    0.599534973043, // scintillation
     0.227448515839, // aset.blue
     0.499176332909, // aset.red
     0.197588644352, // aset.green
@@ -82,11 +82,11 @@ const TOLKOWSKY_DEFAULT: [f64; 10] = [
 
 /// Cubic zirconia, polarization off, a 15° head shadow; the rest default.
 const TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15: [f64; 10] = [
-    0.623183935444, // brilliance
-    0.710028933451, // brilliance_iso
-    0.536338937436, // brilliance_cos
-    1.128785139926, // fire
-    0.511723449066, // scintillation
+    0.623154840245, // brilliance
+    0.709990902468, // brilliance_iso
+    0.536318778023, // brilliance_cos
+    1.129757222849, // fire
+    0.512784591410, // scintillation
     0.256105151810, // aset.blue
     0.554046132440, // aset.red
     0.153027602524, // aset.green

@@ -11,15 +11,17 @@
 //! [`lighting`]; every edge there is soft, and the images of [`raster`] use exact area
 //! coverage, so that every score is a continuous function of the cut's proportions (the beam
 //! tree itself is: footprints and powers move continuously, beams appear and vanish with zero
-//! area, and Fresnel's reflectance is continuous through the critical angle). Narrow beams
-//! (below the split threshold) are followed as discs that fork at facet edges
-//! ([`TraceOptions::narrow_forks`]), so their light too moves from facet to facet
-//! continuously. The remaining small jumps come from the tracer's approximations below its
-//! thresholds ([`TraceOptions`]): a beam changing from split to narrow, a fork stopped by the
-//! ray floor; each is a small part of a narrow beam's power (< 3e-4 of the light by default).
-//! On the 0.002° pavilion profile of `cargo bench --bench profile` brilliance's total
-//! variation over its range is 1.02 (2.30 with one ray per narrow beam) and its median
-//! absolute second difference 1.6e-5 (1.3e-4).
+//! area, and Fresnel's reflectance is continuous through the critical angle). The remaining
+//! small jumps come from the tracer's approximations below its thresholds
+//! ([`TraceOptions`]): each is at most a narrow beam's power (< 1e-4 of the light by default).
+//! Narrow beams followed as discs that fork at facet edges ([`TraceOptions::narrow_forks`],
+//! `[score] narrow_forks` in a config) move their light from facet to facet continuously
+//! too: with a split threshold of 3e-4 and a ray floor of 0.02, brilliance's total variation
+//! over its range on the 0.002° pavilion profile of `cargo bench --bench profile` falls from
+//! 2.30 to 1.02 and its median absolute second difference from 1.3e-4 to 1.6e-5, for 1.4
+//! times the time (a full score 1.9 times); but brilliance moves by up to 4.1e-4 from the
+//! exactly split value (on tolkowsky from +6e-5 to +4.1e-4, 4.5 standard errors of a
+//! million-photon check), so they are off by default.
 //!
 //! # Same solid, same scores; a turned stone too
 //!
@@ -200,9 +202,7 @@ impl Default for ScoreConfig {
             resolution: 64,
             fire_placements: 17,
             trace: TraceOptions {
-                split_threshold: Self::SPLIT_THRESHOLD,
                 ray_floor: Self::RAY_FLOOR,
-                narrow_forks: true,
                 ..TraceOptions::default()
             },
             fire_split_threshold: 3e-6,
@@ -213,18 +213,13 @@ impl Default for ScoreConfig {
 }
 
 impl ScoreConfig {
-    /// Default [`TraceOptions::ray_floor`] of the scores' traces. With the narrow beams'
-    /// forks ([`TraceOptions::narrow_forks`], on in the scores) a floor of 0.05 stops small
-    /// forks young and the closure then errs (brilliance up to 9e-4 below the same score split
-    /// down to 2e-6 on princess, oval and pear); at 0.02 the default brilliance of tolkowsky,
-    /// gia-reference, princess, oval, pear and emerald is within 4.1e-4 of it (3.5e-4 for
-    /// single rays split from 1e-4 with a floor of 0.05, the former default).
-    pub const RAY_FLOOR: f64 = 0.02;
-
-    /// Default split threshold of the scores' tilted poses ([`TraceOptions::split_threshold`]):
-    /// three times the plain tracer's, as their narrow beams fork at facet edges
-    /// ([`TraceOptions::narrow_forks`]).
-    pub const SPLIT_THRESHOLD: f64 = 3e-4;
+    /// Default [`TraceOptions::ray_floor`] of the scores' traces. Measured on 30 tilted poses
+    /// of six presets against traces split down to 1e-6: the ISO light return errs by 4.71e-4
+    /// on average (4.84e-4 without a floor) while the rays need 0.48 of their segments; the
+    /// default brilliance of tolkowsky, princess and oval is within 7e-5 of the same scores
+    /// split down to 2e-6 (within 1.3e-4 without a floor). A default score of tolkowsky takes
+    /// 0.67 of its time (CPU time, one thread), brilliance alone 0.65.
+    pub const RAY_FLOOR: f64 = 0.05;
 
     /// A quicker configuration for searches: narrow beams from 1e-3 of the light, 6 bands,
     /// face-up plus five poses at 15°, rocking toward three azimuths, seven placements of the
@@ -247,7 +242,6 @@ impl ScoreConfig {
             trace: TraceOptions {
                 split_threshold: 1e-3,
                 ray_floor: Self::RAY_FLOOR,
-                narrow_forks: true,
                 ..TraceOptions::default()
             },
             fire_split_threshold: 1e-4,

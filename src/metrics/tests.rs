@@ -550,7 +550,7 @@ fn aset_and_fire_are_statistics_of_the_pictures() {
     }
 }
 
-/// The ray floor's closure: narrow beams' rays stopped at 2 % of their power hand the rest
+/// The ray floor's closure: narrow beams' rays stopped at 5 % of their power hand the rest
 /// back with the late narrow exits' mean, and brilliance stays where following every ray to
 /// the end puts it (within 1.5e-4 on a round brilliant and a princess, tilted 10° and 20°;
 /// 5e-4 with the narrow beams' forks),

@@ -364,6 +364,7 @@ impl Config {
                 split_threshold: Some(self.score.split_threshold),
                 fire_split_threshold: Some(self.score.fire_split_threshold),
                 ray_floor: Some(self.score.ray_floor),
+                narrow_forks: Some(self.score.narrow_forks),
             }),
         }
     }
@@ -556,7 +557,7 @@ mod tests {
         let c = Config::from_str(
             &format!(
                 "{GOOD}\n[score]\nsplit_threshold = 1e-5\nfire_split_threshold = 1e-6\n\
-                 ray_floor = 0\n"
+                 ray_floor = 0\nnarrow_forks = true\n"
             ),
             "round.toml",
         )
@@ -566,9 +567,10 @@ mod tests {
             (
                 sc.trace.split_threshold,
                 sc.fire_split_threshold,
-                sc.trace.ray_floor
+                sc.trace.ray_floor,
+                sc.trace.narrow_forks
             ),
-            (1e-5, 1e-6, 0.0)
+            (1e-5, 1e-6, 0.0, true)
         );
         assert_eq!(sc.trace.threshold, d.trace.threshold);
         let back = Config::from_str(&c.as_used_toml(), "back.toml").unwrap();
