@@ -12,7 +12,9 @@
 //! at `crown_angle`, the ones at the tips flatter). Large tables need long stars on long stones:
 //! when the star tips would end above the table the build reports the star lengths that work.
 
-use super::outline::{brilliant, Outline};
+use super::outline::{
+    brilliant, Outline, CROWN_ANGLE, CULET, GIRDLE, LOWER_HALF, PAVILION_ANGLE, STAR, TABLE,
+};
 use super::{Family, ParamDef, Params, Unit};
 use crate::error::Result;
 use crate::geometry::{DVec2, FacetPlane};
@@ -27,69 +29,13 @@ const PARAMS: &[ParamDef] = &[
         unit: Unit::Ratio,
         doc: "length (tip to tip) over width",
     },
-    ParamDef {
-        key: "table",
-        default: 0.57,
-        min: 0.45,
-        max: 0.65,
-        open: false,
-        unit: Unit::Fraction,
-        doc: "table width across the stone, as a fraction of the width",
-    },
-    ParamDef {
-        key: "crown_angle",
-        default: 34.0,
-        min: 20.0,
-        max: 45.0,
-        open: false,
-        unit: Unit::Degrees,
-        doc: "angle of every bezel to the girdle plane",
-    },
-    ParamDef {
-        key: "pavilion_angle",
-        default: 41.0,
-        min: 35.0,
-        max: 50.0,
-        open: false,
-        unit: Unit::Degrees,
-        doc: "angle of every pavilion main to the girdle plane",
-    },
-    ParamDef {
-        key: "girdle",
-        default: 0.025,
-        min: 0.0,
-        max: 0.1,
-        open: false,
-        unit: Unit::Fraction,
-        doc: "girdle thickness at the 16 girdle points",
-    },
-    ParamDef {
-        key: "star",
-        default: 0.5,
-        min: 0.4,
-        max: 0.8,
-        open: false,
-        unit: Unit::Fraction,
-        doc: "star length: share of the table-edge-to-girdle distance along the bezel ridge",
-    },
-    ParamDef {
-        key: "lower_half",
-        default: 0.75,
-        min: 0.5,
-        max: 0.9,
-        open: false,
-        unit: Unit::Fraction,
-        doc: "lower-half length: share of the girdle-to-keel distance along the main ridge",
-    },
-    ParamDef {
-        key: "culet",
-        default: 0.0,
-        min: 0.0,
-        max: 0.1,
-        open: false,
-        unit: Unit::Fraction,
-        doc: "culet (flattened keel) width across the stone (0 = sharp keel)",
-    },
+    TABLE,
+    CROWN_ANGLE,
+    PAVILION_ANGLE,
+    GIRDLE,
+    STAR,
+    LOWER_HALF,
+    CULET,
 ];
 
 /// The marquise family.

@@ -40,11 +40,83 @@
 //! construction gives exactly the round brilliant (with its 16-flat girdle).
 
 use super::construct::{check_solid, cross_lines, lift, plane_through_or};
-use super::Params;
+use super::{ParamDef, Params, Unit};
 use crate::error::{Error, Result};
 use crate::geometry::{DVec2, DVec3, FacetPlane};
 
 const TOL: f64 = 1e-9;
+
+/// The parameters the brilliants around an outline (marquise, pear, oval) share after their
+/// `length_width`; a family changes a field where it differs (`ParamDef { max: …, ..TABLE }`).
+pub(super) const TABLE: ParamDef = ParamDef {
+    key: "table",
+    default: 0.57,
+    min: 0.45,
+    max: 0.65,
+    open: false,
+    unit: Unit::Fraction,
+    doc: "table width across the stone, as a fraction of the width",
+};
+
+pub(super) const CROWN_ANGLE: ParamDef = ParamDef {
+    key: "crown_angle",
+    default: 34.0,
+    min: 20.0,
+    max: 45.0,
+    open: false,
+    unit: Unit::Degrees,
+    doc: "angle of every bezel to the girdle plane",
+};
+
+pub(super) const PAVILION_ANGLE: ParamDef = ParamDef {
+    key: "pavilion_angle",
+    default: 41.0,
+    min: 35.0,
+    max: 50.0,
+    open: false,
+    unit: Unit::Degrees,
+    doc: "angle of every pavilion main to the girdle plane",
+};
+
+pub(super) const GIRDLE: ParamDef = ParamDef {
+    key: "girdle",
+    default: 0.025,
+    min: 0.0,
+    max: 0.1,
+    open: false,
+    unit: Unit::Fraction,
+    doc: "girdle thickness at the 16 girdle points",
+};
+
+pub(super) const STAR: ParamDef = ParamDef {
+    key: "star",
+    default: 0.5,
+    min: 0.4,
+    max: 0.8,
+    open: false,
+    unit: Unit::Fraction,
+    doc: "star length: share of the table-edge-to-girdle distance along the bezel ridge",
+};
+
+pub(super) const LOWER_HALF: ParamDef = ParamDef {
+    key: "lower_half",
+    default: 0.75,
+    min: 0.5,
+    max: 0.9,
+    open: false,
+    unit: Unit::Fraction,
+    doc: "lower-half length: share of the girdle-to-keel distance along the main ridge",
+};
+
+pub(super) const CULET: ParamDef = ParamDef {
+    key: "culet",
+    default: 0.0,
+    min: 0.0,
+    max: 0.1,
+    open: false,
+    unit: Unit::Fraction,
+    doc: "culet (flattened keel) width across the stone (0 = sharp keel)",
+};
 
 /// A convex girdle outline sampled at the 16 points of the 8-main brilliant layout.
 #[derive(Clone, Debug)]

@@ -14,7 +14,9 @@
 //!
 //! With `length_width` = 1 this is exactly the round brilliant with its 16-flat girdle.
 
-use super::outline::{brilliant, Outline};
+use super::outline::{
+    brilliant, Outline, CROWN_ANGLE, CULET, GIRDLE, LOWER_HALF, PAVILION_ANGLE, STAR, TABLE,
+};
 use super::{Family, ParamDef, Params, Unit};
 use crate::error::Result;
 use crate::geometry::{DVec2, FacetPlane};
@@ -30,68 +32,16 @@ const PARAMS: &[ParamDef] = &[
         doc: "length over width of the elliptical outline",
     },
     ParamDef {
-        key: "table",
         default: 0.56,
-        min: 0.45,
         max: 0.75,
-        open: false,
-        unit: Unit::Fraction,
-        doc: "table width across the stone, as a fraction of the width",
+        ..TABLE
     },
-    ParamDef {
-        key: "crown_angle",
-        default: 34.0,
-        min: 20.0,
-        max: 45.0,
-        open: false,
-        unit: Unit::Degrees,
-        doc: "angle of every bezel to the girdle plane",
-    },
-    ParamDef {
-        key: "pavilion_angle",
-        default: 41.0,
-        min: 35.0,
-        max: 50.0,
-        open: false,
-        unit: Unit::Degrees,
-        doc: "angle of every pavilion main to the girdle plane",
-    },
-    ParamDef {
-        key: "girdle",
-        default: 0.025,
-        min: 0.0,
-        max: 0.1,
-        open: false,
-        unit: Unit::Fraction,
-        doc: "girdle thickness at the 16 girdle points",
-    },
-    ParamDef {
-        key: "star",
-        default: 0.5,
-        min: 0.3,
-        max: 0.8,
-        open: false,
-        unit: Unit::Fraction,
-        doc: "star length: share of the table-edge-to-girdle distance along the bezel ridge",
-    },
-    ParamDef {
-        key: "lower_half",
-        default: 0.75,
-        min: 0.5,
-        max: 0.9,
-        open: false,
-        unit: Unit::Fraction,
-        doc: "lower-half length: share of the girdle-to-keel distance along the main ridge",
-    },
-    ParamDef {
-        key: "culet",
-        default: 0.0,
-        min: 0.0,
-        max: 0.1,
-        open: false,
-        unit: Unit::Fraction,
-        doc: "culet (flattened keel) width across the stone (0 = sharp keel)",
-    },
+    CROWN_ANGLE,
+    PAVILION_ANGLE,
+    GIRDLE,
+    ParamDef { min: 0.3, ..STAR },
+    LOWER_HALF,
+    CULET,
 ];
 
 /// The oval brilliant family.
