@@ -155,6 +155,20 @@ struct Part {
     share: f64,
 }
 
+/// A narrow beam's ray (or one part of it) about to cross `facet`, travelling along `t` with
+/// Stokes vector `s` (reference `axis`) after `depth` reflections, from tree node `prev`;
+/// `late` when it has already lost half of its starting power.
+#[derive(Clone, Copy, Debug)]
+struct RayAt {
+    t: DVec3,
+    facet: usize,
+    s: Stokes,
+    axis: DVec3,
+    depth: u32,
+    prev: u32,
+    late: bool,
+}
+
 /// A fork of a narrow beam's disc across an edge of its exit facet onto facet `h`: its share
 /// `f`, the unit direction `m` (across the beam) toward the edge and its centroid's distance
 /// `c` from the disc's centre.
@@ -459,16 +473,12 @@ impl Stone {
     /// Fresnel branching: at each facet the transmitted part leaves (an exit beam with the
     /// narrow beam's footprint, `w.foot`), the reflected part goes on until it is below the
     /// floor or past the depth limit. With [`TraceOptions::narrow_forks`] the ray stands for a
-    /// disc of radius `r` (the beam's cross-section): where the disc overhangs an edge of the
-    /// facet the ray meets, the overhanging segment forks off onto the neighbouring facet as a
-    /// ray of its own (from the segment's centroid, with its share of the power and a disc of
-    /// its area) and the rest goes on from its own centroid, so that a beam sliding across an
-    /// edge hands its light over continuously instead of all at once.
+    /// disc of radius `r` (the beam's cross-section; see [`Stone::follow_disc`]).
     #[allow(clippy::too_many_arguments)]
     fn follow_ray<S: ExitSink>(
         &self,
         beam: Beam,
-        x: DVec3,
+        mut x: DVec3,
         r: f64,
         cx: &Ctx,
         w: &mut Work,
@@ -479,6 +489,108 @@ impl Stone {
         let p0 = beam.stokes.x;
         st.ray_power += p0;
         let floor = cx.threshold.max(cx.ray_floor * p0);
+        if cx.forks && r.is_finite() && r > 0.0 {
+            return self.follow_disc(beam, x, r, floor, cx, w, st, sink);
+        }
+        let (mut t, mut s, mut axis, mut facet, mut depth, mut prev) = (
+            beam.dir,
+            beam.stokes,
+            beam.axis,
+            beam.facet as usize,
+            beam.depth,
+            beam.node,
+        );
+        loop {
+            let Some((g, best)) = self.exit_facet(x, t, facet) else {
+                st.cut_off += s.x;
+                return;
+            };
+            x += t * best.max(0.0);
+            let at = RayAt {
+                t,
+                facet: g,
+                s,
+                axis,
+                depth,
+                prev,
+                late: s.x <= 0.5 * p0,
+            };
+            let Some((sr, ax, node)) = self.ray_cross(beam.entry, at, floor, cx, w, st, sink)
+            else {
+                return;
+            };
+            t = reflect(t, self.normals[g]);
+            s = sr;
+            axis = ax;
+            facet = g;
+            depth += 1;
+            prev = node;
+        }
+    }
+
+    /// One crossing of a narrow beam's ray (or of one of its parts) at `at.facet`: the
+    /// transmitted part leaves as an exit beam, and the reflected part with its polarization
+    /// axis and node is returned unless it falls below `floor` (stopped: accounted in
+    /// `cut_off`, and in `ray_closed` when above the threshold) or past the depth limit.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn ray_cross<S: ExitSink>(
+        &self,
+        entry: u32,
+        at: RayAt,
+        floor: f64,
+        cx: &Ctx,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) -> Option<(Stokes, DVec3, u32)> {
+        st.ray_segments += 1;
+        let node = w.node(cx, at.prev, at.facet);
+        let meet = Meet {
+            t: at.t,
+            n: self.normals[at.facet],
+            facet: at.facet,
+            stokes: at.s,
+            axis: at.axis,
+        };
+        let origin = Origin {
+            entry: entry as usize,
+            reflections: at.depth,
+            narrow: true,
+            late: at.late,
+            node,
+        };
+        let (sr, ax) = cross(cx, meet, origin, &w.foot, st, sink);
+        let depth = at.depth + 1;
+        if sr.x.is_nan() || sr.x <= 0.0 || sr.x < floor || depth > cx.max_depth {
+            st.cut_off += sr.x.max(0.0);
+            if sr.x >= cx.threshold && depth <= cx.max_depth {
+                st.ray_closed += sr.x;
+            }
+            return None;
+        }
+        Some((sr, ax, node))
+    }
+
+    /// [`Stone::follow_ray`] with [`TraceOptions::narrow_forks`]: the ray stands for a disc of
+    /// radius `r`. Where the disc overhangs an edge of the facet the ray meets, the overhanging
+    /// segment forks off onto the neighbouring facet as a ray of its own (from the segment's
+    /// centroid, with its share of the power and a disc of its area) and the rest goes on from
+    /// its own centroid, so that a beam sliding across an edge hands its light over
+    /// continuously instead of all at once.
+    #[allow(clippy::too_many_arguments)]
+    fn follow_disc<S: ExitSink>(
+        &self,
+        beam: Beam,
+        x: DVec3,
+        r: f64,
+        floor: f64,
+        cx: &Ctx,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) {
+        let p0 = beam.stokes.x;
         w.parts.clear();
         w.parts.push(Part {
             x,
@@ -488,7 +600,7 @@ impl Stone {
             facet: beam.facet,
             depth: beam.depth,
             prev: beam.node,
-            r: if cx.forks && r.is_finite() { r } else { 0.0 },
+            r,
             share: 1.0,
         });
         while let Some(part) = w.parts.pop() {
@@ -498,67 +610,8 @@ impl Stone {
                 continue;
             };
             let p = part.x + t * best.max(0.0);
-            let ng = self.normals[g];
-            let kg = ng.dot(t);
-            // The disc's segments beyond the edges of facet g.
-            w.forks.clear();
-            let mut total = 0.0;
-            if part.r > 0.0 {
-                let (a, b) = self.neighbor_range[g];
-                let (a, b) = (a as usize, b as usize);
-                for (j, (pl, &h)) in self.neighbor_planes[a..b]
-                    .iter()
-                    .zip(&self.neighbors[a..b])
-                    .enumerate()
-                {
-                    let nh = pl.truncate();
-                    let kh = nh.dot(t);
-                    if kh <= GRAZE {
-                        continue;
-                    }
-                    // The plane through the edge along t: m · y = 0 there, m ⊥ t.
-                    let m = nh - ng * (kh / kg);
-                    let ml = m.length();
-                    if ml.is_nan() || ml <= 0.0 {
-                        continue;
-                    }
-                    let d = (pl.w - nh.dot(p)) / ml;
-                    if d >= part.r {
-                        continue;
-                    }
-                    let u = d / part.r;
-                    let (f, c) = disc_segment(u);
-                    // Only the stretch of the chord that the edge itself spans overhangs onto
-                    // h (a short edge's line may cross the disc far from the edge).
-                    let (ea, eb) = self.neighbor_edges[a + j];
-                    let e = (eb - ea).reject_from_normalized(t);
-                    let el = e.length();
-                    let half = part.r * (1.0 - u * u).max(0.0).sqrt();
-                    let span = if el > 0.0 && half > 0.0 {
-                        let e = e / el;
-                        let (sa, sb) = ((ea - p).dot(e), (eb - p).dot(e));
-                        (sa.max(sb).min(half) - sa.min(sb).max(-half)).max(0.0) / (2.0 * half)
-                    } else {
-                        0.0
-                    };
-                    let f = f * span;
-                    let fade = (kh / FORK_GRAZE).min(1.0);
-                    // Small forks fade out (between FORK_MIN and twice that share of the
-                    // narrow beam) rather than stop at once.
-                    let small = (f * part.s.x / (FORK_MIN * p0) - 1.0).clamp(0.0, 1.0);
-                    let f = f * smooth(fade) * smooth(small);
-                    if f.is_nan() || f <= 0.0 {
-                        continue;
-                    }
-                    total += f;
-                    w.forks.push(Fork {
-                        h,
-                        f,
-                        m: m / ml,
-                        c: c * part.r,
-                    });
-                }
-            }
+            self.disc_forks(g, p, &part, p0, w);
+            let total: f64 = w.forks.iter().map(|k| k.f).sum();
             let scale = if total > FORK_MAX {
                 FORK_MAX / total
             } else {
@@ -579,50 +632,95 @@ impl Stone {
                     (g, main, p + shift)
                 };
                 let nh = self.normals[h];
-                let y = if nforks == 0 {
-                    y
-                } else {
-                    y + t * ((self.offsets[h] - nh.dot(y)) / nh.dot(t))
-                };
-                st.ray_segments += 1;
-                let node = w.node(cx, part.prev, h);
+                let y = y + t * ((self.offsets[h] - nh.dot(y)) / nh.dot(t));
                 let share = part.share * f;
                 let s_in = part.s * f;
-                let meet = Meet {
+                let at = RayAt {
                     t,
-                    n: nh,
                     facet: h,
-                    stokes: s_in,
+                    s: s_in,
                     axis: part.axis,
-                };
-                let origin = Origin {
-                    entry: beam.entry as usize,
-                    reflections: part.depth,
-                    narrow: true,
+                    depth: part.depth,
+                    prev: part.prev,
                     late: s_in.x <= 0.5 * share * p0,
-                    node,
                 };
-                let (sr, ax) = cross(cx, meet, origin, &w.foot, st, sink);
-                let depth = part.depth + 1;
-                if sr.x.is_nan() || sr.x <= 0.0 || sr.x < floor || depth > cx.max_depth {
-                    st.cut_off += sr.x.max(0.0);
-                    if sr.x >= cx.threshold && depth <= cx.max_depth {
-                        st.ray_closed += sr.x;
-                    }
-                    continue;
+                if let Some((sr, axis, node)) =
+                    self.ray_cross(beam.entry, at, floor, cx, w, st, sink)
+                {
+                    w.parts.push(Part {
+                        x: y,
+                        t: reflect(t, nh),
+                        s: sr,
+                        axis,
+                        facet: h as u32,
+                        depth: part.depth + 1,
+                        prev: node,
+                        r: part.r * f.sqrt(),
+                        share,
+                    });
                 }
-                w.parts.push(Part {
-                    x: y,
-                    t: reflect(t, nh),
-                    s: sr,
-                    axis: ax,
-                    facet: h as u32,
-                    depth,
-                    prev: node,
-                    r: part.r * f.sqrt(),
-                    share,
-                });
             }
+        }
+    }
+
+    /// The segments of `part`'s disc beyond the edges of facet `g`, which its ray meets at
+    /// `p`, into `w.forks` (`p0`: the narrow beam's starting power).
+    fn disc_forks(&self, g: usize, p: DVec3, part: &Part, p0: f64, w: &mut Work) {
+        w.forks.clear();
+        let t = part.t;
+        let ng = self.normals[g];
+        let kg = ng.dot(t);
+        let (a, b) = self.neighbor_range[g];
+        let (a, b) = (a as usize, b as usize);
+        for (j, (pl, &h)) in self.neighbor_planes[a..b]
+            .iter()
+            .zip(&self.neighbors[a..b])
+            .enumerate()
+        {
+            let nh = pl.truncate();
+            let kh = nh.dot(t);
+            if kh <= GRAZE {
+                continue;
+            }
+            // The plane through the edge along t: m · y = 0 there, m ⊥ t.
+            let m = nh - ng * (kh / kg);
+            let ml = m.length();
+            if ml.is_nan() || ml <= 0.0 {
+                continue;
+            }
+            let d = (pl.w - nh.dot(p)) / ml;
+            if d >= part.r {
+                continue;
+            }
+            let u = d / part.r;
+            let (f, c) = disc_segment(u);
+            // Only the stretch of the chord that the edge itself spans overhangs onto h (a
+            // short edge's line may cross the disc far from the edge).
+            let (ea, eb) = self.neighbor_edges[a + j];
+            let e = (eb - ea).reject_from_normalized(t);
+            let el = e.length();
+            let half = part.r * (1.0 - u * u).max(0.0).sqrt();
+            let span = if el > 0.0 && half > 0.0 {
+                let e = e / el;
+                let (sa, sb) = ((ea - p).dot(e), (eb - p).dot(e));
+                (sa.max(sb).min(half) - sa.min(sb).max(-half)).max(0.0) / (2.0 * half)
+            } else {
+                0.0
+            };
+            let fade = (kh / FORK_GRAZE).min(1.0);
+            // Small forks fade out (between FORK_MIN and twice that share of the narrow
+            // beam) rather than stop at once.
+            let small = (f * span * part.s.x / (FORK_MIN * p0) - 1.0).clamp(0.0, 1.0);
+            let f = f * span * smooth(fade) * smooth(small);
+            if f.is_nan() || f <= 0.0 {
+                continue;
+            }
+            w.forks.push(Fork {
+                h,
+                f,
+                m: m / ml,
+                c: c * part.r,
+            });
         }
     }
 
