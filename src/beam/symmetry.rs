@@ -53,7 +53,13 @@ impl<S: ExitSink> ExitSink for SymSink<'_, S> {
     fn wants_footprints(&self) -> bool {
         self.inner.wants_footprints()
     }
+    fn wants_orbit(&self, e: &ExitBeam) -> bool {
+        self.inner.wants_orbit(e)
+    }
     fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+        if !self.inner.wants_orbit(e) {
+            return;
+        }
         for &(i, op, m2) in &self.ops {
             if i == 0 {
                 self.inner.exit(e, fp);

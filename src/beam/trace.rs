@@ -24,6 +24,14 @@ pub(crate) trait ExitSink {
     fn wants_footprints(&self) -> bool {
         false
     }
+    /// Whether `beam` or any of the symmetric copies of it that a trace using the stone's
+    /// symmetry hands out can change what this sink measures; `false` lets the tracer skip
+    /// them all (and transforming their footprints). The copies share the beam's power and
+    /// its direction's component along the viewer's axis (the frame's symmetries keep that
+    /// axis), so a sink may decide from those. Default: always wanted.
+    fn wants_orbit(&self, _beam: &ExitBeam) -> bool {
+        true
+    }
     /// One exit beam, with its footprint in the frame's image coordinates (empty unless
     /// [`ExitSink::wants_footprints`]).
     fn exit(&mut self, beam: &ExitBeam, footprint: &[DVec2]);

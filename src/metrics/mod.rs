@@ -84,7 +84,9 @@
 //!   turned by ψ — a turn of the whole scene, i.e. the stone turned by −ψ — and its image of
 //!   the spots at [`ScoreConfig::wavelength_nm`] taken at each tilt. The score is
 //!   `Σ_ψ Σₖ Σₚ |Iₖ₊₁ − Iₖ| / Σ_ψ Σₖ Σₚ (Iₖ₊₁ + Iₖ)`: 0 when nothing changes, 1 when
-//!   consecutive patterns never overlap. (Rocking about one axis only made the score depend
+//!   consecutive patterns never overlap. Rocking poses that a symmetry of the stone maps onto
+//!   each other (for a round brilliant, the turns 72° and 288°, 144° and 216°) share one
+//!   trace, each image seen through its symmetry (the same pixels to rounding). (Rocking about one axis only made the score depend
 //!   on how the stone was turned: 0.466 → 0.509 for a round brilliant turned by 22.5°.)
 //! * **`aset`** `{blue, red, green, leak}`, each ∈ [0, 1], sum 1: the shares of the face-up
 //!   view (by power, over the traced light; cut-off light excluded) whose sight lines leave
@@ -466,6 +468,10 @@ struct Job {
     /// Spot-light images: indices into the lightings of [`score`] (fire's placements, then
     /// scintillation's turns), in the order of [`PoseResult::images`].
     images: Vec<usize>,
+    /// Per image, the world map `G` (a symmetry of the stone about the z axis) taking this
+    /// job's traced pose to the pose the image shows, when they differ (see
+    /// [`symmetric_pose_map`]): each exit is seen along `G w` with its footprint mapped by `G`.
+    views: Vec<Option<DMat3>>,
     /// ISO and COS sums (brilliance).
     brilliance: bool,
     /// Upward share and ASET bins (face-up).
@@ -529,6 +535,12 @@ struct PoseSink<'a> {
     /// Fire's placements, when this job's first images are theirs (all of them, in order).
     lattice: Option<&'a FireLattice<'a>>,
     spots: Vec<&'a Lighting>,
+    /// Per image, its view's world map and that map's 2×2 part for footprints
+    /// ([`Job::views`]).
+    views: Vec<Option<(DMat3, [f64; 4])>>,
+    /// A footprint mapped by a view, and its coverage.
+    vfoot: Vec<DVec2>,
+    vcov: Coverage,
     area: f64,
     face_up: bool,
     brilliance: bool,
@@ -540,6 +552,16 @@ struct PoseSink<'a> {
 impl ExitSink for PoseSink<'_> {
     fn wants_footprints(&self) -> bool {
         !self.r.images.is_empty()
+    }
+    /// Fire's face-up traces measure nothing else: an exit (with its symmetric copies, which
+    /// share its elevation) that no placement of the spots can reach is skipped whole.
+    fn wants_orbit(&self, e: &ExitBeam) -> bool {
+        let fire_only = self.lattice.map_or(0, |l| l.lightings.len());
+        if self.face_up || self.brilliance || self.r.images.len() > fire_only {
+            return true;
+        }
+        self.lattice
+            .is_some_and(|l| l.reaches((self.rot * e.direction).z))
     }
     fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
         let w = self.rot * e.direction;
@@ -573,8 +595,10 @@ impl ExitSink for PoseSink<'_> {
             r.late.traced += p;
         }
         // The footprint's area and pixel coverage, computed on first use: every image has
-        // the same size, so one coverage serves them all.
+        // the same size, so one coverage serves them all (a view's mapped footprint has its
+        // own).
         let mut a = -1.0;
+        let mut covered = false;
         let mut skip = 0;
         let cov = &mut self.cov;
         if let Some(lat) = self.lattice {
@@ -583,34 +607,56 @@ impl ExitSink for PoseSink<'_> {
             lat.for_each(w, |k, l| {
                 if a < 0.0 {
                     a = clip2d::area(fp);
-                    if a > 0.0 {
-                        images[k].coverage_into(fp, cov);
-                    }
                 }
                 if l > 0.0 && a > 0.0 {
+                    if !covered {
+                        images[k].coverage_into(fp, cov);
+                        covered = true;
+                    }
                     images[k].add_coverage(cov, l * scale / a);
                 }
             });
         }
         // Skipping on each slice iterator is O(1), unlike skipping the zipped pairs.
-        for (img, light) in r
+        for ((img, light), view) in r
             .images
             .iter_mut()
             .skip(skip)
             .zip(self.spots.iter().skip(skip))
+            .zip(self.views.iter().skip(skip))
         {
-            if light.near_spot(w) {
-                let l = light.spots(w);
-                if a < 0.0 {
-                    a = clip2d::area(fp);
-                    if a > 0.0 {
-                        img.coverage_into(fp, cov);
-                    }
+            // Another pose, the traced one under a symmetry: its own direction and footprint
+            // (of the same area).
+            let wv = view.as_ref().map_or(w, |(g, _)| *g * w);
+            if !light.near_spot(wv) {
+                continue;
+            }
+            let l = light.spots(wv);
+            if a < 0.0 {
+                a = clip2d::area(fp);
+            }
+            if !(l > 0.0 && a > 0.0) {
+                continue;
+            }
+            // Radiance through this beam: its power per unit of footprint, relative to the
+            // incoming power per unit of cross-section.
+            let v = l * p * self.area / a;
+            match view {
+                Some((_, m)) => {
+                    self.vfoot.clear();
+                    self.vfoot.extend(
+                        fp.iter()
+                            .map(|q| DVec2::new(m[0] * q.x + m[1] * q.y, m[2] * q.x + m[3] * q.y)),
+                    );
+                    img.coverage_into(&self.vfoot, &mut self.vcov);
+                    img.add_coverage(&self.vcov, v);
                 }
-                if l > 0.0 && a > 0.0 {
-                    // Radiance through this beam: its power per unit of footprint, relative to
-                    // the incoming power per unit of cross-section.
-                    img.add_coverage(cov, l * p * self.area / a);
+                None => {
+                    if !covered {
+                        img.coverage_into(fp, cov);
+                        covered = true;
+                    }
+                    img.add_coverage(cov, v);
                 }
             }
         }
@@ -648,6 +694,11 @@ fn run_job(
         .iter()
         .filter_map(|&i| lightings.get(i))
         .collect();
+    let views = job
+        .views
+        .iter()
+        .map(|g| g.map(|g| (g, [g.x_axis.x, g.y_axis.x, g.x_axis.y, g.y_axis.y])))
+        .collect();
     let n = lattice.lightings.len();
     let has_fire = job.images.len() >= n && job.images[..n].iter().copied().eq(0..n);
     let mut sink = PoseSink {
@@ -665,6 +716,9 @@ fn run_job(
             ..Default::default()
         },
         spots,
+        views,
+        vfoot: Vec::new(),
+        vcov: Coverage::default(),
         cov: Coverage::default(),
     };
     let (stats, _) = stone.trace_into(&frame, job.ri, &opts, &mut sink, false);
@@ -703,7 +757,9 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
     enum Use {
         FaceUp,
         Brilliance,
-        Image(usize),
+        /// An image under lighting `l`, of the pose the job traces or, mapped by a symmetry
+        /// of the stone, of another ([`Job::views`]).
+        Image(usize, Option<DMat3>),
     }
     let index = |tilt: Tilt, ri: f64, what: Use, split: f64, jobs: &mut Vec<Job>| -> usize {
         // Every face-up pose is the same trace, whatever azimuth it names.
@@ -729,6 +785,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
                     tilt,
                     ri,
                     images: Vec::new(),
+                    views: Vec::new(),
                     brilliance: false,
                     face_up: false,
                     split,
@@ -739,9 +796,10 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
         match what {
             Use::FaceUp => jobs[k].face_up = true,
             Use::Brilliance => jobs[k].brilliance = true,
-            Use::Image(l) => {
+            Use::Image(l, view) => {
                 if !jobs[k].images.contains(&l) {
                     jobs[k].images.push(l);
+                    jobs[k].views.push(view);
                 }
             }
         }
@@ -781,7 +839,7 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
                 k = index(
                     Tilt::FACE_UP,
                     ri,
-                    Use::Image(p),
+                    Use::Image(p, None),
                     cfg.fire_split_threshold,
                     &mut jobs,
                 );
@@ -790,7 +848,8 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
         })
         .collect();
     // Scintillation: per turn, the rocking sequence toward the turn's azimuth, under the spot
-    // lights turned with it.
+    // lights turned with it. A pose that a symmetry of the stone maps onto another is that
+    // pose's trace seen through the symmetry (one trace for both).
     let scint: Vec<Vec<(usize, usize)>> = turns
         .iter()
         .enumerate()
@@ -804,7 +863,8 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
                         azimuth_deg: turn,
                     };
                     let l = first_turn + j;
-                    (index(tilt, ri0, Use::Image(l), split, &mut jobs), l)
+                    let (rep, view) = symmetric_pose_map(tilt, symmetry);
+                    (index(rep, ri0, Use::Image(l, view), split, &mut jobs), l)
                 })
                 .collect()
         })
@@ -918,6 +978,46 @@ pub fn symmetric_pose(tilt: Tilt, (order, mirror): (usize, Option<f64>)) -> Tilt
     }
 }
 
+/// [`symmetric_pose`] with the symmetry taking it to `tilt`: the representative pose and,
+/// unless it is `tilt` itself, the world map `G` (a rotation about the z axis or a mirror
+/// through it, a symmetry of the stone) with `tilt.rotation() = G · rep.rotation() · Gᵀ`. The
+/// stone at `tilt` is then the stone at the representative moved by `G` (the viewer on the z
+/// axis stays put): its exits leave along `G w` with footprints mapped by `G`.
+fn symmetric_pose_map(tilt: Tilt, symmetry: (usize, Option<f64>)) -> (Tilt, Option<DMat3>) {
+    let rep = symmetric_pose(tilt, symmetry);
+    let (order, mirror) = symmetry;
+    if tilt.tilt_deg == 0.0 || order == 0 {
+        return (rep, None);
+    }
+    let period = 360.0 / order as f64;
+    // Azimuths equal modulo 360° (the representative is rounded to 1e-9°).
+    let same = |a: f64, b: f64| {
+        let d = (a - b).rem_euclid(360.0);
+        d.min(360.0 - d) < 1e-6
+    };
+    if same(rep.azimuth_deg, tilt.azimuth_deg) {
+        return (rep, None);
+    }
+    for k in 0..order {
+        let turn = k as f64 * period;
+        if same(rep.azimuth_deg + turn, tilt.azimuth_deg) {
+            return (rep, Some(DMat3::from_rotation_z(turn.to_radians())));
+        }
+        if let Some(beta) = mirror {
+            // The mirror through azimuth γ takes a tilt toward a to one toward 2γ − a.
+            let gamma = beta.to_degrees() + 0.5 * turn;
+            if same(2.0 * gamma - rep.azimuth_deg, tilt.azimuth_deg) {
+                let g = gamma.to_radians();
+                let m = DVec3::new(-g.sin(), g.cos(), 0.0);
+                let mirror = DMat3::IDENTITY - 2.0 * DMat3::from_cols(m * m.x, m * m.y, m * m.z);
+                return (rep, Some(mirror));
+            }
+        }
+    }
+    // Not reached for a representative of `tilt`; tracing `tilt` itself is always right.
+    (tilt, None)
+}
+
 /// One placement of the spot lights for fire, and its weight in the average.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Placement {
@@ -941,6 +1041,8 @@ struct FireLattice<'a> {
     /// Per spot `i` and placement `k` (at `i · P + k`): the sines of the lowest and highest
     /// elevations that spot reaches there (so that no arcsine is needed per exit).
     zband: Vec<(f64, f64)>,
+    /// The lowest `z_lo` and highest `z_hi` of all spots (see [`FireLattice::reaches`]).
+    z_range: (f64, f64),
     step: f64,
 }
 
@@ -1007,12 +1109,26 @@ impl<'a> FireLattice<'a> {
                 })
             })
             .collect();
+        let z_range = base
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), b| {
+                (lo.min(b.2.z_lo), hi.max(b.2.z_hi))
+            });
         FireLattice {
             lightings,
             spots: base.iter().map(|b| b.2).collect(),
             zband,
+            z_range,
             step: 360.0 / placements.len().max(1) as f64,
         }
+    }
+
+    /// Whether some placement's spots can light a direction whose z component is `z` (the
+    /// same test [`FireLattice::for_each`] makes per spot: `false` means it visits nothing).
+    #[inline]
+    fn reaches(&self, z: f64) -> bool {
+        let z = z.clamp(-1.0, 1.0);
+        !self.lightings.is_empty() && z >= self.z_range.0 && z <= self.z_range.1
     }
 
     /// Calls `f(k, radiance)` for every placement `k` whose spots light direction `w`

@@ -614,3 +614,90 @@ fn ray_floor_closure_keeps_brilliance() {
         }
     }
 }
+
+/// [`symmetric_pose_map`]: the pose is its representative moved by the symmetry `G`
+/// (`R(tilt) = G R(rep) Gᵀ`, G orthogonal), for rotation groups with and without mirrors;
+/// and the spot-lit image of a tilted pose, traced itself, is the image its representative's
+/// trace gives seen through `G` (every pixel, to rounding), for a round brilliant and a
+/// princess, rotations and mirrors both (to 1e-8 of the brightest pixel: the
+/// representative's azimuth is rounded to 1e-9°; measured 2.7e-9).
+#[test]
+fn symmetric_pose_views_give_the_pose_s_own_image() {
+    for symmetry in [
+        (8, Some(0.0)),
+        (4, Some(0.3)),
+        (3, None),
+        (5, Some(0.1)),
+        (1, None),
+    ] {
+        for k in 0..36 {
+            let t = Tilt {
+                tilt_deg: 7.0,
+                azimuth_deg: 10.0 * k as f64 + 1.3,
+            };
+            let (rep, g) = symmetric_pose_map(t, symmetry);
+            assert_eq!(rep, symmetric_pose(t, symmetry));
+            let g = g.unwrap_or(DMat3::IDENTITY);
+            let dist = |a: DMat3, b: DMat3| {
+                (a - b)
+                    .to_cols_array()
+                    .map(f64::abs)
+                    .iter()
+                    .fold(0.0, |m: f64, &x| m.max(x))
+            };
+            assert!(dist(g * g.transpose(), DMat3::IDENTITY) < 1e-12);
+            let err = dist(g * rep.rotation() * g.transpose(), t.rotation());
+            assert!(err < 1e-9, "{symmetry:?} {t:?} -> {rep:?}: {err}");
+        }
+    }
+    let cfg = ScoreConfig {
+        resolution: 32,
+        trace: TraceOptions {
+            split_threshold: 1e-3,
+            ..Default::default()
+        },
+        ..ScoreConfig::default()
+    };
+    let mut views = 0;
+    for solid in [tolkowsky(), princess()] {
+        let solid = canonical::canonical(&solid);
+        let stone = Stone::new(&solid);
+        let light = Lighting::new(0.0, &cfg.spots);
+        let half = crate::render::picture_half(&solid);
+        let lattice = FireLattice::new(&[], &[]);
+        for az in [72.0, 144.0, 216.0, 288.0, 100.0] {
+            let t = Tilt {
+                tilt_deg: 3.0,
+                azimuth_deg: az,
+            };
+            let lightings = [Lighting::new(0.0, &turned(&cfg.spots, az, 0.0))];
+            let job = |tilt: Tilt, view: Option<DMat3>| Job {
+                tilt,
+                ri: 2.417,
+                images: vec![0],
+                views: vec![view],
+                brilliance: false,
+                face_up: false,
+                split: cfg.trace.split_threshold,
+            };
+            let run =
+                |j: &Job| run_job(&stone, &solid, j, &light, &lightings, &lattice, &cfg, half);
+            let (rep, view) = symmetric_pose_map(t, stone.symmetry());
+            views += usize::from(view.is_some());
+            let own = run(&job(t, None));
+            let seen = run(&job(rep, view));
+            let (a, b) = (&own.images[0].data, &seen.images[0].data);
+            let top = a.iter().fold(0.0f64, |m, &x| m.max(x));
+            assert!(top > 0.0);
+            let worst = a
+                .iter()
+                .zip(b)
+                .map(|(x, y)| (x - y).abs())
+                .fold(0.0, f64::max);
+            // (The representative's azimuth is rounded to 1e-9°.)
+            assert!(worst < 1e-8 * top, "{t:?} via {rep:?}: {worst} of {top}");
+        }
+    }
+    // Most of those poses were seen through a symmetry (not traced themselves).
+    assert!(views >= 8, "{views}");
+}
