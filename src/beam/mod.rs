@@ -39,6 +39,7 @@ mod trace;
 pub(crate) mod tests;
 
 pub use stone::Stone;
+pub(crate) use symmetry::mirror_matrix;
 pub(crate) use trace::ExitSink;
 pub use trace::TraceStats;
 

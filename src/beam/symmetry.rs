@@ -91,7 +91,7 @@ impl<S: ExitSink> ExitSink for SymSink<'_, S> {
 }
 
 /// Mirror across the vertical plane at azimuth `phi` (radians).
-fn mirror_matrix(phi: f64) -> DMat3 {
+pub(crate) fn mirror_matrix(phi: f64) -> DMat3 {
     let m = DVec3::new(-phi.sin(), phi.cos(), 0.0);
     DMat3::IDENTITY - 2.0 * DMat3::from_cols(m * m.x, m * m.y, m * m.z)
 }

@@ -86,8 +86,9 @@
 //!   `Σ_ψ Σₖ Σₚ |Iₖ₊₁ − Iₖ| / Σ_ψ Σₖ Σₚ (Iₖ₊₁ + Iₖ)`: 0 when nothing changes, 1 when
 //!   consecutive patterns never overlap. Rocking poses that a symmetry of the stone maps onto
 //!   each other (for a round brilliant, the turns 72° and 288°, 144° and 216°) share one
-//!   trace, each image seen through its symmetry (the same pixels to rounding). (Rocking about one axis only made the score depend
-//!   on how the stone was turned: 0.466 → 0.509 for a round brilliant turned by 22.5°.)
+//!   trace, each image seen through its symmetry (the same pixels to rounding). (Rocking
+//!   about one axis only made the score depend on how the stone was turned: 0.466 → 0.509
+//!   for a round brilliant turned by 22.5°.)
 //! * **`aset`** `{blue, red, green, leak}`, each ∈ [0, 1], sum 1: the shares of the face-up
 //!   view (by power, over the traced light; cut-off light excluded) whose sight lines leave
 //!   the stone toward 75–90° elevation (blue), 45–75° (red), 0–45° (green) or below the
@@ -104,7 +105,7 @@ mod invariance;
 #[cfg(test)]
 mod tests;
 
-use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions};
+use crate::beam::{mirror_matrix, ExitBeam, ExitSink, Frame, Stone, TraceOptions};
 use crate::error::{Error, Result};
 use crate::geometry::{clip2d, Polyhedron};
 use crate::optics::{color, Dispersion, Material};
@@ -1007,10 +1008,7 @@ fn symmetric_pose_map(tilt: Tilt, symmetry: (usize, Option<f64>)) -> (Tilt, Opti
             // The mirror through azimuth γ takes a tilt toward a to one toward 2γ − a.
             let gamma = beta.to_degrees() + 0.5 * turn;
             if same(2.0 * gamma - rep.azimuth_deg, tilt.azimuth_deg) {
-                let g = gamma.to_radians();
-                let m = DVec3::new(-g.sin(), g.cos(), 0.0);
-                let mirror = DMat3::IDENTITY - 2.0 * DMat3::from_cols(m * m.x, m * m.y, m * m.z);
-                return (rep, Some(mirror));
+                return (rep, Some(mirror_matrix(gamma.to_radians())));
             }
         }
     }
