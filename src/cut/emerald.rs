@@ -23,6 +23,7 @@
 //! = 1/(2·steps)·Σ tan(step angles) (less the culet's share).
 
 use super::construct::check_solid;
+use super::outline;
 use super::steps::{band, girdle, stack, Ring};
 use super::{Family, ParamDef, Params, Unit};
 use crate::error::{Error, Result};
@@ -120,13 +121,8 @@ const PARAMS: &[ParamDef] = &[
         doc: "corner bevel leg along each side, as a fraction of the width (0 = sharp corners)",
     },
     ParamDef {
-        key: "culet",
-        default: 0.0,
-        min: 0.0,
-        max: 0.1,
-        open: false,
-        unit: Unit::Fraction,
         doc: "width of the flattened keel (0 = sharp keel)",
+        ..outline::CULET
     },
 ];
 
