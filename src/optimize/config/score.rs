@@ -86,31 +86,43 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
             ri: &at("score.ri"),
         },
     )?;
-    let head_shadow_deg = finite(&at("score.head_shadow"), rs.head_shadow.unwrap_or(0.0))?;
-    if !(0.0..=60.0).contains(&head_shadow_deg) {
-        return Err(Error::invalid(
-            at("score.head_shadow"),
-            format!("{head_shadow_deg} is out of range; allowed [0, 60] degrees (0 = none)"),
-        ));
-    }
-    let defaults = crate::metrics::ScoreConfig::default();
-    let split = |field: &str, value: Option<f64>, default: f64| -> Result<f64> {
+    // A finite number within `range`, or a one-line error naming the field and what is
+    // allowed (`allowed`: the range as printed, and what it means).
+    let ranged = |field: &str,
+                  value: Option<f64>,
+                  default: f64,
+                  range: std::ops::RangeInclusive<f64>,
+                  allowed: &str|
+     -> Result<f64> {
         let x = finite(&at(field), value.unwrap_or(default))?;
-        if !(1e-9..=1e-2).contains(&x) {
+        if !range.contains(&x) {
             return Err(Error::invalid(
                 at(field),
-                format!(
-                    "{x} is out of range; allowed [1e-9, 1e-2] (a share of the light; smaller is \
-                     smoother and slower)"
-                ),
+                format!("{x} is out of range; allowed {allowed}"),
             ));
         }
         Ok(x)
     };
+    let defaults = crate::metrics::ScoreConfig::default();
+    let split = |field: &str, value: Option<f64>, default: f64| -> Result<f64> {
+        ranged(
+            field,
+            value,
+            default,
+            1e-9..=1e-2,
+            "[1e-9, 1e-2] (a share of the light; smaller is smoother and slower)",
+        )
+    };
     let score = ScoreSettings {
         material,
         ri: rs.ri,
-        head_shadow_deg,
+        head_shadow_deg: ranged(
+            "score.head_shadow",
+            rs.head_shadow,
+            0.0,
+            0.0..=60.0,
+            "[0, 60] degrees (0 = none)",
+        )?,
         polarization: rs.polarization.unwrap_or(true),
         split_threshold: split(
             "score.split_threshold",
@@ -122,22 +134,13 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
             rs.fire_split_threshold,
             defaults.fire_split_threshold,
         )?,
-        ray_floor: {
-            let x = finite(
-                &at("score.ray_floor"),
-                rs.ray_floor.unwrap_or(defaults.trace.ray_floor),
-            )?;
-            if !(0.0..=0.5).contains(&x) {
-                return Err(Error::invalid(
-                    at("score.ray_floor"),
-                    format!(
-                        "{x} is out of range; allowed [0, 0.5] (a share of a narrow beam's \
-                         power; 0 follows every ray to the end)"
-                    ),
-                ));
-            }
-            x
-        },
+        ray_floor: ranged(
+            "score.ray_floor",
+            rs.ray_floor,
+            defaults.trace.ray_floor,
+            0.0..=0.5,
+            "[0, 0.5] (a share of a narrow beam's power; 0 follows every ray to the end)",
+        )?,
         narrow_forks: rs.narrow_forks.unwrap_or(defaults.trace.narrow_forks),
     };
     Ok(score)
