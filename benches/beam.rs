@@ -46,6 +46,17 @@ fn main() {
         .build()
         .expect("pool");
     println!("rayon threads: {}", rayon::current_num_threads());
+    // One trace of tolkowsky at 589.3 nm (its tree, for the counts) and its time per trace.
+    let trace_timed = |frame: &Frame, opts: &TraceOptions| {
+        let tree = stone.trace(frame, ri, 589.3, opts);
+        let (dt, n) = time(
+            || {
+                std::hint::black_box(stone.trace(frame, ri, 589.3, opts));
+            },
+            Duration::from_secs(2),
+        );
+        (tree, dt, n)
+    };
 
     if run("pose") {
         for split in [1e-3, 1e-4, 1e-5] {
@@ -53,13 +64,7 @@ fn main() {
                 split_threshold: split,
                 ..Default::default()
             };
-            let tree = stone.trace(&frame, ri, 589.3, &opts);
-            let (dt, n) = time(
-                || {
-                    std::hint::black_box(stone.trace(&frame, ri, 589.3, &opts));
-                },
-                Duration::from_secs(2),
-            );
+            let (tree, dt, n) = trace_timed(&frame, &opts);
             println!(
                 "pose tolkowsky 589.3 nm, split {split:e}: {:.3} ms/trace ({n} runs); beams {}, rays {} \
                  ({} segments), exits {}, cut-off {:.1e}, light return {:.6}",
@@ -81,13 +86,7 @@ fn main() {
             .rotation(),
         );
         let opts = TraceOptions::default();
-        let tree = stone.trace(&tilted, ri, 589.3, &opts);
-        let (dt, n) = time(
-            || {
-                std::hint::black_box(stone.trace(&tilted, ri, 589.3, &opts));
-            },
-            Duration::from_secs(2),
-        );
+        let (tree, dt, n) = trace_timed(&tilted, &opts);
         println!(
             "pose tolkowsky tilted 10° (no symmetry), split 1e-4: {:.3} ms/trace ({n} runs); beams {}, rays {} ({} segments), exits {}",
             dt.as_secs_f64() * 1e3,
@@ -99,13 +98,7 @@ fn main() {
         // The same pose as the scores trace it: narrow beams' rays stop at the score's ray
         // floor (the rest is handed back with the late exits' mean).
         let opts = facetlab::metrics::ScoreConfig::default().trace;
-        let tree = stone.trace(&tilted, ri, 589.3, &opts);
-        let (dt2, n) = time(
-            || {
-                std::hint::black_box(stone.trace(&tilted, ri, 589.3, &opts));
-            },
-            Duration::from_secs(2),
-        );
+        let (tree, dt2, n) = trace_timed(&tilted, &opts);
         println!(
             "pose tolkowsky tilted 10°, the scores' settings (ray floor {}): {:.3} ms/trace ({n} \
              runs, {:.2} of the above); rays {} ({} segments), closed {:.1e}",
@@ -124,13 +117,7 @@ fn main() {
             ray_floor: 0.02,
             ..opts
         };
-        let tree = stone.trace(&tilted, ri, 589.3, &opts);
-        let (dt3, n) = time(
-            || {
-                std::hint::black_box(stone.trace(&tilted, ri, 589.3, &opts));
-            },
-            Duration::from_secs(2),
-        );
+        let (tree, dt3, n) = trace_timed(&tilted, &opts);
         println!(
             "pose tolkowsky tilted 10°, narrow beams forking (split 3e-4, ray floor 0.02): \
              {:.3} ms/trace ({n} runs, {:.2} of the scores' settings); rays {} ({} segments)",
@@ -144,13 +131,7 @@ fn main() {
             max_depth: 8,
             ..TraceOptions::exact(1e-6)
         };
-        let tree = stone.trace(&frame, ri, 589.3, &opts);
-        let (dt, n) = time(
-            || {
-                std::hint::black_box(stone.trace(&frame, ri, 589.3, &opts));
-            },
-            Duration::from_secs(2),
-        );
+        let (tree, dt, n) = trace_timed(&frame, &opts);
         println!(
             "pose tolkowsky, exact to depth 8 (paper-style): {:.3} ms/trace ({n} runs); beams {}, cut-off {:.2e}",
             dt.as_secs_f64() * 1e3,
