@@ -40,7 +40,11 @@ impl<'a, S: ExitSink> SymSink<'a, S> {
                     ],
                 )
             })
-            .collect();
+            .collect::<Vec<_>>();
+        if ops.len() > 1 {
+            let maps: Vec<(u16, [f64; 4])> = ops.iter().map(|&(i, _, m2)| (i, m2)).collect();
+            inner.symmetries(&maps);
+        }
         SymSink {
             inner,
             ops,

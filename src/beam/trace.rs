@@ -32,6 +32,12 @@ pub(crate) trait ExitSink {
     fn wants_orbit(&self, _beam: &ExitBeam) -> bool {
         true
     }
+    /// The symmetries a trace using the stone's symmetry hands each traced exit out under:
+    /// per symmetry, the index its copies carry in `ExitBeam::sym` and the 2×2 map
+    /// `[a, b, c, d]` of their footprints (`(x, y) ↦ (a x + b y, c x + d y)`). Called once
+    /// before the first exit; the copies of one traced exit then arrive one after another,
+    /// the identity (index 0) first. Default: ignored.
+    fn symmetries(&mut self, _maps: &[(u16, [f64; 4])]) {}
     /// One exit beam, with its footprint in the frame's image coordinates (empty unless
     /// [`ExitSink::wants_footprints`]).
     fn exit(&mut self, beam: &ExitBeam, footprint: &[DVec2]);

@@ -105,13 +105,13 @@ mod invariance;
 #[cfg(test)]
 mod tests;
 
-use crate::beam::{mirror_matrix, ExitBeam, ExitSink, Frame, Stone, TraceOptions};
+use crate::beam::{mirror_matrix, ExitBeam, ExitSink, Frame, Stone, TraceOptions, TraceStats};
 use crate::error::{Error, Result};
 use crate::geometry::{clip2d, Polyhedron};
 use crate::optics::{color, Dispersion, Material};
 use glam::{DMat3, DVec2, DVec3};
 use lighting::{aset_bins, Lighting, Spot};
-use raster::{Coverage, Raster};
+use raster::{Coverage, GridMap, Raster};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -548,6 +548,82 @@ struct PoseSink<'a> {
     r: PoseResult,
     /// The current exit's footprint coverage (the same for every image).
     cov: Coverage,
+    /// The copies of one traced exit (its orbit) under a symmetric trace's maps: per class
+    /// of maps that differ by a symmetry of the pixel grid, the first copy's coverage; the
+    /// other copies in its class move its pixels instead of clipping again.
+    orbit: OrbitCoverage,
+}
+
+/// Coverages of the copies of one traced exit that a symmetric trace hands out
+/// ([`ExitSink::symmetries`]). Their footprint maps fall into classes `G · R` (`R` the class's
+/// first map, `G` a symmetry of the pixel grid, [`GridMap`]); within a class, coverages are
+/// each other's with the pixels moved. A face-up round brilliant's 16 maps make two classes
+/// (the quarter turns and the mirrors through the axes and diagonals, times 1 or a 45° turn),
+/// so two clips serve all 16 copies.
+#[derive(Debug, Default)]
+struct OrbitCoverage {
+    /// Per symmetry index: its class and its map's grid part `G`.
+    class: Vec<Option<(usize, GridMap)>>,
+    /// Per class: the first coverage computed for the current orbit, and that copy's `G`.
+    first: Vec<(Option<GridMap>, Coverage)>,
+}
+
+impl OrbitCoverage {
+    /// Sort the maps `(index, [a, b, c, d])` (orthogonal) into classes.
+    fn new(maps: &[(u16, [f64; 4])]) -> OrbitCoverage {
+        let mut o = OrbitCoverage::default();
+        let mut reps: Vec<[f64; 4]> = Vec::new();
+        for &(i, m) in maps {
+            let i = usize::from(i);
+            // m · rᵀ for each class's first map r.
+            let found = reps.iter().enumerate().find_map(|(c, r)| {
+                let mt = [
+                    m[0] * r[0] + m[1] * r[1],
+                    m[0] * r[2] + m[1] * r[3],
+                    m[2] * r[0] + m[3] * r[1],
+                    m[2] * r[2] + m[3] * r[3],
+                ];
+                GridMap::of(mt).map(|g| (c, g))
+            });
+            let entry = found.unwrap_or_else(|| {
+                reps.push(m);
+                o.first.push((None, Coverage::default()));
+                (reps.len() - 1, GridMap::IDENTITY)
+            });
+            if o.class.len() <= i {
+                o.class.resize(i + 1, None);
+            }
+            o.class[i] = Some(entry);
+        }
+        o
+    }
+
+    /// A new orbit begins (its identity copy arrives).
+    fn start(&mut self) {
+        for f in &mut self.first {
+            f.0 = None;
+        }
+    }
+
+    /// The coverage of the copy with symmetry index `sym` and footprint `fp` on images like
+    /// `img`, into `cov`: moved from its class's first coverage of this orbit, or clipped
+    /// (and kept as the first).
+    fn cover(&mut self, img: &Raster, sym: u16, fp: &[DVec2], cov: &mut Coverage) {
+        let Some(&Some((c, g))) = self.class.get(usize::from(sym)) else {
+            img.coverage_into(fp, cov);
+            return;
+        };
+        let (g0, first) = &mut self.first[c];
+        match *g0 {
+            Some(g0) => img.map_coverage(first, g.after_inverse_of(g0), cov),
+            None => {
+                img.coverage_into(fp, first);
+                *g0 = Some(g);
+                cov.cells.clear();
+                cov.cells.extend_from_slice(&first.cells);
+            }
+        }
+    }
 }
 
 impl ExitSink for PoseSink<'_> {
@@ -564,7 +640,13 @@ impl ExitSink for PoseSink<'_> {
         self.lattice
             .is_some_and(|l| l.reaches((self.rot * e.direction).z))
     }
+    fn symmetries(&mut self, maps: &[(u16, [f64; 4])]) {
+        self.orbit = OrbitCoverage::new(maps);
+    }
     fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+        if e.sym == 0 {
+            self.orbit.start();
+        }
         let w = self.rot * e.direction;
         let p = e.power;
         let r = &mut self.r;
@@ -602,6 +684,7 @@ impl ExitSink for PoseSink<'_> {
         let mut covered = false;
         let mut skip = 0;
         let cov = &mut self.cov;
+        let orbit = &mut self.orbit;
         if let Some(lat) = self.lattice {
             skip = lat.lightings.len();
             let (images, scale) = (&mut r.images[..skip], p * self.area);
@@ -611,7 +694,7 @@ impl ExitSink for PoseSink<'_> {
                 }
                 if l > 0.0 && a > 0.0 {
                     if !covered {
-                        images[k].coverage_into(fp, cov);
+                        orbit.cover(&images[k], e.sym, fp, cov);
                         covered = true;
                     }
                     images[k].add_coverage(cov, l * scale / a);
@@ -654,7 +737,7 @@ impl ExitSink for PoseSink<'_> {
                 }
                 None => {
                     if !covered {
-                        img.coverage_into(fp, cov);
+                        orbit.cover(img, e.sym, fp, cov);
                         covered = true;
                     }
                     img.add_coverage(cov, v);
@@ -675,6 +758,22 @@ fn run_job(
     cfg: &ScoreConfig,
     half: f64,
 ) -> PoseResult {
+    let (frame, opts, mut sink) = job_sink(solid, job, light, lightings, lattice, cfg, half);
+    let (stats, _) = stone.trace_into(&frame, job.ri, &opts, &mut sink, false);
+    sink.finish(stats)
+}
+
+/// A job's viewer frame, trace settings and sink (see [`run_job`]).
+#[allow(clippy::too_many_arguments)]
+fn job_sink<'a>(
+    solid: &Polyhedron,
+    job: &Job,
+    light: &'a Lighting,
+    lightings: &'a [Lighting],
+    lattice: &'a FireLattice<'a>,
+    cfg: &ScoreConfig,
+    half: f64,
+) -> (Frame, TraceOptions, PoseSink<'a>) {
     let rot = job.tilt.rotation();
     let frame = Frame::viewer(rot);
     let opts = TraceOptions {
@@ -702,7 +801,7 @@ fn run_job(
         .collect();
     let n = lattice.lightings.len();
     let has_fire = job.images.len() >= n && job.images[..n].iter().copied().eq(0..n);
-    let mut sink = PoseSink {
+    let sink = PoseSink {
         rot,
         light,
         lattice: has_fire.then_some(lattice),
@@ -721,11 +820,18 @@ fn run_job(
         vfoot: Vec::new(),
         vcov: Coverage::default(),
         cov: Coverage::default(),
+        orbit: OrbitCoverage::default(),
     };
-    let (stats, _) = stone.trace_into(&frame, job.ri, &opts, &mut sink, false);
-    sink.r.power_in = stats.power_in;
-    sink.r.close(stats.ray_closed);
-    sink.r
+    (frame, opts, sink)
+}
+
+impl PoseSink<'_> {
+    /// What the job measured, once its trace (with `stats`) is done.
+    fn finish(mut self, stats: TraceStats) -> PoseResult {
+        self.r.power_in = stats.power_in;
+        self.r.close(stats.ray_closed);
+        self.r
+    }
 }
 
 /// Score `solid` (see the module documentation). The configuration should have passed

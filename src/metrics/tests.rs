@@ -701,3 +701,104 @@ fn symmetric_pose_views_give_the_pose_s_own_image() {
     // Most of those poses were seen through a symmetry (not traced themselves).
     assert!(views >= 8, "{views}");
 }
+
+/// The copies of a face-up exit that differ by a symmetry of the pixel grid (quarter turns,
+/// mirrors through the axes and diagonals) take their coverage from one clip: the images of a
+/// face-up trace with fire's placements and scintillation's turns agree, pixel by pixel, with
+/// those of the same trace whose sink clips every copy itself (tolkowsky: two classes of 8;
+/// princess: one of 8; a 3-fold stone: no grid symmetry but the identity and a mirror).
+#[test]
+fn orbit_coverage_gives_every_copy_its_own_clip() {
+    /// Forwards everything but the symmetries, so every copy is clipped.
+    struct Clipped<'a, 'b>(&'a mut PoseSink<'b>);
+    impl ExitSink for Clipped<'_, '_> {
+        fn wants_footprints(&self) -> bool {
+            self.0.wants_footprints()
+        }
+        fn wants_orbit(&self, e: &ExitBeam) -> bool {
+            self.0.wants_orbit(e)
+        }
+        fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+            self.0.exit(e, fp)
+        }
+    }
+    let cfg = ScoreConfig {
+        resolution: 40,
+        fire_placements: 5,
+        trace: TraceOptions {
+            split_threshold: 1e-3,
+            ..Default::default()
+        },
+        ..ScoreConfig::default()
+    };
+    // A triangular bipyramid: three-fold with mirrors, three classes.
+    let bipyramid = {
+        let planes: Vec<crate::geometry::FacetPlane> = (0..6)
+            .map(|k| {
+                let a = (120.0 * (k % 3) as f64 + 60.0 * (k / 3) as f64).to_radians();
+                let z = if k < 3 { 0.8 } else { -1.1 };
+                crate::geometry::FacetPlane::new(
+                    DVec3::new(a.cos(), a.sin(), z),
+                    1.0,
+                    format!("b{k}"),
+                    "b",
+                )
+            })
+            .collect();
+        Polyhedron::from_planes(&planes).expect("a bipyramid")
+    };
+    let solids = [(tolkowsky(), 2), (princess(), 1), (bipyramid, 3)];
+    for (solid, want_classes) in solids {
+        let solid = canonical::canonical(&solid);
+        let stone = Stone::new(&solid);
+        let light = Lighting::new(0.0, &cfg.spots);
+        let half = crate::render::picture_half(&solid);
+        let placements = fire_placements(&cfg);
+        let mut lightings: Vec<Lighting> = placements
+            .iter()
+            .map(|p| Lighting::new(0.0, &p.spots))
+            .collect();
+        let n = lightings.len();
+        lightings.extend(
+            scintillation_turns(&cfg)
+                .iter()
+                .map(|&t| Lighting::new(0.0, &turned(&cfg.spots, t, 0.0))),
+        );
+        let lattice = FireLattice::new(&placements, &lightings[..n]);
+        let job = Job {
+            tilt: Tilt::FACE_UP,
+            ri: 2.417,
+            images: (0..lightings.len()).collect(),
+            views: vec![None; lightings.len()],
+            brilliance: true,
+            face_up: true,
+            split: 1e-4,
+        };
+        let run = |clip_all: bool| {
+            let (frame, opts, mut sink) =
+                job_sink(&solid, &job, &light, &lightings, &lattice, &cfg, half);
+            let (stats, _) = if clip_all {
+                stone.trace_into(&frame, job.ri, &opts, &mut Clipped(&mut sink), false)
+            } else {
+                stone.trace_into(&frame, job.ri, &opts, &mut sink, false)
+            };
+            let classes = sink.orbit.first.len();
+            (sink.finish(stats), classes)
+        };
+        let ((moved, classes), (clipped, _)) = (run(false), run(true));
+        assert_eq!(classes, want_classes, "{:?}", stone.symmetry());
+        for (a, b) in moved.images.iter().zip(&clipped.images) {
+            let top = b.data.iter().fold(0.0f64, |m, &x| m.max(x));
+            let worst = a
+                .data
+                .iter()
+                .zip(&b.data)
+                .map(|(x, y)| (x - y).abs())
+                .fold(0.0, f64::max);
+            // (A stone's mirror found to ~1e-11 counts as the grid's.)
+            assert!(worst <= 1e-9 * top, "{worst} of {top}");
+        }
+        assert!(moved.images.iter().any(|i| i.data.iter().any(|&x| x > 0.0)));
+        assert_eq!(moved.iso, clipped.iso);
+    }
+}

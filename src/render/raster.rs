@@ -196,6 +196,45 @@ fn strip_y(
     }
 }
 
+/// A symmetry of the pixel grid of a square image centred on the origin: one of the eight
+/// maps `(x, y) ↦ (a x + b y, c x + d y)` with `[a, b, c, d]` a signed permutation matrix
+/// (quarter turns and mirrors through the axes and diagonals). Such a map takes pixels onto
+/// pixels, so the coverage of a polygon's image under it is the polygon's coverage with the
+/// pixels moved ([`Raster::map_coverage`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GridMap([i8; 4]);
+
+impl GridMap {
+    /// The identity.
+    pub const IDENTITY: GridMap = GridMap([1, 0, 0, 1]);
+
+    /// The grid symmetry a 2×2 map `[a, b, c, d]` is, when every entry is within 1e-9 of 0
+    /// or ±1 and they form a signed permutation: an orthogonal map computed in floating point
+    /// (a quarter turn), or a stone's mirror found to ~1e-11 (a polygon's coverage then moves
+    /// by ~1e-9 of a pixel at most, as little as the symmetry is exact).
+    pub fn of(m: [f64; 4]) -> Option<GridMap> {
+        let mut g = [0i8; 4];
+        for (gi, &x) in g.iter_mut().zip(&m) {
+            let r = x.round();
+            if !((x - r).abs() <= 1e-9 && r.abs() <= 1.0) {
+                return None;
+            }
+            *gi = r as i8;
+        }
+        let [a, b, c, d] = g;
+        let ok = (a != 0 && d != 0 && b == 0 && c == 0) || (a == 0 && d == 0 && b != 0 && c != 0);
+        ok.then_some(GridMap(g))
+    }
+
+    /// `self ∘ other⁻¹` (the inverse of a signed permutation is its transpose).
+    pub fn after_inverse_of(self, other: GridMap) -> GridMap {
+        let [a, b, c, d] = self.0;
+        // other⁻¹ = otherᵀ = [p, r, q, s] for other = [p, q, r, s].
+        let [p, q, r, s] = other.0;
+        GridMap([a * p + b * q, a * r + b * s, c * p + d * q, c * r + d * s])
+    }
+}
+
 /// The exact area a convex polygon covers in each pixel it touches (pixel index, area), for
 /// images of one size: computed once by [`Raster::coverage_into`], added to any number of
 /// images of that size with [`Raster::add_coverage`].
@@ -478,6 +517,24 @@ impl Raster {
         }
     }
 
+    /// The coverage of a polygon's image under the grid symmetry `g` from the polygon's own
+    /// coverage `cov` (for this image's size), into `out` (cleared first): the same pixels
+    /// moved by `g`, with the same areas. Equal to [`Raster::coverage_into`] of the mapped
+    /// polygon to rounding, without clipping anything.
+    pub fn map_coverage(&self, cov: &Coverage, g: GridMap, out: &mut Coverage) {
+        out.cells.clear();
+        let n = self.n as i64;
+        let [a, b, c, d] = g.0.map(i64::from);
+        // Pixel centres in units of half a pixel from the image centre: X = 2i − (n − 1).
+        out.cells.extend(cov.cells.iter().map(|&(k, area)| {
+            let (i, j) = ((k as i64) % n, (k as i64) / n);
+            let (x, y) = (2 * i - (n - 1), 2 * j - (n - 1));
+            let (x2, y2) = (a * x + b * y, c * x + d * y);
+            let (i2, j2) = ((x2 + n - 1) / 2, (y2 + n - 1) / 2);
+            ((j2 * n + i2) as usize, area)
+        }));
+    }
+
     /// The pixels the convex polygon `poly` covers in this image, with the exact covered
     /// areas, into `cov` (cleared first; empty when nothing is covered).
     pub fn coverage_into(&self, poly: &[DVec2], cov: &mut Coverage) {
@@ -613,6 +670,91 @@ mod tests {
         r.add_polygon(&t, 1.0);
         assert!((r.integral() - 5e-5).abs() < 1e-18);
         assert_eq!(r.data.iter().filter(|&&v| v > 0.0).count(), 1);
+    }
+
+    /// A polygon's coverage moved by a grid symmetry is the coverage of the moved polygon (the
+    /// same pixels, the same areas to rounding), for all eight symmetries, on even and odd
+    /// image sizes; maps that are not grid symmetries are refused.
+    #[test]
+    fn grid_maps_move_coverage_exactly() {
+        let mut seed = 192837465u64;
+        let mut rnd = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let quarter = glam::DMat2::from_angle(std::f64::consts::FRAC_PI_2);
+        let q = [
+            quarter.x_axis.x,
+            quarter.y_axis.x,
+            quarter.x_axis.y,
+            quarter.y_axis.y,
+        ];
+        assert_eq!(GridMap::of(q), Some(GridMap([0, -1, 1, 0])));
+        let c = std::f64::consts::FRAC_1_SQRT_2;
+        assert_eq!(GridMap::of([c, -c, c, c]), None);
+        assert_eq!(GridMap::of([1.0, 0.0, 0.0, 0.5]), None);
+        assert_eq!(GridMap::of([1.0, 1.0, 0.0, 1.0]), None);
+        let maps: Vec<[i8; 4]> = vec![
+            [1, 0, 0, 1],
+            [0, -1, 1, 0],
+            [-1, 0, 0, -1],
+            [0, 1, -1, 0],
+            [1, 0, 0, -1],
+            [-1, 0, 0, 1],
+            [0, 1, 1, 0],
+            [0, -1, -1, 0],
+        ];
+        for n in [15, 16] {
+            let r = Raster::new(n, 0.5);
+            let (mut cov, mut moved, mut direct) = (
+                Coverage::default(),
+                Coverage::default(),
+                Coverage::default(),
+            );
+            for _ in 0..300 {
+                let k = 3 + (rnd() * 5.0) as usize;
+                let (cx, cy, rad, ph) = (rnd() - 0.5, rnd() - 0.5, rnd() * 0.2, rnd() * 6.0);
+                let poly: Vec<DVec2> = (0..k)
+                    .map(|i| {
+                        let th = ph + i as f64 * std::f64::consts::TAU / k as f64;
+                        DVec2::new(cx + rad * th.cos(), cy + rad * th.sin())
+                    })
+                    .collect();
+                r.coverage_into(&poly, &mut cov);
+                for m in &maps {
+                    let g = GridMap::of(m.map(f64::from)).expect("a grid map");
+                    let [a, b, c, d] = m.map(f64::from);
+                    let image: Vec<DVec2> = poly
+                        .iter()
+                        .map(|p| DVec2::new(a * p.x + b * p.y, c * p.x + d * p.y))
+                        .collect();
+                    r.coverage_into(&image, &mut direct);
+                    r.map_coverage(&cov, g, &mut moved);
+                    let tiny = 1e-12 * r.pixel() * r.pixel();
+                    let sorted = |c: &Coverage| {
+                        let mut v: Vec<(usize, f64)> =
+                            c.cells.iter().copied().filter(|x| x.1 > tiny).collect();
+                        v.sort_by_key(|x| x.0);
+                        v
+                    };
+                    let (got, want) = (sorted(&moved), sorted(&direct));
+                    assert_eq!(got.len(), want.len(), "{n} {m:?} {poly:?}");
+                    for (x, y) in got.iter().zip(&want) {
+                        assert_eq!(x.0, y.0, "{n} {m:?} {poly:?}");
+                        assert!((x.1 - y.1).abs() <= 1e-13 * r.pixel() * r.pixel());
+                    }
+                    // Composition: moving by g then by h g⁻¹ is moving by h.
+                    let h = GridMap([0, 1, -1, 0]);
+                    let mut twice = Coverage::default();
+                    r.map_coverage(&moved, h.after_inverse_of(g), &mut twice);
+                    let mut once = Coverage::default();
+                    r.map_coverage(&cov, h, &mut once);
+                    assert_eq!(sorted(&twice), sorted(&once));
+                }
+            }
+        }
     }
 
     /// The coverage is the per-pixel clip with clip2d's strip clips: bit for bit where a pixel
