@@ -4,6 +4,7 @@
 use super::symmetry::SymOp;
 use crate::geometry::Polyhedron;
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// Facets with `|n · d|` below this are seen edge-on: no beam starts or ends on them.
 pub(super) const GRAZE: f64 = 1e-12;
@@ -171,24 +172,29 @@ impl Stone {
             .iter()
             .map(|&h| stone.normals[h as usize].extend(stone.offsets[h as usize]))
             .collect();
+        // One row per facet, filled in parallel (each cell on its own: the same table on any
+        // number of threads); a score's traces wait for it.
         let mut facet_table = vec![0u32; nf * cells];
-        for f in 0..nf {
-            for face in 0..6 {
-                for i in 0..CUBE_RES {
-                    for j in 0..CUBE_RES {
-                        let t = cube_dir(face, i, j);
-                        let c = cube_cell(t);
-                        facet_table[f * cells + c] = if stone.normals[f].dot(t) < 0.0 {
-                            stone
-                                .walk(stone.dir_table[c] as usize, centroids[f], t, f)
-                                .map_or(stone.dir_table[c], |(g, _)| g as u32)
-                        } else {
-                            stone.dir_table[c]
-                        };
+        facet_table
+            .par_chunks_mut(cells)
+            .enumerate()
+            .for_each(|(f, row)| {
+                for face in 0..6 {
+                    for i in 0..CUBE_RES {
+                        for j in 0..CUBE_RES {
+                            let t = cube_dir(face, i, j);
+                            let c = cube_cell(t);
+                            row[c] = if stone.normals[f].dot(t) < 0.0 {
+                                stone
+                                    .walk(stone.dir_table[c] as usize, centroids[f], t, f)
+                                    .map_or(stone.dir_table[c], |(g, _)| g as u32)
+                            } else {
+                                stone.dir_table[c]
+                            };
+                        }
                     }
                 }
-            }
-        }
+            });
         stone.facet_table = facet_table;
         stone.find_symmetry();
         stone

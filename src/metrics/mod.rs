@@ -1021,12 +1021,17 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
     };
     let weights = color::band_weights_d65(bands);
     let outline = solid.projected_area(DVec3::Z);
-    let (mut fire_sum, mut fire_w) = (0.0, 0.0);
-    for (p, placement) in placements.iter().enumerate() {
-        let images: Vec<&Raster> = fire.iter().filter_map(|&k| image(k, p)).collect();
-        fire_sum += placement.weight * fire_of(&images, &weights, outline);
-        fire_w += placement.weight;
-    }
+    // Each placement's fire in parallel, summed in placement order.
+    let per_placement: Vec<f64> = placements
+        .par_iter()
+        .enumerate()
+        .map(|(p, placement)| {
+            let images: Vec<&Raster> = fire.iter().filter_map(|&k| image(k, p)).collect();
+            placement.weight * fire_of(&images, &weights, outline)
+        })
+        .collect();
+    let fire_sum: f64 = per_placement.iter().sum();
+    let fire_w: f64 = placements.iter().map(|p| p.weight).sum();
     let fire_value = if !cfg.parts.fire {
         f64::NAN
     } else if fire_w > 0.0 {
