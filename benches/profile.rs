@@ -12,8 +12,18 @@
 //! `FACETLAB_PROFILE_SPLIT` the split threshold of the tilted poses' traces,
 //! `FACETLAB_PROFILE_FIRE_SPLIT` that of fire's face-up traces, `FACETLAB_PROFILE_FLOOR` the
 //! ray floor, `FACETLAB_PROFILE_FORKS=1` follows narrow beams as forking discs,
-//! `FACETLAB_PROFILE_PARTS=brilliance` leaves fire and scintillation out, and `FACETLAB_PROFILE_DEGREES`
+//! `FACETLAB_PROFILE_PARTS=brilliance` leaves fire and scintillation out,
+//! `FACETLAB_PROFILE_FACE_UP_SPLIT` the face-up trace's split threshold (it splits down to the
+//! smallest of this, fire's and the tilted poses'),
+//! `FACETLAB_PROFILE_TILTS=face-up` scores the face-up pose only, and `FACETLAB_PROFILE_DEGREES`
 //! the profile's width (default 1°) (for experiments).
+//!
+//! Then, per pose of the brilliance average, the same two figures for its light return
+//! (`(ISO + COS) / 2`). Split finer and finer, a pose's profile converges to the exact one's
+//! (consecutive splits' second differences correlate), which is itself rough on this scale:
+//! the beam tree's powers are continuous in the cut, but Fresnel's reflectance has an infinite
+//! slope at the critical angle, and a beam crosses it at some pavilion angle for each of
+//! thousands of facet sequences.
 
 use facetlab::cut::Cut;
 use facetlab::metrics::{score, ScoreConfig, Scores};
@@ -91,6 +101,17 @@ fn main() {
         cfg.parts.fire = false;
         cfg.parts.scintillation = false;
     }
+    // `FACETLAB_PROFILE_FACE_UP_SPLIT`: the face-up trace's split threshold.
+    if let Some(x) = std::env::var("FACETLAB_PROFILE_FACE_UP_SPLIT")
+        .ok()
+        .and_then(|s| s.parse().ok())
+    {
+        cfg.face_up_split_threshold = x;
+    }
+    // `FACETLAB_PROFILE_TILTS=face-up`: the face-up pose only.
+    if std::env::var("FACETLAB_PROFILE_TILTS").as_deref() == Ok("face-up") {
+        cfg.tilts = vec![facetlab::metrics::Tilt::FACE_UP];
+    }
     // `FACETLAB_PROFILE_DEGREES`: the width of the profile (default 1°, from 40.0°).
     let degrees: f64 = std::env::var("FACETLAB_PROFILE_DEGREES")
         .ok()
@@ -106,11 +127,14 @@ fn main() {
         .collect();
     let dt = t0.elapsed().as_secs_f64();
     println!(
-        "profile: pavilion 40.0° → {:.3}°, {} cuts, split {:e} (fire {:e}), {:.1} s ({:.1} ms/cut on {} threads)",
+        "profile: pavilion 40.0° → {:.3}°, {} cuts, split {:e} (fire {:e}, face-up {:e}), {:.1} s ({:.1} ms/cut on {} threads)",
         40.0 + degrees,
         angles.len(),
         cfg.trace.split_threshold,
         cfg.fire_split_threshold,
+        cfg.face_up_split_threshold
+            .min(cfg.fire_split_threshold)
+            .min(cfg.trace.split_threshold),
         dt,
         dt * 1e3 / angles.len() as f64,
         rayon::current_num_threads()
@@ -137,6 +161,17 @@ fn main() {
         println!(
             "{name:<22} {lo:>10.6} {:>10.6} {range:>10.3e} {tv:>10.3} {med:>12.3e}",
             lo + range
+        );
+    }
+    for (i, pose) in scores[0].poses.iter().enumerate() {
+        let f: Vec<f64> = scores
+            .iter()
+            .map(|s| s.poses.get(i).map_or(f64::NAN, |p| 0.5 * (p.iso + p.cos)))
+            .collect();
+        let (tv, med, range) = roughness(&f);
+        println!(
+            "pose {:>4.1}° toward {:>5.1}°: range {range:.3e}, TV/range {tv:.3}, med|d2| {med:.3e}",
+            pose.tilt_deg, pose.azimuth_deg
         );
     }
     let mut csv = String::from("pavilion_angle");
