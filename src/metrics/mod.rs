@@ -586,6 +586,12 @@ struct OrbitCoverage {
     class: Vec<Option<(usize, GridMap)>>,
     /// Per class: the first coverage computed for the current orbit, and that copy's `G`.
     first: Vec<(Option<GridMap>, Coverage)>,
+    /// Per symmetry index: how it moves an azimuth, `a ↦ sign · a + turn` (degrees).
+    turns: Vec<(f64, f64)>,
+    /// The azimuth of the current orbit's identity copy, degrees (NaN until asked for).
+    azimuth: f64,
+    /// That copy's direction.
+    dir: DVec3,
 }
 
 impl OrbitCoverage {
@@ -612,10 +618,31 @@ impl OrbitCoverage {
             });
             if o.class.len() <= i {
                 o.class.resize(i + 1, None);
+                o.turns.resize(i + 1, (f64::NAN, f64::NAN));
             }
             o.class[i] = Some(entry);
+            // A turn by θ is [cos θ, −sin θ, sin θ, cos θ]; a mirror through the line at β is
+            // [cos 2β, sin 2β, sin 2β, −cos 2β]: either way the angle is atan2(c, a).
+            let sign = (m[0] * m[3] - m[1] * m[2]).signum();
+            o.turns[i] = (sign, m[2].atan2(m[0]).to_degrees());
         }
         o
+    }
+
+    /// The azimuth (degrees, up to whole turns) of the copy with symmetry index `sym` and
+    /// world direction `w`, from its orbit's identity copy's (one arc-tangent per orbit), when
+    /// the trace is symmetric; `None` otherwise. The maps act on world directions as on
+    /// footprints: the frames' symmetries keep the viewer's axis.
+    fn azimuth(&mut self, sym: u16, w: DVec3) -> Option<f64> {
+        let &(sign, turn) = self.turns.get(usize::from(sym))?;
+        if sym == 0 {
+            self.dir = w;
+            self.azimuth = f64::NAN;
+        }
+        if self.azimuth.is_nan() {
+            self.azimuth = self.dir.y.atan2(self.dir.x).to_degrees();
+        }
+        Some(sign * self.azimuth + turn)
     }
 
     /// A new orbit begins (its identity copy arrives).
@@ -708,7 +735,7 @@ impl ExitSink for PoseSink<'_> {
         if let Some(lat) = self.lattice {
             skip = lat.lightings.len();
             let (images, scale) = (&mut r.images[..skip], p * self.area);
-            lat.for_each(w, |k, l| {
+            lat.for_each(w, orbit.azimuth(e.sym, w), |k, l| {
                 if a < 0.0 {
                     a = clip2d::area(fp);
                 }
@@ -1261,9 +1288,11 @@ impl<'a> FireLattice<'a> {
     }
 
     /// Calls `f(k, radiance)` for every placement `k` whose spots light direction `w`
-    /// (each spot separately, head shadow applied).
+    /// (each spot separately, head shadow applied). `az`, when given, is `w`'s azimuth in
+    /// degrees (any turn of it; it only picks the placements to look at, each of which is
+    /// then evaluated at `w` itself).
     #[inline]
-    fn for_each(&self, w: DVec3, mut f: impl FnMut(usize, f64)) {
+    fn for_each(&self, w: DVec3, az: Option<f64>, mut f: impl FnMut(usize, f64)) {
         let n = self.lightings.len();
         if n == 0 {
             return;
@@ -1281,8 +1310,12 @@ impl<'a> FireLattice<'a> {
             if z < sp.z_lo || z > sp.z_hi {
                 continue;
             }
-            let (az, cos_e) =
-                *az_cos.get_or_insert_with(|| (w.y.atan2(w.x).to_degrees(), (1.0 - z * z).sqrt()));
+            let (az, cos_e) = *az_cos.get_or_insert_with(|| {
+                (
+                    az.unwrap_or_else(|| w.y.atan2(w.x).to_degrees()),
+                    (1.0 - z * z).sqrt(),
+                )
+            });
             // 1 − cos Δa ≤ (1 − cos ρ) / (cos e · cos ε): the azimuths within reach (an upper
             // bound of the arc-cosine visits a few more placements, whose light is 0).
             let x = sp.one_minus_cos_reach / (cos_e * sp.cos_top).max(1e-300);

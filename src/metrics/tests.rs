@@ -705,11 +705,13 @@ fn symmetric_pose_views_give_the_pose_s_own_image() {
 /// The copies of a face-up exit that differ by a symmetry of the pixel grid (quarter turns,
 /// mirrors through the axes and diagonals) take their coverage from one clip: the images of a
 /// face-up trace with fire's placements and scintillation's turns agree, pixel by pixel, with
-/// those of the same trace whose sink clips every copy itself (tolkowsky: two classes of 8;
-/// princess: one of 8; a 3-fold stone: no grid symmetry but the identity and a mirror).
+/// those of the same trace whose sink clips every copy itself and finds every copy's azimuth
+/// for fire's placements by its own arc-tangent (tolkowsky: two classes of 8; princess: one
+/// of 8; a 3-fold stone: three classes, the identity with a mirror).
 #[test]
 fn orbit_coverage_gives_every_copy_its_own_clip() {
-    /// Forwards everything but the symmetries, so every copy is clipped.
+    /// Forwards everything but the symmetries, so every copy is clipped (and its azimuth
+    /// found) on its own.
     struct Clipped<'a, 'b>(&'a mut PoseSink<'b>);
     impl ExitSink for Clipped<'_, '_> {
         fn wants_footprints(&self) -> bool {

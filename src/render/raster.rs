@@ -523,16 +523,18 @@ impl Raster {
     /// polygon to rounding, without clipping anything.
     pub fn map_coverage(&self, cov: &Coverage, g: GridMap, out: &mut Coverage) {
         out.cells.clear();
+        out.cells.reserve(cov.cells.len());
         let n = self.n as i64;
         let [a, b, c, d] = g.0.map(i64::from);
-        // Pixel centres in units of half a pixel from the image centre: X = 2i − (n − 1).
-        out.cells.extend(cov.cells.iter().map(|&(k, area)| {
-            let (i, j) = ((k as i64) % n, (k as i64) / n);
-            let (x, y) = (2 * i - (n - 1), 2 * j - (n - 1));
-            let (x2, y2) = (a * x + b * y, c * x + d * y);
-            let (i2, j2) = ((x2 + n - 1) / 2, (y2 + n - 1) / 2);
-            ((j2 * n + i2) as usize, area)
-        }));
+        // With pixel centres at X = 2i − (n − 1) half-pixels from the image centre, the map
+        // takes pixel (i, j) to (a i + b j + oi, c i + d j + oj), one of a, b and one of c, d
+        // being 0: so k = j n + i goes to (c n + a) i + (d n + b) j + oj n + oi.
+        let (oi, oj) = ((n - 1) * (1 - a - b) / 2, (n - 1) * (1 - c - d) / 2);
+        let (ki, kj, k0) = (c * n + a, d * n + b, oj * n + oi);
+        for &(k, area) in &cov.cells {
+            let (i, j) = ((k % self.n) as i64, (k / self.n) as i64);
+            out.cells.push(((ki * i + kj * j + k0) as usize, area));
+        }
     }
 
     /// The pixels the convex polygon `poly` covers in this image, with the exact covered
