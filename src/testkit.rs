@@ -42,6 +42,18 @@ pub(crate) fn slab(half_width: f64, half_thickness: f64) -> Polyhedron {
     boxed(half_width, half_width, half_thickness)
 }
 
+/// A small deterministic generator of uniform numbers in [0, 1) for tests (a 64-bit linear
+/// congruential generator, its top 53 bits): the same sequence for the same seed everywhere.
+pub(crate) fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut seed = seed;
+    move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// The eight planes of the octahedron |x| + |y| + |z| ≤ `r` (vertices at distance `r`).
 pub(crate) fn octahedron_planes(r: f64) -> Vec<FacetPlane> {
     let mut planes = Vec::new();

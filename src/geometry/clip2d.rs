@@ -313,13 +313,7 @@ mod tests {
     /// edge clip gives for the same axis-aligned lines.
     #[test]
     fn strips_match_the_general_edge_clip() {
-        let mut seed = 12345u64;
-        let mut rnd = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = crate::testkit::uniform(12345u64);
         let (mut out, mut scratch, mut a, mut b) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let mut cut = 0;
         for _ in 0..500 {

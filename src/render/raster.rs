@@ -679,13 +679,7 @@ mod tests {
     /// image sizes; maps that are not grid symmetries are refused.
     #[test]
     fn grid_maps_move_coverage_exactly() {
-        let mut seed = 192837465u64;
-        let mut rnd = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = crate::testkit::uniform(192837465u64);
         let quarter = glam::DMat2::from_angle(std::f64::consts::FRAC_PI_2);
         let q = [
             quarter.x_axis.x,
@@ -763,13 +757,7 @@ mod tests {
     /// is clipped, to rounding where it is wholly covered.
     #[test]
     fn coverage_matches_the_plain_clip_bit_for_bit() {
-        let mut seed = 987654321u64;
-        let mut rnd = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = crate::testkit::uniform(987654321u64);
         let r = Raster::new(16, 0.5);
         let h = r.pixel();
         let mut cov = Coverage::default();
@@ -826,13 +814,7 @@ mod tests {
     /// rows too.
     #[test]
     fn accumulator_matches_the_clip() {
-        let mut seed = 12345u64;
-        let mut rnd = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = crate::testkit::uniform(12345u64);
         let n = 24;
         let mut want = [Raster::new(n, 0.5), Raster::new(n, 0.5)];
         let mut whole = Accumulator::new(n, 0.5, (0, n), 2);
