@@ -191,8 +191,9 @@ pub struct ScoreConfig {
 }
 
 /// Which of fire and scintillation [`score`] computes (brilliance, overhead light return and
-/// ASET always are: they share the traces brilliance needs). Fire takes about a third of a
-/// default score's time, scintillation about a fifth.
+/// ASET always are: they share the traces brilliance needs). Fire takes about half of a
+/// default score's time (its eight face-up traces: 62 of 127 ms on one thread for tolkowsky),
+/// scintillation about a tenth (14 ms).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Parts {
     /// Compute fire.
