@@ -200,6 +200,13 @@ impl Stone {
         stone
     }
 
+    /// How many copies of each traced exit a trace along `frame` hands out (the symmetries
+    /// it uses, see [`TraceOptions::symmetry`](super::TraceOptions::symmetry)): it traces
+    /// about that fraction of the cross-section.
+    pub fn frame_symmetries(&self, frame: &super::Frame) -> usize {
+        self.frame_symmetry(frame.dir).0.len()
+    }
+
     /// Number of facets.
     pub fn facet_count(&self) -> usize {
         self.normals.len()

@@ -1025,10 +1025,26 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
         })
         .collect();
     let lattice = FireLattice::new(&placements, &lightings[..first_turn]);
-    let results: Vec<PoseResult> = jobs
-        .par_iter()
-        .map(|j| run_job(&stone, solid, j, &light, &lightings, &lattice, cfg, half))
+    // The costliest traces first, so that the short ones fill in at the end: face-up ones
+    // (the finest splits), then the poses whose trace uses the fewest symmetries.
+    let copies: Vec<usize> = jobs
+        .iter()
+        .map(|j| stone.frame_symmetries(&Frame::viewer(j.tilt.rotation())))
         .collect();
+    let mut order: Vec<usize> = (0..jobs.len()).collect();
+    order.sort_by(|&a, &b| {
+        let (x, y) = (&jobs[a], &jobs[b]);
+        (x.tilt != Tilt::FACE_UP)
+            .cmp(&(y.tilt != Tilt::FACE_UP))
+            .then(x.split.total_cmp(&y.split))
+            .then(copies[a].cmp(&copies[b]))
+            .then(y.images.len().cmp(&x.images.len()))
+    });
+    let results: Vec<PoseResult> = par_in_order(&order, |k| {
+        run_job(
+            &stone, solid, &jobs[k], &light, &lightings, &lattice, cfg, half,
+        )
+    });
     let image = |k: usize, l: usize| -> Option<&Raster> {
         let pos = jobs[k].images.iter().position(|&x| x == l)?;
         results[k].images.get(pos)
@@ -1106,6 +1122,29 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
         aset,
         poses,
     }
+}
+
+/// `f(k)` for every `k` of `order` (a permutation of `0..n`), started in that order on the
+/// rayon pool: each worker takes the next one when it is free (greedy list scheduling, so
+/// that long jobs given first finish together). The results come back by index,
+/// `[f(0), f(1), …]`, whatever the number of threads.
+fn par_in_order<T: Send + Sync>(order: &[usize], f: impl Fn(usize) -> T + Sync) -> Vec<T> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::OnceLock;
+    let next = AtomicUsize::new(0);
+    let slots: Vec<OnceLock<T>> = order.iter().map(|_| OnceLock::new()).collect();
+    let workers = rayon::current_num_threads().clamp(1, order.len().max(1));
+    (0..workers).into_par_iter().for_each(|_| loop {
+        let i = next.fetch_add(1, Ordering::Relaxed);
+        let Some(&k) = order.get(i) else { break };
+        if let Some(slot) = slots.get(k) {
+            let _ = slot.set(f(k));
+        }
+    });
+    slots
+        .into_iter()
+        .map(|s| s.into_inner().expect("every index of `order` was run"))
+        .collect()
 }
 
 /// The representative of `tilt` under a stone's symmetry `(order, mirror azimuth)` (see

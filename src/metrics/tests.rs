@@ -804,3 +804,33 @@ fn orbit_coverage_gives_every_copy_its_own_clip() {
         assert_eq!(moved.iso, clipped.iso);
     }
 }
+
+/// Jobs started in any order on pools of one to three threads come back by index, each run
+/// exactly once.
+#[test]
+fn par_in_order_returns_results_by_index() {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    for threads in 1..=3 {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a pool");
+        for order in [
+            vec![],
+            vec![0],
+            vec![3, 1, 4, 0, 2],
+            (0..40).rev().collect(),
+        ] {
+            let runs = AtomicUsize::new(0);
+            let got = pool.install(|| {
+                par_in_order(&order, |k| {
+                    runs.fetch_add(1, Ordering::Relaxed);
+                    k * k
+                })
+            });
+            let want: Vec<usize> = (0..order.len()).map(|k| k * k).collect();
+            assert_eq!(got, want, "{threads} threads, order {order:?}");
+            assert_eq!(runs.load(Ordering::Relaxed), order.len());
+        }
+    }
+}
