@@ -589,10 +589,8 @@ struct OrbitCoverage {
     first: Vec<(Option<GridMap>, Coverage)>,
     /// Per symmetry index: how it moves an azimuth, `a ↦ sign · a + turn` (degrees).
     turns: Vec<(f64, f64)>,
-    /// The azimuth of the current orbit's identity copy, degrees (NaN until asked for).
+    /// The azimuth of the current orbit's identity copy, degrees.
     azimuth: f64,
-    /// That copy's direction.
-    dir: DVec3,
 }
 
 impl OrbitCoverage {
@@ -631,17 +629,14 @@ impl OrbitCoverage {
     }
 
     /// The azimuth (degrees, up to whole turns) of the copy with symmetry index `sym` and
-    /// world direction `w`, from its orbit's identity copy's (one arc-tangent per orbit), when
-    /// the trace is symmetric; `None` otherwise. The maps act on world directions as on
-    /// footprints: the frames' symmetries keep the viewer's axis.
+    /// world direction `w`, from its orbit's identity copy's (one arc-tangent per orbit: ask
+    /// for every copy, the identity first), when the trace is symmetric; `None` otherwise.
+    /// The maps act on world directions as on footprints: the frames' symmetries keep the
+    /// viewer's axis.
     fn azimuth(&mut self, sym: u16, w: DVec3) -> Option<f64> {
         let &(sign, turn) = self.turns.get(usize::from(sym))?;
         if sym == 0 {
-            self.dir = w;
-            self.azimuth = f64::NAN;
-        }
-        if self.azimuth.is_nan() {
-            self.azimuth = self.dir.y.atan2(self.dir.x).to_degrees();
+            self.azimuth = w.y.atan2(w.x).to_degrees();
         }
         Some(sign * self.azimuth + turn)
     }
