@@ -573,6 +573,8 @@ struct PoseSink<'a> {
     /// of maps that differ by a symmetry of the pixel grid, the first copy's coverage; the
     /// other copies in its class move its pixels instead of clipping again.
     orbit: OrbitCoverage,
+    /// Fire's placement lookup for the current orbit's elevation (shared by its copies).
+    reach: Reach,
 }
 
 /// Coverages of the copies of one traced exit that a symmetric trace hands out
@@ -731,7 +733,10 @@ impl ExitSink for PoseSink<'_> {
         if let Some(lat) = self.lattice {
             skip = lat.lightings.len();
             let (images, scale) = (&mut r.images[..skip], p * self.area);
-            lat.for_each(w, orbit.azimuth(e.sym, w), |k, l| {
+            if e.sym == 0 {
+                lat.reach_into(w, &mut self.reach);
+            }
+            lat.for_each(w, orbit.azimuth(e.sym, w), &self.reach, |k, l| {
                 if a < 0.0 {
                     a = clip2d::area(fp);
                 }
@@ -864,6 +869,7 @@ fn job_sink<'a>(
         vcov: Coverage::default(),
         cov: Coverage::default(),
         orbit: OrbitCoverage::default(),
+        reach: Reach::default(),
     };
     (frame, opts, sink)
 }
@@ -1322,35 +1328,25 @@ impl<'a> FireLattice<'a> {
         !self.lightings.is_empty() && z >= self.z_range.0 && z <= self.z_range.1
     }
 
-    /// Calls `f(k, radiance)` for every placement `k` whose spots light direction `w`
-    /// (each spot separately, head shadow applied). `az`, when given, is `w`'s azimuth in
-    /// degrees (any turn of it; it only picks the placements to look at, each of which is
-    /// then evaluated at `w` itself).
-    #[inline]
-    fn for_each(&self, w: DVec3, az: Option<f64>, mut f: impl FnMut(usize, f64)) {
-        let n = self.lightings.len();
-        if n == 0 {
-            return;
-        }
+    /// What [`FireLattice::for_each`] needs of a direction's elevation alone, into `out`:
+    /// the head shadow and the spots within reach, each with the half-width of the azimuths
+    /// it reaches there. The copies of a face-up exit share their elevation, so one `Reach`
+    /// serves the whole orbit.
+    fn reach_into(&self, w: DVec3, out: &mut Reach) {
+        out.spots.clear();
         // Elevations are compared through their sines (sin e = w.z), with the reach's margin
         // of 1e-6° far above rounding: the same placements are visited as with the angles.
         let z = w.z.clamp(-1.0, 1.0);
-        let head = self.lightings[0].head(w);
-        if head == 0.0 {
+        out.head = self.lightings.first().map_or(0.0, |l| l.head(w));
+        if out.head == 0.0 {
             return;
         }
-        // The azimuth and cos e, computed once the first spot is within reach of elevation e.
-        let mut az_cos: Option<(f64, f64)> = None;
+        let mut cos_e: Option<f64> = None;
         for (i, sp) in self.spots.iter().enumerate() {
             if z < sp.z_lo || z > sp.z_hi {
                 continue;
             }
-            let (az, cos_e) = *az_cos.get_or_insert_with(|| {
-                (
-                    az.unwrap_or_else(|| w.y.atan2(w.x).to_degrees()),
-                    (1.0 - z * z).sqrt(),
-                )
-            });
+            let cos_e = *cos_e.get_or_insert_with(|| (1.0 - z * z).sqrt());
             // 1 − cos Δa ≤ (1 − cos ρ) / (cos e · cos ε): the azimuths within reach (an upper
             // bound of the arc-cosine visits a few more placements, whose light is 0).
             let x = sp.one_minus_cos_reach / (cos_e * sp.cos_top).max(1e-300);
@@ -1359,28 +1355,62 @@ impl<'a> FireLattice<'a> {
             } else {
                 acos_one_minus_upper(x).to_degrees().min(180.0)
             };
+            out.spots.push((i, half));
+        }
+    }
+
+    /// Calls `f(k, radiance)` for every placement `k` whose spots light direction `w`
+    /// (each spot separately, head shadow applied), `reach` being [`FireLattice::reach_into`]
+    /// of `w` or of any direction with the same elevation. `az`, when given, is `w`'s azimuth
+    /// in degrees (any turn of it; it only picks the placements to look at, each of which is
+    /// then evaluated at `w` itself).
+    #[inline]
+    fn for_each(&self, w: DVec3, az: Option<f64>, reach: &Reach, mut f: impl FnMut(usize, f64)) {
+        let n = self.lightings.len();
+        if n == 0 || reach.spots.is_empty() {
+            return;
+        }
+        let z = w.z.clamp(-1.0, 1.0);
+        let az = az.unwrap_or_else(|| w.y.atan2(w.x).to_degrees());
+        let ni = n as i64;
+        for &(i, half) in &reach.spots {
+            let sp = &self.spots[i];
             let t0 = az - sp.azimuth;
             let (k0, k1) = if half >= 180.0 {
-                (0, n as i64 - 1)
+                (0, ni - 1)
             } else {
                 (
                     raster::ceil_i64((t0 - half) / self.step),
                     raster::floor_i64((t0 + half) / self.step),
                 )
             };
-            for kk in k0..=k1.min(k0 + n as i64 - 1) {
-                let k = kk.rem_euclid(n as i64) as usize;
+            // Placements k0, k0 + 1, … (at most all n once), taken modulo n.
+            let mut k = k0.rem_euclid(ni) as usize;
+            for _ in k0..=k1.min(k0 + ni - 1) {
                 let (lo, hi) = self.zband[i * n + k];
-                if z < lo || z > hi {
-                    continue;
+                if z >= lo && z <= hi {
+                    let l = self.lightings[k].spot(i, w);
+                    if l > 0.0 {
+                        f(k, l * reach.head);
+                    }
                 }
-                let l = self.lightings[k].spot(i, w);
-                if l > 0.0 {
-                    f(k, l * head);
+                k += 1;
+                if k == n {
+                    k = 0;
                 }
             }
         }
     }
+}
+
+/// The part of fire's placement lookup that depends on a direction's elevation only
+/// ([`FireLattice::reach_into`]).
+#[derive(Debug, Default)]
+struct Reach {
+    /// The head shadow's share at that elevation.
+    head: f64,
+    /// The spots within reach, with the half-width (degrees) of the azimuths each reaches.
+    spots: Vec<(usize, f64)>,
 }
 
 /// Largest raising or lowering of the spot lights in fire's average, degrees.

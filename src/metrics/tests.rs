@@ -706,12 +706,12 @@ fn symmetric_pose_views_give_the_pose_s_own_image() {
 /// mirrors through the axes and diagonals) take their coverage from one clip: the images of a
 /// face-up trace with fire's placements and scintillation's turns agree, pixel by pixel, with
 /// those of the same trace whose sink clips every copy itself and finds every copy's azimuth
-/// for fire's placements by its own arc-tangent (tolkowsky: two classes of 8; princess: one
+/// and reach for fire's placements on its own (tolkowsky: two classes of 8; princess: one
 /// of 8; a 3-fold stone: three classes, the identity with a mirror).
 #[test]
 fn orbit_coverage_gives_every_copy_its_own_clip() {
-    /// Forwards everything but the symmetries, so every copy is clipped (and its azimuth
-    /// found) on its own.
+    /// Forwards everything but the symmetries, each copy as if it began an orbit, so every
+    /// copy is clipped (and its azimuth and fire's reach found) on its own.
     struct Clipped<'a, 'b>(&'a mut PoseSink<'b>);
     impl ExitSink for Clipped<'_, '_> {
         fn wants_footprints(&self) -> bool {
@@ -721,7 +721,7 @@ fn orbit_coverage_gives_every_copy_its_own_clip() {
             self.0.wants_orbit(e)
         }
         fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
-            self.0.exit(e, fp)
+            self.0.exit(&ExitBeam { sym: 0, ..*e }, fp)
         }
     }
     let cfg = ScoreConfig {
