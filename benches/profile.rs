@@ -6,7 +6,11 @@
 //! Prints, for brilliance, fire and scintillation (and the other scores), the total variation
 //! over the range (`Σ|f(k+1) − f(k)| / (max − min)`: 1 for a monotone profile, large for a
 //! noisy one) and the median absolute second difference (`|f(k+1) − 2f(k) + f(k−1)|`: the
-//! roughness an optimizer sees on a 0.002° scale). Writes every cut's scores to the CSV file
+//! roughness an optimizer sees on a 0.002° scale), and the total variation over the same range
+//! of every 5th and every 25th cut only (`TV@0.01°`, `TV@0.05°`): the profile's own rises and
+//! falls at those spacings. A score that genuinely rises and falls over the degree has a
+//! total variation above 1 however smooth it is; what the 0.002° figure adds to the 0.05°
+//! one is the fine-scale roughness. Writes every cut's scores to the CSV file
 //! named by the environment variable `FACETLAB_PROFILE_CSV`, or to `target/profile.csv`.
 //! `FACETLAB_PROFILE_STEPS` (default 500) sets the number of steps over the same degree, and
 //! `FACETLAB_PROFILE_SPLIT` the split threshold of the tilted poses' traces,
@@ -45,6 +49,23 @@ fn cut(pavilion: f64) -> Cut {
     .map(|(k, v)| (k.to_string(), *v))
     .collect();
     Cut::from_family("profile", "round-brilliant", &v).expect("round brilliant")
+}
+
+/// Total variation over the range of `f` (all of it) of every `every`-th value of `f`: the
+/// profile's own rises and falls at that spacing, without what happens in between.
+fn tv_sampled(f: &[f64], every: usize) -> f64 {
+    let (lo, hi) = f
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    let g: Vec<f64> = f.iter().step_by(every.max(1)).copied().collect();
+    let tv: f64 = g.windows(2).map(|w| (w[1] - w[0]).abs()).sum();
+    if hi > lo {
+        tv / (hi - lo)
+    } else {
+        0.0
+    }
 }
 
 /// Total variation over range, median |second difference|, range.
@@ -150,17 +171,36 @@ fn main() {
         ("aset_blue", |s| s.aset.blue),
         ("aset_leak", |s| s.aset.leak),
     ];
+    // The same total variation from every k-th cut only, k such that they are 0.01° and
+    // 0.05° apart (when the steps allow): what the profile itself does at those spacings.
+    let step_deg = degrees / steps.max(1) as f64;
+    let coarse: Vec<(String, Option<usize>)> = [0.01, 0.05]
+        .iter()
+        .map(|&d: &f64| {
+            let k = (d / step_deg).round() as usize;
+            (
+                format!("TV@{d}°"),
+                (k >= 1 && k * 2 <= steps && ((k as f64) * step_deg - d).abs() < 1e-9).then_some(k),
+            )
+        })
+        .collect();
     println!(
-        "{:<22} {:>10} {:>10} {:>10} {:>10} {:>12}",
-        "score", "min", "max", "range", "TV/range", "med|d2|"
+        "{:<22} {:>10} {:>10} {:>10} {:>10} {:>12} {:>10} {:>10}",
+        "score", "min", "max", "range", "TV/range", "med|d2|", coarse[0].0, coarse[1].0
     );
     for (name, get) in columns {
         let f: Vec<f64> = scores.iter().map(get).collect();
         let (tv, med, range) = roughness(&f);
         let lo = f.iter().copied().fold(f64::INFINITY, f64::min);
+        let c: Vec<String> = coarse
+            .iter()
+            .map(|(_, k)| k.map_or("-".into(), |k| format!("{:.3}", tv_sampled(&f, k))))
+            .collect();
         println!(
-            "{name:<22} {lo:>10.6} {:>10.6} {range:>10.3e} {tv:>10.3} {med:>12.3e}",
-            lo + range
+            "{name:<22} {lo:>10.6} {:>10.6} {range:>10.3e} {tv:>10.3} {med:>12.3e} {:>10} {:>10}",
+            lo + range,
+            c[0],
+            c[1]
         );
     }
     for (i, pose) in scores[0].poses.iter().enumerate() {
