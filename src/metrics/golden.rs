@@ -71,7 +71,7 @@ const TOLKOWSKY_DEFAULT: [f64; 10] = [
     0.777931357457, // brilliance
     0.884305341885, // brilliance_iso
     0.671557373029, // brilliance_cos
-    0.740731471957, // fire
+    0.740731073265, // fire
     0.599534973043, // scintillation
     0.227448515839, // aset.blue
     0.499176332909, // aset.red
@@ -85,7 +85,7 @@ const TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15: [f64; 10] = [
     0.623154840245, // brilliance
     0.709990902468, // brilliance_iso
     0.536318778023, // brilliance_cos
-    1.129757222849, // fire
+    1.129757106136, // fire
     0.512784591410, // scintillation
     0.256105151810, // aset.blue
     0.554046132440, // aset.red

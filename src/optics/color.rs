@@ -77,6 +77,36 @@ pub fn band_weights_d65(n: usize) -> Vec<DVec3> {
     out
 }
 
+/// A band of [`band_weights_d65`] whose X, Y and Z weights are all below this share of the
+/// white's is *faint* (with 8 bands, 730–780 nm: about 1e-5 of the white; with 6, 713–780 nm).
+pub const FAINT_BAND: f64 = 1e-3;
+
+/// The bands of [`band_centres`]`(n)` worth tracing for a spectral image, each with its
+/// weight: a faint band (every XYZ weight below `faint` of the white's) is not traced but
+/// merged into the nearest band that is not faint (by index; the lower one on a tie), which
+/// takes its weight, as if its image were that band's. The merged weights still sum to the
+/// white, so a grey pixel (every band alike) stays grey. In band order; every band is kept
+/// when `faint` is 0.
+pub fn traced_bands(n: usize, faint: f64) -> Vec<(f64, DVec3)> {
+    let centres = band_centres(n);
+    let weights = band_weights_d65(n);
+    let white: DVec3 = weights.iter().copied().sum();
+    let bright: Vec<usize> = (0..weights.len())
+        .filter(|&i| (weights[i] / white).max_element() >= faint)
+        .collect();
+    if bright.is_empty() {
+        return centres.into_iter().zip(weights).collect();
+    }
+    let mut out: Vec<(f64, DVec3)> = bright.iter().map(|&i| (centres[i], DVec3::ZERO)).collect();
+    for (i, w) in weights.iter().enumerate() {
+        let k = (0..bright.len())
+            .min_by_key(|&k| bright[k].abs_diff(i))
+            .unwrap_or(0);
+        out[k].1 += *w;
+    }
+    out
+}
+
 /// XYZ of the D65 white with Y = 1, as integrated with [`cmf`].
 pub fn d65_white() -> DVec3 {
     band_weights_d65(400).iter().copied().sum()
@@ -135,6 +165,38 @@ pub fn chroma(lab: DVec3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Faint bands are merged into their nearest traced neighbour: the weights still sum to
+    /// the white, and only bands far out in the red (or violet) go.
+    #[test]
+    fn faint_bands_merge_into_their_neighbours() {
+        for n in [1, 3, 6, 8, 16, 64] {
+            let all = band_weights_d65(n);
+            let white: DVec3 = all.iter().copied().sum();
+            let kept = traced_bands(n, FAINT_BAND);
+            let sum: DVec3 = kept.iter().map(|b| b.1).sum();
+            assert!(
+                (sum - white).abs().max_element() < 1e-12,
+                "{n}: {sum} against {white}"
+            );
+            // Every band kept is bright; every band dropped is faint.
+            let centres = band_centres(n);
+            for (i, (c, w)) in centres.iter().zip(&all).enumerate() {
+                let bright = (*w / white).max_element() >= FAINT_BAND;
+                let traced = kept.iter().any(|k| k.0 == *c);
+                assert_eq!(bright, traced, "{n} bands, band {i} at {c} nm: {w}");
+            }
+            // Nothing is dropped with a threshold of 0.
+            assert_eq!(traced_bands(n, 0.0).len(), n);
+        }
+        // 8 bands: only 730–780 nm (≈1e-5 of the white) is faint, and 680–730 nm takes it.
+        let kept = traced_bands(8, FAINT_BAND);
+        let all = band_weights_d65(8);
+        assert_eq!(kept.len(), 7);
+        assert!((all[7] / all.iter().copied().sum::<DVec3>()).max_element() < 1e-4);
+        assert_eq!(kept[6].1, all[6] + all[7]);
+        assert_eq!(kept[..6].iter().map(|b| b.1).collect::<Vec<_>>(), all[..6]);
+    }
 
     #[test]
     fn d65_white_point() {
