@@ -92,9 +92,9 @@
 //!   ways a face-up stone meets its lights*. The face-up view is traced at
 //!   [`ScoreConfig::bands`] wavelengths (band centres across 380–780 nm; a band whose colour
 //!   weight is below [`color::FAINT_BAND`] of the white's in X, Y and Z — with 8 bands,
-//!   730–780 nm at ~1e-5 — is not traced but takes its neighbour's image,
-//!   [`color::traced_bands`]: fire moves by ~1e-6 and a score takes ~6 % less time); for one placement of
-//!   the spot lights ([`Spot::default_set`], seven 5° spots of radiance 1) each band's image is
+//!   730–780 nm at ~2e-5 — is not traced but takes its neighbour's image,
+//!   [`color::traced_bands`]: fire moves by < 1e-6 for ~5 % fewer instructions); for one
+//!   placement of the spot lights ([`Spot::default_set`], seven 5° spots of radiance 1) each band's image is
 //!   rasterised with exact footprint coverage; each pixel's spectrum becomes CIE XYZ with
 //!   D65-weighted CIE 1931 bands ([`color::band_weights_d65`]) and then CIELAB relative to
 //!   the D65 white of the spots' radiance (Y = 1). One placement's fire is `100 · Σ Y·s` over

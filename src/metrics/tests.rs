@@ -835,7 +835,7 @@ fn par_in_order_returns_results_by_index() {
     }
 }
 
-/// Fire's faint bands (730–780 nm of 8: ~1e-5 of the white) take their neighbour's trace
+/// Fire's faint bands (730–780 nm of 8: ~2e-5 of the white) take their neighbour's trace
 /// instead of their own: fire moves by far less than its Monte Carlo or split error, in
 /// diamond and in cubic zirconia, and nothing else moves at all.
 #[test]

@@ -78,7 +78,7 @@ pub fn band_weights_d65(n: usize) -> Vec<DVec3> {
 }
 
 /// A band of [`band_weights_d65`] whose X, Y and Z weights are all below this share of the
-/// white's is *faint* (with 8 bands, 730–780 nm: about 1e-5 of the white; with 6, 713–780 nm).
+/// white's is *faint* (with 8 bands, 730–780 nm: about 2e-5 of the white in X; with 6, 713–780 nm at 1e-4).
 pub const FAINT_BAND: f64 = 1e-3;
 
 /// The bands of [`band_centres`]`(n)` worth tracing for a spectral image, each with its
@@ -189,7 +189,7 @@ mod tests {
             // Nothing is dropped with a threshold of 0.
             assert_eq!(traced_bands(n, 0.0).len(), n);
         }
-        // 8 bands: only 730–780 nm (≈1e-5 of the white) is faint, and 680–730 nm takes it.
+        // 8 bands: only 730–780 nm (≈2e-5 of the white) is faint, and 680–730 nm takes it.
         let kept = traced_bands(8, FAINT_BAND);
         let all = band_weights_d65(8);
         assert_eq!(kept.len(), 7);
