@@ -87,31 +87,30 @@
 //!   with equal weights over the poses [`ScoreConfig::tilts`] (face-up and two rings of
 //!   tilted poses by default) — GIA's weighted light return in spirit.
 //!   **`brilliance`** = (ISO + COS) / 2.
-//! * **`fire`** ≥ 0, in percent (about 0.7 for a Tolkowsky diamond, more for the same cut in
-//!   cubic zirconia): saturated colour under small light sources, as an *expectation over the
-//!   ways a face-up stone meets its lights*. The face-up view is traced at
-//!   [`ScoreConfig::bands`] wavelengths (band centres across 380–780 nm; a band whose colour
-//!   weight is below [`color::FAINT_BAND`] of the white's in X, Y and Z — with 8 bands,
-//!   730–780 nm at ~2e-5 — is not traced but takes its neighbour's image,
-//!   [`color::traced_bands`]: fire moves by < 1e-6 for ~5 % fewer instructions); for one
-//!   placement of the spot lights ([`Spot::default_set`], seven 5° spots of radiance 1) each band's image is
-//!   rasterised with exact footprint coverage; each pixel's spectrum becomes CIE XYZ with
-//!   D65-weighted CIE 1931 bands ([`color::band_weights_d65`]) and then CIELAB relative to
-//!   the D65 white of the spots' radiance (Y = 1). One placement's fire is `100 · Σ Y·s` over
-//!   the face-up outline per unit of its area, `s = C*ab / L*` the pixel's saturation:
-//!   coloured light per unit of face-up area (`s` hardly depends on brightness, so fire is
-//!   linear in the light and one concentrated flash cannot dominate). Fire is the weighted
-//!   mean over [`fire_placements`]: the lights turned about the zenith in equal steps (the
-//!   stone turning under them: the face-up traces are shared, only the lights move) and
-//!   raised or lowered by up to [`FIRE_LIFT_DEG`] with a smooth raised-cosine weight (the
-//!   stone rocking a little under them). A single placement is a checkerboard of single
-//!   flashes in the cut's parameters (a dispersed fan crossing one spot's rim); the
-//!   expectation varies smoothly. A grey pixel (every band the same) contributes exactly 0, so
-//!   a material without dispersion has fire exactly 0. Fire's traces split down to
-//!   [`ScoreConfig::fire_split_threshold`] (3e-6), thirty times finer than the others: on
-//!   the 0.002° profile of `cargo bench --bench profile` fire's total variation over its
-//!   range falls from 3.56 at 1e-5 to 2.51 (2.25 at 1e-6, 2.18 at 3e-7; sampled every 0.1°
-//!   the profile itself rises and falls by 1.7 times its range), for a quarter more time.
+//! * **`fire`** ≥ 0, in percent (about 0.7 for a Tolkowsky diamond, more for the same cut in cubic
+//!   zirconia): saturated colour under small light sources, as an *expectation over the ways a
+//!   face-up stone meets its lights*. The face-up view is traced at [`ScoreConfig::bands`]
+//!   wavelengths (band centres across 380–780 nm; a band whose colour weight is below
+//!   [`color::FAINT_BAND`] of the white's in X, Y and Z — with 8 bands, 730–780 nm at ~2e-5 — is
+//!   not traced but takes its neighbour's image, [`color::traced_bands`]: fire moves by < 1e-6 for
+//!   ~5 % fewer instructions); for one placement of the spot lights ([`Spot::default_set`], seven
+//!   5° spots of radiance 1) each band's image is rasterised with exact footprint coverage; each
+//!   pixel's spectrum becomes CIE XYZ with D65-weighted CIE 1931 bands
+//!   ([`color::band_weights_d65`]) and then CIELAB relative to the D65 white of the spots' radiance
+//!   (Y = 1). One placement's fire is `100 · Σ Y·s` over the face-up outline per unit of its area,
+//!   `s = C*ab / L*` the pixel's saturation: coloured light per unit of face-up area (`s` hardly
+//!   depends on brightness, so fire is linear in the light and one concentrated flash cannot
+//!   dominate). Fire is the weighted mean over [`fire_placements`]: the lights turned about the
+//!   zenith in equal steps (the stone turning under them: the face-up traces are shared, only the
+//!   lights move) and raised or lowered by up to [`FIRE_LIFT_DEG`] with a smooth raised-cosine
+//!   weight (the stone rocking a little under them). A single placement is a checkerboard of single
+//!   flashes in the cut's parameters (a dispersed fan crossing one spot's rim); the expectation
+//!   varies smoothly. A grey pixel (every band the same) contributes exactly 0, so a material
+//!   without dispersion has fire exactly 0. Fire's traces split down to
+//!   [`ScoreConfig::fire_split_threshold`] (3e-6), thirty times finer than the others: on the
+//!   0.002° profile of `cargo bench --bench profile` fire's total variation over its range falls
+//!   from 3.56 at 1e-5 to 2.51 (2.25 at 1e-6, 2.18 at 3e-7; sampled every 0.1° the profile itself
+//!   rises and falls by 1.7 times its range), for a quarter more time.
 //! * **`scintillation`** ∈ [0, 1]: how much the face-up pattern of bright and dark changes as
 //!   the stone rocks, in every direction. For each of [`ScoreConfig::scintillation_turns`]
 //!   evenly spaced azimuths ψ ([`scintillation_turns`]) the stone is rocked toward ψ through
