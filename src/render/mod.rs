@@ -279,7 +279,8 @@ pub struct RenderOptions {
     pub wavelength_nm: f64,
     /// Track polarization (default on).
     pub polarization: bool,
-    /// Wavelength bands of the fire picture (≥ 8 by default).
+    /// Wavelength bands of the fire picture (≥ 8 by default; faint ones share a neighbour's
+    /// trace, [`color::traced_bands`]).
     pub bands: usize,
     /// Spot lights of the fire picture.
     pub spots: Vec<Spot>,
@@ -608,9 +609,10 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         ..Stats::default()
     };
     let (channels, layers) = if opts.light == Light::Fire {
-        let bands = opts.bands.max(1);
-        let centres = color::band_centres(bands);
-        let weights = color::band_weights_d65(bands);
+        // Faint bands (far out in the red) take a neighbour's trace, as in the scores.
+        let bands = color::traced_bands(opts.bands.max(1), color::FAINT_BAND);
+        let centres: Vec<f64> = bands.iter().map(|b| b.0).collect();
+        let weights: Vec<DVec3> = bands.iter().map(|b| b.1).collect();
         let constant = matches!(opts.material.dispersion, Dispersion::Constant(_));
         let ri0 = opts.material.ri(opts.wavelength_nm);
         // One trace per band (one for all when the index does not change with wavelength).
@@ -638,7 +640,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
             .par_iter()
             .map(|l| fill(std::slice::from_ref(l), 1, size, half).remove(0))
             .collect();
-        let images: Vec<&Raster> = (0..bands)
+        let images: Vec<&Raster> = (0..bands.len())
             .map(|b| &band_images[if constant { 0 } else { b }])
             .collect();
         for l in &band_layers {
