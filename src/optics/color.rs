@@ -78,7 +78,8 @@ pub fn band_weights_d65(n: usize) -> Vec<DVec3> {
 }
 
 /// A band of [`band_weights_d65`] whose X, Y and Z weights are all below this share of the
-/// white's is *faint* (with 8 bands, 730–780 nm: about 2e-5 of the white in X; with 6, 713–780 nm at 1e-4).
+/// white's is *faint* (with 8 bands, 730–780 nm: about 2e-5 of the white in X; with 6,
+/// 713–780 nm: 1e-4).
 pub const FAINT_BAND: f64 = 1e-3;
 
 /// The bands of [`band_centres`]`(n)` worth tracing for a spectral image, each with its
