@@ -1,0 +1,472 @@
+//! The house rules of `src/`, checked on the source as it stands: every file at most
+//! [`MAX_LINES`] lines of code before its tests, no import circle between the files of one
+//! module, and every floor of the library importing only the floors that README.md's Layout
+//! table says it may. The table is read from the README itself, so the README cannot drift
+//! from the code without this test failing.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// The most lines a source file may hold before its inline `#[cfg(test)] mod tests { … }`.
+const MAX_LINES: usize = 700;
+
+/// The binary's module under `src/` (above every floor; not a row of the table).
+const BINARY: &str = "cli";
+
+type ModPath = Vec<String>;
+
+struct Source {
+    path: PathBuf,
+    module: ModPath,
+    /// The text before the inline test module, comments removed.
+    code: String,
+    /// Lines before the inline test module.
+    lines: usize,
+    /// A test-only module (`#[cfg(test)] mod x;` in its parent, or a `tests` folder).
+    test_only: bool,
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn rs_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let mut entries: Vec<_> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.unwrap().path())
+        .collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            rs_files(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// `src/a/b.rs` → `[a, b]`, `src/a/mod.rs` → `[a]`, `src/lib.rs` → `[]`.
+fn module_of(rel: &Path) -> ModPath {
+    let mut parts: Vec<String> = rel
+        .iter()
+        .map(|s| s.to_string_lossy().into_owned())
+        .collect();
+    let last = parts.pop().unwrap();
+    let stem = last.trim_end_matches(".rs");
+    if stem != "mod" && stem != "lib" {
+        parts.push(stem.to_string());
+    }
+    parts
+}
+
+/// Where the inline test module starts (the `#[cfg(test)]` line before `mod tests {`).
+fn inline_tests_start(text: &str) -> Option<usize> {
+    let lines: Vec<&str> = text.lines().collect();
+    (1..lines.len()).find_map(|i| {
+        (lines[i - 1].trim() == "#[cfg(test)]" && lines[i].trim_start().starts_with("mod tests {"))
+            .then_some(i - 1)
+    })
+}
+
+/// Remove `//` comments (doc comments included; a `//` inside a string literal cuts the rest of
+/// that line, which only ever hides text, never invents an import).
+fn strip_comments(text: &str) -> String {
+    text.lines()
+        .map(|l| match l.find("//") {
+            Some(i) => &l[..i],
+            None => l,
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Modules declared test-only by their parent: `#[cfg(test)]` then `mod name;` or `mod name {`.
+fn test_only_children(text: &str) -> BTreeSet<String> {
+    let lines: Vec<&str> = text.lines().map(str::trim).collect();
+    let mut out = BTreeSet::new();
+    for i in 1..lines.len() {
+        if lines[i - 1].starts_with("#[cfg(test)]") {
+            let l = lines[i]
+                .trim_start_matches("pub(crate) ")
+                .trim_start_matches("pub ");
+            if let Some(rest) = l.strip_prefix("mod ") {
+                let name: String = rest
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                out.insert(name);
+            }
+        }
+    }
+    out
+}
+
+fn load_sources() -> Vec<Source> {
+    let src = root().join("src");
+    let mut files = Vec::new();
+    rs_files(&src, &mut files);
+    let mut test_children: BTreeMap<ModPath, BTreeSet<String>> = BTreeMap::new();
+    let mut out = Vec::new();
+    for path in files {
+        let rel = path.strip_prefix(&src).unwrap().to_path_buf();
+        // `main.rs` is the binary's root; its `cli` module is read like the library's files
+        // (for lengths and circles) but is no floor: it links the library as `facetlab::…`.
+        if rel == Path::new("main.rs") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        let module = module_of(&rel);
+        test_children.insert(module.clone(), test_only_children(&text));
+        let head = match inline_tests_start(&text) {
+            Some(line) => text.lines().take(line).collect::<Vec<_>>().join("\n"),
+            None => text.clone(),
+        };
+        out.push(Source {
+            path: rel,
+            lines: head.lines().count(),
+            code: strip_comments(&head),
+            module,
+            test_only: false,
+        });
+    }
+    for s in &mut out {
+        s.test_only = (1..=s.module.len()).any(|k| {
+            let (parent, name) = (&s.module[..k - 1], &s.module[k - 1]);
+            name == "tests"
+                || test_children
+                    .get(parent)
+                    .is_some_and(|set| set.contains(name))
+        });
+    }
+    out
+}
+
+fn ident_end(s: &[u8], mut i: usize) -> usize {
+    while i < s.len() && (s[i].is_ascii_alphanumeric() || s[i] == b'_') {
+        i += 1;
+    }
+    i
+}
+
+/// Every path the code names that starts at `crate`, `super` or `self`, with `use` trees
+/// (`a::{b, c::{d}}`) expanded.
+fn paths_named(code: &str) -> Vec<Vec<String>> {
+    let s = code.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < s.len() {
+        let starts_word = i == 0 || !(s[i - 1].is_ascii_alphanumeric() || s[i - 1] == b'_');
+        if starts_word
+            && [&b"crate::"[..], b"super::", b"self::"]
+                .iter()
+                .any(|p| s[i..].starts_with(p))
+        {
+            let (paths, end) = parse_tree(code, i, Vec::new());
+            out.extend(paths);
+            i = end.max(i + 1);
+        } else {
+            i += 1;
+        }
+    }
+    out
+}
+
+/// Parse a path or use tree at byte `i`; returns the full paths and where it ended.
+fn parse_tree(code: &str, mut i: usize, prefix: Vec<String>) -> (Vec<Vec<String>>, usize) {
+    let s = code.as_bytes();
+    let mut path = prefix;
+    loop {
+        while i < s.len() && s[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        if i < s.len() && s[i] == b'{' {
+            let mut out = Vec::new();
+            i += 1;
+            loop {
+                while i < s.len() && (s[i].is_ascii_whitespace() || s[i] == b',') {
+                    i += 1;
+                }
+                if i >= s.len() || s[i] == b'}' {
+                    return (out, i + 1);
+                }
+                let (sub, end) = parse_tree(code, i, path.clone());
+                out.extend(sub);
+                // skip an `as name`
+                i = end;
+                while i < s.len() && s[i] != b',' && s[i] != b'}' && s[i] != b';' {
+                    i += 1;
+                }
+            }
+        }
+        let end = ident_end(s, i);
+        if end == i {
+            return (vec![path], i);
+        }
+        path.push(code[i..end].to_string());
+        i = end;
+        if s[i..].starts_with(b"::") {
+            i += 2;
+        } else {
+            return (vec![path], i);
+        }
+    }
+}
+
+/// The module a path lands in: the longest prefix that is a module of the crate.
+fn resolve(from: &[String], path: &[String], modules: &BTreeSet<ModPath>) -> Option<ModPath> {
+    let mut base: ModPath = Vec::new();
+    let mut rest = path;
+    match path.first()?.as_str() {
+        "crate" => rest = &path[1..],
+        "self" => {
+            base = from.to_vec();
+            rest = &path[1..];
+        }
+        "super" => {
+            base = from.to_vec();
+            while rest.first().is_some_and(|s| s == "super") {
+                base.pop();
+                rest = &rest[1..];
+            }
+        }
+        _ => return None,
+    }
+    for seg in rest {
+        let mut next = base.clone();
+        next.push(seg.clone());
+        if modules.contains(&next) {
+            base = next;
+        } else {
+            break;
+        }
+    }
+    Some(base)
+}
+
+/// Arrows from each non-test file to the modules it names (itself excluded).
+fn arrows(sources: &[Source]) -> Vec<(ModPath, ModPath)> {
+    let modules: BTreeSet<ModPath> = sources.iter().map(|s| s.module.clone()).collect();
+    let mut out = BTreeSet::new();
+    for s in sources.iter().filter(|s| !s.test_only) {
+        for p in paths_named(&s.code) {
+            if let Some(m) = resolve(&s.module, &p, &modules) {
+                if m != s.module {
+                    out.insert((s.module.clone(), m));
+                }
+            }
+        }
+    }
+    out.into_iter().collect()
+}
+
+/// Strongly connected components with more than one node (Tarjan).
+fn cycles(graph: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
+    struct T<'a> {
+        g: &'a BTreeMap<String, BTreeSet<String>>,
+        index: BTreeMap<String, usize>,
+        low: BTreeMap<String, usize>,
+        stack: Vec<String>,
+        out: Vec<Vec<String>>,
+    }
+    fn visit(t: &mut T, v: &str) {
+        let n = t.index.len();
+        t.index.insert(v.to_string(), n);
+        t.low.insert(v.to_string(), n);
+        t.stack.push(v.to_string());
+        let next: Vec<String> = t.g.get(v).into_iter().flatten().cloned().collect();
+        for w in next {
+            if !t.index.contains_key(&w) {
+                visit(t, &w);
+                let lw = t.low[&w];
+                let lv = t.low.get_mut(v).unwrap();
+                *lv = (*lv).min(lw);
+            } else if t.stack.contains(&w) {
+                let iw = t.index[&w];
+                let lv = t.low.get_mut(v).unwrap();
+                *lv = (*lv).min(iw);
+            }
+        }
+        if t.low[v] == t.index[v] {
+            let mut comp = Vec::new();
+            loop {
+                let w = t.stack.pop().unwrap();
+                let done = w == v;
+                comp.push(w);
+                if done {
+                    break;
+                }
+            }
+            if comp.len() > 1 {
+                comp.sort();
+                t.out.push(comp);
+            }
+        }
+    }
+    let mut t = T {
+        g: graph,
+        index: BTreeMap::new(),
+        low: BTreeMap::new(),
+        stack: Vec::new(),
+        out: Vec::new(),
+    };
+    for v in graph.keys() {
+        if !t.index.contains_key(v) {
+            visit(&mut t, v);
+        }
+    }
+    t.out
+}
+
+/// README.md's Layout rows for the library's floors: `` | `name` | what it holds | `a`, `b` | ``
+/// → name → the floors it may import.
+fn readme_floors() -> BTreeMap<String, BTreeSet<String>> {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let section = readme
+        .split("\n## Layout")
+        .nth(1)
+        .expect("README.md has a `## Layout` section");
+    let section = section.split("\n## ").next().unwrap();
+    let mut out = BTreeMap::new();
+    for line in section.lines() {
+        let cols: Vec<&str> = line.split('|').map(str::trim).collect();
+        // | `floor` | holds | may import |  → ["", floor, holds, may, ""]
+        if cols.len() != 5 || !cols[1].starts_with('`') || cols[1].contains('/') {
+            continue;
+        }
+        let name = cols[1].trim_matches('`').to_string();
+        let may: BTreeSet<String> = cols[3]
+            .split(',')
+            .map(|x| x.trim().trim_matches('`').to_string())
+            .filter(|x| !x.is_empty() && x != "—" && x != "-")
+            .collect();
+        out.insert(name, may);
+    }
+    out
+}
+
+#[test]
+fn every_source_file_is_at_most_700_lines_before_its_tests() {
+    let long: Vec<String> = load_sources()
+        .iter()
+        .filter(|s| s.lines > MAX_LINES)
+        .map(|s| format!("src/{} ({} lines)", s.path.display(), s.lines))
+        .collect();
+    assert!(long.is_empty(), "over {MAX_LINES} lines: {long:?}");
+    // The integration tests too.
+    let mut files = Vec::new();
+    rs_files(&root().join("tests"), &mut files);
+    let long: Vec<String> = files
+        .iter()
+        .filter_map(|p| {
+            let text = std::fs::read_to_string(p).unwrap();
+            let n = inline_tests_start(&text).unwrap_or(text.lines().count());
+            (n > MAX_LINES).then(|| format!("{} ({n} lines)", p.display()))
+        })
+        .collect();
+    assert!(long.is_empty(), "over {MAX_LINES} lines: {long:?}");
+}
+
+#[test]
+fn no_import_circle_between_the_files_of_a_module() {
+    let sources = load_sources();
+    let arrows = arrows(&sources);
+    let parents: BTreeSet<ModPath> = sources
+        .iter()
+        .filter(|s| !s.module.is_empty())
+        .map(|s| s.module[..s.module.len() - 1].to_vec())
+        .collect();
+    let mut found = Vec::new();
+    for parent in parents {
+        // Each arrow between two descendants of `parent` counts between the children of
+        // `parent` that hold them.
+        let child = |m: &ModPath| -> Option<String> {
+            (m.len() > parent.len() && m[..parent.len()] == parent[..])
+                .then(|| m[parent.len()].clone())
+        };
+        let mut g: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+        for (a, b) in &arrows {
+            if let (Some(ca), Some(cb)) = (child(a), child(b)) {
+                if ca != cb {
+                    g.entry(ca).or_default().insert(cb);
+                }
+            }
+        }
+        for c in cycles(&g) {
+            found.push(format!("{}: {}", parent.join("::"), c.join(" ↔ ")));
+        }
+    }
+    assert!(found.is_empty(), "import circles: {found:#?}");
+}
+
+#[test]
+fn each_floor_imports_only_what_the_readme_layout_allows() {
+    let floors = readme_floors();
+    let sources = load_sources();
+    let top: BTreeSet<String> = sources
+        .iter()
+        .filter(|s| !s.test_only)
+        .filter_map(|s| s.module.first().cloned())
+        .filter(|m| m != BINARY)
+        .collect();
+    let undocumented: Vec<&String> = top.iter().filter(|m| !floors.contains_key(*m)).collect();
+    assert!(
+        undocumented.is_empty(),
+        "modules with no row in README.md's Layout: {undocumented:?}"
+    );
+    let stale: Vec<&String> = floors.keys().filter(|f| !top.contains(*f)).collect();
+    assert!(stale.is_empty(), "Layout rows with no module: {stale:?}");
+    let mut wrong = Vec::new();
+    for (a, b) in arrows(&sources) {
+        let (Some(fa), Some(fb)) = (a.first(), b.first()) else {
+            continue;
+        };
+        if fa != fb && fa != BINARY && !floors[fa].contains(fb) {
+            wrong.push(format!("{} → {}", a.join("::"), b.join("::")));
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "arrows the Layout does not allow: {wrong:#?}"
+    );
+    // The allowed arrows themselves run one way.
+    let g: BTreeMap<String, BTreeSet<String>> = floors.clone();
+    assert!(
+        cycles(&g).is_empty(),
+        "the Layout's floors import in a circle: {:?}",
+        cycles(&g)
+    );
+}
+
+#[test]
+fn the_checker_sees_use_trees_and_circles() {
+    // The parser and the circle finder on a made-up module: if they missed these, the tests
+    // above would pass on anything.
+    let paths = paths_named("use crate::a::{b::{C, d}, e as f};\nfn g() { super::h::i(); }");
+    let joined: Vec<String> = paths.iter().map(|p| p.join("::")).collect();
+    assert_eq!(
+        joined,
+        [
+            "crate::a::b::C",
+            "crate::a::b::d",
+            "crate::a::e",
+            "super::h::i"
+        ]
+    );
+    let modules: BTreeSet<ModPath> = [vec!["a".into()], vec!["a".into(), "b".into()]].into();
+    let from: ModPath = vec!["x".into(), "y".into()];
+    assert_eq!(
+        resolve(&from, &paths[0], &modules),
+        Some(vec!["a".to_string(), "b".to_string()])
+    );
+    let g: BTreeMap<String, BTreeSet<String>> = [
+        ("p".to_string(), ["q".to_string()].into()),
+        ("q".to_string(), ["r".to_string()].into()),
+        ("r".to_string(), ["p".to_string()].into()),
+        ("s".to_string(), ["p".to_string()].into()),
+    ]
+    .into();
+    assert_eq!(cycles(&g), vec![vec!["p", "q", "r"]]);
+    assert!(strip_comments("let x = 1; // crate::a")
+        .find("crate")
+        .is_none());
+}
