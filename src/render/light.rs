@@ -25,7 +25,8 @@ pub enum Light {
     Hearts,
     /// The hearts & arrows viewer face-up.
     Arrows,
-    /// Spectral tracing under the spot lights ([`Spot::default_set`]), shown in sRGB.
+    /// Spectral tracing under the spot lights
+    /// ([`Spot::default_set`](super::lighting::Spot::default_set)), shown in sRGB.
     Fire,
 }
 
