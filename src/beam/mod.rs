@@ -29,19 +29,25 @@
 //!
 //! The tracer knows nothing of lighting or scores; see [`crate::metrics`].
 
+mod disc;
+mod exact;
+mod footprint;
 mod interface;
+mod narrow;
 pub mod reference;
+mod sink;
 mod stone;
 mod symmetry;
 mod trace;
+mod work;
 
 #[cfg(test)]
 pub(crate) mod tests;
 
+pub(crate) use sink::ExitSink;
+pub use sink::TraceStats;
 pub use stone::Stone;
 pub(crate) use symmetry::mirror_matrix;
-pub(crate) use trace::ExitSink;
-pub use trace::TraceStats;
 
 use crate::geometry::Polyhedron;
 use crate::optics::{Material, Stokes};

@@ -1,7 +1,7 @@
 //! A solid prepared for tracing: facet planes, polygons and adjacency in flat arrays, and the
 //! walk that finds the facet a ray inside the stone leaves by.
 
-use super::symmetry::SymOp;
+use super::symmetry::Symmetry;
 use crate::geometry::Polyhedron;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -30,12 +30,8 @@ pub struct Stone {
     /// Facets with an edge much shorter than their longest (see [`Stone::new`]): their
     /// projected polygons are made convex before clipping.
     pub(super) fragile: Vec<bool>,
-    /// Symmetries of the solid about the z axis (identity first): rotations, then mirrors.
-    pub(super) ops: Vec<SymOp>,
-    /// Order of the rotation group about z (1 = none).
-    pub(super) rot_order: usize,
-    /// Azimuth (radians) of one mirror plane through the z axis, if any.
-    pub(super) mirror_az: Option<f64>,
+    /// Symmetries of the solid about the z axis.
+    pub(super) symmetry: Symmetry,
     /// Per start facet and cube-map cell: the exit facet of the ray from the facet's centroid
     /// in the cell's central direction (a better start for walks from that facet).
     pub(super) facet_table: Vec<u32>,
@@ -149,15 +145,15 @@ impl Stone {
                 (0..k).any(|j| len(j) < 1e-4 * longest)
             })
             .collect();
+        let offsets: Vec<f64> = solid.facets().iter().map(|f| f.plane.offset).collect();
+        let symmetry = Symmetry::find(&normals, &offsets);
         let mut stone = Stone {
             fragile,
-            ops: Vec::new(),
-            rot_order: 1,
-            mirror_az: None,
+            symmetry,
             dir_table,
             facet_table: Vec::new(),
-            normals: solid.facets().iter().map(|f| f.plane.normal).collect(),
-            offsets: solid.facets().iter().map(|f| f.plane.offset).collect(),
+            normals,
+            offsets,
             areas: solid.facets().iter().map(|f| f.area).collect(),
             vertices: solid.vertices().to_vec(),
             facet_vertices,
@@ -196,7 +192,6 @@ impl Stone {
                 }
             });
         stone.facet_table = facet_table;
-        stone.find_symmetry();
         stone
     }
 
@@ -204,7 +199,7 @@ impl Stone {
     /// it uses, see [`TraceOptions::symmetry`](super::TraceOptions::symmetry)): it traces
     /// about that fraction of the cross-section.
     pub fn frame_symmetries(&self, frame: &super::Frame) -> usize {
-        self.frame_symmetry(frame.dir).0.len()
+        self.symmetry.frame_symmetry(frame.dir).0.len()
     }
 
     /// Number of facets.
@@ -216,7 +211,17 @@ impl Stone {
     /// the azimuth (radians, in [0, π/order)) of one of its mirror lines through the axis, if
     /// it has any.
     pub fn symmetry(&self) -> (usize, Option<f64>) {
-        (self.rot_order, self.mirror_az)
+        self.symmetry.rotations_and_mirror()
+    }
+
+    /// Number of symmetries of the solid about the z axis (1 = none; 16 for a round brilliant).
+    pub fn symmetry_order(&self) -> usize {
+        self.symmetry.order()
+    }
+
+    /// Facet permutation of symmetry `i` (for facet sequences of replicated exit beams).
+    pub(crate) fn permutation(&self, i: usize) -> &[u32] {
+        self.symmetry.permutation(i)
     }
 
     /// Outward unit normal of facet `i`.

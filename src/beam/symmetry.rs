@@ -1,8 +1,7 @@
-//! Symmetries of a stone about the z axis: finding the group, the wedge a direction keeps, and
-//! handing each traced exit beam out once per symmetry.
+//! Symmetries of a solid about the z axis: finding the group from the facet planes, the wedge
+//! a direction keeps, and handing each traced exit beam out once per symmetry.
 
-use super::stone::Stone;
-use super::trace::ExitSink;
+use super::sink::ExitSink;
 use super::{ExitBeam, Frame};
 use glam::{DMat3, DVec2, DVec3};
 
@@ -15,6 +14,17 @@ pub(super) struct SymOp {
     perm: Vec<u32>,
 }
 
+/// The symmetry group of a solid about the z axis: its rotations, then its mirrors.
+#[derive(Clone, Debug)]
+pub(super) struct Symmetry {
+    /// The symmetries (identity first): rotations, then mirrors.
+    ops: Vec<SymOp>,
+    /// Order of the rotation group about z (1 = none).
+    rot_order: usize,
+    /// Azimuth (radians) of one mirror plane through the z axis, if any.
+    mirror_az: Option<f64>,
+}
+
 /// Hands each exit beam of the traced wedge to the real sink once per symmetry, transformed.
 pub(super) struct SymSink<'a, S: ExitSink> {
     inner: &'a mut S,
@@ -23,11 +33,16 @@ pub(super) struct SymSink<'a, S: ExitSink> {
 }
 
 impl<'a, S: ExitSink> SymSink<'a, S> {
-    pub(super) fn new(stone: &'a Stone, group: &[usize], frame: &Frame, inner: &'a mut S) -> Self {
+    pub(super) fn new(
+        symmetry: &'a Symmetry,
+        group: &[usize],
+        frame: &Frame,
+        inner: &'a mut S,
+    ) -> Self {
         let ops = group
             .iter()
             .map(|&i| {
-                let op = &stone.ops[i];
+                let op = &symmetry.ops[i];
                 let (gu, gv) = (op.m * frame.u, op.m * frame.v);
                 (
                     i as u16,
@@ -133,11 +148,11 @@ pub(super) fn clip_halfspace(poly: &[DVec3], n: DVec3, out: &mut Vec<DVec3>) {
     }
 }
 
-impl Stone {
-    /// Find the rotations about the z axis and the mirrors through it that map the solid onto
-    /// itself (the ones a face-up view shares).
-    pub(super) fn find_symmetry(&mut self) {
-        let (normals, offsets) = (&self.normals, &self.offsets);
+impl Symmetry {
+    /// Find the rotations about the z axis and the mirrors through it that map the solid with
+    /// facet planes `n · x = o` (`normals`, `offsets`) onto itself (the ones a face-up view
+    /// shares).
+    pub(super) fn find(normals: &[DVec3], offsets: &[f64]) -> Symmetry {
         let rot = |k: usize| DMat3::from_rotation_z(std::f64::consts::TAU / k as f64);
         let k = [64, 48, 32, 24, 16, 12, 10, 9, 8, 7, 6, 5, 4, 3, 2]
             .into_iter()
@@ -190,28 +205,37 @@ impl Stone {
         }
         // Keep the symmetry only if the whole group was found consistently.
         if ops.len() == k * if mirror.is_some() { 2 } else { 1 } {
-            self.ops = ops;
-            self.rot_order = k;
-            self.mirror_az = mirror;
+            Symmetry {
+                ops,
+                rot_order: k,
+                mirror_az: mirror,
+            }
         } else {
-            self.ops = vec![SymOp {
-                m: DMat3::IDENTITY,
-                mirror: false,
-                perm: (0..normals.len() as u32).collect(),
-            }];
-            self.rot_order = 1;
-            self.mirror_az = None;
+            Symmetry {
+                ops: vec![SymOp {
+                    m: DMat3::IDENTITY,
+                    mirror: false,
+                    perm: (0..normals.len() as u32).collect(),
+                }],
+                rot_order: 1,
+                mirror_az: None,
+            }
         }
     }
 
     /// Facet permutation of symmetry `i` (for facet sequences of replicated exit beams).
-    pub(crate) fn permutation(&self, i: usize) -> &[u32] {
+    pub(super) fn permutation(&self, i: usize) -> &[u32] {
         &self.ops[i].perm
     }
 
-    /// Number of symmetries of the solid about the z axis (1 = none; 16 for a round brilliant).
-    pub fn symmetry_order(&self) -> usize {
+    /// Number of symmetries (1 = none; 16 for a round brilliant).
+    pub(super) fn order(&self) -> usize {
         self.ops.len()
+    }
+
+    /// The order of the rotation group (1 = none) and the azimuth of one mirror line, if any.
+    pub(super) fn rotations_and_mirror(&self) -> (usize, Option<f64>) {
+        (self.rot_order, self.mirror_az)
     }
 
     /// The symmetries that fix direction `d` (indices into `ops`), and the half-spaces

@@ -1,0 +1,260 @@
+//! Exact beams: the fate of a beam about to travel inside (split exactly, followed as a
+//! narrow beam, or cut off) and its exact split by the facets it reaches, each child crossing
+//! its facet's interface.
+
+use super::interface::{cross, Meet, Origin};
+use super::sink::{ExitSink, TraceStats};
+use super::stone::{Stone, GRAZE};
+use super::work::{Beam, Child, Ctx, Work};
+use crate::geometry::clip2d;
+use crate::optics::reflect;
+use glam::{DVec2, DVec3};
+
+/// Children with less than this share of their parent's cross-section are rounding slivers
+/// along shared edges; they are dropped and their (negligible) share goes to their siblings.
+const SLIVER: f64 = 1e-13;
+
+/// Margin (girdle diameters, ~100 times [`clip2d::TOL`]) by which projected bounding boxes
+/// must miss each other for [`Stone::clip_facet`] to skip the clip: the clip keeps only points
+/// within `TOL` of both polygons, so it would find nothing there.
+const BOX_MARGIN: f64 = 1e-10;
+
+/// Area centroid and area of the planar polygon `poly` (normal `n`): unlike the mean of its
+/// vertices, the centroid moves continuously when a clip adds a vertex. The vertex mean (and
+/// area 0) for a degenerate polygon.
+fn area_centroid(poly: &[DVec3], n: DVec3) -> (DVec3, f64) {
+    let mean = poly.iter().copied().sum::<DVec3>() / poly.len().max(1) as f64;
+    let (mut a, mut c) = (0.0, DVec3::ZERO);
+    for i in 1..poly.len().saturating_sub(1) {
+        let (p, q) = (poly[i] - poly[0], poly[i + 1] - poly[0]);
+        let ai = n.dot(p.cross(q));
+        a += ai;
+        c += (p + q) * ai;
+    }
+    if a != 0.0 && a.is_finite() {
+        (poly[0] + c / (3.0 * a), 0.5 * a.abs())
+    } else {
+        (mean, 0.0)
+    }
+}
+
+impl Stone {
+    /// Decide the fate of a beam about to travel inside: split exactly (pushed on the stack),
+    /// followed as a narrow beam, or cut off. Its polygon is in `w.cur` (on `beam.facet`'s
+    /// plane) and, when footprints are wanted, its footprint in `w.foot`.
+    pub(super) fn continue_beam<S: ExitSink>(
+        &self,
+        beam: Beam,
+        cx: &Ctx,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) {
+        let p = beam.stokes.x;
+        if p.is_nan() || p <= 0.0 || p < cx.threshold || beam.depth > cx.max_depth {
+            st.cut_off += p.max(0.0);
+        } else if p >= cx.split_threshold {
+            let start = w.pts.len() as u32;
+            w.pts.extend_from_slice(&w.cur);
+            w.stack.push(Beam {
+                start,
+                len: w.cur.len() as u32,
+                ..beam
+            });
+        } else {
+            // From the area centroid, not the vertex mean: clipping adds and drops vertices
+            // (rounding slivers along shared edges among them), which moved the vertex mean,
+            // and with it the ray's whole path, by a sizeable part of the beam when the solid
+            // changed by 1e-10.
+            let n = self.normals[beam.facet as usize];
+            let (c, area) = area_centroid(&w.cur, n);
+            // The disc of the beam's cross-section (kept by mirror reflections).
+            let r = (area * n.dot(beam.dir).abs() / std::f64::consts::PI).sqrt();
+            self.follow_ray(beam, c, r, cx, w, st, sink);
+        }
+    }
+
+    /// Split one internal beam by the facets it reaches.
+    pub(super) fn split_beam<S: ExitSink>(
+        &self,
+        beam: Beam,
+        cx: &Ctx,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) {
+        st.beams += 1;
+        let t = beam.dir;
+        // Take the beam's polygon off the point stack (it is on top).
+        w.cur.clear();
+        let (a, b) = (beam.start as usize, (beam.start + beam.len) as usize);
+        w.cur.extend_from_slice(&w.pts[a..b]);
+        w.pts.truncate(a);
+
+        let (e1, e2) = t.any_orthonormal_pair();
+        w.q.clear();
+        w.q.extend(w.cur.iter().map(|x| DVec2::new(x.dot(e1), x.dot(e2))));
+        let aq = clip2d::area(&w.q);
+        if aq.is_nan() || aq <= 0.0 {
+            st.cut_off += beam.stokes.x;
+            return;
+        }
+        let (mut lo, mut hi) = (w.q[0], w.q[0]);
+        for &p in &w.q[1..] {
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        // Widened far beyond the clip's tolerance (TOL): facets whose projected bounding box
+        // misses this one overlap the beam in nothing the clip would keep.
+        w.qlo = lo - DVec2::splat(BOX_MARGIN);
+        w.qhi = hi + DVec2::splat(BOX_MARGIN);
+        w.stamp = w.stamp.wrapping_add(1);
+        if w.stamp == 0 {
+            w.vstamp.iter_mut().for_each(|s| *s = 0);
+            w.fstamp.iter_mut().for_each(|s| *s = 0);
+            w.stamp = 1;
+        }
+        let stamp = w.stamp;
+
+        // Seed: the facet the ray through the polygon's vertex mean leaves by.
+        let c = w.cur.iter().copied().sum::<DVec3>() / w.cur.len() as f64;
+        let Some((seed, _)) = self.exit_facet(c, t, beam.facet as usize) else {
+            st.cut_off += beam.stokes.x;
+            return;
+        };
+        let seed = seed as u32;
+
+        // Flood over adjacent facets from the seed: the facets the beam reaches form a
+        // connected patch of the silhouette's tiling.
+        w.queue.clear();
+        w.children.clear();
+        w.cpts.clear();
+        w.queue.push(seed);
+        w.fstamp[seed as usize] = stamp;
+        let min_area = aq * SLIVER;
+        let mut sum = 0.0;
+        let mut qi = 0;
+        while qi < w.queue.len() {
+            let g = w.queue[qi] as usize;
+            qi += 1;
+            let a = self.clip_facet(g, e1, e2, w, min_area);
+            if a > min_area {
+                sum += a;
+                for &h in self.facet_neighbors(g) {
+                    if w.fstamp[h as usize] != stamp && self.normals[h as usize].dot(t) > GRAZE {
+                        w.fstamp[h as usize] = stamp;
+                        w.queue.push(h);
+                    }
+                }
+            }
+        }
+        if sum < aq * (1.0 - 1e-9) {
+            // Robustness net (never needed on sound solids): try every facet not yet tried.
+            for h in 0..self.facet_count() {
+                if w.fstamp[h] != stamp && self.normals[h].dot(t) > GRAZE {
+                    w.fstamp[h] = stamp;
+                    let a = self.clip_facet(h, e1, e2, w, min_area);
+                    if a > min_area {
+                        sum += a;
+                    }
+                }
+            }
+        }
+        st.max_tiling_error = st.max_tiling_error.max((sum - aq).abs() / aq);
+        if sum.is_nan() || sum <= 0.0 {
+            st.cut_off += beam.stokes.x;
+            return;
+        }
+
+        let f = beam.facet as usize;
+        let map = beam.map.slide(t, self.normals[f], self.offsets[f]);
+        let nchildren = w.children.len();
+        for ci in 0..nchildren {
+            let ch = w.children[ci];
+            let g = ch.facet as usize;
+            let n = self.normals[g];
+            let o = self.offsets[g];
+            let cos_i = n.dot(t);
+            // Lift the child's polygon onto facet g's plane.
+            w.cur.clear();
+            for p in &w.cpts[ch.start as usize..(ch.start + ch.len) as usize] {
+                let x = e1 * p.x + e2 * p.y;
+                w.cur.push(x + t * ((o - n.dot(x)) / cos_i));
+            }
+            w.foot.clear();
+            if cx.want_fp {
+                w.foot.extend(w.cur.iter().map(|&x| map.apply(x)));
+            }
+            let node = w.node(cx, beam.node, g);
+            let meet = Meet {
+                t,
+                n,
+                facet: g,
+                stokes: beam.stokes * (ch.area / sum),
+                axis: beam.axis,
+            };
+            let origin = Origin {
+                entry: beam.entry as usize,
+                reflections: beam.depth,
+                narrow: false,
+                late: false,
+                node,
+            };
+            let (sr, axis) = cross(cx, meet, origin, &w.foot, st, sink);
+            let next = Beam {
+                dir: reflect(t, n),
+                stokes: sr,
+                axis,
+                facet: g as u32,
+                entry: beam.entry,
+                depth: beam.depth + 1,
+                node,
+                start: 0,
+                len: 0,
+                map,
+            };
+            self.continue_beam(next, cx, w, st, sink);
+        }
+    }
+
+    /// Clip the current beam (`w.q`) by facet `g` projected on (e1, e2); append a child if the
+    /// overlap exceeds `keep_area` (a sliver otherwise). Returns the overlap's area.
+    #[inline]
+    fn clip_facet(&self, g: usize, e1: DVec3, e2: DVec3, w: &mut Work, keep_area: f64) -> f64 {
+        let stamp = w.stamp;
+        w.g.clear();
+        let (mut lo, mut hi) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
+        for &v in self.facet_verts(g) {
+            let v = v as usize;
+            if w.vstamp[v] != stamp {
+                w.vstamp[v] = stamp;
+                let x = self.vertices[v];
+                w.proj[v] = DVec2::new(x.dot(e1), x.dot(e2));
+            }
+            let p = w.proj[v];
+            lo = lo.min(p);
+            hi = hi.max(p);
+            w.g.push(p);
+        }
+        if lo.x > w.qhi.x || lo.y > w.qhi.y || hi.x < w.qlo.x || hi.y < w.qlo.y {
+            // Disjoint bounding boxes: nothing to clip.
+            return 0.0;
+        }
+        if self.fragile[g] {
+            clip2d::make_convex(&mut w.g);
+        }
+        clip2d::clip_convex_into(&w.q, &w.g, &mut w.clip, &mut w.scratch);
+        let a = clip2d::area(&w.clip);
+        if a > keep_area {
+            let start = w.cpts.len() as u32;
+            w.cpts.extend_from_slice(&w.clip);
+            w.children.push(Child {
+                facet: g as u32,
+                start,
+                len: w.clip.len() as u32,
+                area: a,
+            });
+        }
+        a
+    }
+}

@@ -1,0 +1,33 @@
+//! Footprints: the affine map taking a point inside the stone to the spot of the incoming
+//! cross-section (the frame's image coordinates) whose ray reaches it, carried along each beam
+//! and slid along its direction at every facet it meets.
+
+use glam::{DVec2, DVec3};
+
+/// Affine map from a point in the stone to its footprint in the frame's image coordinates:
+/// `(a1 · x + b.x, a2 · x + b.y)`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Affine {
+    pub(super) a1: DVec3,
+    pub(super) a2: DVec3,
+    pub(super) b: DVec2,
+}
+
+impl Affine {
+    #[inline]
+    pub(super) fn apply(&self, x: DVec3) -> DVec2 {
+        DVec2::new(self.a1.dot(x) + self.b.x, self.a2.dot(x) + self.b.y)
+    }
+    /// The map for points reached by travelling along `t` from the plane `n · x = o` (where
+    /// this map applies): first slide back along `t` onto that plane.
+    #[inline]
+    pub(super) fn slide(&self, t: DVec3, n: DVec3, o: f64) -> Affine {
+        let k = n.dot(t);
+        let at = DVec2::new(self.a1.dot(t), self.a2.dot(t));
+        Affine {
+            a1: self.a1 - n * (at.x / k),
+            a2: self.a2 - n * (at.y / k),
+            b: self.b + at * (o / k),
+        }
+    }
+}

@@ -1,0 +1,224 @@
+//! Narrow beams (below the split threshold) followed as one ray each, with exact
+//! expected-value Fresnel branching at every facet the ray meets, or, with
+//! [`TraceOptions::narrow_forks`](super::TraceOptions::narrow_forks), as a disc that forks
+//! across facet edges ([`disc`](super::disc)).
+
+use super::disc::{Part, FORK_MAX};
+use super::interface::{cross, Meet, Origin};
+use super::sink::{ExitSink, TraceStats};
+use super::stone::Stone;
+use super::work::{Beam, Ctx, Work};
+use crate::optics::{reflect, Stokes};
+use glam::DVec3;
+
+/// A narrow beam's ray (or one part of it) about to cross `facet`, travelling along `t` with
+/// Stokes vector `s` (reference `axis`) after `depth` reflections, from tree node `prev`;
+/// `late` when it has already lost half of its starting power.
+#[derive(Clone, Copy, Debug)]
+struct RayAt {
+    t: DVec3,
+    facet: usize,
+    s: Stokes,
+    axis: DVec3,
+    depth: u32,
+    prev: u32,
+    late: bool,
+}
+
+impl Stone {
+    /// Follow a narrow beam as one ray from `x` (on `beam.facet`) with exact expected-value
+    /// Fresnel branching: at each facet the transmitted part leaves (an exit beam with the
+    /// narrow beam's footprint, `w.foot`), the reflected part goes on until it is below the
+    /// floor or past the depth limit. With
+    /// [`TraceOptions::narrow_forks`](super::TraceOptions::narrow_forks) the ray stands for a
+    /// disc of radius `r` (the beam's cross-section; see [`Stone::follow_disc`]).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn follow_ray<S: ExitSink>(
+        &self,
+        beam: Beam,
+        mut x: DVec3,
+        r: f64,
+        cx: &Ctx,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) {
+        st.rays += 1;
+        let p0 = beam.stokes.x;
+        st.ray_power += p0;
+        let floor = cx.threshold.max(cx.ray_floor * p0);
+        if cx.forks && r.is_finite() && r > 0.0 {
+            return self.follow_disc(beam, x, r, floor, cx, w, st, sink);
+        }
+        let (mut t, mut s, mut axis, mut facet, mut depth, mut prev) = (
+            beam.dir,
+            beam.stokes,
+            beam.axis,
+            beam.facet as usize,
+            beam.depth,
+            beam.node,
+        );
+        loop {
+            let Some((g, best)) = self.exit_facet(x, t, facet) else {
+                st.cut_off += s.x;
+                return;
+            };
+            x += t * best.max(0.0);
+            let at = RayAt {
+                t,
+                facet: g,
+                s,
+                axis,
+                depth,
+                prev,
+                late: s.x <= 0.5 * p0,
+            };
+            let Some((sr, ax, node)) = self.ray_cross(beam.entry, at, floor, cx, w, st, sink)
+            else {
+                return;
+            };
+            t = reflect(t, self.normals[g]);
+            s = sr;
+            axis = ax;
+            facet = g;
+            depth += 1;
+            prev = node;
+        }
+    }
+
+    /// One crossing of a narrow beam's ray (or of one of its parts) at `at.facet`: the
+    /// transmitted part leaves as an exit beam, and the reflected part with its polarization
+    /// axis and node is returned unless it falls below `floor` (stopped: accounted in
+    /// `cut_off`, and in `ray_closed` when above the threshold) or past the depth limit.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn ray_cross<S: ExitSink>(
+        &self,
+        entry: u32,
+        at: RayAt,
+        floor: f64,
+        cx: &Ctx,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) -> Option<(Stokes, DVec3, u32)> {
+        st.ray_segments += 1;
+        let node = w.node(cx, at.prev, at.facet);
+        let meet = Meet {
+            t: at.t,
+            n: self.normals[at.facet],
+            facet: at.facet,
+            stokes: at.s,
+            axis: at.axis,
+        };
+        let origin = Origin {
+            entry: entry as usize,
+            reflections: at.depth,
+            narrow: true,
+            late: at.late,
+            node,
+        };
+        let (sr, ax) = cross(cx, meet, origin, &w.foot, st, sink);
+        let depth = at.depth + 1;
+        if sr.x.is_nan() || sr.x <= 0.0 || sr.x < floor || depth > cx.max_depth {
+            st.cut_off += sr.x.max(0.0);
+            if sr.x >= cx.threshold && depth <= cx.max_depth {
+                st.ray_closed += sr.x;
+            }
+            return None;
+        }
+        Some((sr, ax, node))
+    }
+
+    /// [`Stone::follow_ray`] with
+    /// [`TraceOptions::narrow_forks`](super::TraceOptions::narrow_forks): the ray stands for a
+    /// disc of radius `r`. Where the disc overhangs an edge of the facet the ray meets, the
+    /// overhanging segment forks off onto the neighbouring facet as a ray of its own (from the
+    /// segment's centroid, with its share of the power and a disc of its area) and the rest
+    /// goes on from its own centroid, so that a beam sliding across an edge hands its light
+    /// over continuously instead of all at once.
+    #[allow(clippy::too_many_arguments)]
+    fn follow_disc<S: ExitSink>(
+        &self,
+        beam: Beam,
+        x: DVec3,
+        r: f64,
+        floor: f64,
+        cx: &Ctx,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) {
+        let p0 = beam.stokes.x;
+        w.parts.clear();
+        w.parts.push(Part {
+            x,
+            t: beam.dir,
+            s: beam.stokes,
+            axis: beam.axis,
+            facet: beam.facet,
+            depth: beam.depth,
+            prev: beam.node,
+            r,
+            share: 1.0,
+        });
+        while let Some(part) = w.parts.pop() {
+            let t = part.t;
+            let Some((g, best)) = self.exit_facet(part.x, t, part.facet as usize) else {
+                st.cut_off += part.s.x;
+                continue;
+            };
+            let p = part.x + t * best.max(0.0);
+            self.disc_forks(g, p, &part, p0, &mut w.forks);
+            let total: f64 = w.forks.iter().map(|k| k.f).sum();
+            let scale = if total > FORK_MAX {
+                FORK_MAX / total
+            } else {
+                1.0
+            };
+            let main = 1.0 - total * scale;
+            let mut shift = DVec3::ZERO;
+            for k in &w.forks {
+                shift -= k.m * (k.c * k.f * scale / main);
+            }
+            let nforks = w.forks.len();
+            for i in 0..=nforks {
+                // The main part last (it is followed first).
+                let (h, f, y) = if i < nforks {
+                    let k = w.forks[i];
+                    (k.h as usize, k.f * scale, p + k.m * k.c)
+                } else {
+                    (g, main, p + shift)
+                };
+                let nh = self.normals[h];
+                let y = y + t * ((self.offsets[h] - nh.dot(y)) / nh.dot(t));
+                let share = part.share * f;
+                let s_in = part.s * f;
+                let at = RayAt {
+                    t,
+                    facet: h,
+                    s: s_in,
+                    axis: part.axis,
+                    depth: part.depth,
+                    prev: part.prev,
+                    late: s_in.x <= 0.5 * share * p0,
+                };
+                if let Some((sr, axis, node)) =
+                    self.ray_cross(beam.entry, at, floor, cx, w, st, sink)
+                {
+                    w.parts.push(Part {
+                        x: y,
+                        t: reflect(t, nh),
+                        s: sr,
+                        axis,
+                        facet: h as u32,
+                        depth: part.depth + 1,
+                        prev: node,
+                        r: part.r * f.sqrt(),
+                        share,
+                    });
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,114 @@
+//! The state of one trace: its cleaned settings ([`Ctx`]), a beam waiting to be split
+//! ([`Beam`]) and the working memory reused across beams ([`Work`]).
+
+use super::disc::{Fork, Part};
+use super::footprint::Affine;
+use super::stone::Stone;
+use crate::optics::Stokes;
+use glam::{DVec2, DVec3};
+
+/// A beam waiting to be split.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Beam {
+    pub(super) dir: DVec3,
+    pub(super) stokes: Stokes,
+    pub(super) axis: DVec3,
+    pub(super) facet: u32,
+    pub(super) entry: u32,
+    pub(super) depth: u32,
+    pub(super) node: u32,
+    /// Its polygon (on `facet`'s plane) is `pts[start..start + len]` of the point stack.
+    pub(super) start: u32,
+    pub(super) len: u32,
+    pub(super) map: Affine,
+}
+
+/// A piece of the beam being split: the facet it meets, its projected polygon
+/// (`cpts[start..start + len]`) and that polygon's area.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Child {
+    pub(super) facet: u32,
+    pub(super) start: u32,
+    pub(super) len: u32,
+    pub(super) area: f64,
+}
+
+/// Settings of one trace, cleaned.
+pub(super) struct Ctx {
+    pub(super) ri: f64,
+    pub(super) pol: bool,
+    pub(super) threshold: f64,
+    pub(super) split_threshold: f64,
+    pub(super) ray_floor: f64,
+    pub(super) forks: bool,
+    pub(super) max_depth: u32,
+    pub(super) want_fp: bool,
+    /// Record the facet-sequence tree (otherwise node ids are `u32::MAX`).
+    pub(super) keep_nodes: bool,
+}
+
+/// Working memory of one trace, reused across beams.
+pub(super) struct Work {
+    pub(super) pts: Vec<DVec3>,
+    pub(super) stack: Vec<Beam>,
+    pub(super) cur: Vec<DVec3>,
+    pub(super) q: Vec<DVec2>,
+    pub(super) g: Vec<DVec2>,
+    pub(super) clip: Vec<DVec2>,
+    pub(super) scratch: Vec<DVec2>,
+    pub(super) proj: Vec<DVec2>,
+    /// Bounding box of `q` (the beam being split, projected).
+    pub(super) qlo: DVec2,
+    pub(super) qhi: DVec2,
+    pub(super) vstamp: Vec<u32>,
+    pub(super) fstamp: Vec<u32>,
+    pub(super) stamp: u32,
+    pub(super) queue: Vec<u32>,
+    pub(super) children: Vec<Child>,
+    pub(super) cpts: Vec<DVec2>,
+    pub(super) foot: Vec<DVec2>,
+    pub(super) nodes: Vec<(u32, u32)>,
+    pub(super) parts: Vec<Part>,
+    pub(super) forks: Vec<Fork>,
+}
+
+impl Work {
+    /// A new node (parent, facet) of the facet-sequence tree: its id, or `u32::MAX` when the
+    /// tree is not kept.
+    #[inline]
+    pub(super) fn node(&mut self, cx: &Ctx, parent: u32, facet: usize) -> u32 {
+        if !cx.keep_nodes {
+            return u32::MAX;
+        }
+        let node = self.nodes.len() as u32;
+        self.nodes.push((parent, facet as u32));
+        node
+    }
+}
+
+impl Stone {
+    pub(super) fn work(&self) -> Work {
+        Work {
+            pts: Vec::with_capacity(1024),
+            stack: Vec::with_capacity(128),
+            cur: Vec::with_capacity(32),
+            q: Vec::with_capacity(32),
+            g: Vec::with_capacity(32),
+            clip: Vec::with_capacity(32),
+            scratch: Vec::with_capacity(32),
+            proj: vec![DVec2::ZERO; self.vertices.len()],
+            qlo: DVec2::ZERO,
+            qhi: DVec2::ZERO,
+            vstamp: vec![0; self.vertices.len()],
+            fstamp: vec![0; self.normals.len()],
+            stamp: 0,
+            queue: Vec::with_capacity(self.normals.len()),
+            children: Vec::with_capacity(self.normals.len()),
+            cpts: Vec::with_capacity(256),
+            foot: Vec::with_capacity(32),
+            nodes: Vec::with_capacity(4096),
+            parts: Vec::with_capacity(32),
+            forks: Vec::with_capacity(8),
+        }
+    }
+}

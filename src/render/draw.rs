@@ -1,0 +1,244 @@
+//! The footprint → pixel path: trace the viewer backwards, weight each exit beam by the light
+//! it sees, and add its footprint's exact coverage to the pixels ([`render`]).
+
+use super::image::{fire_of, AsetShares, Image, Stats};
+use super::light::Light;
+use super::lighting::Lighting;
+use super::options::RenderOptions;
+use super::pose::{picture_half, view_rotation};
+use super::raster::{Accumulator, Raster};
+use crate::beam::{BeamTree, Frame, Stone, TraceOptions};
+use crate::geometry::{canonical::canonical, clip2d, Polyhedron};
+use crate::optics::{color, Dispersion};
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+/// One traced picture layer: its exits with footprints and each exit's values per unit of
+/// footprint (one per channel).
+struct Layer {
+    tree: BeamTree,
+    /// Per exit: values per unit area, one per channel.
+    values: Vec<[f64; 5]>,
+    /// Per exit: smallest and largest y of its footprint.
+    ys: Vec<(f64, f64)>,
+}
+
+impl Layer {
+    fn new(tree: BeamTree, channels: usize, value: impl Fn(usize) -> [f64; 5]) -> Layer {
+        let area = tree.stats.area;
+        let mut values = Vec::with_capacity(tree.exits.len());
+        let mut ys = Vec::with_capacity(tree.exits.len());
+        for (i, e) in tree.exits.iter().enumerate() {
+            let fp = tree.footprint(i);
+            let a = clip2d::area(fp);
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for p in fp {
+                lo = lo.min(p.y);
+                hi = hi.max(p.y);
+            }
+            ys.push((lo, hi));
+            let mut v = [0.0; 5];
+            if a > 0.0 && e.power > 0.0 {
+                // Radiance through this beam: its power per unit of footprint, relative to
+                // the incoming power per unit of cross-section.
+                let c = value(i);
+                let k = e.power * area / a;
+                for ch in 0..channels {
+                    v[ch] = c[ch] * k;
+                }
+            }
+            values.push(v);
+        }
+        Layer { tree, values, ys }
+    }
+}
+
+/// Rows per band of the parallel fill.
+const BAND_ROWS: usize = 64;
+
+/// Fill `channels` images of `size` pixels over `[−half, half]²` from the layers (each
+/// layer's channel values added to the same images), in bands of rows in parallel; each
+/// pixel receives its footprints in the layers' order, so the result does not depend on the
+/// number of threads.
+fn fill(layers: &[Layer], channels: usize, size: usize, half: f64) -> Vec<Raster> {
+    let proto = Raster::new(size, half);
+    let h = proto.pixel();
+    let bands: Vec<(usize, usize)> = (0..size)
+        .step_by(BAND_ROWS)
+        .map(|j| (j, (j + BAND_ROWS).min(size)))
+        .collect();
+    let parts: Vec<Vec<Vec<f64>>> = bands
+        .par_iter()
+        .map(|&(j0, j1)| {
+            let (ylo, yhi) = (-half + j0 as f64 * h, -half + j1 as f64 * h);
+            let mut acc = Accumulator::new(size, half, (j0, j1), channels);
+            for layer in layers {
+                for (i, v) in layer.values.iter().enumerate() {
+                    let (lo, hi) = layer.ys[i];
+                    if hi < ylo || lo > yhi || v[..channels].iter().all(|&x| x == 0.0) {
+                        continue;
+                    }
+                    acc.add_polygon(layer.tree.footprint(i), &v[..channels]);
+                }
+            }
+            acc.finish()
+        })
+        .collect();
+    (0..channels)
+        .map(|ch| {
+            let mut r = Raster::new(size, half);
+            for (part, &(j0, _)) in parts.iter().zip(&bands) {
+                let p = &part[ch];
+                r.data[j0 * size..j0 * size + p.len()].copy_from_slice(p);
+            }
+            r
+        })
+        .collect()
+}
+
+/// Draw `solid` as `opts` says. The solid is first put in its canonical placement
+/// ([`canonical`]: centred, unit size; not turned), so a moved or rescaled copy gives the
+/// same picture; the picture spans [`picture_half`] around the centroid. Options should
+/// have passed [`RenderOptions::validate`]; out-of-range values never panic.
+pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
+    let solid = canonical(solid);
+    let stone = Stone::new(&solid);
+    let rot = view_rotation(opts.light, opts.tilt);
+    let frame = Frame::viewer(rot);
+    let size = opts.size.max(1);
+    let half = picture_half(&solid);
+    let trace_opts = TraceOptions {
+        polarization: opts.polarization,
+        footprints: true,
+        ..opts.trace
+    };
+    let lighting = Lighting::new(opts.head_shadow(), &opts.spots);
+    let mut stats = Stats {
+        size,
+        ..Stats::default()
+    };
+    let (channels, layers) = if opts.light == Light::Fire {
+        // Faint bands (far out in the red) take a neighbour's trace, as in the scores.
+        let bands = color::traced_bands(opts.bands.max(1), color::FAINT_BAND);
+        let centres: Vec<f64> = bands.iter().map(|b| b.0).collect();
+        let weights: Vec<DVec3> = bands.iter().map(|b| b.1).collect();
+        let constant = matches!(opts.material.dispersion, Dispersion::Constant(_));
+        let ri0 = opts.material.ri(opts.wavelength_nm);
+        // One trace per band (one for all when the index does not change with wavelength).
+        let traced: Vec<BeamTree> = if constant {
+            vec![stone.trace(&frame, ri0, opts.wavelength_nm, &trace_opts)]
+        } else {
+            centres
+                .par_iter()
+                .map(|&l| stone.trace(&frame, opts.material.ri(l), l, &trace_opts))
+                .collect()
+        };
+        // Each band's radiance image (one channel), then XYZ → linear sRGB per pixel.
+        let band_layers: Vec<Layer> = traced
+            .into_iter()
+            .map(|t| {
+                let v: Vec<f64> = t
+                    .exits
+                    .iter()
+                    .map(|e| lighting.spots(rot * e.direction))
+                    .collect();
+                Layer::new(t, 1, |i| [v[i], 0.0, 0.0, 0.0, 0.0])
+            })
+            .collect();
+        let band_images: Vec<Raster> = band_layers
+            .par_iter()
+            .map(|l| fill(std::slice::from_ref(l), 1, size, half).remove(0))
+            .collect();
+        let images: Vec<&Raster> = (0..bands.len())
+            .map(|b| &band_images[if constant { 0 } else { b }])
+            .collect();
+        for l in &band_layers {
+            stats.cut_off = stats.cut_off.max(l.tree.stats.cut_off);
+            stats.exits += l.tree.exits.len();
+        }
+        let outline = band_layers[0].tree.stats.area;
+        stats.fire = Some(fire_of(&images, &weights, outline));
+        let mut rgb = vec![Raster::new(size, half); 3];
+        let mut y_sum = 0.0;
+        for p in 0..size * size {
+            let xyz: DVec3 = images
+                .iter()
+                .zip(&weights)
+                .map(|(img, w)| *w * img.data[p])
+                .sum();
+            y_sum += xyz.y;
+            let c = color::xyz_to_linear_srgb(xyz).max(DVec3::ZERO);
+            rgb[0].data[p] = c.x;
+            rgb[1].data[p] = c.y;
+            rgb[2].data[p] = c.z;
+        }
+        let h = rgb[0].pixel();
+        stats.mean = if outline > 0.0 {
+            y_sum * h * h / outline
+        } else {
+            0.0
+        };
+        (rgb, band_layers)
+    } else {
+        let tree = stone.trace(
+            &frame,
+            opts.material.ri(opts.wavelength_nm),
+            opts.wavelength_nm,
+            &trace_opts,
+        );
+        let n = opts.light.channels();
+        let shades: Vec<([f64; 5], f64)> = tree
+            .exits
+            .iter()
+            .map(|e| opts.light.shade(&lighting, rot * e.direction))
+            .collect();
+        let (mut mean, mut bins) = (0.0, [0.0; 5]);
+        for (e, (c, y)) in tree.exits.iter().zip(&shades) {
+            mean += e.power * y;
+            for (b, x) in bins.iter_mut().zip(c) {
+                *b += e.power * x;
+            }
+        }
+        let power_in = tree.stats.power_in;
+        stats.mean = if power_in > 0.0 { mean / power_in } else { 0.0 };
+        if opts.light == Light::Aset {
+            let t: f64 = bins.iter().sum();
+            let t = if t > 0.0 { t } else { 1.0 };
+            stats.aset = Some(AsetShares {
+                blue: bins[0] / t,
+                red: bins[1] / t,
+                green: bins[2] / t,
+                leak: bins[3] / t,
+                port: bins[4] / t,
+            });
+        }
+        stats.cut_off = tree.stats.cut_off;
+        stats.exits = tree.exits.len();
+        let layer = Layer::new(tree, n, |i| shades[i].0);
+        let layers = vec![layer];
+        (fill(&layers, n, size, half), layers)
+    };
+    // The outline: the facets facing the viewer tile it.
+    let entry = &layers[0].tree.frame;
+    let mut outline = Accumulator::new(size, half, (0, size), 1);
+    for (f, facet) in solid.facets().iter().enumerate() {
+        if facet.plane.normal.dot(entry.dir) < 0.0 {
+            let poly: Vec<DVec2> = solid
+                .facet_polygon(f)
+                .iter()
+                .map(|p| DVec2::new(p.dot(entry.u), p.dot(entry.v)))
+                .collect();
+            outline.add_polygon(&poly, &[1.0]);
+        }
+    }
+    let mut coverage = Raster::new(size, half);
+    if let Some(c) = outline.finish().pop() {
+        coverage.data = c;
+    }
+    Image {
+        light: opts.light,
+        channels,
+        coverage,
+        stats,
+    }
+}

@@ -1,0 +1,150 @@
+//! A rendered picture ([`Image`]) and what is measured on it: its [`Stats`], the ASET shares
+//! and the fire of a spectral picture ([`fire_of`]).
+
+use super::light::Light;
+use super::raster::Raster;
+use crate::optics::color;
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// ASET shares of a picture: the share of the stone's outline (by light, each sight line
+/// weighted by its Fresnel power) in each colour. They add up to 1 with the light cut off by
+/// the tracer's thresholds (a few 1e-6).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct AsetShares {
+    /// Light from 75–90° elevation, outside the port.
+    pub blue: f64,
+    /// Light from 45–75°.
+    pub red: f64,
+    /// Light from 0–45°.
+    pub green: f64,
+    /// Light from below the horizon.
+    pub leak: f64,
+    /// The viewer's dark port at the top (0 with a head shadow of 0).
+    pub port: f64,
+}
+
+/// Statistics of a picture, computed from the exit beams that make its pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Stats {
+    /// Mean of the picture over the stone's outline, relative to a white diffuser (luminance
+    /// Y for colour pictures): for `iso` and `cos`, that pose's brilliance value.
+    pub mean: f64,
+    /// ASET shares (ASET pictures only).
+    pub aset: Option<AsetShares>,
+    /// Fire of the picture ([`fire_of`] over its band images; fire pictures only).
+    pub fire: Option<f64>,
+    /// Pixels per side.
+    pub size: usize,
+    /// Share of the light cut off by the tracer's thresholds (largest over the bands).
+    pub cut_off: f64,
+    /// Exit beams drawn (all bands).
+    pub exits: usize,
+}
+
+/// A rendered picture: linear channels relative to a white diffuser, black outside the stone.
+#[derive(Clone, Debug)]
+pub struct Image {
+    /// The light it was drawn under.
+    pub light: Light,
+    /// Red, green and blue (linear sRGB); one channel for grey pictures.
+    pub channels: Vec<Raster>,
+    /// Share of each pixel covered by the stone's outline, [0, 1].
+    pub coverage: Raster,
+    /// Statistics of the picture.
+    pub stats: Stats,
+}
+
+impl Image {
+    /// Pixels per side.
+    pub fn size(&self) -> usize {
+        self.coverage.n
+    }
+
+    /// Channel values of pixel `(i, j)`, row `j` counted from the top (see
+    /// [`Light::channels`]).
+    pub fn pixel(&self, i: usize, j: usize) -> Vec<f64> {
+        let n = self.size();
+        let k = (n - 1 - j) * n + i;
+        self.channels.iter().map(|c| c.data[k]).collect()
+    }
+
+    /// 8-bit sRGB, rows from the top, 3 bytes per pixel, over `background` (sRGB-encoded,
+    /// 0–1) where the stone does not cover the pixel. Radiance pictures (grey, fire) are
+    /// multiplied by `exposure`, clipped to [0, 1] and sRGB-encoded; false-colour pictures
+    /// (ASET, IdealScope) mix their display colours ([`Light::false_colours`]) by the pixel's
+    /// shares.
+    pub fn to_srgb8(&self, exposure: f64, background: [f64; 3]) -> Vec<u8> {
+        let n = self.size();
+        let palette = self.light.false_colours();
+        let mut out = Vec::with_capacity(n * n * 3);
+        let byte = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+        for j in 0..n {
+            for i in 0..n {
+                let k = (n - 1 - j) * n + i;
+                let a = self.coverage.data[k].clamp(0.0, 1.0);
+                let bg = background.map(|b| (1.0 - a) * b);
+                let c: [f64; 3] = match self.channels.as_slice() {
+                    _ if !palette.is_empty() => {
+                        let mut c = bg;
+                        for (ch, col) in self.channels.iter().zip(palette) {
+                            for (x, y) in c.iter_mut().zip(col) {
+                                *x += ch.data[k] * y;
+                            }
+                        }
+                        c
+                    }
+                    [g] => {
+                        let v = color::srgb_encode(g.data[k] * exposure);
+                        [0, 1, 2].map(|q| v + bg[q])
+                    }
+                    [r, g, b] => [r, g, b]
+                        .map(|ch| color::srgb_encode(ch.data[k] * exposure))
+                        .iter()
+                        .zip(bg)
+                        .map(|(v, b)| v + b)
+                        .collect::<Vec<f64>>()
+                        .try_into()
+                        .unwrap_or([0.0; 3]),
+                    _ => bg,
+                };
+                out.extend(c.map(byte));
+            }
+        }
+        out
+    }
+}
+
+/// Saturated light of a spectral image in percent: `100 · Σ Y·s` over the pixels, times the
+/// pixel area, divided by `area`, where `s = C*ab / L*` is the pixel's CIELAB saturation
+/// (nearly independent of brightness, so the sum is linear in the light): `images[b]` is band `b`'s radiance image (relative to the
+/// sources' radiance), `weights[b]` its XYZ weight (their sum is the white, Y = 1).
+pub fn fire_of(images: &[&Raster], weights: &[DVec3], area: f64) -> f64 {
+    let Some(first) = images.first() else {
+        return 0.0;
+    };
+    if area.is_nan() || area <= 0.0 {
+        return 0.0;
+    }
+    let white: DVec3 = weights.iter().copied().sum();
+    let mut yc = 0.0;
+    for p in 0..first.data.len() {
+        // A grey pixel (the same value in every band) has no saturation at all.
+        let v = first.data[p];
+        if images.iter().all(|img| img.data[p] == v) {
+            continue;
+        }
+        let xyz: DVec3 = images
+            .iter()
+            .zip(weights)
+            .map(|(img, w)| *w * img.data[p])
+            .sum();
+        if xyz.y > 0.0 {
+            let lab = color::xyz_to_lab(xyz, white);
+            if lab.x > 0.0 {
+                yc += xyz.y * color::chroma(lab) / lab.x;
+            }
+        }
+    }
+    100.0 * yc * first.pixel().powi(2) / area
+}

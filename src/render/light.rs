@@ -1,0 +1,179 @@
+//! The lights a picture is drawn under ([`Light`]): their names, channels and false-colour
+//! palettes, and each one's channel values for light arriving from a direction, over the
+//! radiance functions of [`lighting`](super::lighting).
+
+use super::lighting::{self, aset_bins, soft_above, Lighting};
+use crate::error::{Error, Result};
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// The lighting environment of a picture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Light {
+    /// GemRay's ISO lighting: radiance 1 over the upper hemisphere (grey image).
+    Iso,
+    /// GemRay's COS lighting: radiance = cos(zenith angle) (grey image).
+    Cos,
+    /// ASET false colour: blue for light from 75–90° elevation, red 45–75°, green 0–45°,
+    /// black for leakage (below the horizon) and for the viewer's dark port at the top.
+    Aset,
+    /// IdealScope: red for returned light, white for leakage, black for the viewer's head.
+    #[serde(rename = "idealscope")]
+    IdealScope,
+    /// The hearts & arrows viewer face-down: the stone turned over, pavilion to the viewer.
+    Hearts,
+    /// The hearts & arrows viewer face-up.
+    Arrows,
+    /// Spectral tracing under the spot lights
+    /// ([`Spot::default_set`](super::lighting::Spot::default_set)), shown in sRGB.
+    Fire,
+}
+
+/// Half-angle of the dark tube around the line of sight in the hearts & arrows viewer,
+/// degrees: sight lines that leave the stone within it see the viewer's dark top, the rest see
+/// the bright white wall.
+pub const SCOPE_TUBE_DEG: f64 = 20.0;
+
+/// Default half-angle of the ASET's dark viewing port and of IdealScope's head obstruction,
+/// degrees.
+pub const PORT_DEG: f64 = 10.0;
+
+/// ASET's display colours (sRGB-encoded): blue, red, green, leak (black), port (black).
+pub const ASET_COLOURS: [[f64; 3]; 5] = [
+    [0.10, 0.30, 1.0],
+    [0.90, 0.08, 0.08],
+    [0.10, 0.72, 0.16],
+    [0.0, 0.0, 0.0],
+    [0.0, 0.0, 0.0],
+];
+
+/// IdealScope's display colours (sRGB-encoded): returned (red), leak (white), head (black).
+pub const IDEALSCOPE_COLOURS: [[f64; 3]; 3] =
+    [[0.86, 0.10, 0.12], [1.0, 1.0, 1.0], [0.0, 0.0, 0.0]];
+
+impl Light {
+    /// Every light, in the order the command line lists them.
+    pub const ALL: [Light; 7] = [
+        Light::Iso,
+        Light::Cos,
+        Light::Aset,
+        Light::IdealScope,
+        Light::Hearts,
+        Light::Arrows,
+        Light::Fire,
+    ];
+
+    /// The name used on the command line and in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Light::Iso => "iso",
+            Light::Cos => "cos",
+            Light::Aset => "aset",
+            Light::IdealScope => "idealscope",
+            Light::Hearts => "hearts",
+            Light::Arrows => "arrows",
+            Light::Fire => "fire",
+        }
+    }
+
+    /// The light called `name` (as [`Light::name`] gives it).
+    pub fn parse(name: &str) -> Result<Light> {
+        Light::ALL
+            .into_iter()
+            .find(|l| l.name() == name)
+            .ok_or_else(|| {
+                Error::invalid(
+                    "light",
+                    format!(
+                        "unknown light {name:?}; allowed {}",
+                        Light::ALL.map(Light::name).join(", ")
+                    ),
+                )
+            })
+    }
+
+    /// Default head shadow (ISO, COS, fire: none, as the scores; ASET's port and IdealScope's
+    /// head: [`PORT_DEG`]; the hearts & arrows viewer has its own tube, [`SCOPE_TUBE_DEG`]).
+    pub fn default_head_shadow_deg(self) -> f64 {
+        match self {
+            Light::Aset | Light::IdealScope => PORT_DEG,
+            _ => 0.0,
+        }
+    }
+
+    /// Number of channels of the picture: 1 (grey), 3 (fire: linear sRGB, IdealScope:
+    /// returned, leak, head) or 5 (ASET: blue, red, green, leak, port).
+    pub fn channels(self) -> usize {
+        match self {
+            Light::Iso | Light::Cos | Light::Hearts | Light::Arrows => 1,
+            Light::Fire | Light::IdealScope => 3,
+            Light::Aset => 5,
+        }
+    }
+
+    /// The picture's channel values for light arriving from direction `w` (world coordinates,
+    /// z up, the viewer straight above; `light` gives the head shadow), and the value that
+    /// counts toward [`Stats::mean`](super::Stats::mean):
+    ///
+    /// * `iso`, `cos`: the radiance of [`Lighting::iso`] or [`Lighting::cos`];
+    /// * `hearts`, `arrows`: radiance 1 from the viewer's bright wall, 0 within
+    ///   [`SCOPE_TUBE_DEG`] of the line of sight (the dark tube) and below the horizon, soft
+    ///   edges;
+    /// * `aset`: the shares of the ASET bins (blue, red, green, leak, port; the port is the
+    ///   head shadow's cone), which add up to 1; the mean counts blue, red and green;
+    /// * `idealscope`: returned (above the horizon, outside the head), leak (below the
+    ///   horizon) and head shares, adding up to 1; the mean counts the returned share.
+    ///
+    /// Not used for [`Light::Fire`], which is spectral (zeros).
+    #[inline]
+    pub fn shade(self, light: &Lighting, w: DVec3) -> ([f64; 5], f64) {
+        match self {
+            Light::Iso => {
+                let v = light.iso(w);
+                ([v, 0.0, 0.0, 0.0, 0.0], v)
+            }
+            Light::Cos => {
+                let v = light.cos(w);
+                ([v, 0.0, 0.0, 0.0, 0.0], v)
+            }
+            Light::Hearts | Light::Arrows => {
+                let zen = 90.0 - lighting::elevation_deg(w);
+                let v = soft_above(zen, SCOPE_TUBE_DEG) * (1.0 - soft_above(zen, 90.0));
+                ([v, 0.0, 0.0, 0.0, 0.0], v)
+            }
+            Light::Aset => {
+                let b = aset_bins(w);
+                let head = light.head(w);
+                let s = [
+                    b[0] * head,
+                    b[1] * head,
+                    b[2] * head,
+                    b[3],
+                    (1.0 - head) * (1.0 - b[3]),
+                ];
+                (s, s[0] + s[1] + s[2])
+            }
+            Light::IdealScope => {
+                let returned = light.iso(w);
+                let sky = soft_above(lighting::elevation_deg(w), 0.0);
+                let leak = 1.0 - sky;
+                (
+                    [returned, leak, (sky - returned).max(0.0), 0.0, 0.0],
+                    returned,
+                )
+            }
+            Light::Fire => ([0.0; 5], 0.0),
+        }
+    }
+
+    /// Display colours (sRGB-encoded, 0–1) of the channels of a false-colour picture (ASET,
+    /// IdealScope): a pixel shows the mix of these by its channels' shares.
+    pub fn false_colours(self) -> &'static [[f64; 3]] {
+        match self {
+            Light::Aset => &ASET_COLOURS,
+            Light::IdealScope => &IDEALSCOPE_COLOURS,
+            _ => &[],
+        }
+    }
+}

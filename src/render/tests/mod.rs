@@ -1,0 +1,32 @@
+//! Checks of the renderer (the "Checks"):
+//!
+//! 1. against an independent brute-force backward ray tracer written here (its own
+//!    ray–convex-polyhedron intersection, Snell refraction and unpolarized Fresnel reflectance,
+//!    a jittered grid of sight lines per pixel, every interface split deterministically);
+//! 2. a closed form: the ASET switch of the table centre at the pavilion angle
+//!    p* = (180° − asin(sin 45° / n)) / 4;
+//! 3. the 8-fold symmetry of a face-up round brilliant (the pixel grid's part of it);
+//! 4. energy: ASET shares, per-pixel sums against the outline's coverage, a stone of index 1;
+//! 5. the picture's mean equals `stats.mean`.
+//!
+//! Nothing here calls the beam tracer or `optics::fresnel`: the brute-force tracer only shares
+//! the renderer's definitions of the view (pose rotation, frame, picture square) and the
+//! lights' radiance functions ([`Light::shade`]).
+//!
+//! The checks live by subject: [`brute`] (1), [`views`] (2 and 3), [`energy`] (4 and 5).
+
+use super::{Light, RenderOptions, Tilt};
+
+mod brute;
+mod energy;
+mod views;
+
+/// Render options of the comparisons: unpolarized, diamond at 589.3 nm.
+fn opts(light: Light, size: usize, tilt: Tilt) -> RenderOptions {
+    RenderOptions {
+        size,
+        tilt,
+        polarization: false,
+        ..RenderOptions::new(light)
+    }
+}
