@@ -127,13 +127,16 @@ pub struct Params {
 }
 
 impl Params {
-    /// The value of `key`. Panics if the key is not one of the family's (a programming error:
-    /// families only ask for their own keys).
-    pub fn get(&self, key: &str) -> f64 {
-        match self.values.get(key) {
-            Some(v) => *v,
-            None => panic!("parameter {key} missing from a validated set"),
-        }
+    /// The value of `key`; an error naming the key and the set's keys if the key is not one of
+    /// the family's.
+    pub fn get(&self, key: &str) -> Result<f64> {
+        self.values.get(key).copied().ok_or_else(|| {
+            let keys: Vec<&str> = self.values.keys().map(String::as_str).collect();
+            Error::invalid(
+                key,
+                format!("not a parameter of this set; known: {}", keys.join(", ")),
+            )
+        })
     }
     /// All values, by key.
     pub fn values(&self) -> &BTreeMap<String, f64> {
