@@ -7,7 +7,6 @@
 
 mod construct;
 mod cushion;
-pub mod design;
 mod emerald;
 mod families;
 pub mod grade;
@@ -18,15 +17,16 @@ mod outline;
 mod oval;
 mod pear;
 mod princess;
+pub mod record;
 pub mod retarget;
 mod round;
 mod sphere;
 mod steps;
 pub mod units;
 
-pub use design::Design;
 pub use families::{families, family, Family};
 pub use measure::{Proportions, Ratios, TierSummary};
+pub use record::GemcadRecord;
 
 use crate::error::{Error, Result};
 use crate::geometry::{FacetPlane, Polyhedron};
@@ -155,9 +155,9 @@ pub struct Cut {
     pub params: BTreeMap<String, f64>,
     /// The solid.
     pub solid: Polyhedron,
-    /// What the design file said about itself (GemCad's index, titles, notes, gear, symmetry,
-    /// instructions; see [`Design`]), for imports that carry it; `None` for generated cuts.
-    pub design: Option<Design>,
+    /// What the GemCad file said about itself (its index, titles, notes, gear, symmetry,
+    /// instructions; see [`GemcadRecord`]), for imports that carry it; `None` for generated cuts.
+    pub record: Option<GemcadRecord>,
 }
 
 impl Cut {
@@ -202,7 +202,7 @@ impl Cut {
             family: Some(fam.name.to_string()),
             params: params.values,
             solid,
-            design: None,
+            record: None,
         })
     }
 
@@ -214,7 +214,7 @@ impl Cut {
             family: None,
             params: BTreeMap::new(),
             solid,
-            design: None,
+            record: None,
         })
     }
 
@@ -240,7 +240,7 @@ impl Cut {
 
     /// The refractive index the design file was cut for (GemCad's `I` line), if it names one.
     pub fn design_ri(&self) -> Option<f64> {
-        self.design.as_ref().and_then(|d| d.ri)
+        self.record.as_ref().and_then(|d| d.ri)
     }
 
     /// Proportions measured on the solid (table, crown angle, depths …).

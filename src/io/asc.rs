@@ -49,8 +49,8 @@
 //! the origin so that its width W is 1, like every preset and every other import (the unit
 //! convention of [`crate::cut::units`]: W is the outline's smaller extent along x and y, the
 //! diameter of a round), and every plane offset is scaled with it; the factor is kept in the design's record
-//! ([`Design::scale`]), with the index, titles, notes, gear, symmetry and instructions, on
-//! [`Cut::design`]. [`write()`] writes a design's distances back in its file's units, a
+//! ([`GemcadRecord::scale`]), with the index, titles, notes, gear, symmetry and instructions,
+//! on [`Cut::record`]. [`write()`] writes a design's distances back in its file's units, a
 //! generated cut's in its own.
 //!
 //! # Tolerated
@@ -62,7 +62,7 @@
 //! Latin-1. A malformed `a`, `g`, `y` or `I` line is an error naming the file and line.
 
 use crate::cut::units::outline_size;
-use crate::cut::{Cut, Design};
+use crate::cut::{Cut, GemcadRecord};
 use crate::error::{Error, Result};
 use crate::geometry::{facet_normal, FacetPlane, Polyhedron};
 use serde::Serialize;
@@ -124,10 +124,10 @@ impl AscDesign {
         self.build(name, name)
     }
 
-    /// The solid, scaled, with the design's record ([`Design`]) attached.
+    /// The solid, scaled, with the design's record ([`GemcadRecord`]) attached.
     fn build(&self, name: &str, ctx: &str) -> Result<Cut> {
         let (mut cut, scale) = build_cut(&self.planes, name, ctx)?;
-        cut.design = Some(Design {
+        cut.record = Some(GemcadRecord {
             ri: self.ri,
             title: self.title.clone(),
             footnotes: self.footnotes.clone(),
@@ -143,7 +143,7 @@ impl AscDesign {
 }
 
 /// Read a GemCad `.asc` file into a cut named after the file stem, with the design's record
-/// (index, titles, notes, gear, symmetry, instructions) in [`Cut::design`].
+/// (index, titles, notes, gear, symmetry, instructions) in [`Cut::record`].
 pub fn read(path: &Path) -> Result<Cut> {
     let shown = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| Error::io(&shown, e))?;
@@ -189,7 +189,7 @@ fn build_cut(planes: &[FacetPlane], name: &str, ctx: &str) -> Result<(Cut, f64)>
         family: None,
         params: BTreeMap::new(),
         solid: solid.scaled(1.0 / width),
-        design: None,
+        record: None,
     };
     Ok((cut, width / pre))
 }
@@ -610,8 +610,8 @@ struct Line {
 }
 
 /// The design record to write with, the gear teeth and offset, and the `a` lines.
-fn gear_lines(cut: &Cut, gear: u32) -> (Design, f64, f64, Vec<Line>) {
-    let design = cut.design.clone().unwrap_or_default();
+fn gear_lines(cut: &Cut, gear: u32) -> (GemcadRecord, f64, f64, Vec<Line>) {
+    let design = cut.record.clone().unwrap_or_default();
     let (g, offset) = if gear == 0 || f64::from(gear) == design.gear.abs() {
         (design.gear, design.gear_offset)
     } else {
@@ -670,11 +670,11 @@ fn gear_lines(cut: &Cut, gear: u32) -> (Design, f64, f64, Vec<Line>) {
 }
 
 /// Write `cut` as a GemCad `.asc` design on a gear of `gear` teeth; `0` means the design's
-/// own gear (and offset) when the cut came from a design file ([`Cut::design`]), else 96.
+/// own gear (and offset) when the cut came from a design file ([`Cut::record`]), else 96.
 ///
 /// A design read from a file keeps its record: `I` (index), `H` (titles), `F` (footnotes),
 /// `y` (symmetry and mirror), `g` (gear and offset) and each line's `G` instructions, and its
-/// distances are written back in the file's own units ([`Design::scale`]). A generated cut is
+/// distances are written back in the file's own units ([`GemcadRecord::scale`]). A generated cut is
 /// written with `g 96 0.0`, `y 1 n`, its name as the title, no `I` line, distances in girdle
 /// widths (W = 1).
 ///
@@ -720,7 +720,7 @@ pub fn write(cut: &Cut, gear: u32) -> String {
     if let Some(ri) = design.ri {
         let _ = writeln!(out, "I {}", fmt_short(ri, 2, 6, 1e-9));
     }
-    if cut.design.is_some() {
+    if cut.record.is_some() {
         for t in &design.title {
             let _ = writeln!(out, "H {t}");
         }
@@ -858,7 +858,7 @@ pub fn cutting_instructions(cut: &Cut, gear: u32) -> CuttingInstructions {
             });
         }
     }
-    if cut.design.is_none() {
+    if cut.record.is_none() {
         // A generated cut lists its table first; a cutter polishes the table and the culet
         // last on their side.
         let flat = |s: &CuttingStep| s.angle == 0.0;
@@ -1150,7 +1150,7 @@ F Leave the table polished
     fn asc_design_keeps_its_record_and_comes_back_byte_for_byte() {
         let d = parse(STAR80.as_bytes(), "star80.asc").unwrap();
         let cut = d.to_cut("star80").unwrap();
-        let rec = cut.design.as_ref().unwrap();
+        let rec = cut.record.as_ref().unwrap();
         assert_eq!((rec.gear, rec.gear_offset), (80.0, 0.0));
         assert_eq!((rec.symmetry, rec.mirror, rec.ri), (5, true, Some(1.61)));
         assert_eq!(rec.title, vec!["Test Star 80", "by facetlab tests"]);
