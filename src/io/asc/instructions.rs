@@ -68,7 +68,7 @@ pub struct CuttingInstructions {
 /// assert_eq!((bezel.angle, bezel.indices.len()), (34.5, 8));
 /// ```
 pub fn cutting_instructions(cut: &Cut, gear: u32) -> CuttingInstructions {
-    let (design, g, offset, lines) = gear_lines(cut, gear);
+    let (record, gear, lines) = gear_lines(cut, gear);
     let mut steps: Vec<CuttingStep> = Vec::new();
     for want in ["pavilion", "crown"] {
         for l in &lines {
@@ -101,7 +101,7 @@ pub fn cutting_instructions(cut: &Cut, gear: u32) -> CuttingInstructions {
                 note: l
                     .facets
                     .iter()
-                    .find_map(|(_, name)| design.instructions.get(name).cloned()),
+                    .find_map(|(_, name)| record.instructions.get(name).cloned()),
             });
         }
     }
@@ -115,9 +115,9 @@ pub fn cutting_instructions(cut: &Cut, gear: u32) -> CuttingInstructions {
         }
     }
     CuttingInstructions {
-        gear: g,
-        gear_offset: offset,
-        ri: design.ri,
+        gear: gear.teeth,
+        gear_offset: gear.offset,
+        ri: record.ri,
         steps,
     }
 }
@@ -159,7 +159,6 @@ impl CuttingInstructions {
         o
     }
 }
-
 
 #[cfg(test)]
 mod tests {

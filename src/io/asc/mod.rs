@@ -68,8 +68,8 @@
 //!   continuation lines;
 //! - `read.rs`: the reader: [`parse`], [`read()`], [`AscDesign`] and its [`AscTier`]s, and the
 //!   solid scaled to W = 1;
-//! - `write.rs`: the writer, [`write()`]: the cut's facets as `a` lines with the design's
-//!   record;
+//! - `write.rs`: the writer, [`write()`]: the cut's tiers ([`crate::design::tiers()`]) as `a`
+//!   lines with the design's record;
 //! - `instructions.rs`: the cutting instructions (the `G` lines with each tier's angle and
 //!   indices), [`cutting_instructions`].
 //!

@@ -1,36 +1,23 @@
-//! The GemCad writer: a cut's facets grouped into `a` lines (one per tier, angle and distance),
-//! on the design's gear and in its file's units, with the design's record (index, titles,
-//! notes, symmetry, instructions).
+//! The GemCad writer: a cut's tiers ([`crate::design::tiers()`]) as `a` lines, on the design's
+//! gear and in its file's units, with the design's record (index, titles, notes, symmetry,
+//! instructions).
 
 use super::read::generated_tier;
 use crate::cut::{Cut, GemcadRecord};
+use crate::design::{fixed, tiers, token, Gear, Tier, ANGLE_DECIMALS, DEPTH_DECIMALS};
 use std::fmt::Write as _;
-
-/// A name as one `.asc` token.
-fn token(name: &str) -> String {
-    name.split_whitespace().collect::<Vec<_>>().join("_")
-}
 
 /// A number with at most `max` decimals: the fewest (at least `min`) that come within `tol`
 /// of `x`, else `max`. `-0` is written `0`.
 pub(super) fn fmt_short(x: f64, min: usize, max: usize, tol: f64) -> String {
     let x = if x == 0.0 { 0.0 } else { x };
     for d in min..max {
-        let t = format!("{x:.d$}");
+        let t = fixed(x, d);
         if t.parse::<f64>().is_ok_and(|v| (v - x).abs() <= tol) {
-            return tidy(t);
+            return t;
         }
     }
-    tidy(format!("{x:.max$}"))
-}
-
-/// No `-0`, `-0.00` …
-fn tidy(t: String) -> String {
-    if t.starts_with('-') && t.trim_start_matches(['-', '0', '.']).is_empty() {
-        t[1..].to_string()
-    } else {
-        t
-    }
+    fixed(x, max)
 }
 
 /// A gear index: a whole number when the azimuth is on the gear (within 1e-6 of a tooth),
@@ -63,8 +50,8 @@ fn derived_name(name: &str, tier: &str) -> bool {
             .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
 }
 
-/// One `a` line being assembled: tier, angle and distance as written, and the facets'
-/// (index text, facet name).
+/// One `a` line as written: tier, angle and distance, and the facets' (index text, facet
+/// name).
 pub(super) struct Line {
     pub(super) tier: String,
     pub(super) angle: String,
@@ -72,64 +59,34 @@ pub(super) struct Line {
     pub(super) facets: Vec<(String, String)>,
 }
 
-/// The design record to write with, the gear teeth and offset, and the `a` lines.
-pub(super) fn gear_lines(cut: &Cut, gear: u32) -> (GemcadRecord, f64, f64, Vec<Line>) {
-    let design = cut.record.clone().unwrap_or_default();
-    let (g, offset) = if gear == 0 || f64::from(gear) == design.gear.abs() {
-        (design.gear, design.gear_offset)
-    } else {
-        (f64::from(gear), 0.0)
-    };
-    let teeth = g.abs();
-    let scale = if design.scale.is_finite() && design.scale > 0.0 {
-        design.scale
+impl Line {
+    /// A tier as its `a` line writes it.
+    fn of(t: &Tier) -> Line {
+        Line {
+            tier: t.name.clone(),
+            angle: fixed(t.angle, ANGLE_DECIMALS),
+            dist: fixed(t.depth, DEPTH_DECIMALS),
+            facets: t
+                .facets
+                .iter()
+                .map(|f| (fmt_index(f.index), f.name.clone()))
+                .collect(),
+        }
+    }
+}
+
+/// The design record to write with, the gear, and the `a` lines: the cut's tiers on the gear,
+/// distances in the record's file units.
+pub(super) fn gear_lines(cut: &Cut, gear: u32) -> (GemcadRecord, Gear, Vec<Line>) {
+    let record = cut.record.clone().unwrap_or_default();
+    let gear = Gear::for_record(&record, gear);
+    let unit = if record.scale.is_finite() && record.scale > 0.0 {
+        record.scale
     } else {
         1.0
     };
-    let mut lines: Vec<Line> = Vec::new();
-    for f in cut.solid.facets() {
-        let n = f.plane.normal;
-        let h = n.x.hypot(n.y);
-        let tilt = h.atan2(n.z.abs()).to_degrees();
-        let crown = n.z > 1e-12;
-        let d = f.plane.offset * scale;
-        let (angle, dist) = if h <= 1e-12 && !crown {
-            (0.0, -d) // culet: `a 0 -d`
-        } else if crown {
-            (tilt, d)
-        } else {
-            (-tilt, d)
-        };
-        let index = if h <= 1e-12 {
-            let i = offset.rem_euclid(teeth);
-            fmt_index(if i == 0.0 { teeth } else { i })
-        } else {
-            let az = n.y.atan2(n.x).to_degrees();
-            let i = (offset + g * (az + 90.0) / 360.0).rem_euclid(teeth);
-            let i = if i.round() == 0.0 || i.round() == teeth && (i - teeth).abs() < 1e-6 {
-                teeth
-            } else {
-                i
-            };
-            fmt_index(i)
-        };
-        let angle = tidy(format!("{angle:.6}"));
-        let dist = tidy(format!("{dist:.8}"));
-        let tier = token(&f.tier);
-        match lines
-            .iter_mut()
-            .find(|l| l.tier == tier && l.angle == angle && l.dist == dist)
-        {
-            Some(l) => l.facets.push((index, f.name.clone())),
-            None => lines.push(Line {
-                tier,
-                angle,
-                dist,
-                facets: vec![(index, f.name.clone())],
-            }),
-        }
-    }
-    (design, g, offset, lines)
+    let lines = tiers(cut, gear, unit).iter().map(Line::of).collect();
+    (record, gear, lines)
 }
 
 /// Write `cut` as a GemCad `.asc` design on a gear of `gear` teeth; `0` means the design's
@@ -142,9 +99,9 @@ pub(super) fn gear_lines(cut: &Cut, gear: u32) -> (GemcadRecord, f64, f64, Vec<L
 /// widths (W = 1).
 ///
 /// Facets are grouped into one `a` line per (tier, angle, distance) as written, in order of
-/// first appearance; a tier's angle is written once, with 6 decimals as GemCad does (pavilion
-/// negative, girdle −90; a culet GemCad's way, as angle 0 with a negative distance),
-/// distances with 8. Each azimuth becomes an index (`i = offset + g · (azimuth + 90°) /
+/// first appearance (the tiers of [`crate::design::tiers()`]); a tier's angle is written once,
+/// with 6 decimals as GemCad does (pavilion negative, girdle −90; a culet GemCad's way, as
+/// angle 0 with a negative distance), distances with 8. Each azimuth becomes an index (`i = offset + g · (azimuth + 90°) /
 /// 360°`, index 0 written as the tooth count): a whole number when the azimuth is on the gear,
 /// else the fewest decimals that keep it (a fractional index, as GemCad allows). The tier is
 /// written as `n TIER` after the first index unless it is the name the reader would generate
@@ -165,26 +122,26 @@ pub(super) fn gear_lines(cut: &Cut, gear: u32) -> (GemcadRecord, f64, f64, Vec<L
 /// assert!((back.proportions().crown_angle - 34.0).abs() < 1e-6);
 /// ```
 pub fn write(cut: &Cut, gear: u32) -> String {
-    let (design, g, offset, lines) = gear_lines(cut, gear);
+    let (record, gear, lines) = gear_lines(cut, gear);
     let mut out = String::new();
     let _ = writeln!(out, "GemCad 5.0");
     let _ = writeln!(
         out,
         "g {} {}",
-        fmt_short(g, 0, 6, 1e-9),
-        fmt_short(offset, 1, 6, 1e-9)
+        fmt_short(gear.teeth, 0, 6, 1e-9),
+        fmt_short(gear.offset, 1, 6, 1e-9)
     );
     let _ = writeln!(
         out,
         "y {} {}",
-        design.symmetry.max(1),
-        if design.mirror { "y" } else { "n" }
+        record.symmetry.max(1),
+        if record.mirror { "y" } else { "n" }
     );
-    if let Some(ri) = design.ri {
+    if let Some(ri) = record.ri {
         let _ = writeln!(out, "I {}", fmt_short(ri, 2, 6, 1e-9));
     }
     if cut.record.is_some() {
-        for t in &design.title {
+        for t in &record.title {
             let _ = writeln!(out, "H {t}");
         }
     } else {
@@ -210,13 +167,13 @@ pub fn write(cut: &Cut, gear: u32) -> String {
         if let Some(text) = l
             .facets
             .iter()
-            .find_map(|(_, name)| design.instructions.get(name))
+            .find_map(|(_, name)| record.instructions.get(name))
         {
             let _ = write!(out, " G {text}");
         }
         out.push('\n');
     }
-    for f in &design.footnotes {
+    for f in &record.footnotes {
         let _ = writeln!(out, "F {f}");
     }
     out
