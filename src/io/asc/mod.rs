@@ -91,5 +91,5 @@ pub use read::{parse, read, AscDesign, AscTier};
 pub use write::write;
 
 /// The index gear used when a file has no `g` line, and by [`write()`] for a cut without a
-/// design record.
+/// GemCad record.
 pub const DEFAULT_GEAR: u32 = 96;

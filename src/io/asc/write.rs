@@ -75,7 +75,7 @@ impl Line {
     }
 }
 
-/// The design record to write with, the gear, and the `a` lines: the cut's tiers on the gear,
+/// The GemCad record to write with, the gear, and the `a` lines: the cut's tiers on the gear,
 /// distances in the record's file units.
 pub(super) fn gear_lines(cut: &Cut, gear: u32) -> (GemcadRecord, Gear, Vec<Line>) {
     let record = cut.record.clone().unwrap_or_default();
