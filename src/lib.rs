@@ -1,7 +1,7 @@
 //! facetlab: design, score and optimize cut gemstones with real optics.
 //!
-//! Data flows one way: [`geometry`] → [`cut`] → [`io`] → [`optics`] → tracers ([`photon`],
-//! [`beam`]) → pictures ([`render`]) → scores ([`metrics`]) → the photon cross-check of the
+//! Data flows one way: [`geometry`] → [`cut`] → [`design`] → [`io`] → [`optics`] → tracers
+//! ([`photon`], [`beam`]) → pictures ([`render`]) → scores ([`metrics`]) → the photon cross-check of the
 //! beam tracer ([`verify`]) → one-page reports ([`report`]) → optimizer → plots; the
 //! `facetlab` binary (its own `cli` module, with the `serve` web page) sits on top. The
 //! library knows nothing of the command line or the web: clap, indicatif, ctrlc, axum and
@@ -37,6 +37,7 @@
 
 pub mod beam;
 pub mod cut;
+pub mod design;
 pub mod error;
 pub mod geometry;
 pub mod io;

@@ -161,7 +161,7 @@ pub struct InfoJson {
     /// `gear_offset`, `symmetry`, `mirror`, `instructions` (by facet name), `scale` (file
     /// units per girdle width); absent for generated cuts.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub design: Option<facetlab::cut::Design>,
+    pub design: Option<facetlab::cut::GemcadRecord>,
 }
 
 /// A stone's size in millimetres.
@@ -255,7 +255,7 @@ pub fn info_json(cut: &Cut, diameter_mm: f64, material: &Material) -> InfoJson {
             smallest_facet_ratio: smallest / mean,
         },
         grade: facetlab::cut::grade::estimate(cut),
-        design: cut.design.clone(),
+        design: cut.record.clone(),
         instructions: None,
     }
 }

@@ -209,12 +209,12 @@ mod tests {
     #[test]
     fn design_index_is_mentioned_only_when_it_differs_and_nothing_was_chosen() {
         let mut quartz = facetlab::io::load_cut("tolkowsky").unwrap();
-        quartz.design = Some(facetlab::cut::Design {
+        quartz.record = Some(facetlab::cut::GemcadRecord {
             ri: Some(1.54),
             ..Default::default()
         });
         let mut dia = quartz.clone();
-        dia.design = Some(facetlab::cut::Design {
+        dia.record = Some(facetlab::cut::GemcadRecord {
             ri: Some(2.418),
             ..Default::default()
         });

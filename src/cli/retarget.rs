@@ -109,9 +109,9 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
         &r.variants[2]
     };
     let mut out = chosen.cut.clone();
-    let mut design = out.design.clone().unwrap_or_default();
-    design.ri = Some((r.to_ri * 1e4).round() / 1e4);
-    out.design = Some(design);
+    let mut record = out.record.clone().unwrap_or_default();
+    record.ri = Some((r.to_ri * 1e4).round() / 1e4);
+    out.record = Some(record);
     let bytes: Vec<u8> = match ext.as_str() {
         "toml" => io::spec::write(&out).into_bytes(),
         "asc" => io::asc::write(&out, 0).into_bytes(),

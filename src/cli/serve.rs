@@ -741,7 +741,7 @@ fn load_bytes(format: &str, bytes: &[u8], name: &str) -> Result<Cut> {
                 family: None,
                 params: Default::default(),
                 solid,
-                design: None,
+                record: None,
             })
         }
         other => Err(Error::invalid("format", format!("unknown format {other}"))),

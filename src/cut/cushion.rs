@@ -53,7 +53,7 @@ pub(crate) fn outline(lw: f64, rounding: f64) -> Outline {
 
 fn build(p: &Params) -> Result<Vec<FacetPlane>> {
     brilliant(
-        &outline(p.get("length_width"), p.get("corner_rounding")),
+        &outline(p.get("length_width")?, p.get("corner_rounding")?),
         p,
         "cushion",
     )

@@ -164,16 +164,16 @@ fn key_of_tier(tier: &str) -> &'static str {
 }
 
 fn build(p: &Params) -> Result<Vec<FacetPlane>> {
-    let lw = p.get("length_width");
-    let t = p.get("table");
-    let g = p.get("girdle");
-    let corner = p.get("corner");
-    let culet = p.get("culet");
+    let lw = p.get("length_width")?;
+    let t = p.get("table")?;
+    let g = p.get("girdle")?;
+    let corner = p.get("corner")?;
+    let culet = p.get("culet")?;
     check_corner(corner)?;
-    let nc = p.get("crown_steps") as usize;
-    let np = p.get("pavilion_steps") as usize;
-    let crown = step_angles(p.get("crown_angle"), p.get("crown_step_angle"), nc);
-    let pav = step_angles(p.get("pavilion_angle"), p.get("pavilion_step_angle"), np);
+    let nc = p.get("crown_steps")? as usize;
+    let np = p.get("pavilion_steps")? as usize;
+    let crown = step_angles(p.get("crown_angle")?, p.get("crown_step_angle")?, nc);
+    let pav = step_angles(p.get("pavilion_angle")?, p.get("pavilion_step_angle")?, np);
     let zg = g / 2.0;
     let top = Ring {
         a: lw / 2.0,

@@ -65,7 +65,7 @@ pub(crate) fn pointed_arc(cx: f64, tip_x: f64) -> ([DVec2; 5], [DVec2; 3]) {
 }
 
 fn build(p: &Params) -> Result<Vec<FacetPlane>> {
-    let (q, n) = pointed_arc(0.0, p.get("length_width") / 2.0);
+    let (q, n) = pointed_arc(0.0, p.get("length_width")? / 2.0);
     brilliant(&Outline::from_quadrant(q, n), p, "marquise")
 }
 

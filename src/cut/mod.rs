@@ -7,7 +7,6 @@
 
 mod construct;
 mod cushion;
-pub mod design;
 mod emerald;
 mod families;
 pub mod grade;
@@ -18,15 +17,16 @@ mod outline;
 mod oval;
 mod pear;
 mod princess;
+pub mod record;
 pub mod retarget;
 mod round;
 mod sphere;
 mod steps;
 pub mod units;
 
-pub use design::Design;
 pub use families::{families, family, Family};
 pub use measure::{Proportions, Ratios, TierSummary};
+pub use record::GemcadRecord;
 
 use crate::error::{Error, Result};
 use crate::geometry::{FacetPlane, Polyhedron};
@@ -127,13 +127,16 @@ pub struct Params {
 }
 
 impl Params {
-    /// The value of `key`. Panics if the key is not one of the family's (a programming error:
-    /// families only ask for their own keys).
-    pub fn get(&self, key: &str) -> f64 {
-        match self.values.get(key) {
-            Some(v) => *v,
-            None => panic!("parameter {key} missing from a validated set"),
-        }
+    /// The value of `key`; an error naming the key and the set's keys if the key is not one of
+    /// the family's.
+    pub fn get(&self, key: &str) -> Result<f64> {
+        self.values.get(key).copied().ok_or_else(|| {
+            let keys: Vec<&str> = self.values.keys().map(String::as_str).collect();
+            Error::invalid(
+                key,
+                format!("not a parameter of this set; known: {}", keys.join(", ")),
+            )
+        })
     }
     /// All values, by key.
     pub fn values(&self) -> &BTreeMap<String, f64> {
@@ -152,9 +155,9 @@ pub struct Cut {
     pub params: BTreeMap<String, f64>,
     /// The solid.
     pub solid: Polyhedron,
-    /// What the design file said about itself (GemCad's index, titles, notes, gear, symmetry,
-    /// instructions; see [`Design`]), for imports that carry it; `None` for generated cuts.
-    pub design: Option<Design>,
+    /// What the GemCad file said about itself (its index, titles, notes, gear, symmetry,
+    /// instructions; see [`GemcadRecord`]), for imports that carry it; `None` for generated cuts.
+    pub record: Option<GemcadRecord>,
 }
 
 impl Cut {
@@ -199,7 +202,7 @@ impl Cut {
             family: Some(fam.name.to_string()),
             params: params.values,
             solid,
-            design: None,
+            record: None,
         })
     }
 
@@ -211,7 +214,7 @@ impl Cut {
             family: None,
             params: BTreeMap::new(),
             solid,
-            design: None,
+            record: None,
         })
     }
 
@@ -237,7 +240,7 @@ impl Cut {
 
     /// The refractive index the design file was cut for (GemCad's `I` line), if it names one.
     pub fn design_ri(&self) -> Option<f64> {
-        self.design.as_ref().and_then(|d| d.ri)
+        self.record.as_ref().and_then(|d| d.ri)
     }
 
     /// Proportions measured on the solid (table, crown angle, depths …).

@@ -190,13 +190,13 @@ pub(crate) fn key_of_tier(tier: &str) -> &'static str {
 /// The facet planes of a brilliant around `o`, from the keys `table`, `crown_angle`,
 /// `pavilion_angle`, `girdle`, `star`, `lower_half`, `culet`. `family` names the shape in errors.
 pub(crate) fn brilliant(o: &Outline, p: &Params, family: &str) -> Result<Vec<FacetPlane>> {
-    let t = p.get("table");
-    let crown = p.get("crown_angle").to_radians();
-    let pav = p.get("pavilion_angle").to_radians();
-    let g = p.get("girdle");
-    let star = p.get("star");
-    let lh = p.get("lower_half");
-    let culet = p.get("culet");
+    let t = p.get("table")?;
+    let crown = p.get("crown_angle")?.to_radians();
+    let pav = p.get("pavilion_angle")?.to_radians();
+    let g = p.get("girdle")?;
+    let star = p.get("star")?;
+    let lh = p.get("lower_half")?;
+    let culet = p.get("culet")?;
     let pts = &o.points;
     let nu = &o.normals;
     let inside = lift(o.centre, 0.0);

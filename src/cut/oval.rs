@@ -67,7 +67,7 @@ pub(crate) fn outline(lw: f64) -> Outline {
 }
 
 fn build(p: &Params) -> Result<Vec<FacetPlane>> {
-    brilliant(&outline(p.get("length_width")), p, "oval")
+    brilliant(&outline(p.get("length_width")?), p, "oval")
 }
 
 #[cfg(test)]

@@ -70,7 +70,7 @@ pub(crate) fn outline(lw: f64) -> Outline {
 }
 
 fn build(p: &Params) -> Result<Vec<FacetPlane>> {
-    brilliant(&outline(p.get("length_width")), p, "pear")
+    brilliant(&outline(p.get("length_width")?), p, "pear")
 }
 
 #[cfg(test)]

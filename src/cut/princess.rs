@@ -77,17 +77,17 @@ pub(crate) fn pavilion_depth(lw: f64, corner: f64, pavilion_angle: f64) -> f64 {
 }
 
 fn build(p: &Params) -> Result<Vec<FacetPlane>> {
-    let lw = p.get("length_width");
-    let t = p.get("table");
-    let g = p.get("girdle");
-    let c = p.get("corner");
-    let culet = p.get("culet");
-    let beta = p.get("pavilion_angle").to_radians();
-    let n = p.get("pavilion_chevrons") as usize;
-    let cl = p.get("chevron_length");
+    let lw = p.get("length_width")?;
+    let t = p.get("table")?;
+    let g = p.get("girdle")?;
+    let c = p.get("corner")?;
+    let culet = p.get("culet")?;
+    let beta = p.get("pavilion_angle")?.to_radians();
+    let n = p.get("pavilion_chevrons")? as usize;
+    let cl = p.get("chevron_length")?;
     check_corner(c)?;
-    let tiers = p.get("crown_tiers") as usize;
-    let crown = step_angles(p.get("crown_angle"), p.get("crown_step_angle"), tiers);
+    let tiers = p.get("crown_tiers")? as usize;
+    let crown = step_angles(p.get("crown_angle")?, p.get("crown_step_angle")?, tiers);
     let zg = g / 2.0;
     let (a, b) = (lw / 2.0, 0.5);
     let top = Ring { a, b, c, z: zg };
@@ -108,7 +108,7 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
     }
     // Mains: through the corner bevel at the girdle bottom, facing the corner.
     let s = std::f64::consts::FRAC_1_SQRT_2;
-    let culet_z = -zg - pavilion_depth(lw, c, p.get("pavilion_angle"));
+    let culet_z = -zg - pavilion_depth(lw, c, p.get("pavilion_angle")?);
     for (k, (sx, sy)) in [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
         .iter()
         .enumerate()

@@ -81,7 +81,7 @@ pub fn tangent_ratio(cut: &Cut, k_crown: f64, k_pavilion: f64) -> Result<Cut> {
         family: None,
         params: Default::default(),
         solid,
-        design: cut.design.clone(),
+        record: cut.record.clone(),
     })
 }
 

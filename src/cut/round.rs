@@ -108,14 +108,14 @@ fn at(r: f64, az_deg: f64, z: f64) -> DVec3 {
 /// Facet planes of a brilliant crown and pavilion around a round outline. Shared with the
 /// elongated brilliants, which stretch this solid.
 pub(crate) fn build(p: &Params) -> Result<Vec<FacetPlane>> {
-    let t = p.get("table");
-    let crown = p.get("crown_angle");
-    let pav = p.get("pavilion_angle");
-    let g = p.get("girdle");
-    let star = p.get("star");
-    let lh = p.get("lower_half");
-    let culet = p.get("culet");
-    let nf = p.get("girdle_facets") as usize;
+    let t = p.get("table")?;
+    let crown = p.get("crown_angle")?;
+    let pav = p.get("pavilion_angle")?;
+    let g = p.get("girdle")?;
+    let star = p.get("star")?;
+    let lh = p.get("lower_half")?;
+    let culet = p.get("culet")?;
+    let nf = p.get("girdle_facets")? as usize;
     if nf != 0 && !nf.is_multiple_of(16) {
         return Err(Error::invalid(
             "girdle_facets",

@@ -35,7 +35,7 @@ pub const FAMILY: Family = Family {
 };
 
 fn build(p: &Params) -> Result<Vec<FacetPlane>> {
-    let n = p.get("facets") as usize;
+    let n = p.get("facets")? as usize;
     let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
     let mut planes: Vec<FacetPlane> = (0..n)
         .map(|i| {

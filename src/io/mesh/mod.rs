@@ -199,7 +199,7 @@ pub fn read_with_note(path: impl AsRef<Path>) -> Result<(Cut, Option<String>)> {
         family: None,
         params: Default::default(),
         solid,
-        design: None,
+        record: None,
     };
     Ok((cut, note))
 }

@@ -1,17 +1,17 @@
-//! What a design file says about itself beyond its facets: GemCad's metadata, carried on
-//! [`super::Cut::design`] so that a design read from a `.asc` file is written back with its own
+//! What a GemCad file says about itself beyond its facets: its metadata, carried on
+//! [`super::Cut::record`] so that a design read from a `.asc` file is written back with its own
 //! index, titles, notes, gear, symmetry and cutting instructions.
 //!
-//! Generated cuts have no design record (`Cut::design` is `None`); a GemCad import always has
+//! Generated cuts have no GemCad record (`Cut::record` is `None`); a GemCad import always has
 //! one. Writers fall back to their defaults (gear 96, `y 1 n`, the cut's name as the title,
 //! no `I` line) for the fields a cut does not carry.
 
 use serde::Serialize;
 use std::collections::BTreeMap;
 
-/// A design's own record, as its file gave it.
+/// A GemCad design's own record, as its file gave it.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Design {
+pub struct GemcadRecord {
     /// The refractive index the design was cut for (GemCad's `I` line), if given.
     pub ri: Option<f64>,
     /// Title and credit lines (`H`), in order.
@@ -35,9 +35,9 @@ pub struct Design {
     pub scale: f64,
 }
 
-impl Default for Design {
+impl Default for GemcadRecord {
     fn default() -> Self {
-        Design {
+        GemcadRecord {
             ri: None,
             title: Vec::new(),
             footnotes: Vec::new(),
