@@ -37,6 +37,7 @@
 
 pub mod beam;
 pub mod cut;
+pub mod design;
 pub mod error;
 pub mod geometry;
 pub mod io;
