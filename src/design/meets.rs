@@ -312,9 +312,7 @@ pub fn least_squares(rows: Vec<(Vec<f64>, f64)>, ncols: usize) -> Option<Vec<f64
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cut::Cut;
     use crate::geometry::{FacetPlane, Polyhedron};
-    use std::collections::BTreeMap;
 
     #[test]
     fn least_squares_meets_the_normal_equations() {
@@ -371,103 +369,5 @@ mod tests {
             loose[0].gap
         );
         assert!(find_meets(&q, 1e-9).is_empty());
-    }
-
-    /// Tiers of a cut by tier name and side (up, girdle, down); each tier's depth the mean of
-    /// its facets' offsets.
-    fn tiers_of(s: &Polyhedron) -> (Vec<usize>, Vec<f64>, Vec<String>) {
-        let mut names: Vec<String> = Vec::new();
-        let mut sums: Vec<(f64, usize)> = Vec::new();
-        let tier_of = s
-            .facets()
-            .iter()
-            .map(|f| {
-                let side = if f.plane.normal.z > 1e-9 {
-                    "+"
-                } else if f.plane.normal.z < -1e-9 {
-                    "-"
-                } else {
-                    "0"
-                };
-                let key = format!("{}{side}", f.tier);
-                let t = names.iter().position(|n| *n == key).unwrap_or_else(|| {
-                    names.push(key);
-                    sums.push((0.0, 0));
-                    names.len() - 1
-                });
-                sums[t].0 += f.plane.offset;
-                sums[t].1 += 1;
-                t
-            })
-            .collect();
-        (
-            tier_of,
-            sums.iter().map(|(s, n)| s / *n as f64).collect(),
-            names,
-        )
-    }
-
-    #[test]
-    fn re_angled_pavilion_tiers_land_on_the_familys_solid() {
-        let base = crate::io::load_cut("tolkowsky").unwrap();
-        let s = &base.solid;
-        let meets = find_meets(s, 1e-9);
-        assert!(meets.len() > 16, "{}", meets.len());
-        let (tier_of, depths, names) = tiers_of(s);
-        for (f, &t) in s.facets().iter().zip(&tier_of) {
-            assert!(
-                (f.plane.offset - depths[t]).abs() < 1e-12,
-                "{} off its tier",
-                f.name
-            );
-        }
-        let target = base
-            .with_params(&BTreeMap::from([("pavilion_angle".to_string(), 41.25)]))
-            .unwrap();
-        let t = &target.solid;
-        assert_eq!(t.facets().len(), s.facets().len());
-        let normals: Vec<DVec3> = t.facets().iter().map(|f| f.plane.normal).collect();
-        for (a, b) in s.facets().iter().zip(t.facets()) {
-            assert_eq!(a.name, b.name);
-        }
-        let held: Vec<bool> = names.iter().map(|n| !n.ends_with('-')).collect();
-        let meet_facets: Vec<Vec<usize>> = meets.iter().map(|m| m.facets.clone()).collect();
-        let held_z: Vec<Option<f64>> = meets
-            .iter()
-            .map(|m| {
-                m.facets
-                    .iter()
-                    .any(|&f| s.facets()[f].tier == "girdle")
-                    .then_some(m.point.z)
-            })
-            .collect();
-        let solved = solve_depths(&DepthProblem {
-            normals: &normals,
-            tier_of: &tier_of,
-            depths: &depths,
-            held: &held,
-            meets: &meet_facets,
-            held_z: &held_z,
-        })
-        .unwrap();
-        let worst = solved.gaps.iter().cloned().fold(0.0, f64::max);
-        let (_, want, _) = tiers_of(t);
-        for (k, n) in names.iter().enumerate() {
-            eprintln!(
-                "{n}: {} -> solved {} family {}",
-                depths[k], solved.depths[k], want[k]
-            );
-        }
-        assert!(worst < 1e-9, "gaps {worst}");
-        for k in 0..names.len() {
-            assert!(
-                (solved.depths[k] - want[k]).abs() < 1e-9,
-                "{}: {} vs {}",
-                names[k],
-                solved.depths[k],
-                want[k]
-            );
-        }
-        let _ = Cut::from_planes;
     }
 }
