@@ -174,9 +174,9 @@ pub fn solve_depths(p: &DepthProblem) -> Result<DepthSolve> {
     // Columns: free tiers first, then 3 per meet.
     let mut col_of_tier = vec![usize::MAX; nt];
     let mut ncols = 0;
-    for t in 0..nt {
-        if !p.held[t] {
-            col_of_tier[t] = ncols;
+    for (col, &held) in col_of_tier.iter_mut().zip(p.held) {
+        if !held {
+            *col = ncols;
             ncols += 1;
         }
     }
@@ -208,10 +208,10 @@ pub fn solve_depths(p: &DepthProblem) -> Result<DepthSolve> {
             rows.push((row, *z));
         }
     }
-    for t in 0..nt {
+    for (t, &col) in col_of_tier.iter().enumerate() {
         if !p.held[t] {
             let mut row = vec![0.0; ncols];
-            row[col_of_tier[t]] = PRIOR_WEIGHT;
+            row[col] = PRIOR_WEIGHT;
             rows.push((row, PRIOR_WEIGHT * p.depths[t]));
         }
     }

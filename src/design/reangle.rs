@@ -134,19 +134,14 @@ impl TierModel {
             }
         };
         // An opened meet's gap: how far its planes are from sharing a point at the new depths.
-        let gaps = self
+        let mut gaps: Vec<f64> = self
             .meets
             .iter()
-            .zip(&open)
-            .zip(&solve.gaps)
-            .map(|((m, &o), &g)| {
-                if o {
-                    spread(&normals, &self.tier_of, &solve.depths, &m.facets)
-                } else {
-                    g
-                }
-            })
+            .map(|m| spread(&normals, &self.tier_of, &solve.depths, &m.facets))
             .collect();
+        for (k, &m) in kept.iter().enumerate() {
+            gaps[m] = solve.gaps[k];
+        }
         let planes = self
             .solid
             .facets()
