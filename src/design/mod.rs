@@ -1,5 +1,5 @@
 //! A design as tiers: the tiers of a GemCad design (one line: an angle, indices on the gear,
-//! a depth), and next the meets and the depth solve.
+//! a depth), its meets, and the depth solve that keeps them when tiers turn.
 //!
 //! A faceter's design is a list of tiers. A tier is one line of a GemCad `.asc` file: one
 //! angle to the girdle plane, a set of indices on the index gear (one facet per index) and one
@@ -8,19 +8,27 @@
 //! `.asc` writer ([`crate::io::asc::write`]) and the cutting instructions
 //! ([`crate::io::asc::cutting_instructions`]) print these tiers.
 //!
-//! What lands here next, to make any design a parametric one: the design's meets (vertices
-//! where four or more facets meet, within a tolerance of W), the depth solve (for new tier
-//! angles, the depths that keep the meets: a linear solve, least squares where
-//! over-determined, with the width W = 1 fixing the scale), and re-angling a tier.
+//! A design's **meets** — points where four or more facets pass within a tolerance of one
+//! point, what "cut to the meet point" leaves behind — are what must survive when a tier's
+//! angle changes ([`meets::find_meets`]). For fixed facet normals every meet is a set of
+//! linear equations in the tiers' depths, so the depths for new angles come from one linear
+//! least-squares solve ([`meets::solve_depths`]), with the girdle fixing the scale and its
+//! thickness; [`reangle::TierModel`] turns tiers, solves, and says how far each meet is from
+//! kept. What lands here next (issue 23): the tiers of an imported design as the optimizer's
+//! parameters.
 //!
 //! `design` sits above [`crate::cut`] and below [`crate::io`]: it may import
 //! [`crate::geometry`], [`crate::cut`] and [`crate::error`].
 //!
 //! - `tiers.rs`: [`Gear`], [`Tier`], [`TierFacet`] and [`tiers()`], a cut's facets grouped
 //!   into GemCad lines.
+//! - `meets.rs`: meets of a solid, the depth solve, a small dense least-squares solver.
+//! - `reangle.rs`: tiers turned to new angles with the meets kept (or reported open).
 //!
 //! [`GemcadRecord`]: crate::cut::GemcadRecord
 
+pub mod meets;
+pub mod reangle;
 mod tiers;
 
 pub use tiers::{fixed, tiers, token, Gear, Tier, TierFacet, ANGLE_DECIMALS, DEPTH_DECIMALS};
