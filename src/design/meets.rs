@@ -136,7 +136,9 @@ pub struct DepthProblem<'a> {
     /// The meets to keep, each as the facets through it.
     pub meets: &'a [Vec<usize>],
     /// Meets whose height is held (`Some(z)`): the girdle's meets, so that the girdle keeps
-    /// its thickness (vertical girdle facets alone do not fix a pavilion's height).
+    /// its thickness (vertical girdle facets alone do not fix a pavilion's height). Held as
+    /// weakly as the free depths: where the meets leave a height free it stays as near its old
+    /// value as it can, and where the file's rounded heights disagree the meets win.
     pub held_z: &'a [Option<f64>],
 }
 
@@ -155,6 +157,11 @@ pub struct DepthSolve {
 /// full-rank when a tier's depth is not fixed by any meet (it then keeps its depth) and move a
 /// meet-fixed depth by ~WEIGHT² relative: far below any tolerance a design is checked at.
 const PRIOR_WEIGHT: f64 = 1e-7;
+
+/// Weight of the rows that hold a girdle meet's height: far below the meets' own rows (weight
+/// 1), so a file's rounding never opens a meet, and far above [`PRIOR_WEIGHT`], so the
+/// girdle's height, not a tier's old depth, is what a free shift of the pavilion or crown keeps.
+pub const HEIGHT_WEIGHT: f64 = 1e-3;
 
 /// Solve for the tiers' depths that keep every meet of `p` (linear least squares by
 /// Householder QR): unknowns are each free tier's depth and each meet's point, equations
@@ -204,8 +211,8 @@ pub fn solve_depths(p: &DepthProblem) -> Result<DepthSolve> {
     for (m, z) in p.held_z.iter().enumerate() {
         if let Some(z) = z {
             let mut row = vec![0.0; ncols];
-            row[meet_col(m) + 2] = 1.0;
-            rows.push((row, *z));
+            row[meet_col(m) + 2] = HEIGHT_WEIGHT;
+            rows.push((row, HEIGHT_WEIGHT * z));
         }
     }
     for (t, &col) in col_of_tier.iter().enumerate() {
