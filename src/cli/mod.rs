@@ -8,6 +8,7 @@ pub mod materials;
 pub mod merge;
 pub mod optimize;
 pub mod outputs;
+mod progress;
 pub mod render;
 pub mod report;
 pub mod retarget;

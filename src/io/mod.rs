@@ -6,6 +6,7 @@ pub mod png;
 pub mod presets;
 pub mod spec;
 pub mod svg;
+pub mod text;
 
 use crate::error::{Error, Result};
 use std::path::Path;

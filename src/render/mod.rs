@@ -29,6 +29,7 @@
 //! [`fire_of`] over the band images.
 
 pub mod lighting;
+pub mod pose;
 pub mod raster;
 
 #[cfg(test)]
