@@ -25,12 +25,14 @@ impl Absorption {
                 1e6,
                 "beer:K with K (per girdle diameter)",
             )?),
-            _ => return Err(Error::invalid(
-                field,
-                format!(
+            _ => {
+                return Err(Error::invalid(
+                    field,
+                    format!(
                     "`{s}` is not allowed; use none, thesis or beer:K (K >= 0 per girdle diameter)"
                 ),
-            )),
+                ))
+            }
         })
     }
 }
