@@ -49,7 +49,7 @@ pub struct Req {
 
 /// A field of a body as sent: absent, of the expected JSON type, or anything else (`null`
 /// included), kept to quote it in the error.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Default, Deserialize)]
 #[serde(untagged)]
 pub enum Field<T> {
     /// Of the expected type.
@@ -57,14 +57,9 @@ pub enum Field<T> {
     /// Of another type.
     Other(Value),
     /// Not in the body (never deserialized: the default).
+    #[default]
     #[serde(skip)]
     Absent,
-}
-
-impl<T> Default for Field<T> {
-    fn default() -> Self {
-        Field::Absent
-    }
 }
 
 impl<T> Field<T> {
