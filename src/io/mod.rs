@@ -177,7 +177,9 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
 /// use facetlab::io::{load_cut, parse_cut, spec};
 /// let text = spec::write(&load_cut("tolkowsky").unwrap());
 /// let cut = parse_cut("toml", text.as_bytes(), "mine", "upload").unwrap();
-/// assert_eq!(cut.name, "mine");
+/// assert_eq!(cut.family.as_deref(), Some("round-brilliant"));
+/// let mesh = facetlab::io::mesh::write_obj(&cut);
+/// assert_eq!(parse_cut("obj", mesh.as_bytes(), "mine", "upload").unwrap().name, "mine");
 /// let e = parse_cut("asc", b"g 96 0\na x3 1 2\n", "mine", "upload").unwrap_err();
 /// assert!(e.to_string().starts_with("upload:"), "{e}");
 /// ```
