@@ -115,6 +115,12 @@ fn done_lines(path: &Path) -> Result<(BTreeMap<usize, String>, usize, usize)> {
     Ok((done, good, bytes.len()))
 }
 
+/// Whether `score` was asked for a batch (`--batch`, `--jsonl` or `--shard`): then [`run`]
+/// scores it, else [`super::score::run`] scores the CUT arguments.
+pub fn asked(a: &ScoreArgs) -> bool {
+    a.batch.is_some() || a.jsonl.is_some() || a.shard.is_some()
+}
+
 /// Run `facetlab score --batch FILE --jsonl OUT`.
 pub fn run(a: &ScoreArgs) -> Result<Exit> {
     run_env(a, &|k| std::env::var(k).ok())

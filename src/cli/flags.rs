@@ -4,37 +4,7 @@
 use facetlab::error::{Error, Result};
 use facetlab::optics::{Material, MaterialFields};
 
-/// A number in `[lo, hi]`; `what` describes it in the error.
-pub fn number(flag: &str, s: &str, lo: f64, hi: f64, what: &str) -> Result<f64> {
-    match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= lo && v <= hi => Ok(v),
-        _ => Err(Error::invalid(
-            flag,
-            format!("`{s}` is not allowed; give {what} in [{lo}, {hi}]"),
-        )),
-    }
-}
-
-/// A whole number in `min..=max`; `2e7` and `20_000_000` are accepted.
-pub fn count(flag: &str, s: &str, min: u64, max: u64) -> Result<u64> {
-    let t = s.trim().replace('_', "");
-    let v = match t.parse::<u64>() {
-        Ok(v) => Some(v),
-        Err(_) => match t.parse::<f64>() {
-            Ok(f) if f.is_finite() && f >= 0.0 && f.fract() == 0.0 && f <= u64::MAX as f64 => {
-                Some(f as u64)
-            }
-            _ => None,
-        },
-    };
-    match v {
-        Some(v) if (min..=max).contains(&v) => Ok(v),
-        _ => Err(Error::invalid(
-            flag,
-            format!("`{s}` is not allowed; give a whole number in {min}..={max} (2e7 and 20_000_000 work)"),
-        )),
-    }
-}
+pub use facetlab::io::text::{count, number};
 
 /// `on`/`off` (also `true`/`false`, `yes`/`no`).
 pub fn on_off(flag: &str, s: &str) -> Result<bool> {

@@ -8,6 +8,7 @@ pub mod materials;
 pub mod merge;
 pub mod optimize;
 pub mod outputs;
+mod progress;
 pub mod render;
 pub mod report;
 pub mod retarget;
@@ -99,6 +100,7 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::List(a) => done(cuts::list(&a)),
         Command::Materials(a) => done(materials::run(&a)),
         Command::Trace(a) => done(trace::run(&a)),
+        Command::Score(a) if batch::asked(&a) => batch::run(&a),
         Command::Score(a) => score::run(&a),
         Command::Optimize(a) => optimize::run_optimize(&a, &optimize::real_scorers),
         Command::Sweep(a) => optimize::run_sweep(&a, &optimize::real_scorers),

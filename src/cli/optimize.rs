@@ -5,6 +5,7 @@
 //! [`Verifier`]), so the command line stays thin and the scorers are wired in one place.
 
 use super::outputs::{refuse_overwrite, Exit};
+use super::progress::bar;
 use clap::Args;
 use facetlab::error::{Error, Result};
 use facetlab::optimize::{
@@ -13,8 +14,7 @@ use facetlab::optimize::{
 use facetlab::optimize::{BeamEvaluator, PhotonVerifier, Progress, Status};
 use facetlab::optimize::{Config, Evaluator, Verifier};
 use facetlab::optimize::{CutWriter, FnWriter, Hooks, RunOptions};
-use indicatif::{ProgressBar, ProgressStyle};
-use std::io::IsTerminal;
+use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Once;
@@ -111,17 +111,6 @@ fn install_ctrl_c() {
             eprintln!("\nfacetlab: stopping after the current iteration and writing what was found (Ctrl-C again to quit at once)");
         });
     });
-}
-
-fn bar(len: u64, quiet: bool, template: &str) -> ProgressBar {
-    if quiet || !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let pb = ProgressBar::new(len);
-    if let Ok(style) = ProgressStyle::with_template(template) {
-        pb.set_style(style.progress_chars("=> "));
-    }
-    pb
 }
 
 struct Bar(ProgressBar);

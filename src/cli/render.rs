@@ -32,9 +32,9 @@ use super::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
 use facetlab::optics::Dispersion;
 use facetlab::plot::render::{compose, legend_for, Panel, BACKGROUND};
+use facetlab::render::pose::{parse_rock, parse_tilt, rocked};
 use facetlab::render::{self, Light, RenderOptions, Stats, Tilt};
 use serde::Serialize;
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -120,13 +120,9 @@ impl Settings {
     /// The pose of frame `k`: the `--tilt` pose rocked by `DEG·sin(2πk/FRAMES)` toward its
     /// azimuth.
     pub fn frame_tilt(&self, k: usize) -> Tilt {
-        let base = self.opts.tilt;
         match self.rock {
-            None => base,
-            Some((deg, n)) => Tilt {
-                tilt_deg: base.tilt_deg + deg * (std::f64::consts::TAU * k as f64 / n as f64).sin(),
-                azimuth_deg: base.azimuth_deg,
-            },
+            None => self.opts.tilt,
+            Some(rock) => rocked(self.opts.tilt, rock, k),
         }
     }
 
@@ -138,43 +134,6 @@ impl Settings {
 
 /// Largest animation: frames × cuts × size² pixels (about 1.2 GB of 8-bit RGB in memory).
 pub const MAX_ANIMATION_PIXELS: f64 = 400e6;
-
-/// `DEG` or `DEG@AZ`.
-pub fn parse_tilt(s: &str) -> Result<Tilt> {
-    let bad = || {
-        Error::invalid(
-            "--tilt",
-            format!("`{s}` is not allowed; give DEG or DEG@AZ: a tilt in [-90, 90] degrees toward azimuth AZ in [-360, 360] degrees (10@45)"),
-        )
-    };
-    let (t, az) = match s.split_once('@') {
-        Some((t, az)) => (t, az),
-        None => (s, "0"),
-    };
-    let tilt_deg = flags::number("--tilt", t, -90.0, 90.0, "degrees").map_err(|_| bad())?;
-    let azimuth_deg = flags::number("--tilt", az, -360.0, 360.0, "degrees").map_err(|_| bad())?;
-    Ok(Tilt {
-        tilt_deg,
-        azimuth_deg,
-    })
-}
-
-/// `DEG:FRAMES`.
-pub fn parse_rock(s: &str) -> Result<(f64, usize)> {
-    let bad = || {
-        Error::invalid(
-            "--rock",
-            format!("`{s}` is not allowed; give DEG:FRAMES with DEG in (0, 60] degrees and FRAMES in 2..=240 (15:24)"),
-        )
-    };
-    let (d, n) = s.split_once(':').ok_or_else(bad)?;
-    let deg = flags::number("--rock", d, 0.0, 60.0, "degrees").map_err(|_| bad())?;
-    if deg <= 0.0 {
-        return Err(bad());
-    }
-    let n = flags::count("--rock", n, 2, 240).map_err(|_| bad())? as usize;
-    Ok((deg, n))
-}
 
 /// Validate the flags into the library's types.
 pub fn settings(a: &RenderArgs) -> Result<Settings> {
@@ -191,7 +150,7 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
     let mut opts = RenderOptions::new(light);
     opts.size = flags::count("--size", &a.size, 8, 8192)? as usize;
     if let Some(t) = &a.tilt {
-        opts.tilt = parse_tilt(t)?;
+        opts.tilt = parse_tilt("--tilt", t)?;
     }
     opts.head_shadow_deg = a
         .head_shadow
@@ -208,7 +167,11 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
         .transpose()?;
     opts.material = a.material.material()?;
     opts.polarization = flags::on_off("--polarization", &a.polarization)?;
-    let rock = a.rock.as_deref().map(parse_rock).transpose()?;
+    let rock = a
+        .rock
+        .as_deref()
+        .map(|r| parse_rock("--rock", r))
+        .transpose()?;
     if let Some((deg, _)) = rock {
         if opts.tilt.tilt_deg.abs() + deg > 90.0 {
             return Err(Error::invalid(
@@ -447,19 +410,6 @@ fn check_outputs(a: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
-fn progress_bar(total: u64, quiet: bool) -> indicatif::ProgressBar {
-    if quiet || !std::io::stderr().is_terminal() {
-        return indicatif::ProgressBar::hidden();
-    }
-    let bar = indicatif::ProgressBar::new(total);
-    if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "{spinner} rendering [{bar:30}] {pos}/{len} pictures, eta {eta}",
-    ) {
-        bar.set_style(style.progress_chars("=> "));
-    }
-    bar
-}
-
 /// Frame delay of the animation: the whole rock takes about 2.4 s.
 fn delay_ms(frames: usize) -> u16 {
     (2400 / frames.max(1)).clamp(20, 1000) as u16
@@ -487,7 +437,11 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let show_tilt = s.rock.is_some() || s.opts.tilt.tilt_deg != 0.0;
     let note = settings_line(&s.opts, s.exposure);
     let legend = legend_for(light);
-    let bar = progress_bar((nframes * cuts.len()) as u64, a.quiet);
+    let bar = super::progress::bar(
+        (nframes * cuts.len()) as u64,
+        a.quiet,
+        "{spinner} rendering [{bar:30}] {pos}/{len} pictures, eta {eta}",
+    );
     let mut sheets = Vec::with_capacity(nframes);
     // frames[cut] = per-frame statistics.
     let mut stats: Vec<Vec<FrameJson>> = vec![Vec::with_capacity(nframes); cuts.len()];

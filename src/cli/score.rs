@@ -27,10 +27,10 @@
 use super::flags;
 use super::outputs::{cut_files, refuse_overwrite, Exit};
 use facetlab::error::{Error, Result};
-use facetlab::metrics::{score, ScoreConfig, Scores, Tilt};
+use facetlab::metrics::{score, ScoreConfig, Scores};
 use facetlab::optics::Dispersion;
+use facetlab::verify::json::score_json;
 use facetlab::verify::{verify_scores, Check, SIGMA};
-use serde::Serialize;
 use std::path::PathBuf;
 
 /// Flags of `facetlab score`.
@@ -109,131 +109,17 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
     Ok(Settings { config, verify })
 }
 
-/// The configuration as written to JSON.
-#[derive(Serialize)]
-struct SettingsJson<'a> {
-    material: &'a str,
-    ri: Option<f64>,
-    polarization: bool,
-    head_shadow_deg: f64,
-    wavelength_nm: f64,
-    bands: usize,
-    tilts: &'a [Tilt],
-    scintillation_tilts: &'a [f64],
-    resolution: usize,
-    split_threshold: f64,
-    fire_split_threshold: f64,
-    face_up_split_threshold: f64,
-    threshold: f64,
-    ray_floor: f64,
-    narrow_forks: bool,
-}
-
-impl<'a> SettingsJson<'a> {
-    fn new(c: &'a ScoreConfig) -> Self {
-        SettingsJson {
-            material: &c.material.name,
-            ri: match c.material.dispersion {
-                Dispersion::Constant(n) => Some(n),
-                _ => None,
-            },
-            polarization: c.polarization,
-            head_shadow_deg: c.head_shadow_deg,
-            wavelength_nm: c.wavelength_nm,
-            bands: c.bands,
-            tilts: &c.tilts,
-            scintillation_tilts: &c.scintillation_tilts,
-            resolution: c.resolution,
-            split_threshold: c.trace.split_threshold,
-            fire_split_threshold: c.fire_split_threshold,
-            face_up_split_threshold: c.face_up_split_threshold,
-            threshold: c.trace.threshold,
-            ray_floor: c.trace.ray_floor,
-            narrow_forks: c.trace.narrow_forks,
-        }
-    }
-}
-
-#[derive(Serialize)]
-struct CutJson<'a> {
-    cut: &'a str,
-    #[serde(flatten)]
-    scores: &'a Scores,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    settings: Option<SettingsJson<'a>>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    verify: Option<std::collections::BTreeMap<&'a str, VerifyJson>>,
-}
-
-#[derive(Serialize)]
-struct VerifyJson {
-    beam: f64,
-    photon: f64,
-    stderr: f64,
-    z: f64,
-    photons: u64,
-}
-
-fn verify_json(
-    checks: Option<&Vec<Check>>,
-    photons: u64,
-) -> Option<std::collections::BTreeMap<&str, VerifyJson>> {
-    checks.map(|cs| {
-        cs.iter()
-            .map(|c| {
-                (
-                    c.name.as_str(),
-                    VerifyJson {
-                        beam: c.beam,
-                        photon: c.photon,
-                        stderr: c.stderr,
-                        z: c.z,
-                        photons,
-                    },
-                )
-            })
-            .collect()
-    })
-}
-
-#[derive(Serialize)]
-struct ManyJson<'a> {
-    settings: SettingsJson<'a>,
-    results: Vec<CutJson<'a>>,
-}
-
-/// The JSON document for these results (see the module documentation).
-/// `verify` holds, per cut, the photon-tracer checks of `--verify` (empty when not asked),
-/// made with `photons` photons per figure.
+/// The JSON document for these results (see the module documentation and
+/// [`facetlab::verify::json`]). `verify` holds, per cut, the photon-tracer checks of
+/// `--verify` (empty when not asked), made with `photons` photons per figure.
 pub fn to_json(
     config: &ScoreConfig,
     results: &[(String, Scores)],
     verify: &[Vec<Check>],
     photons: u64,
 ) -> Result<String> {
-    let doc = if let [(name, s)] = results {
-        serde_json::to_string_pretty(&CutJson {
-            cut: name,
-            scores: s,
-            settings: Some(SettingsJson::new(config)),
-            verify: verify_json(verify.first(), photons),
-        })
-    } else {
-        serde_json::to_string_pretty(&ManyJson {
-            settings: SettingsJson::new(config),
-            results: results
-                .iter()
-                .enumerate()
-                .map(|(i, (n, s))| CutJson {
-                    cut: n,
-                    scores: s,
-                    settings: None,
-                    verify: verify_json(verify.get(i), photons),
-                })
-                .collect(),
-        })
-    };
-    doc.map_err(|e| Error::invalid("--json", e.to_string()))
+    score_json(config, results, verify, photons)
+        .map_err(|e| Error::invalid("--json", e.to_string()))
 }
 
 /// The table printed by `facetlab score`: one row per score, one column per cut.
@@ -305,9 +191,6 @@ pub fn verdict(checks: &[Vec<Check>]) -> Exit {
 /// Run `facetlab score`; with `--verify`, a disagreement beyond [`SIGMA`] standard errors
 /// exits 1 after the table and the JSON are written.
 pub fn run(a: &ScoreArgs) -> Result<Exit> {
-    if a.batch.is_some() || a.jsonl.is_some() || a.shard.is_some() {
-        return super::batch::run(a);
-    }
     let mut s = settings(a)?;
     if let Some(path) = &a.json {
         // Never overwrite a cut with its scores.

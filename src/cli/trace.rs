@@ -30,7 +30,6 @@ use facetlab::photon::{
     self, Absorption, Light, LightKind, Tally, TraceConfig, WavelengthSampling, CATEGORY_LABELS,
 };
 use facetlab::plot::{self, Camera, PathColor, PathStyle};
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 /// Flags of `facetlab trace`.
@@ -169,26 +168,7 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
             })? as u32,
         ),
     };
-    let absorption = match a.absorption.trim().to_ascii_lowercase().as_str() {
-        "none" => Absorption::None,
-        "thesis" => Absorption::Thesis,
-        s if s.starts_with("beer:") => Absorption::Beer(flags::number(
-            "--absorption",
-            &s[5..],
-            0.0,
-            1e6,
-            "beer:K with K (per girdle diameter)",
-        )?),
-        _ => {
-            return Err(Error::invalid(
-                "--absorption",
-                format!(
-                    "`{}` is not allowed; use none, thesis or beer:K (K >= 0 per girdle diameter)",
-                    a.absorption
-                ),
-            ))
-        }
-    };
+    let absorption = Absorption::parse("--absorption", &a.absorption)?;
     let polarization = flags::on_off("--polarization", &a.polarization)?;
     let material = a.material.material()?;
     let wavelengths = match a.spectrum.trim().to_ascii_lowercase().as_str() {
@@ -401,7 +381,12 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         LightChoice::Single(_) => "photons",
         LightChoice::Rotate(_) => "hits",
     };
-    let bar = progress_bar(per_cut.saturating_mul(cuts.len() as u64), unit, args.quiet);
+    let template = format!("{{spinner}} tracing [{{bar:30}}] {{percent:>3}}% {{human_pos}}/{{human_len}} {unit}, eta {{eta}}");
+    let bar = super::progress::bar(
+        per_cut.saturating_mul(cuts.len() as u64),
+        args.quiet,
+        &template,
+    );
     let tick = |n: u64| bar.inc(n);
     let progress: Option<&(dyn Fn(u64) + Sync)> = Some(&tick);
     // results[cut] = one tally, or one per rotation angle.
@@ -448,18 +433,6 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         }
     }
     Ok(())
-}
-
-fn progress_bar(total: u64, unit: &str, quiet: bool) -> indicatif::ProgressBar {
-    if quiet || !std::io::stderr().is_terminal() {
-        return indicatif::ProgressBar::hidden();
-    }
-    let bar = indicatif::ProgressBar::new(total);
-    let template = format!("{{spinner}} tracing [{{bar:30}}] {{percent:>3}}% {{human_pos}}/{{human_len}} {unit}, eta {{eta}}");
-    if let Ok(style) = indicatif::ProgressStyle::with_template(&template) {
-        bar.set_style(style.progress_chars("=> "));
-    }
-    bar
 }
 
 fn pct(v: (f64, f64)) -> String {

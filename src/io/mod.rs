@@ -6,6 +6,7 @@ pub mod png;
 pub mod presets;
 pub mod spec;
 pub mod svg;
+pub mod text;
 
 use crate::error::{Error, Result};
 use std::path::Path;
@@ -165,6 +166,49 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
                 ),
             )),
         },
+    }
+}
+
+/// Read a cut from a file's contents in memory (an upload, say): `format` is the file type
+/// [`load_cut`] picks by extension (`toml`, `asc`, `obj` or `stl`, lower case), `name` the
+/// cut's name, and `source` names the contents in errors.
+///
+/// ```
+/// use facetlab::io::{load_cut, parse_cut, spec};
+/// let text = spec::write(&load_cut("tolkowsky").unwrap());
+/// let cut = parse_cut("toml", text.as_bytes(), "mine", "upload").unwrap();
+/// assert_eq!(cut.family.as_deref(), Some("round-brilliant"));
+/// let mesh = facetlab::io::mesh::write_obj(&cut);
+/// assert_eq!(parse_cut("obj", mesh.as_bytes(), "mine", "upload").unwrap().name, "mine");
+/// let e = parse_cut("asc", b"g 96 0\na x3 1 2\n", "mine", "upload").unwrap_err();
+/// assert!(e.to_string().starts_with("upload:"), "{e}");
+/// ```
+pub fn parse_cut(format: &str, bytes: &[u8], name: &str, source: &str) -> Result<crate::cut::Cut> {
+    match format {
+        "toml" => {
+            let text = String::from_utf8_lossy(bytes);
+            spec::parse(&text, source)?.to_cut(name, source)
+        }
+        "asc" => asc::parse(bytes, source)?.to_cut(name),
+        "obj" | "stl" => {
+            let planes = if format == "obj" {
+                mesh::read_obj(bytes, source)?
+            } else {
+                mesh::read_stl(bytes, source)?
+            };
+            let solid = crate::geometry::Polyhedron::from_planes(&planes).map_err(|e| match e {
+                Error::Geometry(m) => Error::parse(source, format!("convex hull of the mesh: {m}")),
+                other => other,
+            })?;
+            Ok(crate::cut::Cut {
+                name: name.to_string(),
+                family: None,
+                params: Default::default(),
+                solid,
+                record: None,
+            })
+        }
+        other => Err(Error::invalid("format", format!("unknown format {other}"))),
     }
 }
 

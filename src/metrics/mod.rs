@@ -132,6 +132,8 @@
 pub use crate::geometry::canonical;
 pub use crate::render::{fire_of, lighting, raster, Tilt};
 
+pub mod json;
+
 #[cfg(test)]
 mod golden;
 #[cfg(test)]

@@ -39,6 +39,7 @@
 //! assert!(t.light_return().0 > 0.3);
 //! ```
 
+mod absorption;
 mod kernel;
 mod solid;
 mod tally;

@@ -33,7 +33,7 @@ mod image;
 mod light;
 pub mod lighting;
 mod options;
-mod pose;
+pub mod pose;
 pub mod raster;
 
 #[cfg(test)]

@@ -24,6 +24,8 @@
 //! Each figure comes with its standard error, so a disagreement can be stated in standard
 //! errors. Every call to the photon tracer is in this file.
 
+pub mod json;
+
 use crate::cut::Cut;
 use crate::error::Result;
 use crate::geometry::{FacetPlane, Polyhedron};

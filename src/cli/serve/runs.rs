@@ -9,14 +9,16 @@
 //! run still writes what it found); `GET /api/optimize/report` is its `report.html`.
 //! The run folder goes to a temporary folder that is removed once the report is read in.
 
-use super::{ApiError, ApiResult, AppState};
+use super::error::{ApiError, ApiResult};
+use super::request::Field;
+use super::AppState;
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
 use axum::extract::State;
 use axum::http::{header, StatusCode};
 use axum::response::{IntoResponse, Response};
 use facetlab::optimize::{self as opt, Config, Hooks, Progress, RunOptions, Status};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
@@ -124,6 +126,14 @@ pub async fn configs() -> Response {
     axum::Json(json!({ "configs": list })).into_response()
 }
 
+/// A body of `POST /api/optimize`: a bundled config's name or a config file's text.
+#[derive(Default, Deserialize)]
+#[serde(default)]
+struct StartBody {
+    config: Field<String>,
+    config_text: Field<String>,
+}
+
 /// `POST /api/optimize`: start a run.
 pub async fn start(
     State(st): State<Arc<AppState>>,
@@ -143,8 +153,10 @@ pub async fn start(
             ));
         }
     }
-    let (name, text) = match (m.get("config"), m.get("config_text")) {
-        (Some(Value::String(n)), None) => {
+    let b = StartBody::deserialize(Value::Object(m))
+        .map_err(|e| ApiError::bad("body", e.to_string()))?;
+    let (name, text) = match (&b.config, &b.config_text) {
+        (Field::Given(n), Field::Absent) => {
             let Some((name, text)) = CONFIGS.iter().find(|(c, _)| c == n) else {
                 return Err(ApiError::bad(
                     "config",
@@ -157,10 +169,10 @@ pub async fn start(
             };
             (name.to_string(), text.to_string())
         }
-        (None, Some(Value::String(t))) if t.len() <= MAX_CONFIG => {
+        (Field::Absent, Field::Given(t)) if t.len() <= MAX_CONFIG => {
             ("config".to_string(), t.clone())
         }
-        (None, Some(Value::String(_))) => {
+        (Field::Absent, Field::Given(_)) => {
             return Err(ApiError::bad("config_text", "longer than 64 KB"))
         }
         _ => return Err(ApiError::bad(
@@ -170,7 +182,7 @@ pub async fn start(
     };
     let config = Config::from_str(&text, &format!("{name}.toml")).map_err(|e| {
         ApiError::bad(
-            if m.contains_key("config") {
+            if !matches!(b.config, Field::Absent) {
                 "config"
             } else {
                 "config_text"

@@ -1,0 +1,106 @@
+//! The API's error reply: a status and `{"error": "field: message", "field": "field"}`, and the
+//! mapping of the library's errors about a cut onto the request's fields.
+
+use axum::http::{header, HeaderValue, StatusCode};
+use axum::response::{IntoResponse, Response};
+use facetlab::error::Error;
+use serde_json::json;
+
+/// An API error: a status and a one-line message naming the field.
+#[derive(Debug)]
+pub struct ApiError {
+    status: StatusCode,
+    pub field: String,
+    pub message: String,
+}
+
+impl ApiError {
+    pub fn new(status: StatusCode, field: impl Into<String>, message: impl Into<String>) -> Self {
+        ApiError {
+            status,
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+    pub fn bad(field: impl Into<String>, message: impl Into<String>) -> Self {
+        Self::new(StatusCode::BAD_REQUEST, field, message)
+    }
+    /// A library error about the cut or its parameters, named by the request's field.
+    pub fn from_cut(e: Error) -> Self {
+        match e {
+            Error::Invalid { field, message } => {
+                let field = field.strip_prefix("--set ").unwrap_or(&field).to_string();
+                // Parameter keys are plain identifiers; anything else is about the cut.
+                let key = field.rsplit(": ").next().unwrap_or(&field);
+                if !key.is_empty()
+                    && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+                    && key != "family"
+                {
+                    Self::new(
+                        StatusCode::UNPROCESSABLE_ENTITY,
+                        format!("set.{key}"),
+                        message,
+                    )
+                } else {
+                    Self::new(
+                        StatusCode::UNPROCESSABLE_ENTITY,
+                        "cut",
+                        format!("{field}: {message}"),
+                    )
+                }
+            }
+            Error::Geometry(m) => Self::new(StatusCode::UNPROCESSABLE_ENTITY, "set", m),
+            other => Self::from_load(other),
+        }
+    }
+    /// A library error while reading the cut itself (a preset or an uploaded file): about
+    /// `cut`, even when the file names a parameter.
+    pub fn from_load(e: Error) -> Self {
+        match e {
+            Error::Invalid { field, message } => Self::new(
+                StatusCode::UNPROCESSABLE_ENTITY,
+                "cut",
+                format!("{field}: {message}"),
+            ),
+            other => {
+                let text = other.to_string();
+                let msg = text.strip_prefix("cut:").unwrap_or(&text).trim_start();
+                let msg = if msg.starts_with(|c: char| c.is_ascii_digit()) {
+                    format!("line {msg}")
+                } else {
+                    msg.to_string()
+                };
+                Self::new(StatusCode::UNPROCESSABLE_ENTITY, "cut", msg)
+            }
+        }
+    }
+}
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        let one_line: String = self
+            .message
+            .split_whitespace()
+            .collect::<Vec<_>>()
+            .join(" ");
+        let body = json!({
+            "error": format!("{}: {one_line}", self.field),
+            "field": self.field,
+        });
+        (
+            self.status,
+            [(header::CACHE_CONTROL, "no-store")],
+            axum::Json(body),
+        )
+            .into_response()
+    }
+}
+
+pub type ApiResult<T> = std::result::Result<T, ApiError>;
+
+/// `r` with `Cache-Control: no-store` (every API answer is computed afresh).
+pub fn no_store(mut r: Response) -> Response {
+    r.headers_mut()
+        .insert(header::CACHE_CONTROL, HeaderValue::from_static("no-store"));
+    r
+}

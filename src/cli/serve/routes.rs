@@ -1,0 +1,282 @@
+//! The router of `facetlab serve` and the cut endpoints: `GET /api/presets`, `POST /api/cut`,
+//! `/api/score`, `/api/render` and `/api/export` (the optimization runs' endpoints are in
+//! [`super::runs`], the page's in [`super::page`]).
+
+use super::error::{no_store, ApiError, ApiResult};
+use super::jobs::{build, heavy, jobs};
+use super::request::{parse_req, Source, EXPORTS, FORMATS};
+use super::{page, runs, AppState, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
+use crate::cli::cuts::info_json;
+use axum::body::Bytes;
+use axum::extract::rejection::BytesRejection;
+use axum::extract::{DefaultBodyLimit, State};
+use axum::http::{header, HeaderValue, StatusCode};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::Router;
+use facetlab::cut::{families, Unit};
+use facetlab::io;
+use facetlab::metrics::{score, ScoreConfig};
+use facetlab::optics::Material;
+use facetlab::render::{render, Light, RenderOptions, Tilt};
+use serde_json::{json, Value};
+use std::sync::Arc;
+use std::time::Instant;
+use tokio::sync::Semaphore;
+
+/// The router: the page, its assets and the API.
+pub fn app() -> Router {
+    let state = Arc::new(AppState {
+        jobs: Arc::new(Semaphore::new(jobs())),
+        presets: presets_json().to_string(),
+        runs: runs::Runs::default(),
+    });
+    Router::new()
+        .merge(page::routes())
+        .route("/api/presets", get(presets))
+        .route("/api/cut", post(cut_info))
+        .route("/api/score", post(score_cut))
+        .route("/api/render", post(render_cut))
+        .route("/api/export", post(export_cut))
+        .route("/api/configs", get(runs::configs))
+        .route("/api/optimize", post(runs::start).get(runs::status))
+        .route("/api/optimize/stop", post(runs::stop))
+        .route("/api/optimize/report", get(runs::report))
+        .fallback(|| async {
+            ApiError::new(StatusCode::NOT_FOUND, "path", "no such page or endpoint")
+        })
+        .layer(DefaultBodyLimit::max(BODY_LIMIT))
+        .with_state(state)
+}
+
+/// `GET /api/presets`.
+async fn presets(State(st): State<Arc<AppState>>) -> Response {
+    (
+        [(header::CONTENT_TYPE, "application/json")],
+        st.presets.clone(),
+    )
+        .into_response()
+}
+
+fn presets_json() -> Value {
+    let presets: Vec<Value> = io::presets::names()
+        .into_iter()
+        .filter_map(|n| {
+            let cut = io::presets::load(n)?.ok()?;
+            Some(json!({
+                "name": n,
+                "title": cut.name,
+                "family": cut.family,
+                "params": cut.params,
+            }))
+        })
+        .collect();
+    let fams: Vec<Value> = families()
+        .iter()
+        .map(|f| {
+            let params: Vec<Value> = f
+                .params
+                .iter()
+                .map(|p| {
+                    let (unit, step) = match p.unit {
+                        Unit::Degrees => ("degrees", 0.05),
+                        Unit::Fraction => ("fraction", 0.001),
+                        Unit::Ratio => ("ratio", 0.01),
+                        Unit::Count => ("count", 1.0),
+                    };
+                    json!({
+                        "key": p.key, "default": p.default, "min": p.min, "max": p.max,
+                        "open": p.open, "unit": unit, "step": step, "doc": p.doc,
+                    })
+                })
+                .collect();
+            json!({"name": f.name, "doc": f.doc, "params": params})
+        })
+        .collect();
+    json!({
+        "presets": presets,
+        "families": fams,
+        "lights": Light::ALL.map(Light::name),
+        "formats": FORMATS,
+        "limits": {
+            "size": [SIZE_RANGE.0, SIZE_RANGE.1],
+            "tilt": [-TILT_LIMIT, TILT_LIMIT],
+            "exposure": [0.0, EXPOSURE_MAX],
+            "body_bytes": BODY_LIMIT,
+        },
+    })
+}
+
+/// `POST /api/cut`: `info --json` plus the SVG diagram.
+async fn cut_info(
+    State(st): State<Arc<AppState>>,
+    body: std::result::Result<Bytes, BytesRejection>,
+) -> ApiResult<Response> {
+    let r = parse_req(body, &[])?;
+    let v = heavy(&st, move || {
+        let cut = build(&r)?;
+        let info = info_json(&cut, 6.5, &Material::diamond());
+        let mut v = serde_json::to_value(&info)
+            .map_err(|e| ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "cut", e.to_string()))?;
+        if let Value::Object(m) = &mut v {
+            m.insert("svg".into(), Value::String(io::svg::diagram(&cut)));
+            if let Source::Preset(p) = &r.source {
+                m.insert("preset".into(), Value::String(p.clone()));
+            }
+        }
+        Ok(v)
+    })
+    .await?;
+    Ok(no_store(axum::Json(v).into_response()))
+}
+
+/// `POST /api/score`: the keys of `score --json`.
+async fn score_cut(
+    State(st): State<Arc<AppState>>,
+    body: std::result::Result<Bytes, BytesRejection>,
+) -> ApiResult<Response> {
+    let r = parse_req(body, &["quick"])?;
+    let (text, timing) = heavy(&st, move || {
+        let t0 = Instant::now();
+        let cut = build(&r)?;
+        let cfg = if r.quick {
+            ScoreConfig::fast()
+        } else {
+            ScoreConfig::default()
+        };
+        let s = score(&cut.solid, &cfg);
+        let text =
+            crate::cli::score::to_json(&cfg, &[(cut.name.clone(), s)], &[], 0).map_err(|e| {
+                ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "score", e.to_string())
+            })?;
+        // The same document with `quick` said, so a client can tell the two apart.
+        let mut v: Value = serde_json::from_str(&text).map_err(|e| {
+            ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "score", e.to_string())
+        })?;
+        if let Value::Object(m) = &mut v {
+            m.insert("quick".into(), Value::Bool(r.quick));
+        }
+        let timing = format!("score;dur={:.1}", t0.elapsed().as_secs_f64() * 1e3);
+        Ok((v, timing))
+    })
+    .await?;
+    let mut resp = axum::Json(text).into_response();
+    if let Ok(h) = HeaderValue::from_str(&timing) {
+        resp.headers_mut().insert("server-timing", h);
+    }
+    Ok(no_store(resp))
+}
+
+/// `POST /api/render`: a PNG.
+async fn render_cut(
+    State(st): State<Arc<AppState>>,
+    body: std::result::Result<Bytes, BytesRejection>,
+) -> ApiResult<Response> {
+    let r = parse_req(body, &["light", "size", "tilt", "exposure"])?;
+    let (png, stats, timing) = heavy(&st, move || {
+        let t0 = Instant::now();
+        let cut = build(&r)?;
+        let t1 = Instant::now();
+        let mut o = RenderOptions::new(r.light);
+        o.size = r.size;
+        o.tilt = Tilt {
+            tilt_deg: r.tilt,
+            azimuth_deg: 0.0,
+        };
+        o.validate()
+            .map_err(|e| ApiError::bad("render", e.to_string()))?;
+        let img = render(&cut.solid, &o);
+        let t2 = Instant::now();
+        let rgb = img.to_srgb8(r.exposure, BACKGROUND);
+        let n = r.size as u32;
+        let png = io::png::encode_rgb8(n, n, &[&rgb], 0).map_err(|e| {
+            ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "render", e.to_string())
+        })?;
+        let stats = serde_json::to_string(&img.stats).unwrap_or_default();
+        let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;
+        let t3 = Instant::now();
+        let timing = format!(
+            "build;dur={:.1}, trace;dur={:.1}, png;dur={:.1}",
+            ms(t0, t1),
+            ms(t1, t2),
+            ms(t2, t3)
+        );
+        Ok((png, stats, timing))
+    })
+    .await?;
+    let mut resp = ([(header::CONTENT_TYPE, "image/png")], png).into_response();
+    if let Ok(h) = HeaderValue::from_str(&timing) {
+        resp.headers_mut().insert("server-timing", h);
+    }
+    if let Ok(h) = HeaderValue::from_str(&stats) {
+        resp.headers_mut().insert("x-facetlab-stats", h);
+    }
+    Ok(no_store(resp))
+}
+
+/// Background of the pictures (sRGB): the page's dark stage.
+const BACKGROUND: [f64; 3] = [0.075, 0.082, 0.094];
+
+/// `POST /api/export`: the cut as a file.
+async fn export_cut(
+    State(st): State<Arc<AppState>>,
+    body: std::result::Result<Bytes, BytesRejection>,
+) -> ApiResult<Response> {
+    let r = parse_req(body, &["to"])?;
+    let Some(to) = r.to else {
+        return Err(ApiError::bad(
+            "to",
+            format!("missing; give the file format: {}", EXPORTS.join(", ")),
+        ));
+    };
+    let (bytes, name) = heavy(&st, move || {
+        let cut = build(&r)?;
+        let bytes: Vec<u8> = match to {
+            "toml" => io::spec::write(&cut).into_bytes(),
+            "asc" => io::asc::write(&cut, io::asc::DEFAULT_GEAR).into_bytes(),
+            "obj" => io::mesh::write_obj(&cut).into_bytes(),
+            "html" => {
+                let o = facetlab::report::ReportOptions {
+                    title: format!("facetlab report: {}", cut.name),
+                    ..Default::default()
+                };
+                let page = facetlab::report::measure(&cut.name, &cut, &o)
+                    .and_then(|r| facetlab::report::html(&[r], &o))
+                    .map_err(|e| {
+                        ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "to", e.to_string())
+                    })?;
+                page.into_bytes()
+            }
+            _ => io::mesh::write_stl(&cut),
+        };
+        let stem: String = cut
+            .name
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                    c
+                } else {
+                    '-'
+                }
+            })
+            .take(64)
+            .collect();
+        let stem = if stem.trim_matches('-').is_empty() {
+            "cut".to_string()
+        } else {
+            stem
+        };
+        Ok((bytes, format!("{stem}.{to}")))
+    })
+    .await?;
+    let kind = match to {
+        "stl" => "model/stl",
+        "html" => "text/html; charset=utf-8",
+        _ => "text/plain; charset=utf-8",
+    };
+    let mut resp = ([(header::CONTENT_TYPE, kind)], bytes).into_response();
+    if let Ok(h) = HeaderValue::from_str(&format!("attachment; filename=\"{name}\"")) {
+        resp.headers_mut().insert(header::CONTENT_DISPOSITION, h);
+    }
+    Ok(no_store(resp))
+}

@@ -1,0 +1,109 @@
+//! The JSON shape of scores, as `facetlab score --json` writes it: one cut's [`Scores`] under
+//! its name with the [`ScoreConfig`] as understood (`settings`), or several cuts' under one
+//! `settings`, each optionally with a `verify` record (the photon tracer's checks, which
+//! [`crate::verify::json`] fills in).
+
+use super::{ScoreConfig, Scores, Tilt};
+use crate::optics::Dispersion;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// A [`ScoreConfig`] as written to JSON: `material`, `ri` (null unless a fixed index),
+/// `polarization`, `head_shadow_deg`, `wavelength_nm`, `bands`, `tilts`,
+/// `scintillation_tilts`, `resolution`, `split_threshold`, `fire_split_threshold`,
+/// `face_up_split_threshold`, `threshold`, `ray_floor`, `narrow_forks`.
+#[derive(Serialize)]
+pub struct SettingsJson<'a> {
+    material: &'a str,
+    ri: Option<f64>,
+    polarization: bool,
+    head_shadow_deg: f64,
+    wavelength_nm: f64,
+    bands: usize,
+    tilts: &'a [Tilt],
+    scintillation_tilts: &'a [f64],
+    resolution: usize,
+    split_threshold: f64,
+    fire_split_threshold: f64,
+    face_up_split_threshold: f64,
+    threshold: f64,
+    ray_floor: f64,
+    narrow_forks: bool,
+}
+
+impl<'a> SettingsJson<'a> {
+    /// The settings of `c`.
+    pub fn new(c: &'a ScoreConfig) -> Self {
+        SettingsJson {
+            material: &c.material.name,
+            ri: match c.material.dispersion {
+                Dispersion::Constant(n) => Some(n),
+                _ => None,
+            },
+            polarization: c.polarization,
+            head_shadow_deg: c.head_shadow_deg,
+            wavelength_nm: c.wavelength_nm,
+            bands: c.bands,
+            tilts: &c.tilts,
+            scintillation_tilts: &c.scintillation_tilts,
+            resolution: c.resolution,
+            split_threshold: c.trace.split_threshold,
+            fire_split_threshold: c.fire_split_threshold,
+            face_up_split_threshold: c.face_up_split_threshold,
+            threshold: c.trace.threshold,
+            ray_floor: c.trace.ray_floor,
+            narrow_forks: c.trace.narrow_forks,
+        }
+    }
+}
+
+/// One cut's object: `cut` (its name), the keys of its [`Scores`], then `settings` and
+/// `verify` when given.
+#[derive(Serialize)]
+struct CutJson<'a, V> {
+    cut: &'a str,
+    #[serde(flatten)]
+    scores: &'a Scores,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    settings: Option<SettingsJson<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    verify: Option<BTreeMap<&'a str, V>>,
+}
+
+#[derive(Serialize)]
+struct ManyJson<'a, V> {
+    settings: SettingsJson<'a>,
+    results: Vec<CutJson<'a, V>>,
+}
+
+/// The document for `results` scored with `config` (pretty-printed): one cut is a single
+/// object with `settings`; several are `{"settings": {...}, "results": [...]}` in the order
+/// given. `verify(i)` gives cut `i`'s `verify` record (figure name → value), if any.
+pub fn scores_json<'a, V: Serialize>(
+    config: &'a ScoreConfig,
+    results: &'a [(String, Scores)],
+    mut verify: impl FnMut(usize) -> Option<BTreeMap<&'a str, V>>,
+) -> serde_json::Result<String> {
+    if let [(name, s)] = results {
+        serde_json::to_string_pretty(&CutJson {
+            cut: name,
+            scores: s,
+            settings: Some(SettingsJson::new(config)),
+            verify: verify(0),
+        })
+    } else {
+        serde_json::to_string_pretty(&ManyJson {
+            settings: SettingsJson::new(config),
+            results: results
+                .iter()
+                .enumerate()
+                .map(|(i, (n, s))| CutJson {
+                    cut: n,
+                    scores: s,
+                    settings: None,
+                    verify: verify(i),
+                })
+                .collect(),
+        })
+    }
+}

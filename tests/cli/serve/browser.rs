@@ -1,0 +1,314 @@
+//! The workbench page of `facetlab serve` in a real browser (Chromium over CDP, when
+//! installed): loading, sliders, uploads, compare, downloads, screenshots.
+
+use super::*;
+
+/// Wait until the page's `expr` (a JavaScript expression) is true; false after `secs`.
+async fn wait_js(page: &chromiumoxide::Page, expr: &str, secs: u64) -> bool {
+    let t = Instant::now();
+    while t.elapsed() < Duration::from_secs(secs) {
+        if let Ok(r) = page.evaluate(expr).await {
+            if r.into_value::<bool>().unwrap_or(false) {
+                return true;
+            }
+        }
+        tokio::time::sleep(Duration::from_millis(25)).await;
+    }
+    eprintln!("waited {secs} s in vain for {expr}");
+    false
+}
+
+async fn js<T: serde::de::DeserializeOwned>(page: &chromiumoxide::Page, expr: &str) -> T {
+    page.evaluate(expr)
+        .await
+        .unwrap_or_else(|e| panic!("{expr}: {e}"))
+        .into_value()
+        .unwrap_or_else(|e| panic!("{expr}: {e}"))
+}
+
+#[test]
+fn serve_page_works_in_a_browser() {
+    let chromium = std::path::Path::new("/usr/bin/chromium");
+    if !chromium.exists() {
+        if std::env::var_os("CI").is_some() {
+            panic!("CI is set but /usr/bin/chromium is missing (.ci/run installs it)");
+        }
+        eprintln!("SKIPPED serve_page_works_in_a_browser: /usr/bin/chromium is not installed (apt-get install -y chromium)");
+        return;
+    }
+    let server = Server::start();
+    let url = format!("http://{}/", server.addr);
+    let shots = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/serve-screenshots");
+    std::fs::create_dir_all(&shots).unwrap();
+    // A small .asc fixture made by the binary itself.
+    let dir = tempfile::tempdir().unwrap();
+    let asc = dir.path().join("fixture-oval.asc");
+    let out = Command::new(env!("CARGO_BIN_EXE_facetlab"))
+        .args(["generate", "oval", "-o"])
+        .arg(&asc)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let rt = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .unwrap();
+    rt.block_on(browser_session(&url, &shots, &asc));
+}
+
+async fn browser_session(url: &str, shots: &std::path::Path, asc: &std::path::Path) {
+    use chromiumoxide::browser::{Browser, BrowserConfig};
+    use chromiumoxide::cdp::browser_protocol::dom::SetFileInputFilesParams;
+    use chromiumoxide::cdp::js_protocol::runtime::{
+        ConsoleApiCalledType, EventConsoleApiCalled, EventExceptionThrown,
+    };
+    use chromiumoxide::handler::viewport::Viewport;
+    use chromiumoxide::page::ScreenshotParams;
+    use futures::StreamExt;
+
+    let profile = tempfile::tempdir().unwrap();
+    let config = BrowserConfig::builder()
+        .chrome_executable("/usr/bin/chromium")
+        .no_sandbox()
+        .user_data_dir(profile.path())
+        .window_size(1500, 950)
+        .viewport(Viewport {
+            width: 1500,
+            height: 950,
+            ..Viewport::default()
+        })
+        .build()
+        .unwrap();
+    let (mut browser, mut handler) = Browser::launch(config).await.expect("chromium starts");
+    let pump = tokio::spawn(async move { while handler.next().await.is_some() {} });
+    let page = browser.new_page("about:blank").await.unwrap();
+    let errors = std::sync::Arc::new(std::sync::Mutex::new(Vec::<String>::new()));
+    let mut console = page
+        .event_listener::<EventConsoleApiCalled>()
+        .await
+        .unwrap();
+    let mut thrown = page.event_listener::<EventExceptionThrown>().await.unwrap();
+    let e1 = errors.clone();
+    tokio::spawn(async move {
+        while let Some(ev) = console.next().await {
+            if matches!(
+                ev.r#type,
+                ConsoleApiCalledType::Error | ConsoleApiCalledType::Assert
+            ) {
+                let args: Vec<String> = ev
+                    .args
+                    .iter()
+                    .map(|a| {
+                        a.value
+                            .as_ref()
+                            .map(|v| v.to_string())
+                            .or_else(|| a.description.clone())
+                            .unwrap_or_default()
+                    })
+                    .collect();
+                e1.lock()
+                    .unwrap()
+                    .push(format!("console.error {}", args.join(" ")));
+            }
+        }
+    });
+    let e2 = errors.clone();
+    tokio::spawn(async move {
+        while let Some(ev) = thrown.next().await {
+            let d = &ev.exception_details;
+            e2.lock().unwrap().push(format!(
+                "exception {} {:?}",
+                d.text,
+                d.exception.as_ref().and_then(|x| x.description.clone())
+            ));
+        }
+    });
+    // A collector in the page too (errors and unhandled rejections).
+    page.evaluate_on_new_document(
+        "window.__errs = []; window.addEventListener('error', e => window.__errs.push(String(e.message))); window.addEventListener('unhandledrejection', e => window.__errs.push('rejection: ' + String(e.reason)));",
+    )
+    .await
+    .unwrap();
+    page.goto(url).await.unwrap();
+    assert!(
+        wait_js(&page, "document.querySelector('#render-a').complete && document.querySelector('#render-a').naturalWidth === 512 && document.querySelector('#score-a-brilliance').textContent !== '—' && document.querySelectorAll('#params input[type=range]').length > 5", 30).await,
+        "the page did not show tolkowsky's render, scores and sliders"
+    );
+    // Let the full scores arrive, then look at it.
+    wait_js(
+        &page,
+        "document.querySelector('#scores').dataset.a === 'full'",
+        30,
+    )
+    .await;
+    let shot = |name: &str| shots.join(name);
+    page.save_screenshot(ScreenshotParams::builder().build(), shot("1-tolkowsky.png"))
+        .await
+        .unwrap();
+
+    // Move the pavilion slider by script: the picture and the scores change.
+    let before_src: String = js(&page, "document.querySelector('#render-a').src").await;
+    let before_b: String = js(
+        &page,
+        "document.querySelector('#score-a-brilliance').textContent",
+    )
+    .await;
+    let t = Instant::now();
+    let _: bool = js(
+        &page,
+        "(() => { const r = document.querySelector('#params input[type=range][data-key=pavilion_angle]'); r.value = '42.2'; r.dispatchEvent(new Event('input', {bubbles: true})); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(
+            &page,
+            &format!("document.querySelector('#render-a').src !== {before_src:?} && document.querySelector('#render-a').complete && document.querySelector('#score-a-brilliance').textContent !== {before_b:?}"),
+            30
+        )
+        .await,
+        "moving the slider changed neither the picture nor the scores"
+    );
+    eprintln!(
+        "slider → new picture and quick scores seen by the test after {} ms",
+        t.elapsed().as_millis()
+    );
+    // A few more moves, one at a time: the page's own latency figures.
+    let (mut pic, mut sco) = (Vec::new(), Vec::new());
+    for v in ["41.0", "41.4", "40.6", "41.8", "42.2"] {
+        let before_src: String = js(&page, "document.querySelector('#render-a').src").await;
+        let before_b: String = js(
+            &page,
+            "document.querySelector('#score-a-brilliance').textContent",
+        )
+        .await;
+        let _: bool = js(
+            &page,
+            &format!("(() => {{ const r = document.querySelector('#params input[type=range][data-key=pavilion_angle]'); r.value = '{v}'; r.dispatchEvent(new Event('input', {{bubbles: true}})); return true; }})()"),
+        )
+        .await;
+        assert!(
+            wait_js(
+                &page,
+                &format!("document.querySelector('#render-a').src !== {before_src:?} && document.querySelector('#render-a').complete && document.querySelector('#score-a-brilliance').textContent !== {before_b:?} && !document.querySelector('#score-a-brilliance').classList.contains('stale')"),
+                30
+            )
+            .await,
+            "pavilion {v}: no new picture and scores"
+        );
+        let p: String = js(
+            &page,
+            "document.querySelector('#render-a').dataset.ms || ''",
+        )
+        .await;
+        let s: String = js(&page, "document.querySelector('#scores').dataset.ms || ''").await;
+        pic.push(p.parse::<u64>().unwrap_or(0));
+        sco.push(s.parse::<u64>().unwrap_or(0));
+    }
+    pic.sort();
+    sco.sort();
+    eprintln!(
+        "slider → picture {pic:?} ms (median {}), → quick scores {sco:?} ms (median {})",
+        pic[2], sco[2]
+    );
+    let num: String = js(&page, "document.querySelector('#num-pavilion_angle').value").await;
+    assert_eq!(num, "42.20");
+
+    // An out-of-range value typed in a number field: the server's message, inline.
+    let _: bool = js(
+        &page,
+        "(() => { const n = document.querySelector('#num-crown_angle'); n.value = '75'; n.dispatchEvent(new Event('change', {bubbles: true})); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(&page, "document.querySelector('.param[data-key=crown_angle] .err').textContent.includes('out of range')", 20).await,
+        "no inline message for crown_angle 75"
+    );
+    page.save_screenshot(ScreenshotParams::builder().build(), shot("2-invalid.png"))
+        .await
+        .unwrap();
+    let _: bool = js(
+        &page,
+        "(() => { const n = document.querySelector('#num-crown_angle'); n.value = '34.5'; n.dispatchEvent(new Event('change', {bubbles: true})); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(&page, "document.querySelector('.param[data-key=crown_angle] .err').textContent === '' && !document.querySelector('#veil-a').classList.contains('on')", 20).await,
+        "the inline message did not clear"
+    );
+
+    // Pin as B, change A's light to ASET: both pictures, the comparison columns.
+    let _: bool = js(&page, "(document.querySelector('#compare').click(), true)").await;
+    let _: bool = js(
+        &page,
+        "(() => { const l = document.querySelector('#light'); l.value = 'aset'; l.dispatchEvent(new Event('change')); return true; })()",
+    )
+    .await;
+    let _: bool = js(
+        &page,
+        "(() => { const r = document.querySelector('#params input[type=range][data-key=table]'); r.value = '0.57'; r.dispatchEvent(new Event('input', {bubbles: true})); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(&page, "!document.querySelector('#view-b').hidden && document.querySelector('#render-a').dataset.light === 'aset' && document.querySelector('#render-b').dataset.light === 'aset' && document.querySelector('#score-d-brilliance').textContent.trim().slice(1) !== '0.0000' && !document.querySelector('#render-a').parentElement.classList.contains('busy')", 30).await,
+        "the comparison did not show"
+    );
+    wait_js(&page, "document.querySelector('#scores').dataset.a === 'full' && document.querySelector('#scores').dataset.b === 'full'", 30).await;
+    page.save_screenshot(
+        ScreenshotParams::builder().build(),
+        shot("3-compare-aset.png"),
+    )
+    .await
+    .unwrap();
+
+    // Upload the .asc through the file input (DOM.setFileInputFiles).
+    let input = page.find_element("#file").await.unwrap();
+    page.execute(
+        SetFileInputFilesParams::builder()
+            .file(asc.display().to_string())
+            .backend_node_id(input.backend_node_id)
+            .build()
+            .unwrap(),
+    )
+    .await
+    .unwrap();
+    assert!(
+        wait_js(&page, "document.querySelector('#cut-name').textContent === 'fixture-oval' && document.querySelector('#preset').value === '__file' && document.querySelector('#params-note').textContent.includes('explicit')", 30).await,
+        "the uploaded .asc did not load"
+    );
+    let _: bool = js(
+        &page,
+        "(() => { const l = document.querySelector('#light'); l.value = 'fire'; l.dispatchEvent(new Event('change')); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(&page, "document.querySelector('#render-a').dataset.name === 'fixture-oval' && document.querySelector('#render-a').dataset.light === 'fire' && document.querySelector('#render-b').dataset.light === 'fire' && document.querySelector('#cap-a').textContent.includes('Fire')", 60).await,
+        "the uploaded cut was not rendered and scored"
+    );
+    wait_js(
+        &page,
+        "document.querySelector('#scores').dataset.a === 'full'",
+        30,
+    )
+    .await;
+    page.save_screenshot(
+        ScreenshotParams::builder().build(),
+        shot("4-upload-fire.png"),
+    )
+    .await
+    .unwrap();
+
+    let page_errs: Vec<String> = js(&page, "window.__errs || []").await;
+    let errs = errors.lock().unwrap().clone();
+    assert!(
+        errs.is_empty() && page_errs.is_empty(),
+        "browser errors: {errs:?} {page_errs:?}"
+    );
+    let _ = browser.close().await;
+    let _ = browser.wait().await;
+    pump.abort();
+}

@@ -1,0 +1,214 @@
+//! `facetlab serve`: the API as a client sees it (the built binary on a free port), a fuzz loop
+//! that must not kill the server, and the page in a real browser (Chromium, when present).
+//! This file holds the harness (the server as a child process, a bare HTTP/1.1 client); the
+//! tests are in [`api`], [`fuzz`] and [`browser`].
+
+mod api;
+mod browser;
+mod fuzz;
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// The server as a child process; killed when dropped.
+struct Server {
+    child: Child,
+    addr: String,
+}
+
+impl Server {
+    /// Start `facetlab serve --port 0` and wait until it answers.
+    fn start() -> Server {
+        // FACETLAB_SERVE_BIN runs another build (a release build, to measure latency).
+        let bin = std::env::var("FACETLAB_SERVE_BIN")
+            .unwrap_or_else(|_| env!("CARGO_BIN_EXE_facetlab").to_string());
+        let mut child = Command::new(bin)
+            .args(["serve", "--port", "0"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .expect("facetlab serve starts");
+        let stdout = child.stdout.take().unwrap();
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let mut line = String::new();
+            let _ = BufReader::new(stdout).read_line(&mut line);
+            let _ = tx.send(line);
+        });
+        let mut server = Server {
+            child,
+            addr: String::new(),
+        };
+        let line = rx
+            .recv_timeout(Duration::from_secs(20))
+            .expect("serve prints its URL");
+        let url = line
+            .split_whitespace()
+            .find(|w| w.starts_with("http://"))
+            .unwrap_or_else(|| panic!("no URL in {line:?}"));
+        server.addr = url
+            .trim_start_matches("http://")
+            .trim_end_matches('/')
+            .to_string();
+        assert!(server.addr.starts_with("127.0.0.1:"), "{line}");
+        let t = Instant::now();
+        while t.elapsed() < Duration::from_secs(20) {
+            if let Ok(r) = try_request(&server.addr, "GET", "/api/presets", b"") {
+                if r.status == 200 {
+                    return server;
+                }
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        panic!("the server did not answer within 20 s");
+    }
+
+    fn get(&self, path: &str) -> Resp {
+        try_request(&self.addr, "GET", path, b"").unwrap_or_else(|e| panic!("GET {path}: {e}"))
+    }
+
+    fn post(&self, path: &str, body: &str) -> Resp {
+        try_request(&self.addr, "POST", path, body.as_bytes())
+            .unwrap_or_else(|e| panic!("POST {path} {body}: {e}"))
+    }
+
+    fn alive(&mut self) -> bool {
+        matches!(self.child.try_wait(), Ok(None)) && self.get("/api/presets").status == 200
+    }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+struct Resp {
+    status: u16,
+    headers: Vec<(String, String)>,
+    body: Vec<u8>,
+}
+
+impl Resp {
+    fn header(&self, name: &str) -> Option<&str> {
+        self.headers
+            .iter()
+            .find(|(k, _)| k.eq_ignore_ascii_case(name))
+            .map(|(_, v)| v.as_str())
+    }
+    fn json(&self) -> serde_json::Value {
+        serde_json::from_slice(&self.body).unwrap_or_else(|e| {
+            panic!(
+                "not JSON ({e}): {}",
+                String::from_utf8_lossy(&self.body[..self.body.len().min(300)])
+            )
+        })
+    }
+}
+
+/// A minimal HTTP/1.1 client (one request per connection).
+fn try_request(addr: &str, method: &str, path: &str, body: &[u8]) -> std::io::Result<Resp> {
+    let mut s = TcpStream::connect(addr)?;
+    s.set_read_timeout(Some(Duration::from_secs(120)))?;
+    let head = format!(
+        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n",
+        body.len()
+    );
+    s.write_all(head.as_bytes())?;
+    // The server may answer (and close) before reading a refused body: write on another thread.
+    let mut w = s.try_clone()?;
+    let owned = body.to_vec();
+    let writer = std::thread::spawn(move || {
+        let _ = w.write_all(&owned);
+    });
+    let mut raw = Vec::new();
+    let read = s.read_to_end(&mut raw);
+    let _ = writer.join();
+    if raw.is_empty() {
+        read?;
+    }
+    parse_response(&raw)
+}
+
+fn parse_response(raw: &[u8]) -> std::io::Result<Resp> {
+    let bad = |m: &str| std::io::Error::new(std::io::ErrorKind::InvalidData, m.to_string());
+    let end = raw
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .ok_or_else(|| bad("no end of headers"))?;
+    let head = String::from_utf8_lossy(&raw[..end]).to_string();
+    let mut lines = head.lines();
+    let status: u16 = lines
+        .next()
+        .and_then(|l| l.split_whitespace().nth(1))
+        .and_then(|c| c.parse().ok())
+        .ok_or_else(|| bad("no status"))?;
+    let headers: Vec<(String, String)> = lines
+        .filter_map(|l| l.split_once(':'))
+        .map(|(k, v)| (k.trim().to_string(), v.trim().to_string()))
+        .collect();
+    let mut body = raw[end + 4..].to_vec();
+    let chunked = headers.iter().any(|(k, v)| {
+        k.eq_ignore_ascii_case("transfer-encoding") && v.eq_ignore_ascii_case("chunked")
+    });
+    if chunked {
+        let mut out = Vec::new();
+        let mut rest = &body[..];
+        loop {
+            let nl = rest
+                .windows(2)
+                .position(|w| w == b"\r\n")
+                .ok_or_else(|| bad("chunk"))?;
+            let size = usize::from_str_radix(String::from_utf8_lossy(&rest[..nl]).trim(), 16)
+                .map_err(|_| bad("chunk size"))?;
+            if size == 0 {
+                break;
+            }
+            let start = nl + 2;
+            out.extend_from_slice(&rest[start..start + size]);
+            rest = &rest[start + size + 2..];
+        }
+        body = out;
+    }
+    Ok(Resp {
+        status,
+        headers,
+        body,
+    })
+}
+
+/// Width and height of a PNG from its header.
+fn png_size(b: &[u8]) -> (u32, u32) {
+    assert_eq!(&b[..8], b"\x89PNG\r\n\x1a\n", "not a PNG");
+    let w = u32::from_be_bytes(b[16..20].try_into().unwrap());
+    let h = u32::from_be_bytes(b[20..24].try_into().unwrap());
+    (w, h)
+}
+
+/// A 4xx JSON error whose `error` names `field`.
+fn assert_error(r: &Resp, field: &str) -> String {
+    assert!(
+        (400..500).contains(&r.status),
+        "status {} for a bad request: {}",
+        r.status,
+        String::from_utf8_lossy(&r.body)
+    );
+    let j = r.json();
+    let e = j["error"].as_str().expect("an error message").to_string();
+    assert!(
+        e.starts_with(&format!("{field}:")),
+        "`{e}` does not name {field}"
+    );
+    assert_eq!(j["field"].as_str(), Some(field), "{e}");
+    assert!(!e.contains('\n'), "{e}");
+    e
+}
+
+/// Standard base64 of `bytes` (as the page's `btoa` sends uploads).
+fn b64(bytes: &[u8]) -> String {
+    use base64::Engine;
+    base64::engine::general_purpose::STANDARD.encode(bytes)
+}
