@@ -39,6 +39,7 @@ use facetlab::geometry::Polyhedron;
 use facetlab::io;
 use facetlab::metrics::{score, ScoreConfig};
 use facetlab::optics::Material;
+use facetlab::plot::diagram::diagram;
 use facetlab::render::{render, Light, RenderOptions, Tilt};
 use serde_json::{json, Map, Value};
 use std::collections::BTreeMap;
@@ -791,7 +792,7 @@ async fn cut_info(
         let mut v = serde_json::to_value(&info)
             .map_err(|e| ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "cut", e.to_string()))?;
         if let Value::Object(m) = &mut v {
-            m.insert("svg".into(), Value::String(io::svg::diagram(&cut)));
+            m.insert("svg".into(), Value::String(diagram(&cut)));
             if let Source::Preset(p) = &r.source {
                 m.insert("preset".into(), Value::String(p.clone()));
             }
@@ -858,7 +859,7 @@ async fn render_cut(
             .map_err(|e| ApiError::bad("render", e.to_string()))?;
         let img = render(&cut.solid, &o);
         let t2 = Instant::now();
-        let rgb = img.to_srgb8(r.exposure, BACKGROUND);
+        let rgb = img.to_srgb8(r.exposure, facetlab::plot::palette::STAGE_GROUND);
         let n = r.size as u32;
         let png = io::png::encode_rgb8(n, n, &[&rgb], 0).map_err(|e| {
             ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "render", e.to_string())
@@ -884,9 +885,6 @@ async fn render_cut(
     }
     Ok(no_store(resp))
 }
-
-/// Background of the pictures (sRGB): the page's dark stage.
-const BACKGROUND: [f64; 3] = [0.075, 0.082, 0.094];
 
 /// `POST /api/export`: the cut as a file.
 async fn export_cut(

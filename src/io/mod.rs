@@ -5,7 +5,6 @@ pub mod mesh;
 pub mod png;
 pub mod presets;
 pub mod spec;
-pub mod svg;
 
 use crate::error::{Error, Result};
 use std::path::Path;
