@@ -12,7 +12,7 @@
 //! `<x key>,brilliance,fire,scintillation,objective` (+ extras), one row per x, and its chart
 //! (a [`ProfileChart`]) draws every score against x.
 //!
-//! Sweeps of any number of axes, and their shards, are in `grid.rs`; they write the same CSV
+//! Sweeps of any number of axes, and their shards, are in `grid/`; they write the same CSV
 //! for one and two axes.
 
 use super::config::{axis_label, Config};

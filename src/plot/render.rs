@@ -1,9 +1,8 @@
 //! Sheets of stone pictures: already-encoded RGB panels (from
 //! [`Image::to_srgb8`](crate::render::Image::to_srgb8)) side by side on a grey ground
-//! ([`PICTURE_GROUND`](super::palette::PICTURE_GROUND)), each with its caption lines below the
-//! picture, and an optional colour legend under them (the ASET and IdealScope false colours,
-//! [`legend_for`]). Drawn with plotters on a bitmap buffer in memory;
-//! the caller encodes the result ([`crate::io::png`]).
+//! ([`PICTURE_GROUND`]), each with its caption lines below the picture, and an optional colour
+//! legend under them (the ASET and IdealScope false colours, [`legend_for`]). Drawn with
+//! plotters on a bitmap buffer in memory; the caller encodes the result ([`crate::io::png`]).
 //!
 //! Layout of a sheet of `n` panels of `size` pixels ([`Layout`]): each panel is
 //! `size + 2·pad` wide (`pad` = [`Layout::pad`]), the picture at the top with `pad` of grey
