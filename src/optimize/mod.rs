@@ -10,9 +10,9 @@
 //!   file and the field), with the cut space it searches;
 //! - `problem.rs` turns a parameter vector into a [`Cut`] (built by the space), scores it with
 //!   an [`Evaluator`] and returns a finite cost: `−(weighted score) + constraint penalties`;
-//! - `nelder_mead.rs` (multi-start from a seeded Latin hypercube or Halton set, `sampling.rs`) and
-//!   `pso.rs` (particle swarm) run argmin's solvers on it, stopped by `guard.rs` on the
-//!   evaluation budget or Ctrl-C;
+//! - `nelder_mead.rs` (multi-start from a seeded Latin hypercube or Halton set,
+//!   `sampling.rs`) and `pso.rs` (particle swarm) run argmin's solvers on it, stopped by
+//!   `guard.rs` on the evaluation budget or Ctrl-C;
 //! - `history.rs` keeps every evaluation (Nelder–Mead) or every particle position (swarm) as
 //!   rows of `history.csv`;
 //! - `search.rs` runs the method, picks distinct winners and has a [`Verifier`] (the photon
