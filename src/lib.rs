@@ -1,11 +1,12 @@
 //! facetlab: design, score and optimize cut gemstones with real optics.
 //!
 //! Data flows one way: [`geometry`] → [`cut`] → [`design`] → [`io`] → [`optics`] → tracers
-//! ([`photon`], [`beam`]) → pictures ([`render`]) → scores ([`metrics`]) → the photon cross-check of the
-//! beam tracer ([`verify`]) → one-page reports ([`report`]) → optimizer → plots; the
-//! `facetlab` binary (its own `cli` module, with the `serve` web page) sits on top. The
-//! library knows nothing of the command line or the web: clap, indicatif, ctrlc, axum and
-//! tokio are the binary's, behind the default `cli` feature.
+//! ([`photon`], [`beam`]) → pictures ([`render`]) → scores ([`metrics`]) → the photon
+//! cross-check of the beam tracer ([`verify`]) → the optimizer ([`optimize`]) → rough planning
+//! ([`plan`]) → plots ([`plot`]) → one-page reports ([`report`]); the `facetlab` binary (its
+//! own `cli` module, with the `serve` web page) sits on top. The library knows nothing of the
+//! command line or the web: clap, indicatif, ctrlc, axum and tokio are the binary's, behind
+//! the default `cli` feature.
 //!
 //! # A short tour
 //!
@@ -44,6 +45,7 @@ pub mod io;
 pub mod metrics;
 pub mod optics;
 pub mod optimize;
+pub mod plan;
 
 pub mod photon;
 pub mod plot;

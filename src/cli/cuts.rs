@@ -100,7 +100,7 @@ pub fn generate(a: &GenerateArgs) -> Result<()> {
         "asc" => io::asc::write(&cut, 0).into_bytes(),
         "obj" => io::mesh::write_obj(&cut).into_bytes(),
         "stl" => io::mesh::write_stl(&cut),
-        "svg" => io::svg::diagram(&cut).into_bytes(),
+        "svg" => facetlab::plot::diagram::diagram(&cut).into_bytes(),
         _ => {
             return Err(Error::invalid(
                 "-o",

@@ -31,7 +31,8 @@ use super::flags;
 use super::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
 use facetlab::optics::Dispersion;
-use facetlab::plot::render::{compose, legend_for, Panel, BACKGROUND};
+use facetlab::plot::palette::PICTURE_GROUND;
+use facetlab::plot::render::{compose, legend_for, Panel};
 use facetlab::render::pose::{parse_rock, parse_tilt, rocked};
 use facetlab::render::{self, Light, RenderOptions, Stats, Tilt};
 use serde::Serialize;
@@ -459,7 +460,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
                 ..opts.clone()
             };
             let img = render::render(&cut.solid, &opts);
-            let rgb = img.to_srgb8(s.exposure, BACKGROUND);
+            let rgb = img.to_srgb8(s.exposure, PICTURE_GROUND);
             stats[c].push(FrameJson::new(
                 k,
                 tilt,

@@ -1,6 +1,7 @@
 //! `facetlab retarget CUT --ri N [--material NAME] -o OUT` (either flag alone, or both when they agree): adapt a design to another index,
 //! by the tangent-ratio rule and by an optimized pair of ratios that restores the design's
-//! light return at the new index ([`facetlab::optimize::retarget`]); both are reported, the
+//! light return at the new index ([`facetlab::optimize::retarget`], a search over the ratios
+//! of [`facetlab::cut::retarget`]); both are reported, the
 //! optimized one is written (the rule's with `--tangent-only`).
 
 use super::flags;
@@ -117,7 +118,7 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
         "asc" => io::asc::write(&out, 0).into_bytes(),
         "obj" => io::mesh::write_obj(&out).into_bytes(),
         "stl" => io::mesh::write_stl(&out),
-        _ => io::svg::diagram(&out).into_bytes(),
+        _ => facetlab::plot::diagram::diagram(&out).into_bytes(),
     };
     io::write_atomic(&a.output, &bytes)?;
     println!(

@@ -20,6 +20,7 @@ mod princess;
 pub mod record;
 pub mod retarget;
 mod round;
+pub mod space;
 mod sphere;
 mod steps;
 pub mod units;
@@ -27,6 +28,7 @@ pub mod units;
 pub use families::{families, family, Family};
 pub use measure::{Proportions, Ratios, TierSummary};
 pub use record::GemcadRecord;
+pub use space::{CutSpace, ParamRange};
 
 use crate::error::{Error, Result};
 use crate::geometry::{FacetPlane, Polyhedron};

@@ -5,7 +5,6 @@ pub mod mesh;
 pub mod png;
 pub mod presets;
 pub mod spec;
-pub mod svg;
 pub mod text;
 
 use crate::error::{Error, Result};

@@ -1,23 +1,33 @@
-//! The optimizer: argmin searches over a family's proportions, convergence plots, sweeps, and a
-//! photon-tracer verification of the winners.
+//! The optimizer: argmin searches over a cut space's parameters (a family's proportions,
+//! through [`CutSpace`](crate::cut::CutSpace)), sweeps, and a photon-tracer verification of the
+//! winners. It draws no charts and writes no pages: the plots and the report are drawn from
+//! what it returns, by functions the caller hands it ([`ConvergenceChart`], [`HeatmapChart`],
+//! [`ProfileChart`], [`ParetoChart`], [`RunPage`], a [`CutWriter`] for the diagram).
 //!
 //! Data flows one way:
 //!
 //! - `config/` reads an `optim/*.toml` file into a validated [`Config`] (every error names the
-//!   file and the field);
-//! - `problem.rs` turns a parameter vector into a [`Cut`], scores it with an [`Evaluator`] and
-//!   returns a finite cost: `−(weighted score) + constraint penalties`;
-//! - `nelder_mead.rs` (multi-start from a seeded Latin hypercube or Halton set, `design.rs`) and
-//!   `pso.rs` (particle swarm) run argmin's solvers on it, stopped by `guard.rs` on the
-//!   evaluation budget or Ctrl-C;
+//!   file and the field), with the cut space it searches;
+//! - `problem.rs` turns a parameter vector into a [`Cut`] (built by the space), scores it with
+//!   an [`Evaluator`] and returns a finite cost: `−(weighted score) + constraint penalties`;
+//! - `nelder_mead.rs` (multi-start from a seeded Latin hypercube or Halton set,
+//!   `sampling.rs`) and `pso.rs` (particle swarm) run argmin's solvers on it, stopped by
+//!   `guard.rs` on the evaluation budget or Ctrl-C;
 //! - `history.rs` keeps every evaluation (Nelder–Mead) or every particle position (swarm) as
 //!   rows of `history.csv`;
-//! - `verify.rs` re-scores the winners with a [`Verifier`] (the photon tracer's cross-check of
-//!   [`crate::verify`]) and flags any disagreement with the beam tracer beyond 4 standard
-//!   errors;
-//! - `run.rs` writes the run folder (config as used, history, plots, best cut, reports) and
-//!   `sweep.rs` maps a score over two parameters or draws the scores along one; `grid.rs`
-//!   sweeps any number of axes, in shards (`--shard K/N`) that a merge joins exactly.
+//! - `search.rs` runs the method, picks distinct winners and has a [`Verifier`] (the photon
+//!   tracer's cross-check of [`crate::verify`]) re-score them, flagging any disagreement with
+//!   the beam tracer beyond 4 standard errors;
+//! - `summary.rs` is the run's summary, `report.json` and `report.md`; `run.rs` writes the run
+//!   folder (config as used, history, charts, best cut, summary, page);
+//! - `sweep.rs` maps a score over two parameters or draws the scores along one; `grid/`
+//!   sweeps any number of axes, in shards (`--shard K/N`) that a merge joins exactly;
+//!   `pareto.rs` traces the trade-off between scores;
+//! - `ratio_search.rs` retargets a design to another index: the tangent-ratio rule of
+//!   [`crate::cut::retarget`] and a search for the two ratios that restore its light return.
+//!
+//! It may import the floors below it (`verify` and everything under it), never `plan`,
+//! `plot`, `report` or the binary.
 //!
 //! The modules are private; what a caller needs is re-exported here: the config and its
 //! sections, the two scorers made from a config ([`BeamEvaluator`], [`PhotonVerifier`]),
@@ -70,7 +80,6 @@
 //! ```
 
 mod config;
-mod design;
 mod engines;
 mod grid;
 mod guard;
@@ -79,20 +88,21 @@ mod nelder_mead;
 mod pareto;
 mod problem;
 mod pso;
-mod report;
-mod retarget;
+mod ratio_search;
 mod run;
+mod sampling;
+mod search;
+mod summary;
 mod sweep;
-mod verify;
 
-// The public surface. Everything else (the solvers, the problem wrappers, the start designs,
-// the history and report rows) is internal: reach it through these.
+// The public surface. Everything else (the solvers, the problem wrappers, the start samples,
+// the history and summary rows) is internal: reach it through these.
 
 // Configs: the validated `Config`, its sections, and the file as written (`RawConfig`).
 pub use config::{
-    axis_label, defaults, Budget, Config, Constraints, Design, FreeParam, Method,
-    NelderMeadSettings, ParetoSpec, RawConfig, RawConstraints, RawCut, RawMethod, RawObjective,
-    RawScore, RawVerify, ScoreSettings, SwarmSettings, VerifySettings, Weights, PARETO_SCORES,
+    axis_label, defaults, Budget, Config, Constraints, FreeParam, Method, NelderMeadSettings,
+    ParetoSpec, RawConfig, RawConstraints, RawCut, RawMethod, RawObjective, RawScore, RawVerify,
+    Sampling, ScoreSettings, SwarmSettings, VerifySettings, Weights, PARETO_SCORES,
 };
 // The scorers of a config: the beam tracer's evaluator and the photon tracer's verifier.
 pub use engines::{BeamEvaluator, PhotonVerifier};
@@ -100,18 +110,20 @@ pub use engines::{BeamEvaluator, PhotonVerifier};
 pub use guard::{Progress, Status, Stop};
 // Searches and run folders: `search` then `verify`, or both and the folder: `run`.
 pub use run::{
-    new_run_dir, run, search, verify, ConvergenceChart, CutWriter, FnWriter, Hooks, Outcome,
-    RunOptions, RunSummary, TOML_WRITER,
+    new_run_dir, run, ConvergenceChart, CutWriter, FnWriter, RunOptions, RunPage, RunSummary,
+    TOML_WRITER,
 };
+pub use search::{search, verify, Hooks, Outcome};
 // The trade-off between scores (`[objective] pareto`).
 pub use pareto::{non_dominated, run_pareto, weight_grid, FrontPoint, ParetoChart, ParetoOutcome};
 // Adapting a design to another index (tangent ratio, and its optimized variant).
-pub use retarget::{retarget, Retarget, Variant};
+pub use ratio_search::{retarget, Retarget, Variant};
 // What a run keeps and reports.
 pub use history::{History, Row, Track};
 // The cost of a cut that cannot be built or scored.
 pub use problem::FAILED_COST;
-pub use report::{Candidate, FoundAt, Report};
+// The run's summary (`report.json`, `report.md`): the start and the winners, how it went.
+pub use summary::{Candidate, FoundAt, Report};
 // Sweeps: a score mapped over two parameters, or the scores along one (a profile).
 pub use sweep::{
     output_paths as sweep_output_paths, profile, run_path as sweep_path, sweep,
@@ -124,9 +136,8 @@ pub use grid::{
     hash as config_hash, heatmap as grid_heatmap, map_axes, parse_at, profile_lines, read_rows,
     rows_header, shard_row, to_csv as grid_csv, AxisRecord, Grid, GridCell, Shard, ShardRecord,
 };
-// The photon-tracer check of the winners (its rows and report are `crate::verify`'s).
-pub use crate::verify::{VerifyReport, VerifyRow};
-pub use verify::{Verification, Verifier};
+// The photon-tracer check of the winners (all of it `crate::verify`'s).
+pub use crate::verify::{Verification, Verifier, VerifyReport, VerifyRow};
 
 use crate::cut::Cut;
 use crate::error::Result;

@@ -15,11 +15,11 @@
 //! - **Parallel**: starts run on rayon's pool and are collected in start order, so the history
 //!   does not depend on the thread count.
 
-use super::config::{Budget, Config, Design, NelderMeadSettings};
-use super::design::{halton, latin_hypercube};
+use super::config::{Budget, Config, NelderMeadSettings, Sampling};
 use super::guard::{Guarded, Stop, Tracker};
 use super::history::{History, Row, Track};
 use super::problem::{logit, Logged, Objective, SigmoidProblem};
+use super::sampling::{halton, latin_hypercube};
 use crate::error::{Error, Result};
 use argmin::core::{Executor, State};
 use argmin::solver::neldermead::NelderMead;
@@ -42,15 +42,15 @@ pub fn start_points(config: &Config, nm: &NelderMeadSettings) -> Vec<Vec<f64>> {
     let d = config.free.len();
     let own = usize::from(nm.include_start);
     let n = nm.starts.saturating_sub(own);
-    let design = match nm.design {
-        Design::LatinHypercube => latin_hypercube(n, d, config.seed),
-        Design::Halton => halton(n, d, config.seed),
+    let samples = match nm.sampling {
+        Sampling::LatinHypercube => latin_hypercube(n, d, config.seed),
+        Sampling::Halton => halton(n, d, config.seed),
     };
     let mut out = Vec::with_capacity(nm.starts);
     if nm.include_start {
         out.push(config.start_x());
     }
-    for p in design {
+    for p in samples {
         out.push(
             config
                 .free

@@ -16,12 +16,11 @@
 //! [0, 1] over the front) are re-measured by the photon tracer, as winners are.
 
 use super::config::{Config, ParetoSpec};
-use super::run::{search, Hooks};
-use super::verify::{Verification, Verifier};
+use super::search::{search, Hooks};
 use super::Evaluator;
-use crate::cut::Cut;
 use crate::error::Result;
 use crate::io::write_atomic;
+use crate::verify::{Verification, Verifier};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -255,7 +254,7 @@ pub fn run_pareto(
         front[knee].roles.push("knee".into());
         if let Some(v) = verifier {
             for p in front.iter_mut().filter(|p| !p.roles.is_empty()) {
-                let cut = Cut::from_family(&p.label, config.family.name, &p.params)?;
+                let cut = config.space.build(&p.label, &p.params)?;
                 p.verification = Some(Verification::run(
                     v,
                     &cut,
@@ -270,7 +269,7 @@ pub fn run_pareto(
     let mut references = Vec::new();
     for name in crate::io::presets::names() {
         if let Some(Ok(cut)) = crate::io::presets::load(name) {
-            if cut.family.as_deref() == Some(config.family.name) {
+            if cut.family.as_deref() == Some(config.space.name()) {
                 if let Ok(s) = evaluator.evaluate(&cut) {
                     references.push((name.to_string(), s.all().into_iter().collect()));
                 }

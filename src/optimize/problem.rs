@@ -182,11 +182,9 @@ impl<'a> Objective<'a> {
 
     /// The cut at free parameters `x`.
     pub fn cut_at(&self, x: &[f64]) -> Result<Cut> {
-        Cut::from_family(
-            &self.config.name,
-            self.config.family.name,
-            &self.config.params_at(x),
-        )
+        self.config
+            .space
+            .build(&self.config.name, &self.config.params_at(x))
     }
 
     /// Build, score (for the search: [`Evaluator::evaluate_for_search`]) and charge the cut

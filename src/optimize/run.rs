@@ -1,4 +1,4 @@
-//! A whole run: search, pick distinct winners, verify them, and write the run folder.
+//! A whole run: search and verify ([`search`](super::search)), then write the run folder.
 //!
 //! The run folder (`results/<name>-<UTC time>/` or `--out DIR`):
 //!
@@ -8,240 +8,25 @@
 //! | `history.csv` | every evaluated point (see [`super::history`]) |
 //! | `convergence.png`, `.svg` (with a [`ConvergenceChart`]) | best and current cost against evaluations |
 //! | `best.toml` (+ `.asc`, `.obj`, `.svg` with those writers) | the best cut |
+//! | `report.html` (with a [`RunPage`]) | the one-page report of the start and the winners |
 //! | `report.md`, `report.json` | start and winners side by side, verification, timing |
 //!
-//! Ctrl-C (the stop flag in [`Hooks`]) ends the search after the current iteration; the run
-//! still scores its winners and writes every file, skips the verification, and says so.
+//! The optimizer draws no charts and no pages itself: the caller hands it the functions that
+//! do ([`ConvergenceChart`], [`RunPage`], a [`CutWriter`] for the diagram), drawn from what
+//! the search returns. Ctrl-C (the stop flag in [`Hooks`]) ends the search after the current
+//! iteration; the run still scores its winners and writes every file, skips the
+//! verification, and says so.
 
-use super::config::{Config, Method};
-use super::guard::{Progress, Stop, Tracker};
+use super::config::Config;
 use super::history::History;
-use super::problem::{Objective, FAILED_COST};
-use super::report::{Candidate, FoundAt, FreeJson, Report, SearchJson, VerificationJson};
-use super::verify::{Verification, Verifier};
-use super::{nelder_mead, pso, Evaluator};
+use super::search::{search, verify, Hooks, Outcome};
+use super::summary::{FreeJson, Report, SearchJson, VerificationJson};
+use super::Evaluator;
 use crate::cut::Cut;
 use crate::error::{Error, Result};
 use crate::io::write_atomic;
+use crate::verify::Verifier;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
-
-/// Optional connections to the outside: a stop flag (raised by Ctrl-C) and a progress display.
-#[derive(Clone, Copy, Default)]
-pub struct Hooks<'a> {
-    /// When raised, the search stops after the current iteration.
-    pub stop: Option<&'a AtomicBool>,
-    /// Receives progress snapshots.
-    pub progress: Option<&'a dyn Progress>,
-}
-
-impl Hooks<'_> {
-    fn stopped(&self) -> bool {
-        self.stop.is_some_and(|s| s.load(Ordering::SeqCst))
-    }
-}
-
-/// What a search found.
-pub struct Outcome {
-    /// Every evaluated point.
-    pub history: History,
-    /// Why the search stopped.
-    pub stop: Stop,
-    /// Nelder–Mead: why each start stopped.
-    pub start_stops: Vec<Stop>,
-    /// Iterations (summed over starts).
-    pub iterations: u64,
-    /// Evaluations.
-    pub evaluations: u64,
-    /// Seconds of the search.
-    pub seconds: f64,
-    /// The start cut.
-    pub start: Candidate,
-    /// Distinct winners, best first (at least one, unless every cut failed).
-    pub winners: Vec<Candidate>,
-    /// The best cut.
-    pub best_cut: Option<Cut>,
-    /// Seconds of the verification.
-    pub verify_seconds: f64,
-    /// Why verification was skipped or cut short.
-    pub verify_note: Option<String>,
-    /// Whether a verifier ran.
-    pub verified: bool,
-}
-
-impl Outcome {
-    /// The best candidate (the start if every cut failed).
-    pub fn best(&self) -> &Candidate {
-        self.winners.first().unwrap_or(&self.start)
-    }
-}
-
-/// Pick up to `n` distinct winners from the history: lowest cost first, each at least
-/// `min_distance` (in the unit box of the free parameters) from those already picked. Failed
-/// cuts are never winners. Returns row indices.
-pub fn pick_winners(config: &Config, history: &History, n: usize, min_distance: f64) -> Vec<usize> {
-    let mut order: Vec<usize> = (0..history.rows.len())
-        .filter(|&i| history.rows[i].cost < 0.5 * FAILED_COST)
-        .collect();
-    order.sort_by(|&a, &b| {
-        history.rows[a]
-            .cost
-            .total_cmp(&history.rows[b].cost)
-            .then(a.cmp(&b))
-    });
-    let unit = |x: &[f64]| -> Vec<f64> {
-        config
-            .free
-            .iter()
-            .zip(x)
-            .map(|(f, v)| f.unit_of(*v))
-            .collect()
-    };
-    let mut picked: Vec<(usize, Vec<f64>)> = Vec::new();
-    for i in order {
-        if picked.len() >= n {
-            break;
-        }
-        let u = unit(&history.rows[i].x);
-        let far = picked.iter().all(|(_, p)| {
-            let d2: f64 = p.iter().zip(&u).map(|(a, b)| (a - b) * (a - b)).sum();
-            d2.sqrt() >= min_distance && d2 > 0.0
-        });
-        if far {
-            picked.push((i, u));
-        }
-    }
-    picked.into_iter().map(|(i, _)| i).collect()
-}
-
-/// Search: run the configured method and score the start and the winners. No files.
-pub fn search(config: &Config, evaluator: &dyn Evaluator, hooks: &Hooks<'_>) -> Result<Outcome> {
-    let objective = Objective::new(config, evaluator);
-    let never = AtomicBool::new(false);
-    let stop_flag = hooks.stop.unwrap_or(&never);
-    let tracker = Tracker::new(hooks.progress, config.budget.max_evaluations);
-    let t = Instant::now();
-    let (history, stop, start_stops, iterations) = match &config.method {
-        Method::NelderMead(nm) => {
-            let (h, runs) =
-                nelder_mead::search(&objective, nm, &config.budget, stop_flag, &tracker)?;
-            let stops: Vec<Stop> = runs.iter().map(|r| r.stop).collect();
-            let stop = if stops.contains(&Stop::Interrupted) {
-                Stop::Interrupted
-            } else {
-                // The most common reason, ties to the first in this order.
-                let mut best = (Stop::Converged, 0);
-                for s in [Stop::MaxEvaluations, Stop::MaxIterations, Stop::Converged] {
-                    let n = stops.iter().filter(|x| **x == s).count();
-                    if n > best.1 {
-                        best = (s, n);
-                    }
-                }
-                best.0
-            };
-            let iters = runs.iter().map(|r| r.iterations).sum();
-            (h, stop, stops, iters)
-        }
-        Method::ParticleSwarm(s) => {
-            let (h, run) = pso::search(
-                &objective,
-                s,
-                &config.budget,
-                config.seed,
-                stop_flag,
-                &tracker,
-            )?;
-            (h, run.stop, Vec::new(), run.iterations)
-        }
-    };
-    let seconds = t.elapsed().as_secs_f64();
-    let evaluations = history.rows.len() as u64;
-
-    let start_eval = objective.evaluate_full(&config.start_x());
-    let start = Candidate::new("start", config, &start_eval, None);
-    let picks = pick_winners(
-        config,
-        &history,
-        config.verify.winners.max(1),
-        config.verify.min_distance,
-    );
-    let mut winners = Vec::new();
-    let mut best_cut = None;
-    for (k, &i) in picks.iter().enumerate() {
-        let r = &history.rows[i];
-        let e = objective.evaluate_full(&r.x);
-        if k == 0 {
-            best_cut = e.cut.clone();
-        }
-        winners.push(Candidate::new(
-            &format!("winner {}", k + 1),
-            config,
-            &e,
-            Some(FoundAt {
-                track: r.track,
-                iteration: r.iteration,
-                evaluations: r.evaluations,
-            }),
-        ));
-    }
-    if let Some(c) = best_cut.as_mut() {
-        c.name = format!("{} best", config.name);
-    }
-    Ok(Outcome {
-        history,
-        stop,
-        start_stops,
-        iterations,
-        evaluations,
-        seconds,
-        start,
-        winners,
-        best_cut,
-        verify_seconds: 0.0,
-        verify_note: None,
-        verified: false,
-    })
-}
-
-/// Verify the start and the first `config.verify.winners` winners with the photon tracer.
-/// Skipped after Ctrl-C; a failing verifier is noted per cut, never fatal.
-pub fn verify(outcome: &mut Outcome, config: &Config, verifier: &dyn Verifier, hooks: &Hooks<'_>) {
-    let v = &config.verify;
-    if v.winners == 0 {
-        outcome.verify_note = Some("verify.winners = 0".into());
-        return;
-    }
-    if outcome.stop == Stop::Interrupted || hooks.stopped() {
-        outcome.verify_note = Some("skipped: the run was interrupted".into());
-        return;
-    }
-    outcome.verified = true;
-    let t = Instant::now();
-    let n = v.winners.min(outcome.winners.len());
-    let cands = std::iter::once(&mut outcome.start).chain(outcome.winners.iter_mut().take(n));
-    for c in cands {
-        if hooks.stopped() {
-            outcome.verify_note = Some("cut short: interrupted".into());
-            break;
-        }
-        let cut = match Cut::from_family(&c.label, config.family.name, &c.params) {
-            Ok(cut) => cut,
-            Err(e) => {
-                c.error.get_or_insert(e.to_string());
-                continue;
-            }
-        };
-        c.verification = Some(Verification::run(
-            verifier,
-            &cut,
-            v.photons,
-            config.seed,
-            v.sigma,
-        ));
-    }
-    outcome.verify_seconds = t.elapsed().as_secs_f64();
-}
 
 /// Writes the best cut in one format.
 pub trait CutWriter {
@@ -286,6 +71,12 @@ pub const TOML_WRITER: FnWriter = FnWriter::new("toml", toml_spec);
 pub type ConvergenceChart =
     fn(history: &History, title: &str, png: &Path, svg: &Path) -> Result<()>;
 
+/// Makes a run's `report.html` from its config and outcome: the one-page report of the start
+/// and the winners (pictures, diagram, proportions with the grade estimate, scores, and the
+/// photon tracer's checks when the run verified). The optimizer makes no pages itself: the
+/// binary connects the report module's `run_page` here.
+pub type RunPage = fn(config: &Config, outcome: &Outcome) -> Result<String>;
+
 /// Everything a run folder needs besides the config and the evaluator.
 pub struct RunOptions<'a> {
     /// The folder to write; `None` = a new `<results_root>/<name>-<UTC time>/`.
@@ -298,10 +89,9 @@ pub struct RunOptions<'a> {
     pub convergence: Option<ConvergenceChart>,
     /// Stop flag and progress.
     pub hooks: Hooks<'a>,
-    /// Write `report.html`: the one-page report of the start and the winners
-    /// ([`crate::report`]: pictures, diagram, proportions with the grade estimate, scores).
-    /// Default off (it scores and draws every candidate once more).
-    pub html_report: bool,
+    /// Makes `report.html` ([`RunPage`]); `None` = no page (the default: it scores and draws
+    /// every candidate once more).
+    pub html_report: Option<RunPage>,
 }
 
 impl Default for RunOptions<'_> {
@@ -312,7 +102,7 @@ impl Default for RunOptions<'_> {
             writers: Vec::new(),
             convergence: None,
             hooks: Hooks::default(),
-            html_report: false,
+            html_report: None,
         }
     }
 }
@@ -371,7 +161,7 @@ pub fn report(config: &Config, o: &Outcome, files: Vec<String>) -> Report {
         name: config.name.clone(),
         description: config.description.clone(),
         config: config.source.clone(),
-        family: config.family.name.to_string(),
+        family: config.space.name().to_string(),
         method: config.method.name().to_string(),
         seed: config.seed,
         free: config
@@ -412,14 +202,15 @@ pub fn report(config: &Config, o: &Outcome, files: Vec<String>) -> Report {
     }
 }
 
-/// Write the run folder for an outcome; `convergence` draws its chart.
+/// Write the run folder for an outcome; `convergence` draws its chart and `html_report` makes
+/// its page.
 pub fn write_folder(
     dir: &Path,
     config: &Config,
     outcome: &Outcome,
     writers: &[&dyn CutWriter],
     convergence: Option<ConvergenceChart>,
-    html_report: bool,
+    html_report: Option<RunPage>,
 ) -> Result<Report> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
     let mut files = Vec::new();
@@ -456,11 +247,8 @@ pub fn write_folder(
             files.push(name);
         }
     }
-    if html_report {
-        write_atomic(
-            &dir.join("report.html"),
-            html_page(config, outcome)?.as_bytes(),
-        )?;
+    if let Some(page) = html_report {
+        write_atomic(&dir.join("report.html"), page(config, outcome)?.as_bytes())?;
         files.push("report.html".into());
     }
     files.push("report.json".into());
@@ -469,46 +257,6 @@ pub fn write_folder(
     write_atomic(&dir.join("report.json"), rep.to_json().as_bytes())?;
     write_atomic(&dir.join("report.md"), rep.to_markdown(config).as_bytes())?;
     Ok(rep)
-}
-
-/// `report.html` of a run: the start and the winners side by side, scored with the run's
-/// score settings, with the photon tracer's checks when the run verified.
-fn html_page(config: &Config, outcome: &Outcome) -> Result<String> {
-    let o = crate::report::ReportOptions {
-        score: config.score.score_config(),
-        size: 240,
-        title: format!("facetlab optimize: {}", config.name),
-        ..Default::default()
-    };
-    let mut cuts = Vec::new();
-    for c in std::iter::once(&outcome.start).chain(&outcome.winners) {
-        let cut = Cut::from_family(&c.label, config.family.name, &c.params)?;
-        let mut r = crate::report::measure(&c.label, &cut, &o)?;
-        r.checks.clear();
-        if let Some(v) = &c.verification {
-            r.checks = v
-                .report
-                .rows
-                .iter()
-                .filter_map(|row| {
-                    let beam = row.beam?;
-                    Some(crate::verify::Check {
-                        name: row.name.clone(),
-                        beam,
-                        photon: row.value,
-                        stderr: row.stderr,
-                        z: if row.stderr > 0.0 {
-                            (beam - row.value) / row.stderr
-                        } else {
-                            0.0
-                        },
-                    })
-                })
-                .collect();
-        }
-        cuts.push(r);
-    }
-    crate::report::html(&cuts, &o)
 }
 
 /// Search, verify (when a verifier is given) and write the run folder.

@@ -12,17 +12,18 @@
 //! `<x key>,brilliance,fire,scintillation,objective` (+ extras), one row per x, and its chart
 //! (a [`ProfileChart`]) draws every score against x.
 //!
-//! Sweeps of any number of axes, and their shards, are in `grid.rs`; they write the same CSV
+//! Sweeps of any number of axes, and their shards, are in `grid/`; they write the same CSV
 //! for one and two axes.
 
 use super::config::{axis_label, Config};
 use super::history::History;
 use super::problem::{check_constraints, penalty, weighted};
 use super::{Evaluator, ScoreSet};
-use crate::cut::{Cut, Unit};
+use crate::cut::Unit;
 use crate::error::{Error, Result};
 use crate::io::{read_bytes, write_atomic};
 use rayon::prelude::*;
+use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -58,7 +59,7 @@ pub const MAX_POINTS: usize = 250_000;
 /// One axis of a sweep.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Axis {
-    /// Family parameter.
+    /// Parameter of the config's cut space.
     pub key: String,
     /// Grid values, increasing.
     pub values: Vec<f64>,
@@ -68,7 +69,7 @@ pub struct Axis {
 
 impl Axis {
     /// Parse `KEY:MIN:MAX:STEP` for `flag` (`--x`, `--y`), checking the key and every value
-    /// against the family.
+    /// against the config's cut space.
     pub fn parse(flag: &str, spec: &str, config: &Config) -> Result<Axis> {
         let parts: Vec<&str> = spec.split(':').map(str::trim).collect();
         if parts.len() != 4 {
@@ -77,25 +78,22 @@ impl Axis {
                 format!("`{spec}` is not KEY:MIN:MAX:STEP (e.g. crown_angle:25:40:0.5)"),
             ));
         }
-        let fam = config.family;
-        let def = fam.param(parts[0]).ok_or_else(|| {
+        let (space, key) = (&config.space, parts[0]);
+        let def = space.range(key).ok_or_else(|| {
             Error::invalid(
                 flag,
                 format!(
                     "`{}` is not a parameter of {}; allowed: {}",
-                    parts[0],
-                    fam.name,
-                    fam.keys().join(", ")
+                    key,
+                    space.name(),
+                    space.keys().join(", ")
                 ),
             )
         })?;
         if def.unit == Unit::Count {
             return Err(Error::invalid(
                 flag,
-                format!(
-                    "`{}` is a whole-number parameter; sweep a continuous one",
-                    def.key
-                ),
+                format!("`{key}` is a whole-number parameter; sweep a continuous one"),
             ));
         }
         let num = |s: &str, what: &str| -> Result<f64> {
@@ -150,12 +148,14 @@ impl Axis {
         let values: Vec<f64> = (0..n)
             .map(|i| ((min + i as f64 * step) * scale).round() / scale)
             .collect();
+        // Each value checked as the space checks it (its message, without the key).
         for &v in &values {
-            def.check(v)
-                .map_err(|e| Error::invalid(format!("{flag} {}", def.key), strip_field(e)))?;
+            space
+                .complete(&BTreeMap::from([(key.to_string(), v)]))
+                .map_err(|e| Error::invalid(format!("{flag} {key}"), strip_field(e)))?;
         }
         Ok(Axis {
-            key: def.key.to_string(),
+            key: key.to_string(),
             values,
             unit: def.unit,
         })
@@ -269,7 +269,9 @@ pub(crate) fn score_point(
     for (k, v) in set {
         p.insert((*k).to_string(), *v);
     }
-    let scored = Cut::from_family(&config.name, config.family.name, &p)
+    let scored = config
+        .space
+        .build(&config.name, &p)
         .and_then(|cut| evaluator.evaluate(&cut).map(|s| (cut, s)));
     match scored {
         Ok((cut, s)) => {
@@ -431,7 +433,7 @@ pub fn run_path(run_dir: &Path, x: &str, y: &str) -> Result<Vec<(f64, f64)>> {
                 format!(
                     "{}: the run's family {} has no parameter `{k}`",
                     run_dir.display(),
-                    cfg.family.name
+                    cfg.space.name()
                 ),
             )
         })
@@ -647,6 +649,7 @@ pub fn write(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cut::Cut;
 
     fn cfg() -> Config {
         Config::from_str(

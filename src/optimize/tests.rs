@@ -4,7 +4,8 @@
 use super::config::Config;
 use super::guard::{Progress, Status, Stop};
 use super::history::History;
-use super::run::{self, FnWriter, Hooks, RunOptions};
+use super::run::{self, FnWriter, RunOptions};
+use super::search::{self, Hooks};
 use super::{Evaluator, ScoreSet};
 use crate::cut::Cut;
 use crate::error::Result;
@@ -56,7 +57,7 @@ const NM: &str = "name = \"nelder-mead\"\nstarts = 3\nmax_evaluations = 600";
 const PSO: &str =
     "name = \"particle-swarm\"\nparticles = 20\nmax_iterations = 40\nmax_evaluations = 2000";
 
-fn best_x(o: &run::Outcome) -> [f64; 3] {
+fn best_x(o: &search::Outcome) -> [f64; 3] {
     let f = &o.best().free;
     [f["table"], f["crown_angle"], f["pavilion_angle"]]
 }
@@ -64,7 +65,7 @@ fn best_x(o: &run::Outcome) -> [f64; 3] {
 #[test]
 fn nelder_mead_finds_the_known_optimum() {
     let c = config(NM, "");
-    let o = run::search(&c, &bump, &Hooks::default()).unwrap();
+    let o = search::search(&c, &bump, &Hooks::default()).unwrap();
     let b = best_x(&o);
     assert!((b[0] - TOP[0]).abs() < 1e-3, "{b:?}");
     assert!((b[1] - TOP[1]).abs() < 0.02, "{b:?}");
@@ -82,7 +83,7 @@ fn nelder_mead_finds_the_known_optimum() {
 #[test]
 fn particle_swarm_finds_the_known_optimum() {
     let c = config(PSO, "");
-    let o = run::search(&c, &bump, &Hooks::default()).unwrap();
+    let o = search::search(&c, &bump, &Hooks::default()).unwrap();
     let b = best_x(&o);
     assert!((b[0] - TOP[0]).abs() < 0.005, "{b:?}");
     assert!((b[1] - TOP[1]).abs() < 0.3, "{b:?}");
@@ -101,7 +102,7 @@ fn both_methods_stay_in_bounds_and_reach_a_bound_optimum() {
             "[cut]\nfamily = \"round-brilliant\"\n[cut.params]\ncrown_angle = 38.0\n[free]\ncrown_angle = [36.0, 40.0]\npavilion_angle = [39.0, 43.0]\n[method]\n{method}\n"
         );
         let c = Config::from_str(&text, "wall.toml").unwrap();
-        let o = run::search(&c, &bump, &Hooks::default()).unwrap();
+        let o = search::search(&c, &bump, &Hooks::default()).unwrap();
         for r in &o.history.rows {
             assert!((36.0..=40.0).contains(&r.x[0]) && (39.0..=43.0).contains(&r.x[1]));
         }
@@ -118,7 +119,7 @@ fn both_methods_stay_in_bounds_and_reach_a_bound_optimum() {
 fn a_binding_constraint_holds_at_the_winner() {
     // The bump's top has a total depth near 0.61; allow at most 0.59.
     let c = config(NM, "[constraints]\ntotal_depth = [0.5, 0.59]\n");
-    let o = run::search(&c, &bump, &Hooks::default()).unwrap();
+    let o = search::search(&c, &bump, &Hooks::default()).unwrap();
     let d = o.best().proportions.as_ref().unwrap().total_depth;
     assert!(d <= 0.5905 && d > 0.585, "total depth {d}");
     assert!(
@@ -136,7 +137,7 @@ fn same_seed_same_history_on_any_thread_count() {
                 .build()
                 .unwrap();
             pool.install(|| {
-                run::search(&c, &bump, &Hooks::default())
+                search::search(&c, &bump, &Hooks::default())
                     .unwrap()
                     .history
                     .to_csv()
@@ -147,7 +148,7 @@ fn same_seed_same_history_on_any_thread_count() {
         assert_eq!(one, csv(3), "{method}");
         let mut other = c.clone();
         other.seed = 6;
-        let o = run::search(&other, &bump, &Hooks::default()).unwrap();
+        let o = search::search(&other, &bump, &Hooks::default()).unwrap();
         assert_ne!(
             one,
             o.history.to_csv(),
@@ -335,7 +336,7 @@ fn progress_reports_evaluations_and_the_best() {
         stop: None,
         progress: Some(&p),
     };
-    let o = run::search(&c, &bump, &hooks).unwrap();
+    let o = search::search(&c, &bump, &hooks).unwrap();
     let seen = p.0.into_inner().unwrap();
     let last = seen.last().unwrap();
     assert_eq!(last.evaluations, o.evaluations);
@@ -354,7 +355,7 @@ fn failing_cuts_do_not_stop_a_search() {
         bump(cut)
     };
     for method in [NM, PSO] {
-        let o = run::search(&config(method, ""), &picky, &Hooks::default()).unwrap();
+        let o = search::search(&config(method, ""), &picky, &Hooks::default()).unwrap();
         assert!(o.best().cost < -0.99, "{method}");
         assert!(o
             .history
@@ -568,8 +569,8 @@ impl Evaluator for SearchLean {
 #[test]
 fn scores_left_out_of_the_search_are_reported_for_the_winners() {
     let c = config(NM, "[objective]\nbrilliance = 1.0\nfire = 0.0");
-    let lean = run::search(&c, &SearchLean, &Hooks::default()).unwrap();
-    let full = run::search(&c, &bump, &Hooks::default()).unwrap();
+    let lean = search::search(&c, &SearchLean, &Hooks::default()).unwrap();
+    let full = search::search(&c, &bump, &Hooks::default()).unwrap();
     // The same search (NaN weighs nothing), the same winners.
     assert_eq!(lean.history, full.history);
     for (a, b) in std::iter::once(&lean.start)

@@ -1,9 +1,12 @@
 //! Charts and pictures with plotters. Every figure is a [`Figure`]: drawn by one function generic
 //! over the backend and written by [`save`] as `STEM.png` and `STEM.svg` (each written to a
 //! temporary file and renamed, so a failure leaves no half-written picture). Text uses the
-//! bundled DejaVu Sans; colours come from one palette ([`TAB10`]); legends from [`legend`].
+//! bundled DejaVu Sans; colours come from one palette ([`palette`]: [`TAB10`], and the grounds
+//! of stone pictures); legends from [`legend`].
 //!
-//! The rooms:
+//! The plot floor sits over the optimizer and the planner: it draws from what they return
+//! (and from everything below them), and nothing under it calls it; the report and the binary
+//! above it do. The rooms:
 //!
 //! * [`trace`]: the photon tracer's charts — [`face_categories`] (the thesis's bar chart of
 //!   exit-face categories, one bar per cut), [`exit_angle_cdf`] (cumulative exit-angle curves,
@@ -14,19 +17,26 @@
 //!   segment on or off) and [`facet_categories`] (facets coloured by normal category);
 //! * [`optimize`]: the optimizer's charts — [`optimize::convergence`] (a run's cost against
 //!   evaluations) and [`optimize::heatmap`] (a sweep's score map with [`contour`] lines and the
-//!   optimizer's path). The optimizer draws no charts itself: the binary hands these two
+//!   optimizer's path). The optimizer draws no charts itself: the binary hands these
 //!   functions to a run and a sweep;
 //! * [`render`]: sheets of stone pictures — [`render::compose`] puts already-encoded pictures
 //!   side by side on a grey ground with their captions and a false-colour legend
-//!   ([`render::legend_for`]).
+//!   ([`render::legend_for`]);
+//! * [`diagram`]: a cutter's facet diagram of a cut, as a GemCad-style SVG page
+//!   ([`diagram::diagram`]);
+//! * [`pareto`]: the trade-off front between two scores, with the reference cuts;
+//! * [`palette`]: every colour handed out here, the grounds of stone pictures included.
 
 pub mod contour;
+pub mod diagram;
 pub mod optimize;
+pub mod palette;
 pub mod pareto;
 pub mod paths;
 pub mod render;
 pub mod trace;
 
+pub use palette::{SERIES, TAB10};
 pub use paths::{
     facet_categories, photon_paths, wavelength_rgb, Camera, PathColor, PathStyle, CATEGORY_COLORS,
 };
@@ -57,29 +67,6 @@ pub fn register_font() {
 pub fn font(size: u32) -> TextStyle<'static> {
     ("sans-serif", size).into_font().color(&BLACK)
 }
-
-// ---------------------------------------------------------------------------------------------
-// Palette
-
-/// Tableau's ten colours: the one palette every chart takes its colours from.
-pub const TAB10: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
-
-/// Colours of the cuts compared in one chart, in order: blue, red, green, purple, … (red second,
-/// so two cuts never look alike to a red–green colour-blind reader).
-pub const SERIES: [RGBColor; 8] = [
-    TAB10[0], TAB10[3], TAB10[2], TAB10[4], TAB10[1], TAB10[5], TAB10[6], TAB10[9],
-];
 
 // ---------------------------------------------------------------------------------------------
 // Figures and saving

@@ -1,25 +1,19 @@
 //! Sheets of stone pictures: already-encoded RGB panels (from
-//! [`Image::to_srgb8`](crate::render::Image::to_srgb8)) side by side on a grey ground, each with
-//! its caption lines below the picture, and an optional colour legend under them (the ASET and
-//! IdealScope false colours, [`legend_for`]). Drawn with plotters on a bitmap buffer in memory;
-//! the caller encodes the result ([`crate::io::png`]).
+//! [`Image::to_srgb8`](crate::render::Image::to_srgb8)) side by side on a grey ground
+//! ([`PICTURE_GROUND`]), each with its caption lines below the picture, and an optional colour
+//! legend under them (the ASET and IdealScope false colours, [`legend_for`]). Drawn with
+//! plotters on a bitmap buffer in memory; the caller encodes the result ([`crate::io::png`]).
 //!
 //! Layout of a sheet of `n` panels of `size` pixels ([`Layout`]): each panel is
 //! `size + 2·pad` wide (`pad` = [`Layout::pad`]), the picture at the top with `pad` of grey
 //! around it, then the caption lines; the legend, when there is one, wraps across the whole
 //! width below the captions. The sheet is so `n·(size + 2·pad)` pixels wide, whatever the text.
 
+use super::palette::{CAPTION_GROUND, PICTURE_GROUND};
 use super::{font, register_font};
 use crate::error::{Error, Result};
 use crate::render::{Light, ASET_COLOURS, IDEALSCOPE_COLOURS};
 use plotters::prelude::*;
-
-/// Ground around the stones (sRGB-encoded, 0–1): a mid grey, so that black (ASET leakage, the
-/// port, a dark pavilion) and white (IdealScope leakage) both stand out from it.
-pub const BACKGROUND: [f64; 3] = [0.4, 0.4, 0.4];
-
-/// Ground of the caption and legend strip (8-bit sRGB): a light grey for dark text.
-pub const CAPTION_GROUND: [u8; 3] = [236, 236, 236];
 
 /// One picture with its caption.
 #[derive(Clone, Debug)]
@@ -181,7 +175,7 @@ pub fn compose(panels: &[Panel], size: u32, legend: &[LegendEntry]) -> Result<Sh
     let height = top + caption + legend_h;
     let (w, h) = (width as usize, height as usize);
     // The grounds and the pictures, straight into the buffer.
-    let grey = srgb8(BACKGROUND);
+    let grey = srgb8(PICTURE_GROUND);
     let mut buf = vec![0u8; w * h * 3];
     for y in 0..h {
         let c = if y < top as usize {

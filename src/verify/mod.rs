@@ -20,9 +20,17 @@
 //!   off-centre undirected light, top-45° under the directed light rotated 0–180°), which have
 //!   no beam value, and the Monte Carlo overhead light return and brilliance, which carry the
 //!   beam value; [`VerifyReport::disagreements`] names the rows beyond a threshold.
+//! * [`Verifier`] (in `verifier.rs`): what a check of one cut is, as the optimizer calls it on
+//!   its winners (the real one is [`photon_report`] under a config's settings; tests pass
+//!   functions), and [`Verification`], its result as a run reports it: the rows, the names
+//!   flagged beyond a threshold, the time taken, the verifier's error.
 //!
 //! Each figure comes with its standard error, so a disagreement can be stated in standard
-//! errors. Every call to the photon tracer is in this file.
+//! errors. Every call to the photon tracer is in `mod.rs`.
+
+mod verifier;
+
+pub use verifier::{Verification, Verifier};
 
 pub mod json;
 

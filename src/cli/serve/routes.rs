@@ -18,6 +18,8 @@ use facetlab::cut::{families, Unit};
 use facetlab::io;
 use facetlab::metrics::{score, ScoreConfig};
 use facetlab::optics::Material;
+use facetlab::plot::diagram::diagram;
+use facetlab::plot::palette::STAGE_GROUND;
 use facetlab::render::{render, Light, RenderOptions, Tilt};
 use serde_json::{json, Value};
 use std::sync::Arc;
@@ -119,7 +121,7 @@ async fn cut_info(
         let mut v = serde_json::to_value(&info)
             .map_err(|e| ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "cut", e.to_string()))?;
         if let Value::Object(m) = &mut v {
-            m.insert("svg".into(), Value::String(io::svg::diagram(&cut)));
+            m.insert("svg".into(), Value::String(diagram(&cut)));
             if let Source::Preset(p) = &r.source {
                 m.insert("preset".into(), Value::String(p.clone()));
             }
@@ -187,7 +189,7 @@ async fn render_cut(
             .map_err(|e| ApiError::bad("render", e.to_string()))?;
         let img = render(&cut.solid, &o);
         let t2 = Instant::now();
-        let rgb = img.to_srgb8(r.exposure, BACKGROUND);
+        let rgb = img.to_srgb8(r.exposure, STAGE_GROUND);
         let n = r.size as u32;
         let png = io::png::encode_rgb8(n, n, &[&rgb], 0).map_err(|e| {
             ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "render", e.to_string())
@@ -213,9 +215,6 @@ async fn render_cut(
     }
     Ok(no_store(resp))
 }
-
-/// Background of the pictures (sRGB): the page's dark stage.
-const BACKGROUND: [f64; 3] = [0.075, 0.082, 0.094];
 
 /// `POST /api/export`: the cut as a file.
 async fn export_cut(

@@ -117,7 +117,7 @@ pub async fn configs() -> Response {
             json!({
                 "name": name,
                 "description": c.as_ref().and_then(|c| c.description.clone()),
-                "family": c.as_ref().map(|c| c.family.name),
+                "family": c.as_ref().map(|c| c.space.name()),
                 "budget": c.as_ref().map(|c| c.budget.max_evaluations),
                 "pareto": c.as_ref().map(|c| c.pareto.is_some()),
             })
@@ -246,7 +246,7 @@ fn execute(run: Arc<Run>, config: Config, id: u64) {
     } else {
         let opts = RunOptions {
             out: Some(dir.clone()),
-            html_report: true,
+            html_report: Some(facetlab::report::run_page),
             hooks: Hooks {
                 stop: Some(&run.stop),
                 progress: Some(&watch),

@@ -1,10 +1,11 @@
-//! `[cut]`: the family and the start cut.
+//! `[cut]`: the cut space (a family) and the start cut.
 
 use super::At;
-use crate::cut::{family, Family};
+use crate::cut::{family, CutSpace};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 /// `[cut]`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -18,8 +19,8 @@ pub struct RawCut {
     pub params: BTreeMap<String, f64>,
 }
 
-/// Validate `[cut]`: the family and the start cut's full parameter set (defaults filled in).
-pub(super) fn validate(rc: &RawCut, at: At) -> Result<(&'static Family, BTreeMap<String, f64>)> {
+/// Validate `[cut]`: the cut space and the start cut's full parameter set (defaults filled in).
+pub(super) fn validate(rc: &RawCut, at: At) -> Result<(Arc<dyn CutSpace>, BTreeMap<String, f64>)> {
     let fam_name = rc.family.as_deref().ok_or_else(|| {
         Error::invalid(
             at("cut.family"),
@@ -30,15 +31,12 @@ pub(super) fn validate(rc: &RawCut, at: At) -> Result<(&'static Family, BTreeMap
         Error::Invalid { message, .. } => Error::invalid(at("cut.family"), message),
         other => other,
     })?;
-    let start = fam
-        .params(&rc.params)
-        .map_err(|e| match e {
-            Error::Invalid { field, message } => {
-                Error::invalid(at(&format!("cut.params.{field}")), message)
-            }
-            other => other,
-        })?
-        .values()
-        .clone();
-    Ok((fam, start))
+    let space: Arc<dyn CutSpace> = Arc::new(*fam);
+    let start = space.complete(&rc.params).map_err(|e| match e {
+        Error::Invalid { field, message } => {
+            Error::invalid(at(&format!("cut.params.{field}")), message)
+        }
+        other => other,
+    })?;
+    Ok((space, start))
 }

@@ -1,20 +1,20 @@
 //! `[free]`: the parameters the optimizer varies, `key = [min, max]`.
 
 use super::At;
-use crate::cut::{Family, Unit};
+use crate::cut::{CutSpace, Unit};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
 /// One free parameter.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FreeParam {
-    /// Family parameter key.
+    /// Parameter key (of the config's cut space).
     pub key: String,
     /// Lower bound.
     pub lo: f64,
     /// Upper bound.
     pub hi: f64,
-    /// The start value (from `[cut.params]` or the family default).
+    /// The start value (from `[cut.params]` or the space's default).
     pub start: f64,
     /// Unit (for labels).
     pub unit: Unit,
@@ -35,7 +35,7 @@ impl FreeParam {
     }
 }
 
-/// An axis label for a family parameter: `crown_angle (°)`, `table (× D)`.
+/// An axis label for a parameter: `crown_angle (°)`, `table (× D)`.
 pub fn axis_label(key: &str, unit: Unit) -> String {
     match unit {
         Unit::Degrees => format!("{key} (°)"),
@@ -44,11 +44,11 @@ pub fn axis_label(key: &str, unit: Unit) -> String {
     }
 }
 
-/// Validate `[free]` against the family and the start cut; the result is in the family's
+/// Validate `[free]` against the cut space and the start cut; the result is in the space's
 /// parameter order.
 pub(super) fn validate(
     raw: &BTreeMap<String, [f64; 2]>,
-    fam: &'static Family,
+    space: &dyn CutSpace,
     start: &BTreeMap<String, f64>,
     given: &BTreeMap<String, f64>,
     at: At,
@@ -58,17 +58,20 @@ pub(super) fn validate(
             at("free"),
             format!(
                 "no free parameters; give at least one as `key = [min, max]`; {} has: {}",
-                fam.name,
-                fam.keys().join(", ")
+                space.name(),
+                space.keys().join(", ")
             ),
         ));
     }
     let mut free = Vec::new();
-    for def in fam.params {
-        let Some(&[lo, hi]) = raw.get(def.key) else {
+    for key in space.keys() {
+        let Some(&[lo, hi]) = raw.get(key) else {
             continue;
         };
-        let field = at(&format!("free.{}", def.key));
+        let Some(def) = space.range(key) else {
+            continue;
+        };
+        let field = at(&format!("free.{key}"));
         if !(lo.is_finite() && hi.is_finite()) {
             return Err(Error::invalid(
                 field,
@@ -94,14 +97,7 @@ pub(super) fn validate(
             ));
         }
         let (l, r) = if def.open { ("(", ")") } else { ("[", "]") };
-        let inside = |v: f64| {
-            if def.open {
-                v > def.min && v < def.max
-            } else {
-                v >= def.min && v <= def.max
-            }
-        };
-        if !(inside(lo) && inside(hi)) {
+        if !(def.contains(lo) && def.contains(hi)) {
             return Err(Error::invalid(
                 field,
                 format!(
@@ -112,33 +108,33 @@ pub(super) fn validate(
                 ),
             ));
         }
-        let s = start[def.key];
+        let s = start[key];
         if !(lo..=hi).contains(&s) {
-            let from = if given.contains_key(def.key) {
+            let from = if given.contains_key(key) {
                 "cut.params"
             } else {
                 "the family default"
             };
             return Err(Error::invalid(
                 field,
-                format!("the start value {s} (from {from}) lies outside the bounds [{lo}, {hi}]; widen them or set `{}` in [cut.params]", def.key),
+                format!("the start value {s} (from {from}) lies outside the bounds [{lo}, {hi}]; widen them or set `{key}` in [cut.params]"),
             ));
         }
         free.push(FreeParam {
-            key: def.key.to_string(),
+            key: key.to_string(),
             lo,
             hi,
             start: s,
             unit: def.unit,
         });
     }
-    if let Some(k) = raw.keys().find(|k| fam.param(k).is_none()) {
+    if let Some(k) = raw.keys().find(|k| space.range(k).is_none()) {
         return Err(Error::invalid(
             at(&format!("free.{k}")),
             format!(
                 "unknown parameter of {}; allowed: {}",
-                fam.name,
-                fam.keys().join(", ")
+                space.name(),
+                space.keys().join(", ")
             ),
         ));
     }

@@ -47,21 +47,21 @@ pub struct RawMethod {
     pub social: Option<f64>,
 }
 
-/// How Nelder–Mead starts are spread over the box.
+/// How Nelder–Mead starts are spread over the box (`method.design` in a config).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-pub enum Design {
+pub enum Sampling {
     /// Seeded Latin hypercube: one start per row and column stratum.
     LatinHypercube,
     /// Seeded (randomly shifted) Halton sequence.
     Halton,
 }
 
-impl Design {
+impl Sampling {
     /// Name in configs.
     pub fn name(self) -> &'static str {
         match self {
-            Design::LatinHypercube => "latin-hypercube",
-            Design::Halton => "halton",
+            Sampling::LatinHypercube => "latin-hypercube",
+            Sampling::Halton => "halton",
         }
     }
 }
@@ -71,8 +71,9 @@ impl Design {
 pub struct NelderMeadSettings {
     /// Number of starts.
     pub starts: usize,
-    /// Start design.
-    pub design: Design,
+    /// How the starts are spread (`method.design`).
+    #[serde(rename = "design")]
+    pub sampling: Sampling,
     /// Whether start 0 is the configured start cut.
     pub include_start: bool,
     /// Initial simplex edge as a fraction of each range.
@@ -151,9 +152,9 @@ pub(super) fn validate(rm: &RawMethod, n_free: usize, at: At) -> Result<(Method,
     let (method, default_iters) = match mname {
         "nelder-mead" => {
             refuse(&pso_only, "particle-swarm")?;
-            let design = match rm.design.as_deref().unwrap_or("latin-hypercube") {
-                "latin-hypercube" => Design::LatinHypercube,
-                "halton" => Design::Halton,
+            let sampling = match rm.design.as_deref().unwrap_or("latin-hypercube") {
+                "latin-hypercube" => Sampling::LatinHypercube,
+                "halton" => Sampling::Halton,
                 other => {
                     return Err(Error::invalid(
                         at("method.design"),
@@ -190,7 +191,7 @@ pub(super) fn validate(rm: &RawMethod, n_free: usize, at: At) -> Result<(Method,
                         1,
                         1000,
                     )? as usize,
-                    design,
+                    sampling,
                     include_start: rm.include_start.unwrap_or(true),
                     simplex_step: step,
                 }),

@@ -4,7 +4,7 @@
 //!
 //! ```toml
 //! name = "round-brilliance"          # run folder prefix; default: the file's stem
-//! seed = 1                           # every random choice (start design, swarm) follows it
+//! seed = 1                           # every random choice (start points, swarm) follows it
 //!
 //! [cut]
 //! family = "round-brilliant"
@@ -35,8 +35,8 @@
 //! (section "The config file").
 //!
 //! Each section has its own file with its raw form, its validated form and its validator
-//! (`cut.rs`, `free.rs`, `objective.rs`, `constraints.rs`, `method.rs`, `verify.rs`,
-//! `score.rs`); [`Config::from_raw`] runs them in the file's order.
+//! (`cut.rs`, `free.rs`, `objective.rs`, `constraints.rs`, `method.rs`, `winners.rs` for
+//! `[verify]`, `score.rs`); [`Config::from_raw`] runs them in the file's order.
 
 mod constraints;
 mod cut;
@@ -44,22 +44,23 @@ mod free;
 mod method;
 mod objective;
 mod score;
-mod verify;
+mod winners;
 
 pub use constraints::{Constraints, RawConstraints};
 pub use cut::RawCut;
 pub use free::{axis_label, FreeParam};
-pub use method::{Budget, Design, Method, NelderMeadSettings, RawMethod, SwarmSettings};
+pub use method::{Budget, Method, NelderMeadSettings, RawMethod, Sampling, SwarmSettings};
 pub use objective::{ParetoSpec, RawObjective, Weights, PARETO_SCORES};
 pub use score::{RawScore, ScoreSettings};
-pub use verify::{RawVerify, VerifySettings};
+pub use winners::{RawVerify, VerifySettings};
 
-use crate::cut::{Cut, Family};
+use crate::cut::{Cut, CutSpace};
 use crate::error::{Error, Result};
 use crate::io::{line_of, read_bytes};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
+use std::sync::Arc;
 
 /// The config file as written (every field optional where a default exists).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -108,13 +109,13 @@ pub struct Config {
     pub description: Option<String>,
     /// Seed.
     pub seed: u64,
-    /// The family.
-    pub family: &'static Family,
+    /// The cut space searched (`[cut] family`): every cut of the run is built through it.
+    pub space: Arc<dyn CutSpace>,
     /// The start cut's full parameter set (defaults filled in).
     pub start: BTreeMap<String, f64>,
     /// `[cut.params]` as given.
     pub fixed: BTreeMap<String, f64>,
-    /// Free parameters in the family's parameter order.
+    /// Free parameters in the space's parameter order.
     pub free: Vec<FreeParam>,
     /// Objective weights.
     pub weights: Weights,
@@ -234,28 +235,28 @@ impl Config {
         }
         let seed = raw.seed.unwrap_or(defaults::SEED);
 
-        let (fam, start) = cut::validate(&raw.cut.clone().unwrap_or_default(), &at)?;
+        let (space, start) = cut::validate(&raw.cut.clone().unwrap_or_default(), &at)?;
         let rc_params = raw
             .cut
             .as_ref()
             .map(|c| c.params.clone())
             .unwrap_or_default();
-        let free = free::validate(&raw.free, fam, &start, &rc_params, &at)?;
+        let free = free::validate(&raw.free, space.as_ref(), &start, &rc_params, &at)?;
         let weights = objective::validate(&raw.objective.clone().unwrap_or_default(), &at)?;
         let pareto = objective::validate_pareto(&raw.objective.clone().unwrap_or_default(), &at)?;
         let constraints = constraints::validate(&raw.constraints.clone().unwrap_or_default(), &at)?;
-        if constraints.grade.is_some() && fam.name != "round-brilliant" {
+        if constraints.grade.is_some() && space.name() != "round-brilliant" {
             return Err(Error::invalid(
                 at("constraints.grade"),
                 format!(
                     "grade estimates exist for the round-brilliant family only, not {}",
-                    fam.name
+                    space.name()
                 ),
             ));
         }
         let (method, budget) =
             method::validate(&raw.method.clone().unwrap_or_default(), free.len(), &at)?;
-        let verify = verify::validate(&raw.verify.clone().unwrap_or_default(), &at)?;
+        let verify = winners::validate(&raw.verify.clone().unwrap_or_default(), &at)?;
         let score = score::validate(&raw.score.clone().unwrap_or_default(), &at)?;
 
         Ok(Config {
@@ -263,7 +264,7 @@ impl Config {
             name,
             description: raw.description.clone(),
             seed,
-            family: fam,
+            space,
             start,
             fixed: rc_params,
             free,
@@ -279,11 +280,12 @@ impl Config {
 
     /// The start cut.
     pub fn start_cut(&self) -> Result<Cut> {
-        Cut::from_family(&self.name, self.family.name, &self.start)
+        self.space
+            .build(&self.name, &self.start)
             .map_err(|e| e.context(&format!("{}: start cut", self.source)))
     }
 
-    /// The family parameters with the free ones set to `x` (in [`Config::free`] order).
+    /// The space's parameters with the free ones set to `x` (in [`Config::free`] order).
     pub fn params_at(&self, x: &[f64]) -> BTreeMap<String, f64> {
         let mut p = self.start.clone();
         for (f, v) in self.free.iter().zip(x) {
@@ -309,7 +311,7 @@ impl Config {
             description: self.description.clone(),
             seed: Some(self.seed),
             cut: Some(RawCut {
-                family: Some(self.family.name.to_string()),
+                family: Some(self.space.name().to_string()),
                 params: self.start.clone(),
             }),
             free: self
@@ -337,7 +339,7 @@ impl Config {
                 max_iterations: Some(self.budget.max_iterations),
                 max_evaluations: Some(self.budget.max_evaluations),
                 starts: nm.map(|n| n.starts as u64),
-                design: nm.map(|n| n.design.name().to_string()),
+                design: nm.map(|n| n.sampling.name().to_string()),
                 include_start: nm.map(|n| n.include_start),
                 simplex_step: nm.map(|n| n.simplex_step),
                 tolerance: nm.map(|n| n.tolerance),
@@ -422,7 +424,7 @@ mod tests {
         assert_eq!(c.weights.scintillation, 0.0);
         assert_eq!(c.verify.winners, 3);
         assert!(
-            matches!(c.method, Method::NelderMead(n) if n.starts == 3 && n.design == Design::Halton)
+            matches!(c.method, Method::NelderMead(n) if n.starts == 3 && n.sampling == Sampling::Halton)
         );
         // The config as used parses back to the same settings.
         let again = Config::from_str(&c.as_used_toml(), "used.toml").unwrap();

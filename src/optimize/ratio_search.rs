@@ -1,6 +1,7 @@
-//! Retargeting a design to another index: the tangent-ratio rule of
-//! [`crate::cut::retarget`], and an optimizing variant that adjusts the crown's and the
-//! pavilion's tangent ratios to restore the design's light return at the new index.
+//! Retargeting a design to another index, as a search: the tangent-ratio rule of
+//! [`crate::cut::retarget`] (the geometry lives there), and an optimizing variant that searches
+//! the crown's and the pavilion's tangent ratios to restore the design's light return at the
+//! new index. The `facetlab retarget` command (in the binary) reads and writes the files.
 //!
 //! The search is a coordinate search (golden sections on the logarithm of each ratio, two
 //! passes, pavilion first) scored with quick settings; the tangent-ratio cut, the optimized

@@ -20,9 +20,9 @@
 use super::config::{Config, Constraints, Method, Weights};
 use super::guard::Stop;
 use super::problem::{weight_retention, ConstraintCheck, Evaluation};
-use super::verify::Verification;
 use crate::cut::grade::GradeEstimate;
 use crate::cut::Proportions;
+use crate::verify::Verification;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -249,7 +249,7 @@ impl Report {
                 "Nelder–Mead, {} start{} ({}{}), sigmoid-mapped bounds",
                 n.starts,
                 if n.starts == 1 { "" } else { "s" },
-                n.design.name(),
+                n.sampling.name(),
                 if n.include_start {
                     ", start 0 = the configured start"
                 } else {

@@ -1,91 +1,16 @@
-//! One-page cut reports: a self-contained HTML page (pictures embedded, no network) per cut or
-//! comparing cuts side by side — what a cutter sends a client.
-//!
-//! For each cut: face-up pictures under ISO light, in ASET false colour and under the spot
-//! lights for fire ([`crate::render`]), the facet diagram ([`crate::io::svg`]), the
-//! proportions with the grade estimate for round brilliants ([`crate::cut::grade`]), every
-//! score with one line on what it means ([`crate::metrics`]), and, when asked, the photon
-//! tracer's check of the beam tracer's numbers ([`crate::verify`]).
+//! The report's HTML page: a header naming the material and the tracer's settings, then per cut
+//! its three pictures (PNG, base64-embedded), the facet diagram inline, the proportions with
+//! the grade estimate, every score with one line on what it means, and the photon tracer's
+//! checks; one style sheet, no script, nothing fetched.
 
+use super::{CutReport, ReportOptions};
 use crate::cut::grade::{self, Grade};
-use crate::cut::Cut;
 use crate::error::Result;
-use crate::metrics::{score, ScoreConfig, Scores};
-use crate::render::{render, Image, Light, RenderOptions};
-use crate::verify::{verify_scores, Check};
+use crate::metrics::Scores;
+use crate::plot::diagram::diagram;
+use crate::plot::palette::PICTURE_GROUND;
+use crate::render::Light;
 use std::fmt::Write;
-
-/// What a report shows and how it is made.
-#[derive(Clone, Debug)]
-pub struct ReportOptions {
-    /// Scoring settings (material, lighting, poses).
-    pub score: ScoreConfig,
-    /// Pixels per side of the pictures.
-    pub size: usize,
-    /// Photons for the photon tracer's check; 0 = no check.
-    pub verify_photons: u64,
-    /// Seed of the check.
-    pub seed: u64,
-    /// Standard errors beyond which a check is flagged.
-    pub sigma: f64,
-    /// Title of the page.
-    pub title: String,
-}
-
-impl Default for ReportOptions {
-    fn default() -> Self {
-        ReportOptions {
-            score: ScoreConfig::default(),
-            size: 320,
-            verify_photons: 0,
-            seed: 1,
-            sigma: 4.0,
-            title: "facetlab cut report".into(),
-        }
-    }
-}
-
-/// Everything a report shows of one cut.
-#[derive(Clone, Debug)]
-pub struct CutReport {
-    /// The cut's label on the page.
-    pub label: String,
-    /// The cut.
-    pub cut: Cut,
-    /// Its scores.
-    pub scores: Scores,
-    /// The photon tracer's checks (empty without a check).
-    pub checks: Vec<Check>,
-    /// Its pictures: ISO, ASET, fire.
-    pub pictures: Vec<(Light, Image)>,
-}
-
-/// Score, draw and (optionally) verify `cut` for a report.
-pub fn measure(label: &str, cut: &Cut, o: &ReportOptions) -> Result<CutReport> {
-    let scores = score(&cut.solid, &o.score);
-    let checks = if o.verify_photons > 0 {
-        verify_scores(&cut.solid, &o.score, &scores, o.verify_photons, o.seed)?
-    } else {
-        Vec::new()
-    };
-    let pictures = [Light::Iso, Light::Aset, Light::Fire]
-        .into_iter()
-        .map(|light| {
-            let mut r = RenderOptions::new(light);
-            r.size = o.size;
-            r.material = o.score.material.clone();
-            r.polarization = o.score.polarization;
-            (light, render(&cut.solid, &r))
-        })
-        .collect();
-    Ok(CutReport {
-        label: label.to_string(),
-        cut: cut.clone(),
-        scores,
-        checks,
-        pictures,
-    })
-}
 
 /// Exposure of each picture in the report (fire's flashes are small: brighter).
 fn exposure(light: Light) -> f64 {
@@ -167,7 +92,7 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
         h.push_str("<div class=\"pics\">");
         for (light, img) in &c.pictures {
             let n = img.size() as u32;
-            let rgb = img.to_srgb8(exposure(*light), crate::plot::render::BACKGROUND);
+            let rgb = img.to_srgb8(exposure(*light), PICTURE_GROUND);
             let png = crate::io::png::encode_rgb8(n, n, &[&rgb], 0)?;
             let caption = match light {
                 Light::Iso => format!(
@@ -200,7 +125,7 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
         }
         h.push_str("</div>\n<p class=\"legend\"><span style=\"background:#1a4dff\"></span>75–90° <span style=\"background:#e61414\"></span>45–75° <span style=\"background:#1ab829\"></span>0–45° <span style=\"background:#000\"></span>leak or viewer's port (ASET)</p>\n");
         // The diagram, inline.
-        let svg = crate::io::svg::diagram(&c.cut);
+        let svg = diagram(&c.cut);
         let svg = svg
             .find("<svg")
             .map(|i| svg[i..].to_string())
@@ -294,6 +219,8 @@ th{text-align:left;font-weight:600;padding:2px 10px 2px 0}td{padding:2px 10px 2p
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::metrics::ScoreConfig;
+    use crate::report::measure;
 
     #[test]
     fn base64_matches_the_rfc_examples() {

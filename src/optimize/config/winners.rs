@@ -1,4 +1,5 @@
-//! `[verify]`: the photon-tracer check of the winners.
+//! `[verify]`: the winners — how many distinct ones, how far apart in the box, and the photons
+//! and the threshold of their photon-tracer check.
 
 use super::{defaults, finite, At};
 use crate::error::{Error, Result};

@@ -2,15 +2,20 @@
 //! folder before any work, and the summary printed at the end.
 //!
 //! Both take the objective's scorer as an [`Evaluator`] (and `optimize` the photon tracer as a
-//! [`Verifier`]), so the command line stays thin and the scorers are wired in one place.
+//! [`Verifier`]), so the command line stays thin and the scorers are wired in one place. This
+//! file is `optimize` (a run folder, or a trade-off with `[objective] pareto`) with what both
+//! share; `sweep.rs` is `sweep` and its shards.
+
+mod sweep;
+
+pub(crate) use sweep::{choose_shard, map_spec, write_sweep_outputs, Names};
+pub use sweep::{run_sweep, SweepArgs};
 
 use super::outputs::{refuse_overwrite, Exit};
 use super::progress::bar;
 use clap::Args;
 use facetlab::error::{Error, Result};
-use facetlab::optimize::{
-    self as opt, Axis, AxisRecord, Grid, GridCell, Shard, ShardRecord, SweepScore,
-};
+use facetlab::optimize as opt;
 use facetlab::optimize::{BeamEvaluator, PhotonVerifier, Progress, Status};
 use facetlab::optimize::{Config, Evaluator, Verifier};
 use facetlab::optimize::{CutWriter, FnWriter, Hooks, RunOptions};
@@ -40,56 +45,6 @@ pub struct OptimizeArgs {
     #[arg(long)]
     pub no_verify: bool,
     /// No progress bar (it is also hidden when stderr is not a terminal).
-    #[arg(long, short = 'q')]
-    pub quiet: bool,
-}
-
-/// Flags of `facetlab sweep`.
-#[derive(Clone, Debug, Args)]
-pub struct SweepArgs {
-    /// Optimization config (TOML): the family, the other parameters' values, the objective.
-    pub config: PathBuf,
-    /// First axis: KEY:MIN:MAX:STEP, e.g. crown_angle:25:40:0.5.
-    #[arg(long = "x", value_name = "KEY:MIN:MAX:STEP")]
-    pub x: Option<String>,
-    /// Second axis: KEY:MIN:MAX:STEP, e.g. pavilion_angle:38:43:0.1. With one axis only the
-    /// sweep is a profile: a CSV and a line chart of every score.
-    #[arg(long = "y", value_name = "KEY:MIN:MAX:STEP")]
-    pub y: Option<String>,
-    /// Further axes (repeatable), after --x and --y. The grid is their Cartesian product, the
-    /// first axis varying fastest; the CSV has one column per axis.
-    #[arg(long = "axis", value_name = "KEY:MIN:MAX:STEP")]
-    pub axis: Vec<String>,
-    /// The two axes the map shows, KEY1,KEY2 (one KEY: a profile along it). Default: the first
-    /// two axes.
-    #[arg(long, value_name = "KEY1,KEY2")]
-    pub map: Option<String>,
-    /// Where the map holds an axis it does not show (repeatable; snapped to the nearest grid
-    /// value). Default: the grid value nearest the axis' middle.
-    #[arg(long, value_name = "KEY=VALUE")]
-    pub at: Vec<String>,
-    /// Evaluate only shard K of N (1-based): the grid points whose index i has
-    /// i mod N == K-1, into OUT/shard-K-of-N/ (shard.json, rows.csv), resuming what it already
-    /// wrote; `facetlab merge` joins the shards. Without it, Slurm's SLURM_ARRAY_TASK_ID
-    /// (- SLURM_ARRAY_TASK_MIN) of SLURM_ARRAY_TASK_COUNT, or Kubernetes' JOB_COMPLETION_INDEX
-    /// of JOB_COMPLETION_COUNT, choose the shard when set; `--shard off` ignores them.
-    #[arg(long, value_name = "K/N|off")]
-    pub shard: Option<String>,
-    /// The score drawn on the map and summarised: brilliance, fire, scintillation,
-    /// or objective (the config's weighted score minus penalties). The CSV has all of them.
-    #[arg(long, default_value = "brilliance")]
-    pub score: String,
-    /// A run folder of `facetlab optimize`: draw its path (best point so far) on the map
-    /// (2-D maps only).
-    #[arg(long, value_name = "DIR")]
-    pub run: Option<PathBuf>,
-    /// Output folder (sweep.csv, sweep.png, sweep.svg in it), or a file name whose stem is
-    /// used for all three (map.png → map.csv, map.png, map.svg). With a shard: the sweep's
-    /// folder, which gets a shard-K-of-N/ folder.
-    /// Default: results/sweep-NAME-X-Y…/ (one key per axis).
-    #[arg(long, value_name = "FILE|DIR")]
-    pub out: Option<PathBuf>,
-    /// No progress bar.
     #[arg(long, short = 'q')]
     pub quiet: bool,
 }
@@ -131,7 +86,7 @@ impl Progress for Bar {
 fn cut_writers() -> Vec<&'static dyn CutWriter> {
     static ASC: FnWriter = FnWriter::new("asc", |c| Ok(facetlab::io::asc::write(c, 0)));
     static OBJ: FnWriter = FnWriter::new("obj", |c| Ok(facetlab::io::mesh::write_obj(c)));
-    static SVG: FnWriter = FnWriter::new("svg", |c| Ok(facetlab::io::svg::diagram(c)));
+    static SVG: FnWriter = FnWriter::new("svg", |c| Ok(facetlab::plot::diagram::diagram(c)));
     vec![&ASC, &OBJ, &SVG]
 }
 
@@ -233,7 +188,7 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
             stop: Some(&STOP),
             progress: Some(&progress),
         },
-        html_report: true,
+        html_report: Some(facetlab::report::run_page),
         ..RunOptions::default()
     };
     let verifier = if a.no_verify {
@@ -370,461 +325,13 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     Ok(exit)
 }
 
-/// `facetlab sweep`: load the config, then make its scorer with `make`. One axis is a profile,
-/// two or more a grid mapped over two of them; with `--shard K/N` (or a job array's
-/// environment) only that share of the grid is evaluated, resumably, into a shard folder.
-pub fn run_sweep(a: &SweepArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<Exit> {
-    run_sweep_env(a, make, &|k| std::env::var(k).ok())
-}
-
-/// The axes of a sweep from `--x`, `--y` and `--axis`, in that order.
-fn sweep_axes(a: &SweepArgs, config: &Config) -> Result<Vec<Axis>> {
-    if a.x.is_none() && a.y.is_some() {
-        return Err(Error::invalid("--y", "needs --x (the first axis)"));
-    }
-    let mut axes = Vec::new();
-    if let Some(x) = &a.x {
-        axes.push(Axis::parse("--x", x, config)?);
-    }
-    if let Some(y) = &a.y {
-        let y = Axis::parse("--y", y, config)?;
-        if axes[0].key == y.key {
-            return Err(Error::invalid(
-                "--y",
-                format!(
-                    "sweeps `{}` on both axes; give two different parameters",
-                    y.key
-                ),
-            ));
-        }
-        axes.push(y);
-    }
-    for s in &a.axis {
-        axes.push(Axis::parse("--axis", s, config)?);
-    }
-    Ok(axes)
-}
-
-/// What a map shows: the mapped axes (one: a profile; two: a heatmap) and where the others
-/// are held (value indices).
-pub(crate) struct MapSpec {
-    pub axes: Vec<usize>,
-    pub fixed: Vec<usize>,
-}
-
-/// Names for a sweep's titles: the config's name, the family, the config's file name.
-pub(crate) struct Names {
-    pub name: String,
-    pub family: String,
-    pub file: String,
-}
-
-/// The map's title (the same words as ever for 1 and 2 axes; held axes are named).
-fn map_title(names: &Names, grid: &Grid, score: &SweepScore, spec: &MapSpec) -> String {
-    let held: Vec<String> = (0..grid.axes.len())
-        .filter(|i| !spec.axes.contains(i))
-        .map(|i| {
-            format!(
-                "{} = {}",
-                grid.axes[i].key, grid.axes[i].values[spec.fixed[i]]
-            )
-        })
-        .collect();
-    let held = if held.is_empty() {
-        String::new()
-    } else {
-        format!(" at {}", held.join(", "))
-    };
-    let key = |i: usize| &grid.axes[spec.axes[i]].key;
-    if spec.axes.len() == 1 {
-        format!(
-            "{}: scores of {} along {}{held} (others as in {})",
-            names.name,
-            names.family,
-            key(0),
-            names.file
-        )
-    } else {
-        format!(
-            "{} of {} over {} and {}{held} (others as in {})",
-            score.name(),
-            names.family,
-            key(0),
-            key(1),
-            names.file
-        )
-    }
-}
-
-/// Write a whole sweep's CSV and its map where `out` says, and print what was written and the
-/// highest `score`.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn write_sweep_outputs(
-    grid: &Grid,
-    cells: &[GridCell],
-    labels: &[String],
-    score: &SweepScore,
-    spec: &MapSpec,
-    names: &Names,
-    path: Option<Vec<(f64, f64)>>,
-    out: &Path,
-) -> Result<()> {
-    let (csv, png, svg) = opt::sweep_output_paths(out);
-    if let Some(d) = csv.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(d).map_err(|e| Error::io(d.display().to_string(), e))?;
-    }
-    facetlab::io::write_atomic(&csv, opt::grid_csv(grid, cells).as_bytes())?;
-    let title = map_title(names, grid, score, spec);
-    if let [ax] = spec.axes[..] {
-        let lines = opt::profile_lines(grid, cells, labels, ax, &spec.fixed, title);
-        facetlab::plot::optimize::profile(&lines, &png, &svg)?;
-    } else {
-        let map = opt::grid_heatmap(
-            grid,
-            cells,
-            labels,
-            score,
-            (spec.axes[0], spec.axes[1]),
-            &spec.fixed,
-            title,
-            path,
-        );
-        facetlab::plot::optimize::heatmap(&map, &png, &svg)?;
-    }
-    println!(
-        "wrote {}, {}, {}",
-        csv.display(),
-        png.display(),
-        svg.display()
-    );
-    if let Some((c, v)) = opt::grid_best(cells, score) {
-        let at: Vec<String> = grid
-            .axes
-            .iter()
-            .zip(&c.values)
-            .map(|(a, v)| format!("{} = {v}", a.key))
-            .collect();
-        println!("highest {}: {v:.4} at {}", score.name(), at.join(", "));
-    }
-    Ok(())
-}
-
-/// The map of `--map`/`--at` for `grid`.
-pub(crate) fn map_spec(grid: &Grid, map: Option<&str>, at: &[String]) -> Result<MapSpec> {
-    let axes = opt::map_axes(grid, map)?;
-    let fixed = opt::fixed_at(grid, &opt::parse_at(at)?)?;
-    Ok(MapSpec { axes, fixed })
-}
-
-/// The shard of `--shard` (`off`: none, whatever the environment), else of a job array's
-/// environment (`env` reads a variable).
-pub(crate) fn choose_shard(
-    flag: Option<&str>,
-    env: &dyn Fn(&str) -> Option<String>,
-) -> Result<Option<(Shard, String)>> {
-    match flag {
-        Some("off") => Ok(None),
-        Some(s) => Ok(Some((Shard::parse("--shard", s)?, "--shard".into()))),
-        None => Shard::from_env(env),
-    }
-}
-
-/// [`run_sweep`] with the environment read through `env`.
-pub fn run_sweep_env(
-    a: &SweepArgs,
-    make: &dyn Fn(&Config) -> Scorers,
-    env: &dyn Fn(&str) -> Option<String>,
-) -> Result<Exit> {
-    let config = Config::load(&a.config)?;
-    let grid = Grid::new(sweep_axes(a, &config)?)?;
-    let score = SweepScore::parse(&a.score)?;
-    let spec = map_spec(&grid, a.map.as_deref(), &a.at)?;
-    if spec.axes.len() < 2 && a.run.is_some() {
-        return Err(Error::invalid(
-            "--run",
-            "draws an optimizer's path on a 2-D map; give --y too",
-        ));
-    }
-    let shard = choose_shard(a.shard.as_deref(), env)?;
-    let keys: Vec<&str> = grid.axes.iter().map(|x| x.key.as_str()).collect();
-    let default_out =
-        || PathBuf::from("results").join(format!("sweep-{}-{}", config.name, keys.join("-")));
-    let names = Names {
-        name: config.name.clone(),
-        family: config.family.name.to_string(),
-        file: a
-            .config
-            .file_name()
-            .map(|f| f.to_string_lossy().to_string())
-            .unwrap_or_default(),
-    };
-    if let Some((shard, from)) = shard {
-        if a.run.is_some() {
-            return Err(Error::invalid(
-                "--run",
-                "a shard draws no map; give --run to `facetlab merge`",
-            ));
-        }
-        let out = a.out.clone().unwrap_or_else(default_out);
-        return run_shard(a, &config, &grid, shard, &from, &out, make);
-    }
-    let out = a.out.clone().unwrap_or_else(default_out);
-    let (csv, png, svg) = opt::sweep_output_paths(&out);
-    let mut inputs = vec![a.config.clone()];
-    if let Some(r) = &a.run {
-        inputs.extend([r.clone(), r.join("history.csv"), r.join("config.toml")]);
-    }
-    refuse_overwrite(
-        &[
-            ("--out", out.clone()),
-            ("--out", csv.clone()),
-            ("--out", png.clone()),
-            ("--out", svg.clone()),
-        ],
-        &inputs,
-    )?;
-    let path = match &a.run {
-        Some(dir) => {
-            if !dir.is_dir() {
-                return Err(Error::invalid(
-                    "--run",
-                    format!(
-                        "{} is not a folder; give a run folder of `facetlab optimize`",
-                        dir.display()
-                    ),
-                ));
-            }
-            let (mx, my) = (&grid.axes[spec.axes[0]].key, &grid.axes[spec.axes[1]].key);
-            Some(opt::sweep_path(dir, mx, my)?)
-        }
-        None => None,
-    };
-    if let Some(d) = csv.parent() {
-        facetlab::io::check_writable(d)?;
-    }
-    let (evaluator, _) = make(&config);
-    let pb = bar(
-        grid.len() as u64,
-        a.quiet,
-        "{spinner} {elapsed_precise} [{bar:20}] {pos}/{len} cuts  {per_sec}  eta {eta}",
-    );
-    let all: Vec<usize> = (0..grid.len()).collect();
-    let cells = opt::evaluate_grid(&config, evaluator.as_ref(), &grid, &all, None, &|_| {
-        pb.inc(1)
-    });
-    pb.finish_and_clear();
-    let labels: Vec<String> = grid.axes.iter().map(|x| x.label()).collect();
-    write_sweep_outputs(&grid, &cells, &labels, &score, &spec, &names, path, &out)?;
-    Ok(Exit::Ok)
-}
-
-/// The name of shard `s`'s folder inside a sweep's `--out` folder.
-pub fn shard_folder(s: Shard) -> String {
-    format!("shard-{}-of-{}", s.k, s.n)
-}
-
-/// Evaluate one shard into `out/shard-K-of-N/`, resuming from its `rows.csv`.
-fn run_shard(
-    a: &SweepArgs,
-    config: &Config,
-    grid: &Grid,
-    shard: Shard,
-    from: &str,
-    out: &Path,
-    make: &dyn Fn(&Config) -> Scorers,
-) -> Result<Exit> {
-    let ext = out
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    if matches!(ext.as_deref(), Some("csv" | "png" | "svg")) {
-        return Err(Error::invalid(
-            "--out",
-            format!(
-                "{} is a file name; a sharded sweep writes a folder (its shard in OUT/{})",
-                out.display(),
-                shard_folder(shard)
-            ),
-        ));
-    }
-    let dir = out.join(shard_folder(shard));
-    let (record_path, rows_path) = (dir.join("shard.json"), dir.join("rows.csv"));
-    refuse_overwrite(
-        &[
-            ("--out", dir.clone()),
-            ("--out", record_path.clone()),
-            ("--out", rows_path.clone()),
-        ],
-        std::slice::from_ref(&a.config),
-    )?;
-    facetlab::io::check_writable(&dir)?;
-    let config_bytes = facetlab::io::read_bytes(&a.config)?;
-    let mine = shard.indices(grid.len());
-    let mut record = ShardRecord {
-        format: 1,
-        config: a.config.display().to_string(),
-        name: config.name.clone(),
-        family: config.family.name.to_string(),
-        config_hash: opt::config_hash(&config_bytes),
-        axes: grid
-            .axes
-            .iter()
-            .map(|x| AxisRecord {
-                key: x.key.clone(),
-                label: x.label(),
-                values: x.values.clone(),
-            })
-            .collect(),
-        grid_size: grid.len(),
-        n: shard.n,
-        k: shard.k,
-        rule: format!("index mod {} == {}", shard.n, shard.k - 1),
-        points: mine.len(),
-        done: 0,
-        complete: false,
-        resumed: 0,
-        computed: 0,
-        indices_done: Vec::new(),
-    };
-    let shown = dir.display();
-    // What an earlier run of this shard left: it must be the same sweep and shard.
-    let mut done = std::collections::BTreeSet::new();
-    if record_path.exists() {
-        let old: ShardRecord = serde_json::from_slice(&facetlab::io::read_bytes(&record_path)?)
-            .map_err(|e| Error::invalid("--out", format!("{}: {e}", record_path.display())))?;
-        if !old.same_sweep(&record) || old.k != record.k {
-            return Err(Error::invalid(
-                "--out",
-                format!("{shown} holds shard {}/{} of another sweep (config hash {}, axes or shard count differ); choose another folder", old.k, old.n, old.config_hash),
-            ));
-        }
-        if rows_path.exists() {
-            let text = String::from_utf8_lossy(&facetlab::io::read_bytes(&rows_path)?).to_string();
-            let (cells, good) = opt::read_rows(&text, grid)
-                .map_err(|e| Error::invalid("--out", format!("{}: {e}", rows_path.display())))?;
-            for c in cells {
-                if !shard.owns(c.index) || !done.insert(c.index) {
-                    return Err(Error::invalid(
-                        "--out",
-                        format!(
-                            "{}: grid point {} is not shard {}/{}'s or is there twice",
-                            rows_path.display(),
-                            c.index,
-                            shard.k,
-                            shard.n
-                        ),
-                    ));
-                }
-            }
-            if good < text.len() {
-                // A line cut short by an interruption: drop it before appending.
-                let f = std::fs::OpenOptions::new()
-                    .write(true)
-                    .open(&rows_path)
-                    .map_err(|e| Error::io(rows_path.display().to_string(), e))?;
-                f.set_len(good as u64)
-                    .map_err(|e| Error::io(rows_path.display().to_string(), e))?;
-            }
-        }
-    } else if rows_path.exists() {
-        return Err(Error::invalid(
-            "--out",
-            format!(
-                "{} exists without shard.json; choose another folder",
-                rows_path.display()
-            ),
-        ));
-    }
-    std::fs::create_dir_all(&dir).map_err(|e| Error::io(shown.to_string(), e))?;
-    record.resumed = done.len();
-    record.done = done.len();
-    record.indices_done = done.iter().copied().collect();
-    record.complete = record.done == record.points;
-    let write_record = |r: &ShardRecord| -> Result<()> {
-        let text =
-            serde_json::to_string_pretty(r).map_err(|e| Error::invalid("--out", e.to_string()))?;
-        facetlab::io::write_atomic(&record_path, (text + "\n").as_bytes())
-    };
-    write_record(&record)?;
-    println!(
-        "shard {}/{} (from {from}): {} of {} grid points ({}); resumed: {} of {} done",
-        shard.k,
-        shard.n,
-        mine.len(),
-        grid.len(),
-        record.rule,
-        record.resumed,
-        record.points
-    );
-    let todo: Vec<usize> = mine.into_iter().filter(|i| !done.contains(i)).collect();
-    let mut file = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(&rows_path)
-        .map_err(|e| Error::io(rows_path.display().to_string(), e))?;
-    if file
-        .metadata()
-        .map_err(|e| Error::io(rows_path.display().to_string(), e))?
-        .len()
-        == 0
-    {
-        use std::io::Write;
-        file.write_all(opt::rows_header(grid).as_bytes())
-            .map_err(|e| Error::io(rows_path.display().to_string(), e))?;
-    }
-    let file = std::sync::Mutex::new(file);
-    let failed: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
-    let (evaluator, _) = make(config);
-    STOP.store(false, Ordering::SeqCst);
-    install_ctrl_c();
-    let pb = bar(
-        todo.len() as u64,
-        a.quiet,
-        "{spinner} {elapsed_precise} [{bar:20}] {pos}/{len} cuts  {per_sec}  eta {eta}",
-    );
-    let cells = opt::evaluate_grid(config, evaluator.as_ref(), grid, &todo, Some(&STOP), &|c| {
-        use std::io::Write;
-        // One write per row: a row is in the file whole or (after a hard kill) cut short
-        // at the end, where a resume drops it.
-        let row = opt::shard_row(c);
-        let mut f = file.lock().unwrap_or_else(|p| p.into_inner());
-        if let Err(e) = f.write_all(row.as_bytes()) {
-            *failed.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
-            STOP.store(true, Ordering::SeqCst);
-        }
-        pb.inc(1);
-    });
-    pb.finish_and_clear();
-    if let Some(e) = failed.into_inner().unwrap_or_else(|p| p.into_inner()) {
-        return Err(Error::io(rows_path.display().to_string(), e));
-    }
-    done.extend(cells.iter().map(|c| c.index));
-    record.computed = cells.len();
-    record.done = done.len();
-    record.indices_done = done.iter().copied().collect();
-    record.complete = record.done == record.points;
-    write_record(&record)?;
-    println!(
-        "computed {}; {} of {} done; wrote {}/ (shard.json, rows.csv)",
-        record.computed,
-        record.done,
-        record.points,
-        dir.display()
-    );
-    if !record.complete {
-        eprintln!(
-            "facetlab: interrupted; {} of {} points of shard {}/{} are written; run the same command again to resume (exit code 130)",
-            record.done, record.points, shard.k, shard.n
-        );
-        return Ok(Exit::Interrupted);
-    }
-    Ok(Exit::Ok)
-}
-
 #[cfg(test)]
 mod tests {
+    use super::sweep::{map_title, run_sweep_env};
     use super::*;
     use facetlab::cut::Cut;
     use facetlab::optimize::ScoreSet;
+    use facetlab::optimize::{Axis, Grid, SweepScore};
 
     fn bump(cut: &Cut) -> Result<ScoreSet> {
         let (c, p) = (cut.params["crown_angle"], cut.params["pavilion_angle"]);

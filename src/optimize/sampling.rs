@@ -1,4 +1,5 @@
-//! Seeded space-filling designs in the unit box: where multi-start Nelder–Mead starts.
+//! Seeded space-filling samples of the unit box (Latin hypercubes, Halton sets): where
+//! multi-start Nelder–Mead starts.
 //!
 //! Both return `n` points in `[0, 1]^d`, the same for the same seed on every machine
 //! (`rand`'s `StdRng`, ChaCha12, is portable).

@@ -1,16 +1,17 @@
-//! Verification of the winners by an independent Monte Carlo photon tracer.
+//! The interface of a check by an independent Monte Carlo photon tracer, as the optimizer
+//! runs it on its winners.
 //!
 //! A [`Verifier`] re-scores a cut with photons and returns named rows ([`VerifyReport`], made
-//! by [`crate::verify::photon_report`] for the real verifier): a Monte Carlo value with
+//! by [`photon_report`](super::photon_report) for the real verifier): a Monte Carlo value with
 //! its standard error and, where the same quantity is known from the beam tracer, the beam
 //! value. The thesis's metrics (top-45° and top-90° face shares under overhead and off-centre
 //! undirected light, and under the directed light rotated 0–180°) have no beam value; the
 //! Monte Carlo brilliance under the beam tracer's lighting does, and any row whose Monte Carlo
 //! value is more than `sigma` (default 4) standard errors from its beam value is flagged.
 
+use super::VerifyReport;
 use crate::cut::Cut;
 use crate::error::Result;
-use crate::verify::VerifyReport;
 use serde::Serialize;
 
 /// Re-scores a cut with photons. `seed` fixes every random number; the same seed gives the same

@@ -1,0 +1,296 @@
+//! A cutter's facet diagram as SVG, in the manner of a GemCad printout: a plot of the cut.
+//!
+//! One page with four parts, all views orthographic and drawn at one scale:
+//! - face up (crown, seen from above): every upward facet outlined and tinted by tier, the
+//!   outline drawn heavier, one label per tier;
+//! - face down (pavilion, seen from below, so left and right are mirrored);
+//! - side view (seen from the front, −y): the facets facing the viewer, the silhouette, the
+//!   girdle plane, crown and pavilion angles, and dimension lines for the table width, crown
+//!   height, pavilion depth and total depth;
+//! - a text block with the proportions, each tier's angle and facet count, and the cutting
+//!   instructions ([`crate::io::asc::cutting_instructions`]: each tier in cutting order,
+//!   pavilion first, with its angle at 0.01° and its indices on the design's gear).
+//!
+//! The SVG is written by hand (no drawing library) and every name is escaped, so the output is
+//! well-formed XML.
+//!
+//! The rooms: `mod.rs` lays out the page ([`diagram`]); `svg.rs` holds the SVG primitives
+//! (escaping, number formats, a view's map to page pixels, text and lines); `views.rs` draws
+//! one view's facets, outline and tier labels; `side.rs` the side view's dimension lines and
+//! angles; `text_block.rs` the proportions, tiers and cutting instructions.
+
+mod side;
+mod svg;
+mod text_block;
+mod views;
+
+use crate::cut::Cut;
+use crate::geometry::DVec2;
+use side::side_annotations;
+use std::fmt::Write as _;
+use svg::{esc, text, View, DIM, INK};
+use text_block::text_block;
+use views::facet_view;
+
+const WIDTH: f64 = 1000.0;
+const FONT: &str = "DejaVu Sans, Helvetica, Arial, sans-serif";
+
+/// The facet diagram of a cut as a standalone SVG document.
+pub fn diagram(cut: &Cut) -> String {
+    let solid = &cut.solid;
+    let props = cut.proportions();
+    let summary = cut.tiers();
+    let mut tiers: Vec<String> = Vec::new();
+    for t in &summary {
+        if !tiers.contains(&t.name) {
+            tiers.push(t.name.clone());
+        }
+    }
+    let (lo, hi) = solid.bounding_box();
+    let (ex, ey, ez) = (
+        (hi.x - lo.x).max(1e-9),
+        (hi.y - lo.y).max(1e-9),
+        (hi.z - lo.z).max(1e-9),
+    );
+    let scale = (250.0 / ex.max(ey)).min(440.0 / ex).min(230.0 / ez);
+    let mid = 0.5 * (lo + hi);
+
+    // Layout.
+    let top = 78.0;
+    let up = View {
+        centre: DVec2::new(190.0, top + 170.0),
+        origin: mid.truncate(),
+        scale,
+    };
+    let down = View {
+        centre: DVec2::new(530.0, top + 170.0),
+        origin: DVec2::new(-mid.x, mid.y),
+        scale,
+    };
+    let side_top = top + 330.0;
+    let side = View {
+        centre: DVec2::new(360.0, side_top + 78.0 + scale * (hi.z - lo.z) / 2.0),
+        origin: DVec2::new(mid.x, mid.z),
+        scale,
+    };
+    let side_bottom = side_top + 78.0 + scale * ez;
+
+    let mut body = String::new();
+    let out = &mut body;
+
+    // Title.
+    text(
+        out,
+        DVec2::new(30.0, 38.0),
+        22.0,
+        "start",
+        r#" font-weight="bold""#,
+        &cut.name,
+    );
+    let mut sub = match &cut.family {
+        Some(f) => format!("{f} · "),
+        None => String::new(),
+    };
+    sub += &format!(
+        "{} facets · lengths in girdle diameters",
+        solid.facets().len()
+    );
+    text(
+        out,
+        DVec2::new(30.0, 60.0),
+        13.0,
+        "start",
+        r##" fill="#555""##,
+        &sub,
+    );
+
+    // Face-up and face-down views.
+    text(
+        out,
+        DVec2::new(up.centre.x, top + 12.0),
+        13.0,
+        "middle",
+        r#" font-weight="bold""#,
+        "Crown — face up",
+    );
+    facet_view(
+        out,
+        solid,
+        &tiers,
+        up,
+        |n| n.z > 1e-9,
+        |p| p.truncate(),
+        true,
+    );
+    text(
+        out,
+        DVec2::new(down.centre.x, top + 12.0),
+        13.0,
+        "middle",
+        r#" font-weight="bold""#,
+        "Pavilion — face down",
+    );
+    facet_view(
+        out,
+        solid,
+        &tiers,
+        down,
+        |n| n.z < -1e-9,
+        |p| DVec2::new(-p.x, p.y),
+        true,
+    );
+    text(
+        out,
+        DVec2::new(down.centre.x, top + 28.0),
+        11.0,
+        "middle",
+        r##" fill="#555""##,
+        "seen from below (mirrored)",
+    );
+
+    // Side view.
+    text(
+        out,
+        DVec2::new(side.centre.x, side_top + 12.0),
+        13.0,
+        "middle",
+        r#" font-weight="bold""#,
+        "Side view",
+    );
+    text(
+        out,
+        DVec2::new(side.centre.x, side_top + 28.0),
+        11.0,
+        "middle",
+        r##" fill="#555""##,
+        "seen from the front",
+    );
+    facet_view(
+        out,
+        solid,
+        &tiers,
+        side,
+        |n| n.y < -1e-9,
+        |p| DVec2::new(p.x, p.z),
+        false,
+    );
+    side_annotations(out, solid, &props, side, lo, hi);
+
+    // Text block.
+    let text_bottom = text_block(out, cut, &props, &summary, &tiers, top);
+    let height = (side_bottom.max(text_bottom) + 30.0).ceil();
+
+    let mut doc = String::new();
+    let _ = writeln!(doc, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
+    let _ = writeln!(
+        doc,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" font-family="{FONT}" fill="{INK}">"#
+    );
+    let _ = writeln!(doc, "<title>{} facet diagram</title>", esc(&cut.name));
+    let _ = writeln!(
+        doc,
+        r#"<defs><marker id="arrow" viewBox="0 0 10 10" refX="9" refY="5" markerWidth="7" markerHeight="7" orient="auto-start-reverse"><path d="M0,1 L10,5 L0,9 z" fill="{DIM}"/></marker></defs>"#
+    );
+    let _ = writeln!(doc, r##"<rect width="100%" height="100%" fill="#fff"/>"##);
+    doc.push_str(&body);
+    doc.push_str("</svg>\n");
+    doc
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Element names open and closed in order; self-closing tags, the XML declaration and
+    /// comments skipped. Returns an error at the first mismatch.
+    fn check_balanced(svg: &str) -> std::result::Result<usize, String> {
+        let mut stack: Vec<String> = Vec::new();
+        let mut count = 0;
+        let mut rest = svg;
+        while let Some(i) = rest.find('<') {
+            rest = &rest[i..];
+            let end = rest.find('>').ok_or("unclosed tag")?;
+            let tag = &rest[1..end];
+            rest = &rest[end + 1..];
+            if tag.starts_with('?') || tag.starts_with('!') {
+                continue;
+            }
+            if tag.contains('<') {
+                return Err(format!("`<` inside tag {tag}"));
+            }
+            if let Some(name) = tag.strip_prefix('/') {
+                let open = stack.pop().ok_or(format!("stray </{name}>"))?;
+                if open != name.trim() {
+                    return Err(format!("<{open}> closed by </{name}>"));
+                }
+            } else if !tag.ends_with('/') {
+                stack.push(tag.split_whitespace().next().unwrap_or("").to_string());
+                count += 1;
+            } else {
+                count += 1;
+            }
+        }
+        if !stack.is_empty() {
+            return Err(format!("unclosed {stack:?}"));
+        }
+        // Text outside tags must not hold a bare `&` that is not an entity.
+        for (i, _) in svg.match_indices('&') {
+            let ent = &svg[i..svg.len().min(i + 7)];
+            if !["&amp;", "&lt;", "&gt;", "&quot;", "&apos;"]
+                .iter()
+                .any(|e| ent.starts_with(e))
+            {
+                return Err(format!("bare & at {i}"));
+            }
+        }
+        Ok(count)
+    }
+
+    #[test]
+    fn round_brilliant_diagram_is_well_formed_and_complete() {
+        let cut =
+            Cut::from_family("GIA <ideal> & co", "round-brilliant", &Default::default()).unwrap();
+        let svg = diagram(&cut);
+        assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"));
+        let elements = check_balanced(&svg).unwrap();
+        assert!(elements > cut.solid.facets().len(), "{elements}");
+        for t in cut.tiers() {
+            assert!(
+                svg.contains(&format!(">{}</text>", t.name)),
+                "tier {} missing",
+                t.name
+            );
+        }
+        assert!(svg.contains("GIA &lt;ideal&gt; &amp; co"));
+        // Proportions in the text block and on the side view.
+        let p = cut.proportions();
+        assert!(svg.contains(&format!("{:.2}°", p.crown_angle)));
+        // The cutting instructions: tiers in cutting order with their indices on gear 96.
+        assert!(svg.contains("Cutting order (gear 96)") && svg.contains(">PAVILION<"));
+        assert!(
+            svg.contains(">24-36-48-60-72-84-96-12<"),
+            "bezel/main indices"
+        );
+        assert!(svg.contains(&format!("crown height {:.1}%", 100.0 * p.crown_height)));
+        assert!(svg.contains(&format!("table {:.1}%", 100.0 * p.table)));
+        // One polygon per facet shown in each view: crown (33) + pavilion (24) + front half.
+        assert!(svg.matches("<polygon").count() > 33 + 24 + 3);
+    }
+
+    #[test]
+    fn imported_mesh_diagram_is_well_formed() {
+        let rb = Cut::from_family("rb", "round-brilliant", &Default::default()).unwrap();
+        let planes =
+            crate::io::mesh::read_obj(crate::io::mesh::write_obj(&rb).as_bytes(), "x.obj").unwrap();
+        let cut = Cut::from_planes("imported \"stone\"", &planes).unwrap();
+        let svg = diagram(&cut);
+        check_balanced(&svg).unwrap();
+        for t in ["table", "girdle"] {
+            assert!(svg.contains(&format!(">{t}</text>")), "{t}");
+        }
+        for t in &cut.tiers() {
+            assert!(svg.contains(&format!(">{}</text>", t.name)), "{}", t.name);
+        }
+        assert!(svg.contains("imported &quot;stone&quot;"));
+    }
+}

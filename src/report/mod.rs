@@ -1,0 +1,98 @@
+//! One-page cut reports: a self-contained HTML page (pictures embedded, no network) per cut or
+//! comparing cuts side by side — what a cutter sends a client.
+//!
+//! For each cut: face-up pictures under ISO light, in ASET false colour and under the spot
+//! lights for fire ([`crate::render`]), the facet diagram ([`crate::plot::diagram`]), the
+//! proportions with the grade estimate for round brilliants ([`crate::cut::grade`]), every
+//! score with one line on what it means ([`crate::metrics`]), and, when asked, the photon
+//! tracer's check of the beam tracer's numbers ([`crate::verify`]).
+//!
+//! The rooms: `mod.rs` measures a cut for a report ([`measure`]: scores, pictures, checks);
+//! `page.rs` writes the page ([`html`]); `run.rs` makes an optimizer run's `report.html` from
+//! what the run returned ([`run_page`], the [`RunPage`](crate::optimize::RunPage) the binary
+//! hands to a run). The report sits on top of the library: it may import every floor below it
+//! (the optimizer, the plots and everything under them); nothing in the library imports it.
+
+mod page;
+mod run;
+
+pub use page::{base64, escape, html, SCORE_LINES};
+pub use run::run_page;
+
+use crate::cut::Cut;
+use crate::error::Result;
+use crate::metrics::{score, ScoreConfig, Scores};
+use crate::render::{render, Image, Light, RenderOptions};
+use crate::verify::{verify_scores, Check};
+
+/// What a report shows and how it is made.
+#[derive(Clone, Debug)]
+pub struct ReportOptions {
+    /// Scoring settings (material, lighting, poses).
+    pub score: ScoreConfig,
+    /// Pixels per side of the pictures.
+    pub size: usize,
+    /// Photons for the photon tracer's check; 0 = no check.
+    pub verify_photons: u64,
+    /// Seed of the check.
+    pub seed: u64,
+    /// Standard errors beyond which a check is flagged.
+    pub sigma: f64,
+    /// Title of the page.
+    pub title: String,
+}
+
+impl Default for ReportOptions {
+    fn default() -> Self {
+        ReportOptions {
+            score: ScoreConfig::default(),
+            size: 320,
+            verify_photons: 0,
+            seed: 1,
+            sigma: 4.0,
+            title: "facetlab cut report".into(),
+        }
+    }
+}
+
+/// Everything a report shows of one cut.
+#[derive(Clone, Debug)]
+pub struct CutReport {
+    /// The cut's label on the page.
+    pub label: String,
+    /// The cut.
+    pub cut: Cut,
+    /// Its scores.
+    pub scores: Scores,
+    /// The photon tracer's checks (empty without a check).
+    pub checks: Vec<Check>,
+    /// Its pictures: ISO, ASET, fire.
+    pub pictures: Vec<(Light, Image)>,
+}
+
+/// Score, draw and (optionally) verify `cut` for a report.
+pub fn measure(label: &str, cut: &Cut, o: &ReportOptions) -> Result<CutReport> {
+    let scores = score(&cut.solid, &o.score);
+    let checks = if o.verify_photons > 0 {
+        verify_scores(&cut.solid, &o.score, &scores, o.verify_photons, o.seed)?
+    } else {
+        Vec::new()
+    };
+    let pictures = [Light::Iso, Light::Aset, Light::Fire]
+        .into_iter()
+        .map(|light| {
+            let mut r = RenderOptions::new(light);
+            r.size = o.size;
+            r.material = o.score.material.clone();
+            r.polarization = o.score.polarization;
+            (light, render(&cut.solid, &r))
+        })
+        .collect();
+    Ok(CutReport {
+        label: label.to_string(),
+        cut: cut.clone(),
+        scores,
+        checks,
+        pictures,
+    })
+}
