@@ -44,6 +44,13 @@ pub struct InfoArgs {
     /// design's gear (96 for generated cuts) and its note, pavilion first, then crown.
     #[arg(long)]
     pub instructions: bool,
+    /// Also list the design's meets: points where four or more facets meet within
+    /// `--meet-tol` of W, with the tiers they join and how far the file's planes miss the point.
+    #[arg(long)]
+    pub meets: bool,
+    /// Tolerance of `--meets`, in widths W.
+    #[arg(long, value_name = "W", default_value_t = facetlab::design::MEET_TOL)]
+    pub meet_tol: f64,
     /// Material, for the carat weight: a name from `facetlab materials` or ri:N[:BG]; default
     /// the design's own (a GemCad file's `I` index), else diamond.
     #[arg(long)]
@@ -157,6 +164,10 @@ pub struct InfoJson {
     /// `steps[]` with `step`, `side`, `tier`, `angle`, `indices`, `note`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub instructions: Option<facetlab::io::asc::CuttingInstructions>,
+    /// The design's meets (with `--meets`): `tiers`, `facets`, `point` [x, y, z] in W, `off`
+    /// (how far the farthest of its planes passes from the point, in W).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meets: Option<Vec<MeetJson>>,
     /// What a GemCad design file says about itself: `ri`, `title`, `footnotes`, `gear`,
     /// `gear_offset`, `symmetry`, `mirror`, `instructions` (by facet name), `scale` (file
     /// units per girdle width); absent for generated cuts.
@@ -257,6 +268,7 @@ pub fn info_json(cut: &Cut, diameter_mm: f64, material: &Material) -> InfoJson {
         grade: facetlab::cut::grade::estimate(cut),
         design: cut.record.clone(),
         instructions: None,
+        meets: None,
     }
 }
 
@@ -294,6 +306,18 @@ pub fn info(a: &InfoArgs) -> Result<()> {
     if a.instructions {
         j.instructions = Some(io::asc::cutting_instructions(&cut, 0));
     }
+    if a.meets {
+        if !(a.meet_tol.is_finite() && a.meet_tol > 0.0 && a.meet_tol <= 0.01) {
+            return Err(Error::invalid(
+                "--meet-tol",
+                format!(
+                    "{} is not allowed; give a tolerance in (0, 0.01] of W",
+                    a.meet_tol
+                ),
+            ));
+        }
+        j.meets = Some(meets_json(&cut, a.meet_tol)?);
+    }
     if a.json {
         let text = serde_json::to_string_pretty(&j)
             .map_err(|e| Error::invalid("--json", e.to_string()))?;
@@ -304,7 +328,65 @@ pub fn info(a: &InfoArgs) -> Result<()> {
     if let Some(c) = &j.instructions {
         print!("\n{}", c.text());
     }
+    if let Some(m) = &j.meets {
+        print!("\n{}", meets_text(m, a.meet_tol));
+    }
     Ok(())
+}
+
+/// One meet of `info --meets`.
+#[derive(Debug, Serialize)]
+pub struct MeetJson {
+    /// The tiers it joins (GemCad line names), each once.
+    pub tiers: Vec<String>,
+    /// The facets through it.
+    pub facets: Vec<String>,
+    /// The point, in W.
+    pub point: [f64; 3],
+    /// How far the farthest of its planes passes from the point, in W.
+    pub off: f64,
+}
+
+fn meets_json(cut: &Cut, tol: f64) -> Result<Vec<MeetJson>> {
+    let model = facetlab::design::TierModel::of_cut(cut, tol)?;
+    Ok(model
+        .meets
+        .iter()
+        .map(|m| MeetJson {
+            tiers: model.meet_tiers(m).iter().map(|t| t.to_string()).collect(),
+            facets: m
+                .facets
+                .iter()
+                .map(|&f| cut.solid.facets()[f].name.clone())
+                .collect(),
+            point: m.point.to_array(),
+            off: m.gap,
+        })
+        .collect())
+}
+
+fn meets_text(meets: &[MeetJson], tol: f64) -> String {
+    use std::fmt::Write;
+    let worst = meets.iter().map(|m| m.off).fold(0.0, f64::max);
+    let mut o = format!(
+        "Meets ({} where four or more facets pass within {tol:e} W of one point; farthest plane {worst:.1e} W)\n",
+        meets.len()
+    );
+    let _ = writeln!(
+        o,
+        "  {:<36} {:>8} {:>8} {:>8}  {:>8}",
+        "tiers (facets)", "x", "y", "z", "off"
+    );
+    for m in meets {
+        let tiers = format!("{} ({})", m.tiers.join(" "), m.facets.len());
+        let [x, y, z] = m.point;
+        let _ = writeln!(
+            o,
+            "  {tiers:<36} {x:>8.4} {y:>8.4} {z:>8.4}  {:>8.1e}",
+            m.off
+        );
+    }
+    o
 }
 
 /// Human-readable `info`.

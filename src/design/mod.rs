@@ -31,4 +31,6 @@ pub mod meets;
 pub mod reangle;
 mod tiers;
 
+pub use meets::{find_meets, Meet};
+pub use reangle::{TierModel, MEET_TOL};
 pub use tiers::{fixed, tiers, token, Gear, Tier, TierFacet, ANGLE_DECIMALS, DEPTH_DECIMALS};

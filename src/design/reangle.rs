@@ -65,6 +65,25 @@ impl TierModel {
     }
 }
 
+/// The tolerance (of W) within which four or more facet planes through one point make a meet
+/// by default: 1e-4 W (0.65 µm on a 6.5 mm stone), above the rounding of files that write
+/// depths to five decimals and far below anything a cutter can see.
+pub const MEET_TOL: f64 = 1e-4;
+
+impl TierModel {
+    /// The names of the tiers a meet joins, each once, in the order of its facets.
+    pub fn meet_tiers(&self, meet: &Meet) -> Vec<&str> {
+        let mut out: Vec<&str> = Vec::new();
+        for &f in &meet.facets {
+            let name = self.names[self.tier_of[f]].as_str();
+            if !out.contains(&name) {
+                out.push(name);
+            }
+        }
+        out
+    }
+}
+
 /// A facet is on the girdle when its normal is this close to horizontal.
 const GIRDLE_Z: f64 = 1e-9;
 
