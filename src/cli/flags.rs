@@ -76,7 +76,7 @@ pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
 /// The material each cut is traced in, and a line (for stderr) per cut traced in its design's
 /// material. When the user chose a material (`chosen`), every cut gets `default`; otherwise a
 /// design read from a file with an index (GemCad's `I` line) is traced in the material of that
-/// index ([`facetlab::optics::design_material`]: the listed stone within ±0.005, else `ri:N`),
+/// index ([`Material::for_index`]: the listed stone within ±0.005, else `ri:N`),
 /// and any other cut in `default`.
 pub fn design_materials(
     cuts: &[facetlab::cut::Cut],
@@ -90,13 +90,13 @@ pub fn design_materials(
             let own = (!chosen)
                 .then(|| c.design_ri())
                 .flatten()
-                .and_then(|n| facetlab::optics::design_material(n).map(|m| (n, m)));
+                .and_then(|n| Material::for_index(n).map(|m| (n, m)));
             match own {
                 Some((n, m)) => {
                     notes.push(format!(
                         "{}: {}; --material or --ri overrides",
                         c.name,
-                        facetlab::optics::design_material_note(n, &m)
+                        m.for_index_note(n)
                     ));
                     m
                 }

@@ -19,6 +19,7 @@
 //! setting's current values as Rust constants to paste over the ones below.
 
 use super::*;
+use crate::optics::Material;
 use crate::testkit::tolkowsky;
 
 /// Tolerance of every pinned score.

@@ -3,7 +3,10 @@
 //! angle is smooth.
 
 use super::*;
-use crate::geometry::FacetPlane;
+use crate::beam::TraceOptions;
+use crate::geometry::{FacetPlane, Polyhedron};
+use glam::{DMat3, DVec3};
+use rayon::prelude::*;
 use std::collections::BTreeMap;
 
 fn ags() -> crate::cut::Cut {

@@ -1,19 +1,26 @@
 //! Optics shared by both tracers, as pure functions: materials with Sellmeier dispersion,
 //! Fresnel amplitudes and reflectances, total internal reflection with its s–p phase, Mueller
-//! matrices and Stokes vectors, and colour (CIE 1931, D65, sRGB).
+//! matrices and Stokes vectors, absorption inside the stone, and colour (CIE 1931, D65, sRGB).
+//!
+//! Materials: `material.rs` holds the index model (dispersion formulas, [`Material`]),
+//! `table.rs` the named stones with their coefficients and citations, `choose.rs` the ways to
+//! pick one (by name, by flag, by a cut's index: [`Material::for_index`]). Absorption
+//! ([`Absorption`], `absorption.rs`) is where body colour lands.
 //!
 //! Polarization convention: a Stokes vector `(I, Q, U, V)` is given in a frame whose reference
 //! axis `e_s` is a unit vector perpendicular to the propagation direction; `Q = I_s − I_p`
 //! with `p = d × e_s`. At an interface the natural frame has `e_s` perpendicular to the plane of
 //! incidence, and there the Mueller matrices have the block form of [`Mueller`].
 
+mod absorption;
+mod choose;
 pub mod color;
-mod design;
 mod fresnel;
 mod material;
 mod polarization;
+mod table;
 
-pub use design::{design_material, design_material_note, DESIGN_INDEX_TOL};
+pub use absorption::{Absorption, THESIS_ABSORPTION};
 pub use fresnel::{critical_angle, fresnel, reflect, refract, Complex, Interface};
 pub use material::{Dispersion, Material, MaterialFields};
 pub use polarization::{rotate_stokes, s_axis, Mueller, Stokes};

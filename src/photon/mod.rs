@@ -46,6 +46,7 @@ mod tally;
 #[cfg(test)]
 mod tests;
 
+pub use crate::optics::{Absorption, THESIS_ABSORPTION};
 pub use solid::{face_category, TraceSolid};
 pub use tally::{share, Counts, Fate, PhotonPath, Tally, CATEGORY_KEYS, CATEGORY_LABELS};
 
@@ -203,23 +204,6 @@ impl Light {
         Ok(())
     }
 }
-
-/// Absorption inside the stone.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Absorption {
-    /// None (a clear stone).
-    None,
-    /// The thesis's flat roulette: before each surface interaction from inside the stone a
-    /// photon is absorbed with probability 0.1.
-    Thesis,
-    /// Beer–Lambert with this attenuation coefficient per girdle diameter of path: a photon
-    /// survives a path of length L with probability exp(−k·L).
-    Beer(f64),
-}
-
-/// Probability of absorption per internal segment in [`Absorption::Thesis`].
-pub const THESIS_ABSORPTION: f64 = 0.1;
 
 /// How each photon's wavelength is chosen.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]

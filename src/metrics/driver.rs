@@ -1,0 +1,327 @@
+//! The score driver: [`score`] gathers the distinct traces every score needs (one per pose and
+//! index, shared), runs them on the rayon pool longest first ([`par_in_order`]) and combines
+//! the results in a fixed order into [`Scores`].
+
+use super::config::ScoreConfig;
+use super::fire::{fire_placements, turned, FireLattice};
+use super::scintillation::{scintillation_of, scintillation_turns};
+use super::scores::{Aset, PoseScore, Scores};
+use super::sink::{run_job, Job, PoseResult};
+use super::symmetry::{symmetric_pose, symmetric_pose_map};
+use crate::beam::{Frame, Stone};
+use crate::geometry::{canonical, Polyhedron};
+use crate::optics::{color, Dispersion};
+use crate::render::lighting::Lighting;
+use crate::render::raster::Raster;
+use crate::render::{fire_of, Tilt};
+use glam::{DMat3, DVec3};
+use rayon::prelude::*;
+
+/// Score `solid` (see the [module documentation](super)). The configuration should have
+/// passed [`ScoreConfig::validate`]; out-of-range values are not checked here but never panic.
+/// Poses and wavelengths are traced in parallel with rayon and combined in a fixed order, so
+/// the result does not depend on the number of threads.
+pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
+    score_with_faint(solid, cfg, color::FAINT_BAND)
+}
+
+/// [`score`], with fire's bands whose colour weight is below `faint` of the white's merged
+/// into a neighbour ([`color::traced_bands`]; 0 traces every band).
+pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64) -> Scores {
+    let solid = &canonical::canonical(solid);
+    let stone = Stone::new(solid);
+    let light = Lighting::new(cfg.head_shadow_deg, &cfg.spots);
+    let placements = fire_placements(cfg);
+    let turns = scintillation_turns(cfg);
+    let mut lightings: Vec<Lighting> = placements
+        .iter()
+        .map(|p| Lighting::new(cfg.head_shadow_deg, &p.spots))
+        .collect();
+    let first_turn = lightings.len();
+    lightings.extend(
+        turns
+            .iter()
+            .map(|&t| Lighting::new(cfg.head_shadow_deg, &turned(&cfg.spots, t, 0.0))),
+    );
+    let half = crate::render::picture_half(solid);
+    let ri0 = cfg.material.ri(cfg.wavelength_nm);
+    // Fire's bands: the faint ones (far out in the red) take a neighbour's trace.
+    let bands = color::traced_bands(cfg.bands.max(1), faint);
+    // Distinct traces, each shared by every score that needs it (same pose, same index).
+    let mut jobs: Vec<Job> = Vec::new();
+    #[derive(Clone, Copy)]
+    enum Use {
+        FaceUp,
+        Brilliance,
+        /// An image under lighting `l`, of the pose the job traces or, mapped by a symmetry
+        /// of the stone, of another ([`Job::views`]).
+        Image(usize, Option<DMat3>),
+    }
+    let index = |tilt: Tilt, ri: f64, what: Use, split: f64, jobs: &mut Vec<Job>| -> usize {
+        // Every face-up pose is the same trace, whatever azimuth it names.
+        let tilt = if tilt.tilt_deg == 0.0 {
+            Tilt::FACE_UP
+        } else {
+            tilt
+        };
+        let split = if tilt != Tilt::FACE_UP {
+            split
+        } else if ri.to_bits() == ri0.to_bits() {
+            split
+                .min(cfg.fire_split_threshold)
+                .min(cfg.face_up_split_threshold)
+        } else {
+            split.min(cfg.fire_split_threshold)
+        };
+        let same = |j: &Job| j.tilt == tilt && j.ri.to_bits() == ri.to_bits() && j.split == split;
+        let k = match jobs.iter().position(same) {
+            Some(k) => k,
+            None => {
+                jobs.push(Job {
+                    tilt,
+                    ri,
+                    images: Vec::new(),
+                    views: Vec::new(),
+                    brilliance: false,
+                    face_up: false,
+                    split,
+                });
+                jobs.len() - 1
+            }
+        };
+        match what {
+            Use::FaceUp => jobs[k].face_up = true,
+            Use::Brilliance => jobs[k].brilliance = true,
+            Use::Image(l, view) => {
+                if !jobs[k].images.contains(&l) {
+                    jobs[k].images.push(l);
+                    jobs[k].views.push(view);
+                }
+            }
+        }
+        k
+    };
+    let split = cfg.trace.split_threshold;
+    // The face-up figures (overhead light return, ASET) are the cross-checked ones: the
+    // face-up trace at the reference wavelength splits down to `face_up_split_threshold`
+    // (cheap: a face-up stone traces one symmetry wedge), the other face-up traces (fire's
+    // bands) to `fire_split_threshold`.
+    let face_up = index(
+        Tilt::FACE_UP,
+        ri0,
+        Use::FaceUp,
+        cfg.fire_split_threshold,
+        &mut jobs,
+    );
+    // Brilliance sees no spot light: a pose and its image under one of the stone's
+    // symmetries return the same light, so they share one trace.
+    let symmetry = stone.symmetry();
+    let brill: Vec<usize> = cfg
+        .tilts
+        .iter()
+        .map(|t| {
+            let t = symmetric_pose(*t, symmetry);
+            index(t, ri0, Use::Brilliance, split, &mut jobs)
+        })
+        .collect();
+    let constant = matches!(cfg.material.dispersion, Dispersion::Constant(_));
+    let fire: Vec<usize> = bands
+        .iter()
+        .filter(|_| cfg.parts.fire)
+        .map(|&(l, _)| {
+            let ri = if constant { ri0 } else { cfg.material.ri(l) };
+            let mut k = 0;
+            for p in 0..placements.len() {
+                k = index(
+                    Tilt::FACE_UP,
+                    ri,
+                    Use::Image(p, None),
+                    cfg.fire_split_threshold,
+                    &mut jobs,
+                );
+            }
+            k
+        })
+        .collect();
+    // Scintillation: per turn, the rocking sequence toward the turn's azimuth, under the spot
+    // lights turned with it. A pose that a symmetry of the stone maps onto another is that
+    // pose's trace seen through the symmetry (one trace for both).
+    let scint: Vec<Vec<(usize, usize)>> = turns
+        .iter()
+        .enumerate()
+        .filter(|_| cfg.parts.scintillation)
+        .map(|(j, &turn)| {
+            cfg.scintillation_tilts
+                .iter()
+                .map(|&t| {
+                    let tilt = Tilt {
+                        tilt_deg: t,
+                        azimuth_deg: turn,
+                    };
+                    let l = first_turn + j;
+                    let (rep, view) = symmetric_pose_map(tilt, symmetry);
+                    (index(rep, ri0, Use::Image(l, view), split, &mut jobs), l)
+                })
+                .collect()
+        })
+        .collect();
+    let lattice = FireLattice::new(&placements, &lightings[..first_turn]);
+    // The costliest traces first, so that the short ones fill in at the end: face-up ones
+    // (the finest splits), then the poses whose trace uses the fewest symmetries.
+    let copies: Vec<usize> = jobs
+        .iter()
+        .map(|j| stone.frame_symmetries(&Frame::viewer(j.tilt.rotation())))
+        .collect();
+    let mut order: Vec<usize> = (0..jobs.len()).collect();
+    order.sort_by(|&a, &b| {
+        let (x, y) = (&jobs[a], &jobs[b]);
+        (x.tilt != Tilt::FACE_UP)
+            .cmp(&(y.tilt != Tilt::FACE_UP))
+            .then(x.split.total_cmp(&y.split))
+            .then(copies[a].cmp(&copies[b]))
+            .then(y.images.len().cmp(&x.images.len()))
+    });
+    let results: Vec<PoseResult> = par_in_order(&order, |k| {
+        run_job(
+            &stone, solid, &jobs[k], &light, &lightings, &lattice, cfg, half,
+        )
+    });
+    let image = |k: usize, l: usize| -> Option<&Raster> {
+        let pos = jobs[k].images.iter().position(|&x| x == l)?;
+        results[k].images.get(pos)
+    };
+
+    let norm = |r: &PoseResult, x: f64| {
+        if r.power_in > 0.0 {
+            x / r.power_in
+        } else {
+            0.0
+        }
+    };
+    let fu = &results[face_up];
+    let n = brill.len().max(1) as f64;
+    let poses: Vec<PoseScore> = brill
+        .iter()
+        .zip(&cfg.tilts)
+        .map(|(&k, t)| PoseScore {
+            tilt_deg: t.tilt_deg,
+            azimuth_deg: t.azimuth_deg,
+            iso: norm(&results[k], results[k].iso),
+            cos: norm(&results[k], results[k].cos),
+        })
+        .collect();
+    let brilliance_iso = poses.iter().map(|p| p.iso).sum::<f64>() / n;
+    let brilliance_cos = poses.iter().map(|p| p.cos).sum::<f64>() / n;
+    let a = fu.aset;
+    let at: f64 = a.iter().sum();
+    let aset = if at > 0.0 {
+        Aset {
+            blue: a[0] / at,
+            red: a[1] / at,
+            green: a[2] / at,
+            leak: a[3] / at,
+        }
+    } else {
+        Aset::default()
+    };
+    let weights: Vec<DVec3> = bands.iter().map(|b| b.1).collect();
+    let outline = solid.projected_area(DVec3::Z);
+    // Each placement's fire in parallel, summed in placement order.
+    let per_placement: Vec<f64> = placements
+        .par_iter()
+        .enumerate()
+        .map(|(p, placement)| {
+            let images: Vec<&Raster> = fire.iter().filter_map(|&k| image(k, p)).collect();
+            placement.weight * fire_of(&images, &weights, outline)
+        })
+        .collect();
+    let fire_sum: f64 = per_placement.iter().sum();
+    let fire_w: f64 = placements.iter().map(|p| p.weight).sum();
+    let fire_value = if !cfg.parts.fire {
+        f64::NAN
+    } else if fire_w > 0.0 {
+        fire_sum / fire_w
+    } else {
+        0.0
+    };
+    let sequences: Vec<Vec<&Raster>> = scint
+        .iter()
+        .map(|seq| seq.iter().filter_map(|&(k, l)| image(k, l)).collect())
+        .collect();
+    let sequences: Vec<&[&Raster]> = sequences.iter().map(|s| s.as_slice()).collect();
+    Scores {
+        overhead_light_return: norm(fu, fu.up),
+        brilliance: 0.5 * (brilliance_iso + brilliance_cos),
+        brilliance_iso,
+        brilliance_cos,
+        fire: fire_value,
+        scintillation: if cfg.parts.scintillation {
+            scintillation_of(&sequences)
+        } else {
+            f64::NAN
+        },
+        aset,
+        poses,
+    }
+}
+
+/// `f(k)` for every `k` of `order` (a permutation of `0..n`), started in that order on the
+/// rayon pool: each worker takes the next one when it is free (greedy list scheduling, so
+/// that long jobs given first finish together). The results come back by index,
+/// `[f(0), f(1), …]`, whatever the number of threads.
+pub(super) fn par_in_order<T: Send + Sync>(
+    order: &[usize],
+    f: impl Fn(usize) -> T + Sync,
+) -> Vec<T> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::OnceLock;
+    let next = AtomicUsize::new(0);
+    let slots: Vec<OnceLock<T>> = order.iter().map(|_| OnceLock::new()).collect();
+    let workers = rayon::current_num_threads().clamp(1, order.len().max(1));
+    (0..workers).into_par_iter().for_each(|_| loop {
+        let i = next.fetch_add(1, Ordering::Relaxed);
+        let Some(&k) = order.get(i) else { break };
+        if let Some(slot) = slots.get(k) {
+            let _ = slot.set(f(k));
+        }
+    });
+    slots
+        .into_iter()
+        .map(|s| s.into_inner().expect("every index of `order` was run"))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Jobs started in any order on pools of one to three threads come back by index, each run
+    /// exactly once.
+    #[test]
+    fn par_in_order_returns_results_by_index() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        for threads in 1..=3 {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("a pool");
+            for order in [
+                vec![],
+                vec![0],
+                vec![3, 1, 4, 0, 2],
+                (0..40).rev().collect(),
+            ] {
+                let runs = AtomicUsize::new(0);
+                let got = pool.install(|| {
+                    par_in_order(&order, |k| {
+                        runs.fetch_add(1, Ordering::Relaxed);
+                        k * k
+                    })
+                });
+                let want: Vec<usize> = (0..order.len()).map(|k| k * k).collect();
+                assert_eq!(got, want, "{threads} threads, order {order:?}");
+                assert_eq!(runs.load(Ordering::Relaxed), order.len());
+            }
+        }
+    }
+}

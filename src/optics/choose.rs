@@ -1,0 +1,289 @@
+//! Choosing a material: by name (a table name or alias, or `ri:N[:BG]`), from the command
+//! line's or a config's pair of fields ([`Material::choose`]), or as the table material nearest
+//! the refractive index a cut was made for ([`Material::for_index`]).
+
+use super::material::{Dispersion, Material, MaterialFields, Optic};
+use super::table::{Entry, DIAMOND, TABLE};
+use crate::error::{Error, Result};
+
+impl Material {
+    /// A fixed refractive index (no dispersion), with diamond's density.
+    pub fn constant(n: f64) -> Material {
+        Material {
+            name: format!("ri-{n}"),
+            dispersion: Dispersion::Constant(n),
+            density: DIAMOND.density,
+            optic: Optic::Isotropic,
+            source: "a fixed index (--ri): no dispersion, no fire".into(),
+        }
+    }
+
+    /// B–G dispersion per unit of (n_D − 1) that `ri:N` gives: B–G = 0.03 (N − 1). It is the
+    /// median of that ratio over the table's stones (0.031; quartz 0.024, sapphire 0.023,
+    /// diamond 0.031, zircon 0.042), so a generic stone has typical fire for its index.
+    pub const GENERIC_BG_PER_N1: f64 = 0.03;
+    /// The largest B–G accepted by `ri:N:BG` (strontium titanate, the most dispersive stone
+    /// in the table, has 0.19).
+    pub const BG_MAX: f64 = 0.5;
+
+    /// A material by name: a table name ([`Material::NAMES`]) or alias (`cz`, `bk7`, `ruby`,
+    /// …), or `ri:N` (index N at the D line with the generic dispersion
+    /// B–G = [`GENERIC_BG_PER_N1`](Material::GENERIC_BG_PER_N1)·(N − 1)) or `ri:N:BG` (index N
+    /// with B–G dispersion BG), both as a Cauchy curve. Errors name `--material`.
+    pub fn by_name(name: &str) -> Result<Material> {
+        let key = name.trim().to_ascii_lowercase();
+        if let Some(spec) = key.strip_prefix("ri:") {
+            return Material::from_ri_spec(name.trim(), spec);
+        }
+        TABLE
+            .iter()
+            .find(|e| e.name == key || e.aliases.contains(&key.as_str()))
+            .map(Entry::material)
+            .ok_or_else(|| {
+                Error::invalid(
+                    "--material",
+                    format!(
+                        "unknown material `{name}`; known: {}, or ri:N[:BG] (an index N with generic or given B–G dispersion)",
+                        Material::NAMES.join(", ")
+                    ),
+                )
+            })
+    }
+
+    /// `ri:N` or `ri:N:BG` (the part after `ri:` is `spec`).
+    fn from_ri_spec(whole: &str, spec: &str) -> Result<Material> {
+        let allowed = format!(
+            "use ri:N or ri:N:BG with N in ({}, {}] and BG in [0, {}]",
+            Material::RI_ABOVE,
+            Material::RI_MAX,
+            Material::BG_MAX
+        );
+        let bad =
+            |what: String| Error::invalid("--material", format!("`{whole}`: {what}; {allowed}"));
+        let parts: Vec<&str> = spec.split(':').collect();
+        if parts.len() > 2 {
+            return Err(bad("too many fields".into()));
+        }
+        let num = |s: &str, what: &str| -> Result<f64> {
+            s.trim()
+                .parse::<f64>()
+                .map_err(|_| bad(format!("{what} `{s}` is not a number")))
+        };
+        let n = num(parts[0], "N")?;
+        if !(n > Material::RI_ABOVE && n <= Material::RI_MAX) {
+            return Err(bad(format!("N = {n} is out of range")));
+        }
+        let (bg, name) = match parts.get(1) {
+            None => (Material::GENERIC_BG_PER_N1 * (n - 1.0), format!("ri:{n}")),
+            Some(s) => {
+                let bg = num(s, "BG")?;
+                if !(0.0..=Material::BG_MAX).contains(&bg) {
+                    return Err(bad(format!("BG = {bg} is out of range")));
+                }
+                (bg, format!("ri:{n}:{bg}"))
+            }
+        };
+        let dispersion = Dispersion::cauchy_through(n, bg);
+        let m = Material {
+            name,
+            dispersion,
+            density: DIAMOND.density,
+            optic: Optic::Isotropic,
+            source: if parts.len() == 1 {
+                format!("Cauchy through n_D = {n} with the generic B–G = 0.03 (n_D − 1) = {bg:.4}")
+            } else {
+                format!("Cauchy through n_D = {n} with the given B–G = {bg}")
+            },
+        };
+        let red = m.ri(780.0);
+        if red <= 1.0 {
+            return Err(bad(format!(
+                "with that dispersion the index at 780 nm would be {red:.4}, not above 1"
+            )));
+        }
+        Ok(m)
+    }
+
+    /// A fixed refractive index must be above this (1 is vacuum: nothing would refract).
+    pub const RI_ABOVE: f64 = 1.0;
+    /// The largest fixed refractive index accepted.
+    pub const RI_MAX: f64 = 10.0;
+
+    /// The one chooser of a material, for the command line (`--material`, `--ri`) and the
+    /// config (`score.material`, `score.ri`): a material by name ([`Material::by_name`]), or a
+    /// fixed index in ([`RI_ABOVE`](Material::RI_ABOVE), [`RI_MAX`](Material::RI_MAX)], or
+    /// diamond when neither is given. Errors name `fields.material` or `fields.ri`.
+    pub fn choose(
+        name: Option<&str>,
+        ri: Option<f64>,
+        fields: MaterialFields<'_>,
+    ) -> Result<Material> {
+        match (name, ri) {
+            (Some(_), Some(_)) => Err(Error::invalid(
+                fields.ri,
+                format!("give either {} or {}, not both", fields.material, fields.ri),
+            )),
+            (None, Some(n)) => {
+                if n > Material::RI_ABOVE && n <= Material::RI_MAX {
+                    Ok(Material::constant(n))
+                } else {
+                    Err(Error::invalid(
+                        fields.ri,
+                        format!(
+                            "{n} is out of range; allowed ({}, {}] (a refractive index)",
+                            Material::RI_ABOVE,
+                            Material::RI_MAX
+                        ),
+                    ))
+                }
+            }
+            (Some(m), None) => Material::by_name(m).map_err(|e| match e {
+                Error::Invalid { message, .. } => Error::invalid(fields.material, message),
+                other => other,
+            }),
+            (None, None) => Ok(Material::diamond()),
+        }
+    }
+
+    /// How far a table material's n_D may be from a cut's index and still be taken for it
+    /// ([`Material::for_index`]).
+    pub const FOR_INDEX_TOL: f64 = 0.005;
+
+    /// The material a cut made for refractive index `n` (GemCad's `I` line) is traced in by
+    /// default: the table material ([`Material::table`]) whose n_D is closest to `n`, if within
+    /// [`FOR_INDEX_TOL`](Material::FOR_INDEX_TOL) (1.54 → quartz, 1.72 → spinel, 1.77 →
+    /// sapphire), else `ri:N` (index N with the generic dispersion of [`Material::by_name`]).
+    /// `None` for an index `ri:N` does not accept (N ≤ 1 or above 10).
+    ///
+    /// ```
+    /// use facetlab::optics::Material;
+    /// assert_eq!(Material::for_index(1.54).unwrap().name, "quartz");
+    /// assert_eq!(Material::for_index(1.61).unwrap().name, "ri:1.61");
+    /// assert!(Material::for_index(0.9).is_none());
+    /// ```
+    pub fn for_index(n: f64) -> Option<Material> {
+        let listed = Material::table()
+            .into_iter()
+            .map(|m| ((m.ri_d() - n).abs(), m))
+            .filter(|(d, _)| *d <= Material::FOR_INDEX_TOL + 1e-12)
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, m)| m);
+        listed.or_else(|| Material::by_name(&format!("ri:{n}")).ok())
+    }
+
+    /// The line saying how a cut made for index `n` is traced in this material (found by
+    /// [`Material::for_index`]): `traced as quartz (the design's index 1.54)`.
+    pub fn for_index_note(&self, n: f64) -> String {
+        format!("traced as {} (the design's index {n})", self.name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_chooser_for_name_index_or_default() {
+        let f = MaterialFields {
+            material: "--material",
+            ri: "--ri",
+        };
+        assert_eq!(Material::choose(None, None, f).unwrap().name, "diamond");
+        assert_eq!(
+            Material::choose(Some("cz"), None, f).unwrap().name,
+            "cubic-zirconia"
+        );
+        assert_eq!(
+            Material::choose(None, Some(10.0), f).unwrap().ri(500.0),
+            10.0
+        );
+        for bad in [1.0, 0.5, 10.001, f64::NAN, f64::INFINITY] {
+            let e = Material::choose(None, Some(bad), f)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.starts_with("--ri: ") && e.contains("allowed (1, 10]"),
+                "{e}"
+            );
+        }
+        let e = Material::choose(Some("cz"), Some(2.0), f)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("--ri: give either --material or --ri"), "{e}");
+        let e = Material::choose(Some("kryptonite"), None, f)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("--material: unknown material"), "{e}");
+    }
+
+    #[test]
+    fn ri_with_generic_or_given_dispersion_round_trips() {
+        let m = Material::by_name("ri:1.54").unwrap();
+        assert_eq!(m.name, "ri:1.54");
+        assert!((m.ri_d() - 1.54).abs() < 1e-12);
+        assert!((m.bg_dispersion() - 0.03 * 0.54).abs() < 1e-12);
+        let m = Material::by_name("ri:1.76:0.018").unwrap();
+        assert_eq!(m.name, "ri:1.76:0.018");
+        assert!((m.ri_d() - 1.76).abs() < 1e-12);
+        assert!((m.bg_dispersion() - 0.018).abs() < 1e-12);
+        assert_eq!(Material::by_name("ri:2:0").unwrap().bg_dispersion(), 0.0);
+        // Through the chooser (a config's score.material), errors name the field.
+        let f = MaterialFields {
+            material: "score.material",
+            ri: "score.ri",
+        };
+        assert_eq!(
+            Material::choose(Some("ri:2.0"), None, f).unwrap().ri_d(),
+            2.0
+        );
+        for (bad, needle) in [
+            ("ri:", "N `` is not a number"),
+            ("ri:abc", "N `abc` is not a number"),
+            ("ri:1.0", "N = 1 is out of range"),
+            ("ri:11", "out of range"),
+            ("ri:1.5:x", "BG `x` is not a number"),
+            ("ri:1.5:-0.01", "BG = -0.01 is out of range"),
+            ("ri:1.5:0.6", "out of range"),
+            ("ri:1.5:0.1:3", "too many fields"),
+            ("ri:1.01:0.5", "at 780 nm"),
+        ] {
+            let e = Material::choose(Some(bad), None, f)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.starts_with("score.material: ") && e.contains(needle) && e.contains("ri:N:BG"),
+                "{bad}: {e}"
+            );
+        }
+    }
+
+    #[test]
+    fn unknown_names_list_the_allowed_ones() {
+        let e = Material::by_name("unobtainium").unwrap_err().to_string();
+        for n in Material::NAMES {
+            assert!(e.contains(n), "{n} missing from: {e}");
+        }
+        assert!(e.contains("ri:N[:BG]"), "{e}");
+        assert_eq!(Material::constant(2.0).bg_dispersion(), 0.0);
+    }
+
+    #[test]
+    fn cut_indices_find_their_stones() {
+        for (n, want) in [
+            (1.54, "quartz"),
+            (1.544, "quartz"),
+            (1.72, "spinel"),
+            (1.77, "sapphire"),
+            (2.42, "diamond"),
+        ] {
+            assert_eq!(Material::for_index(n).unwrap().name, want, "{n}");
+        }
+        let m = Material::for_index(1.61).unwrap();
+        assert_eq!(m.name, "ri:1.61");
+        assert!((m.ri_d() - 1.61).abs() < 1e-9 && m.bg_dispersion() > 0.0);
+        assert_eq!(
+            Material::for_index(1.54).unwrap().for_index_note(1.54),
+            "traced as quartz (the design's index 1.54)"
+        );
+    }
+}
