@@ -156,7 +156,7 @@ pub struct DepthSolve {
 /// Weight of the rows that hold a free tier near its current depth. They make the system
 /// full-rank when a tier's depth is not fixed by any meet (it then keeps its depth) and move a
 /// meet-fixed depth by ~WEIGHT² relative: far below any tolerance a design is checked at.
-const PRIOR_WEIGHT: f64 = 1e-7;
+pub const PRIOR_WEIGHT: f64 = 1e-7;
 
 /// Weight of the rows that hold a girdle meet's height: far below the meets' own rows (weight
 /// 1), so a file's rounding never opens a meet, and far above [`PRIOR_WEIGHT`], so the
