@@ -283,6 +283,15 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             ),
         ));
     }
+    if !(a.meet_tol.is_finite() && a.meet_tol > 0.0 && a.meet_tol <= 0.01) {
+        return Err(Error::invalid(
+            "--meet-tol",
+            format!(
+                "{} is not allowed; give a tolerance in (0, 0.01] of W",
+                a.meet_tol
+            ),
+        ));
+    }
     let chosen = a.material.as_deref().map(Material::by_name).transpose()?;
     let cut = load_with_sets(&a.cut, &a.set)?;
     let default = chosen.clone().unwrap_or_else(Material::diamond);
@@ -307,15 +316,6 @@ pub fn info(a: &InfoArgs) -> Result<()> {
         j.instructions = Some(io::asc::cutting_instructions(&cut, 0));
     }
     if a.meets {
-        if !(a.meet_tol.is_finite() && a.meet_tol > 0.0 && a.meet_tol <= 0.01) {
-            return Err(Error::invalid(
-                "--meet-tol",
-                format!(
-                    "{} is not allowed; give a tolerance in (0, 0.01] of W",
-                    a.meet_tol
-                ),
-            ));
-        }
         j.meets = Some(meets_json(&cut, a.meet_tol)?);
     }
     if a.json {

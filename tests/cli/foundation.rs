@@ -338,3 +338,47 @@ fn input_files_no_panic_errors_are_one_line_naming_the_file() {
     // Most prefixes are broken files: the error path was exercised, not skipped.
     assert!(failed_prefixes >= 8, "{failed_prefixes}");
 }
+
+#[test]
+fn info_meets_lists_a_designs_meets_from_its_file() {
+    // A pyramid-topped square design written here: four girdle facets, a flat base, a crown of
+    // two tiers cut to the girdle's top corners and to one apex. Meets: four corners (two
+    // girdle facets and two crown facets each) and the apex (four crown facets).
+    let dir = tempfile::tempdir().unwrap();
+    let asc = "GemCad 5.0\ng 96 0.0\ny 4 n\nI 1.54\nH meets test\n\
+               a -90.000000 0.50000000 96 24 48 72 n G\n\
+               a 40.000000 0.35969603 96 48 n A\n\
+               a 40.000000 0.35969603 24 72 n B\n\
+               a 0.000000 -0.30000000 96 n U\n";
+    std::fs::write(dir.path().join("pyramid.asc"), asc).unwrap();
+    let j: serde_json::Value = serde_json::from_str(&ok(
+        dir.path(),
+        &["info", "pyramid.asc", "--meets", "--json"],
+    ))
+    .unwrap();
+    let meets = j["meets"].as_array().expect("meets listed");
+    assert_eq!(meets.len(), 5, "{meets:?}");
+    let apex: Vec<&serde_json::Value> = meets
+        .iter()
+        .filter(|m| m["tiers"] == serde_json::json!(["A", "B"]))
+        .collect();
+    assert_eq!(apex.len(), 1, "one meet of A and B alone: {meets:?}");
+    for m in meets {
+        assert_eq!(m["facets"].as_array().unwrap().len(), 4);
+        // Depths written to 8 decimals: every meet within 1e-7 W.
+        assert!(m["off"].as_f64().unwrap() < 1e-7, "{m}");
+    }
+    // Without the flag, no key; a tolerance out of range is one line naming the flag.
+    let plain = ok(dir.path(), &["info", "pyramid.asc", "--json"]);
+    assert!(!plain.contains("\"meets\""));
+    bad(
+        dir.path(),
+        &["info", "pyramid.asc", "--meets", "--meet-tol", "0"],
+        &["--meet-tol", "(0, 0.01]"],
+    );
+    let text = ok(dir.path(), &["info", "pyramid.asc", "--meets"]);
+    assert!(
+        text.contains("Meets (5 where four or more facets"),
+        "{text}"
+    );
+}
