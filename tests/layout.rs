@@ -45,7 +45,7 @@ fn rs_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// `src/a/b.rs` → `[a, b]`, `src/a/mod.rs` → `[a]`, `src/lib.rs` → `[]`.
+/// `src/beam/trace.rs` → `[beam, trace]`, `src/beam/mod.rs` → `[beam]`, `src/lib.rs` → `[]`.
 fn module_of(rel: &Path) -> ModPath {
     let mut parts: Vec<String> = rel
         .iter()
