@@ -33,6 +33,14 @@ pub struct TierModel {
     pub tol: f64,
 }
 
+/// The tolerance (of W) within which four or more facet planes through one point make a meet
+/// by default: 1e-4 W (0.65 µm on a 6.5 mm stone), above the rounding of files that write
+/// depths to five decimals and far below anything a cutter can see.
+pub const MEET_TOL: f64 = 1e-4;
+
+/// A facet is on the girdle when its normal is this close to horizontal.
+const GIRDLE_Z: f64 = 1e-9;
+
 impl TierModel {
     /// The model of a cut with its tiers as GemCad lines ([`super::tiers`], on the design's
     /// own gear): tier names are the lines' names, made unique by a `#2`, `#3` … suffix where
@@ -63,14 +71,7 @@ impl TierModel {
         }
         TierModel::new(cut.solid.clone(), tier_of, names, tol)
     }
-}
 
-/// The tolerance (of W) within which four or more facet planes through one point make a meet
-/// by default: 1e-4 W (0.65 µm on a 6.5 mm stone), above the rounding of files that write
-/// depths to five decimals and far below anything a cutter can see.
-pub const MEET_TOL: f64 = 1e-4;
-
-impl TierModel {
     /// The names of the tiers a meet joins, each once, in the order of its facets.
     pub fn meet_tiers(&self, meet: &Meet) -> Vec<&str> {
         let mut out: Vec<&str> = Vec::new();
@@ -82,12 +83,7 @@ impl TierModel {
         }
         out
     }
-}
 
-/// A facet is on the girdle when its normal is this close to horizontal.
-const GIRDLE_Z: f64 = 1e-9;
-
-impl TierModel {
     /// The model of `solid` with tiers given by `tier_of` (facet → tier, with `names`), meets
     /// at tolerance `tol` (of W).
     pub fn new(
