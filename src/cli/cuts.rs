@@ -80,7 +80,7 @@ pub fn parse_sets(sets: &[String]) -> Result<BTreeMap<String, f64>> {
 pub fn load_with_sets(arg: &str, sets: &[String]) -> Result<Cut> {
     let changes = parse_sets(sets)?;
     let cut = io::load_cut(arg)?;
-    cut.with_params(&changes).map_err(|e| match e {
+    facetlab::design::with_set(&cut, &changes).map_err(|e| match e {
         Error::Invalid { field, message } if !field.starts_with("--set") => Error::Invalid {
             field: format!("--set {field}"),
             message,

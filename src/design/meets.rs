@@ -166,7 +166,36 @@ pub const HEIGHT_WEIGHT: f64 = 1e-3;
 /// Solve for the tiers' depths that keep every meet of `p` (linear least squares by
 /// Householder QR): unknowns are each free tier's depth and each meet's point, equations
 /// `n_i · p_m − d_t(i) = 0` for every facet `i` through meet `m`.
+///
+/// The weak rows (a free tier's old depth, a girdle meet's old height) pull the solution off
+/// the meets by about their weight squared times how far the meets move them. Passes of
+/// refinement, each holding the weak rows at the last solution, take that pull away, so a
+/// keepable meet is kept to rounding; a pass is kept only while it shrinks the largest gap
+/// tenfold (where the meets themselves disagree, refining would only let the heights drift).
 pub fn solve_depths(p: &DepthProblem) -> Result<DepthSolve> {
+    let worst = |s: &DepthSolve| s.gaps.iter().copied().fold(0.0, f64::max);
+    let mut solve = solve_once(p)?;
+    for _ in 0..3 {
+        let held_z: Vec<Option<f64>> = p
+            .held_z
+            .iter()
+            .zip(&solve.points)
+            .map(|(z, q)| z.map(|_| q.z))
+            .collect();
+        let next = solve_once(&DepthProblem {
+            depths: &solve.depths,
+            held_z: &held_z,
+            ..p.clone()
+        })?;
+        if worst(&next) >= 0.1 * worst(&solve) {
+            break;
+        }
+        solve = next;
+    }
+    Ok(solve)
+}
+
+fn solve_once(p: &DepthProblem) -> Result<DepthSolve> {
     let nt = p.depths.len();
     if p.normals.len() != p.tier_of.len() || p.held.len() != nt || p.held_z.len() != p.meets.len() {
         return Err(Error::Geometry(

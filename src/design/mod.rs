@@ -14,8 +14,9 @@
 //! linear equations in the tiers' depths, so the depths for new angles come from one linear
 //! least-squares solve ([`meets::solve_depths`]), with the girdle fixing the scale and its
 //! thickness; [`reangle::TierModel`] turns tiers, solves, and says how far each meet is from
-//! kept. What lands here next (issue 23): the tiers of an imported design as the optimizer's
-//! parameters.
+//! kept. [`DesignSpace`] makes the tier angles of any design the parameters of a
+//! [`crate::cut::CutSpace`], so the optimizer, sweeps and `--set` work on a faceter's design
+//! as on a family.
 //!
 //! `design` sits above [`crate::cut`] and below [`crate::io`]: it may import
 //! [`crate::geometry`], [`crate::cut`] and [`crate::error`].
@@ -24,13 +25,16 @@
 //!   into GemCad lines.
 //! - `meets.rs`: meets of a solid, the depth solve, a small dense least-squares solver.
 //! - `reangle.rs`: tiers turned to new angles with the meets kept (or reported open).
+//! - `space.rs`: [`DesignSpace`], a design's tier angles as a cut space; [`with_set`].
 //!
 //! [`GemcadRecord`]: crate::cut::GemcadRecord
 
 pub mod meets;
 pub mod reangle;
+mod space;
 mod tiers;
 
 pub use meets::{find_meets, Meet};
 pub use reangle::{TierModel, MEET_TOL};
+pub use space::{with_set, DesignSpace, OpenMeets, OpenedMeet, KEPT};
 pub use tiers::{fixed, tiers, token, Gear, Tier, TierFacet, ANGLE_DECIMALS, DEPTH_DECIMALS};

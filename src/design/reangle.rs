@@ -31,6 +31,11 @@ pub struct TierModel {
     pub held_z: Vec<Option<f64>>,
     /// The tolerance the meets were found at: a meet further off than this is open.
     pub tol: f64,
+    /// Each meet's own allowance on top of `tol`: a design whose rounded file cannot put a
+    /// meet's planes exactly through one point keeps it as close as it was (0 by default).
+    pub slack: Vec<f64>,
+    /// The tolerance the meets were found at.
+    found_at: f64,
 }
 
 /// The tolerance (of W) within which four or more facet planes through one point make a meet
@@ -45,9 +50,16 @@ impl TierModel {
     /// The model of a cut with its tiers as GemCad lines ([`super::tiers`], on the design's
     /// own gear): tier names are the lines' names, made unique by a `#2`, `#3` … suffix where
     /// two lines share one.
+    ///
+    /// A cut without a GemCad record (a preset, a TOML list of facets, a mesh) has its tiers as
+    /// its symmetry makes them: facets of one tier name whose angles agree within
+    /// [`SAME_ANGLE`] degrees and depths within [`SAME_DEPTH`] of W (a mesh's rounded
+    /// coordinates leave its symmetric facets that far apart).
     pub fn of_cut(cut: &Cut, tol: f64) -> Result<Self> {
-        let record = cut.record.clone().unwrap_or_default();
-        let lines = super::tiers(cut, Gear::for_record(&record, 0), 1.0);
+        let Some(record) = &cut.record else {
+            return Self::of_solid(&cut.solid, tol);
+        };
+        let lines = super::tiers(cut, Gear::for_record(record, 0), 1.0);
         let mut tier_of = vec![usize::MAX; cut.solid.facets().len()];
         let mut names: Vec<String> = Vec::new();
         for (t, line) in lines.iter().enumerate() {
@@ -56,13 +68,7 @@ impl TierModel {
             } else {
                 line.name.clone()
             };
-            let mut name = base.clone();
-            let mut k = 1;
-            while names.contains(&name) {
-                k += 1;
-                name = format!("{base}#{k}");
-            }
-            names.push(name);
+            names.push(unique(&names, &base));
             for f in &line.facets {
                 if let Some(i) = cut.solid.facets().iter().position(|g| g.name == f.name) {
                     tier_of[i] = t;
@@ -70,6 +76,52 @@ impl TierModel {
             }
         }
         TierModel::new(cut.solid.clone(), tier_of, names, tol)
+    }
+
+    /// The model of a solid whose facets are grouped into tiers by tier name, angle and depth
+    /// (see [`TierModel::of_cut`]).
+    pub fn of_solid(solid: &Polyhedron, tol: f64) -> Result<Self> {
+        // (name, angle, depth, side) of each tier so far.
+        let mut tiers: Vec<(String, f64, f64, i8)> = Vec::new();
+        let mut tier_of = Vec::new();
+        for f in solid.facets() {
+            let n = f.plane.normal;
+            let side = if n.z > GIRDLE_Z {
+                1
+            } else if n.z < -GIRDLE_Z {
+                -1
+            } else {
+                0
+            };
+            let angle = facet_angle_deg(n);
+            let name = super::token(&f.tier);
+            let found = tiers.iter().position(|(tn, a, d, s)| {
+                *tn == name
+                    && *s == side
+                    && (a - angle).abs() <= SAME_ANGLE
+                    && (d - f.plane.offset).abs() <= SAME_DEPTH
+            });
+            tier_of.push(found.unwrap_or_else(|| {
+                tiers.push((name, angle, f.plane.offset, side));
+                tiers.len() - 1
+            }));
+        }
+        let mut names: Vec<String> = Vec::new();
+        for (t, (name, ..)) in tiers.iter().enumerate() {
+            let base = if name.is_empty() {
+                format!("tier-{}", t + 1)
+            } else {
+                name.clone()
+            };
+            names.push(unique(&names, &base));
+        }
+        TierModel::new(solid.clone(), tier_of, names, tol)
+    }
+
+    /// The tolerance the meets were found at (of W): `tol` unless the model was told to keep
+    /// meets more tightly than it found them ([`super::DesignSpace`] does).
+    pub fn meet_tol(&self) -> f64 {
+        self.found_at
     }
 
     /// The names of the tiers a meet joins, each once, in the order of its facets.
@@ -123,7 +175,10 @@ impl TierModel {
             .iter()
             .map(|m| m.facets.iter().any(|&f| girdle(f)).then_some(m.point.z))
             .collect();
+        let slack = vec![0.0; meets.len()];
         Ok(TierModel {
+            found_at: tol,
+            slack,
             solid,
             tier_of,
             names,
@@ -178,7 +233,7 @@ impl TierModel {
             })?;
             let worst = (0..kept.len()).max_by(|&a, &b| solve.gaps[a].total_cmp(&solve.gaps[b]));
             match worst {
-                Some(k) if solve.gaps[k] > self.tol => open[kept[k]] = true,
+                Some(k) if solve.gaps[k] > self.tol + self.slack[kept[k]] => open[kept[k]] = true,
                 _ => break (solve, kept),
             }
         };
@@ -203,6 +258,24 @@ impl TierModel {
             .collect();
         Ok(Reangled { planes, gaps })
     }
+}
+
+/// Facets of one tier name within this many degrees of one angle are one tier (of a cut
+/// without a GemCad record).
+pub const SAME_ANGLE: f64 = 1e-3;
+
+/// … and within this distance (of W) of one depth.
+pub const SAME_DEPTH: f64 = 1e-5;
+
+/// `base`, or `base#2`, `base#3` … when `names` has it.
+fn unique(names: &[String], base: &str) -> String {
+    let mut name = base.to_string();
+    let mut k = 1;
+    while names.contains(&name) {
+        k += 1;
+        name = format!("{base}#{k}");
+    }
+    name
 }
 
 /// How far the planes of `facets` are from passing through one point: the largest distance

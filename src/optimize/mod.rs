@@ -123,7 +123,7 @@ pub use history::{History, Row, Track};
 // The cost of a cut that cannot be built or scored.
 pub use problem::FAILED_COST;
 // The run's summary (`report.json`, `report.md`): the start and the winners, how it went.
-pub use summary::{Candidate, FoundAt, Report};
+pub use summary::{Candidate, DesignJson, FoundAt, OpenedJson, Report};
 // Sweeps: a score mapped over two parameters, or the scores along one (a profile).
 pub use sweep::{
     output_paths as sweep_output_paths, profile, run_path as sweep_path, sweep,

@@ -20,7 +20,7 @@
 use super::config::Config;
 use super::history::History;
 use super::search::{search, verify, Hooks, Outcome};
-use super::summary::{FreeJson, Report, SearchJson, VerificationJson};
+use super::summary::{DesignJson, FreeJson, OpenedJson, Report, SearchJson, VerificationJson};
 use super::Evaluator;
 use crate::cut::Cut;
 use crate::error::{Error, Result};
@@ -199,7 +199,38 @@ pub fn report(config: &Config, o: &Outcome, files: Vec<String>) -> Report {
         start: o.start.clone(),
         winners: o.winners.clone(),
         files,
+        failed: o
+            .history
+            .rows
+            .iter()
+            .filter(|r| r.cost >= 0.5 * super::FAILED_COST)
+            .count() as u64,
+        design: design_json(config, o),
     }
+}
+
+/// The design part of a report: its file, meets and the meets the free angles open.
+fn design_json(config: &Config, o: &Outcome) -> Option<DesignJson> {
+    let d = config.design.as_ref()?;
+    let gaps = o.best_cut.as_ref().map(|c| d.gaps(c));
+    Some(DesignJson {
+        file: config
+            .cut_file
+            .as_ref()
+            .map_or(String::new(), |f| f.0.clone()),
+        meets: d.meets().len(),
+        meet_tol: d.model().meet_tol(),
+        open_meets: d.open_meets().name().to_string(),
+        opened: config
+            .open_meets
+            .iter()
+            .map(|m| OpenedJson {
+                meet: m.name.clone(),
+                by: m.by.clone(),
+                gap_at_best: gaps.as_ref().map(|g| g[m.meet]),
+            })
+            .collect(),
+    })
 }
 
 /// Write the run folder for an outcome; `convergence` draws its chart and `html_report` makes

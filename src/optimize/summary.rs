@@ -228,6 +228,38 @@ pub struct Report {
     pub winners: Vec<Candidate>,
     /// Files of the run folder.
     pub files: Vec<String>,
+    /// Evaluations whose cut could not be built or scored (a design's facet that would
+    /// vanish, an edge that would appear, a meet that would open; a cut the family refuses).
+    pub failed: u64,
+    /// The design, when the run turned a design's tier angles (`[cut] file`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub design: Option<DesignJson>,
+}
+
+/// What a design run says of its design.
+#[derive(Clone, Debug, Serialize)]
+pub struct DesignJson {
+    /// `[cut] file` as given.
+    pub file: String,
+    /// How many meets the design has (found within `meet_tol`).
+    pub meets: usize,
+    /// The tolerance (of W) the meets were found at.
+    pub meet_tol: f64,
+    /// `refuse` or `allow`.
+    pub open_meets: String,
+    /// The meets the free angles cannot keep (only when allowed).
+    pub opened: Vec<OpenedJson>,
+}
+
+/// A meet the free angles cannot keep.
+#[derive(Clone, Debug, Serialize)]
+pub struct OpenedJson {
+    /// Its tiers and point.
+    pub meet: String,
+    /// The free tiers that open it alone.
+    pub by: Vec<String>,
+    /// How far its planes are from one point in the best cut, in W.
+    pub gap_at_best: Option<f64>,
 }
 
 impl Report {
@@ -261,9 +293,45 @@ impl Report {
         let w = &self.objective;
         let _ = writeln!(
             o,
-            "- config: `{}` (family `{}`), seed {}\n- method: {method}\n- objective: score = {}·brilliance + {}·fire + {}·scintillation; cost = −score + penalties",
-            self.config, self.family, self.seed, w.brilliance, w.fire, w.scintillation
+            "- config: `{}` ({} `{}`), seed {}\n- method: {method}\n- objective: score = {}·brilliance + {}·fire + {}·scintillation; cost = −score + penalties",
+            self.config,
+            if self.design.is_some() { "design" } else { "family" },
+            self.family,
+            self.seed,
+            w.brilliance,
+            w.fire,
+            w.scintillation
         );
+        if let Some(d) = &self.design {
+            let kept = d.meets - d.opened.len();
+            let _ = writeln!(
+                o,
+                "- design: `{}`, tier angles turned with the depths solved; {} of its {} meets (within {:e} W) kept{}",
+                d.file,
+                kept,
+                d.meets,
+                d.meet_tol,
+                if d.opened.is_empty() { "" } else { "; opened (`open_meets = \"allow\"`):" }
+            );
+            for m in &d.opened {
+                let gap = m
+                    .gap_at_best
+                    .map_or("?".to_string(), |g| format!("{g:.2e} W"));
+                let by = if m.by.is_empty() {
+                    "the free tiers together".to_string()
+                } else {
+                    m.by.join(", ")
+                };
+                let _ = writeln!(o, "  - {} (opened by {by}): {gap} in the best cut", m.meet);
+            }
+        }
+        if self.failed > 0 {
+            let _ = writeln!(
+                o,
+                "- {} of {} evaluations could not be built or scored (a design's facet would vanish, an edge appear or a meet open; a family refused the values): each cost a finite penalty",
+                self.failed, self.search.evaluations
+            );
+        }
         let s = &self.search;
         let _ = writeln!(
             o,

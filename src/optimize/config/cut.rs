@@ -1,10 +1,12 @@
-//! `[cut]`: the cut space (a family) and the start cut.
+//! `[cut]`: the cut space (a family, or a design's tier angles) and the start cut.
 
 use super::At;
-use crate::cut::{family, CutSpace};
+use crate::cut::{family, Cut, CutSpace};
+use crate::design::{DesignSpace, OpenMeets, MEET_TOL};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// `[cut]`.
@@ -14,29 +16,156 @@ pub struct RawCut {
     /// Family name.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub family: Option<String>,
+    /// A design: a `.asc`, `.toml`, `.obj` or `.stl` file (relative to the config), or a
+    /// preset's name; its tier angles are the parameters.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// A design's meets that the free angles cannot keep: `refuse` (default) or `allow`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub open_meets: Option<String>,
+    /// Within how much of W four or more facet planes make a meet (default 1e-4).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub meet_tol: Option<f64>,
     /// Parameters of the start cut (fixed ones and the free ones' start values).
     #[serde(default)]
     pub params: BTreeMap<String, f64>,
 }
 
+/// The validated `[cut]`.
+pub(super) struct CutSection {
+    /// The space searched.
+    pub space: Arc<dyn CutSpace>,
+    /// The start cut's parameters, every default filled in.
+    pub start: BTreeMap<String, f64>,
+    /// The design, when the space is one (for the meets check and the writing back).
+    pub design: Option<Arc<DesignSpace>>,
+    /// The design file as the config names it and where it was found (`None` for a preset).
+    pub file: Option<(String, Option<PathBuf>)>,
+}
+
 /// Validate `[cut]`: the cut space and the start cut's full parameter set (defaults filled in).
-pub(super) fn validate(rc: &RawCut, at: At) -> Result<(Arc<dyn CutSpace>, BTreeMap<String, f64>)> {
-    let fam_name = rc.family.as_deref().ok_or_else(|| {
-        Error::invalid(
-            at("cut.family"),
-            "missing: give `[cut]` with `family = \"round-brilliant\"` (or another family)",
-        )
-    })?;
-    let fam = family(fam_name).map_err(|e| match e {
-        Error::Invalid { message, .. } => Error::invalid(at("cut.family"), message),
-        other => other,
-    })?;
-    let space: Arc<dyn CutSpace> = Arc::new(*fam);
+/// A `file` is found relative to the config's folder (`source` is the config's path).
+pub(super) fn validate(rc: &RawCut, source: &str, at: At) -> Result<CutSection> {
+    let (space, design, file): (Arc<dyn CutSpace>, _, _) = match (&rc.family, &rc.file) {
+        (Some(_), Some(_)) => {
+            return Err(Error::invalid(
+                at("cut.file"),
+                "give `family` or `file`, not both",
+            ))
+        }
+        (None, None) => {
+            return Err(Error::invalid(
+                at("cut.family"),
+                "missing: give `[cut]` with `family = \"round-brilliant\"` (or another family), or `file = \"design.asc\"` for a design",
+            ))
+        }
+        (Some(fam_name), None) => {
+            for key in ["open_meets", "meet_tol"] {
+                let given = match key {
+                    "open_meets" => rc.open_meets.is_some(),
+                    _ => rc.meet_tol.is_some(),
+                };
+                if given {
+                    return Err(Error::invalid(
+                        at(&format!("cut.{key}")),
+                        "applies to a design (`file = …`), not a family",
+                    ));
+                }
+            }
+            let fam = family(fam_name).map_err(|e| match e {
+                Error::Invalid { message, .. } => Error::invalid(at("cut.family"), message),
+                other => other,
+            })?;
+            (Arc::new(*fam) as Arc<dyn CutSpace>, None, None)
+        }
+        (None, Some(file)) => {
+            let open = match rc.open_meets.as_deref() {
+                None => OpenMeets::Refuse,
+                Some(w) => OpenMeets::parse(w).ok_or_else(|| {
+                    Error::invalid(
+                        at("cut.open_meets"),
+                        format!("`{w}` is not allowed; use \"refuse\" (the default) or \"allow\""),
+                    )
+                })?,
+            };
+            let tol = rc.meet_tol.unwrap_or(MEET_TOL);
+            if !(tol.is_finite() && tol > 0.0 && tol <= 0.01) {
+                return Err(Error::invalid(
+                    at("cut.meet_tol"),
+                    format!("{tol} is out of range; allowed (0, 0.01] of the width W"),
+                ));
+            }
+            let (cut, path) = load_design(file, source, at)?;
+            let d = DesignSpace::new(&cut, tol, open).map_err(|e| {
+                Error::invalid(at("cut.file"), format!("{file}: {e}"))
+            })?;
+            if d.keys().is_empty() {
+                return Err(Error::invalid(
+                    at("cut.file"),
+                    format!("{file}: the design has no tier whose angle can turn"),
+                ));
+            }
+            let d = Arc::new(d);
+            (
+                d.clone() as Arc<dyn CutSpace>,
+                Some(d),
+                Some((file.clone(), path)),
+            )
+        }
+    };
     let start = space.complete(&rc.params).map_err(|e| match e {
         Error::Invalid { field, message } => {
-            Error::invalid(at(&format!("cut.params.{field}")), message)
+            let field = field
+                .strip_prefix(&format!("{}: ", space.name()))
+                .unwrap_or(&field)
+                .to_string();
+            Error::invalid(at(&format!("cut.params.{}", quoted(&field))), message)
         }
         other => other,
     })?;
-    Ok((space, start))
+    Ok(CutSection {
+        space,
+        start,
+        design,
+        file,
+    })
+}
+
+/// A TOML key as written: bare when it can be, else quoted.
+pub(super) fn quoted(key: &str) -> String {
+    if !key.is_empty()
+        && key
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        key.to_string()
+    } else {
+        format!("\"{key}\"")
+    }
+}
+
+/// The design `file` names: a path relative to the config's folder, or a preset's name.
+fn load_design(file: &str, source: &str, at: At) -> Result<(Cut, Option<PathBuf>)> {
+    let given = Path::new(file);
+    let path = if given.is_absolute() {
+        given.to_path_buf()
+    } else {
+        Path::new(source)
+            .parent()
+            .unwrap_or(Path::new(""))
+            .join(given)
+    };
+    let is_file = given.extension().is_some();
+    let arg = if is_file {
+        path.to_string_lossy().to_string()
+    } else {
+        file.to_string()
+    };
+    let cut = crate::io::load_cut(&arg).map_err(|e| match e {
+        Error::Invalid { message, .. } => {
+            Error::invalid(at("cut.file"), format!("{file}: {message}"))
+        }
+        other => other,
+    })?;
+    Ok((cut, is_file.then_some(path)))
 }

@@ -41,6 +41,7 @@
 mod constraints;
 mod cut;
 mod free;
+mod meets;
 mod method;
 mod objective;
 mod score;
@@ -55,11 +56,12 @@ pub use score::{RawScore, ScoreSettings};
 pub use winners::{RawVerify, VerifySettings};
 
 use crate::cut::{Cut, CutSpace};
+use crate::design::{DesignSpace, OpenedMeet};
 use crate::error::{Error, Result};
 use crate::io::{line_of, read_bytes};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// The config file as written (every field optional where a default exists).
@@ -131,6 +133,13 @@ pub struct Config {
     pub verify: VerifySettings,
     /// Scoring settings.
     pub score: ScoreSettings,
+    /// The design, when the space is a design's tier angles (`[cut] file`).
+    pub design: Option<Arc<DesignSpace>>,
+    /// `[cut] file` as given, and the path it was read from (`None` for a preset's name).
+    pub cut_file: Option<(String, Option<PathBuf>)>,
+    /// The design's meets the free angles cannot keep (only with `open_meets = "allow"`;
+    /// otherwise such a config is refused).
+    pub open_meets: Vec<OpenedMeet>,
 }
 
 /// Defaults (also in the config-file table of `README.md`).
@@ -235,13 +244,15 @@ impl Config {
         }
         let seed = raw.seed.unwrap_or(defaults::SEED);
 
-        let (space, start) = cut::validate(&raw.cut.clone().unwrap_or_default(), &at)?;
-        let rc_params = raw
-            .cut
-            .as_ref()
-            .map(|c| c.params.clone())
-            .unwrap_or_default();
+        let raw_cut = raw.cut.clone().unwrap_or_default();
+        let section = cut::validate(&raw_cut, source, &at)?;
+        let (space, start) = (section.space, section.start);
+        let rc_params = raw_cut.params.clone();
         let free = free::validate(&raw.free, space.as_ref(), &start, &rc_params, &at)?;
+        let open_meets = match &section.design {
+            Some(d) => meets::check(d, &free, &at)?,
+            None => Vec::new(),
+        };
         let weights = objective::validate(&raw.objective.clone().unwrap_or_default(), &at)?;
         let pareto = objective::validate_pareto(&raw.objective.clone().unwrap_or_default(), &at)?;
         let constraints = constraints::validate(&raw.constraints.clone().unwrap_or_default(), &at)?;
@@ -257,7 +268,15 @@ impl Config {
         let (method, budget) =
             method::validate(&raw.method.clone().unwrap_or_default(), free.len(), &at)?;
         let verify = winners::validate(&raw.verify.clone().unwrap_or_default(), &at)?;
-        let score = score::validate(&raw.score.clone().unwrap_or_default(), &at)?;
+        let raw_score = raw.score.clone().unwrap_or_default();
+        let mut score = score::validate(&raw_score, &at)?;
+        // A design is scored in its own material (its file's index) unless the config says.
+        let own = section.design.as_ref().and_then(|d| d.base().design_ri());
+        if let (None, None, Some(n)) = (&raw_score.material, raw_score.ri, own) {
+            if let Some(m) = crate::optics::Material::for_index(n) {
+                score.material = m;
+            }
+        }
 
         Ok(Config {
             source: source.to_string(),
@@ -275,6 +294,9 @@ impl Config {
             budget,
             verify,
             score,
+            design: section.design,
+            cut_file: section.file,
+            open_meets,
         })
     }
 
@@ -310,9 +332,25 @@ impl Config {
             name: Some(self.name.clone()),
             description: self.description.clone(),
             seed: Some(self.seed),
-            cut: Some(RawCut {
-                family: Some(self.space.name().to_string()),
-                params: self.start.clone(),
+            cut: Some(match (&self.design, &self.cut_file) {
+                (Some(d), Some((given, path))) => RawCut {
+                    family: None,
+                    // The design file by its full path, so the written config runs anywhere.
+                    file: Some(path.as_ref().map_or(given.clone(), |p| {
+                        std::path::absolute(p)
+                            .unwrap_or_else(|_| p.clone())
+                            .display()
+                            .to_string()
+                    })),
+                    open_meets: Some(d.open_meets().name().to_string()),
+                    meet_tol: Some(d.model().meet_tol()),
+                    params: self.start.clone(),
+                },
+                _ => RawCut {
+                    family: Some(self.space.name().to_string()),
+                    params: self.start.clone(),
+                    ..RawCut::default()
+                },
             }),
             free: self
                 .free

@@ -1,0 +1,439 @@
+//! A design as a cut space: its tier angles are the parameters, its depths are solved so that
+//! its meets are kept ([`DesignSpace`]), so that a faceter's design can be scored at other
+//! angles, swept and optimized exactly as a family is.
+//!
+//! ```
+//! use facetlab::cut::CutSpace;
+//! use facetlab::design::{DesignSpace, OpenMeets, MEET_TOL};
+//! use std::collections::BTreeMap;
+//!
+//! let cut = facetlab::io::load_cut("tolkowsky").unwrap();
+//! let space = DesignSpace::new(&cut, MEET_TOL, OpenMeets::Refuse).unwrap();
+//! // One parameter per tier that has an angle to turn (not the girdle, table or culet).
+//! assert!(space.keys().contains(&"pavilion-main"));
+//! let mains = space.range("pavilion-main").unwrap().default;
+//! assert!((mains - 40.75).abs() < 1e-9);
+//! // Mains and lower halves turned together keep every meet: the design stays itself.
+//! let half = space.range("lower-half").unwrap().default;
+//! let turned = BTreeMap::from([
+//!     ("pavilion-main".to_string(), 41.25),
+//!     ("lower-half".to_string(), half + 0.5),
+//! ]);
+//! let cut = space.build("t", &turned).unwrap();
+//! assert_eq!(cut.solid.facets().len(), space.base().solid.facets().len());
+//! ```
+
+use super::meets::Meet;
+use super::reangle::{adjacency, Reangled, TierModel};
+use super::tiers::{fixed, ANGLE_DECIMALS};
+use crate::cut::{Cut, CutSpace, ParamRange, Unit};
+use crate::error::{Error, Result};
+use crate::geometry::Polyhedron;
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write;
+
+/// A meet of an adopted design is kept when its planes pass within this distance (of W) of one
+/// point: exact up to the rounding of the solve.
+pub const KEPT: f64 = 1e-9;
+
+/// What a design space does with a meet that the asked angles cannot keep.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OpenMeets {
+    /// The cut is refused (an error naming the meet and its tiers): the design stays itself.
+    Refuse,
+    /// The meet opens; [`DesignSpace::gaps`] says by how much.
+    Allow,
+}
+
+impl OpenMeets {
+    /// The config word: `refuse` or `allow`.
+    pub fn name(self) -> &'static str {
+        match self {
+            OpenMeets::Refuse => "refuse",
+            OpenMeets::Allow => "allow",
+        }
+    }
+    /// From the config word.
+    pub fn parse(s: &str) -> Option<OpenMeets> {
+        match s {
+            "refuse" => Some(OpenMeets::Refuse),
+            "allow" => Some(OpenMeets::Allow),
+            _ => None,
+        }
+    }
+}
+
+/// A design whose tier angles are parameters ([`CutSpace`]): each tier that can turn (every
+/// tier but the girdle, the table and a culet) is a key named as the design names the tier
+/// (`P1`, `C2`, `pavilion-main`), its value the tier's angle to the girdle plane in degrees.
+/// The depths are solved ([`TierModel::reangled`]) so that the meets stay meets, the girdle
+/// holding the scale.
+///
+/// The space starts from the design as it **adopts its meets**: the first solve snaps every
+/// meet found within the tolerance to an exact point ([`DesignSpace::base`]), so a rounded file
+/// and the solid it means are one design. Every cut built has the base's facets and facet
+/// adjacency (else it is refused: a facet that would vanish, an edge that would appear), and
+/// angles on GemCad's grid ([`ANGLE_DECIMALS`]), so the `.asc` written of it is the cut scored.
+#[derive(Clone, Debug)]
+pub struct DesignSpace {
+    name: String,
+    base: Cut,
+    model: TierModel,
+    /// The tiers that are keys, in tier order.
+    key_tiers: Vec<usize>,
+    /// The base's angle of every tier.
+    angles: Vec<f64>,
+    open: OpenMeets,
+    adjacency: BTreeSet<(String, String)>,
+}
+
+/// One meet a set of free tiers cannot keep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OpenedMeet {
+    /// Index of the meet in [`DesignSpace::meets`].
+    pub meet: usize,
+    /// A description: its tiers and point (`P1·P2·G1 at (0.500, 0.000, −0.021)`).
+    pub name: String,
+    /// The free tiers that open it when turned alone; empty when only turning several of them
+    /// independently does.
+    pub by: Vec<String>,
+}
+
+impl DesignSpace {
+    /// The space of `cut`'s tier angles, its meets found within `tol` (of W) and adopted.
+    pub fn new(cut: &Cut, tol: f64, open: OpenMeets) -> Result<DesignSpace> {
+        let first = TierModel::of_cut(cut, tol)?;
+        let none = vec![None; first.names.len()];
+        let snapped = first.reangled(&none)?;
+        let solid = Polyhedron::from_planes(&snapped.planes)
+            .map_err(|e| e.context(&format!("{}: adopting its meets", cut.name)))?;
+        let mut model = TierModel::new(solid.clone(), first.tier_of, first.names, tol)?;
+        // Adopted, the meets are exact: from here a meet is kept only when it stays exact,
+        // or (a meet the file's rounding left over-determined) as close as it is now.
+        model.tol = f64::INFINITY;
+        let replay = model.reangled(&none)?;
+        model.tol = KEPT;
+        model.slack = replay.gaps.iter().map(|g| 10.0 * g).collect();
+        let angles = model.angles();
+        let key_tiers = (0..model.names.len())
+            .filter(|&t| !model.held[t] && turnable(&model, t))
+            .collect();
+        let adjacency = adjacency(&solid);
+        let base = Cut {
+            name: cut.name.clone(),
+            family: None,
+            params: BTreeMap::new(),
+            solid,
+            record: Some(cut.record.clone().unwrap_or_default()),
+        };
+        let mut space = DesignSpace {
+            name: cut.name.clone(),
+            base,
+            model,
+            key_tiers,
+            angles,
+            open,
+            adjacency,
+        };
+        space.base.params = space.defaults();
+        Ok(space)
+    }
+
+    /// The design as it adopted its meets (its params are its tier angles).
+    pub fn base(&self) -> &Cut {
+        &self.base
+    }
+
+    /// The tier model (tiers, depths, meets) of the base.
+    pub fn model(&self) -> &TierModel {
+        &self.model
+    }
+
+    /// The design's meets.
+    pub fn meets(&self) -> &[Meet] {
+        &self.model.meets
+    }
+
+    /// What the space does with meets the angles cannot keep.
+    pub fn open_meets(&self) -> OpenMeets {
+        self.open
+    }
+
+    /// Every key at its base angle.
+    pub fn defaults(&self) -> BTreeMap<String, f64> {
+        self.key_tiers
+            .iter()
+            .map(|&t| (self.model.names[t].clone(), self.angles[t]))
+            .collect()
+    }
+
+    /// A meet described by its tiers and point: `P1·P2·G1 at (0.500, 0.000, -0.021)`.
+    pub fn describe(&self, m: usize) -> String {
+        let meet = &self.model.meets[m];
+        let p = meet.point;
+        format!(
+            "{} at ({:.3}, {:.3}, {:.3})",
+            self.model.meet_tiers(meet).join("·"),
+            p.x,
+            p.y,
+            p.z
+        )
+    }
+
+    /// The meets the `free` tiers (key, lower and upper bound) cannot keep: each free tier is
+    /// turned alone to a point of its bounds, then all of them together to different points
+    /// of theirs, and every meet that opens is listed with the tiers that open it alone.
+    pub fn unkeepable(&self, free: &[(String, f64, f64)]) -> Result<Vec<OpenedMeet>> {
+        let mut out: Vec<OpenedMeet> = Vec::new();
+        let mut note = |meets: Vec<usize>, by: Option<&str>| {
+            for m in meets {
+                match out.iter_mut().find(|o| o.meet == m) {
+                    Some(o) => o.by.extend(by.map(str::to_string)),
+                    None => out.push(OpenedMeet {
+                        meet: m,
+                        name: self.describe(m),
+                        by: by.map(str::to_string).into_iter().collect(),
+                    }),
+                }
+            }
+        };
+        // Probe points: away from the start by a share of the box that differs per tier, so
+        // that tiers turned together are turned independently.
+        let probe = |k: usize, lo: f64, hi: f64, start: f64| -> f64 {
+            let f = 0.5 + 0.41 * ((k as f64 + 1.0) * 0.618_033_988_75).fract() - 0.2;
+            let v = lo + (hi - lo) * f;
+            if (v - start).abs() < 1e-3 * (hi - lo) {
+                lo + (hi - lo) * 0.9
+            } else {
+                v
+            }
+        };
+        let mut together = vec![None; self.model.names.len()];
+        for (k, (key, lo, hi)) in free.iter().enumerate() {
+            let t = self.tier(key)?;
+            let mut alone = vec![None; self.model.names.len()];
+            alone[t] = Some(probe(k, *lo, *hi, self.angles[t]));
+            together[t] = alone[t];
+            note(self.opened(&self.model.reangled(&alone)?), Some(key));
+        }
+        note(self.opened(&self.model.reangled(&together)?), None);
+        out.sort_by_key(|o| o.meet);
+        Ok(out)
+    }
+
+    /// How far each of the design's meets is from kept in `cut` (a cut of this space: its
+    /// facets by name), in W: 0 where kept.
+    pub fn gaps(&self, cut: &Cut) -> Vec<f64> {
+        gaps_in(&self.model, &cut.solid)
+    }
+
+    fn tier(&self, key: &str) -> Result<usize> {
+        self.key_tiers
+            .iter()
+            .copied()
+            .find(|&t| self.model.names[t] == key)
+            .ok_or_else(|| {
+                Error::invalid(
+                    key,
+                    format!(
+                        "{} has no tier `{key}` whose angle can turn; its tiers: {}",
+                        self.name,
+                        self.keys().join(", ")
+                    ),
+                )
+            })
+    }
+
+    fn opened(&self, r: &Reangled) -> Vec<usize> {
+        (0..r.gaps.len())
+            .filter(|&m| r.gaps[m] > self.model.tol + self.model.slack[m])
+            .collect()
+    }
+
+    /// The footnote a changed design carries: which tiers turned, from what to what.
+    fn footnote(&self, values: &BTreeMap<String, f64>) -> Option<String> {
+        let mut out = String::new();
+        for &t in &self.key_tiers {
+            let name = &self.model.names[t];
+            let (was, now) = (self.angles[t], values[name]);
+            if fixed(was, 2) != fixed(now, 2) {
+                let sep = if out.is_empty() { "" } else { ", " };
+                let _ = write!(out, "{sep}{name} {} (was {})", fixed(now, 2), fixed(was, 2));
+            }
+        }
+        (!out.is_empty()).then(|| format!("Angles changed by facetlab, meets kept: {out}"))
+    }
+}
+
+/// How far each of `model`'s meets is from kept in `solid` (its facets found by name), in W.
+fn gaps_in(model: &TierModel, solid: &Polyhedron) -> Vec<f64> {
+    let index: BTreeMap<&str, usize> = solid
+        .facets()
+        .iter()
+        .enumerate()
+        .map(|(i, f)| (f.name.as_str(), i))
+        .collect();
+    model
+        .meets
+        .iter()
+        .map(|m| {
+            let planes: Vec<_> = m
+                .facets
+                .iter()
+                .filter_map(|&f| index.get(model.solid.facets()[f].name.as_str()))
+                .map(|&i| {
+                    let p = solid.facets()[i].plane;
+                    (p.normal, p.offset)
+                })
+                .collect();
+            match super::meets::least_squares_point(&planes) {
+                Some(p) if planes.len() == m.facets.len() => planes
+                    .iter()
+                    .map(|(n, d)| (n.dot(p) - d).abs())
+                    .fold(0.0, f64::max),
+                _ => f64::INFINITY,
+            }
+        })
+        .collect()
+}
+
+/// Whether tier `t` has an azimuth to turn about (not a table or culet).
+fn turnable(model: &TierModel, t: usize) -> bool {
+    model
+        .tier_of
+        .iter()
+        .zip(model.solid.facets())
+        .any(|(&ft, f)| ft == t && f.plane.normal.x.hypot(f.plane.normal.y) > 1e-12)
+}
+
+/// `x` on GemCad's angle grid: what the `.asc` writer writes, read back.
+fn on_grid(x: f64) -> f64 {
+    fixed(x, ANGLE_DECIMALS).parse().unwrap_or(x)
+}
+
+impl CutSpace for DesignSpace {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn keys(&self) -> Vec<&str> {
+        self.key_tiers
+            .iter()
+            .map(|&t| self.model.names[t].as_str())
+            .collect()
+    }
+
+    fn range(&self, key: &str) -> Option<ParamRange> {
+        let t = self.tier(key).ok()?;
+        Some(ParamRange {
+            default: self.angles[t],
+            min: 0.0,
+            max: 90.0,
+            open: true,
+            unit: Unit::Degrees,
+        })
+    }
+
+    fn complete(&self, values: &BTreeMap<String, f64>) -> Result<BTreeMap<String, f64>> {
+        let mut out = self.defaults();
+        for (k, &v) in values {
+            let r = self.range(k).ok_or_else(|| self.tier(k).unwrap_err())?;
+            if !(v.is_finite() && r.contains(v)) {
+                return Err(Error::invalid(
+                    k.as_str(),
+                    format!("{v} is not an angle in (0, 90) degrees"),
+                ));
+            }
+            out.insert(k.clone(), v);
+        }
+        Ok(out)
+    }
+
+    fn build(&self, name: &str, values: &BTreeMap<String, f64>) -> Result<Cut> {
+        let values = self.complete(values)?;
+        let mut angles = vec![None; self.model.names.len()];
+        let mut used = BTreeMap::new();
+        for &t in &self.key_tiers {
+            let key = &self.model.names[t];
+            let v = values[key];
+            if v != self.angles[t] {
+                let g = on_grid(v);
+                angles[t] = Some(g);
+                used.insert(key.clone(), g);
+            } else {
+                used.insert(key.clone(), v);
+            }
+        }
+        let r = self.model.reangled(&angles)?;
+        let opened = self.opened(&r);
+        if self.open == OpenMeets::Refuse {
+            if let Some(&m) = opened.first() {
+                let tiers = self.model.meet_tiers(&self.model.meets[m]);
+                // Name the turned tier of the meet, else the first turned tier.
+                let turned: Vec<&str> = self
+                    .key_tiers
+                    .iter()
+                    .filter(|&&t| angles[t].is_some())
+                    .map(|&t| self.model.names[t].as_str())
+                    .collect();
+                let key = turned
+                    .iter()
+                    .find(|t| tiers.contains(t))
+                    .or(turned.first())
+                    .copied()
+                    .unwrap_or_default();
+                return Err(Error::invalid(
+                    key,
+                    format!(
+                        "these angles open the meet {} by {:.2e} W; turn its tiers together, or allow open meets (`open_meets = \"allow\"`)",
+                        self.describe(m),
+                        r.gaps[m]
+                    ),
+                ));
+            }
+        }
+        let solid = Polyhedron::from_planes(&r.planes)
+            .map_err(|e| e.context(&format!("{name}: the design at these angles")))?;
+        // Same design: the same edges, except (where allowed) around the opened meets.
+        let now = adjacency(&solid);
+        let free: BTreeSet<&str> = opened
+            .iter()
+            .flat_map(|&m| &self.model.meets[m].facets)
+            .map(|&f| self.model.solid.facets()[f].name.as_str())
+            .collect();
+        let changed = self
+            .adjacency
+            .symmetric_difference(&now)
+            .find(|(a, b)| !(free.contains(a.as_str()) && free.contains(b.as_str())));
+        if let Some((a, b)) = changed {
+            let what = if now.contains(&(a.clone(), b.clone())) {
+                "a new edge appears between"
+            } else {
+                "the edge vanishes between"
+            };
+            return Err(Error::Geometry(format!(
+                "{name}: not the same design at these angles: {what} facets {a} and {b}"
+            )));
+        }
+        let mut record = self.base.record.clone().unwrap_or_default();
+        record.footnotes.extend(self.footnote(&used));
+        Ok(Cut {
+            name: name.to_string(),
+            family: None,
+            params: used,
+            solid,
+            record: Some(record),
+        })
+    }
+}
+
+/// `cut` with `changes` applied: a family cut's parameters, or a design's tier angles (by
+/// [`DesignSpace`], refusing angles that open a meet). The `--set KEY=VALUE` of the command
+/// line.
+pub fn with_set(cut: &Cut, changes: &BTreeMap<String, f64>) -> Result<Cut> {
+    if changes.is_empty() || cut.family.is_some() {
+        return cut.with_params(changes);
+    }
+    let space = DesignSpace::new(cut, super::MEET_TOL, OpenMeets::Refuse)?;
+    space.build(&cut.name, changes)
+}
