@@ -5,8 +5,8 @@
 //! over-determined, so it survives a change of facet angles only if the depths move with it.
 //!
 //! For fixed facet normals every meet is a set of linear equations in the tiers' depths
-//! (`n_i · p_m = d_t(i)` for each facet `i` through meet `m`, with the meet's point `p_m`
-//! unknown too), so the depths that keep the meets come from one linear least-squares solve
+//! (`n_i · p_m = d_t(i)` for each facet `i` through meet `m`; the meet's point `p_m` is
+//! eliminated as the least-squares point of its planes, itself linear in the depths), so the depths that keep the meets come from one linear least-squares solve
 //! ([`solve_depths`]), with some tiers' depths held (the girdle's, which fixes the scale).
 //! A meet the new normals cannot keep shows up as a residual: its planes no longer pass through
 //! one point, and [`DepthSolve::gaps`] says by how much.
@@ -136,9 +136,9 @@ pub struct DepthProblem<'a> {
     /// The meets to keep, each as the facets through it.
     pub meets: &'a [Vec<usize>],
     /// Meets whose height is held (`Some(z)`): the girdle's meets, so that the girdle keeps
-    /// its thickness (vertical girdle facets alone do not fix a pavilion's height). Held as
-    /// weakly as the free depths: where the meets leave a height free it stays as near its old
-    /// value as it can, and where the file's rounded heights disagree the meets win.
+    /// its thickness (vertical girdle facets alone do not fix a pavilion's height). Held weakly
+    /// ([`HEIGHT_WEIGHT`]): where the meets leave a height free it stays as near its old value
+    /// as it can, and where the file's rounded heights disagree the meets win.
     pub held_z: &'a [Option<f64>],
 }
 
@@ -153,25 +153,22 @@ pub struct DepthSolve {
     pub gaps: Vec<f64>,
 }
 
-/// Weight of the rows that hold a free tier near its current depth. They make the system
-/// full-rank when a tier's depth is not fixed by any meet (it then keeps its depth) and move a
-/// meet-fixed depth by ~WEIGHT² relative: far below any tolerance a design is checked at.
-pub const PRIOR_WEIGHT: f64 = 1e-7;
-
 /// Weight of the rows that hold a girdle meet's height: far below the meets' own rows (weight
-/// 1), so a file's rounding never opens a meet, and far above [`PRIOR_WEIGHT`], so the
-/// girdle's height, not a tier's old depth, is what a free shift of the pavilion or crown keeps.
+/// 1), so a file's rounding never opens a meet; so the girdle's height is what a free shift of
+/// the pavilion or crown keeps.
 pub const HEIGHT_WEIGHT: f64 = 1e-3;
 
-/// Solve for the tiers' depths that keep every meet of `p` (linear least squares by
-/// Householder QR): unknowns are each free tier's depth and each meet's point, equations
-/// `n_i · p_m − d_t(i) = 0` for every facet `i` through meet `m`.
+/// Solve for the tiers' depths that keep every meet of `p`: linear least squares in the free
+/// tiers' depths (Householder QR with column pivoting, [`least_squares_frozen`]), one row per
+/// facet of a meet — its distance from the meet's least-squares point, which is linear in the
+/// depths — and a weak row per held height. A tier in no meet keeps its depth, and so does a
+/// tier the meets barely fix ([`FREEZE`]).
 ///
-/// The weak rows (a free tier's old depth, a girdle meet's old height) pull the solution off
-/// the meets by about their weight squared times how far the meets move them. Passes of
-/// refinement, each holding the weak rows at the last solution, take that pull away, so a
-/// keepable meet is kept to rounding; a pass is kept only while it shrinks the largest gap
-/// tenfold (where the meets themselves disagree, refining would only let the heights drift).
+/// The rows that hold a girdle meet's old height pull the solution off the meets by about
+/// their weight squared times how far the meets move them. Passes of refinement, each holding
+/// the heights at the last solution, take that pull away, so a keepable meet is kept to
+/// rounding; a pass is kept only while it shrinks the largest gap tenfold (where the meets
+/// themselves disagree, refining would only let the heights drift).
 pub fn solve_depths(p: &DepthProblem) -> Result<DepthSolve> {
     let worst = |s: &DepthSolve| s.gaps.iter().copied().fold(0.0, f64::max);
     let mut solve = solve_once(p)?;
@@ -183,7 +180,6 @@ pub fn solve_depths(p: &DepthProblem) -> Result<DepthSolve> {
             .map(|(z, q)| z.map(|_| q.z))
             .collect();
         let next = solve_once(&DepthProblem {
-            depths: &solve.depths,
             held_z: &held_z,
             ..p.clone()
         })?;
@@ -207,81 +203,180 @@ fn solve_once(p: &DepthProblem) -> Result<DepthSolve> {
             "depth solve: tier {t} out of range"
         )));
     }
-    // Columns: free tiers first, then 3 per meet.
+    // A tier in no meet keeps its depth: held, not solved.
+    let mut in_meet = vec![false; nt];
+    for &f in p.meets.iter().flatten() {
+        in_meet[p.tier_of[f]] = true;
+    }
     let mut col_of_tier = vec![usize::MAX; nt];
     let mut ncols = 0;
-    for (col, &held) in col_of_tier.iter_mut().zip(p.held) {
-        if !held {
-            *col = ncols;
+    for t in 0..nt {
+        if !p.held[t] && in_meet[t] {
+            col_of_tier[t] = ncols;
             ncols += 1;
         }
     }
-    let free_tiers = ncols;
-    let meet_col = |m: usize| free_tiers + 3 * m;
-    ncols += 3 * p.meets.len();
+    // Each meet's least-squares point is linear in its facets' depths, p = M⁻¹ Σ n_j d_j with
+    // M = Σ n_j n_jᵀ; every facet's distance from it, n_i · p − d_i, is a row (the rows of a
+    // meet have rank k − 3: its k − 3 conditions of concurrency).
     let mut rows: Vec<(Vec<f64>, f64)> = Vec::new();
-    for (m, facets) in p.meets.iter().enumerate() {
-        for &f in facets {
-            let mut row = vec![0.0; ncols];
-            let n = p.normals[f];
-            row[meet_col(m)] = n.x;
-            row[meet_col(m) + 1] = n.y;
-            row[meet_col(m) + 2] = n.z;
+    let mut row_of = |coef: &[(usize, f64)], weight: f64, target: f64| {
+        let mut row = vec![0.0; ncols];
+        let mut rhs = weight * target;
+        for &(f, c) in coef {
             let t = p.tier_of[f];
-            let rhs = if p.held[t] {
-                p.depths[t]
+            if col_of_tier[t] == usize::MAX {
+                rhs -= weight * c * p.depths[t];
             } else {
-                row[col_of_tier[t]] = -1.0;
-                0.0
-            };
-            rows.push((row, rhs));
-        }
-    }
-    for (m, z) in p.held_z.iter().enumerate() {
-        if let Some(z) = z {
-            let mut row = vec![0.0; ncols];
-            row[meet_col(m) + 2] = HEIGHT_WEIGHT;
-            rows.push((row, HEIGHT_WEIGHT * z));
-        }
-    }
-    for (t, &col) in col_of_tier.iter().enumerate() {
-        if !p.held[t] {
-            let mut row = vec![0.0; ncols];
-            row[col] = PRIOR_WEIGHT;
-            rows.push((row, PRIOR_WEIGHT * p.depths[t]));
-        }
-    }
-    let x = least_squares(rows, ncols).ok_or_else(|| {
-        Error::Geometry("depth solve: the meets do not fix the meet points".into())
-    })?;
-    let depths: Vec<f64> = (0..nt)
-        .map(|t| {
-            if p.held[t] {
-                p.depths[t]
-            } else {
-                x[col_of_tier[t]]
+                row[col_of_tier[t]] += weight * c;
             }
-        })
-        .collect();
-    let points: Vec<DVec3> = (0..p.meets.len())
-        .map(|m| DVec3::new(x[meet_col(m)], x[meet_col(m) + 1], x[meet_col(m) + 2]))
-        .collect();
-    let gaps = p
-        .meets
-        .iter()
-        .zip(&points)
-        .map(|(facets, &q)| {
-            facets
+        }
+        rows.push((row, rhs));
+    };
+    for (m, facets) in p.meets.iter().enumerate() {
+        let minv = meet_inverse(p.normals, facets)?;
+        for &i in facets {
+            let ni = minv * p.normals[i];
+            let coef: Vec<(usize, f64)> = facets
                 .iter()
-                .map(|&f| (p.normals[f].dot(q) - depths[p.tier_of[f]]).abs())
-                .fold(0.0, f64::max)
+                .map(|&j| (j, ni.dot(p.normals[j]) - if i == j { 1.0 } else { 0.0 }))
+                .collect();
+            row_of(&coef, 1.0, 0.0);
+        }
+        if let Some(z) = p.held_z[m] {
+            let ez = minv * DVec3::Z;
+            let coef: Vec<(usize, f64)> =
+                facets.iter().map(|&j| (j, ez.dot(p.normals[j]))).collect();
+            row_of(&coef, HEIGHT_WEIGHT, z);
+        }
+    }
+    let old: Vec<f64> = (0..nt)
+        .filter(|&t| col_of_tier[t] != usize::MAX)
+        .map(|t| p.depths[t])
+        .collect();
+    let x = least_squares_frozen(rows, ncols, &old, FREEZE);
+    let depths: Vec<f64> = (0..nt)
+        .map(|t| match col_of_tier[t] {
+            usize::MAX => p.depths[t],
+            c => x[c],
         })
         .collect();
+    let mut points = Vec::with_capacity(p.meets.len());
+    let mut gaps = Vec::with_capacity(p.meets.len());
+    for facets in p.meets {
+        let planes: Vec<(DVec3, f64)> = facets
+            .iter()
+            .map(|&f| (p.normals[f], depths[p.tier_of[f]]))
+            .collect();
+        let q = least_squares_point(&planes).unwrap_or(DVec3::ZERO);
+        gaps.push(
+            planes
+                .iter()
+                .map(|(n, d)| (n.dot(q) - d).abs())
+                .fold(0.0, f64::max),
+        );
+        points.push(q);
+    }
     Ok(DepthSolve {
         depths,
         points,
         gaps,
     })
+}
+
+/// `(Σ n nᵀ)⁻¹` over a meet's facets: an error when their normals do not span space.
+fn meet_inverse(normals: &[DVec3], facets: &[usize]) -> Result<glam::DMat3> {
+    let mut m = glam::DMat3::ZERO;
+    for &f in facets {
+        let n = normals[f];
+        m += glam::DMat3::from_cols(n * n.x, n * n.y, n * n.z);
+    }
+    if m.determinant().abs() < 1e-12 {
+        return Err(Error::Geometry(
+            "depth solve: a meet's facets do not fix a point".into(),
+        ));
+    }
+    Ok(m.inverse())
+}
+
+/// A free tier whose column's remaining norm falls below this share of the largest, in the
+/// pivoted solve, keeps its depth: the meets barely fix it, and solving for it would move it
+/// far (a file's rounding of 1e-8 closed by a move of 1e-3 along a near-free direction).
+pub const FREEZE: f64 = 1e-5;
+
+/// Minimise |A x − b| by Householder QR with column pivoting: the column with the largest
+/// remaining norm first, until the largest left is below `freeze` of the largest at the start;
+/// the columns left are **frozen** at their value in `fallback`, the others solved for. A
+/// rank-deficient or ill-conditioned system so keeps the least-determined unknowns where they
+/// were instead of moving them far to shave a rounding-sized residual.
+pub fn least_squares_frozen(
+    rows: Vec<(Vec<f64>, f64)>,
+    ncols: usize,
+    fallback: &[f64],
+    freeze: f64,
+) -> Vec<f64> {
+    let m = rows.len();
+    let mut a = vec![0.0; m * ncols];
+    let mut b = vec![0.0; m];
+    for (i, (row, rhs)) in rows.into_iter().enumerate() {
+        for (j, v) in row.into_iter().enumerate() {
+            a[j * m + i] = v;
+        }
+        b[i] = rhs;
+    }
+    let norm_from = |a: &[f64], j: usize, k: usize| -> f64 {
+        a[j * m + k..(j + 1) * m]
+            .iter()
+            .map(|v| v * v)
+            .sum::<f64>()
+            .sqrt()
+    };
+    let scale = (0..ncols).map(|j| norm_from(&a, j, 0)).fold(0.0, f64::max);
+    let mut order: Vec<usize> = (0..ncols).collect();
+    let mut rank = 0;
+    for k in 0..ncols.min(m) {
+        // Pivot: the remaining column with the largest norm below row k.
+        let (best, norm) = (k..ncols)
+            .map(|c| (c, norm_from(&a, order[c], k)))
+            .fold((k, -1.0), |acc, x| if x.1 > acc.1 { x } else { acc });
+        if norm <= freeze * scale || norm <= 0.0 {
+            break;
+        }
+        order.swap(k, best);
+        let jk = order[k];
+        let col = &a[jk * m..(jk + 1) * m];
+        let alpha = if col[k] > 0.0 { -norm } else { norm };
+        let mut v: Vec<f64> = col[k..].to_vec();
+        v[0] -= alpha;
+        let vv: f64 = v.iter().map(|x| x * x).sum();
+        if vv > 0.0 {
+            for &j in &order[k..] {
+                let cj = &mut a[j * m + k..(j + 1) * m];
+                let s = 2.0 * v.iter().zip(cj.iter()).map(|(x, y)| x * y).sum::<f64>() / vv;
+                for (c, x) in cj.iter_mut().zip(&v) {
+                    *c -= s * x;
+                }
+            }
+            let s = 2.0 * v.iter().zip(&b[k..]).map(|(x, y)| x * y).sum::<f64>() / vv;
+            for (c, x) in b[k..].iter_mut().zip(&v) {
+                *c -= s * x;
+            }
+        }
+        rank = k + 1;
+    }
+    let mut x = fallback.to_vec();
+    // The frozen columns' part of the right-hand side, then back substitution.
+    for k in (0..rank).rev() {
+        let mut s = b[k];
+        for &j in &order[rank..] {
+            s -= a[j * m + k] * x[j];
+        }
+        for &j in &order[k + 1..rank] {
+            s -= a[j * m + k] * x[j];
+        }
+        x[order[k]] = s / a[order[k] * m + k];
+    }
+    x
 }
 
 /// Minimise |A x − b| by Householder QR; `None` when A is rank-deficient (a pivot below 1e-12

@@ -32,6 +32,8 @@
 pub mod meets;
 pub mod reangle;
 mod space;
+#[cfg(test)]
+pub(crate) mod tests;
 mod tiers;
 
 pub use meets::{find_meets, Meet};

@@ -333,6 +333,7 @@ pub fn adjacency(s: &Polyhedron) -> BTreeSet<(String, String)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::design::tests::{brute_vertices, same_vertices};
     use std::collections::BTreeMap;
 
     /// Tiers as GemCad lines: facets of one tier name with the same angle and depth.
@@ -363,54 +364,6 @@ mod tests {
             })
             .collect();
         TierModel::new(s.clone(), tier_of, names, 1e-9).unwrap()
-    }
-
-    /// Every vertex of the solid of `planes` by brute force (each three planes' intersection
-    /// inside all the others), with the names of the facets through it: independent of
-    /// `Polyhedron`'s clipping.
-    fn brute_vertices(planes: &[FacetPlane]) -> Vec<(DVec3, BTreeSet<String>)> {
-        let mut out: Vec<(DVec3, BTreeSet<String>)> = Vec::new();
-        let n = planes.len();
-        for i in 0..n {
-            for j in i + 1..n {
-                for k in j + 1..n {
-                    let (a, b, c) = (&planes[i].plane, &planes[j].plane, &planes[k].plane);
-                    let m = glam::DMat3::from_cols(a.normal, b.normal, c.normal).transpose();
-                    if m.determinant().abs() < 1e-9 {
-                        continue;
-                    }
-                    let p = m.inverse() * DVec3::new(a.offset, b.offset, c.offset);
-                    if planes
-                        .iter()
-                        .any(|q| q.plane.normal.dot(p) - q.plane.offset > 1e-9)
-                    {
-                        continue;
-                    }
-                    if out.iter().any(|(q, _)| q.distance(p) < 1e-9) {
-                        continue;
-                    }
-                    let on = planes
-                        .iter()
-                        .filter(|q| (q.plane.normal.dot(p) - q.plane.offset).abs() < 1e-9)
-                        .map(|q| q.name.clone())
-                        .collect();
-                    out.push((p, on));
-                }
-            }
-        }
-        out
-    }
-
-    fn same_vertices(a: &Polyhedron, b: &Polyhedron, tol: f64) {
-        assert_eq!(a.vertices().len(), b.vertices().len());
-        for p in a.vertices() {
-            let d = b
-                .vertices()
-                .iter()
-                .map(|q| q.distance(*p))
-                .fold(f64::MAX, f64::min);
-            assert!(d < tol, "vertex {p} is {d} from the other solid");
-        }
     }
 
     #[test]
