@@ -14,7 +14,8 @@ use std::path::PathBuf;
 pub struct GenerateArgs {
     /// Preset name or path (.toml, .asc, .obj, .stl).
     pub cut: String,
-    /// Change a parameter of a family cut, e.g. `--set crown_angle=34.5` (repeatable).
+    /// Change a parameter: a family's (`--set crown_angle=34.5`) or a design's tier angle
+    /// (`--set P1=41.2`, depths solved so its meets are kept). Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Output file; the format follows the extension: .toml .asc .obj .stl .svg.
@@ -27,7 +28,8 @@ pub struct GenerateArgs {
 pub struct InfoArgs {
     /// Preset name or path (.toml, .asc, .obj, .stl).
     pub cut: String,
-    /// Change a parameter of a family cut, e.g. `--set table=0.55` (repeatable).
+    /// Change a parameter: a family's (`--set table=0.55`) or a design's tier angle
+    /// (`--set P1=41.2`, depths solved so its meets are kept). Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Print JSON instead of a table (keys documented in the README).

@@ -76,8 +76,8 @@ pub struct RenderArgs {
     /// Track polarization (on) or use the unpolarized average (off).
     #[arg(long, default_value = "on", value_name = "on|off")]
     pub polarization: String,
-    /// Change a parameter of family cuts, e.g. `--set crown_angle=34.5` (repeatable; applied
-    /// to every CUT).
+    /// Change a parameter: a family's (`--set crown_angle=34.5`) or a design's tier angle
+    /// (`--set P1=41.2`). Repeatable; applied to every CUT.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Animated PNG of the stone rocking: frame k tilted DEG·sin(2πk/FRAMES) more toward the

@@ -16,8 +16,8 @@ pub struct ReportArgs {
     /// Cuts to report, side by side: preset names or .toml/.asc/.obj/.stl files.
     #[arg(required = true, value_name = "CUT")]
     pub cuts: Vec<String>,
-    /// Change a parameter of family cuts, e.g. `--set crown_angle=34.5` (repeatable; applied
-    /// to every CUT).
+    /// Change a parameter: a family's (`--set crown_angle=34.5`) or a design's tier angle
+    /// (`--set P1=41.2`). Repeatable; applied to every CUT.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     #[command(flatten)]

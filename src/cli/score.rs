@@ -43,6 +43,11 @@ pub struct ScoreArgs {
     /// `--set KEY=VALUE` pairs; `#` comments), into --jsonl OUT, resumably.
     #[arg(long, value_name = "FILE")]
     pub batch: Option<PathBuf>,
+    /// Change a parameter of the cuts: a family's (`--set crown_angle=34.5`) or a design's
+    /// tier angle (`--set P1=41.2`, its depths solved so its meets are kept). Repeatable;
+    /// applied to every CUT.
+    #[arg(long = "set", value_name = "KEY=VALUE", conflicts_with = "batch")]
+    pub set: Vec<String>,
     /// With --batch: the JSON Lines file written, one line per cut (its scores or its error).
     #[arg(long, value_name = "OUT")]
     pub jsonl: Option<PathBuf>,
@@ -199,7 +204,7 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
     let cuts = a
         .cuts
         .iter()
-        .map(|c| facetlab::io::load_cut(c))
+        .map(|c| super::cuts::load_with_sets(c, &a.set))
         .collect::<Result<Vec<_>>>()?;
     if let Some(path) = &a.json {
         // Fail before the work, not after it.

@@ -1,5 +1,6 @@
 //! Shared helpers for running the `facetlab` binary.
 
+mod designs;
 mod foundation;
 mod materials;
 mod optimize;
