@@ -436,6 +436,12 @@ pub fn info_text(j: &InfoJson) -> String {
             t.name, t.angle, t.count, t.side
         );
     }
+    if j.family.is_none() {
+        let _ = writeln!(
+            o,
+            "  (--set TIER=DEG turns a tier; the depths follow so that the meets are kept)"
+        );
+    }
     let _ = writeln!(
         o,
         "\nFacets {}   vertices {}   volume {:.5} W³",
