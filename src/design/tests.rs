@@ -346,3 +346,27 @@ fn the_written_design_reads_back_as_the_cut_that_was_scored() {
         assert!((x - y).abs() < 1e-7, "{name}: {x} against {y}");
     }
 }
+
+#[test]
+fn a_mesh_of_a_preset_has_the_presets_tiers() {
+    // A mesh carries no GemCad lines: its tiers are the facets its symmetry maps onto each
+    // other (one tier name, one angle, one depth, within the mesh's rounding).
+    for name in ["tolkowsky", "princess", "oval"] {
+        let cut = crate::io::load_cut(name).unwrap();
+        let obj = crate::io::mesh::write_obj(&cut);
+        let mesh = crate::io::parse_cut("obj", obj.as_bytes(), name, "t.obj").unwrap();
+        let (a, b) = (space(&cut), space(&mesh));
+        let sizes = |s: &DesignSpace| {
+            let mut n: Vec<usize> = (0..s.model().names.len())
+                .map(|t| s.model().tier_of.iter().filter(|&&x| x == t).count())
+                .collect();
+            n.sort_unstable();
+            n
+        };
+        assert_eq!(sizes(&a), sizes(&b), "{name}");
+        assert_eq!(a.keys().len(), b.keys().len(), "{name}");
+        assert_eq!(a.meets().len(), b.meets().len(), "{name}");
+        let again = b.build(name, &BTreeMap::new()).unwrap();
+        same_vertices(&b.base().solid, &again.solid, 1e-9);
+    }
+}
