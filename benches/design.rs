@@ -1,0 +1,64 @@
+//! The design path's own cost: adopting a design's meets (`DesignSpace::new`) and building it
+//! at new tier angles (`CutSpace::build`: the depth solve, the solid, the adjacency check),
+//! against a full default score of the same cut. Run: `cargo bench --bench design`.
+//!
+//! Each design is a bundled preset written to `.asc` and read back, so it is what a faceter's
+//! file gives; the build turns every tier by +0.3°.
+
+use facetlab::cut::CutSpace;
+use facetlab::design::{DesignSpace, OpenMeets, MEET_TOL};
+use facetlab::metrics::{score, ScoreConfig};
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+/// Median seconds of `runs` calls of `f`.
+fn median(runs: usize, mut f: impl FnMut()) -> f64 {
+    let mut t: Vec<f64> = (0..runs)
+        .map(|_| {
+            let s = Instant::now();
+            f();
+            s.elapsed().as_secs_f64()
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[runs / 2]
+}
+
+fn main() {
+    println!(
+        "{:<14} {:>6} {:>6} {:>11} {:>11} {:>11} {:>8}",
+        "design", "facets", "meets", "adopt (ms)", "build (ms)", "score (ms)", "build/score"
+    );
+    for name in ["tolkowsky", "princess", "emerald", "oval", "cushion"] {
+        let cut = facetlab::io::load_cut(name).expect("preset");
+        let text = facetlab::io::asc::write(&cut, 96);
+        let cut = facetlab::io::asc::parse(text.as_bytes(), "bench.asc")
+            .and_then(|d| d.to_cut(name))
+            .expect("asc round trip");
+        let adopt = median(21, || {
+            DesignSpace::new(&cut, MEET_TOL, OpenMeets::Allow).expect("adopts");
+        });
+        let space = DesignSpace::new(&cut, MEET_TOL, OpenMeets::Allow).expect("adopts");
+        let turned: BTreeMap<String, f64> = space
+            .keys()
+            .iter()
+            .map(|k| (k.to_string(), space.range(k).unwrap().default + 0.3))
+            .collect();
+        let build = median(21, || {
+            let _ = space.build(name, &turned);
+        });
+        let config = ScoreConfig::default();
+        let scored = median(5, || {
+            score(&space.base().solid, &config);
+        });
+        println!(
+            "{name:<14} {:>6} {:>6} {:>11.3} {:>11.3} {:>11.1} {:>8.3}",
+            cut.solid.facets().len(),
+            space.meets().len(),
+            adopt * 1e3,
+            build * 1e3,
+            scored * 1e3,
+            build / scored
+        );
+    }
+}
