@@ -72,8 +72,9 @@ pub enum Command {
     /// One self-contained HTML page per cut or comparing cuts: ISO, ASET and fire pictures, the
     /// diagram, proportions with the grade estimate, every score explained, `--verify N`.
     Report(report::ReportArgs),
-    /// Adapt a design to another refractive index: the tangent-ratio rule and an optimized
-    /// pair of ratios that restores its light return there; both reported, one written.
+    /// Adapt a design to another refractive index: the tangent-ratio rule, an optimized pair
+    /// of ratios that restores its light return there and, for a design (.asc), its tier
+    /// angles optimized with the meets kept; all reported, the better optimized one written.
     Retarget(retarget::RetargetArgs),
     /// Join the shards of one sweep (`sweep --shard K/N`) into the CSV and map one unsharded
     /// run writes, after checking they cover the grid exactly once.

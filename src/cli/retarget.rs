@@ -1,8 +1,9 @@
 //! `facetlab retarget CUT --ri N [--material NAME] -o OUT` (either flag alone, or both when they agree): adapt a design to another index,
 //! by the tangent-ratio rule and by an optimized pair of ratios that restores the design's
 //! light return at the new index ([`facetlab::optimize::retarget`], a search over the ratios
-//! of [`facetlab::cut::retarget`]); both are reported, the
-//! optimized one is written (the rule's with `--tangent-only`).
+//! of [`facetlab::cut::retarget`]); a design without a family also gets an optimized-tiers
+//! variant (every tier angle that can turn alone searched with the meets kept). All are
+//! reported; the better optimized one is written (the rule's with `--tangent-only`).
 
 use super::flags;
 use super::outputs::{cut_files, refuse_overwrite};
@@ -27,7 +28,8 @@ pub struct RetargetArgs {
     /// The index the design was cut for (default: the file's `I` index, else diamond's).
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub from: Option<String>,
-    /// Write the tangent-ratio variant instead of the optimized one.
+    /// Write the tangent-ratio variant instead of the better optimized one (ratios, or a
+    /// design's tiers).
     #[arg(long)]
     pub tangent_only: bool,
     /// Replace -o if it exists (an input is never replaced).
@@ -100,14 +102,46 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
     );
     for v in &r.variants {
         println!(
-            "  {:<14} crown {:6.2}°  pavilion {:6.2}°  tangent ratios {:.4} / {:.4}  brilliance {:.4}",
+            "  {:<15} crown {:6.2}°  pavilion {:6.2}°  tangent ratios {:.4} / {:.4}  brilliance {:.4}",
             v.label, v.crown_angle, v.pavilion_angle, v.k_crown, v.k_pavilion, v.brilliance
         );
+    }
+    if let Some(t) = &r.tiers {
+        if let Some(why) = &t.skipped {
+            println!("  (no optimized-tiers variant: {why})");
+        } else {
+            let turned: Vec<String> = t
+                .free
+                .iter()
+                .map(|k| format!("{k} {:.2}°", t.angles[k]))
+                .collect();
+            println!(
+                "  optimized-tiers: from the {} angles, {} quick scores; searched {}",
+                t.start,
+                t.evaluations,
+                if turned.is_empty() {
+                    "none".to_string()
+                } else {
+                    turned.join(", ")
+                }
+            );
+            // One line per reason: the tiers it holds.
+            let mut whys: Vec<(&str, Vec<&str>)> = Vec::new();
+            for f in &t.fixed {
+                match whys.iter_mut().find(|(w, _)| *w == f.why) {
+                    Some((_, tiers)) => tiers.push(&f.tier),
+                    None => whys.push((&f.why, vec![&f.tier])),
+                }
+            }
+            for (why, tiers) in whys {
+                println!("    left fixed: {} ({why})", tiers.join(", "));
+            }
+        }
     }
     let chosen = if a.tangent_only {
         &r.variants[1]
     } else {
-        &r.variants[2]
+        r.best()
     };
     let mut out = chosen.cut.clone();
     let mut record = out.record.clone().unwrap_or_default();

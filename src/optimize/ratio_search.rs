@@ -8,22 +8,40 @@
 //! one and the design itself are then scored with the full settings, and the optimized
 //! variant is the best of the three, so its brilliance at the new index is never below the
 //! unchanged design's there.
+//!
+//! A design (a cut without a family: an `.asc`, a TOML list of facets, a mesh) gets a fourth
+//! variant, `optimized-tiers` ([`tier_search`]): a Nelder–Mead search (argmin's; no random
+//! numbers, so deterministic) over every tier angle of the design that can turn alone with its
+//! meets kept, through [`DesignSpace`] (open meets refused, depths solved). It starts from the
+//! tangent-ratio variant's tier angles when the design space can build them, else from the
+//! design, and maximizes the same quick brilliance at the new index; the start and the
+//! search's best are then scored with the full settings and the better one is the variant, so
+//! it is never below its start. Tiers whose angle cannot turn alone without opening a meet
+//! ([`DesignSpace::unkeepable`]) are left at their start angle, each with the meet it would
+//! open.
 
 use crate::cut::retarget::{pavilion_ratio_for, tangent_ratio};
-use crate::cut::Cut;
+use crate::cut::{Cut, CutSpace};
+use crate::design::{DesignSpace, OpenMeets, MEET_TOL};
 use crate::error::Result;
 use crate::metrics::{score, ScoreConfig};
 use crate::optics::Material;
+use argmin::core::{CostFunction, Executor};
+use argmin::solver::neldermead::NelderMead;
 use serde::Serialize;
+use std::collections::BTreeMap;
+use std::sync::Mutex;
 
 /// One variant of a retargeted design.
 #[derive(Clone, Debug, Serialize)]
 pub struct Variant {
-    /// `design` (unchanged), `tangent-ratio` or `optimized`.
+    /// `design` (unchanged), `tangent-ratio`, `optimized` or (designs only) `optimized-tiers`.
     pub label: &'static str,
-    /// Tangent ratio of the crown.
+    /// Tangent ratio of the crown (`optimized-tiers`: the tangent of its crown angle over the
+    /// design's).
     pub k_crown: f64,
-    /// Tangent ratio of the pavilion.
+    /// Tangent ratio of the pavilion (`optimized-tiers`: the tangent of its pavilion angle
+    /// over the design's).
     pub k_pavilion: f64,
     /// Crown angle, degrees.
     pub crown_angle: f64,
@@ -46,10 +64,55 @@ pub struct Retarget {
     pub material: String,
     /// Its index at 589.3 nm.
     pub to_ri: f64,
-    /// The design, the tangent-ratio variant, the optimized variant.
+    /// The design, the tangent-ratio variant, the optimized variant and, for a design (a cut
+    /// without a family) whose tiers could be searched, the optimized-tiers variant.
     pub variants: Vec<Variant>,
     /// Cuts scored by the search.
     pub evaluations: usize,
+    /// The tier search of a design (`None` for a family cut).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tiers: Option<TierSearch>,
+}
+
+impl Retarget {
+    /// The variant to write: the better (by brilliance at the new index) of `optimized` and
+    /// `optimized-tiers`, the ratios' on a tie.
+    pub fn best(&self) -> &Variant {
+        self.variants[2..].iter().fold(&self.variants[2], |b, v| {
+            if v.brilliance > b.brilliance {
+                v
+            } else {
+                b
+            }
+        })
+    }
+}
+
+/// What the tier search of a design did.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct TierSearch {
+    /// `tangent-ratio` (the search started from its tier angles) or `design`.
+    pub start: String,
+    /// The tiers searched, by the design's names.
+    pub free: Vec<String>,
+    /// Tiers left at their start angle, each with why.
+    pub fixed: Vec<FixedTier>,
+    /// Every tier angle of the variant, degrees, by tier name (`None` when no variant).
+    pub angles: BTreeMap<String, f64>,
+    /// Cuts scored by the search (quick settings).
+    pub evaluations: usize,
+    /// Why there is no optimized-tiers variant (the design space could not be made).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub skipped: Option<String>,
+}
+
+/// A tier the search left fixed.
+#[derive(Clone, Debug, Serialize)]
+pub struct FixedTier {
+    /// The tier's name.
+    pub tier: String,
+    /// Why: the meet it would open turned alone.
+    pub why: String,
 }
 
 fn variant(label: &'static str, cut: &Cut, kc: f64, kp: f64, cfg: &ScoreConfig) -> Variant {
@@ -141,13 +204,210 @@ pub fn retarget(cut: &Cut, from_ri: f64, to: &Material, full: &ScoreConfig) -> R
             };
         }
     }
+    let mut variants = vec![design, tangent, optimized];
+    let tiers = if cut.family.is_none() {
+        let (v, t) = tier_search(cut, 1.0, kp0, &quick, &full)?;
+        variants.extend(v);
+        Some(t)
+    } else {
+        None
+    };
     Ok(Retarget {
         from_ri,
         material: to.name.clone(),
         to_ri: n,
-        variants: vec![design, tangent, optimized],
+        variants,
         evaluations,
+        tiers,
     })
+}
+
+/// Iterations of the tier search's Nelder–Mead (each one or two quick scores, a shrink one per
+/// tier more).
+pub const TIER_ITERATIONS: u64 = 60;
+/// Its initial simplex: each tier turned by this many degrees from the start.
+pub const TIER_STEP_DEG: f64 = 1.0;
+/// Half the span, degrees, over which [`DesignSpace::unkeepable`] probes a tier turned alone.
+pub const TIER_PROBE_DEG: f64 = 1.0;
+
+/// The cost a tier search gives a point its design space refuses (brilliance is at least 0, so
+/// its cost −brilliance is at most 0).
+const REFUSED: f64 = 1.0;
+
+/// Search a design's tier angles for light return in `quick`'s material (see the module's
+/// notes): the optimized-tiers variant, scored with `full`, and what the search did. The
+/// start is the tangent-ratio variant's tier angles (`k_crown`, `k_pavilion`) when the
+/// design's space builds them, else the design's. No variant (and [`TierSearch::skipped`]
+/// says why) when the design's tiers cannot be made a space.
+pub fn tier_search(
+    cut: &Cut,
+    k_crown: f64,
+    k_pavilion: f64,
+    quick: &ScoreConfig,
+    full: &ScoreConfig,
+) -> Result<(Option<Variant>, TierSearch)> {
+    let space = match DesignSpace::new(cut, MEET_TOL, OpenMeets::Refuse) {
+        Ok(s) => s,
+        Err(e) => {
+            let t = TierSearch {
+                skipped: Some(e.to_string()),
+                ..Default::default()
+            };
+            return Ok((None, t));
+        }
+    };
+    let design = space.defaults();
+    // The tangent-ratio variant as tier angles: tan a' = k·tan a on each side of the girdle.
+    let model = space.model();
+    let ratioed: BTreeMap<String, f64> = design
+        .iter()
+        .map(|(key, &a)| {
+            let t = model.names.iter().position(|n| n == key).unwrap_or(0);
+            let z = model
+                .tier_of
+                .iter()
+                .zip(model.solid.facets())
+                .find(|(&ft, _)| ft == t)
+                .map_or(0.0, |(_, f)| f.plane.normal.z);
+            let k = if z > 0.0 { k_crown } else { k_pavilion };
+            (key.clone(), (k * a.to_radians().tan()).atan().to_degrees())
+        })
+        .collect();
+    let (start, from) = match space.build("tangent-ratio", &ratioed) {
+        Ok(_) => (ratioed, "tangent-ratio"),
+        Err(_) => (design.clone(), "design"),
+    };
+    // Tiers that cannot turn alone (about the start) without opening a meet stay fixed.
+    let probes: Vec<(String, f64, f64)> = start
+        .iter()
+        .map(|(k, &a)| {
+            (
+                k.clone(),
+                (a - TIER_PROBE_DEG).max(0.5),
+                (a + TIER_PROBE_DEG).min(89.5),
+            )
+        })
+        .collect();
+    let mut fixed: Vec<FixedTier> = Vec::new();
+    for o in space.unkeepable(&probes)? {
+        for by in &o.by {
+            if !fixed.iter().any(|f| &f.tier == by) {
+                fixed.push(FixedTier {
+                    tier: by.clone(),
+                    why: format!("turned alone, opens the meet {}", o.name),
+                });
+            }
+        }
+    }
+    let free: Vec<String> = start
+        .keys()
+        .filter(|k| !fixed.iter().any(|f| &f.tier == *k))
+        .cloned()
+        .collect();
+    let at = |x: &[f64]| -> BTreeMap<String, f64> {
+        let mut v = start.clone();
+        for (k, &a) in free.iter().zip(x) {
+            v.insert(k.clone(), a);
+        }
+        v
+    };
+    let problem = TierProblem {
+        space: &space,
+        quick,
+        at: &at,
+        seen: Mutex::new(Vec::new()),
+    };
+    let x0: Vec<f64> = free.iter().map(|k| start[k]).collect();
+    let best_x = if free.is_empty() {
+        x0.clone()
+    } else {
+        let mut simplex = vec![x0.clone()];
+        for i in 0..x0.len() {
+            let mut x = x0.clone();
+            x[i] += if x[i] + TIER_STEP_DEG < 89.5 {
+                TIER_STEP_DEG
+            } else {
+                -TIER_STEP_DEG
+            };
+            simplex.push(x);
+        }
+        let fail = |e: argmin::core::Error| crate::error::Error::invalid("tiers", e.to_string());
+        let solver = NelderMead::new(simplex)
+            .with_sd_tolerance(1e-7)
+            .map_err(fail)?;
+        Executor::new(&problem, solver)
+            .configure(|s| s.max_iters(TIER_ITERATIONS))
+            .run()
+            .map_err(fail)?;
+        let seen = problem.seen.lock().map(|s| s.clone()).unwrap_or_default();
+        seen.into_iter()
+            .fold((x0.clone(), f64::INFINITY), |b, (x, c)| {
+                if c < b.1 {
+                    (x, c)
+                } else {
+                    b
+                }
+            })
+            .0
+    };
+    let evaluations = problem.seen.lock().map(|s| s.len()).unwrap_or(0);
+    // The search's best and its start, scored with the full settings: the better one.
+    let p0 = space.base().proportions();
+    let (tan_c, tan_p) = (
+        p0.crown_angle.to_radians().tan(),
+        p0.pavilion_angle.to_radians().tan(),
+    );
+    let mut best: Option<(Variant, BTreeMap<String, f64>)> = None;
+    for x in [&best_x, &x0] {
+        let angles = at(x);
+        let Ok(c) = space.build(&cut.name, &angles) else {
+            continue;
+        };
+        let p = c.proportions();
+        let kc = p.crown_angle.to_radians().tan() / tan_c;
+        let kp = p.pavilion_angle.to_radians().tan() / tan_p;
+        let v = variant("optimized-tiers", &c, kc, kp, full);
+        if best.as_ref().is_none_or(|b| v.brilliance > b.0.brilliance) {
+            best = Some((v, angles));
+        }
+    }
+    let (v, angles) = best.unzip();
+    Ok((
+        v,
+        TierSearch {
+            start: from.to_string(),
+            free,
+            fixed,
+            angles: angles.unwrap_or_default(),
+            evaluations,
+            skipped: None,
+        },
+    ))
+}
+
+/// The tier search's objective: −quick brilliance of the design at the tier angles, every
+/// evaluation remembered.
+struct TierProblem<'a> {
+    space: &'a DesignSpace,
+    quick: &'a ScoreConfig,
+    at: &'a dyn Fn(&[f64]) -> BTreeMap<String, f64>,
+    seen: Mutex<Vec<(Vec<f64>, f64)>>,
+}
+
+impl CostFunction for &TierProblem<'_> {
+    type Param = Vec<f64>;
+    type Output = f64;
+
+    fn cost(&self, x: &Vec<f64>) -> std::result::Result<f64, argmin::core::Error> {
+        let c = match self.space.build("t", &(self.at)(x)) {
+            Ok(cut) => -score(&cut.solid, self.quick).brilliance,
+            Err(_) => REFUSED,
+        };
+        if let Ok(mut s) = self.seen.lock() {
+            s.push((x.clone(), c));
+        }
+        Ok(c)
+    }
 }
 
 #[cfg(test)]
@@ -173,5 +433,46 @@ mod tests {
         // index, by these scores); the search restores and passes the design's light return.
         assert!(optimized.brilliance > tangent.brilliance);
         assert!(r.evaluations > 10);
+    }
+
+    /// A design written by the test (the round brilliant preset exported to `.asc`, so a cut
+    /// without a family) retargeted to quartz: the optimized-tiers variant keeps every meet of
+    /// the design, has its facets, names the tiers it left fixed with a meet each, and returns
+    /// at least as much light at the new index as the tangent-ratio variant it starts from.
+    #[test]
+    fn design_tiers_to_quartz() {
+        let preset = crate::io::load_cut("tolkowsky").unwrap();
+        let text = crate::io::asc::write(&preset, 0);
+        let cut = crate::io::parse_cut("asc", text.as_bytes(), "round", "test").unwrap();
+        assert!(cut.family.is_none());
+        let quartz = Material::by_name("quartz").unwrap();
+        let started = std::time::Instant::now();
+        let r = retarget(&cut, 2.417, &quartz, &ScoreConfig::fast()).unwrap();
+        let seconds = started.elapsed().as_secs_f64();
+        assert_eq!(r.variants.len(), 4, "{r:?}");
+        let (tangent, tiers) = (&r.variants[1], &r.variants[3]);
+        assert_eq!(tiers.label, "optimized-tiers");
+        let t = r.tiers.as_ref().unwrap();
+        assert_eq!(t.start, "tangent-ratio");
+        assert!(!t.free.is_empty() && t.evaluations > t.free.len(), "{t:?}");
+        for f in &t.fixed {
+            assert!(!t.free.contains(&f.tier) && f.why.contains("meet"), "{f:?}");
+        }
+        let space = DesignSpace::new(&cut, MEET_TOL, OpenMeets::Refuse).unwrap();
+        let gaps = space.gaps(&tiers.cut);
+        assert!(!gaps.is_empty());
+        assert!(gaps.iter().all(|&g| g <= 1e-9), "{gaps:?}");
+        assert_eq!(tiers.cut.solid.facets().len(), cut.solid.facets().len());
+        // Searched tiers moved from their start; fixed ones did not.
+        assert!(t
+            .free
+            .iter()
+            .any(|k| (t.angles[k] - space.defaults()[k]).abs() > 0.01));
+        assert!(tiers.brilliance >= tangent.brilliance, "{r:?}");
+        assert!(r.best().brilliance >= r.variants[2].brilliance);
+        eprintln!(
+            "tiers: {:.4} against tangent {:.4}, ratios {:.4}; {} evaluations, {seconds:.2} s; {t:?}",
+            tiers.brilliance, tangent.brilliance, r.variants[2].brilliance, t.evaluations
+        );
     }
 }

@@ -209,8 +209,9 @@ pub fn report(config: &Config, o: &Outcome, files: Vec<String>) -> Report {
     }
 }
 
-/// The design part of a report: its file, meets and the meets the free angles open.
-fn design_json(config: &Config, o: &Outcome) -> Option<DesignJson> {
+/// The design part of a run's report (`None` for a family run): its file, meets and the meets
+/// the free angles open, with their gaps in the best cut.
+pub fn design_json(config: &Config, o: &Outcome) -> Option<DesignJson> {
     let d = config.design.as_ref()?;
     let gaps = o.best_cut.as_ref().map(|c| d.gaps(c));
     Some(DesignJson {

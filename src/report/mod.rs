@@ -5,16 +5,20 @@
 //! lights for fire ([`crate::render`]), the facet diagram ([`crate::plot::diagram`]), the
 //! proportions with the grade estimate for round brilliants ([`crate::cut::grade`]), every
 //! score with one line on what it means ([`crate::metrics`]), and, when asked, the photon
-//! tracer's check of the beam tracer's numbers ([`crate::verify`]).
+//! tracer's check of the beam tracer's numbers ([`crate::verify`]) and its tilt performance:
+//! ISO pictures of the stone tipped by a few angles, and a chart of its light return against
+//! the tilt, every cut of the page on one chart ([`ReportOptions::tilts`]).
 //!
 //! The rooms: `mod.rs` measures a cut for a report ([`measure`]: scores, pictures, checks);
-//! `page.rs` writes the page ([`html`]); `run.rs` makes an optimizer run's `report.html` from
+//! `page.rs` writes the page ([`html`]); `tilt.rs` its tilt performance (the pictures' row and the
+//! chart, an inline SVG); `run.rs` makes an optimizer run's `report.html` from
 //! what the run returned ([`run_page`], the [`RunPage`](crate::optimize::RunPage) the binary
 //! hands to a run). The report sits on top of the library: it may import every floor below it
 //! (the optimizer, the plots and everything under them); nothing in the library imports it.
 
 mod page;
 mod run;
+mod tilt;
 
 pub use page::{base64, escape, html, SCORE_LINES};
 pub use run::run_page;
@@ -22,7 +26,7 @@ pub use run::run_page;
 use crate::cut::Cut;
 use crate::error::Result;
 use crate::metrics::{score, ScoreConfig, Scores};
-use crate::render::{render, Image, Light, RenderOptions};
+use crate::render::{render, Image, Light, RenderOptions, Tilt};
 use crate::verify::{verify_scores, Check};
 
 /// What a report shows and how it is made.
@@ -40,6 +44,12 @@ pub struct ReportOptions {
     pub sigma: f64,
     /// Title of the page.
     pub title: String,
+    /// Tilts, degrees, of the stone's tilt performance: one ISO picture per tilt, the stone
+    /// tipped toward azimuth 0°, and a chart of their light return; empty = none.
+    pub tilts: Vec<f64>,
+    /// Sections placed above the cuts: a heading and its HTML (made by the caller: text in it
+    /// escaped with [`escape`]).
+    pub sections: Vec<(String, String)>,
 }
 
 impl Default for ReportOptions {
@@ -51,6 +61,8 @@ impl Default for ReportOptions {
             seed: 1,
             sigma: 4.0,
             title: "facetlab cut report".into(),
+            tilts: Vec::new(),
+            sections: Vec::new(),
         }
     }
 }
@@ -68,6 +80,8 @@ pub struct CutReport {
     pub checks: Vec<Check>,
     /// Its pictures: ISO, ASET, fire.
     pub pictures: Vec<(Light, Image)>,
+    /// Its ISO pictures at [`ReportOptions::tilts`], with their tilt in degrees.
+    pub tilted: Vec<(f64, Image)>,
 }
 
 /// Score, draw and (optionally) verify `cut` for a report.
@@ -78,14 +92,32 @@ pub fn measure(label: &str, cut: &Cut, o: &ReportOptions) -> Result<CutReport> {
     } else {
         Vec::new()
     };
-    let pictures = [Light::Iso, Light::Aset, Light::Fire]
+    let picture = |light: Light, tilt_deg: f64| {
+        let mut r = RenderOptions::new(light);
+        r.size = o.size;
+        r.material = o.score.material.clone();
+        r.polarization = o.score.polarization;
+        r.tilt = Tilt {
+            tilt_deg,
+            azimuth_deg: 0.0,
+        };
+        render(&cut.solid, &r)
+    };
+    let pictures: Vec<(Light, Image)> = [Light::Iso, Light::Aset, Light::Fire]
         .into_iter()
-        .map(|light| {
-            let mut r = RenderOptions::new(light);
-            r.size = o.size;
-            r.material = o.score.material.clone();
-            r.polarization = o.score.polarization;
-            (light, render(&cut.solid, &r))
+        .map(|light| (light, picture(light, 0.0)))
+        .collect();
+    // Face-up is the ISO picture already made.
+    let tilted = o
+        .tilts
+        .iter()
+        .map(|&t| {
+            let img = if t == 0.0 {
+                pictures[0].1.clone()
+            } else {
+                picture(Light::Iso, t)
+            };
+            (t, img)
         })
         .collect();
     Ok(CutReport {
@@ -94,5 +126,6 @@ pub fn measure(label: &str, cut: &Cut, o: &ReportOptions) -> Result<CutReport> {
         scores,
         checks,
         pictures,
+        tilted,
     })
 }

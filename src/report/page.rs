@@ -3,6 +3,7 @@
 //! the grade estimate, every score with one line on what it means, and the photon tracer's
 //! checks; one style sheet, no script, nothing fetched.
 
+use super::tilt;
 use super::{CutReport, ReportOptions};
 use crate::cut::grade::{self, Grade};
 use crate::error::Result;
@@ -78,10 +79,33 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
         o.score.wavelength_nm,
         if o.score.polarization { "on" } else { "off" }
     );
+    for (heading, body) in &o.sections {
+        let _ = writeln!(
+            h,
+            "<section class=\"note\"><h2>{}</h2>\n{body}</section>",
+            escape(heading)
+        );
+    }
+    if cuts.iter().any(|c| !c.tilted.is_empty()) {
+        let _ = writeln!(
+            h,
+            "<section class=\"note\"><h2>Tilt performance</h2><p class=\"sub\">Light return under ISO light (% of a white diffuser) as the stone tips toward azimuth 0°; each cut's pictures are below its face-up ones.</p>{}</section>",
+            tilt::chart(cuts)
+        );
+    }
     h.push_str("<div class=\"cuts\">\n");
     for c in cuts {
         h.push_str("<section class=\"cut\">\n");
-        let fam = c.cut.family.as_deref().unwrap_or("mesh");
+        // A cut without a family: a GemCad design (it has a record), else a mesh.
+        let fam = c
+            .cut
+            .family
+            .as_deref()
+            .unwrap_or(if c.cut.record.is_some() {
+                "design"
+            } else {
+                "mesh"
+            });
         let _ = writeln!(
             h,
             "<h2>{}</h2><p class=\"sub\">{} · {} facets</p>",
@@ -124,6 +148,10 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
             );
         }
         h.push_str("</div>\n<p class=\"legend\"><span style=\"background:#1a4dff\"></span>75–90° <span style=\"background:#e61414\"></span>45–75° <span style=\"background:#1ab829\"></span>0–45° <span style=\"background:#000\"></span>leak or viewer's port (ASET)</p>\n");
+        if !c.tilted.is_empty() {
+            h.push_str("<h3>Tilted (ISO light)</h3>");
+            h.push_str(&tilt::row(c)?);
+        }
         // The diagram, inline.
         let svg = diagram(&c.cut);
         let svg = svg
@@ -214,6 +242,8 @@ figcaption{font-size:12px;color:#555}.legend{font-size:12px;color:#555}\
 .legend span{display:inline-block;width:10px;height:10px;margin:0 3px 0 8px;vertical-align:middle}\
 .diagram svg{max-width:100%;height:auto;max-height:360px}table{border-collapse:collapse;font-size:13px}\
 th{text-align:left;font-weight:600;padding:2px 10px 2px 0}td{padding:2px 10px 2px 0}.num{text-align:right;font-variant-numeric:tabular-nums}\
+.note{background:#fff;border:1px solid #ddd;border-radius:6px;padding:12px 16px;margin:0 0 16px;max-width:1040px}\
+.note svg{max-width:100%;height:auto}.tilts{margin-top:4px}\
 .what{color:#666}.ok{color:#1b6e20}.warn{color:#a33}.foot{color:#888;font-size:12px;margin-top:20px}";
 
 #[cfg(test)]
