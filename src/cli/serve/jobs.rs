@@ -1,6 +1,7 @@
 //! The heavy work of a request (building, tracing, scoring) on blocking threads, at most
 //! [`jobs`] at a time; a request whose client gives up while waiting for its turn never runs.
 
+use super::design::{Adopted, Designs};
 use super::error::{ApiError, ApiResult};
 use super::request::{Req, Source};
 use super::AppState;
@@ -49,30 +50,57 @@ where
     }
 }
 
-/// Build the cut a request names, with its parameter changes.
-pub fn build(r: &Req) -> ApiResult<Cut> {
-    let cut = match &r.source {
+/// Build the cut a request names, with its parameter changes: a family's through the family,
+/// a design's tier angles through its [`super::design::Design`] (adopted once per design, [`Designs`]).
+pub fn build(designs: &Designs, r: &Req) -> ApiResult<Cut> {
+    build_design(designs, r, false).map(|(cut, _)| cut)
+}
+
+/// [`build`], and for a cut without a family its design adopted (or why it cannot be) when
+/// `want` says so or the request sets angles.
+pub fn build_design(designs: &Designs, r: &Req, want: bool) -> ApiResult<(Cut, Option<Adopted>)> {
+    let (cut, key) = match &r.source {
         Source::Preset(n) => match io::presets::load(n) {
-            Some(c) => c.map_err(ApiError::from_load)?,
+            Some(c) => (
+                c.map_err(ApiError::from_load)?,
+                [&b"preset\0"[..], n.as_bytes()].concat(),
+            ),
             None => return Err(ApiError::bad("cut", "unknown preset")),
         },
         Source::File {
             format,
             bytes,
             name,
-        } => load_bytes(format, bytes, name).map_err(ApiError::from_load)?,
+        } => (
+            load_bytes(format, bytes, name).map_err(ApiError::from_load)?,
+            [
+                format.as_bytes(),
+                &b"\0"[..],
+                name.as_bytes(),
+                &b"\0"[..],
+                bytes,
+            ]
+            .concat(),
+        ),
     };
-    if !r.set.is_empty() && cut.family.is_none() {
-        return Err(ApiError::new(
+    if cut.family.is_some() {
+        return Ok((cut.with_params(&r.set).map_err(ApiError::from_cut)?, None));
+    }
+    if r.set.is_empty() && !want {
+        return Ok((cut, None));
+    }
+    let design = designs.get(key, &cut);
+    if r.set.is_empty() {
+        return Ok((cut, Some(design)));
+    }
+    match &design {
+        Ok(d) => Ok((d.build(&cut.name, &r.set)?, Some(design))),
+        Err(e) => Err(ApiError::new(
             StatusCode::UNPROCESSABLE_ENTITY,
             "set",
-            format!(
-                "{} is an explicit facet design, not a parametric family; it has no parameters to set",
-                cut.name
-            ),
-        ));
+            format!("{}: its tier angles cannot turn: {e}", cut.name),
+        )),
     }
-    cut.with_params(&r.set).map_err(ApiError::from_cut)
 }
 
 /// Parse a cut file's bytes in memory ([`io::parse_cut`]); `cut` names the source in

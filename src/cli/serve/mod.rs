@@ -9,14 +9,15 @@
 //! API (see the README's "serve" section):
 //!
 //! - `GET /api/presets`: presets, families with their parameters and ranges, lights, limits.
-//! - `POST /api/cut`: the cut's `info --json` record plus `svg` (the diagram).
+//! - `POST /api/cut`: the cut's `info --json` record plus `svg` (the diagram), and for a cut
+//!   without a family `design_space`: its tier angles as sliders ([`design`]).
 //! - `POST /api/score`: the keys of `score --json` (`"quick": true` uses
 //!   [`ScoreConfig::fast`](facetlab::metrics::ScoreConfig::fast)).
 //! - `POST /api/render`: `image/png` of the face-up (or tilted) picture.
 //! - `POST /api/export`: the cut as `.asc`, `.obj`, `.stl` or `.toml` bytes.
 //!
 //! Every body is a JSON object: `cut` (a preset name, or the text of a file with `format`),
-//! `set` (parameter changes), and per endpoint `light`, `size`, `tilt`, `exposure`, `quick`, `to`. Errors are
+//! `set` (parameter changes: a family's parameters, or a design's tier angles), and per endpoint `light`, `size`, `tilt`, `exposure`, `quick`, `to`. Errors are
 //! 4xx JSON `{"error": "field: message", "field": "field"}`. Bodies over
 //! [`BODY_LIMIT`] bytes are refused. Uploads are parsed in memory; nothing a client sends
 //! becomes a file path. Heavy work (building, tracing, scoring) runs on blocking threads, at
@@ -26,8 +27,10 @@
 //! This file holds the flags, the listening and the shared state; the rooms:
 //! [`routes`] (the router and the cut endpoints), [`request`] (request bodies, validated),
 //! [`error`] (the API's error replies), [`jobs`] (the heavy work on blocking threads),
+//! [`design`] (a design's tier angles as sliders, adopted once per design),
 //! [`runs`] (optimization runs in the background), [`page`] (the embedded page).
 
+mod design;
 mod error;
 mod jobs;
 mod page;
@@ -67,11 +70,13 @@ pub const TILT_LIMIT: f64 = 45.0;
 /// Largest exposure factor of a picture.
 pub const EXPOSURE_MAX: f64 = 16.0;
 
-/// Shared state: the job limit and the presets' JSON (built once).
+/// Shared state: the job limit, the presets' JSON (built once), the optimization runs and the
+/// designs adopted lately.
 struct AppState {
     jobs: Arc<Semaphore>,
     presets: String,
     runs: runs::Runs,
+    designs: Arc<design::Designs>,
 }
 
 /// The address in `--bind`: an IP address or `localhost`.

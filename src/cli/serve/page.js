@@ -47,7 +47,9 @@ const state = {
 };
 
 function newSlot(source) {
-  return { source, base: {}, set: {}, family: null, info: null, scores: null, quick: true, t0: 0, img: null, ms: {} };
+  // design: a cut without a family whose tier angles are sliders (`design_space` of /api/cut);
+  // lastKey: the slider moved last (a refusal that names no tier is shown there).
+  return { source, base: {}, set: {}, family: null, design: null, designError: '', lastKey: null, info: null, scores: null, quick: true, t0: 0, img: null, ms: {} };
 }
 
 // ---- requests -------------------------------------------------------------------------------
@@ -203,6 +205,7 @@ async function doInfo(name) {
     const j = await api('info-' + name, '/api/cut', requestBody(s));
     if (state.slots[name] !== s) return;
     s.info = j;
+    takeNotes(s, j);
     fillProps();
     caption(name);
     if (name === 'a') showDiagram(j.svg);
@@ -235,6 +238,13 @@ async function loadSource(source, label) {
   s.info = info;
   s.family = info.family || null;
   s.base = Object.assign({}, info.params || {});
+  const ds = info.design_space;
+  if (!s.family && ds && ds.tiers) {
+    s.design = ds;
+    for (const t of ds.tiers) s.base[t.key] = t.default;
+  } else if (!s.family && ds && ds.error) {
+    s.designError = ds.error;
+  }
   state.slots.a = s;
   if (label) setFileOption(label);
   buildParams();
@@ -242,7 +252,59 @@ async function loadSource(source, label) {
   showDiagram(info.svg);
   caption('a');
   refresh('a', 'all');
+  if (s.design && !s.design.probed) pollNotes(s, 0);
   return true;
+}
+
+// The meets each tier opens alone are probed in the background after a design's first
+// answer: ask again (cheap, the design is cached) until they are known.
+function pollNotes(s, n) {
+  if (n > 40 || state.slots.a !== s || !s.design || s.design.probed) return;
+  setTimeout(async () => {
+    if (state.slots.a !== s || s.design.probed) return;
+    try {
+      const j = await api('notes', '/api/cut', Object.assign({}, s.source));
+      takeNotes(s, j);
+    } catch (e) {
+      if (aborted(e)) return;
+    }
+    pollNotes(s, n + 1);
+  }, n < 5 ? 500 : 1500);
+}
+
+// Take a design's probed notes from an answer of /api/cut, and show them.
+function takeNotes(s, j) {
+  const ds = j && j.design_space;
+  if (!s.design || !ds || !ds.probed || s.design.probed) return;
+  s.design = ds;
+  if (state.slots.a === s) showNotes();
+}
+
+function showNotes() {
+  const s = state.slots.a;
+  if (!s || !s.design) return;
+  for (const t of s.design.tiers) {
+    const row = document.querySelector(`.param[data-key="${CSS.escape(t.key)}"]`);
+    if (!row) continue;
+    const el = row.querySelector('.note');
+    const meets = t.alone_opens || [];
+    el.textContent = meets.length === 0 ? ''
+      : `moving ${t.key} alone opens the meet ${meets[0]}` + (meets.length > 1 ? ` (and ${meets.length - 1} more)` : '');
+    el.title = meets.join('\n');
+  }
+  designNote();
+}
+
+// The note under a design's sliders: what the sliders do.
+function designNote() {
+  const s = state.slots.a;
+  if (!s || !s.design) return;
+  const d = s.design;
+  const stuck = d.probed ? d.tiers.filter((t) => (t.alone_opens || []).length).length : 0;
+  let text = `${d.tiers.length} tier angles; each depth is solved so that the design's ${d.meets} meets stay meets.`;
+  text += d.probed ? (stuck ? ` ${stuck} of the tiers cannot move alone: move them together with the tiers of the meet they open.` : ' Moved alone, every tier keeps its meets.')
+    : ' Checking which tiers can move alone…';
+  $('#params-note').textContent = text;
 }
 
 function setFileOption(label) {
@@ -297,12 +359,14 @@ function buildParams() {
   box.textContent = '';
   $('#params-note').textContent = '';
   const fam = s.family && state.meta.families.find((f) => f.name === s.family);
-  $('#reset').hidden = !fam;
-  if (!fam) {
-    $('#params-note').textContent = 'An explicit facet design: it has no family parameters to change. Pin it as B and load a preset to compare.';
+  const params = fam ? fam.params : s.design ? s.design.tiers : null;
+  $('#reset').hidden = !params;
+  if (!params) {
+    $('#params-note').textContent = 'An explicit facet design: it has no family parameters, and its tier angles cannot turn'
+      + (s.designError ? ` (${s.designError})` : '') + '. Pin it as B and load a preset to compare.';
     return;
   }
-  for (const p of fam.params) {
+  for (const p of params) {
     const value = p.key in s.set ? s.set[p.key] : (p.key in s.base ? s.base[p.key] : p.default);
     const dec = decimals(p.step);
     const lo = p.open ? p.min + p.step : p.min;
@@ -312,15 +376,18 @@ function buildParams() {
     row.dataset.key = p.key;
     const unit = p.unit === 'degrees' ? '°' : p.unit === 'fraction' ? '× D' : p.unit === 'ratio' ? 'ratio' : '';
     row.innerHTML = `<div class="head"><label class="key"></label><span class="unit"></span></div>
-      <div class="ctl"><input type="range"><input type="number"></div><div class="err" role="alert"></div>`;
+      <div class="ctl"><input type="range"><input type="number"></div><div class="err" role="alert"></div><div class="note"></div>`;
     const label = row.querySelector('label');
-    label.textContent = p.key.replace(/_/g, ' ');
+    label.textContent = fam ? p.key.replace(/_/g, ' ') : p.key;
     label.title = p.doc;
     label.htmlFor = 'num-' + p.key;
-    row.querySelector('.unit').textContent = `${unit} ${p.open ? '(' : '['}${p.min}, ${p.max}${p.open ? ')' : ']'}`;
+    row.querySelector('.unit').textContent = fam
+      ? `${unit} ${p.open ? '(' : '['}${p.min}, ${p.max}${p.open ? ')' : ']'}`
+      : `${unit} (was ${p.default.toFixed(2)}°)`;
     const range = row.querySelector('input[type=range]');
     const num = row.querySelector('input[type=number]');
     num.id = 'num-' + p.key;
+    if (!fam) row.classList.add('tier');
     range.setAttribute('aria-label', p.key);
     for (const el of [range, num]) {
       el.min = String(lo);
@@ -344,14 +411,16 @@ function buildParams() {
     });
     box.appendChild(row);
   }
+  if (s.design) showNotes();
 }
 
 function setParam(key, v) {
   const s = state.slots.a;
   if (v !== null && s.base[key] !== undefined && Math.abs(v - s.base[key]) < 1e-12) delete s.set[key];
   else s.set[key] = v;
-  const row = document.querySelector(`.param[data-key="${key}"]`);
+  const row = document.querySelector(`.param[data-key="${CSS.escape(key)}"]`);
   if (row) row.classList.toggle('changed', key in s.set);
+  s.lastKey = key;
   s.t0 = performance.now();
   schedule('a', 'all');
 }
@@ -443,7 +512,7 @@ function fillProps() {
   const a = state.slots.a;
   if (a && a.info) {
     $('#cut-name').textContent = a.info.name;
-    $('#cut-family').textContent = a.info.family ? '· ' + a.info.family : '· explicit facets';
+    $('#cut-family').textContent = a.info.family ? '· ' + a.info.family : a.design ? '· design, tier angles' : '· explicit facets';
   }
 }
 
@@ -490,10 +559,13 @@ function showStatus() {
 // ---- errors ---------------------------------------------------------------------------------
 
 function showError(name, e) {
-  const field = e.field || '';
+  let field = e.field || '';
   const msg = e.message || String(e);
+  const design = state.slots[name] && state.slots[name].design;
+  // A design's refusal that names no tier belongs to the slider moved last.
+  if (name === 'a' && design && field === 'set' && state.slots.a.lastKey) field = 'set.' + state.slots.a.lastKey;
   if (name === 'a' && field.startsWith('set.')) {
-    const row = document.querySelector(`.param[data-key="${field.slice(4)}"]`);
+    const row = document.querySelector(`.param[data-key="${CSS.escape(field.slice(4))}"]`);
     if (row) {
       row.classList.add('invalid');
       row.querySelector('.err').textContent = msg.replace(/^set\.[^:]*:\s*/, '');
@@ -509,6 +581,15 @@ function showError(name, e) {
     el.textContent = name.toUpperCase() + ': ' + msg;
     el.classList.add('bad');
   }
+  if (design && field.startsWith('set')) {
+    // The design at these angles is refused: the picture and scores stay those of the last
+    // angles that kept it (no veil), and the status line says so.
+    const el = $('#status');
+    el.textContent = `${name.toUpperCase()}: refused (${msg.replace(/^set[^:]*:\s*/, '')}); the picture and scores are of the last angles that kept the design`;
+    el.classList.add('bad');
+    $('#render-' + name).parentElement.classList.remove('busy');
+    return;
+  }
   const veil = $('#veil-' + name);
   veil.textContent = 'Not a valid cut: ' + msg;
   veil.classList.add('on');
@@ -520,6 +601,11 @@ function clearError(name) {
   for (const row of document.querySelectorAll('.param.invalid')) {
     row.classList.remove('invalid');
     row.querySelector('.err').textContent = '';
+  }
+  if (state.slots.a.design) {
+    designNote();
+    $('#source-err').textContent = '';
+    return;
   }
   if (!state.slots.a.family) return;
   $('#params-note').textContent = '';
@@ -535,6 +621,8 @@ function pinB() {
   b.base = Object.assign({}, a.base);
   b.set = Object.assign({}, a.set);
   b.family = a.family;
+  b.design = a.design;
+  b.designError = a.designError;
   b.info = a.info;
   b.scores = a.scores;
   b.quick = a.quick;

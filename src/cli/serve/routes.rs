@@ -3,7 +3,7 @@
 //! [`super::runs`], the page's in [`super::page`]).
 
 use super::error::{no_store, ApiError, ApiResult};
-use super::jobs::{build, heavy, jobs};
+use super::jobs::{build, build_design, heavy, jobs};
 use super::request::{parse_req, Source, EXPORTS, FORMATS};
 use super::{page, runs, AppState, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
 use crate::cli::cuts::info_json;
@@ -32,6 +32,7 @@ pub fn app() -> Router {
         jobs: Arc::new(Semaphore::new(jobs())),
         presets: presets_json().to_string(),
         runs: runs::Runs::default(),
+        designs: Arc::default(),
     });
     Router::new()
         .merge(page::routes())
@@ -109,26 +110,55 @@ fn presets_json() -> Value {
     })
 }
 
-/// `POST /api/cut`: `info --json` plus the SVG diagram.
+/// `POST /api/cut`: `info --json` plus the SVG diagram, and for a cut without a family its
+/// tier angles as sliders (`design_space`). The first answer about a design starts probing
+/// which meets each tier opens alone, in the background; later answers carry it.
 async fn cut_info(
     State(st): State<Arc<AppState>>,
     body: std::result::Result<Bytes, BytesRejection>,
 ) -> ApiResult<Response> {
     let r = parse_req(body, &[])?;
-    let v = heavy(&st, move || {
-        let cut = build(&r)?;
+    let designs = st.designs.clone();
+    let (v, probe) = heavy(&st, move || {
+        let (cut, design) = build_design(&designs, &r, true)?;
         let info = info_json(&cut, 6.5, &Material::diamond());
         let mut v = serde_json::to_value(&info)
             .map_err(|e| ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "cut", e.to_string()))?;
+        let mut probe = None;
         if let Value::Object(m) = &mut v {
             m.insert("svg".into(), Value::String(diagram(&cut)));
             if let Source::Preset(p) = &r.source {
                 m.insert("preset".into(), Value::String(p.clone()));
             }
+            match design {
+                Some(Ok(d)) => {
+                    m.insert("design_space".into(), d.json());
+                    probe = d.start_probe().then_some(d);
+                }
+                Some(Err(e)) => {
+                    m.insert("design_space".into(), json!({ "error": e }));
+                }
+                None => {}
+            }
         }
-        Ok(v)
+        Ok((v, probe))
     })
     .await?;
+    if let Some(d) = probe {
+        let st = st.clone();
+        tokio::spawn(async move {
+            let job = d.clone();
+            let done = heavy(&st, move || {
+                job.probe();
+                Ok(())
+            })
+            .await;
+            if done.is_err() {
+                // Never ran (the server was busy): the next answer starts it again.
+                d.unstart_probe();
+            }
+        });
+    }
     Ok(no_store(axum::Json(v).into_response()))
 }
 
@@ -138,9 +168,10 @@ async fn score_cut(
     body: std::result::Result<Bytes, BytesRejection>,
 ) -> ApiResult<Response> {
     let r = parse_req(body, &["quick"])?;
+    let designs = st.designs.clone();
     let (text, timing) = heavy(&st, move || {
         let t0 = Instant::now();
-        let cut = build(&r)?;
+        let cut = build(&designs, &r)?;
         let cfg = if r.quick {
             ScoreConfig::fast()
         } else {
@@ -175,9 +206,10 @@ async fn render_cut(
     body: std::result::Result<Bytes, BytesRejection>,
 ) -> ApiResult<Response> {
     let r = parse_req(body, &["light", "size", "tilt", "exposure"])?;
+    let designs = st.designs.clone();
     let (png, stats, timing) = heavy(&st, move || {
         let t0 = Instant::now();
-        let cut = build(&r)?;
+        let cut = build(&designs, &r)?;
         let t1 = Instant::now();
         let mut o = RenderOptions::new(r.light);
         o.size = r.size;
@@ -228,8 +260,9 @@ async fn export_cut(
             format!("missing; give the file format: {}", EXPORTS.join(", ")),
         ));
     };
+    let designs = st.designs.clone();
     let (bytes, name) = heavy(&st, move || {
-        let cut = build(&r)?;
+        let cut = build(&designs, &r)?;
         let bytes: Vec<u8> = match to {
             "toml" => io::spec::write(&cut).into_bytes(),
             "asc" => io::asc::write(&cut, io::asc::DEFAULT_GEAR).into_bytes(),

@@ -262,3 +262,126 @@ fn serve_runs_an_optimization() {
     let st = wait(&["stopped", "done", "failed"]);
     assert_eq!(st["state"], "stopped", "{st}");
 }
+
+/// A design without a family (an uploaded `.asc`): its tiers are the parameters, with their
+/// own angles as defaults; setting one re-solves the depths and keeps the facets; an angle
+/// that would open a meet is a 422 naming the tier and the meet.
+#[test]
+fn serve_design_tiers_are_sliders() {
+    use facetlab::io;
+    let s = Server::start();
+    let preset = io::presets::load("tolkowsky").unwrap().unwrap();
+    let text = io::asc::write(&preset, io::asc::DEFAULT_GEAR);
+    let upload = |set: serde_json::Value| {
+        serde_json::json!({"cut": text, "format": "asc", "name": "tolk.asc", "set": set})
+            .to_string()
+    };
+    let info = s.post("/api/cut", &upload(serde_json::json!({})));
+    assert_eq!(info.status, 200, "{}", String::from_utf8_lossy(&info.body));
+    let info = info.json();
+    assert!(info["family"].is_null(), "an .asc has no family");
+    let tiers = info["design_space"]["tiers"]
+        .as_array()
+        .expect("the design's tiers as sliders");
+    let tier = |key: &str| {
+        tiers
+            .iter()
+            .find(|t| t["key"] == key)
+            .unwrap_or_else(|| panic!("no tier {key} in {tiers:?}"))
+            .clone()
+    };
+    // The defaults are the design's angles: the preset's pavilion and crown angles.
+    let mains = tier("pavilion-main");
+    let (pav, crown) = (
+        preset.params["pavilion_angle"],
+        preset.params["crown_angle"],
+    );
+    assert!(
+        (mains["default"].as_f64().unwrap() - pav).abs() < 1e-9,
+        "{mains}"
+    );
+    assert!((tier("bezel")["default"].as_f64().unwrap() - crown).abs() < 1e-9);
+    assert_eq!(mains["step"], 0.01);
+    let (lo, hi) = (
+        mains["min"].as_f64().unwrap(),
+        mains["max"].as_f64().unwrap(),
+    );
+    assert!(lo < pav && pav < hi && hi - lo <= 10.0 + 1e-9, "{mains}");
+
+    // pavilion-main turned: the solid's pavilion angle follows, the facets stay, the score moves.
+    let turned = s
+        .post(
+            "/api/cut",
+            &upload(serde_json::json!({"pavilion-main": 41.0})),
+        )
+        .json();
+    let got = turned["proportions"]["pavilion_angle"].as_f64().unwrap();
+    assert!((got - 41.0).abs() < 1e-6, "pavilion angle {got}");
+    assert_eq!(turned["facet_count"], info["facet_count"]);
+    let score = |set: serde_json::Value| {
+        let mut b: serde_json::Value = serde_json::from_str(&upload(set)).unwrap();
+        b["quick"] = true.into();
+        let r = s.post("/api/score", &b.to_string());
+        assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
+        r.json()["brilliance"].as_f64().unwrap()
+    };
+    let (b0, b1) = (
+        score(serde_json::json!({})),
+        score(serde_json::json!({"pavilion-main": 41.0})),
+    );
+    assert!((b0 - b1).abs() > 1e-6, "brilliance {b0} at both angles");
+    let r = s.post(
+        "/api/render",
+        &upload(serde_json::json!({"pavilion-main": 40.5, "lower-half": 42.0})),
+    );
+    assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
+    assert_error(
+        &s.post("/api/cut", &upload(serde_json::json!({"nosuch": 40.0}))),
+        "set.nosuch",
+    );
+
+    // A square design whose crown tiers A and B meet at an apex: A alone opens it.
+    let pyramid = "GemCad 5.0\ng 96 0.0\ny 4 n\nI 1.54\nH meets test\n\
+                   a -90.000000 0.50000000 96 24 48 72 n G\n\
+                   a 40.000000 0.35969603 96 48 n A\n\
+                   a 40.000000 0.35969603 24 72 n B\n\
+                   a 0.000000 -0.30000000 96 n U\n";
+    let body = |set: serde_json::Value| {
+        serde_json::json!({"cut": pyramid, "format": "asc", "name": "pyramid.asc", "set": set})
+            .to_string()
+    };
+    let p = s.post("/api/cut", &body(serde_json::json!({}))).json();
+    let keys: Vec<&str> = p["design_space"]["tiers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["key"].as_str().unwrap())
+        .collect();
+    assert_eq!(keys, ["A", "B"]);
+    let e = assert_error(
+        &s.post("/api/render", &body(serde_json::json!({"A": 42.0}))),
+        "set.A",
+    );
+    assert!(e.contains("meet A·B"), "{e}");
+    assert_eq!(
+        s.post("/api/render", &body(serde_json::json!({"A": 42.0})))
+            .status,
+        422
+    );
+    let both = s.post("/api/cut", &body(serde_json::json!({"A": 42.0, "B": 42.0})));
+    assert_eq!(both.status, 200, "{}", String::from_utf8_lossy(&both.body));
+    assert_eq!(both.json()["facet_count"], p["facet_count"]);
+    // The background probe says which meet each tier opens alone.
+    let mut probed = serde_json::Value::Null;
+    for _ in 0..200 {
+        probed = s.post("/api/cut", &body(serde_json::json!({}))).json()["design_space"].clone();
+        if probed["probed"] == true {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    assert_eq!(probed["probed"], true, "{probed}");
+    for t in probed["tiers"].as_array().unwrap() {
+        assert_eq!(t["alone_opens"], serde_json::json!(["A·B"]), "{t}");
+    }
+}

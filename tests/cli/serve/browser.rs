@@ -53,15 +53,27 @@ fn serve_page_works_in_a_browser() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    let round = dir.path().join("fixture-round.asc");
+    let out = Command::new(env!("CARGO_BIN_EXE_facetlab"))
+        .args(["generate", "tolkowsky", "-o"])
+        .arg(&round)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
     let rt = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()
         .build()
         .unwrap();
-    rt.block_on(browser_session(&url, &shots, &asc));
+    rt.block_on(browser_session(&url, &shots, &asc, &round));
 }
 
-async fn browser_session(url: &str, shots: &std::path::Path, asc: &std::path::Path) {
+async fn browser_session(
+    url: &str,
+    shots: &std::path::Path,
+    asc: &std::path::Path,
+    round: &std::path::Path,
+) {
     use chromiumoxide::browser::{Browser, BrowserConfig};
     use chromiumoxide::cdp::browser_protocol::dom::SetFileInputFilesParams;
     use chromiumoxide::cdp::js_protocol::runtime::{
@@ -277,9 +289,48 @@ async fn browser_session(url: &str, shots: &std::path::Path, asc: &std::path::Pa
     .await
     .unwrap();
     assert!(
-        wait_js(&page, "document.querySelector('#cut-name').textContent === 'fixture-oval' && document.querySelector('#preset').value === '__file' && document.querySelector('#params-note').textContent.includes('explicit')", 30).await,
-        "the uploaded .asc did not load"
+        wait_js(&page, "document.querySelector('#cut-name').textContent === 'fixture-oval' && document.querySelector('#preset').value === '__file' && document.querySelectorAll('#params .param.tier input[type=range]').length > 5 && document.querySelector('#params-note').textContent.includes('meets')", 30).await,
+        "the uploaded .asc did not load with one slider per tier"
     );
+    // Its tiers are sliders labelled by the design's names, in steps of 0.01°.
+    let step: String = js(
+        &page,
+        "document.querySelector('#params input[type=range][data-key=pavilion-main]').step",
+    )
+    .await;
+    assert_eq!(step, "0.01");
+    // The oval's mains alone cannot keep their meets: the server's refusal, next to the
+    // slider, and the last good picture stays.
+    assert!(
+        wait_js(&page, "document.querySelector('#render-a').dataset.name === 'fixture-oval' && !document.querySelector('#render-a').parentElement.classList.contains('busy')", 60).await,
+        "the uploaded design was not rendered"
+    );
+    let before_src: String = js(&page, "document.querySelector('#render-a').src").await;
+    let _: bool = js(
+        &page,
+        "(() => { const r = document.querySelector('#params input[type=range][data-key=pavilion-main]'); r.value = '41.5'; r.dispatchEvent(new Event('input', {bubbles: true})); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(&page, "document.querySelector('.param[data-key=pavilion-main] .err').textContent.includes('meet')", 30).await,
+        "no refusal next to the pavilion-main slider"
+    );
+    let after_src: String = js(&page, "document.querySelector('#render-a').src").await;
+    assert_eq!(before_src, after_src, "the last good picture was not kept");
+    // The notes on which tiers cannot move alone arrive from the background probe.
+    wait_js(
+        &page,
+        "document.querySelector('.param[data-key=pavilion-main] .note').textContent.includes('alone opens')",
+        30,
+    )
+    .await;
+    page.save_screenshot(
+        ScreenshotParams::builder().build(),
+        shot("4-design-refused.png"),
+    )
+    .await
+    .unwrap();
+    let _: bool = js(&page, "(document.querySelector('#reset').click(), true)").await;
     let _: bool = js(
         &page,
         "(() => { const l = document.querySelector('#light'); l.value = 'fire'; l.dispatchEvent(new Event('change')); return true; })()",
@@ -297,7 +348,62 @@ async fn browser_session(url: &str, shots: &std::path::Path, asc: &std::path::Pa
     .await;
     page.save_screenshot(
         ScreenshotParams::builder().build(),
-        shot("4-upload-fire.png"),
+        shot("5-upload-fire.png"),
+    )
+    .await
+    .unwrap();
+
+    // A round design: its mains turn alone, the depths follow, picture and scores change.
+    let _: bool = js(&page, "(document.querySelector('#clear-b').click(), true)").await;
+    let input = page.find_element("#file").await.unwrap();
+    page.execute(
+        SetFileInputFilesParams::builder()
+            .file(round.display().to_string())
+            .backend_node_id(input.backend_node_id)
+            .build()
+            .unwrap(),
+    )
+    .await
+    .unwrap();
+    assert!(
+        wait_js(&page, "document.querySelector('#render-a').dataset.name === 'fixture-round' && document.querySelector('#score-a-brilliance').textContent !== '—' && !document.querySelector('#score-a-brilliance').classList.contains('stale') && document.querySelector('#params input[type=range][data-key=pavilion-main]') !== null", 60).await,
+        "the round design did not load with its sliders"
+    );
+    let before_src: String = js(&page, "document.querySelector('#render-a').src").await;
+    let before_b: String = js(
+        &page,
+        "document.querySelector('#score-a-brilliance').textContent",
+    )
+    .await;
+    let _: bool = js(
+        &page,
+        "(() => { const r = document.querySelector('#params input[type=range][data-key=pavilion-main]'); r.value = '41.2'; r.dispatchEvent(new Event('input', {bubbles: true})); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(
+            &page,
+            &format!("document.querySelector('#render-a').src !== {before_src:?} && document.querySelector('#score-a-brilliance').textContent !== {before_b:?} && !document.querySelector('#score-a-brilliance').classList.contains('stale') && document.querySelector('#prop-a-pavilion_angle').textContent === '41.20 °'"),
+            30
+        )
+        .await,
+        "moving the design's pavilion-main slider changed neither the picture nor the scores"
+    );
+    let facets: String = js(
+        &page,
+        "document.querySelector('#prop-a-facet_count').textContent",
+    )
+    .await;
+    assert_eq!(facets, "73");
+    wait_js(
+        &page,
+        "document.querySelector('#scores').dataset.a === 'full' && document.querySelector('#params-note').textContent.includes('alone')",
+        30,
+    )
+    .await;
+    page.save_screenshot(
+        ScreenshotParams::builder().build(),
+        shot("6-design-turned.png"),
     )
     .await
     .unwrap();
