@@ -99,14 +99,7 @@ pub(super) fn text_block(
         y += 20.0;
         for (k, v) in &cut.params {
             text(out, DVec2::new(x, y), 11.0, "start", "", k);
-            text(
-                out,
-                DVec2::new(x + 250.0, y),
-                11.0,
-                "end",
-                "",
-                &format!("{v}"),
-            );
+            text(out, DVec2::new(x + 250.0, y), 11.0, "end", "", &short(*v));
             y += 16.0;
         }
     }
@@ -175,4 +168,20 @@ pub(super) fn text_block(
         }
     }
     y
+}
+
+/// A parameter as a person reads it: at most six decimals, trailing zeros dropped (`0.57`,
+/// `41.2573`, not `41.25729999999`).
+fn short(v: f64) -> String {
+    let t = format!("{v:.6}");
+    let t = if t.contains('.') {
+        t.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        t
+    };
+    if t == "-0" {
+        "0".into()
+    } else {
+        t
+    }
 }
