@@ -29,6 +29,7 @@
 //!
 //! The tracer knows nothing of lighting or scores; see [`crate::metrics`].
 
+pub mod attenuation;
 mod disc;
 mod exact;
 mod footprint;
