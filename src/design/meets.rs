@@ -379,67 +379,6 @@ pub fn least_squares_frozen(
     x
 }
 
-/// Minimise |A x − b| by Householder QR; `None` when A is rank-deficient (a pivot below 1e-12
-/// of the largest column norm).
-pub fn least_squares(rows: Vec<(Vec<f64>, f64)>, ncols: usize) -> Option<Vec<f64>> {
-    let m = rows.len();
-    if m < ncols {
-        return None;
-    }
-    // Column-major copy for cache-friendly Householder sweeps.
-    let mut a = vec![0.0; m * ncols];
-    let mut b = vec![0.0; m];
-    for (i, (row, rhs)) in rows.into_iter().enumerate() {
-        for (j, v) in row.into_iter().enumerate() {
-            a[j * m + i] = v;
-        }
-        b[i] = rhs;
-    }
-    let scale = (0..ncols)
-        .map(|j| {
-            a[j * m..(j + 1) * m]
-                .iter()
-                .map(|v| v * v)
-                .sum::<f64>()
-                .sqrt()
-        })
-        .fold(0.0, f64::max);
-    for k in 0..ncols {
-        let col = &a[k * m..(k + 1) * m];
-        let norm = col[k..].iter().map(|v| v * v).sum::<f64>().sqrt();
-        if norm <= 1e-12 * scale.max(f64::MIN_POSITIVE) {
-            return None;
-        }
-        let alpha = if col[k] > 0.0 { -norm } else { norm };
-        let mut v: Vec<f64> = col[k..].to_vec();
-        v[0] -= alpha;
-        let vv: f64 = v.iter().map(|x| x * x).sum();
-        if vv > 0.0 {
-            for j in k..ncols {
-                let cj = &mut a[j * m + k..(j + 1) * m];
-                let s = 2.0 * v.iter().zip(cj.iter()).map(|(x, y)| x * y).sum::<f64>() / vv;
-                for (c, x) in cj.iter_mut().zip(&v) {
-                    *c -= s * x;
-                }
-            }
-            let s = 2.0 * v.iter().zip(&b[k..]).map(|(x, y)| x * y).sum::<f64>() / vv;
-            for (c, x) in b[k..].iter_mut().zip(&v) {
-                *c -= s * x;
-            }
-        }
-    }
-    // Back substitution on the upper triangle.
-    let mut x = vec![0.0; ncols];
-    for k in (0..ncols).rev() {
-        let mut s = b[k];
-        for j in k + 1..ncols {
-            s -= a[j * m + k] * x[j];
-        }
-        x[k] = s / a[k * m + k];
-    }
-    Some(x)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -453,7 +392,7 @@ mod tests {
         let rows: Vec<(Vec<f64>, f64)> = (0..m)
             .map(|_| ((0..n).map(|_| r() - 0.5).collect(), r()))
             .collect();
-        let x = least_squares(rows.clone(), n).unwrap();
+        let x = least_squares_frozen(rows.clone(), n, &vec![0.0; n], 1e-12);
         for j in 0..n {
             let g: f64 = rows
                 .iter()
@@ -461,9 +400,16 @@ mod tests {
                 .sum();
             assert!(g.abs() < 1e-12, "gradient {j}: {g}");
         }
-        // A rank-deficient system is refused.
+        // A rank-deficient system keeps the column it cannot fix at its fallback and solves
+        // the other: columns (1, 2) are parallel, so the larger one is solved for.
         let twice: Vec<(Vec<f64>, f64)> = (0..6).map(|i| (vec![1.0, 2.0], i as f64)).collect();
-        assert!(least_squares(twice, 2).is_none());
+        let x = least_squares_frozen(twice.clone(), 2, &[0.25, 9.0], 1e-9);
+        assert_eq!(x[0], 0.25);
+        let g: f64 = twice
+            .iter()
+            .map(|(a, b)| a[1] * (a[0] * x[0] + a[1] * x[1] - b))
+            .sum();
+        assert!(g.abs() < 1e-12, "gradient {g}");
     }
 
     fn pyramid(shift: f64) -> Polyhedron {

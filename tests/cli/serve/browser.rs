@@ -18,6 +18,20 @@ async fn wait_js(page: &chromiumoxide::Page, expr: &str, secs: u64) -> bool {
     false
 }
 
+/// Put `file` into the page's file input (DOM.setFileInputFiles), as a user's upload.
+async fn upload(page: &chromiumoxide::Page, file: &std::path::Path) {
+    let input = page.find_element("#file").await.unwrap();
+    page.execute(
+        chromiumoxide::cdp::browser_protocol::dom::SetFileInputFilesParams::builder()
+            .file(file.display().to_string())
+            .backend_node_id(input.backend_node_id)
+            .build()
+            .unwrap(),
+    )
+    .await
+    .unwrap();
+}
+
 async fn js<T: serde::de::DeserializeOwned>(page: &chromiumoxide::Page, expr: &str) -> T {
     page.evaluate(expr)
         .await
@@ -75,7 +89,6 @@ async fn browser_session(
     round: &std::path::Path,
 ) {
     use chromiumoxide::browser::{Browser, BrowserConfig};
-    use chromiumoxide::cdp::browser_protocol::dom::SetFileInputFilesParams;
     use chromiumoxide::cdp::js_protocol::runtime::{
         ConsoleApiCalledType, EventConsoleApiCalled, EventExceptionThrown,
     };
@@ -278,16 +291,7 @@ async fn browser_session(
     .unwrap();
 
     // Upload the .asc through the file input (DOM.setFileInputFiles).
-    let input = page.find_element("#file").await.unwrap();
-    page.execute(
-        SetFileInputFilesParams::builder()
-            .file(asc.display().to_string())
-            .backend_node_id(input.backend_node_id)
-            .build()
-            .unwrap(),
-    )
-    .await
-    .unwrap();
+    upload(&page, asc).await;
     assert!(
         wait_js(&page, "document.querySelector('#cut-name').textContent === 'fixture-oval' && document.querySelector('#preset').value === '__file' && document.querySelectorAll('#params .param.tier input[type=range]').length > 5 && document.querySelector('#params-note').textContent.includes('meets')", 30).await,
         "the uploaded .asc did not load with one slider per tier"
@@ -355,16 +359,7 @@ async fn browser_session(
 
     // A round design: its mains turn alone, the depths follow, picture and scores change.
     let _: bool = js(&page, "(document.querySelector('#clear-b').click(), true)").await;
-    let input = page.find_element("#file").await.unwrap();
-    page.execute(
-        SetFileInputFilesParams::builder()
-            .file(round.display().to_string())
-            .backend_node_id(input.backend_node_id)
-            .build()
-            .unwrap(),
-    )
-    .await
-    .unwrap();
+    upload(&page, round).await;
     assert!(
         wait_js(&page, "document.querySelector('#render-a').dataset.name === 'fixture-round' && document.querySelector('#score-a-brilliance').textContent !== '—' && !document.querySelector('#score-a-brilliance').classList.contains('stale') && document.querySelector('#params input[type=range][data-key=pavilion-main]') !== null", 60).await,
         "the round design did not load with its sliders"
