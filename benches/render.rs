@@ -48,11 +48,7 @@ fn main() {
     // The trace alone (with footprints), for the share of the time the pixels take.
     let c = canonical(solid);
     let stone = Stone::new(&c);
-    let opts = facetlab::beam::TraceOptions {
-        footprints: true,
-        polarization: true,
-        ..iso.trace
-    };
+    let opts = iso.trace_options();
     let ri = iso.material.ri(589.3);
     let t_trace = best_of(reps, || {
         std::hint::black_box(stone.trace(&Frame::overhead(), ri, 589.3, &opts));

@@ -7,6 +7,7 @@
 //! facetlab render tolkowsky princess emerald --light aset -o aset.png
 //! facetlab render tolkowsky --light fire --tilt 10@45 --size 400 -o fire.png
 //! facetlab render tolkowsky --rock 15:24 --json rock.json -o rock.png  # animated PNG
+//! facetlab render tolkowsky --size 200 --bare -o stone.png             # 200 × 200, no captions
 //! ```
 //!
 //! Flags are read as text and validated here into [`RenderOptions`], so every bad value ends
@@ -32,7 +33,7 @@ use super::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
 use facetlab::optics::Dispersion;
 use facetlab::plot::palette::PICTURE_GROUND;
-use facetlab::plot::render::{compose, legend_for, Panel};
+use facetlab::plot::render::{bare, compose, legend_for, Panel};
 use facetlab::render::pose::{parse_rock, parse_tilt, rocked};
 use facetlab::render::{self, Light, RenderOptions, Stats, Tilt};
 use serde::Serialize;
@@ -55,7 +56,8 @@ pub struct RenderArgs {
         value_name = "iso|cos|aset|idealscope|hearts|arrows|fire"
     )]
     pub light: String,
-    /// Pixels per side of each picture (8–8192).
+    /// Pixels per side of each stone's picture (8–8192); the captions (and a grey margin)
+    /// come outside it unless --bare.
     #[arg(
         long,
         default_value = "512",
@@ -104,6 +106,9 @@ pub struct RenderArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// The stones' pictures alone: no margin, captions or legend (one cut: exactly PX × PX).
+    #[arg(long)]
+    pub bare: bool,
 }
 
 /// The flags, validated.
@@ -483,7 +488,11 @@ pub fn run(a: &RenderArgs) -> Result<()> {
                 lines: lines.clone(),
             })
             .collect();
-        sheets.push(compose(&panels, size as u32, &legend)?);
+        sheets.push(if a.bare {
+            bare(&panels, size as u32)?
+        } else {
+            compose(&panels, size as u32, &legend)?
+        });
     }
     bar.finish_and_clear();
     let (w, h) = (sheets[0].width, sheets[0].height);

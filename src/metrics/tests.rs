@@ -356,6 +356,7 @@ fn pose_scores_are_the_means_of_the_pictures() {
                     split_threshold: split,
                     ..cfg.trace
                 };
+                o.face_up_split_threshold = split;
                 let img = render(&solid, &o);
                 assert!(
                     (img.stats.mean - want).abs() < 1e-6,
@@ -373,6 +374,63 @@ fn pose_scores_are_the_means_of_the_pictures() {
                 );
             }
         }
+    }
+}
+
+/// The pictures' defaults are the scores' face-up settings: a default face-up ISO picture's
+/// mean is the default score's face-up ISO light return (issue 25: they differed by 1.1e-4 on
+/// tolkowsky when pictures split down to 1e-5 only), for a fixed index and for dispersive
+/// diamond, and the mean does not depend on the pixel grid (it is summed over the exit beams'
+/// exact powers; the picture's exact-coverage integral over the outline gives it back).
+#[test]
+fn default_pictures_trace_at_the_scores_face_up_settings() {
+    use crate::render::{render, Light, RenderOptions};
+    let cfg = ScoreConfig::default();
+    let o = RenderOptions::new(Light::Iso).trace_options();
+    assert_eq!(o.split_threshold, cfg.face_up_split_threshold);
+    assert_eq!(
+        (o.threshold, o.max_depth, o.symmetry, o.polarization),
+        (
+            cfg.trace.threshold,
+            cfg.trace.max_depth,
+            cfg.trace.symmetry,
+            cfg.polarization
+        )
+    );
+    // The scores' face-up trace follows narrow beams to the end, unforked, as pictures do.
+    assert_eq!((o.ray_floor, o.narrow_forks), (0.0, false));
+    let solid = tolkowsky();
+    for material in [Material::constant(2.41726), Material::diamond()] {
+        // The default score's face-up pose only (the same face-up trace as a full score).
+        let face_up = ScoreConfig {
+            material: material.clone(),
+            tilts: vec![Tilt::FACE_UP],
+            parts: Parts {
+                fire: false,
+                scintillation: false,
+            },
+            ..ScoreConfig::default()
+        };
+        let want = score(&solid, &face_up).poses[0].iso;
+        let mut means = Vec::new();
+        for size in [8, 200] {
+            let mut r = RenderOptions::new(Light::Iso);
+            r.material = material.clone();
+            r.size = size;
+            let img = render(&solid, &r);
+            assert!(
+                (img.stats.mean - want).abs() < 1e-6,
+                "{}: picture {} vs score {want}",
+                material.name,
+                img.stats.mean
+            );
+            let h = img.coverage.pixel();
+            let integral: f64 = img.channels[0].data.iter().sum::<f64>() * h * h;
+            let outline = img.coverage.integral();
+            assert!((integral / outline - img.stats.mean).abs() < 1e-9);
+            means.push(img.stats.mean);
+        }
+        assert_eq!(means[0], means[1], "the mean depends on the pixel grid");
     }
 }
 
@@ -397,6 +455,7 @@ fn aset_and_fire_are_statistics_of_the_pictures() {
             split_threshold: cfg.face_up_split_threshold,
             ..cfg.trace
         };
+        o.face_up_split_threshold = cfg.face_up_split_threshold;
         let a = render(&solid, &o).stats.aset.unwrap();
         assert_eq!(a.port, 0.0);
         for (x, y) in [

@@ -7,7 +7,8 @@
 //! Layout of a sheet of `n` panels of `size` pixels ([`Layout`]): each panel is
 //! `size + 2·pad` wide (`pad` = [`Layout::pad`]), the picture at the top with `pad` of grey
 //! around it, then the caption lines; the legend, when there is one, wraps across the whole
-//! width below the captions. The sheet is so `n·(size + 2·pad)` pixels wide, whatever the text.
+//! width below the captions. The sheet is so `n·(size + 2·pad)` pixels wide, whatever the text,
+//! and each picture is exactly `size × size` pixels of it. [`bare`] gives the pictures alone.
 
 use super::palette::{CAPTION_GROUND, PICTURE_GROUND};
 use super::{font, register_font};
@@ -241,6 +242,33 @@ pub fn compose(panels: &[Panel], size: u32, legend: &[LegendEntry]) -> Result<Sh
     })
 }
 
+/// The pictures of `panels` (each `size × size`) alone, side by side with nothing between
+/// or around them and no captions or legend: `n·size × size` pixels (`size × size` for one).
+/// The same error as [`compose`] for a panel of the wrong number of bytes.
+pub fn bare(panels: &[Panel], size: u32) -> Result<Sheet> {
+    let want = size as usize * size as usize * 3;
+    if panels.is_empty() || size == 0 || panels.iter().any(|p| p.rgb.len() != want) {
+        return Err(Error::invalid(
+            "panels",
+            format!("give at least one panel of {want} bytes ({size}×{size} RGB)"),
+        ));
+    }
+    let s = size as usize;
+    let w = s * panels.len();
+    let mut rgb = vec![0u8; w * s * 3];
+    for (k, p) in panels.iter().enumerate() {
+        for j in 0..s {
+            let dst = (j * w + k * s) * 3;
+            rgb[dst..dst + s * 3].copy_from_slice(&p.rgb[j * s * 3..(j + 1) * s * 3]);
+        }
+    }
+    Ok(Sheet {
+        width: w as u32,
+        height: size,
+        rgb,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -288,6 +316,16 @@ mod tests {
         assert_eq!(legend_for(Light::IdealScope).len(), 3);
         assert!(legend_for(Light::Iso).is_empty());
         assert!(compose(&panels, size + 1, &[]).is_err());
+        // Bare: the pictures alone, side by side.
+        let b = bare(&panels, size).unwrap();
+        assert_eq!((b.width, b.height), (2 * size, size));
+        assert_eq!(px(&b, 0, 0), [200, 10, 10]);
+        assert_eq!(px(&b, size - 1, size - 1), [200, 10, 10]);
+        assert_eq!(px(&b, size, 0), [10, 10, 200]);
+        let one = bare(&panels[..1], size).unwrap();
+        assert_eq!((one.width, one.height), (size, size));
+        assert_eq!(one.rgb, red);
+        assert!(bare(&panels, size + 1).is_err());
         assert!(compose(&[], size, &[]).is_err());
     }
 }

@@ -7,7 +7,7 @@ use super::lighting::Lighting;
 use super::options::RenderOptions;
 use super::pose::{picture_half, view_rotation};
 use super::raster::{Accumulator, Raster};
-use crate::beam::{BeamTree, Frame, Stone, TraceOptions};
+use crate::beam::{BeamTree, Frame, Stone};
 use crate::geometry::{canonical::canonical, clip2d, Polyhedron};
 use crate::optics::{color, Dispersion};
 use glam::{DVec2, DVec3};
@@ -107,11 +107,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     let frame = Frame::viewer(rot);
     let size = opts.size.max(1);
     let half = picture_half(&solid);
-    let trace_opts = TraceOptions {
-        polarization: opts.polarization,
-        footprints: true,
-        ..opts.trace
-    };
+    let trace_opts = opts.trace_options();
     let lighting = Lighting::new(opts.head_shadow(), &opts.spots);
     let mut stats = Stats {
         size,

@@ -237,3 +237,69 @@ fn report_writes_a_self_contained_page() {
         &["--size"],
     );
 }
+
+/// The first frame of a PNG as 8-bit RGB: width, height, pixels.
+fn png_rgb(path: &std::path::Path) -> (usize, usize, Vec<u8>) {
+    let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut r = dec.read_info().expect("a PNG");
+    let mut buf = vec![0; r.output_buffer_size()];
+    let info = r.next_frame(&mut buf).expect("frame decodes");
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    buf.truncate(info.buffer_size());
+    (info.width as usize, info.height as usize, buf)
+}
+
+/// `--size PX` is the stone's picture: `--bare` writes it alone, exactly PX × PX; with
+/// captions the same PX × PX picture sits inside a grey margin with the caption band below it.
+#[test]
+fn size_is_the_stones_picture_and_bare_is_it_alone() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    let base = ["render", "tolkowsky", "--size", "200"];
+    let with = |extra: &[&'static str]| [&base[..], extra].concat();
+    ok(p, &with(&["--bare", "-o", "bare.png"]));
+    ok(p, &with(&["-o", "sheet.png"]));
+    let (bw, bh, bare) = png_rgb(&p.join("bare.png"));
+    assert_eq!((bw, bh), (200, 200));
+    let (w, h, sheet) = png_rgb(&p.join("sheet.png"));
+    // The margin around the picture is the same on every side.
+    assert!(w > 200 && (w - 200) % 2 == 0, "{w}×{h}");
+    let pad = (w - 200) / 2;
+    assert!(pad >= 4, "{pad}");
+    let px = |x: usize, y: usize| &sheet[(y * w + x) * 3..(y * w + x) * 3 + 3];
+    // The stone's region of the sheet is the bare picture, pixel for pixel.
+    for y in 0..200 {
+        let row = &sheet[((pad + y) * w + pad) * 3..((pad + y) * w + pad + 200) * 3];
+        assert_eq!(row, &bare[y * 600..(y + 1) * 600], "row {y}");
+    }
+    // Grey margin above and below the picture, then the caption band to the bottom.
+    for y in [0, pad - 1, pad + 200, 2 * pad + 199] {
+        assert_eq!(px(0, y), [102, 102, 102], "row {y}");
+    }
+    let band = h - (200 + 2 * pad);
+    // Two caption lines (name, statistics) of 11–13 px text.
+    assert!((30..=60).contains(&band), "caption band {band} px");
+    for y in 200 + 2 * pad..h {
+        assert_eq!(px(0, y), [236, 236, 236], "row {y}");
+    }
+    let dark = (200 + 2 * pad..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .filter(|&(x, y)| px(x, y)[0] < 100)
+        .count();
+    assert!(dark > 20, "no caption text: {dark}");
+    // Two cuts bare: side by side, nothing between.
+    ok(
+        p,
+        &[
+            "render",
+            "tolkowsky",
+            "princess",
+            "--size",
+            "64",
+            "--bare",
+            "-o",
+            "two.png",
+        ],
+    );
+    assert_eq!(png_info(&p.join("two.png")), (128, 64, 1));
+}
