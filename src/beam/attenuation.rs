@@ -2,7 +2,7 @@
 //!
 //! Inside a convex stone every ray of a parallel beam has travelled a path length that is an
 //! affine function of where it sits in the beam's cross-section (the footprint's coordinates,
-//! [`super::footprint`]), so the light a beam keeps after absorption `α` is
+//! the footprint map of `src/beam/footprint.rs`), so the light a beam keeps after absorption `α` is
 //! `∫_P exp(−α · L(x)) dA` over the footprint polygon `P`, with `L` affine. For an affine
 //! exponent `φ(x)` this integral is exact: split `P` into a fan of triangles, and over a
 //! triangle with vertex values `φ0, φ1, φ2`
