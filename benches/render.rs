@@ -1,6 +1,9 @@
 //! Speed of the renderer: an 800×800 face-up ISO picture of tolkowsky at one wavelength, an
 //! 8-band fire picture, and a 31-frame 512² rocking animation (the frames `facetlab render
-//! --rock 10:31` draws). Prints each time with the trace's share.
+//! --rock 10:31` draws). Prints each time with the trace's share. Then the same pictures as
+//! a user waits for them: whole `facetlab render` processes (start-up, the picture, captions,
+//! PNG encoding and writing), best of several runs (`-- commands`; the binary is built with the
+//! bench).
 //!
 //! `cargo bench --bench render` (add `-- quick` for fewer repetitions, `-- instructions` for
 //! one picture to count under callgrind).
@@ -36,6 +39,9 @@ fn main() {
         return;
     }
     let quick = std::env::args().any(|a| a == "quick");
+    if std::env::args().any(|a| a == "commands") {
+        return commands(if quick { 3 } else { 10 });
+    }
     let reps = if quick { 3 } else { 10 };
     let cut = facetlab::io::load_cut("tolkowsky").expect("preset");
     let solid = &cut.solid;
@@ -84,4 +90,39 @@ fn main() {
         "rocking ±10°, {frames} frames of 512²: {:.2} s (target 3 s)",
         t_rock
     );
+}
+
+/// Whole `facetlab render` processes, best of `reps` wall times each: what a user waits for.
+fn commands(reps: usize) {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let out = dir.path().join("picture.png");
+    let runs: [(&str, &[&str], &str); 3] = [
+        ("render tolkowsky --size 800", &["--size", "800"], "60 ms"),
+        (
+            "render tolkowsky --light fire (512²)",
+            &["--light", "fire"],
+            "60 ms",
+        ),
+        (
+            "render tolkowsky --rock 15:31 (512²)",
+            &["--rock", "15:31"],
+            "1 s",
+        ),
+    ];
+    for (name, extra, target) in runs {
+        let t = best_of(reps, || {
+            let st = std::process::Command::new(env!("CARGO_BIN_EXE_facetlab"))
+                .args(["render", "tolkowsky", "--quiet", "--force", "-o"])
+                .arg(&out)
+                .args(extra)
+                .stdout(std::process::Stdio::null())
+                .status()
+                .expect("run facetlab");
+            assert!(st.success(), "{name} failed");
+        });
+        println!(
+            "whole process `{name}`: {:.1} ms (target {target})",
+            t * 1e3
+        );
+    }
 }

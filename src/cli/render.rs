@@ -33,9 +33,10 @@ use super::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
 use facetlab::optics::Dispersion;
 use facetlab::plot::palette::PICTURE_GROUND;
-use facetlab::plot::render::{bare, compose, legend_for, Panel};
+use facetlab::plot::render::{bare, compose, legend_for, Panel, Sheet};
 use facetlab::render::pose::{parse_rock, parse_tilt, rocked};
 use facetlab::render::{self, Light, RenderOptions, Stats, Tilt};
+use rayon::prelude::*;
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -448,51 +449,61 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         a.quiet,
         "{spinner} rendering [{bar:30}] {pos}/{len} pictures, eta {eta}",
     );
-    let mut sheets = Vec::with_capacity(nframes);
+    // Frames in parallel (each drawn on its own and collected in order: the same pictures
+    // and statistics on any number of threads); an animation's frames are independent.
+    let drawn: Vec<(Sheet, Vec<FrameJson>)> = (0..nframes)
+        .into_par_iter()
+        .map(|k| {
+            let tilt = s.frame_tilt(k);
+            let mut pictures = Vec::with_capacity(cuts.len());
+            let mut frame_stats = Vec::with_capacity(cuts.len());
+            for (c, cut) in cuts.iter().enumerate() {
+                let t0 = Instant::now();
+                let opts = RenderOptions {
+                    tilt,
+                    material: materials[c].clone(),
+                    ..s.opts.clone()
+                };
+                let img = render::render(&cut.solid, &opts);
+                let rgb = img.to_srgb8(s.exposure, PICTURE_GROUND);
+                frame_stats.push(FrameJson::new(
+                    k,
+                    tilt,
+                    &img.stats,
+                    t0.elapsed().as_secs_f64(),
+                ));
+                let mut lines = vec![cut.name.clone()];
+                lines.extend(stats_lines(light, &img.stats));
+                lines.extend(note.clone());
+                if show_tilt {
+                    lines.push(tilt_text(tilt));
+                }
+                pictures.push((rgb, lines));
+                bar.inc(1);
+            }
+            let panels: Vec<Panel> = pictures
+                .iter()
+                .map(|(rgb, lines)| Panel {
+                    rgb,
+                    lines: lines.clone(),
+                })
+                .collect();
+            let sheet = if a.bare {
+                bare(&panels, size as u32)
+            } else {
+                compose(&panels, size as u32, &legend)
+            }?;
+            Ok((sheet, frame_stats))
+        })
+        .collect::<Result<Vec<_>>>()?;
     // frames[cut] = per-frame statistics.
     let mut stats: Vec<Vec<FrameJson>> = vec![Vec::with_capacity(nframes); cuts.len()];
-    for k in 0..nframes {
-        let tilt = s.frame_tilt(k);
-        let opts = RenderOptions {
-            tilt,
-            ..s.opts.clone()
-        };
-        let mut pictures = Vec::with_capacity(cuts.len());
-        for (c, cut) in cuts.iter().enumerate() {
-            let t0 = Instant::now();
-            let opts = RenderOptions {
-                material: materials[c].clone(),
-                ..opts.clone()
-            };
-            let img = render::render(&cut.solid, &opts);
-            let rgb = img.to_srgb8(s.exposure, PICTURE_GROUND);
-            stats[c].push(FrameJson::new(
-                k,
-                tilt,
-                &img.stats,
-                t0.elapsed().as_secs_f64(),
-            ));
-            let mut lines = vec![cut.name.clone()];
-            lines.extend(stats_lines(light, &img.stats));
-            lines.extend(note.clone());
-            if show_tilt {
-                lines.push(tilt_text(tilt));
-            }
-            pictures.push((rgb, lines));
-            bar.inc(1);
+    let mut sheets = Vec::with_capacity(nframes);
+    for (sheet, frame_stats) in drawn {
+        sheets.push(sheet);
+        for (c, f) in frame_stats.into_iter().enumerate() {
+            stats[c].push(f);
         }
-        let panels: Vec<Panel> = pictures
-            .iter()
-            .map(|(rgb, lines)| Panel {
-                rgb,
-                lines: lines.clone(),
-            })
-            .collect();
-        sheets.push(if a.bare {
-            bare(&panels, size as u32)?
-        } else {
-            compose(&panels, size as u32, &legend)?
-        });
     }
     bar.finish_and_clear();
     let (w, h) = (sheets[0].width, sheets[0].height);

@@ -23,8 +23,9 @@ pub fn encode_rgb8(width: u32, height: u32, frames: &[&[u8]], delay_ms: u16) -> 
         enc.set_source_srgb(::png::SrgbRenderingIntent::Perceptual);
         // Pictures of stones are mostly flat facets: adaptive filtering and the best deflate
         // level make the files about a third smaller for little time.
-        enc.set_compression(::png::Compression::Best);
-        enc.set_adaptive_filter(::png::AdaptiveFilterType::Adaptive);
+        enc.set_compression(::png::Compression::Fast);
+        enc.set_adaptive_filter(::png::AdaptiveFilterType::NonAdaptive);
+        enc.set_filter(::png::FilterType::Paeth);
         let bad = |e: ::png::EncodingError| Error::invalid("png", e.to_string());
         if frames.len() > 1 {
             enc.set_animated(frames.len() as u32, 0).map_err(bad)?;

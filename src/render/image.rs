@@ -5,6 +5,7 @@ use super::light::Light;
 use super::raster::Raster;
 use crate::optics::color;
 use glam::DVec3;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// ASET shares of a picture: the share of the stone's outline (by light, each sight line
@@ -77,40 +78,39 @@ impl Image {
     pub fn to_srgb8(&self, exposure: f64, background: [f64; 3]) -> Vec<u8> {
         let n = self.size();
         let palette = self.light.false_colours();
-        let mut out = Vec::with_capacity(n * n * 3);
         let byte = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
-        for j in 0..n {
-            for i in 0..n {
-                let k = (n - 1 - j) * n + i;
-                let a = self.coverage.data[k].clamp(0.0, 1.0);
-                let bg = background.map(|b| (1.0 - a) * b);
-                let c: [f64; 3] = match self.channels.as_slice() {
-                    _ if !palette.is_empty() => {
-                        let mut c = bg;
-                        for (ch, col) in self.channels.iter().zip(palette) {
-                            for (x, y) in c.iter_mut().zip(col) {
-                                *x += ch.data[k] * y;
+        let mut out = vec![0u8; n * n * 3];
+        // Rows in parallel (each pixel on its own: the same bytes on any number of threads).
+        out.par_chunks_mut((n * 3).max(1))
+            .enumerate()
+            .for_each(|(j, row)| {
+                for (i, px) in row.chunks_exact_mut(3).enumerate() {
+                    let k = (n - 1 - j) * n + i;
+                    let a = self.coverage.data[k].clamp(0.0, 1.0);
+                    let bg = background.map(|b| (1.0 - a) * b);
+                    let c: [f64; 3] = match self.channels.as_slice() {
+                        _ if !palette.is_empty() => {
+                            let mut c = bg;
+                            for (ch, col) in self.channels.iter().zip(palette) {
+                                for (x, y) in c.iter_mut().zip(col) {
+                                    *x += ch.data[k] * y;
+                                }
                             }
+                            c
                         }
-                        c
-                    }
-                    [g] => {
-                        let v = color::srgb_encode(g.data[k] * exposure);
-                        [0, 1, 2].map(|q| v + bg[q])
-                    }
-                    [r, g, b] => [r, g, b]
-                        .map(|ch| color::srgb_encode(ch.data[k] * exposure))
-                        .iter()
-                        .zip(bg)
-                        .map(|(v, b)| v + b)
-                        .collect::<Vec<f64>>()
-                        .try_into()
-                        .unwrap_or([0.0; 3]),
-                    _ => bg,
-                };
-                out.extend(c.map(byte));
-            }
-        }
+                        [g] => {
+                            let v = color::srgb_encode(g.data[k] * exposure);
+                            [0, 1, 2].map(|q| v + bg[q])
+                        }
+                        [r, g, b] => {
+                            let v = [r, g, b].map(|ch| color::srgb_encode(ch.data[k] * exposure));
+                            [0, 1, 2].map(|q| v[q] + bg[q])
+                        }
+                        _ => bg,
+                    };
+                    px.copy_from_slice(&c.map(byte));
+                }
+            });
         out
     }
 }
