@@ -21,8 +21,10 @@ pub fn encode_rgb8(width: u32, height: u32, frames: &[&[u8]], delay_ms: u16) -> 
         enc.set_color(::png::ColorType::Rgb);
         enc.set_depth(::png::BitDepth::Eight);
         enc.set_source_srgb(::png::SrgbRenderingIntent::Perceptual);
-        // Pictures of stones are mostly flat facets: adaptive filtering and the best deflate
-        // level make the files about a third smaller for little time.
+        // Speed is what the user waits for: the fast level (fdeflate) with the Paeth filter
+        // writes an 800² picture of a stone in a small part of the time miniz's best level
+        // with adaptive filtering took (45 % of a whole `render` process), for files about
+        // 1.5 times as large (tolkowsky's 800² ISO picture: 255 kB against 163 kB).
         enc.set_compression(::png::Compression::Fast);
         enc.set_adaptive_filter(::png::AdaptiveFilterType::NonAdaptive);
         enc.set_filter(::png::FilterType::Paeth);
