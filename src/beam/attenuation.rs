@@ -15,7 +15,7 @@
 //!
 //! ```
 //! use facetlab::beam::attenuation::exp_integral;
-//! use glam::DVec2;
+//! use glam::{DVec2, DVec3};
 //!
 //! // A unit square, exponent −x: ∫∫ e^−x dx dy = 1 − e^−1.
 //! let square = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y];
@@ -23,7 +23,7 @@
 //! assert!((v - (1.0 - (-1.0f64).exp())).abs() < 1e-15);
 //! ```
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 /// `∫_P exp(g · x + c) dA` over the polygon `P` (vertices in order, either orientation; the
 /// result is positive for a counter-clockwise polygon and its negative for a clockwise one).
@@ -58,6 +58,27 @@ pub fn exp_mean(polygon: &[DVec2], g: DVec2, c: f64) -> f64 {
         return polygon.first().map_or(c.exp(), |p| (g.dot(*p) + c).exp());
     }
     exp_integral(polygon, g, c) / area
+}
+
+/// The mean of `exp(φ)` over a planar polygon in space (vertices in order, on a plane with
+/// normal `normal`), `φ` affine on that plane and given by its values at the vertices. The
+/// mean is that of any affine image of the polygon, so it is the footprint's mean too.
+/// `exp(φ)` at the first vertex for a polygon without area.
+pub(crate) fn exp_mean_planar(polygon: &[DVec3], normal: DVec3, phi: &[f64]) -> f64 {
+    if polygon.len() < 3 || phi.len() != polygon.len() {
+        return phi.first().map_or(1.0, |f| f.exp());
+    }
+    let p0 = polygon[0];
+    let (mut sum, mut twice_area) = (0.0f64, 0.0f64);
+    for i in 1..polygon.len() - 1 {
+        let t = normal.dot((polygon[i] - p0).cross(polygon[i + 1] - p0));
+        sum += t * exp_dd2(phi[0], phi[i], phi[i + 1]);
+        twice_area += t;
+    }
+    if twice_area.abs() <= 1e-300 || !sum.is_finite() {
+        return phi[0].exp();
+    }
+    2.0 * sum / twice_area
 }
 
 /// The first divided difference of `exp`: `(e^b − e^a) / (b − a)`, `e^a` when `a = b`.
@@ -106,12 +127,12 @@ pub fn exp_dd2(a: f64, b: f64, c: f64) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// `∫_T e^φ` by subdividing the triangle into `n²` small triangles, each integrated by the
     /// 7-point degree-5 rule (Radon): independent of the divided differences.
-    fn subdivided(t: [DVec2; 3], phi: &dyn Fn(DVec2) -> f64, n: usize) -> f64 {
+    pub(crate) fn subdivided(t: [DVec2; 3], phi: &dyn Fn(DVec2) -> f64, n: usize) -> f64 {
         let (a, b, c) = (t[0], t[1], t[2]);
         let at = |i: f64, j: f64| a + (b - a) * (i / n as f64) + (c - a) * (j / n as f64);
         let s15 = 15f64.sqrt();

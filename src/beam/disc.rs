@@ -54,6 +54,8 @@ pub(super) struct Part {
     pub(super) prev: u32,
     pub(super) r: f64,
     pub(super) share: f64,
+    /// Path length inside the stone from the entry facet to `x`.
+    pub(super) path: f64,
 }
 
 /// A fork of a narrow beam's disc across an edge of its exit facet onto facet `h`: its share

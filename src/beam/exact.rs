@@ -2,6 +2,7 @@
 //! narrow beam, or cut off) and its exact split by the facets it reaches, each child crossing
 //! its facet's interface.
 
+use super::attenuation::exp_mean_planar;
 use super::interface::{cross, Meet, Origin};
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
@@ -168,6 +169,11 @@ impl Stone {
 
         let f = beam.facet as usize;
         let map = beam.map.slide(t, self.normals[f], self.offsets[f]);
+        let path = if cx.alpha > 0.0 {
+            beam.path.slide(t, self.normals[f], self.offsets[f])
+        } else {
+            beam.path
+        };
         let nchildren = w.children.len();
         for ci in 0..nchildren {
             let ch = w.children[ci];
@@ -186,12 +192,20 @@ impl Stone {
                 w.foot.extend(w.cur.iter().map(|&x| map.apply(x)));
             }
             let node = w.node(cx, beam.node, g);
+            let keep = if cx.alpha > 0.0 {
+                w.phi.clear();
+                w.phi.extend(w.cur.iter().map(|&x| -cx.alpha * path.at(x)));
+                exp_mean_planar(&w.cur, n, &w.phi)
+            } else {
+                1.0
+            };
             let meet = Meet {
                 t,
                 n,
                 facet: g,
                 stokes: beam.stokes * (ch.area / sum),
                 axis: beam.axis,
+                keep,
             };
             let origin = Origin {
                 entry: beam.entry as usize,
@@ -212,6 +226,7 @@ impl Stone {
                 start: 0,
                 len: 0,
                 map,
+                path,
             };
             self.continue_beam(next, cx, w, st, sink);
         }

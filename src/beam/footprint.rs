@@ -13,6 +13,33 @@ pub(super) struct Affine {
     pub(super) b: DVec2,
 }
 
+/// Path length inside the stone, from the entry facet, of the ray reaching a point `x` on the
+/// plane of the facet a beam sits on: `h · x + l` (affine over the beam's cross-section, the
+/// stone being convex and the rays parallel). Slid along the beam like [`Affine`].
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct PathLength {
+    pub(super) h: DVec3,
+    pub(super) l: f64,
+}
+
+impl PathLength {
+    #[inline]
+    pub(super) fn at(&self, x: DVec3) -> f64 {
+        self.h.dot(x) + self.l
+    }
+    /// The path length at points reached by travelling along `t` (unit) from the plane
+    /// `n · x = o` (where this one applies): the length there plus the stretch travelled,
+    /// `s = (n · y − o) / (n · t)`.
+    #[inline]
+    pub(super) fn slide(&self, t: DVec3, n: DVec3, o: f64) -> PathLength {
+        let k = (1.0 - self.h.dot(t)) / n.dot(t);
+        PathLength {
+            h: self.h + n * k,
+            l: self.l - o * k,
+        }
+    }
+}
+
 impl Affine {
     #[inline]
     pub(super) fn apply(&self, x: DVec3) -> DVec2 {

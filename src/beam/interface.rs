@@ -17,6 +17,9 @@ pub(super) struct Meet {
     pub facet: usize,
     pub stokes: Stokes,
     pub axis: DVec3,
+    /// Share of the light the transmitted part keeps after absorption on its way here (1
+    /// when colourless).
+    pub keep: f64,
 }
 
 /// What an exit beam leaving at a [`Meet`] records beyond the interface itself: where the
@@ -52,10 +55,14 @@ pub(super) fn cross<S: ExitSink>(
     } else {
         (m.axis, m.stokes)
     };
-    let (mut sr, stt) = split(cx.pol, &fr, s_in);
+    let (mut sr, mut stt) = split(cx.pol, &fr, s_in);
     if stt.x > 0.0 {
         match refract(m.t, m.n, cx.ri, 1.0) {
             Some(out) => {
+                if m.keep != 1.0 {
+                    st.absorbed += stt.x * (1.0 - m.keep);
+                    stt *= m.keep;
+                }
                 let e = ExitBeam {
                     direction: out,
                     power: stt.x,

@@ -127,6 +127,15 @@ pub struct TraceOptions {
     /// rays take 24× the segments), so use them with a floor. Their smoothness and their
     /// error are measured in the `metrics` module's documentation.
     pub narrow_forks: bool,
+    /// Absorption coefficient of the stone's body colour at this trace's wavelength, per
+    /// girdle diameter (Beer–Lambert: a ray keeps `exp(−absorption · L)` of its light after a
+    /// path `L` inside). Default 0, colourless: the trace is then the very same as without
+    /// it. Every exit beam's power is its light times the mean of `exp(−absorption · L)` over
+    /// its footprint, exact because `L` is affine over a beam's cross-section
+    /// ([`attenuation`](mod@attenuation)); a narrow beam's ray takes its own path's. The light
+    /// absorbed on the way out is [`TraceStats::absorbed`]; beams that are cut off keep the
+    /// power they had before absorption in [`TraceStats::cut_off`].
+    pub absorption: f64,
 }
 
 impl TraceOptions {
@@ -155,6 +164,7 @@ impl Default for TraceOptions {
             symmetry: true,
             ray_floor: 0.0,
             narrow_forks: false,
+            absorption: 0.0,
         }
     }
 }
@@ -270,9 +280,9 @@ impl BeamTree {
         self.exits.iter().map(|e| e.power).sum()
     }
 
-    /// `power_in − power_out − cut_off`: zero to rounding.
+    /// `power_in − power_out − cut_off − absorbed`: zero to rounding.
     pub fn balance(&self) -> f64 {
-        self.stats.power_in - self.power_out() - self.stats.cut_off
+        self.stats.power_in - self.power_out() - self.stats.cut_off - self.stats.absorbed
     }
 
     /// Facet indices the beam met, from the entry facet to the exit facet.

@@ -23,6 +23,8 @@ struct RayAt {
     depth: u32,
     prev: u32,
     late: bool,
+    /// Path length inside the stone from the entry facet to this crossing.
+    path: f64,
 }
 
 impl Stone {
@@ -58,13 +60,16 @@ impl Stone {
             beam.depth,
             beam.node,
         );
+        let mut path = if cx.alpha > 0.0 { beam.path.at(x) } else { 0.0 };
         loop {
             let Some((g, best)) = self.exit_facet(x, t, facet) else {
                 st.cut_off += s.x;
                 return;
             };
             x += t * best.max(0.0);
+            path += best.max(0.0);
             let at = RayAt {
+                path,
                 t,
                 facet: g,
                 s,
@@ -110,6 +115,11 @@ impl Stone {
             facet: at.facet,
             stokes: at.s,
             axis: at.axis,
+            keep: if cx.alpha > 0.0 {
+                (-cx.alpha * at.path).exp()
+            } else {
+                1.0
+            },
         };
         let origin = Origin {
             entry: entry as usize,
@@ -161,6 +171,7 @@ impl Stone {
             prev: beam.node,
             r,
             share: 1.0,
+            path: if cx.alpha > 0.0 { beam.path.at(x) } else { 0.0 },
         });
         while let Some(part) = w.parts.pop() {
             let t = part.t;
@@ -169,6 +180,7 @@ impl Stone {
                 continue;
             };
             let p = part.x + t * best.max(0.0);
+            let path = part.path + best.max(0.0);
             self.disc_forks(g, p, &part, p0, &mut w.forks);
             let total: f64 = w.forks.iter().map(|k| k.f).sum();
             let scale = if total > FORK_MAX {
@@ -191,7 +203,8 @@ impl Stone {
                     (g, main, p + shift)
                 };
                 let nh = self.normals[h];
-                let y = y + t * ((self.offsets[h] - nh.dot(y)) / nh.dot(t));
+                let along = (self.offsets[h] - nh.dot(y)) / nh.dot(t);
+                let y = y + t * along;
                 let share = part.share * f;
                 let s_in = part.s * f;
                 let at = RayAt {
@@ -202,6 +215,7 @@ impl Stone {
                     depth: part.depth,
                     prev: part.prev,
                     late: s_in.x <= 0.5 * share * p0,
+                    path: path + along,
                 };
                 if let Some((sr, axis, node)) =
                     self.ray_cross(beam.entry, at, floor, cx, w, st, sink)
@@ -216,6 +230,7 @@ impl Stone {
                         prev: node,
                         r: part.r * f.sqrt(),
                         share,
+                        path: path + along,
                     });
                 }
             }

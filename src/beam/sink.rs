@@ -56,4 +56,7 @@ pub struct TraceStats {
     /// Power of narrow beams' rays stopped by [`TraceOptions::ray_floor`](super::TraceOptions::ray_floor)
     /// (part of `cut_off`).
     pub ray_closed: f64,
+    /// Light absorbed by the body colour ([`TraceOptions::absorption`](super::TraceOptions::absorption))
+    /// on the way to the exits: `power_in = Σ exit powers + cut_off + absorbed` to rounding.
+    pub absorbed: f64,
 }

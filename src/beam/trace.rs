@@ -2,7 +2,7 @@
 //! reflection and refraction at entry, the symmetry's wedge), then the depth-first loop over
 //! the beams waiting to be split.
 
-use super::footprint::Affine;
+use super::footprint::{Affine, PathLength};
 use super::interface::split;
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
@@ -53,6 +53,7 @@ impl Stone {
             ray_floor: clean(opts.ray_floor),
             forks: opts.narrow_forks,
             max_depth: opts.max_depth,
+            alpha: clean(opts.absorption),
             want_fp: sink.wants_footprints(),
             keep_nodes,
         };
@@ -137,6 +138,7 @@ impl Stone {
                     start: 0,
                     len: 0,
                     map: map0,
+                    path: PathLength::default(),
                 },
                 // Below the critical angle from outside (ri < 1): everything was reflected.
                 _ => {
@@ -156,6 +158,7 @@ impl Stone {
         st.power_in *= g;
         st.cut_off *= g;
         st.ray_closed *= g;
+        st.absorbed *= g;
         st.exits *= group.len();
         let nodes = if keep_nodes {
             std::mem::take(&mut w.nodes)

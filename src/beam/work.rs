@@ -2,7 +2,7 @@
 //! ([`Beam`]) and the working memory reused across beams ([`Work`]).
 
 use super::disc::{Fork, Part};
-use super::footprint::Affine;
+use super::footprint::{Affine, PathLength};
 use super::stone::Stone;
 use crate::optics::Stokes;
 use glam::{DVec2, DVec3};
@@ -21,6 +21,8 @@ pub(super) struct Beam {
     pub(super) start: u32,
     pub(super) len: u32,
     pub(super) map: Affine,
+    /// Path length from the entry facet over the polygon (used when absorbing).
+    pub(super) path: PathLength,
 }
 
 /// A piece of the beam being split: the facet it meets, its projected polygon
@@ -42,6 +44,8 @@ pub(super) struct Ctx {
     pub(super) ray_floor: f64,
     pub(super) forks: bool,
     pub(super) max_depth: u32,
+    /// Absorption per girdle diameter (0: colourless).
+    pub(super) alpha: f64,
     pub(super) want_fp: bool,
     /// Record the facet-sequence tree (otherwise node ids are `u32::MAX`).
     pub(super) keep_nodes: bool,
@@ -67,6 +71,8 @@ pub(super) struct Work {
     pub(super) children: Vec<Child>,
     pub(super) cpts: Vec<DVec2>,
     pub(super) foot: Vec<DVec2>,
+    /// Exponents `−α L` at the vertices of `cur` (when absorbing).
+    pub(super) phi: Vec<f64>,
     pub(super) nodes: Vec<(u32, u32)>,
     pub(super) parts: Vec<Part>,
     pub(super) forks: Vec<Fork>,
@@ -106,6 +112,7 @@ impl Stone {
             children: Vec::with_capacity(self.normals.len()),
             cpts: Vec::with_capacity(256),
             foot: Vec::with_capacity(32),
+            phi: Vec::with_capacity(32),
             nodes: Vec::with_capacity(4096),
             parts: Vec::with_capacity(32),
             forks: Vec::with_capacity(8),

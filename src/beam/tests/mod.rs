@@ -10,6 +10,7 @@ use crate::geometry::Polyhedron;
 use crate::testkit::{cube, octahedron, princess, tolkowsky};
 use glam::DVec3;
 
+mod absorption;
 mod accounting;
 mod closed_form;
 mod grids;
