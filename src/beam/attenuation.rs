@@ -1,4 +1,5 @@
-//! Beer–Lambert attenuation over a footprint, in closed form: the room for body colour.
+//! Beer–Lambert attenuation over a footprint, in closed form: how the beam tracer absorbs body
+//! colour ([`TraceOptions::absorption`](super::TraceOptions::absorption)).
 //!
 //! Inside a convex stone every ray of a parallel beam has travelled a path length that is an
 //! affine function of where it sits in the beam's cross-section (the footprint's coordinates,
