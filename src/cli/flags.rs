@@ -2,7 +2,9 @@
 //! and what is allowed.
 
 use facetlab::error::{Error, Result};
-use facetlab::optics::{Material, MaterialFields};
+use facetlab::optics::{
+    BodyColour, ColourFields, Material, MaterialFields, StoneSize, DENSITY_MAX,
+};
 
 pub use facetlab::io::text::{count, number};
 
@@ -51,6 +53,110 @@ impl MaterialArgs {
     }
 }
 
+/// `--colour`, `--colour-density`, `--diameter-mm` and `--size-mm`, shared by `score` and
+/// `render`: a body colour and the stone's size (absorption depends on the path in mm).
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct ColourArgs {
+    /// The stone's colour seen through a path under D65: #rrggbb[@Nmm] or lab(L,a,b)[@Nmm]
+    /// (default path 10 mm), upsampled to a smooth absorption spectrum; replaces a coloured
+    /// variety's.
+    #[arg(long, value_name = "COLOUR")]
+    pub colour: Option<String>,
+    /// A factor on the body colour's absorption (0.5 paler, 2 darker).
+    #[arg(long, value_name = "X", allow_hyphen_values = true)]
+    pub colour_density: Option<String>,
+    /// The stone's width W in millimetres, for its body colour (default 6.5).
+    #[arg(
+        long,
+        value_name = "MM",
+        conflicts_with = "size_mm",
+        allow_hyphen_values = true
+    )]
+    pub diameter_mm: Option<String>,
+    /// The stone's size in millimetres instead: its length L (the width follows from the
+    /// design's L/W), or LxW.
+    #[arg(long, value_name = "L[xW]")]
+    pub size_mm: Option<String>,
+}
+
+impl ColourArgs {
+    /// The body colour `material` is traced with under these flags
+    /// ([`BodyColour::choose`]: `--colour`, else the material's own, times
+    /// `--colour-density`).
+    pub fn colour_for(&self, material: &Material) -> Result<Option<BodyColour>> {
+        let density = self
+            .colour_density
+            .as_deref()
+            .map(|d| {
+                d.trim().parse::<f64>().map_err(|_| {
+                    Error::invalid(
+                        "--colour-density",
+                        format!("`{d}` is not a number; give a factor on the absorption in (0, {DENSITY_MAX}]"),
+                    )
+                })
+            })
+            .transpose()?;
+        BodyColour::choose(
+            material.colour.as_ref(),
+            self.colour.as_deref(),
+            density,
+            ColourFields {
+                colour: "--colour",
+                density: "--colour-density",
+            },
+        )
+    }
+
+    /// The stone's size from `--diameter-mm` or `--size-mm` (default a width of 6.5 mm).
+    pub fn size(&self) -> Result<StoneSize> {
+        match (&self.diameter_mm, &self.size_mm) {
+            (Some(w), _) => {
+                let w = w.trim().parse::<f64>().map_err(|_| {
+                    Error::invalid(
+                        "--diameter-mm",
+                        format!("`{w}` is not a number; give a width in (0, 1000) mm"),
+                    )
+                })?;
+                StoneSize::width(w, "--diameter-mm")
+            }
+            (None, Some(l)) => StoneSize::parse_length(l, "--size-mm"),
+            (None, None) => Ok(StoneSize::default()),
+        }
+    }
+
+    /// Give every material that has no body colour yet (a design traced in its own
+    /// material) its colour under these flags, and return the lines for stderr: per coloured
+    /// cut, the colour, the stone's width and that colour is not yet traced (the tracers do
+    /// not use it yet). `cuts` and `materials` pair up; a material chosen by the flags
+    /// already has its colour ([`ColourArgs::colour_for`] in the command's settings).
+    pub fn apply(
+        &self,
+        cuts: &[facetlab::cut::Cut],
+        materials: &mut [Material],
+    ) -> Result<Vec<String>> {
+        let size = self.size()?;
+        let mut notes = Vec::new();
+        for (cut, m) in cuts.iter().zip(materials.iter_mut()) {
+            if m.colour.is_none() {
+                m.colour = self.colour_for(m)?;
+            }
+            if let Some(c) = &m.colour {
+                let w = size.width_mm(cut.ratios().l_w, self.size_flag())?;
+                notes.push(format!("{}: {}", cut.name, c.not_traced_note(w)));
+            }
+        }
+        Ok(notes)
+    }
+
+    fn size_flag(&self) -> &'static str {
+        if self.size_mm.is_some() {
+            "--size-mm"
+        } else {
+            "--diameter-mm"
+        }
+    }
+}
+
 /// The material from `--ri N` or `--material NAME` (diamond when neither is given), chosen by
 /// [`Material::choose`] like a config's `score.material`/`score.ri`.
 pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
@@ -76,7 +182,9 @@ pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
 /// The material each cut is traced in, and a line (for stderr) per cut traced in its design's
 /// material. When the user chose a material (`chosen`), every cut gets `default`; otherwise a
 /// design read from a file with an index (GemCad's `I` line) is traced in the material of that
-/// index ([`Material::for_index`]: the listed stone within ±0.005, else `ri:N`),
+/// index ([`Material::for_index`]: the listed stone within ±0.005, else `ri:N`), a design whose
+/// notes name a material or colour (`F Material: ruby`, `F Colour: #7a3fa0@10mm`:
+/// [`Material::from_design_notes`]) in that one (a malformed note is reported and ignored),
 /// and any other cut in `default`.
 pub fn design_materials(
     cuts: &[facetlab::cut::Cut],
@@ -91,7 +199,7 @@ pub fn design_materials(
                 .then(|| c.design_ri())
                 .flatten()
                 .and_then(|n| Material::for_index(n).map(|m| (n, m)));
-            match own {
+            let base = match own {
                 Some((n, m)) => {
                     notes.push(format!(
                         "{}: {}; --material or --ri overrides",
@@ -101,6 +209,24 @@ pub fn design_materials(
                     m
                 }
                 None => default.clone(),
+            };
+            let lines = c
+                .record
+                .iter()
+                .flat_map(|r| r.title.iter().chain(&r.footnotes));
+            match (chosen, Material::from_design_notes(lines, &base)) {
+                (false, Ok(Some(m))) => {
+                    notes.push(format!(
+                        "{}: traced as {} (the design's notes); --material or --ri overrides",
+                        c.name, m.name
+                    ));
+                    m
+                }
+                (false, Err(e)) => {
+                    notes.push(format!("{}: {e}; ignored", c.name));
+                    base
+                }
+                _ => base,
             }
         })
         .collect();
@@ -197,5 +323,54 @@ mod tests {
         assert!(notes[0].contains("traced as quartz (the design's index 1.54)"));
         let (m, notes) = design_materials(&cuts, &Material::cubic_zirconia(), true);
         assert!(notes.is_empty() && m.iter().all(|m| m.name == "cubic-zirconia"));
+    }
+
+    #[test]
+    fn a_design_note_names_a_coloured_material_and_colour_flags_apply() {
+        let mut cut = facetlab::io::load_cut("tolkowsky").unwrap();
+        cut.record = Some(facetlab::cut::GemcadRecord {
+            ri: Some(1.54),
+            footnotes: vec!["Material: amethyst".into()],
+            ..Default::default()
+        });
+        let cuts = [cut];
+        let (m, notes) = design_materials(&cuts, &Material::diamond(), false);
+        assert_eq!(m[0].name, "amethyst");
+        assert!(m[0].colour.is_some());
+        assert!(
+            notes[1].contains("traced as amethyst (the design's notes)"),
+            "{notes:?}"
+        );
+        // A chosen material wins over the note.
+        let (m, _) = design_materials(&cuts, &Material::diamond(), true);
+        assert_eq!(m[0].name, "diamond");
+        // The colour flags: a user colour colours the design's material; a density scales
+        // what is there; the note for stderr names the width.
+        let args = ColourArgs {
+            colour: None,
+            colour_density: Some("2".into()),
+            diameter_mm: Some("8".into()),
+            size_mm: None,
+        };
+        let (mut m, _) = design_materials(&cuts, &Material::diamond(), false);
+        m[0].colour = None;
+        let e = args.apply(&cuts, &mut m).unwrap_err().to_string();
+        assert!(e.starts_with("--colour-density: there is no colour"), "{e}");
+        let args = ColourArgs {
+            colour: Some("#2e8b57@10mm".into()),
+            ..args
+        };
+        let notes = args.apply(&cuts, &mut m).unwrap();
+        assert_eq!(m[0].colour.as_ref().unwrap().density, 2.0);
+        assert!(notes[0].contains("stone width 8 mm") && notes[0].contains("not yet traced"));
+        let bad = ColourArgs {
+            diameter_mm: Some("wide".into()),
+            ..Default::default()
+        };
+        assert!(bad
+            .size()
+            .unwrap_err()
+            .to_string()
+            .starts_with("--diameter-mm: `wide`"));
     }
 }

@@ -2,14 +2,16 @@
 
 use clap::Args;
 use facetlab::error::{Error, Result};
-use facetlab::optics::Material;
+use facetlab::optics::{Material, Variety};
 use serde::Serialize;
 
 /// Flags of `facetlab materials`.
 #[derive(Debug, Args)]
 pub struct MaterialsArgs {
     /// Print a JSON array instead of the table (keys: name, nd, dispersion, formula, source,
-    /// ordinary_ray, optic, density, aliases).
+    /// ordinary_ray, optic, density, aliases; coloured varieties follow with variety_of,
+    /// chromophores and colour — {source, seen_through_mm, hex, lab} or null with
+    /// no_spectrum saying why).
     #[arg(long)]
     pub json: bool,
 }
@@ -26,12 +28,53 @@ struct Row {
     aliases: &'static [&'static str],
     formula: String,
     source: String,
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    variety: Option<VarietyRow>,
 }
 
+/// What a coloured variety adds to its host's row.
+#[derive(Debug, Serialize)]
+struct VarietyRow {
+    variety_of: &'static str,
+    chromophores: &'static str,
+    colour: Option<ColourRow>,
+    #[serde(skip_serializing_if = "str::is_empty")]
+    no_spectrum: &'static str,
+}
+
+/// A published body colour: its source and the colour seen through [`SEEN_MM`].
+#[derive(Debug, Serialize)]
+struct ColourRow {
+    source: String,
+    seen_through_mm: f64,
+    hex: String,
+    lab: [f64; 3],
+}
+
+/// The path the listing shows each variety's colour through, mm.
+const SEEN_MM: f64 = 5.0;
+
 fn rows() -> Vec<Row> {
+    let varieties = Variety::all().iter().map(|v| (v.material(), Some(v)));
     Material::table()
         .into_iter()
-        .map(|m| Row {
+        .map(|m| (m, None))
+        .chain(varieties)
+        .map(|(m, v): (Material, Option<&Variety>)| Row {
+            variety: v.map(|v| VarietyRow {
+                variety_of: v.host,
+                chromophores: v.chromophores,
+                colour: m.colour.as_ref().map(|c| {
+                    let lab = c.lab_through(SEEN_MM);
+                    ColourRow {
+                        source: c.source.clone(),
+                        seen_through_mm: SEEN_MM,
+                        hex: c.hex_through(SEEN_MM),
+                        lab: [lab.x, lab.y, lab.z].map(|x| (x * 100.0).round() / 100.0),
+                    }
+                }),
+                no_spectrum: v.missing,
+            }),
             nd: m.ri_d(),
             dispersion: m.bg_dispersion(),
             ordinary_ray: m.optic.ordinary_ray(),
@@ -50,7 +93,7 @@ fn text(rows: &[Row]) -> String {
         "{:<19} {:>6} {:>6} {:>5}  {:<17} {:<9} source\n",
         "name", "nD", "B–G", "SG", "index", "formula"
     );
-    for r in rows {
+    for r in rows.iter().filter(|r| r.variety.is_none()) {
         let also = if r.aliases.is_empty() {
             String::new()
         } else {
@@ -74,6 +117,27 @@ fn text(rows: &[Row]) -> String {
          --ri N: one fixed index, no dispersion and no fire.\n",
         Material::GENERIC_BG_PER_N1
     );
+    out += &format!(
+        "\nColoured varieties (--material NAME: the host's index with the variety's body colour; seen through {SEEN_MM} mm under D65):\n"
+    );
+    for r in rows {
+        let Some(v) = &r.variety else { continue };
+        match &v.colour {
+            Some(c) => {
+                out += &format!(
+                    "{:<17} {:<11} {}  L* {:>5.1} a* {:>6.1} b* {:>6.1}  {}\n{:<17} {:<11} spectrum: {}\n",
+                    r.name, v.variety_of, c.hex, c.lab[0], c.lab[1], c.lab[2], v.chromophores, "", "", c.source
+                );
+            }
+            None => {
+                out += &format!(
+                    "{:<17} {:<11} no published spectrum: traced colourless (give --colour); {}; {}\n",
+                    r.name, v.variety_of, v.no_spectrum, v.chromophores
+                );
+            }
+        }
+    }
+    out += "Spectra: polarized absorbance of one stone each (the ray the model traces), 10 nm bins, baseline (smallest absorbance) removed, α = ln 10 · A / thickness; --colour-density scales them.\n";
     out
 }
 
@@ -104,5 +168,27 @@ mod tests {
             t.contains("ordinary ray (ω)") && t.contains("ri:N:BG"),
             "{t}"
         );
+        // Every coloured variety is listed, with its spectrum's source or the reason it has
+        // none.
+        for v in Variety::all() {
+            let line = t.lines().rfind(|l| l.starts_with(v.name)).unwrap();
+            assert!(
+                line.contains('#') || line.contains("no published spectrum"),
+                "{line}"
+            );
+        }
+        assert!(t.contains("Caltech Mineral Spectroscopy Server"), "{t}");
+        let json = serde_json::to_value(rows()).unwrap();
+        let ruby = json
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["name"] == "ruby")
+            .unwrap();
+        assert_eq!(ruby["variety_of"], "sapphire");
+        assert!(ruby["colour"]["hex"].as_str().unwrap().starts_with('#'));
+        let diamond = &json[Material::NAMES.len() - 2];
+        assert_eq!(diamond["name"], "diamond");
+        assert!(diamond.get("variety_of").is_none());
     }
 }

@@ -76,6 +76,8 @@ pub struct RenderArgs {
     pub head_shadow: Option<String>,
     #[command(flatten)]
     pub material: super::flags::MaterialArgs,
+    #[command(flatten)]
+    pub colour: super::flags::ColourArgs,
     /// Track polarization (on) or use the unpolarized average (off).
     #[arg(long, default_value = "on", value_name = "on|off")]
     pub polarization: String,
@@ -173,6 +175,8 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
         })
         .transpose()?;
     opts.material = a.material.material()?;
+    opts.material.colour = a.colour.colour_for(&opts.material)?;
+    a.colour.size()?;
     opts.polarization = flags::on_off("--polarization", &a.polarization)?;
     let rock = a
         .rock
@@ -433,8 +437,11 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         .collect::<Result<Vec<_>>>()?;
     let chosen = a.material.chosen();
     // A design is traced in its own material (GemCad's `I` index) unless one was chosen.
-    let (materials, notes) = flags::design_materials(&cuts, &s.opts.material, chosen);
+    let (mut materials, notes) = flags::design_materials(&cuts, &s.opts.material, chosen);
     for note in notes {
+        eprintln!("{note}");
+    }
+    for note in a.colour.apply(&cuts, &mut materials)? {
         eprintln!("{note}");
     }
     let light = s.opts.light;

@@ -75,8 +75,13 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     let chosen = a.material.chosen();
     // A design is traced in its own material (GemCad's `I` index) unless one was chosen; the
     // page names the first cut's.
-    let (materials, notes) = flags::design_materials(&cuts, &material, chosen);
+    let (mut materials, notes) = flags::design_materials(&cuts, &material, chosen);
     for note in notes {
+        eprintln!("{note}");
+    }
+    // A coloured material (`--material ruby`, a design's note) is not yet traced in colour:
+    // say so, with the default width (this command has no size flags).
+    for note in flags::ColourArgs::default().apply(&cuts, &mut materials)? {
         eprintln!("{note}");
     }
     let material = materials.first().cloned().unwrap_or(material);

@@ -58,6 +58,8 @@ pub struct ScoreArgs {
     pub shard: Option<String>,
     #[command(flatten)]
     pub material: super::flags::MaterialArgs,
+    #[command(flatten)]
+    pub colour: super::flags::ColourArgs,
     /// Track polarization with Stokes vectors and Mueller matrices (on) or use the
     /// unpolarized average (off).
     #[arg(long, default_value = "on", value_name = "on|off")]
@@ -90,7 +92,9 @@ pub struct Settings {
 
 /// Validate the flags into the library's types.
 pub fn settings(a: &ScoreArgs) -> Result<Settings> {
-    let material = a.material.material()?;
+    let mut material = a.material.material()?;
+    material.colour = a.colour.colour_for(&material)?;
+    let size = a.colour.size()?;
     let polarization = flags::on_off("--polarization", &a.polarization)?;
     let head = flags::number(
         "--head-shadow",
@@ -106,6 +110,7 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
         .transpose()?;
     let config = ScoreConfig {
         material,
+        size,
         polarization,
         head_shadow_deg: head,
         ..ScoreConfig::default()
@@ -230,9 +235,12 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
     }
     // A design is traced in its own material unless the user chose one; the table's header
     // and the JSON settings name the first cut's.
-    let (materials, notes) =
+    let (mut materials, notes) =
         flags::design_materials(&cuts, &s.config.material, a.material.chosen());
     for note in notes {
+        eprintln!("{note}");
+    }
+    for note in a.colour.apply(&cuts, &mut materials)? {
         eprintln!("{note}");
     }
     let configs: Vec<ScoreConfig> = materials
@@ -482,5 +490,38 @@ mod tests {
         let e = run(&args(&[c, "--json", c])).unwrap_err().to_string();
         assert!(e.starts_with("--json: ") && e.contains("overwrite"), "{e}");
         assert_eq!(std::fs::read_to_string(&cut).unwrap(), "not read");
+    }
+
+    #[test]
+    fn colour_flags_reach_the_configuration_or_name_the_flag() {
+        let s = settings(&args(&[
+            "t",
+            "--material",
+            "ruby",
+            "--colour-density",
+            "0.5",
+            "--size-mm",
+            "8",
+        ]))
+        .unwrap();
+        let c = s.config.material.colour.as_ref().unwrap();
+        assert_eq!((c.name.as_str(), c.density), ("ruby", 0.5));
+        assert_eq!(s.config.size, facetlab::optics::StoneSize::Length(8.0));
+        let s = settings(&args(&["t", "--colour", "lab(40,30,-40)@10mm"])).unwrap();
+        assert_eq!(s.config.material.name, "diamond");
+        assert!(s.config.material.colour.is_some());
+        // No colour flags: today's configuration.
+        let s = settings(&args(&["t"])).unwrap();
+        assert!(s.config.material.colour.is_none());
+        assert_eq!(s.config.size, facetlab::optics::StoneSize::default());
+        let e = |x: &[&str]| settings(&args(x)).unwrap_err().to_string();
+        assert!(e(&["t", "--colour", "blue"]).starts_with("--colour: `blue` is not a colour"));
+        assert!(
+            e(&["t", "--colour-density", "2"]).starts_with("--colour-density: there is no colour")
+        );
+        assert!(e(&["t", "--material", "ruby", "--colour-density", "x"])
+            .starts_with("--colour-density: `x`"));
+        assert!(e(&["t", "--size-mm", "0"]).starts_with("--size-mm:"));
+        assert!(e(&["t", "--diameter-mm", "-1"]).starts_with("--diameter-mm:"));
     }
 }

@@ -337,8 +337,13 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     // A design is traced in its own material unless the user chose one; the table and the
     // JSON settings name the first cut's.
     let chosen = args.material.chosen();
-    let (materials, notes) = flags::design_materials(&cuts, &set.config.material, chosen);
+    let (mut materials, notes) = flags::design_materials(&cuts, &set.config.material, chosen);
     for note in notes {
+        eprintln!("{note}");
+    }
+    // A coloured material (`--material ruby`, a design's note) is not yet traced in colour:
+    // say so, with the default width (this command has no size flags).
+    for note in flags::ColourArgs::default().apply(&cuts, &mut materials)? {
         eprintln!("{note}");
     }
     let configs: Vec<TraceConfig> = materials

@@ -4,7 +4,7 @@
 
 use crate::beam::TraceOptions;
 use crate::error::{Error, Result};
-use crate::optics::Material;
+use crate::optics::{Material, StoneSize};
 use crate::render::lighting::Spot;
 use crate::render::Tilt;
 
@@ -14,8 +14,13 @@ pub const REFERENCE_WAVELENGTH_NM: f64 = 589.3;
 /// What to score and how.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ScoreConfig {
-    /// The stone's material (a constant index gives no dispersion and no fire).
+    /// The stone's material (a constant index gives no dispersion and no fire), with its
+    /// body colour if it has one ([`Material::colour`]; not yet used by the tracers).
     pub material: Material,
+    /// The stone's size, for body colour (absorption depends on the path in mm): its width,
+    /// or its length (the width following from the cut's L/W). Default a width of
+    /// [`StoneSize::DEFAULT_WIDTH_MM`] mm. A colourless stone's scores do not depend on it.
+    pub size: StoneSize,
     /// Wavelength of the single-wavelength scores (light return, brilliance, ASET,
     /// scintillation), nm. Default 589.3.
     pub wavelength_nm: f64,
@@ -100,6 +105,7 @@ impl Default for ScoreConfig {
     fn default() -> Self {
         ScoreConfig {
             material: Material::diamond(),
+            size: StoneSize::default(),
             wavelength_nm: REFERENCE_WAVELENGTH_NM,
             polarization: true,
             head_shadow_deg: 0.0,

@@ -4,6 +4,7 @@
 
 use super::material::{Dispersion, Material, MaterialFields, Optic};
 use super::table::{Entry, DIAMOND, TABLE};
+use super::varieties::Variety;
 use crate::error::{Error, Result};
 
 impl Material {
@@ -15,6 +16,7 @@ impl Material {
             density: DIAMOND.density,
             optic: Optic::Isotropic,
             source: "a fixed index (--ri): no dispersion, no fire".into(),
+            colour: None,
         }
     }
 
@@ -26,8 +28,9 @@ impl Material {
     /// in the table, has 0.19).
     pub const BG_MAX: f64 = 0.5;
 
-    /// A material by name: a table name ([`Material::NAMES`]) or alias (`cz`, `bk7`, `ruby`,
-    /// …), or `ri:N` (index N at the D line with the generic dispersion
+    /// A material by name: a coloured variety ([`Variety`]: `ruby`, `emerald`, … — the host
+    /// material with the variety's published body colour, or colourless where none was
+    /// found), a table name ([`Material::NAMES`]) or alias (`cz`, `bk7`, …), or `ri:N` (index N at the D line with the generic dispersion
     /// B–G = [`GENERIC_BG_PER_N1`](Material::GENERIC_BG_PER_N1)·(N − 1)) or `ri:N:BG` (index N
     /// with B–G dispersion BG), both as a Cauchy curve. Errors name `--material`.
     pub fn by_name(name: &str) -> Result<Material> {
@@ -35,16 +38,21 @@ impl Material {
         if let Some(spec) = key.strip_prefix("ri:") {
             return Material::from_ri_spec(name.trim(), spec);
         }
+        if let Some(v) = Variety::by_name(&key) {
+            return Ok(v.material());
+        }
         TABLE
             .iter()
             .find(|e| e.name == key || e.aliases.contains(&key.as_str()))
             .map(Entry::material)
             .ok_or_else(|| {
+                let varieties: Vec<&str> = Variety::all().iter().map(|v| v.name).collect();
                 Error::invalid(
                     "--material",
                     format!(
-                        "unknown material `{name}`; known: {}, or ri:N[:BG] (an index N with generic or given B–G dispersion)",
-                        Material::NAMES.join(", ")
+                        "unknown material `{name}`; known: {}; coloured varieties: {}; or ri:N[:BG] (an index N with generic or given B–G dispersion)",
+                        Material::NAMES.join(", "),
+                        varieties.join(", ")
                     ),
                 )
             })
@@ -94,6 +102,7 @@ impl Material {
             } else {
                 format!("Cauchy through n_D = {n} with the given B–G = {bg}")
             },
+            colour: None,
         };
         let red = m.ri(780.0);
         if red <= 1.0 {
@@ -102,6 +111,56 @@ impl Material {
             )));
         }
         Ok(m)
+    }
+
+    /// The material a design's notes name, if any: a GemCad title or footnote line
+    /// `material: NAME` (a name of [`Material::by_name`], e.g. `F Material: pink-tourmaline`)
+    /// and/or `colour: COLOUR` (or `color:`; a user colour as `--colour` takes it, e.g.
+    /// `F Colour: #7a3fa0@10mm`), case ignored. A colour note without a material note
+    /// colours `base` (the material the design's index gives). `None` when no line names
+    /// either; an error (naming the note) when one is malformed.
+    pub fn from_design_notes<'a>(
+        lines: impl IntoIterator<Item = &'a String>,
+        base: &Material,
+    ) -> Result<Option<Material>> {
+        let mut name = None;
+        let mut colour = None;
+        for line in lines {
+            let t = line.trim();
+            let Some((key, value)) = t.split_once(':') else {
+                continue;
+            };
+            match key.trim().to_ascii_lowercase().as_str() {
+                "material" if name.is_none() => name = Some(value.trim().to_string()),
+                "colour" | "color" if colour.is_none() => colour = Some(value.trim().to_string()),
+                _ => {}
+            }
+        }
+        if name.is_none() && colour.is_none() {
+            return Ok(None);
+        }
+        let mut m = match &name {
+            Some(n) => Material::by_name(n).map_err(|e| match e {
+                Error::Invalid { message, .. } => {
+                    Error::invalid(format!("the design's note `material: {n}`"), message)
+                }
+                other => other,
+            })?,
+            None => base.clone(),
+        };
+        if let Some(c) = &colour {
+            let field = format!("the design's note `colour: {c}`");
+            m.colour = super::body_colour::BodyColour::choose(
+                m.colour.as_ref(),
+                Some(c),
+                None,
+                super::body_colour::ColourFields {
+                    colour: &field,
+                    density: &field,
+                },
+            )?;
+        }
+        Ok(Some(m))
     }
 
     /// A fixed refractive index must be above this (1 is vacuum: nothing would refract).
@@ -285,5 +344,40 @@ mod tests {
             Material::for_index(1.54).unwrap().for_index_note(1.54),
             "traced as quartz (the design's index 1.54)"
         );
+    }
+
+    #[test]
+    fn design_notes_name_a_coloured_material() {
+        let lines = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        let base = Material::by_name("quartz").unwrap();
+        assert_eq!(
+            Material::from_design_notes(
+                &lines(&["Designed by A. Cutter", "Angles for quartz"]),
+                &base
+            )
+            .unwrap(),
+            None
+        );
+        let m = Material::from_design_notes(&lines(&["Material: Ruby"]), &base)
+            .unwrap()
+            .unwrap();
+        assert_eq!(m.name, "ruby");
+        assert!(m.colour.is_some());
+        let m = Material::from_design_notes(&lines(&["colour: #7a3fa0@10mm"]), &base)
+            .unwrap()
+            .unwrap();
+        assert_eq!(m.name, "quartz");
+        assert_eq!(m.colour.unwrap().name, "#7a3fa0@10mm");
+        let e = Material::from_design_notes(&lines(&["material: kryptonite"]), &base)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("the design's note `material: kryptonite`: unknown material"),
+            "{e}"
+        );
+        let e = Material::from_design_notes(&lines(&["Color: mauve"]), &base)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("the design's note `colour: mauve`: "), "{e}");
     }
 }

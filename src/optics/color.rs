@@ -163,6 +163,109 @@ pub fn chroma(lab: DVec3) -> f64 {
     (lab.y * lab.y + lab.z * lab.z).sqrt()
 }
 
+/// sRGB transfer function inverted (encoded → linear), for values in [0, 1].
+pub fn srgb_decode(v: f64) -> f64 {
+    if v <= 0.04045 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// XYZ from linear sRGB: the exact inverse of [`xyz_to_linear_srgb`]'s matrix.
+pub fn linear_srgb_to_xyz(rgb: DVec3) -> DVec3 {
+    let m = glam::DMat3::from_cols(
+        DVec3::new(3.2406, -0.9689, 0.0557),
+        DVec3::new(-1.5372, 1.8758, -0.2040),
+        DVec3::new(-0.4986, 0.0415, 1.0570),
+    );
+    m.inverse() * rgb
+}
+
+/// XYZ of the CIELAB colour `lab` relative to the white `white` (the inverse of
+/// [`xyz_to_lab`]).
+pub fn lab_to_xyz(lab: DVec3, white: DVec3) -> DVec3 {
+    fn finv(t: f64) -> f64 {
+        const D: f64 = 6.0 / 29.0;
+        if t > D {
+            t * t * t
+        } else {
+            3.0 * D * D * (t - 4.0 / 29.0)
+        }
+    }
+    let fy = (lab.x + 16.0) / 116.0;
+    let fx = fy + lab.y / 500.0;
+    let fz = fy - lab.z / 200.0;
+    DVec3::new(white.x * finv(fx), white.y * finv(fy), white.z * finv(fz))
+}
+
+/// The CIEDE2000 colour difference ΔE₀₀ between two CIELAB colours (k_L = k_C = k_H = 1),
+/// as written out by G. Sharma, W. Wu and E. N. Dalal, "The CIEDE2000 color-difference
+/// formula: implementation notes, supplementary test data, and mathematical observations",
+/// Color Res. Appl. 30, 21–30 (2005), eqs. (1)–(22); their test pairs are in this file's
+/// tests.
+pub fn delta_e2000(lab1: DVec3, lab2: DVec3) -> f64 {
+    use std::f64::consts::PI;
+    let deg = PI / 180.0;
+    let (l1, a1, b1) = (lab1.x, lab1.y, lab1.z);
+    let (l2, a2, b2) = (lab2.x, lab2.y, lab2.z);
+    let c_bar = ((a1 * a1 + b1 * b1).sqrt() + (a2 * a2 + b2 * b2).sqrt()) / 2.0;
+    let c7 = c_bar.powi(7);
+    let g = 0.5 * (1.0 - (c7 / (c7 + 25f64.powi(7))).sqrt());
+    let (a1p, a2p) = ((1.0 + g) * a1, (1.0 + g) * a2);
+    let (c1p, c2p) = ((a1p * a1p + b1 * b1).sqrt(), (a2p * a2p + b2 * b2).sqrt());
+    let hue = |b: f64, a: f64| {
+        if b == 0.0 && a == 0.0 {
+            0.0
+        } else {
+            let h = b.atan2(a) / deg;
+            if h < 0.0 {
+                h + 360.0
+            } else {
+                h
+            }
+        }
+    };
+    let (h1p, h2p) = (hue(b1, a1p), hue(b2, a2p));
+    let dl = l2 - l1;
+    let dc = c2p - c1p;
+    let dh = if c1p * c2p == 0.0 {
+        0.0
+    } else if (h2p - h1p).abs() <= 180.0 {
+        h2p - h1p
+    } else if h2p - h1p > 180.0 {
+        h2p - h1p - 360.0
+    } else {
+        h2p - h1p + 360.0
+    };
+    let dhh = 2.0 * (c1p * c2p).sqrt() * (dh * deg / 2.0).sin();
+    let l_bar = (l1 + l2) / 2.0;
+    let c_bar_p = (c1p + c2p) / 2.0;
+    let h_bar = if c1p * c2p == 0.0 {
+        h1p + h2p
+    } else if (h1p - h2p).abs() <= 180.0 {
+        (h1p + h2p) / 2.0
+    } else if h1p + h2p < 360.0 {
+        (h1p + h2p + 360.0) / 2.0
+    } else {
+        (h1p + h2p - 360.0) / 2.0
+    };
+    let t = 1.0 - 0.17 * ((h_bar - 30.0) * deg).cos()
+        + 0.24 * (2.0 * h_bar * deg).cos()
+        + 0.32 * ((3.0 * h_bar + 6.0) * deg).cos()
+        - 0.20 * ((4.0 * h_bar - 63.0) * deg).cos();
+    let d_theta = 30.0 * (-((h_bar - 275.0) / 25.0).powi(2)).exp();
+    let cp7 = c_bar_p.powi(7);
+    let rc = 2.0 * (cp7 / (cp7 + 25f64.powi(7))).sqrt();
+    let l50 = (l_bar - 50.0).powi(2);
+    let sl = 1.0 + 0.015 * l50 / (20.0 + l50).sqrt();
+    let sc = 1.0 + 0.045 * c_bar_p;
+    let sh = 1.0 + 0.015 * c_bar_p * t;
+    let rt = -(2.0 * d_theta * deg).sin() * rc;
+    let (x, y, z) = (dl / sl, dc / sc, dhh / sh);
+    (x * x + y * y + z * z + rt * y * z).sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -233,5 +336,68 @@ mod tests {
         assert!(chroma(xyz_to_lab(red, w)) > 60.0);
         let band = band_weights_d65(8);
         assert!((band.iter().map(|v| v.y).sum::<f64>() - 1.0).abs() < 1e-12);
+    }
+
+    /// Sharma, Wu & Dalal (2005), Table 1: pairs 1, 4, 7, 9, 11, 13, 17–22, 25, 28, 31, 34,
+    /// 36, 37 (L₁ a₁ b₁, L₂ a₂ b₂, ΔE₀₀ to 4 decimals), chosen to cover the hue-angle
+    /// branches (mean hue across 0°/360°, a zero chroma, dh either side of ±180°).
+    #[test]
+    fn ciede2000_matches_the_published_test_pairs() {
+        const PAIRS: &[[f64; 7]] = &[
+            [50.0, 2.6772, -79.7751, 50.0, 0.0, -82.7485, 2.0425],
+            [50.0, -1.3802, -84.2814, 50.0, 0.0, -82.7485, 1.0000],
+            [50.0, 0.0, 0.0, 50.0, -1.0, 2.0, 2.3669],
+            [50.0, 2.4900, -0.0010, 50.0, -2.4900, 0.0009, 7.1792],
+            [50.0, 2.4900, -0.0010, 50.0, -2.4900, 0.0011, 7.2195],
+            [50.0, -0.0010, 2.4900, 50.0, 0.0009, -2.4900, 4.8045],
+            [50.0, 2.5, 0.0, 50.0, 0.0, -2.5, 4.3065],
+            [50.0, 2.5, 0.0, 73.0, 25.0, -18.0, 27.1492],
+            [50.0, 2.5, 0.0, 61.0, -5.0, 29.0, 22.8977],
+            [50.0, 2.5, 0.0, 56.0, -27.0, -3.0, 31.9030],
+            [50.0, 2.5, 0.0, 58.0, 24.0, 15.0, 19.4535],
+            [50.0, 2.5, 0.0, 50.0, 3.1736, 0.5854, 1.0000],
+            [50.0, 2.5, 0.0, 50.0, 3.2972, 0.0, 1.0000],
+            [
+                60.2574, -34.0099, 36.2677, 60.4626, -34.1751, 39.4387, 1.2644,
+            ],
+            [35.0831, -44.1164, 3.7933, 35.0232, -40.0716, 1.5901, 1.8645],
+            [90.8027, -2.0831, 1.4410, 91.1528, -1.6435, 0.0447, 1.4441],
+            [6.7747, -0.2908, -2.4247, 5.8714, -0.0985, -2.2286, 0.6377],
+            [2.0776, 0.0795, -1.1350, 0.9033, -0.0636, -0.5514, 0.9082],
+        ];
+        for p in PAIRS {
+            let (a, b) = (DVec3::new(p[0], p[1], p[2]), DVec3::new(p[3], p[4], p[5]));
+            for (x, y) in [(a, b), (b, a)] {
+                let d = delta_e2000(x, y);
+                assert!((d - p[6]).abs() < 5e-5, "{p:?}: {d}");
+            }
+        }
+        assert_eq!(
+            delta_e2000(DVec3::new(40.0, 10.0, -5.0), DVec3::new(40.0, 10.0, -5.0)),
+            0.0
+        );
+    }
+
+    #[test]
+    fn lab_and_srgb_inverses_round_trip() {
+        let w = d65_white();
+        for lab in [
+            DVec3::new(40.0, 30.0, -40.0),
+            DVec3::new(5.0, -2.0, 1.0),
+            DVec3::new(95.0, 0.0, 80.0),
+        ] {
+            let back = xyz_to_lab(lab_to_xyz(lab, w), w);
+            assert!((back - lab).abs().max_element() < 1e-9, "{lab} {back}");
+        }
+        let xyz = DVec3::new(0.3, 0.2, 0.5);
+        assert!(
+            (xyz_to_linear_srgb(linear_srgb_to_xyz(xyz)) - xyz)
+                .abs()
+                .max_element()
+                < 1e-12
+        );
+        for v in [0.0, 0.02, 0.5, 1.0] {
+            assert!((srgb_encode(srgb_decode(v)) - v).abs() < 1e-12);
+        }
     }
 }

@@ -131,6 +131,8 @@ pub struct Material {
     /// Where the formula comes from (author, year, journal, range of validity), or how it
     /// was fitted.
     pub source: String,
+    /// Body colour (absorption per mm over 380–780 nm); `None` is a colourless stone.
+    pub colour: Option<super::body_colour::BodyColour>,
 }
 
 /// The names under which a material choice reaches [`Material::choose`] (a flag pair such as

@@ -44,7 +44,7 @@ const GLASS: Entry = Entry {
 /// 1.10202242λ²/(λ² − 100). Handbook: n_ω 1.544, n_ε 1.553, B–G 0.013, SG 2.66.
 const QUARTZ: Entry = Entry {
     name: "quartz",
-    aliases: &["amethyst", "citrine"],
+    aliases: &[],
     model: Model::Sellmeier(&[
         (0.28604141, 0.0),
         (1.07044083, 1.00585997e-2),
@@ -60,7 +60,7 @@ const QUARTZ: Entry = Entry {
 /// negative, so ω is the higher index) and B–G 0.014. SG 2.72.
 const BERYL: Entry = Entry {
     name: "beryl",
-    aliases: &["aquamarine", "emerald", "morganite"],
+    aliases: &["morganite"],
     model: Model::HandbookFit {
         nd: 1.583,
         bg: 0.014,
@@ -146,7 +146,7 @@ const SPINEL: Entry = Entry {
 /// fitted exactly to the GIA handbook's n 1.740 and B–G 0.028. SG 3.61.
 const GROSSULAR: Entry = Entry {
     name: "grossular",
-    aliases: &["hessonite", "tsavorite"],
+    aliases: &["hessonite"],
     model: Model::HandbookFit {
         nd: 1.740,
         bg: 0.028,
@@ -177,7 +177,7 @@ const PYROPE: Entry = Entry {
 /// SG 4.00 (synthetic corundum 3.98).
 const SAPPHIRE: Entry = Entry {
     name: "sapphire",
-    aliases: &["ruby", "corundum"],
+    aliases: &["corundum"],
     model: Model::Sellmeier(&[
         (1.4313493, 0.0726631 * 0.0726631),
         (0.65054713, 0.1193242 * 0.1193242),
@@ -340,6 +340,7 @@ impl Entry {
             density: self.density,
             optic: self.optic,
             source: self.source.into(),
+            colour: None,
         }
     }
 }

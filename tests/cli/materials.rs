@@ -257,3 +257,50 @@ fn retarget_a_diamond_design_to_quartz() {
         &["-o"],
     );
 }
+
+/// Body colour reaches `score` from a design's note and from `--colour`, says it is not yet
+/// traced, and leaves every score as the colourless stone's; bad colours are one-line errors.
+#[test]
+fn a_coloured_material_is_named_and_not_yet_traced() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    std::fs::write(p.join("star.asc"), QUARTZ_STAR).unwrap();
+    std::fs::write(
+        p.join("amethyst.asc"),
+        QUARTZ_STAR.replace("F Leave", "F Material: amethyst\nF Leave"),
+    )
+    .unwrap();
+    let plain = super::run_in(p, &["score", "star.asc"]);
+    let coloured = super::run_in(p, &["score", "amethyst.asc", "--diameter-mm", "8"]);
+    assert!(plain.status.success() && coloured.status.success());
+    let err = String::from_utf8_lossy(&coloured.stderr);
+    assert!(
+        err.contains("traced as amethyst (the design's notes)")
+            && err.contains("stone width 8 mm")
+            && err.contains("not yet traced"),
+        "{err}"
+    );
+    // The same numbers, row for row, under the material's name.
+    let rows = |o: &std::process::Output| {
+        String::from_utf8_lossy(&o.stdout)
+            .lines()
+            .skip(2)
+            .map(str::to_string)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(rows(&plain), rows(&coloured));
+    assert!(String::from_utf8_lossy(&coloured.stdout).starts_with("amethyst, "));
+    let out = super::run_in(p, &["score", "star.asc", "--colour", "#7a3fa0@10mm"]);
+    assert!(out.status.success());
+    assert_eq!(rows(&plain), rows(&out));
+    bad(
+        p,
+        &["score", "star.asc", "--colour", "mauve"],
+        &["--colour: `mauve` is not a colour", "lab(L,a,b)"],
+    );
+    bad(
+        p,
+        &["score", "star.asc", "--colour-density", "2"],
+        &["--colour-density: there is no colour to scale"],
+    );
+}

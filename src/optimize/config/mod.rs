@@ -275,6 +275,8 @@ impl Config {
         if let (None, None, Some(n)) = (&raw_score.material, raw_score.ri, own) {
             if let Some(m) = crate::optics::Material::for_index(n) {
                 score.material = m;
+                // The user's colour colours the design's own material too.
+                score.material.colour = score.user_colour.clone();
             }
         }
 
@@ -405,6 +407,10 @@ impl Config {
                 fire_split_threshold: Some(self.score.fire_split_threshold),
                 ray_floor: Some(self.score.ray_floor),
                 narrow_forks: Some(self.score.narrow_forks),
+                colour: self.score.colour_fields.0.clone(),
+                colour_density: self.score.colour_fields.1,
+                size_mm: self.score.colour_fields.2.clone(),
+                diameter_mm: self.score.colour_fields.3,
             }),
         }
     }
@@ -635,7 +641,8 @@ mod tests {
                 "ray_floor = 0.7",
                 "score.ray_floor: 0.7 is out of range; allowed [0, 0.5]",
             ),
-            ("colour = 1", "colour"),
+            ("colour = 1", "expected a string"),
+            ("tint = 1", "tint"),
         ] {
             let e = Config::from_str(&format!("{GOOD}\n[score]\n{extra}\n"), "round.toml")
                 .unwrap_err()

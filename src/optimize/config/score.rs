@@ -34,6 +34,31 @@ pub struct RawScore {
     /// brilliance up to 4e-4 off); default false.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub narrow_forks: Option<bool>,
+    /// The stone's colour seen through a path under D65, `#rrggbb[@Nmm]` or
+    /// `lab(L,a,b)[@Nmm]` (like `--colour`); default the material's own (none, or a coloured
+    /// variety's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub colour: Option<String>,
+    /// A factor on the body colour's absorption (like `--colour-density`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub colour_density: Option<f64>,
+    /// The stone's size in mm for body colour: its length L (a number, or "L"), or "LxW"
+    /// (like `--size-mm`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size_mm: Option<RawSize>,
+    /// The stone's width W in mm for body colour (like `--diameter-mm`); default 6.5.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diameter_mm: Option<f64>,
+}
+
+/// `score.size_mm` as written: a number (the length) or text (`"10"`, `"10x5"`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum RawSize {
+    /// A length in mm.
+    Number(f64),
+    /// `L` or `LxW` in mm.
+    Text(String),
 }
 
 /// Validated `[score]`.
@@ -55,6 +80,14 @@ pub struct ScoreSettings {
     pub ray_floor: f64,
     /// Narrow beams as forking discs ([`crate::beam::TraceOptions::narrow_forks`]).
     pub narrow_forks: bool,
+    /// The user's colour (`colour`, upsampled, times `colour_density`), which also colours a
+    /// design traced in its own material.
+    pub user_colour: Option<crate::optics::BodyColour>,
+    /// `colour`, `colour_density`, `size_mm`, `diameter_mm` as given (for writing the config
+    /// back).
+    pub colour_fields: (Option<String>, Option<f64>, Option<RawSize>, Option<f64>),
+    /// The stone's size for body colour.
+    pub size: crate::optics::StoneSize,
 }
 
 impl ScoreSettings {
@@ -62,6 +95,7 @@ impl ScoreSettings {
     pub fn score_config(&self) -> crate::metrics::ScoreConfig {
         crate::metrics::ScoreConfig {
             material: self.material.clone(),
+            size: self.size,
             head_shadow_deg: self.head_shadow_deg,
             polarization: self.polarization,
             fire_split_threshold: self.fire_split_threshold,
@@ -78,7 +112,7 @@ impl ScoreSettings {
 
 /// Validate `[score]`.
 pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
-    let material = crate::optics::Material::choose(
+    let mut material = crate::optics::Material::choose(
         rs.material.as_deref(),
         rs.ri,
         crate::optics::MaterialFields {
@@ -113,7 +147,41 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
             "[1e-9, 1e-2] (a share of the light; smaller is smoother and slower)",
         )
     };
+    material.colour = crate::optics::BodyColour::choose(
+        material.colour.as_ref(),
+        rs.colour.as_deref(),
+        rs.colour_density,
+        crate::optics::ColourFields {
+            colour: &at("score.colour"),
+            density: &at("score.colour_density"),
+        },
+    )?;
+    let user_colour = rs.colour.as_ref().and(material.colour.clone());
+    let size = match (&rs.size_mm, rs.diameter_mm) {
+        (Some(_), Some(_)) => {
+            return Err(Error::invalid(
+                at("score.diameter_mm"),
+                "give either score.size_mm or score.diameter_mm, not both",
+            ))
+        }
+        (Some(RawSize::Number(l)), None) => {
+            crate::optics::StoneSize::parse_length(&l.to_string(), &at("score.size_mm"))?
+        }
+        (Some(RawSize::Text(t)), None) => {
+            crate::optics::StoneSize::parse_length(t, &at("score.size_mm"))?
+        }
+        (None, Some(w)) => crate::optics::StoneSize::width(w, &at("score.diameter_mm"))?,
+        (None, None) => crate::optics::StoneSize::default(),
+    };
     let score = ScoreSettings {
+        user_colour,
+        colour_fields: (
+            rs.colour.clone(),
+            rs.colour_density,
+            rs.size_mm.clone(),
+            rs.diameter_mm,
+        ),
+        size,
         material,
         ri: rs.ri,
         head_shadow_deg: ranged(
@@ -144,4 +212,63 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
         narrow_forks: rs.narrow_forks.unwrap_or(defaults.trace.narrow_forks),
     };
     Ok(score)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::optimize::Config;
+
+    const BASE: &str =
+        "[cut]\nfamily = \"round-brilliant\"\n[free]\ncrown_angle = [30, 38]\n[score]\n";
+
+    fn config(score: &str) -> crate::error::Result<Config> {
+        Config::from_str(&format!("{BASE}{score}"), "c.toml")
+    }
+
+    /// `[score] colour`, `colour_density`, `size_mm` and `diameter_mm` reach the scoring
+    /// configuration, survive writing the config back, and are one-line errors when wrong;
+    /// without them the configuration is today's (colourless, width 6.5 mm).
+    #[test]
+    fn colour_and_size_fields_round_trip_and_default_to_colourless() {
+        let plain = config("").unwrap().score.score_config();
+        assert_eq!(plain, crate::metrics::ScoreConfig::default());
+        assert!(plain.material.colour.is_none());
+
+        let c = config("material = \"ruby\"\ncolour_density = 0.5\nsize_mm = \"8\"\n").unwrap();
+        let sc = c.score.score_config();
+        let ruby = sc.material.colour.as_ref().unwrap();
+        assert_eq!((ruby.name.as_str(), ruby.density), ("ruby", 0.5));
+        assert_eq!(sc.size, crate::optics::StoneSize::Length(8.0));
+        let again = Config::from_raw(&c.as_used(), "again.toml").unwrap();
+        assert_eq!(again.score.score_config(), sc);
+
+        let c =
+            config("material = \"quartz\"\ncolour = \"#7a3fa0@10mm\"\ndiameter_mm = 9\n").unwrap();
+        let sc = c.score.score_config();
+        assert_eq!(sc.material.colour.as_ref().unwrap().name, "#7a3fa0@10mm");
+        assert_eq!(sc.size, crate::optics::StoneSize::Width(9.0));
+        let again = Config::from_raw(&c.as_used(), "again.toml").unwrap();
+        assert_eq!(again.score.score_config(), sc);
+
+        for (body, needle) in [
+            (
+                "colour = \"purple\"",
+                "c.toml: score.colour: `purple` is not a colour",
+            ),
+            (
+                "colour_density = 2",
+                "c.toml: score.colour_density: there is no colour",
+            ),
+            (
+                "material = \"ruby\"\ncolour_density = -1",
+                "score.colour_density: -1 is out of range",
+            ),
+            ("size_mm = \"10x\"", "c.toml: score.size_mm:"),
+            ("diameter_mm = 0", "c.toml: score.diameter_mm:"),
+            ("size_mm = 8\ndiameter_mm = 6", "not both"),
+        ] {
+            let e = config(body).unwrap_err().to_string();
+            assert!(e.contains(needle) && !e.contains('\n'), "{body}: {e}");
+        }
+    }
 }
