@@ -134,18 +134,36 @@ impl ColourArgs {
         cuts: &[facetlab::cut::Cut],
         materials: &mut [Material],
     ) -> Result<Vec<String>> {
+        Ok(self.apply_traced(cuts, materials, false)?.0)
+    }
+
+    /// [`ColourArgs::apply`] for a command that traces the colour (`traced`: its notes do
+    /// not say it is not traced), with every cut's width in mm.
+    pub fn apply_traced(
+        &self,
+        cuts: &[facetlab::cut::Cut],
+        materials: &mut [Material],
+        traced: bool,
+    ) -> Result<(Vec<String>, Vec<f64>)> {
         let size = self.size()?;
         let mut notes = Vec::new();
+        let mut widths = Vec::with_capacity(cuts.len());
         for (cut, m) in cuts.iter().zip(materials.iter_mut()) {
             if m.colour.is_none() {
                 m.colour = self.colour_for(m)?;
             }
+            let w = size.width_mm(cut.ratios().l_w, self.size_flag())?;
+            widths.push(w);
             if let Some(c) = &m.colour {
-                let w = size.width_mm(cut.ratios().l_w, self.size_flag())?;
-                notes.push(format!("{}: {}", cut.name, c.not_traced_note(w)));
+                let note = if traced {
+                    c.note(w)
+                } else {
+                    c.not_traced_note(w)
+                };
+                notes.push(format!("{}: {note}", cut.name));
             }
         }
-        Ok(notes)
+        Ok((notes, widths))
     }
 
     fn size_flag(&self) -> &'static str {

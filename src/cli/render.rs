@@ -247,6 +247,9 @@ pub struct FrameJson {
     /// Fire in percent (fire only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fire: Option<f64>,
+    /// Face-up colour of a coloured stone (L*, C*, h°, spread, extinction, windowing).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub colour: Option<render::ColourStats>,
     /// Share of light below the tracer's thresholds.
     pub cut_off: f64,
     /// Exit beams drawn.
@@ -264,6 +267,7 @@ impl FrameJson {
             mean: s.mean,
             aset: s.aset,
             fire: s.fire,
+            colour: s.colour,
             cut_off: s.cut_off,
             exits: s.exits,
             elapsed_s,
@@ -290,6 +294,15 @@ pub struct CutJson {
     /// Fire in percent (fire only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fire: Option<f64>,
+    /// Colour of a coloured stone's picture (a body colour under a grey light): `l`, `c`,
+    /// `h_deg` (CIELAB L*, C*, h° of the mean colour), `l_spread` (standard deviation of the
+    /// pixels' L*), `extinction` (share of the outline darker than L* 20), `windowing`
+    /// (share of the light seen that comes from below the girdle plane).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub colour: Option<render::ColourStats>,
+    /// The stone's width in mm (with a body colour).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub width_mm: Option<f64>,
     /// Tilt, degrees.
     pub tilt_deg: f64,
     /// Azimuth of the tilt, degrees.
@@ -326,6 +339,21 @@ fn pct(v: f64) -> String {
 
 /// The statistics as caption lines (after the name).
 pub fn stats_lines(light: Light, s: &Stats) -> Vec<String> {
+    let mut lines = stats_lines_of_light(light, s);
+    if let Some(c) = s.colour {
+        lines.push(format!(
+            "L* {:.0} C* {:.0} h {:.0}°, extinct {}, window {}",
+            c.l,
+            c.c,
+            c.h_deg,
+            pct(c.extinction),
+            pct(c.windowing)
+        ));
+    }
+    lines
+}
+
+fn stats_lines_of_light(light: Light, s: &Stats) -> Vec<String> {
     match (light, s.aset, s.fire) {
         (Light::Aset, Some(a), _) => vec![
             format!(
@@ -382,7 +410,19 @@ fn summary(light: Light, s: &Stats) -> String {
         ),
         (Light::Fire, _, Some(f)) => format!("fire {f:.3}, mean {}", pct(s.mean)),
         (Light::IdealScope, _, _) => format!("idealscope returned {}", pct(s.mean)),
-        (l, _, _) => format!("{} mean {}", l.name(), pct(s.mean)),
+        (l, _, _) => match s.colour {
+            Some(c) => format!(
+                "{} mean {}, colour L* {:.1} C* {:.1} h {:.0}°, extinction {}, windowing {}",
+                l.name(),
+                pct(s.mean),
+                c.l,
+                c.c,
+                c.h_deg,
+                pct(c.extinction),
+                pct(c.windowing)
+            ),
+            None => format!("{} mean {}", l.name(), pct(s.mean)),
+        },
     }
 }
 
@@ -441,7 +481,8 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     for note in notes {
         eprintln!("{note}");
     }
-    for note in a.colour.apply(&cuts, &mut materials)? {
+    let (colour_notes, widths) = a.colour.apply_traced(&cuts, &mut materials, true)?;
+    for note in colour_notes {
         eprintln!("{note}");
     }
     let light = s.opts.light;
@@ -469,6 +510,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
                 let opts = RenderOptions {
                     tilt,
                     material: materials[c].clone(),
+                    width_mm: widths[c],
                     ..s.opts.clone()
                 };
                 let img = render::render(&cut.solid, &opts);
@@ -525,7 +567,8 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         .iter()
         .zip(&a.cuts)
         .zip(stats)
-        .map(|((cut, input), fr)| {
+        .enumerate()
+        .map(|(c, ((cut, input), fr))| {
             let f0 = &fr[0];
             CutJson {
                 name: cut.name.clone(),
@@ -535,6 +578,8 @@ pub fn run(a: &RenderArgs) -> Result<()> {
                 mean: f0.mean,
                 aset: f0.aset,
                 fire: f0.fire,
+                colour: f0.colour,
+                width_mm: materials[c].colour.is_some().then_some(widths[c]),
                 tilt_deg: f0.tilt_deg,
                 azimuth_deg: f0.azimuth_deg,
                 head_shadow_deg: s.opts.head_shadow(),
@@ -556,6 +601,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             mean: r.mean,
             aset: r.aset,
             fire: r.fire,
+            colour: r.colour,
             ..Stats::default()
         };
         let pose = tilt_text(Tilt {

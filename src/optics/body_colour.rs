@@ -220,7 +220,23 @@ impl BodyColour {
     }
 
     /// One line for stderr naming the colour, its source, the stone's width and the colour
-    /// seen through that width, and saying the tracers do not use it yet.
+    /// seen through that width (a picture drawn in the colour prints this).
+    pub fn note(&self, width_mm: f64) -> String {
+        let width_mm = (width_mm * 100.0).round() / 100.0;
+        let density = if self.density == 1.0 {
+            String::new()
+        } else {
+            format!(" × density {}", self.density)
+        };
+        format!(
+            "colour: {}{density} ({}); stone width {width_mm} mm, seen through {width_mm} mm: {}",
+            self.name,
+            self.source,
+            self.hex_through(width_mm)
+        )
+    }
+
+    /// [`BodyColour::note`], and that the scores do not use it yet.
     pub fn not_traced_note(&self, width_mm: f64) -> String {
         let width_mm = (width_mm * 100.0).round() / 100.0;
         let density = if self.density == 1.0 {
@@ -229,7 +245,7 @@ impl BodyColour {
             format!(" × density {}", self.density)
         };
         format!(
-            "colour: {}{density} ({}); stone width {width_mm} mm, seen through {width_mm} mm: {}; body colour is not yet traced: scores and pictures are the colourless stone's",
+            "colour: {}{density} ({}); stone width {width_mm} mm, seen through {width_mm} mm: {}; body colour is not yet traced in the scores (render draws it): they are the colourless stone's",
             self.name,
             self.source,
             self.hex_through(width_mm)

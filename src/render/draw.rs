@@ -1,13 +1,14 @@
 //! The footprint → pixel path: trace the viewer backwards, weight each exit beam by the light
 //! it sees, and add its footprint's exact coverage to the pixels ([`render`]).
 
-use super::image::{fire_of, AsetShares, Image, Stats};
+use super::image::{fire_of, AsetShares, ColourStats, Image, Stats};
 use super::light::Light;
 use super::lighting::Lighting;
 use super::options::RenderOptions;
 use super::pose::{picture_half, view_rotation};
 use super::raster::{Accumulator, Raster};
-use crate::beam::{BeamTree, Frame, Stone};
+use crate::beam::{BeamTree, Frame, Stone, TraceOptions};
+use crate::cut::units::outline_size;
 use crate::geometry::{canonical::canonical, clip2d, Polyhedron};
 use crate::optics::{color, Dispersion};
 use glam::{DVec2, DVec3};
@@ -113,20 +114,41 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         size,
         ..Stats::default()
     };
-    let (channels, layers) = if opts.light == Light::Fire {
+    // A coloured stone under a grey light is drawn in its colour, band by band like fire;
+    // the false-colour lights keep their colours.
+    let body = (opts.light.channels() == 1)
+        .then_some(opts.material.colour.as_ref())
+        .flatten();
+    // A coloured picture's XYZ pixels and its windowing, for its colour statistics.
+    let mut colour_input: Option<(Vec<DVec3>, f64)> = None;
+    let (channels, layers) = if opts.light == Light::Fire || body.is_some() {
+        let fire = opts.light == Light::Fire;
+        let body = opts.material.colour.as_ref();
+        // Absorption per girdle-diameter unit of the canonical solid: α per mm times the mm
+        // one unit of its width stands for.
+        let mm_per_unit = opts.width_mm / outline_size(solid.vertices()).1.max(1e-300);
+        let absorption = |l: f64| body.map_or(0.0, |c| c.alpha(l) * mm_per_unit);
         // Faint bands (far out in the red) take a neighbour's trace, as in the scores.
         let bands = color::traced_bands(opts.bands.max(1), color::FAINT_BAND);
         let centres: Vec<f64> = bands.iter().map(|b| b.0).collect();
         let weights: Vec<DVec3> = bands.iter().map(|b| b.1).collect();
-        let constant = matches!(opts.material.dispersion, Dispersion::Constant(_));
+        let constant =
+            matches!(opts.material.dispersion, Dispersion::Constant(_)) && body.is_none();
         let ri0 = opts.material.ri(opts.wavelength_nm);
-        // One trace per band (one for all when the index does not change with wavelength).
+        // One trace per band (one for all when neither index nor colour changes with
+        // wavelength).
         let traced: Vec<BeamTree> = if constant {
             vec![stone.trace(&frame, ri0, opts.wavelength_nm, &trace_opts)]
         } else {
             centres
                 .par_iter()
-                .map(|&l| stone.trace(&frame, opts.material.ri(l), l, &trace_opts))
+                .map(|&l| {
+                    let o = TraceOptions {
+                        absorption: absorption(l),
+                        ..trace_opts
+                    };
+                    stone.trace(&frame, opts.material.ri(l), l, &o)
+                })
                 .collect()
         };
         // Each band's radiance image (one channel), then XYZ → linear sRGB per pixel.
@@ -136,7 +158,13 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                 let v: Vec<f64> = t
                     .exits
                     .iter()
-                    .map(|e| lighting.spots(rot * e.direction))
+                    .map(|e| {
+                        if fire {
+                            lighting.spots(rot * e.direction)
+                        } else {
+                            opts.light.shade(&lighting, rot * e.direction).1
+                        }
+                    })
                     .collect();
                 Layer::new(t, 1, |i| [v[i], 0.0, 0.0, 0.0, 0.0])
             })
@@ -153,7 +181,9 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
             stats.exits += l.tree.exits.len();
         }
         let outline = band_layers[0].tree.stats.area;
-        stats.fire = Some(fire_of(&images, &weights, outline));
+        if fire {
+            stats.fire = Some(fire_of(&images, &weights, outline));
+        }
         let mut rgb = vec![Raster::new(size, half); 3];
         let mut y_sum = 0.0;
         for p in 0..size * size {
@@ -174,6 +204,43 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         } else {
             0.0
         };
+        if body.is_some() {
+            let below: Vec<f64> = band_layers
+                .iter()
+                .map(|l| {
+                    let seen: f64 = l.tree.exits.iter().map(|e| e.power).sum();
+                    let under: f64 = l
+                        .tree
+                        .exits
+                        .iter()
+                        .filter(|e| (rot * e.direction).z < 0.0)
+                        .map(|e| e.power)
+                        .sum();
+                    if seen > 0.0 {
+                        under / seen
+                    } else {
+                        0.0
+                    }
+                })
+                .collect();
+            // The light seen that comes from below the girdle plane, weighted by luminance.
+            let (mut num, mut den) = (0.0, 0.0);
+            for (b, w) in weights.iter().enumerate() {
+                num += w.y * below[if constant { 0 } else { b }];
+                den += w.y;
+            }
+            let window = if den > 0.0 { num / den } else { 0.0 };
+            let xyz: Vec<DVec3> = (0..size * size)
+                .map(|p| {
+                    images
+                        .iter()
+                        .zip(&weights)
+                        .map(|(img, w)| *w * img.data[p])
+                        .sum()
+                })
+                .collect();
+            colour_input = Some((xyz, window));
+        }
         (rgb, band_layers)
     } else {
         let tree = stone.trace(
@@ -230,6 +297,9 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     let mut coverage = Raster::new(size, half);
     if let Some(c) = outline.finish().pop() {
         coverage.data = c;
+    }
+    if let Some((xyz, window)) = colour_input {
+        stats.colour = Some(ColourStats::of(&xyz, &coverage, window));
     }
     Image {
         light: opts.light,

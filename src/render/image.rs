@@ -25,6 +25,67 @@ pub struct AsetShares {
     pub port: f64,
 }
 
+/// Pixels darker than this CIELAB lightness L* count as extinct in [`ColourStats::extinction`]
+/// (about the lightness of a dark charcoal grey beside a white diffuser).
+pub const EXTINCTION_L: f64 = 20.0;
+
+/// The colour of a coloured stone's picture (a body colour under a grey light), as faceters
+/// judge it face-up: CIELAB relative to a white diffuser under D65.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ColourStats {
+    /// L* of the mean colour over the stone's outline.
+    pub l: f64,
+    /// C*ab (chroma) of the mean colour.
+    pub c: f64,
+    /// Hue angle h°ab of the mean colour, degrees in [0, 360).
+    pub h_deg: f64,
+    /// Spread of the lightness: the standard deviation of the pixels' L* over the outline.
+    pub l_spread: f64,
+    /// Extinction: the share of the outline whose pixels are darker than [`EXTINCTION_L`].
+    pub extinction: f64,
+    /// Windowing: the share of the light seen that comes from below the girdle plane (seen
+    /// through the stone), weighted by luminance over the bands.
+    pub windowing: f64,
+}
+
+impl ColourStats {
+    /// From a picture's XYZ pixels (radiance times the covered share of each pixel), the
+    /// outline's `coverage` and the windowing share.
+    pub(crate) fn of(xyz: &[DVec3], coverage: &Raster, windowing: f64) -> ColourStats {
+        let white = color::d65_white();
+        let lab = |c: DVec3| color::xyz_to_lab(c, white);
+        let (mut sum, mut area) = (DVec3::ZERO, 0.0);
+        let (mut l1, mut l2, mut dark) = (0.0, 0.0, 0.0);
+        for (p, &a) in xyz.iter().zip(&coverage.data) {
+            if a <= 1e-9 {
+                continue;
+            }
+            let a = a.min(1.0);
+            sum += *p;
+            area += a;
+            let l = lab(*p / a).x;
+            l1 += a * l;
+            l2 += a * l * l;
+            if l < EXTINCTION_L {
+                dark += a;
+            }
+        }
+        if area <= 0.0 {
+            return ColourStats::default();
+        }
+        let mean = lab(sum / area);
+        let spread = (l2 / area - (l1 / area).powi(2)).max(0.0).sqrt();
+        ColourStats {
+            l: mean.x,
+            c: color::chroma(mean),
+            h_deg: mean.z.atan2(mean.y).to_degrees().rem_euclid(360.0),
+            l_spread: spread,
+            extinction: dark / area,
+            windowing,
+        }
+    }
+}
+
 /// Statistics of a picture, computed from the exit beams that make its pixels.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Stats {
@@ -35,6 +96,8 @@ pub struct Stats {
     pub aset: Option<AsetShares>,
     /// Fire of the picture ([`fire_of`] over its band images; fire pictures only).
     pub fire: Option<f64>,
+    /// The colour of a coloured stone's picture (a body colour under a grey light).
+    pub colour: Option<ColourStats>,
     /// Pixels per side.
     pub size: usize,
     /// Share of the light cut off by the tracer's thresholds (largest over the bands).

@@ -40,7 +40,7 @@ pub mod raster;
 mod tests;
 
 pub use draw::render;
-pub use image::{fire_of, AsetShares, Image, Stats};
+pub use image::{fire_of, AsetShares, ColourStats, Image, Stats, EXTINCTION_L};
 pub use light::{Light, ASET_COLOURS, IDEALSCOPE_COLOURS, PORT_DEG, SCOPE_TUBE_DEG};
 pub use options::RenderOptions;
 pub use pose::{picture_half, view_rotation, Tilt};

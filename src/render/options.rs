@@ -40,6 +40,10 @@ pub struct RenderOptions {
     /// [`RenderOptions::FACE_UP_SPLIT_THRESHOLD`], the scores' face-up one, so that a face-up
     /// picture's mean and the scores' face-up figures are the very same trace.
     pub face_up_split_threshold: f64,
+    /// The stone's width in mm (a round's diameter), for its body colour's absorption
+    /// (absorption depends on the physical size). Default
+    /// [`StoneSize::DEFAULT_WIDTH_MM`](crate::optics::StoneSize::DEFAULT_WIDTH_MM).
+    pub width_mm: f64,
 }
 
 impl RenderOptions {
@@ -72,6 +76,7 @@ impl RenderOptions {
                 ..TraceOptions::default()
             },
             face_up_split_threshold: Self::FACE_UP_SPLIT_THRESHOLD,
+            width_mm: crate::optics::StoneSize::DEFAULT_WIDTH_MM,
         }
     }
 

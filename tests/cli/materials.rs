@@ -304,3 +304,47 @@ fn a_coloured_material_is_named_and_not_yet_traced() {
         &["--colour-density: there is no colour to scale"],
     );
 }
+
+/// `render` draws a coloured stone in its colour: the note names the colour and width without
+/// "not yet traced", the JSON has the colour statistics and the width, and a stone twice as
+/// wide comes out darker.
+#[test]
+fn render_draws_a_coloured_stone_in_its_colour() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    std::fs::write(p.join("star.asc"), QUARTZ_STAR).unwrap();
+    let l_star = |width: &str| -> f64 {
+        let json = format!("w{width}.json");
+        let out = super::run_in(
+            p,
+            &[
+                "render",
+                "star.asc",
+                "--material",
+                "amethyst",
+                "--size",
+                "48",
+                "--light",
+                "cos",
+                "--diameter-mm",
+                width,
+                "-o",
+                &format!("w{width}.png"),
+                "--json",
+                &json,
+            ],
+        );
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{err}");
+        assert!(
+            err.contains(&format!("stone width {width} mm")) && !err.contains("not yet traced"),
+            "{err}"
+        );
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(p.join(&json)).unwrap()).unwrap();
+        assert_eq!(v["width_mm"].as_f64(), Some(width.parse().unwrap()));
+        v["colour"]["l"].as_f64().expect("colour statistics")
+    };
+    let (small, big) = (l_star("6"), l_star("12"));
+    assert!(big < small, "L* {big} at 12 mm vs {small} at 6 mm");
+}

@@ -18,6 +18,7 @@
 use super::{Light, RenderOptions, Tilt};
 
 mod brute;
+mod colour;
 mod energy;
 mod views;
 
