@@ -188,31 +188,10 @@ pub struct SizeMm {
     pub depth: f64,
 }
 
-/// The width W in mm from `--size-mm L[xW]` for a design of length/width `l_w`.
+/// The width W in mm from `--size-mm L[xW]` for a design of length/width `l_w` (the same rule
+/// as `score`'s and `render`'s `--size-mm`: [`facetlab::optics::StoneSize`]).
 pub fn width_from_size(size: &str, l_w: f64) -> Result<f64> {
-    let bad = |why: String| Error::invalid("--size-mm", format!("`{size}` {why}"));
-    let num = |t: &str| -> Result<f64> {
-        match t.trim().parse::<f64>() {
-            Ok(v) if v.is_finite() && v > 0.0 && v < 1000.0 => Ok(v),
-            _ => Err(bad(
-                "is not allowed; give L or LxW in millimetres, each in (0, 1000), e.g. 10x5".into(),
-            )),
-        }
-    };
-    let lower = size.to_ascii_lowercase();
-    match lower.split_once(['x', '×']) {
-        None => Ok(num(&lower)? / l_w),
-        Some((l, w)) => {
-            let (l, w) = (num(l)?, num(w)?);
-            if ((l / w) / l_w - 1.0).abs() > 0.01 {
-                return Err(bad(format!(
-                    "has L/W {:.3}, but the design's is {l_w:.3}; give L alone or LxW with that ratio",
-                    l / w
-                )));
-            }
-            Ok(w)
-        }
-    }
+    facetlab::optics::StoneSize::parse_length(size, "--size-mm")?.width_mm(l_w, "--size-mm")
 }
 
 /// Geometric checks reported by `info`.

@@ -723,6 +723,9 @@ mod tests {
             (&["--material", "kryptonite"], "--material"),
             (&["--polarization", "maybe"], "--polarization"),
             (&["--exposure", "0"], "--exposure"),
+            (&["--colour", "teal"], "--colour"),
+            (&["--colour-density", "2"], "--colour-density"),
+            (&["--size-mm", "0"], "--size-mm"),
         ] {
             let e = settings(&parse(extra)).unwrap_err().to_string();
             assert!(e.starts_with(flag), "{extra:?}: {e}");

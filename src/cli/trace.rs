@@ -341,10 +341,13 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     for note in notes {
         eprintln!("{note}");
     }
-    // A coloured material (`--material ruby`, a design's note) is not yet traced in colour:
-    // say so, with the default width (this command has no size flags).
-    for note in flags::ColourArgs::default().apply(&cuts, &mut materials)? {
-        eprintln!("{note}");
+    // A coloured material (`--material ruby`, a design's note) is traced in colour only with
+    // `--absorption colour[:W]`; otherwise say that it is not, with the default width.
+    let colour_notes = flags::ColourArgs::default().apply(&cuts, &mut materials)?;
+    if !matches!(set.config.absorption, Absorption::Body { .. }) {
+        for note in colour_notes {
+            eprintln!("{note}");
+        }
     }
     let configs: Vec<TraceConfig> = materials
         .into_iter()
@@ -454,6 +457,7 @@ fn print_table(set: &Settings, results: &[Vec<Tally>]) {
         Absorption::None => "none".to_string(),
         Absorption::Thesis => "thesis (0.1 per bounce)".to_string(),
         Absorption::Beer(k) => format!("Beer–Lambert {k}/D"),
+        Absorption::Body { width_mm } => format!("body colour, width {width_mm} mm"),
     };
     let spectrum = match c.wavelengths {
         WavelengthSampling::Uniform => "uniform 380–780 nm".to_string(),
@@ -689,6 +693,9 @@ mod tests {
         assert_eq!(s.config.depth, None);
         assert_eq!(s.config.absorption, Absorption::Beer(0.5));
         assert_eq!(s.config.wavelengths, WavelengthSampling::Fixed(589.3));
+        let s = settings(&parse(&["--absorption", "colour:8", "--material", "ruby"])).unwrap();
+        assert_eq!(s.config.absorption, Absorption::Body { width_mm: 8.0 });
+        assert!(s.config.material.colour.is_some());
     }
 
     #[test]
@@ -703,6 +710,11 @@ mod tests {
             (&["--depth", "NaN"], "--depth"),
             (&["--absorption", "beer:-1"], "--absorption"),
             (&["--absorption", "some"], "--absorption"),
+            (&["--absorption", "colour"], "--absorption"),
+            (
+                &["--absorption", "colour:0", "--material", "ruby"],
+                "--absorption",
+            ),
             (&["--polarization", "maybe"], "--polarization"),
             (&["--ri", "0.9"], "--ri"),
             (&["--ri", "nan"], "--ri"),

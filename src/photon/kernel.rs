@@ -532,6 +532,12 @@ impl<'a> Tracer<'a> {
         k.hit += 1;
         let lambda = self.wavelength(rng);
         let n = self.fixed_n.unwrap_or_else(|| self.material.ri(lambda));
+        // Beer–Lambert coefficient per unit of path at this photon's wavelength (0 unless the
+        // model is Beer–Lambert).
+        let beer = self
+            .absorption
+            .beer_per_width(self.material.colour.as_ref(), lambda)
+            .unwrap_or(0.0);
         let mut pol = Pol {
             s: Stokes::new(1.0, 0.0, 0.0, 0.0),
             e: if POL {
@@ -578,9 +584,9 @@ impl<'a> Tracer<'a> {
                             break Fate::Absorbed;
                         }
                     }
-                    Absorption::Beer(kk) => {
+                    Absorption::Beer(_) | Absorption::Body { .. } => {
                         let u: f64 = rng.random();
-                        let s = -(1.0 - u).ln() / kk;
+                        let s = -(1.0 - u).ln() / beer;
                         if s < t {
                             k.absorbed += 1;
                             if REC {

@@ -269,6 +269,23 @@ impl TraceConfig {
                 ));
             }
         }
+        if let Absorption::Body { width_mm } = self.absorption {
+            if !(width_mm.is_finite() && width_mm > 0.0) {
+                return Err(Error::invalid(
+                    "--absorption",
+                    format!("colour:{width_mm}: the stone's width must be a number of mm > 0"),
+                ));
+            }
+            if self.material.colour.is_none() {
+                return Err(Error::invalid(
+                    "--absorption",
+                    format!(
+                        "colour: {} has no body colour; choose a coloured material (--material ruby, …) or give --colour",
+                        self.material.name
+                    ),
+                ));
+            }
+        }
         if let Absorption::Beer(k) = self.absorption {
             if !(k.is_finite() && k >= 0.0) {
                 return Err(Error::invalid("--absorption", format!("beer:{k}: the coefficient must be a finite number >= 0 (per girdle diameter)")));

@@ -555,3 +555,50 @@ fn an_absorbing_slab_transmits_its_closed_form() {
     // Clear, it transmits more: the absorption is what the formula says, not noise.
     assert!(closed < (1.0 - r) / (1.0 + r) - 10.0 * se);
 }
+
+#[test]
+fn a_coloured_slab_transmits_its_closed_form_in_every_band() {
+    // Body colour (ruby's published spectrum) in a slab d = 0.1 widths thick of a stone 2 mm
+    // wide: at each wavelength the path is 0.2 mm and the transmission is
+    // (1 − R)² e^(−α(λ)·0.2) / (1 − R² e^(−2α(λ)·0.2)), α(λ) per mm (issue 25's check 1 per
+    // band, the photon half).
+    let (n, d, width) = (1.7f64, 0.1f64, 2.0f64);
+    let ruby = Material::by_name("ruby").unwrap().colour.unwrap();
+    let material = Material {
+        colour: Some(ruby.clone()),
+        ..Material::constant(n)
+    };
+    let s = slab(40.0, 0.5 * d);
+    let r = ((n - 1.0) / (n + 1.0)).powi(2);
+    let mut seen = Vec::new();
+    for nm in [410.0, 480.0, 560.0, 650.0] {
+        let c = TraceConfig {
+            absorption: Absorption::Body { width_mm: width },
+            depth: None,
+            polarization: true,
+            material: material.clone(),
+            wavelengths: WavelengthSampling::Fixed(nm),
+            ..cfg(20_000)
+        };
+        let t = trace(&s, &beam(0.0, 0.2, 0.05), &c, None).unwrap();
+        let bottom = t.facet_names.iter().position(|f| f == "bottom").unwrap();
+        let (p, se) = t.facet(bottom);
+        let k = (-ruby.alpha(nm) * width * d).exp();
+        let closed = (1.0 - r).powi(2) * k / (1.0 - r * r * k * k);
+        within(p, closed, se, 4.0, &format!("coloured slab at {nm} nm"));
+        seen.push(p);
+    }
+    // Ruby absorbs the green (560 nm) far more than the red (650 nm).
+    assert!(seen[2] < seen[3] - 0.2, "{seen:?}");
+    // A material without a body colour is refused.
+    let c = TraceConfig {
+        absorption: Absorption::Body { width_mm: width },
+        material: Material::constant(n),
+        ..cfg(100)
+    };
+    let e = c.validate().unwrap_err().to_string();
+    assert!(
+        e.starts_with("--absorption: colour: ") && e.contains("no body colour"),
+        "{e}"
+    );
+}

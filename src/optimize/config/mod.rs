@@ -279,6 +279,23 @@ impl Config {
                 score.material.colour = score.user_colour.clone();
             }
         }
+        // A design whose notes name its material (`F Material: ruby`) is scored in it.
+        let record = section
+            .design
+            .as_ref()
+            .and_then(|d| d.base().record.clone());
+        if let (None, None, Some(r)) = (&raw_score.material, raw_score.ri, record) {
+            let lines = r.title.iter().chain(&r.footnotes);
+            let named = crate::optics::Material::from_design_notes(lines, &score.material)
+                .map_err(|e| Error::invalid(at("cut.file"), e.to_string()))?;
+            if let Some(m) = named {
+                let user = score.user_colour.clone();
+                score.material = m;
+                if user.is_some() {
+                    score.material.colour = user;
+                }
+            }
+        }
 
         Ok(Config {
             source: source.to_string(),

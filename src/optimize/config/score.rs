@@ -271,4 +271,28 @@ mod tests {
             assert!(e.contains(needle) && !e.contains('\n'), "{body}: {e}");
         }
     }
+
+    /// A design's note `F Material: …` sets the material a config scores it in, unless
+    /// `[score] material` says otherwise; a bad note is an error naming the file.
+    #[test]
+    fn a_design_note_names_the_scored_material() {
+        let d = tempfile::tempdir().unwrap();
+        let asc = crate::io::asc::write(&crate::io::load_cut("tolkowsky").unwrap(), 96);
+        let with_note = |note: &str| format!("{}\nF {note}\n", asc.trim_end());
+        std::fs::write(d.path().join("ruby.asc"), with_note("Material: ruby")).unwrap();
+        std::fs::write(d.path().join("bad.asc"), with_note("Material: kryptonite")).unwrap();
+        let text = |file: &str, score: &str| {
+            format!("[cut]\nfile = \"{file}\"\n[free]\npavilion-main = [40, 42]\n[score]\n{score}")
+        };
+        let path = d.path().join("c.toml");
+        let load =
+            |file: &str, score: &str| Config::from_str(&text(file, score), path.to_str().unwrap());
+        let c = load("ruby.asc", "").unwrap();
+        assert_eq!(c.score.material.name, "ruby");
+        assert!(c.score.material.colour.is_some());
+        let c = load("ruby.asc", "material = \"diamond\"").unwrap();
+        assert_eq!(c.score.material.name, "diamond");
+        let e = load("bad.asc", "").unwrap_err().to_string();
+        assert!(e.contains("cut.file: ") && e.contains("kryptonite"), "{e}");
+    }
 }
