@@ -16,4 +16,8 @@ render tolkowsky --light arrows --size 320 -o "$out/tolkowsky-arrows.png"
 render tolkowsky gia-reference --light idealscope --size 320 -o "$out/idealscope-tolkowsky-gia.png"
 render tolkowsky --light iso --tilt 20 --size 360 -o "$out/tolkowsky-iso-tilt20.png"
 render tolkowsky --light cos --head-shadow 15 --rock 15:8 --size 180 -o "$out/tolkowsky-cos-rock.png"
+render tolkowsky --material tourmaline --colour "#1f5a36@10mm" --diameter-mm 9 --set pavilion_angle=43 \
+    --light cos --head-shadow 15 --size 320 -o "$out/tourmaline-dark-cos.png"
+render tolkowsky --material beryl --colour "#bfe0ea@10mm" --diameter-mm 8 \
+    --light cos --head-shadow 15 --size 320 -o "$out/aquamarine-pale-cos.png"
 ls -l "$out"
