@@ -79,9 +79,12 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     for note in notes {
         eprintln!("{note}");
     }
-    // A coloured material (`--material ruby`, a design's note) is not yet traced in colour:
-    // say so, with the default width (this command has no size flags).
-    for note in flags::ColourArgs::default().apply(&cuts, &mut materials)? {
+    // A coloured material (`--material ruby`, a design's note): name it, with the default
+    // width (this command has no size flags); its scores carry the face-up colour.
+    for note in flags::ColourArgs::default()
+        .apply_traced(&cuts, &mut materials, true)?
+        .0
+    {
         eprintln!("{note}");
     }
     let material = materials.first().cloned().unwrap_or(material);

@@ -29,6 +29,7 @@ use super::outputs::{cut_files, refuse_overwrite, Exit};
 use facetlab::error::{Error, Result};
 use facetlab::metrics::{score, ScoreConfig, Scores};
 use facetlab::optics::Dispersion;
+use facetlab::render;
 use facetlab::verify::json::score_json;
 use facetlab::verify::{verify_scores, Check, SIGMA};
 use std::path::PathBuf;
@@ -185,6 +186,27 @@ pub fn table(config: &ScoreConfig, results: &[(String, Scores)]) -> String {
         }
         out.push('\n');
     }
+    if results.iter().any(|(_, s)| s.colour.is_some()) {
+        type ColourRow = (&'static str, fn(&render::ColourStats) -> f64);
+        let colour_rows: [ColourRow; 6] = [
+            ("colour L*", |c| c.l),
+            ("colour C*", |c| c.c),
+            ("colour h°", |c| c.h_deg),
+            ("  L* spread", |c| c.l_spread),
+            ("extinction (L* < 20)", |c| c.extinction),
+            ("windowing", |c| c.windowing),
+        ];
+        for (label, f) in colour_rows {
+            out.push_str(&format!("{label:label_w$}"));
+            for (_, s) in results {
+                match &s.colour {
+                    Some(c) => out.push_str(&format!("  {:>col_w$.4}", f(c))),
+                    None => out.push_str(&format!("  {:>col_w$}", "-")),
+                }
+            }
+            out.push('\n');
+        }
+    }
     out
 }
 
@@ -240,7 +262,7 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
     for note in notes {
         eprintln!("{note}");
     }
-    for note in a.colour.apply(&cuts, &mut materials)? {
+    for note in a.colour.apply_traced(&cuts, &mut materials, true)?.0 {
         eprintln!("{note}");
     }
     let configs: Vec<ScoreConfig> = materials

@@ -262,7 +262,34 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
         },
         aset,
         poses,
+        colour: colour_of(solid, cfg),
     }
+}
+
+/// The face-up colour of a coloured stone: its ISO picture drawn in colour (fire's bands,
+/// each with its exact absorption) at the scores' resolution (at least 64 pixels, the
+/// extinction share being a share of pixels) and face-up split threshold; `None` when the
+/// material is colourless.
+fn colour_of(solid: &Polyhedron, cfg: &ScoreConfig) -> Option<crate::render::ColourStats> {
+    cfg.material.colour.as_ref()?;
+    let (l, w) = crate::cut::units::outline_size(solid.vertices());
+    let l_w = l / w.max(1e-300);
+    let width_mm = cfg
+        .size
+        .width_mm(l_w, "score.size_mm")
+        .unwrap_or(crate::optics::StoneSize::DEFAULT_WIDTH_MM);
+    let opts = crate::render::RenderOptions {
+        size: cfg.resolution.max(64),
+        head_shadow_deg: Some(cfg.head_shadow_deg),
+        material: cfg.material.clone(),
+        polarization: cfg.polarization,
+        bands: cfg.bands,
+        trace: cfg.trace,
+        face_up_split_threshold: cfg.face_up_split_threshold,
+        width_mm,
+        ..crate::render::RenderOptions::new(crate::render::Light::Iso)
+    };
+    crate::render::render(solid, &opts).stats.colour
 }
 
 /// `f(k)` for every `k` of `order` (a permutation of `0..n`), started in that order on the

@@ -575,3 +575,48 @@ fn faint_bands_share_a_neighbours_trace() {
         );
     }
 }
+
+/// A coloured material adds the face-up colour and changes nothing else (issue 25's check 5
+/// for the scores): every colourless figure bit for bit the colourless stone's; the colour
+/// is the face-up ISO picture's drawn at the scores' settings, and a denser colour is darker.
+#[test]
+fn colour_adds_the_face_up_colour_and_nothing_else() {
+    let solid = crate::testkit::tolkowsky();
+    let cfg = ScoreConfig {
+        material: crate::optics::Material::sapphire(),
+        ..ScoreConfig::fast()
+    };
+    let plain = score(&solid, &cfg);
+    assert!(plain.colour.is_none());
+    let sapphire = crate::optics::Material::by_name("blue-sapphire").unwrap();
+    let blue = score(
+        &solid,
+        &ScoreConfig {
+            material: sapphire.clone(),
+            ..cfg.clone()
+        },
+    );
+    let c = blue.colour.expect("a coloured stone has a colour");
+    assert_eq!(
+        Scores {
+            colour: None,
+            ..blue.clone()
+        },
+        plain
+    );
+    // Blue: hue between cyan and violet, chromatic.
+    assert!((180.0..300.0).contains(&c.h_deg) && c.c > 5.0, "{c:?}");
+    let darker = score(
+        &solid,
+        &ScoreConfig {
+            material: crate::optics::Material {
+                colour: sapphire.colour.clone().map(|b| b.with_density(4.0)),
+                ..sapphire.clone()
+            },
+            ..cfg.clone()
+        },
+    )
+    .colour
+    .unwrap();
+    assert!(darker.l < c.l, "{darker:?} vs {c:?}");
+}

@@ -68,6 +68,14 @@ impl BeamEvaluator {
             ("aset_green".into(), s.aset.green),
             ("aset_leak".into(), s.aset.leak),
         ];
+        if let Some(c) = s.colour {
+            set.extra.extend([
+                ("colour_l".into(), c.l),
+                ("colour_c".into(), c.c),
+                ("extinction".into(), c.extinction),
+                ("windowing".into(), c.windowing),
+            ]);
+        }
         set
     }
 }

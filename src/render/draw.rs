@@ -8,7 +8,6 @@ use super::options::RenderOptions;
 use super::pose::{picture_half, view_rotation};
 use super::raster::{Accumulator, Raster};
 use crate::beam::{BeamTree, Frame, Stone, TraceOptions};
-use crate::cut::units::outline_size;
 use crate::geometry::{canonical::canonical, clip2d, Polyhedron};
 use crate::optics::{color, Dispersion};
 use glam::{DVec2, DVec3};
@@ -126,7 +125,9 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         let body = opts.material.colour.as_ref();
         // Absorption per girdle-diameter unit of the canonical solid: α per mm times the mm
         // one unit of its width stands for.
-        let mm_per_unit = opts.width_mm / outline_size(solid.vertices()).1.max(1e-300);
+        let (lo, hi) = solid.bounding_box();
+        let width = (hi.x - lo.x).min(hi.y - lo.y);
+        let mm_per_unit = opts.width_mm / width.max(1e-300);
         let absorption = |l: f64| body.map_or(0.0, |c| c.alpha(l) * mm_per_unit);
         // Faint bands (far out in the red) take a neighbour's trace, as in the scores.
         let bands = color::traced_bands(opts.bands.max(1), color::FAINT_BAND);

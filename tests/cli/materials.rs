@@ -258,10 +258,12 @@ fn retarget_a_diamond_design_to_quartz() {
     );
 }
 
-/// Body colour reaches `score` from a design's note and from `--colour`, says it is not yet
-/// traced, and leaves every score as the colourless stone's; bad colours are one-line errors.
+/// Body colour reaches `score` from a design's note and from `--colour`: the note names it
+/// with the stone's width, the colourless scores stay as they are (brilliance and the rest
+/// are the colourless stone's, row for row), and the face-up colour rows follow them; bad
+/// colours are one-line errors.
 #[test]
-fn a_coloured_material_is_named_and_not_yet_traced() {
+fn a_coloured_material_is_named_and_scored_in_colour() {
     let d = tempdir().unwrap();
     let p = d.path();
     std::fs::write(p.join("star.asc"), QUARTZ_STAR).unwrap();
@@ -277,10 +279,9 @@ fn a_coloured_material_is_named_and_not_yet_traced() {
     assert!(
         err.contains("traced as amethyst (the design's notes)")
             && err.contains("stone width 8 mm")
-            && err.contains("not yet traced"),
+            && !err.contains("not yet traced"),
         "{err}"
     );
-    // The same numbers, row for row, under the material's name.
     let rows = |o: &std::process::Output| {
         String::from_utf8_lossy(&o.stdout)
             .lines()
@@ -288,11 +289,15 @@ fn a_coloured_material_is_named_and_not_yet_traced() {
             .map(str::to_string)
             .collect::<Vec<_>>()
     };
-    assert_eq!(rows(&plain), rows(&coloured));
+    // The same numbers, row for row, under the material's name, then the colour's rows.
+    let (plain_rows, coloured_rows) = (rows(&plain), rows(&coloured));
+    assert_eq!(coloured_rows[..plain_rows.len()], plain_rows[..]);
+    assert!(coloured_rows[plain_rows.len()].starts_with("colour L*"));
+    assert!(!plain_rows.iter().any(|r| r.starts_with("colour")));
     assert!(String::from_utf8_lossy(&coloured.stdout).starts_with("amethyst, "));
     let out = super::run_in(p, &["score", "star.asc", "--colour", "#7a3fa0@10mm"]);
     assert!(out.status.success());
-    assert_eq!(rows(&plain), rows(&out));
+    assert_eq!(rows(&out)[..plain_rows.len()], plain_rows[..]);
     bad(
         p,
         &["score", "star.asc", "--colour", "mauve"],
