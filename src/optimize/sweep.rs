@@ -185,7 +185,13 @@ pub enum SweepScore {
     Scintillation,
     /// Σ weight · score − penalties.
     Objective,
+    /// A coloured stone's face-up colour score: `colour_l`, `colour_c`, `extinction` or
+    /// `windowing` (NaN for a colourless stone).
+    Colour(&'static str),
 }
+
+/// The colour scores a sweep can map ([`SweepScore::Colour`]).
+pub const COLOUR_SCORES: [&str; 4] = ["colour_l", "colour_c", "extinction", "windowing"];
 
 impl SweepScore {
     /// This score of a grid point with `scores` (None when the cut failed: NaN) and
@@ -197,22 +203,28 @@ impl SweepScore {
             (SweepScore::Brilliance, Some(s)) => s.brilliance,
             (SweepScore::Fire, Some(s)) => s.fire,
             (SweepScore::Scintillation, Some(s)) => s.scintillation,
+            (SweepScore::Colour(k), Some(s)) => s.get(k).unwrap_or(f64::NAN),
         }
     }
 
-    /// Parse `brilliance`, `fire`, `scintillation` or `objective`.
+    /// Parse `brilliance`, `fire`, `scintillation`, `objective` or a colour score
+    /// ([`COLOUR_SCORES`]).
     pub fn parse(s: &str) -> Result<SweepScore> {
         match s {
             "brilliance" => Ok(SweepScore::Brilliance),
             "fire" => Ok(SweepScore::Fire),
             "scintillation" => Ok(SweepScore::Scintillation),
             "objective" => Ok(SweepScore::Objective),
-            other => Err(Error::invalid(
-                "--score",
-                format!(
-                    "unknown score `{other}`; allowed: brilliance, fire, scintillation, objective"
-                ),
-            )),
+            other => match COLOUR_SCORES.iter().find(|k| **k == other) {
+                Some(k) => Ok(SweepScore::Colour(k)),
+                None => Err(Error::invalid(
+                    "--score",
+                    format!(
+                        "unknown score `{other}`; allowed: brilliance, fire, scintillation, objective, {} (coloured stones)",
+                        COLOUR_SCORES.join(", ")
+                    ),
+                )),
+            },
         }
     }
 
@@ -223,6 +235,7 @@ impl SweepScore {
             SweepScore::Fire => "fire",
             SweepScore::Scintillation => "scintillation",
             SweepScore::Objective => "objective",
+            SweepScore::Colour(k) => k,
         }
     }
 }

@@ -46,7 +46,9 @@ pub struct SweepArgs {
     #[arg(long, value_name = "K/N|off")]
     pub shard: Option<String>,
     /// The score drawn on the map and summarised: brilliance, fire, scintillation,
-    /// or objective (the config's weighted score minus penalties). The CSV has all of them.
+    /// objective (the config's weighted score minus penalties), or for a coloured stone
+    /// (`[score] colour` or a coloured material) colour_l, colour_c, extinction or windowing.
+    /// The CSV has all of them.
     #[arg(long, default_value = "brilliance")]
     pub score: String,
     /// A run folder of `facetlab optimize`: draw its path (best point so far) on the map
