@@ -20,3 +20,14 @@
 //! `render`, the tracers, `optics`, `io`, `cut`, `geometry`, `error`). Never `plot`, `report`
 //! or the binary: pictures and pages of a plan are drawn from what the planner returns, as
 //! the optimizer's are.
+//!
+//! Files: `mesh.rs` reads a rough's triangles, `rough.rs` makes the rough (hull or crystal
+//! form), `fit.rs` is the containment program, `search.rs` the search over orientation and
+//! proportions, `config.rs` the plan config (objective, bounds, price table).
+
+pub mod fit;
+pub mod mesh;
+pub mod rough;
+
+pub use fit::{largest_copy, Fit};
+pub use rough::{load_rough, Rough, CRYSTALS};
