@@ -123,7 +123,8 @@ pub fn largest_copy(rough: &[Plane], verts: &[DVec3], inside: DVec3) -> Option<F
                 d[c] -= lambda[p] * a[work[p]][c];
             }
         }
-        if dot(&d, &d).sqrt() > 1e-12 {
+        // With four independent constraints active the direction is zero up to rounding.
+        if k < 4 && dot(&d, &d).sqrt() > 1e-12 {
             let mut best: Option<(f64, usize)> = None;
             for (j, row) in a.iter().enumerate() {
                 let rate = dot(row, &d);

@@ -214,3 +214,17 @@ fn ascii_stl(bytes: &[u8], source: &str) -> Result<TriMesh> {
     }
     Ok(mesh)
 }
+
+impl TriMesh {
+    /// The mesh as OBJ text, `comment` on the first line.
+    pub fn to_obj(&self, comment: &str) -> String {
+        let mut out = format!("# {comment}\n# units: mm\n");
+        for v in &self.vertices {
+            out.push_str(&format!("v {} {} {}\n", v.x, v.y, v.z));
+        }
+        for t in &self.triangles {
+            out.push_str(&format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1));
+        }
+        out
+    }
+}

@@ -23,11 +23,17 @@
 //!
 //! Files: `mesh.rs` reads a rough's triangles, `rough.rs` makes the rough (hull or crystal
 //! form), `fit.rs` is the containment program, `search.rs` the search over orientation and
-//! proportions, `config.rs` the plan config (objective, bounds, price table).
+//! proportions, `config.rs` the plan config (objective, bounds, price table), `sample.rs` the
+//! example rough (a distorted octahedron mesh).
 
+pub mod config;
 pub mod fit;
 pub mod mesh;
 pub mod rough;
+pub mod sample;
+pub mod search;
 
+pub use config::{Bound, Objective, PlanConfig, PriceTable, DEFAULT_FAMILIES};
 pub use fit::{largest_copy, Fit};
 pub use rough::{load_rough, Rough, CRYSTALS};
+pub use search::{Plan, Planner};
