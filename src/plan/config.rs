@@ -7,6 +7,7 @@
 //! families = ["round-brilliant", "oval"]   # default: round-brilliant and the fancy shapes
 //! material = "diamond"          # density for carats (`facetlab materials`)
 //! top = 3                       # distinct plans kept per family
+//! min_width_mm = 1.0            # a rough whose widest plan is narrower is refused
 //!
 //! [objective]
 //! kind = "weight"               # "weight" (carats) or "value" (price table × quality)
@@ -170,6 +171,8 @@ pub struct PlanConfig {
     pub material: String,
     /// Distinct plans kept per family.
     pub top: usize,
+    /// A rough whose widest plan (over every family) is narrower than this (mm) is too small.
+    pub min_width_mm: f64,
     /// What is maximised.
     pub objective: Objective,
     /// Grade the round brilliant's estimate must reach.
@@ -190,6 +193,7 @@ impl Default for PlanConfig {
             families: DEFAULT_FAMILIES.iter().map(|s| s.to_string()).collect(),
             material: "diamond".into(),
             top: 3,
+            min_width_mm: 1.0,
             objective: Objective::Weight,
             grade: None,
             params: BTreeMap::new(),
@@ -229,6 +233,7 @@ struct RawConfig {
     families: Option<Vec<String>>,
     material: Option<String>,
     top: Option<usize>,
+    min_width_mm: Option<f64>,
     #[serde(default)]
     objective: RawObjective,
     #[serde(default)]
@@ -269,6 +274,13 @@ impl PlanConfig {
         c.top = raw.top.unwrap_or(c.top);
         if !(1..=50).contains(&c.top) {
             return Err(Error::invalid(at("top"), "allowed 1 to 50"));
+        }
+        c.min_width_mm = raw.min_width_mm.unwrap_or(c.min_width_mm);
+        if !(c.min_width_mm.is_finite() && c.min_width_mm >= 0.0) {
+            return Err(Error::invalid(
+                at("min_width_mm"),
+                "allowed a number ≥ 0 (mm)",
+            ));
         }
         c.starts = raw.search.starts.unwrap_or(c.starts);
         if !(1..=1000).contains(&c.starts) {

@@ -53,3 +53,27 @@ pub fn distorted_octahedron(n: usize) -> TriMesh {
     }
     mesh
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::Rough;
+
+    /// The bundled example is this generator's output (set `FACETLAB_WRITE_SAMPLE=1` to write
+    /// it again), closed, not quite convex, 2,048 triangles.
+    #[test]
+    fn the_bundled_example_rough_is_the_generated_one() {
+        let mesh = distorted_octahedron(16);
+        assert_eq!(mesh.triangles.len(), 2048);
+        let text = mesh
+            .to_obj("facetlab example rough: a distorted octahedron (src/plan/sample.rs, n = 16)");
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cuts/rough-octahedron.obj");
+        if std::env::var_os("FACETLAB_WRITE_SAMPLE").is_some() {
+            std::fs::write(path, &text).unwrap();
+        }
+        assert_eq!(std::fs::read_to_string(path).unwrap(), text);
+        let rough = Rough::from_trimesh("r", "r", mesh, None).unwrap();
+        let excess = rough.hull_excess();
+        assert!(excess > 1e-4 && excess < 0.05, "{excess}");
+    }
+}
