@@ -16,4 +16,9 @@ render tolkowsky --light arrows --size 320 -o "$out/tolkowsky-arrows.png"
 render tolkowsky gia-reference --light idealscope --size 320 -o "$out/idealscope-tolkowsky-gia.png"
 render tolkowsky --light iso --tilt 20 --size 360 -o "$out/tolkowsky-iso-tilt20.png"
 render tolkowsky --light cos --head-shadow 15 --rock 15:8 --size 180 -o "$out/tolkowsky-cos-rock.png"
+# `facetlab plan`: the best round brilliant in the example rough, three views.
+plan_dir=$(mktemp -d)
+cargo run --quiet --release -- plan cuts/rough-octahedron.obj --family round-brilliant --top 1 --quiet -o "$plan_dir/run"
+cp "$plan_dir/run/round-brilliant-1-views.png" "$out/plan-rough-octahedron.png"
+rm -r "$plan_dir"
 ls -l "$out"

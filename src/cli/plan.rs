@@ -220,17 +220,29 @@ pub fn run(a: &PlanArgs) -> Result<()> {
             ),
         ));
     }
-    write_folder(a, &config, &material, &rough, &all, started)
+    let run = Run {
+        a,
+        config: &config,
+        material: &material,
+        rough: &rough,
+        all: &all,
+        started,
+    };
+    write_folder(&run)
 }
 
-fn write_folder(
-    a: &PlanArgs,
-    config: &PlanConfig,
-    material: &Material,
-    rough: &Rough,
-    all: &[(String, Vec<Plan>)],
+/// What a finished plan writes.
+struct Run<'r> {
+    a: &'r PlanArgs,
+    config: &'r PlanConfig,
+    material: &'r Material,
+    rough: &'r Rough,
+    all: &'r [(String, Vec<Plan>)],
     started: Instant,
-) -> Result<()> {
+}
+
+fn write_folder(run: &Run<'_>) -> Result<()> {
+    let a = run.a;
     let name = a
         .out
         .file_name()
@@ -241,7 +253,7 @@ fn write_folder(
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
-    let result = write_into(&tmp, a, config, material, rough, all, started).and_then(|()| {
+    let result = write_into(&tmp, run).and_then(|()| {
         if a.out.is_dir() {
             std::fs::remove_dir(&a.out).map_err(|e| Error::io(a.out.display().to_string(), e))?;
         }
@@ -276,15 +288,15 @@ fn obj_object(out: &mut String, name: &str, s: &Polyhedron, base: &mut usize) {
     *base += s.vertices().len();
 }
 
-fn write_into(
-    dir: &Path,
-    a: &PlanArgs,
-    config: &PlanConfig,
-    material: &Material,
-    rough: &Rough,
-    all: &[(String, Vec<Plan>)],
-    started: Instant,
-) -> Result<()> {
+fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
+    let Run {
+        a,
+        config,
+        material,
+        rough,
+        all,
+        started,
+    } = *run;
     std::fs::create_dir(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
     let header = format!(
         "# facetlab plan of {}: units mm, the rough's own coordinates\n",

@@ -360,3 +360,46 @@ impl PlanConfig {
         Ok(c)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_example_config_and_price_table_parse() {
+        let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/optim"));
+        let c = PlanConfig::load(&dir.join("plan-value.toml")).unwrap();
+        assert_eq!(c.families, ["round-brilliant", "oval", "cushion"]);
+        assert_eq!(c.grade, Some(Grade::Excellent));
+        let Objective::Value(t) = &c.objective else {
+            panic!("{:?}", c.objective)
+        };
+        // 0.6 ct excellent: 0.6 × 2600 × 1.0; an ungraded 1.2 ct: 1.2 × 5200 × 0.85.
+        assert!((t.value(0.6, Some(Grade::Excellent)) - 1560.0).abs() < 1e-9);
+        assert!((t.value(1.2, None) - 1.2 * 5200.0 * 0.85).abs() < 1e-9);
+        assert_eq!(
+            c.params["round-brilliant"]["crown_angle"],
+            Bound::Free(31.5, 36.5)
+        );
+    }
+
+    #[test]
+    fn bad_fields_are_named() {
+        let dir = Path::new(".");
+        let e = |t: &str| {
+            PlanConfig::parse(t, "p.toml", "p", dir)
+                .unwrap_err()
+                .to_string()
+        };
+        assert!(e("colour = 1").contains("colour"));
+        assert!(e("families = [\"heart\"]").contains("p.toml: families"));
+        assert!(e("[objective]\nkind = \"value\"").contains("objective.prices"));
+        assert!(e("[objective]\ngrade = \"superb\"").contains("objective.grade"));
+        let bad_bound = e("[free.round-brilliant]\ncrown_angle = [36.0, 30.0]");
+        assert!(
+            bad_bound.contains("free.round-brilliant.crown_angle"),
+            "{bad_bound}"
+        );
+        assert!(e("[free.round-brilliant]\nhue = 3.0").contains("not a parameter"));
+    }
+}

@@ -50,10 +50,11 @@ fn solve(k: usize, mut g: [V4; 4], mut r: V4) -> Option<V4> {
         }
         g.swap(col, piv);
         r.swap(col, piv);
+        let pivot_row = g[col];
         for row in col + 1..k {
-            let f = g[row][col] / g[col][col];
-            for c in col..k {
-                g[row][c] -= f * g[col][c];
+            let f = g[row][col] / pivot_row[col];
+            for (x, p) in g[row][col..k].iter_mut().zip(&pivot_row[col..k]) {
+                *x -= f * p;
             }
             r[row] -= f * r[col];
         }

@@ -168,21 +168,13 @@ fn read_obj(bytes: &[u8], source: &str) -> Result<TriMesh> {
 fn binary_stl(bytes: &[u8], n: usize) -> TriMesh {
     let mut mesh = TriMesh::default();
     let mut index = HashMap::new();
-    for t in 0..n {
-        let rec = &bytes[84 + 50 * t..84 + 50 * (t + 1)];
-        let f = |k: usize| {
-            let o = 12 + 4 * k;
-            f64::from(f32::from_le_bytes([
-                rec[o],
-                rec[o + 1],
-                rec[o + 2],
-                rec[o + 3],
-            ]))
-        };
-        let tri = [0, 1, 2].map(|v| {
-            let p = DVec3::new(f(3 * v), f(3 * v + 1), f(3 * v + 2));
-            mesh.vertex(p, &mut index)
-        });
+    for rec in bytes[84..84 + 50 * n].chunks_exact(50) {
+        // 12 bytes of normal, then three corners of three little-endian f32 each.
+        let c: Vec<f64> = rec[12..48]
+            .chunks_exact(4)
+            .map(|w| f64::from(f32::from_le_bytes([w[0], w[1], w[2], w[3]])))
+            .collect();
+        let tri = [0, 3, 6].map(|o| mesh.vertex(DVec3::new(c[o], c[o + 1], c[o + 2]), &mut index));
         mesh.triangles.push(tri);
     }
     mesh

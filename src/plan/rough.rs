@@ -96,9 +96,7 @@ impl Rough {
         let shown = path.display().to_string();
         let ext = path
             .extension()
-            .and_then(|e| e.to_str())
-            .unwrap_or("")
-            .to_ascii_lowercase();
+            .map_or(String::new(), |e| e.to_string_lossy().to_ascii_lowercase());
         let bytes = std::fs::read(path).map_err(|e| Error::io(&shown, e))?;
         let mesh = read_triangles(&bytes, &ext, &shown)?;
         let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("rough");
@@ -155,7 +153,7 @@ impl Rough {
             None => {}
         }
         let volume = mesh.enclosed_volume();
-        if !(volume > 1e-9 * extent.powi(3)) {
+        if volume.is_nan() || volume <= 1e-9 * extent.powi(3) {
             return Err(Error::parse(
                 source,
                 "the mesh encloses no volume (it is flat or degenerate); a rough must be a solid",

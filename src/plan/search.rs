@@ -117,13 +117,14 @@ fn principal_frame(pts: &[DVec3]) -> DQuat {
             }
             let theta = 0.5 * (2.0 * m[p][q]).atan2(m[q][q] - m[p][p]);
             let (s, co) = theta.sin_cos();
-            for k in 0..3 {
-                let (a, b) = (m[k][p], m[k][q]);
-                m[k][p] = co * a - s * b;
-                m[k][q] = s * a + co * b;
+            // M ← Jᵀ M J: columns p and q, then rows p and q.
+            for row in &mut m {
+                let (a, b) = (row[p], row[q]);
+                row[p] = co * a - s * b;
+                row[q] = s * a + co * b;
             }
-            for k in 0..3 {
-                let (a, b) = (m[p][k], m[q][k]);
+            let (mp, mq) = (m[p], m[q]);
+            for (k, (a, b)) in mp.iter().zip(&mq).enumerate() {
                 m[p][k] = co * a - s * b;
                 m[q][k] = s * a + co * b;
             }
@@ -235,7 +236,7 @@ impl<'a> Planner<'a> {
     ) -> Option<(super::Fit, f64, f64, Option<Grade>)> {
         let verts: Vec<DVec3> = cut.solid.vertices().iter().map(|v| rotation * *v).collect();
         let fit = largest_copy(&self.planes, &verts, self.inside)?;
-        if !(fit.scale > 0.0) {
+        if fit.scale.is_nan() || fit.scale <= 0.0 {
             return None;
         }
         let carats =

@@ -18,6 +18,9 @@ pub struct ThreeViews<'a> {
 }
 
 const PANEL: u32 = 360;
+
+/// A view: its caption and the projection onto the picture plane (right, up).
+type View = (&'static str, fn(DVec3) -> DVec2);
 const TOP: u32 = 56;
 
 /// Convex hull of 2-D points, counter-clockwise (Andrew's monotone chain).
@@ -55,7 +58,7 @@ impl Figure for ThreeViews<'_> {
         let extent = (hi - lo).max_element().max(1e-9);
         let scale = 0.86 * PANEL as f64 / extent;
         root.draw(&Text::new(self.title.clone(), (10, 6), font(17)))?;
-        let views: [(&str, fn(DVec3) -> DVec2); 3] = [
+        let views: [View; 3] = [
             ("top (x right, y up)", |p| DVec2::new(p.x, p.y)),
             ("front (x right, z up)", |p| DVec2::new(p.x, p.z)),
             ("side (y right, z up)", |p| DVec2::new(p.y, p.z)),
