@@ -263,6 +263,25 @@ fn write_folder(run: &Run<'_>) -> Result<()> {
         let _ = std::fs::remove_dir_all(&tmp);
     }
     result?;
+    let rough = run.rough;
+    let hull = match rough.mesh_volume {
+        Some(v) => format!(
+            " (the mesh {v:.3} mm³; its convex hull adds {:.2} %)",
+            100.0 * rough.hull_excess()
+        ),
+        None => String::new(),
+    };
+    println!("rough {}: {:.3} mm³{hull}", rough.name, rough.volume());
+    for (fam, plans) in run.all {
+        if let Some(p) = plans.first() {
+            println!(
+                "{fam:<16} {:.4} ct, yield {:.2} %, W {:.3} mm",
+                p.carats,
+                100.0 * p.yield_fraction,
+                p.scale
+            );
+        }
+    }
     println!("{}", a.out.display());
     Ok(())
 }

@@ -223,3 +223,53 @@ fn a_grade_constraint_is_met_and_costs_weight() {
     assert!(planner.meets_grade(strict), "{:?}", strict.grade);
     assert!(strict.carats <= loose.carats + 1e-9);
 }
+
+/// The same plans, bit for bit, on one thread and on three.
+#[test]
+fn one_thread_or_three_give_the_same_plans() {
+    let rough = Rough::from_trimesh("d", "d", distorted_octahedron(3), None).unwrap();
+    let config = PlanConfig {
+        starts: 4,
+        max_iterations: 60,
+        ..PlanConfig::default()
+    };
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            Planner::new(&rough, &config, 3.515)
+                .plan_family("pear", &|| {})
+                .unwrap()
+                .iter()
+                .map(|p| (p.carats.to_bits(), p.shift.to_array().map(f64::to_bits)))
+                .collect::<Vec<_>>()
+        })
+    };
+    assert_eq!(run(1), run(3));
+}
+
+/// The value objective is the price table's value of the plan's carats and grade.
+#[test]
+fn value_is_the_price_tables() {
+    let text = "[[band]]\nfrom_carats = 0.0\nper_carat = 100\n[[band]]\nfrom_carats = 0.2\nper_carat = 300\n[quality]\nexcellent = 0.9\n";
+    let table = crate::plan::PriceTable::parse(text, "p.toml").unwrap();
+    let config = PlanConfig {
+        starts: 2,
+        max_iterations: 60,
+        top: 1,
+        objective: Objective::Value(table.clone()),
+        ..PlanConfig::default()
+    };
+    let rough = Rough::crystal("dodecahedron", 6.0).unwrap();
+    let planner = Planner::new(&rough, &config, 3.515);
+    let p = &planner.plan_family("round-brilliant", &|| {}).unwrap()[0];
+    assert!(p.carats > 0.2, "{}", p.carats);
+    assert!((p.objective - table.value(p.carats, p.grade)).abs() < 1e-9);
+    assert!(
+        (p.objective - p.carats * 300.0 * 0.9).abs() < 1e-9,
+        "{:?}",
+        p.grade
+    );
+}
