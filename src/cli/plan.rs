@@ -15,7 +15,8 @@
 //!   `FAMILY-K.asc` (the design itself: GemCad has no position), `FAMILY-K-views.png` (three
 //!   views of the rough with the cut inside),
 //! - `rough.obj` (the rough's convex hull), `scene.obj` (the rough and every plan's cut, one
-//!   object each), `overview.png` (each family's best plan in the rough).
+//!   object each), `overview.png` (each family's best plan in the rough), `report.html` (the
+//!   rough, every plan in a table, each family's best in the rough and its pictures and scores).
 
 use super::outputs::refuse_overwrite;
 use super::progress;
@@ -406,6 +407,15 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
         }
     }
     write(dir, "scene.obj", scene.as_bytes())?;
+    let views: Vec<Vec<u8>> = all
+        .iter()
+        .map(|(fam, _)| {
+            let p = dir.join(format!("{fam}-1-views.png"));
+            std::fs::read(&p).map_err(|e| Error::io(p.display().to_string(), e))
+        })
+        .collect::<Result<_>>()?;
+    let page = facetlab::report::plan_page(rough, all, &views, &score_cfg)?;
+    write(dir, "report.html", page.as_bytes())?;
     let overview = ThreeViews {
         rough: &rough.solid,
         cuts: best.iter().map(|(s, l)| (s, l.clone())).collect(),

@@ -17,7 +17,7 @@
 //!   folder (with scores) and for the plot floor to draw.
 //!
 //! Not yet here: a minimum-brilliance objective (the scores are computed for the winners
-//! only), a report page, glTF, and the workbench's upload of a rough.
+//! only), glTF, and the workbench's upload of a rough.
 //!
 //! What it may import: [`crate::optimize`] and every floor below it (`verify`, `metrics`,
 //! `render`, the tracers, `optics`, `io`, `cut`, `geometry`, `error`). Never `plot`, `report`

@@ -71,16 +71,7 @@ impl Rough {
             Error::Geometry(m) => Error::parse(name, format!("the rough's convex hull: {m}")),
             other => other,
         })?;
-        let planes: Vec<FacetPlane> = hull
-            .iter()
-            .enumerate()
-            .map(|(i, p)| FacetPlane {
-                plane: *p,
-                name: format!("r-{}", i + 1),
-                tier: "rough".into(),
-            })
-            .collect();
-        let solid = Polyhedron::from_planes(&planes).map_err(|e| e.context(name))?;
+        let solid = rough_solid(&hull, "r").map_err(|e| e.context(name))?;
         Ok(Rough {
             name: name.to_string(),
             solid,
@@ -229,16 +220,7 @@ impl Rough {
                 p.normal = turn * p.normal;
             }
         }
-        let fps: Vec<FacetPlane> = planes
-            .iter()
-            .enumerate()
-            .map(|(i, p)| FacetPlane {
-                plane: *p,
-                name: format!("{form}-{}", i + 1),
-                tier: "rough".into(),
-            })
-            .collect();
-        let unit = Polyhedron::from_planes(&fps)?;
+        let unit = rough_solid(&planes, form)?;
         let (lo, hi) = unit.bounding_box();
         let solid = unit.scaled(size_mm / (hi - lo).max_element());
         Ok(Rough {
@@ -258,6 +240,20 @@ impl Rough {
             .collect();
         Rough::from_points(&self.name, &pts, self.mesh_volume)
     }
+}
+
+/// The solid of a rough's planes, facets named `PREFIX-1`, `PREFIX-2`, … of tier `rough`.
+fn rough_solid(planes: &[Plane], prefix: &str) -> Result<Polyhedron> {
+    let named: Vec<FacetPlane> = planes
+        .iter()
+        .zip(1..)
+        .map(|(p, i)| FacetPlane {
+            plane: *p,
+            name: format!("{prefix}-{i}"),
+            tier: "rough".into(),
+        })
+        .collect();
+    Polyhedron::from_planes(&named)
 }
 
 fn bounds(pts: &[DVec3]) -> (DVec3, DVec3) {

@@ -56,6 +56,7 @@ fn a_crystal_plan_writes_its_folder() {
     let got = files(&p.join("run"));
     for f in [
         "summary.json",
+        "report.html",
         "rough.obj",
         "scene.obj",
         "overview.png",
