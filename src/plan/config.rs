@@ -12,6 +12,7 @@
 //! [objective]
 //! kind = "weight"               # "weight" (carats) or "value" (price table × quality)
 //! grade = "excellent"           # round brilliants only: the grade estimate must reach it
+//! min_brilliance = 0.75         # every family: brilliance (fast scores) at least this
 //! prices = "prices.toml"        # for "value", relative to this file
 //!
 //! [search]
@@ -177,6 +178,9 @@ pub struct PlanConfig {
     pub objective: Objective,
     /// Grade the round brilliant's estimate must reach.
     pub grade: Option<Grade>,
+    /// Brilliance every plan must reach (the fast score settings, `metrics::ScoreConfig::fast`,
+    /// brilliance only), in [0, 1].
+    pub min_brilliance: Option<f64>,
     /// Per family: parameter settings (missing keys take the family's defaults).
     pub params: BTreeMap<String, BTreeMap<String, Bound>>,
     /// Nelder–Mead starts per family.
@@ -196,6 +200,7 @@ impl Default for PlanConfig {
             min_width_mm: 1.0,
             objective: Objective::Weight,
             grade: None,
+            min_brilliance: None,
             params: BTreeMap::new(),
             starts: 12,
             max_iterations: 250,
@@ -215,6 +220,7 @@ enum RawBound {
 struct RawObjective {
     kind: Option<String>,
     grade: Option<String>,
+    min_brilliance: Option<f64>,
     prices: Option<PathBuf>,
 }
 
@@ -300,6 +306,15 @@ impl PlanConfig {
                     format!("unknown grade `{g}`; allowed: excellent, very-good, good, fair, poor"),
                 )
             })?);
+        }
+        if let Some(b) = raw.objective.min_brilliance {
+            if !(0.0..=1.0).contains(&b) {
+                return Err(Error::invalid(
+                    at("objective.min_brilliance"),
+                    format!("{b} is not a brilliance; allowed 0 to 1"),
+                ));
+            }
+            c.min_brilliance = Some(b);
         }
         c.objective = match raw.objective.kind.as_deref().unwrap_or("weight") {
             "weight" => Objective::Weight,
@@ -395,6 +410,7 @@ mod tests {
         assert!(e("families = [\"heart\"]").contains("p.toml: families"));
         assert!(e("[objective]\nkind = \"value\"").contains("objective.prices"));
         assert!(e("[objective]\ngrade = \"superb\"").contains("objective.grade"));
+        assert!(e("[objective]\nmin_brilliance = 1.5").contains("objective.min_brilliance"));
         let bad_bound = e("[free.round-brilliant]\ncrown_angle = [36.0, 30.0]");
         assert!(
             bad_bound.contains("free.round-brilliant.crown_angle"),

@@ -10,14 +10,13 @@
 //! - the search ([`Planner::plan_family`]): orientation (a rotation vector in the rough's
 //!   principal frame) and the free parameters of a family within the config's bounds, by
 //!   seeded multi-start Nelder–Mead (argmin), deterministic on any thread count, maximising the
-//!   objective of a plan config ([`PlanConfig`]: weight, weight under a grade, or value from a
-//!   price table, [`PriceTable`]);
+//!   objective of a plan config ([`PlanConfig`]: weight, weight under a grade or a minimum
+//!   brilliance, or value from a price table, [`PriceTable`]);
 //! - the plans as data ([`Plan`]): the family's cut, its pose and scale, the placed cut in the
 //!   rough's coordinates, carats, yield, grade and objective, for the binary to write as a run
 //!   folder (with scores) and for the plot floor to draw.
 //!
-//! Not yet here: a minimum-brilliance objective (the scores are computed for the winners
-//! only), glTF, and the workbench's upload of a rough.
+//! Not yet here: glTF, and the workbench's upload of a rough.
 //!
 //! What it may import: [`crate::optimize`] and every floor below it (`verify`, `metrics`,
 //! `render`, the tracers, `optics`, `io`, `cut`, `geometry`, `error`). Never `plot`, `report`

@@ -18,13 +18,16 @@ use crate::cut::grade::{estimate, Grade};
 use crate::cut::{family, Cut, CutSpace};
 use crate::error::{Error, Result};
 use crate::geometry::{DVec3, FacetPlane, Plane, Polyhedron};
+use crate::metrics::{score, ScoreConfig};
+use crate::optics::Material;
 use argmin::core::{CostFunction, Executor};
 use argmin::solver::neldermead::NelderMead;
 use glam::{DMat3, DQuat};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
+use std::sync::Mutex;
 
 /// Grams per cubic millimetre per (g/cm³), times carats per gram.
 const CARATS_PER_MM3_PER_DENSITY: f64 = 1e-3 * 5.0;
@@ -164,7 +167,14 @@ struct Problem<'p> {
     free: Vec<(String, f64, f64)>,
     /// The cut and its grade when no parameter is free.
     built: Option<(Cut, Option<Grade>)>,
+    /// With a minimum brilliance: the score settings (brilliance only), the minimum, and the
+    /// brilliance of each parameter set met so far (by the bits of its values).
+    brilliance: Option<BrillianceCheck>,
 }
+
+/// A minimum brilliance: the score settings, the minimum, and the brilliance of each
+/// parameter set met so far (keyed by the bits of its values).
+type BrillianceCheck = (ScoreConfig, f64, Mutex<HashMap<Vec<u64>, f64>>);
 
 fn sigmoid(u: f64) -> f64 {
     1.0 / (1.0 + (-u).exp())
@@ -193,15 +203,32 @@ impl Problem<'_> {
 
     fn cost_at(&self, x: &[f64]) -> Option<f64> {
         let rotation = self.rotation(x);
-        let (_, _, objective, grade) = match &self.built {
-            Some((cut, grade)) => self.planner.measure(cut, *grade, rotation)?,
+        let built;
+        let (cut, grade) = match &self.built {
+            Some((cut, grade)) => (cut, *grade),
             None => {
-                let cut = self.space.build(self.space.name, &self.params(x)).ok()?;
-                let grade = estimate(&cut).map(|g| g.estimate);
-                self.planner.measure(&cut, grade, rotation)?
+                built = self.space.build(self.space.name, &self.params(x)).ok()?;
+                let grade = estimate(&built).map(|g| g.estimate);
+                (&built, grade)
             }
         };
-        Some(-self.planner.penalised(objective, grade))
+        let (_, _, objective, grade) = self.planner.measure(cut, grade, rotation)?;
+        let mut value = self.planner.penalised(objective, grade);
+        if let Some((cfg, min, seen)) = &self.brilliance {
+            let key: Vec<u64> = cut.params.values().map(|v| v.to_bits()).collect();
+            let known = seen.lock().ok().and_then(|m| m.get(&key).copied());
+            let b = known.unwrap_or_else(|| {
+                let b = score(&cut.solid, cfg).brilliance;
+                if let Ok(mut m) = seen.lock() {
+                    m.insert(key, b);
+                }
+                b
+            });
+            if b < *min {
+                value *= 0.01;
+            }
+        }
+        Some(-value)
     }
 }
 
@@ -333,12 +360,23 @@ impl<'a> Planner<'a> {
         } else {
             None
         };
+        let brilliance = match self.config.min_brilliance {
+            Some(min) => {
+                let mut cfg = ScoreConfig::fast();
+                cfg.material = Material::by_name(&self.config.material)?;
+                cfg.parts.fire = false;
+                cfg.parts.scintillation = false;
+                Some((cfg, min, Mutex::new(HashMap::new())))
+            }
+            None => None,
+        };
         let problem = Problem {
             planner: self,
             space,
             fixed,
             free,
             built,
+            brilliance,
         };
         let starts = self.start_points(problem.free.len());
         let finals: Vec<Option<(f64, Vec<f64>)>> = starts

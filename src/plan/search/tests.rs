@@ -273,3 +273,27 @@ fn value_is_the_price_tables() {
         p.grade
     );
 }
+
+/// A minimum brilliance holds the plan to it (brilliance only, the fast settings).
+#[test]
+fn a_minimum_brilliance_is_met() {
+    let rough = Rough::crystal("octahedron", 6.0).unwrap();
+    let mut free = BTreeMap::new();
+    free.insert("pavilion_angle".to_string(), Bound::Free(38.0, 44.0));
+    let mut config = PlanConfig {
+        starts: 1,
+        max_iterations: 20,
+        top: 1,
+        min_brilliance: Some(0.75),
+        ..PlanConfig::default()
+    };
+    config.params.insert("round-brilliant".into(), free);
+    let p = &Planner::new(&rough, &config, 3.515)
+        .plan_family("round-brilliant", &|| {})
+        .unwrap()[0];
+    let mut cfg = ScoreConfig::fast();
+    cfg.parts.fire = false;
+    cfg.parts.scintillation = false;
+    let b = score(&p.cut.solid, &cfg).brilliance;
+    assert!(b >= 0.75, "{b} at {:?}", p.cut.params);
+}
