@@ -3,7 +3,7 @@
 //! ```text
 //! facetlab plan cuts/rough-octahedron.obj -o results/rough            # every default family
 //! facetlab plan octahedron --size-mm 6 --family round-brilliant --top 2 -o results/oct
-//! facetlab plan scan.stl --size-mm 9.5 --config optim/plan-value.toml -o results/scan
+//! facetlab plan scan.stl --size-mm 9.5 --config optim/plan/plan-value.toml -o results/scan
 //! ```
 //!
 //! The planning is the library's ([`facetlab::plan`]); this file reads the flags, runs it with

@@ -382,7 +382,7 @@ mod tests {
 
     #[test]
     fn the_example_config_and_price_table_parse() {
-        let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/optim"));
+        let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/optim/plan"));
         let c = PlanConfig::load(&dir.join("plan-value.toml")).unwrap();
         assert_eq!(c.families, ["round-brilliant", "oval", "cushion"]);
         assert_eq!(c.grade, Some(Grade::Excellent));
