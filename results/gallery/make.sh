@@ -20,4 +20,9 @@ render tolkowsky --material tourmaline --colour "#1f5a36@10mm" --diameter-mm 9 -
     --light cos --head-shadow 15 --size 320 -o "$out/tourmaline-dark-cos.png"
 render tolkowsky --material beryl --colour "#bfe0ea@10mm" --diameter-mm 8 \
     --light cos --head-shadow 15 --size 320 -o "$out/aquamarine-pale-cos.png"
+# `facetlab plan`: the best round brilliant in the example rough, three views.
+plan_dir=$(mktemp -d)
+cargo run --quiet --release -- plan cuts/rough-octahedron.obj --family round-brilliant --top 1 --quiet -o "$plan_dir/run"
+cp "$plan_dir/run/round-brilliant-1-views.png" "$out/plan-rough-octahedron.png"
+rm -r "$plan_dir"
 ls -l "$out"

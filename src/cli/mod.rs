@@ -8,6 +8,7 @@ pub mod materials;
 pub mod merge;
 pub mod optimize;
 pub mod outputs;
+pub mod plan;
 mod progress;
 pub mod render;
 pub mod report;
@@ -76,6 +77,11 @@ pub enum Command {
     /// of ratios that restores its light return there and, for a design (.asc), its tier
     /// angles optimized with the meets kept; all reported, the better optimized one written.
     Retarget(retarget::RetargetArgs),
+    /// Plan a rough: the largest, best cuts of each family inside a rough stone (an OBJ/STL
+    /// mesh in mm, taken as its convex hull, or a crystal form with --size-mm), each placed by
+    /// an exact containment program and searched over orientation and proportions; writes a
+    /// run folder with the cuts in the rough's coordinates, pictures and summary.json.
+    Plan(plan::PlanArgs),
     /// Join the shards of one sweep (`sweep --shard K/N`) into the CSV and map one unsharded
     /// run writes, after checking they cover the grid exactly once.
     Merge(merge::MergeArgs),
@@ -109,6 +115,7 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::Render(a) => done(render::run(&a)),
         Command::Report(a) => done(report::run(&a)),
         Command::Retarget(a) => done(retarget::run(&a)),
+        Command::Plan(a) => done(plan::run(&a)),
         Command::Serve(a) => done(serve::run(&a)),
     }
 }

@@ -121,7 +121,7 @@ pub use ratio_search::{retarget, Retarget, Variant};
 // What a run keeps and reports.
 pub use history::{History, Row, Track};
 // The cost of a cut that cannot be built or scored.
-pub use problem::FAILED_COST;
+pub use problem::{weight_retention, FAILED_COST};
 // The run's summary (`report.json`, `report.md`): the start and the winners, how it went.
 pub use summary::{Candidate, DesignJson, FoundAt, OpenedJson, Report};
 // Sweeps: a score mapped over two parameters, or the scores along one (a profile).

@@ -1,22 +1,41 @@
-//! Rough planning: the largest, best cut inside a rough stone (issue 26, `facetlab plan`). The
-//! room is empty for now; this says what will land here and what it may use.
+//! Rough planning: the largest, best cut inside a rough stone (issue 26, `facetlab plan`).
 //!
-//! What lands here:
+//! - the rough ([`Rough`]): the convex hull of a closed scanned mesh (OBJ/STL, millimetres) or
+//!   a bundled crystal form ([`CRYSTALS`]), as half-spaces, with how much volume the hull adds
+//!   to a mesh that is not convex ([`Rough::hull_excess`]);
+//! - containment ([`largest_copy`]): for one orientation and one set of proportions, the
+//!   largest copy of a cut inside the rough is a linear program in the scale and the
+//!   translation, reduced exactly to one constraint per rough plane by the cut's support
+//!   numbers and solved by an active-set simplex;
+//! - the search ([`Planner::plan_family`]): orientation (a rotation vector in the rough's
+//!   principal frame) and the free parameters of a family within the config's bounds, by
+//!   seeded multi-start Nelder–Mead (argmin), deterministic on any thread count, maximising the
+//!   objective of a plan config ([`PlanConfig`]: weight, weight under a grade or a minimum
+//!   brilliance, or value from a price table, [`PriceTable`]);
+//! - the plans as data ([`Plan`]): the family's cut, its pose and scale, the placed cut in the
+//!   rough's coordinates, carats, yield, grade and objective, for the binary to write as a run
+//!   folder (with scores) and for the plot floor to draw.
 //!
-//! - the rough: a convex hull of a scanned mesh (OBJ/STL, millimetres) or a bundled crystal
-//!   form, as half-spaces, with how much volume the hull adds to a mesh that is not convex;
-//! - containment: for one orientation and one set of proportions, the largest copy of a cut
-//!   inside the rough is a linear program in the scale and the translation (every vertex of
-//!   the cut inside every half-space of the rough), solved exactly;
-//! - the search: orientation and proportions around that program, run by the optimizer
-//!   (multi-start, seeded, deterministic on any thread count) over a cut space's parameters
-//!   ([`crate::cut::CutSpace`]), with the objective of a plan config (weight, weight under a
-//!   grade or brilliance constraint, or value from a price table);
-//! - the plan's results as data: each plan's cut in the rough's coordinates, yield, carats,
-//!   proportions, grade estimate and scores, for the binary to write as a run folder and for
-//!   the plots and the report to draw.
+//! Not yet here: glTF, and the workbench's upload of a rough.
 //!
 //! What it may import: [`crate::optimize`] and every floor below it (`verify`, `metrics`,
 //! `render`, the tracers, `optics`, `io`, `cut`, `geometry`, `error`). Never `plot`, `report`
 //! or the binary: pictures and pages of a plan are drawn from what the planner returns, as
 //! the optimizer's are.
+//!
+//! Files: `mesh.rs` reads a rough's triangles, `rough.rs` makes the rough (hull or crystal
+//! form), `fit.rs` is the containment program, `search.rs` the search over orientation and
+//! proportions, `config.rs` the plan config (objective, bounds, price table), `sample.rs` the
+//! example rough (a distorted octahedron mesh).
+
+pub mod config;
+pub mod fit;
+pub mod mesh;
+pub mod rough;
+pub mod sample;
+pub mod search;
+
+pub use config::{Bound, Objective, PlanConfig, PriceTable, DEFAULT_FAMILIES};
+pub use fit::{largest_copy, Fit};
+pub use rough::{load_rough, Rough, CRYSTALS};
+pub use search::{Plan, Planner};

@@ -25,6 +25,8 @@
 //! * [`diagram`]: a cutter's facet diagram of a cut, as a GemCad-style SVG page
 //!   ([`diagram::diagram`]);
 //! * [`pareto`]: the trade-off front between two scores, with the reference cuts;
+//! * [`plan`]: a rough planned (`facetlab plan`): three views of the rough with the cuts inside
+//!   ([`plan::ThreeViews`]);
 //! * [`palette`]: every colour handed out here, the grounds of stone pictures included.
 
 pub mod contour;
@@ -33,6 +35,7 @@ pub mod optimize;
 pub mod palette;
 pub mod pareto;
 pub mod paths;
+pub mod plan;
 pub mod render;
 pub mod trace;
 

@@ -4,6 +4,7 @@ mod designs;
 mod foundation;
 mod materials;
 mod optimize;
+mod plan;
 mod render;
 mod safety;
 mod serve;

@@ -1,0 +1,282 @@
+//! The rough: a convex solid in millimetres, as half-spaces, from a scanned mesh (its convex
+//! hull) or a bundled crystal form.
+
+use super::mesh::{read_triangles, TriMesh};
+use crate::error::{Error, Result};
+use crate::geometry::{convex_hull_with_tolerance, DVec3, FacetPlane, Plane, Polyhedron};
+use glam::DQuat;
+use std::path::Path;
+
+/// The bundled crystal forms, for `facetlab plan FORM --size-mm L`.
+pub const CRYSTALS: [&str; 4] = ["octahedron", "dodecahedron", "cube", "macle"];
+
+/// A mesh whose largest extent is outside this range (mm) is taken not to be in millimetres
+/// unless `--size-mm` is given.
+pub const PLAUSIBLE_MM: [f64; 2] = [0.3, 300.0];
+
+/// Coordinates must stay within this distance of the origin (mm); the solids are built inside
+/// a box of ±1000.
+const REACH_MM: f64 = 500.0;
+
+/// A convex rough in millimetres.
+#[derive(Clone, Debug)]
+pub struct Rough {
+    /// Name (the file stem or the crystal form).
+    pub name: String,
+    /// The convex solid (the hull of a mesh), in mm.
+    pub solid: Polyhedron,
+    /// The volume the mesh itself encloses (mm³), for a mesh; `None` for a crystal form.
+    pub mesh_volume: Option<f64>,
+}
+
+impl Rough {
+    /// The rough's half-spaces `normal · x <= offset` (mm).
+    pub fn planes(&self) -> Vec<Plane> {
+        self.solid.facets().iter().map(|f| f.plane).collect()
+    }
+
+    /// The hull's volume in mm³ (what yields are measured against).
+    pub fn volume(&self) -> f64 {
+        self.solid.volume()
+    }
+
+    /// How much volume the convex hull adds to a mesh that is not convex, as a fraction of the
+    /// mesh's own volume (0 for a convex mesh or a crystal form).
+    pub fn hull_excess(&self) -> f64 {
+        match self.mesh_volume {
+            Some(v) if v > 0.0 => (self.volume() - v).max(0.0) / v,
+            _ => 0.0,
+        }
+    }
+
+    /// The largest side of the rough's bounding box (mm).
+    pub fn size(&self) -> f64 {
+        let (lo, hi) = self.solid.bounding_box();
+        (hi - lo).max_element()
+    }
+
+    /// A rough from a convex solid's vertices (mm).
+    pub fn from_points(name: &str, pts: &[DVec3], mesh_volume: Option<f64>) -> Result<Rough> {
+        let far = pts
+            .iter()
+            .map(|p| p.abs().max_element())
+            .fold(0.0, f64::max);
+        if far > REACH_MM {
+            return Err(Error::invalid(
+                name,
+                format!("the rough reaches {far:.1} mm from the origin; allowed up to {REACH_MM} mm (move it nearer the origin)"),
+            ));
+        }
+        let hull = convex_hull_with_tolerance(pts, 1e-6).map_err(|e| match e {
+            Error::Geometry(m) => Error::parse(name, format!("the rough's convex hull: {m}")),
+            other => other,
+        })?;
+        let solid = rough_solid(&hull, "r").map_err(|e| e.context(name))?;
+        Ok(Rough {
+            name: name.to_string(),
+            solid,
+            mesh_volume,
+        })
+    }
+
+    /// A rough from an `.obj` or `.stl` mesh in millimetres. With `size_mm`, the mesh is
+    /// scaled about its bounding box's centre so that its largest extent is `size_mm` (for a
+    /// mesh in other units); without it, a mesh that says it is not in mm, or whose largest
+    /// extent is outside [`PLAUSIBLE_MM`], is refused.
+    pub fn from_mesh(path: &Path, size_mm: Option<f64>) -> Result<Rough> {
+        let shown = path.display().to_string();
+        let ext = path
+            .extension()
+            .map_or(String::new(), |e| e.to_string_lossy().to_ascii_lowercase());
+        let bytes = std::fs::read(path).map_err(|e| Error::io(&shown, e))?;
+        let mesh = read_triangles(&bytes, &ext, &shown)?;
+        let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("rough");
+        Rough::from_trimesh(name, &shown, mesh, size_mm)
+    }
+
+    /// [`Rough::from_mesh`] on triangles already read (`source` names them in messages).
+    pub fn from_trimesh(
+        name: &str,
+        source: &str,
+        mut mesh: TriMesh,
+        size_mm: Option<f64>,
+    ) -> Result<Rough> {
+        mesh.check_closed(source)?;
+        if let Some(i) = mesh.vertices.iter().position(|p| !p.is_finite()) {
+            return Err(Error::parse(
+                source,
+                format!(
+                    "vertex {} has a coordinate that is not a finite number",
+                    i + 1
+                ),
+            ));
+        }
+        let (lo, hi) = bounds(&mesh.vertices);
+        let extent = (hi - lo).max_element();
+        match size_mm {
+            Some(l) => {
+                if !(l.is_finite() && l > 0.0 && extent > 0.0) {
+                    return Err(Error::invalid(
+                        "--size-mm",
+                        format!("{l} is not a size; give the rough's largest extent in mm, > 0"),
+                    ));
+                }
+                let c = 0.5 * (lo + hi);
+                for p in &mut mesh.vertices {
+                    *p = c + (*p - c) * (l / extent);
+                }
+            }
+            None if mesh.units_not_mm => {
+                return Err(Error::invalid(
+                    source,
+                    "the file says its units are not millimetres; give --size-mm L (the rough's largest extent in mm)",
+                ))
+            }
+            None if !(PLAUSIBLE_MM[0]..=PLAUSIBLE_MM[1]).contains(&extent) => {
+                return Err(Error::invalid(
+                    source,
+                    format!(
+                        "the mesh is {extent:.4} units across, not a plausible size in millimetres ({} to {} mm); give --size-mm L (its largest extent in mm)",
+                        PLAUSIBLE_MM[0], PLAUSIBLE_MM[1]
+                    ),
+                ))
+            }
+            None => {}
+        }
+        let volume = mesh.enclosed_volume();
+        if volume.is_nan() || volume <= 1e-9 * extent.powi(3) {
+            return Err(Error::parse(
+                source,
+                "the mesh encloses no volume (it is flat or degenerate); a rough must be a solid",
+            ));
+        }
+        Rough::from_points(name, &mesh.vertices, Some(volume))
+    }
+
+    /// A bundled crystal form (one of [`CRYSTALS`]) whose largest extent is `size_mm`, centred
+    /// on the origin: the octahedron (diamond's usual habit, vertices on the axes), the
+    /// rhombic dodecahedron, the cube, and a macle (a spinel-law twin: an octahedron flattened
+    /// to a third of its height along a three-fold axis, that axis turned to z).
+    pub fn crystal(form: &str, size_mm: f64) -> Result<Rough> {
+        if !(size_mm.is_finite() && size_mm > 0.0 && size_mm <= REACH_MM) {
+            return Err(Error::invalid(
+                "--size-mm",
+                format!("{size_mm} is not a crystal size; allowed (0, {REACH_MM}] mm"),
+            ));
+        }
+        let mut normals: Vec<(DVec3, f64)> = Vec::new();
+        let signs = [-1.0, 1.0];
+        match form {
+            "octahedron" | "macle" => {
+                for x in signs {
+                    for y in signs {
+                        for z in signs {
+                            normals.push((DVec3::new(x, y, z), 1.0));
+                        }
+                    }
+                }
+            }
+            "dodecahedron" => {
+                for a in signs {
+                    for b in signs {
+                        normals.push((DVec3::new(a, b, 0.0), 1.0));
+                        normals.push((DVec3::new(a, 0.0, b), 1.0));
+                        normals.push((DVec3::new(0.0, a, b), 1.0));
+                    }
+                }
+            }
+            "cube" => {
+                for a in signs {
+                    normals.push((DVec3::new(a, 0.0, 0.0), 1.0));
+                    normals.push((DVec3::new(0.0, a, 0.0), 1.0));
+                    normals.push((DVec3::new(0.0, 0.0, a), 1.0));
+                }
+            }
+            _ => {
+                return Err(Error::invalid(
+                    "ROUGH",
+                    format!(
+                        "`{form}` is neither an .obj/.stl file nor a crystal form; known forms: {}",
+                        CRYSTALS.join(", ")
+                    ),
+                ))
+            }
+        }
+        // Every plane at unit distance along its normal's direction (offsets are along the
+        // unnormalised normal, so divide by its length).
+        let mut planes: Vec<Plane> = normals
+            .iter()
+            .filter_map(|(n, d)| Plane::new(*n, d * n.length()))
+            .collect();
+        if form == "macle" {
+            // Flatten along (1,1,1): the two faces across that axis move in to a third of
+            // their distance; then turn that axis to z.
+            let axis = DVec3::ONE.normalize();
+            let turn = DQuat::from_rotation_arc(axis, DVec3::Z);
+            for p in &mut planes {
+                if p.normal.dot(axis).abs() > 0.99 {
+                    p.offset /= 3.0;
+                }
+                p.normal = turn * p.normal;
+            }
+        }
+        let unit = rough_solid(&planes, form)?;
+        let (lo, hi) = unit.bounding_box();
+        let solid = unit.scaled(size_mm / (hi - lo).max_element());
+        Ok(Rough {
+            name: form.to_string(),
+            solid,
+            mesh_volume: None,
+        })
+    }
+
+    /// The rough turned by `rotation` about the origin and then moved by `shift`.
+    pub fn moved(&self, rotation: DQuat, shift: DVec3) -> Result<Rough> {
+        let pts: Vec<DVec3> = self
+            .solid
+            .vertices()
+            .iter()
+            .map(|v| rotation * *v + shift)
+            .collect();
+        Rough::from_points(&self.name, &pts, self.mesh_volume)
+    }
+}
+
+/// The solid of a rough's planes, facets named `PREFIX-1`, `PREFIX-2`, … of tier `rough`.
+fn rough_solid(planes: &[Plane], prefix: &str) -> Result<Polyhedron> {
+    let named: Vec<FacetPlane> = planes
+        .iter()
+        .zip(1..)
+        .map(|(p, i)| FacetPlane {
+            plane: *p,
+            name: format!("{prefix}-{i}"),
+            tier: "rough".into(),
+        })
+        .collect();
+    Polyhedron::from_planes(&named)
+}
+
+fn bounds(pts: &[DVec3]) -> (DVec3, DVec3) {
+    pts.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    )
+}
+
+/// Load a rough: a crystal form name (needs `size_mm`) or a mesh path.
+pub fn load_rough(arg: &str, size_mm: Option<f64>) -> Result<Rough> {
+    if CRYSTALS.contains(&arg) {
+        let Some(l) = size_mm else {
+            return Err(Error::invalid(
+                "--size-mm",
+                format!("the crystal form `{arg}` needs --size-mm L (its largest extent in mm)"),
+            ));
+        };
+        return Rough::crystal(arg, l);
+    }
+    let path = Path::new(arg);
+    if path.extension().is_none() && !path.exists() {
+        return Rough::crystal(arg, size_mm.unwrap_or(1.0));
+    }
+    Rough::from_mesh(path, size_mm)
+}

@@ -1,0 +1,79 @@
+//! The example rough: a distorted octahedron as a scanned rough would come, its faces bulged,
+//! its axes stretched and sheared, with one dent (so its convex hull adds a little volume).
+//! `cuts/rough-octahedron.obj` is this mesh at `n = 16` (2,048 triangles); the tests and the
+//! bench build it here.
+
+use super::mesh::TriMesh;
+use crate::geometry::DVec3;
+use std::collections::HashMap;
+
+/// The distorted octahedron, each face split into `n²` triangles, in mm (about 8 × 6.6 × 5.2).
+pub fn distorted_octahedron(n: usize) -> TriMesh {
+    let n = n.max(1) as i64;
+    let mut mesh = TriMesh::default();
+    let mut index: HashMap<[i64; 3], usize> = HashMap::new();
+    let dent = DVec3::new(1.0, 0.3, 0.5).normalize() / 1.8;
+    let mut point = |k: [i64; 3], mesh: &mut TriMesh| -> usize {
+        *index.entry(k).or_insert_with(|| {
+            let p = DVec3::new(k[0] as f64, k[1] as f64, k[2] as f64) / n as f64;
+            // Bulge the faces (their centres out by a fifteenth), dent one spot.
+            let bulge = 1.0 + 0.2 * (1.0 - p.abs().max_element());
+            let dip = 1.0 - 0.08 * (-(p - dent).length_squared() / 0.03).exp();
+            let p = p * bulge * dip;
+            let q = DVec3::new(4.0 * p.x + 0.5 * p.z, 3.3 * p.y + 0.3 * p.x, 2.6 * p.z);
+            mesh.vertices.push(q);
+            mesh.vertices.len() - 1
+        })
+    };
+    for sx in [-1i64, 1] {
+        for sy in [-1i64, 1] {
+            for sz in [-1i64, 1] {
+                let (a, mut b, mut c) = ([sx, 0, 0], [0, sy, 0], [0, 0, sz]);
+                if sx * sy * sz < 0 {
+                    std::mem::swap(&mut b, &mut c);
+                }
+                let at = |i: i64, j: i64| -> [i64; 3] {
+                    let k = n - i - j;
+                    [0, 1, 2].map(|d| i * a[d] + j * b[d] + k * c[d])
+                };
+                for i in 0..n {
+                    for j in 0..n - i {
+                        let t = [at(i, j), at(i + 1, j), at(i, j + 1)];
+                        let tri = t.map(|k| point(k, &mut mesh));
+                        mesh.triangles.push(tri);
+                        if i + j + 1 < n {
+                            let t = [at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+                            let tri = t.map(|k| point(k, &mut mesh));
+                            mesh.triangles.push(tri);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    mesh
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::Rough;
+
+    /// The bundled example is this generator's output (set `FACETLAB_WRITE_SAMPLE=1` to write
+    /// it again), closed, not quite convex, 2,048 triangles.
+    #[test]
+    fn the_bundled_example_rough_is_the_generated_one() {
+        let mesh = distorted_octahedron(16);
+        assert_eq!(mesh.triangles.len(), 2048);
+        let text = mesh
+            .to_obj("facetlab example rough: a distorted octahedron (src/plan/sample.rs, n = 16)");
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cuts/rough-octahedron.obj");
+        if std::env::var_os("FACETLAB_WRITE_SAMPLE").is_some() {
+            std::fs::write(path, &text).unwrap();
+        }
+        assert_eq!(std::fs::read_to_string(path).unwrap(), text);
+        let rough = Rough::from_trimesh("r", "r", mesh, None).unwrap();
+        let excess = rough.hull_excess();
+        assert!(excess > 1e-4 && excess < 0.05, "{excess}");
+    }
+}

@@ -1,0 +1,459 @@
+//! The search: for each family, the orientation (three angles) and the proportions (the free
+//! parameters within the config's bounds) that maximise the objective, the containment program
+//! ([`super::fit`]) giving the largest copy at each.
+//!
+//! The orientation is a rotation vector `ω` (the cut turned by `|ω|` about `ω/|ω|`) taken in
+//! the rough's own frame (its vertices' centroid and principal axes, the axes' signs set by
+//! the third moments), so that turning or moving the rough turns and moves the plans with it.
+//! A free parameter is `lo + (hi − lo)·sigmoid(u)`, so Nelder–Mead runs unbounded. Start 0 has
+//! the cut's table across the rough's thinnest principal direction and the free parameters in
+//! the middle of their bounds; the other starts are seeded random orientations and parameter
+//! positions. The starts run in parallel and are gathered in start order, so the answer is
+//! the same on any number of threads.
+
+use super::config::{Bound, Objective, PlanConfig};
+use super::fit::largest_copy;
+use super::rough::Rough;
+use crate::cut::grade::{estimate, Grade};
+use crate::cut::{family, Cut, CutSpace};
+use crate::error::{Error, Result};
+use crate::geometry::{DVec3, FacetPlane, Plane, Polyhedron};
+use crate::metrics::{score, ScoreConfig};
+use crate::optics::Material;
+use argmin::core::{CostFunction, Executor};
+use argmin::solver::neldermead::NelderMead;
+use glam::{DMat3, DQuat};
+use rand::rngs::SmallRng;
+use rand::{Rng, SeedableRng};
+use rayon::prelude::*;
+use std::collections::{BTreeMap, HashMap};
+use std::sync::Mutex;
+
+/// Grams per cubic millimetre per (g/cm³), times carats per gram.
+const CARATS_PER_MM3_PER_DENSITY: f64 = 1e-3 * 5.0;
+
+/// The cost of a point whose cut cannot be built or placed (every real cost is ≤ 0).
+const FAILED: f64 = 1.0;
+
+/// One plan: a cut of a family, placed in the rough.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    /// The cut as its family builds it (width W = 1, girdle frame).
+    pub cut: Cut,
+    /// Rotation from the cut's frame to the rough's.
+    pub rotation: DQuat,
+    /// Scale: the cut's width W in mm.
+    pub scale: f64,
+    /// Translation (mm): a point `v` of the cut goes to `scale·rotation·v + shift`.
+    pub shift: DVec3,
+    /// Volume in mm³.
+    pub volume_mm3: f64,
+    /// Weight in carats.
+    pub carats: f64,
+    /// Cut volume / rough (hull) volume.
+    pub yield_fraction: f64,
+    /// Grade estimate (round brilliants).
+    pub grade: Option<Grade>,
+    /// The objective's value (carats, or the price).
+    pub objective: f64,
+}
+
+impl Plan {
+    /// The cut's facet planes in the rough's coordinates (mm).
+    pub fn placed_planes(&self) -> Vec<FacetPlane> {
+        self.cut
+            .solid
+            .facet_planes()
+            .into_iter()
+            .map(|mut f| {
+                let n = self.rotation * f.plane.normal;
+                f.plane = Plane {
+                    normal: n,
+                    offset: self.scale * f.plane.offset + n.dot(self.shift),
+                };
+                f
+            })
+            .collect()
+    }
+
+    /// The placed cut as a solid in the rough's coordinates (mm).
+    pub fn placed_solid(&self) -> Result<Polyhedron> {
+        Polyhedron::from_planes(&self.placed_planes())
+    }
+
+    /// Where the cut's table faces in the rough (unit vector).
+    pub fn up(&self) -> DVec3 {
+        self.rotation * DVec3::Z
+    }
+}
+
+/// The planner for one rough.
+pub struct Planner<'a> {
+    rough: &'a Rough,
+    planes: Vec<Plane>,
+    inside: DVec3,
+    frame: DQuat,
+    density: f64,
+    config: &'a PlanConfig,
+}
+
+/// The rough's frame: vertices' centroid and principal axes (largest spread first), each
+/// axis's sign chosen so that the vertices' third moment along it is positive.
+fn principal_frame(pts: &[DVec3]) -> DQuat {
+    let n = pts.len() as f64;
+    let c = pts.iter().copied().sum::<DVec3>() / n;
+    let mut m = [[0.0; 3]; 3];
+    for p in pts {
+        let d = (*p - c).to_array();
+        for i in 0..3 {
+            for j in 0..3 {
+                m[i][j] += d[i] * d[j] / n;
+            }
+        }
+    }
+    // Jacobi rotations.
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _ in 0..50 {
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if m[p][q].abs() < 1e-300 {
+                continue;
+            }
+            let theta = 0.5 * (2.0 * m[p][q]).atan2(m[q][q] - m[p][p]);
+            let (s, co) = theta.sin_cos();
+            // M ← Jᵀ M J: columns p and q, then rows p and q.
+            for row in &mut m {
+                let (a, b) = (row[p], row[q]);
+                row[p] = co * a - s * b;
+                row[q] = s * a + co * b;
+            }
+            let (mp, mq) = (m[p], m[q]);
+            for (k, (a, b)) in mp.iter().zip(&mq).enumerate() {
+                m[p][k] = co * a - s * b;
+                m[q][k] = s * a + co * b;
+            }
+            for row in &mut v {
+                let (a, b) = (row[p], row[q]);
+                row[p] = co * a - s * b;
+                row[q] = s * a + co * b;
+            }
+        }
+    }
+    let mut axes: Vec<(f64, DVec3)> = (0..3)
+        .map(|k| (m[k][k], DVec3::new(v[0][k], v[1][k], v[2][k]).normalize()))
+        .collect();
+    axes.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut e: Vec<DVec3> = axes
+        .iter()
+        .map(|(_, a)| {
+            let third: f64 = pts.iter().map(|p| (*p - c).dot(*a).powi(3)).sum();
+            if third < 0.0 {
+                -*a
+            } else {
+                *a
+            }
+        })
+        .collect();
+    if e[0].cross(e[1]).dot(e[2]) < 0.0 {
+        e[2] = -e[2];
+    }
+    DQuat::from_mat3(&DMat3::from_cols(e[0], e[1], e[2]))
+}
+
+/// The cost function of one family's search.
+struct Problem<'p> {
+    planner: &'p Planner<'p>,
+    space: &'static crate::cut::Family,
+    fixed: BTreeMap<String, f64>,
+    free: Vec<(String, f64, f64)>,
+    /// The cut and its grade when no parameter is free.
+    built: Option<(Cut, Option<Grade>)>,
+    /// With a minimum brilliance: the score settings (brilliance only), the minimum, and the
+    /// brilliance of each parameter set met so far (by the bits of its values).
+    brilliance: Option<BrillianceCheck>,
+}
+
+/// A minimum brilliance: the score settings, the minimum, and the brilliance of each
+/// parameter set met so far (keyed by the bits of its values).
+type BrillianceCheck = (ScoreConfig, f64, Mutex<HashMap<Vec<u64>, f64>>);
+
+fn sigmoid(u: f64) -> f64 {
+    1.0 / (1.0 + (-u).exp())
+}
+
+impl Problem<'_> {
+    fn params(&self, x: &[f64]) -> BTreeMap<String, f64> {
+        let mut p = self.fixed.clone();
+        for (k, (key, lo, hi)) in self.free.iter().enumerate() {
+            p.insert(key.clone(), lo + (hi - lo) * sigmoid(x[3 + k]));
+        }
+        p
+    }
+
+    fn rotation(&self, x: &[f64]) -> DQuat {
+        self.planner.frame * DQuat::from_scaled_axis(DVec3::new(x[0], x[1], x[2]))
+    }
+
+    fn plan(&self, x: &[f64]) -> Option<Plan> {
+        let cut = match &self.built {
+            Some((c, _)) => c.clone(),
+            None => self.space.build(self.space.name, &self.params(x)).ok()?,
+        };
+        self.planner.place(&cut, self.rotation(x))
+    }
+
+    fn cost_at(&self, x: &[f64]) -> Option<f64> {
+        let rotation = self.rotation(x);
+        let built;
+        let (cut, grade) = match &self.built {
+            Some((cut, grade)) => (cut, *grade),
+            None => {
+                built = self.space.build(self.space.name, &self.params(x)).ok()?;
+                let grade = estimate(&built).map(|g| g.estimate);
+                (&built, grade)
+            }
+        };
+        let (_, _, objective, grade) = self.planner.measure(cut, grade, rotation)?;
+        let mut value = self.planner.penalised(objective, grade);
+        if let Some((cfg, min, seen)) = &self.brilliance {
+            let key: Vec<u64> = cut.params.values().map(|v| v.to_bits()).collect();
+            let known = seen.lock().ok().and_then(|m| m.get(&key).copied());
+            let b = known.unwrap_or_else(|| {
+                let b = score(&cut.solid, cfg).brilliance;
+                if let Ok(mut m) = seen.lock() {
+                    m.insert(key, b);
+                }
+                b
+            });
+            if b < *min {
+                value *= 0.01;
+            }
+        }
+        Some(-value)
+    }
+}
+
+impl CostFunction for &Problem<'_> {
+    type Param = Vec<f64>;
+    type Output = f64;
+    fn cost(&self, x: &Vec<f64>) -> std::result::Result<f64, argmin::core::Error> {
+        Ok(self.cost_at(x).unwrap_or(FAILED))
+    }
+}
+
+impl<'a> Planner<'a> {
+    /// A planner for `rough` under `config`; `density` in g/cm³ (the material's).
+    pub fn new(rough: &'a Rough, config: &'a PlanConfig, density: f64) -> Planner<'a> {
+        Planner {
+            rough,
+            planes: rough.planes(),
+            inside: rough.solid.centroid(),
+            frame: principal_frame(rough.solid.vertices()),
+            density,
+            config,
+        }
+    }
+
+    /// The largest copy of `cut` turned by `rotation`: the fit, its carats and objective, and
+    /// the grade passed in.
+    fn measure(
+        &self,
+        cut: &Cut,
+        grade: Option<Grade>,
+        rotation: DQuat,
+    ) -> Option<(super::Fit, f64, f64, Option<Grade>)> {
+        let verts: Vec<DVec3> = cut.solid.vertices().iter().map(|v| rotation * *v).collect();
+        let fit = largest_copy(&self.planes, &verts, self.inside)?;
+        if fit.scale.is_nan() || fit.scale <= 0.0 {
+            return None;
+        }
+        let carats =
+            cut.solid.volume() * fit.scale.powi(3) * self.density * CARATS_PER_MM3_PER_DENSITY;
+        let objective = match &self.config.objective {
+            Objective::Weight => carats,
+            Objective::Value(t) => t.value(carats, grade),
+        };
+        Some((fit, carats, objective, grade))
+    }
+
+    /// The largest copy of `cut` turned by `rotation` (cut frame → rough frame), with its
+    /// weight, yield, grade and objective; `None` if the program fails.
+    pub fn place(&self, cut: &Cut, rotation: DQuat) -> Option<Plan> {
+        let grade = estimate(cut).map(|g| g.estimate);
+        let (fit, carats, objective, grade) = self.measure(cut, grade, rotation)?;
+        let volume_mm3 = cut.solid.volume() * fit.scale.powi(3);
+        Some(Plan {
+            cut: cut.clone(),
+            rotation,
+            scale: fit.scale,
+            shift: fit.shift,
+            volume_mm3,
+            carats,
+            yield_fraction: volume_mm3 / self.rough.volume(),
+            grade,
+            objective,
+        })
+    }
+
+    /// The objective, cut to a hundredth per grade step below the config's grade.
+    fn penalised(&self, objective: f64, grade: Option<Grade>) -> f64 {
+        match (self.config.grade, grade) {
+            (Some(want), Some(got)) if got > want => {
+                objective * 0.01 / (got as u8 - want as u8) as f64
+            }
+            _ => objective,
+        }
+    }
+
+    /// Whether a plan meets the config's grade (cuts without a grade estimate always do).
+    pub fn meets_grade(&self, p: &Plan) -> bool {
+        match (self.config.grade, p.grade) {
+            (Some(want), Some(got)) => got <= want,
+            _ => true,
+        }
+    }
+
+    /// The start points of a family's search: `3 + free` coordinates each.
+    pub fn start_points(&self, free: usize) -> Vec<Vec<f64>> {
+        let mut rng = SmallRng::seed_from_u64(self.config.seed);
+        (0..self.config.starts)
+            .map(|k| {
+                let mut x = vec![0.0; 3 + free];
+                if k > 0 {
+                    let q = DQuat::from_xyzw(
+                        rng.random_range(-1.0..1.0),
+                        rng.random_range(-1.0..1.0),
+                        rng.random_range(-1.0..1.0),
+                        rng.random_range(-1.0..1.0),
+                    )
+                    .normalize();
+                    let w = q.to_scaled_axis();
+                    x[..3].copy_from_slice(&w.to_array());
+                    for u in &mut x[3..] {
+                        *u = rng.random_range(-1.5..1.5);
+                    }
+                }
+                x
+            })
+            .collect()
+    }
+
+    /// Plan one family: every start's best, best first, distinct plans only (at most the
+    /// config's `top`). `done` is called after each start (progress).
+    pub fn plan_family(&self, name: &str, done: &(dyn Fn() + Sync)) -> Result<Vec<Plan>> {
+        let space = family(name)?;
+        let settings = self.config.params.get(name).cloned().unwrap_or_default();
+        let mut fixed = BTreeMap::new();
+        let mut free = Vec::new();
+        for key in space.keys() {
+            match settings.get(key) {
+                Some(Bound::Fixed(v)) => {
+                    fixed.insert(key.to_string(), *v);
+                }
+                Some(Bound::Free(lo, hi)) => free.push((key.to_string(), *lo, *hi)),
+                None => {}
+            }
+        }
+        let built = if free.is_empty() {
+            let cut = space.build(name, &fixed)?;
+            let grade = estimate(&cut).map(|g| g.estimate);
+            Some((cut, grade))
+        } else {
+            None
+        };
+        let brilliance = match self.config.min_brilliance {
+            Some(min) => {
+                let mut cfg = ScoreConfig::fast();
+                cfg.material = Material::by_name(&self.config.material)?;
+                cfg.parts.fire = false;
+                cfg.parts.scintillation = false;
+                Some((cfg, min, Mutex::new(HashMap::new())))
+            }
+            None => None,
+        };
+        let problem = Problem {
+            planner: self,
+            space,
+            fixed,
+            free,
+            built,
+            brilliance,
+        };
+        let starts = self.start_points(problem.free.len());
+        let finals: Vec<Option<(f64, Vec<f64>)>> = starts
+            .par_iter()
+            .map(|x0| {
+                let r = self.run_start(&problem, x0);
+                done();
+                r
+            })
+            .collect();
+        let mut plans: Vec<(f64, Plan)> = finals
+            .into_iter()
+            .flatten()
+            .filter_map(|(c, x)| Some((c, problem.plan(&x)?)))
+            .collect();
+        plans.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut out: Vec<Plan> = Vec::new();
+        let size = self.rough.size();
+        for (_, p) in plans {
+            if out.len() >= self.config.top {
+                break;
+            }
+            if !out.iter().any(|q| same_plan(q, &p, size)) {
+                out.push(p);
+            }
+        }
+        if out.is_empty() {
+            return Err(Error::invalid(
+                "ROUGH",
+                format!(
+                    "no {name} fits in the rough {} at the config's bounds",
+                    self.rough.name
+                ),
+            ));
+        }
+        Ok(out)
+    }
+
+    /// One start: Nelder–Mead from `x0`, then restarted twice from its best with smaller
+    /// simplices (the objective has kinks where the constraints that bind change, at which a
+    /// collapsed simplex stalls).
+    fn run_start(&self, problem: &Problem<'_>, x0: &[f64]) -> Option<(f64, Vec<f64>)> {
+        let mut best = self.nelder_mead(problem, x0, 1.0)?;
+        for step in [0.1, 0.01] {
+            let next = self.nelder_mead(problem, &best.1, step)?;
+            if next.0 <= best.0 {
+                best = next;
+            }
+        }
+        Some(best)
+    }
+
+    fn nelder_mead(&self, problem: &Problem<'_>, x0: &[f64], step: f64) -> Option<(f64, Vec<f64>)> {
+        let mut simplex = vec![x0.to_vec()];
+        for i in 0..x0.len() {
+            let mut x = x0.to_vec();
+            x[i] += step * if i < 3 { 0.4 } else { 1.0 };
+            simplex.push(x);
+        }
+        let solver = NelderMead::new(simplex).with_sd_tolerance(1e-12).ok()?;
+        let res = Executor::new(problem, solver)
+            .configure(|s| s.max_iters(self.config.max_iterations))
+            .run()
+            .ok()?;
+        let x = res.state.best_param.clone()?;
+        Some((res.state.best_cost, x))
+    }
+}
+
+/// Two plans are the same if their tables face within 5° of each other, their centres lie
+/// within 2 % of the rough's size and their weights within 1 %.
+fn same_plan(a: &Plan, b: &Plan, size: f64) -> bool {
+    let centre = |p: &Plan| p.scale * (p.rotation * p.cut.solid.centroid()) + p.shift;
+    a.up().angle_between(b.up()) < 5f64.to_radians()
+        && centre(a).distance(centre(b)) < 0.02 * size
+        && (a.carats - b.carats).abs() < 0.01 * a.carats.max(b.carats)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,161 @@
+//! `facetlab plan`: a small run writes its folder; bad input (an open or flat mesh, a mesh not
+//! in mm without --size-mm, a rough too small for any cut, unknown forms and families) is one
+//! line, exit code 2, nothing written (issue 26's check 4).
+
+use super::{bad, files, ok};
+use std::path::Path;
+
+/// A closed tetrahedron (mm) as OBJ, its last face left out when `open`.
+fn tetra(dir: &Path, name: &str, scale: f64, open: bool) -> String {
+    let mut s = String::new();
+    for v in [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ] {
+        s.push_str(&format!(
+            "v {} {} {}\n",
+            v[0] * scale,
+            v[1] * scale,
+            v[2] * scale
+        ));
+    }
+    s.push_str("f 1 3 2\nf 1 2 4\nf 2 3 4\n");
+    if !open {
+        s.push_str("f 1 4 3\n");
+    }
+    std::fs::write(dir.join(name), s).unwrap();
+    name.to_string()
+}
+
+#[test]
+fn a_crystal_plan_writes_its_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let cfg = "seed = 3\n[search]\nstarts = 2\nmax_iterations = 60\n";
+    std::fs::write(p.join("plan.toml"), cfg).unwrap();
+    ok(
+        p,
+        &[
+            "plan",
+            "octahedron",
+            "--size-mm",
+            "6",
+            "--family",
+            "round-brilliant",
+            "--top",
+            "1",
+            "--config",
+            "plan.toml",
+            "--quiet",
+            "-o",
+            "run",
+        ],
+    );
+    let got = files(&p.join("run"));
+    for f in [
+        "summary.json",
+        "report.html",
+        "rough.obj",
+        "scene.obj",
+        "overview.png",
+        "round-brilliant-1.obj",
+        "round-brilliant-1.toml",
+        "round-brilliant-1.asc",
+        "round-brilliant-1-views.png",
+    ] {
+        assert!(got.iter().any(|g| g == f), "{f} missing: {got:?}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(p.join("run/summary.json")).unwrap())
+            .unwrap();
+    let plan = &json["plans"][0];
+    let y = plan["yield"].as_f64().unwrap();
+    assert!(y > 0.3 && y < 1.0, "{y}");
+    assert_eq!(json["rough"]["volume_mm3"].as_f64().unwrap().round(), 36.0);
+    // The written cut is the planned one: read back, its volume is yield × rough volume.
+    let back = ok(p, &["info", "run/round-brilliant-1.toml", "--json"]);
+    assert!(back.contains("volume"), "{back}");
+    // Only the run folder is left (no temporary folder).
+    assert_eq!(files(p), vec!["plan.toml", "run"]);
+}
+
+#[test]
+fn bad_roughs_are_one_line_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let open = tetra(p, "open.obj", 5.0, true);
+    bad(
+        p,
+        &["plan", &open, "-o", "out"],
+        &["open.obj", "not closed"],
+    );
+    let tiny = tetra(p, "tiny.obj", 0.01, false);
+    bad(p, &["plan", &tiny, "-o", "out"], &["tiny.obj", "--size-mm"]);
+    std::fs::write(
+        p.join("unit.obj"),
+        "# units: girdle diameters\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n",
+    )
+    .unwrap();
+    bad(
+        p,
+        &["plan", "unit.obj", "-o", "out"],
+        &["unit.obj", "not millimetres"],
+    );
+    std::fs::write(
+        p.join("flat.obj"),
+        "v 0 0 0\nv 5 0 0\nv 0 5 0\nv 5 5 0\nf 1 2 3\nf 2 4 3\nf 1 3 2\nf 2 3 4\n",
+    )
+    .unwrap();
+    bad(p, &["plan", "flat.obj", "-o", "out"], &["flat.obj"]);
+    bad(
+        p,
+        &[
+            "plan",
+            "octahedron",
+            "--size-mm",
+            "0.5",
+            "--family",
+            "oval",
+            "--quiet",
+            "-o",
+            "out",
+        ],
+        &["too small", "min_width_mm"],
+    );
+    bad(
+        p,
+        &["plan", "octahedron", "-o", "out"],
+        &["--size-mm", "octahedron"],
+    );
+    bad(
+        p,
+        &["plan", "pyramid", "--size-mm", "5", "-o", "out"],
+        &["pyramid", "octahedron"],
+    );
+    bad(
+        p,
+        &[
+            "plan",
+            "cube",
+            "--size-mm",
+            "5",
+            "--family",
+            "heart",
+            "-o",
+            "out",
+        ],
+        &["--family", "heart"],
+    );
+    bad(
+        p,
+        &["plan", "cube", "--size-mm", "-5", "-o", "out"],
+        &["--size-mm"],
+    );
+    let closed = tetra(p, "closed.obj", 5.0, false);
+    bad(p, &["plan", &closed, "-o", &closed], &["--out"]);
+    let mut left = files(p);
+    left.retain(|f| !f.ends_with(".obj"));
+    assert!(left.is_empty(), "{left:?}");
+}
