@@ -126,8 +126,8 @@ impl ColourArgs {
 
     /// Give every material that has no body colour yet (a design traced in its own
     /// material) its colour under these flags, and return the lines for stderr: per coloured
-    /// cut, the colour, the stone's width and that colour is not yet traced (the tracers do
-    /// not use it yet). `cuts` and `materials` pair up; a material chosen by the flags
+    /// cut, the colour, the stone's width and that this command does not trace it (`trace`
+    /// without `--absorption colour`). `cuts` and `materials` pair up; a material chosen by the flags
     /// already has its colour ([`ColourArgs::colour_for`] in the command's settings).
     pub fn apply(
         &self,

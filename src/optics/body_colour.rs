@@ -236,19 +236,12 @@ impl BodyColour {
         )
     }
 
-    /// [`BodyColour::note`], and that the scores do not use it yet.
+    /// [`BodyColour::note`], and that this trace does not use it (the photon tracer's
+    /// `trace` without `--absorption colour`).
     pub fn not_traced_note(&self, width_mm: f64) -> String {
-        let width_mm = (width_mm * 100.0).round() / 100.0;
-        let density = if self.density == 1.0 {
-            String::new()
-        } else {
-            format!(" × density {}", self.density)
-        };
         format!(
-            "colour: {}{density} ({}); stone width {width_mm} mm, seen through {width_mm} mm: {}; body colour is not yet traced in the scores (render draws it): they are the colourless stone's",
-            self.name,
-            self.source,
-            self.hex_through(width_mm)
+            "{}; body colour is not yet traced here (give --absorption colour): the colourless stone's",
+            self.note(width_mm)
         )
     }
 }

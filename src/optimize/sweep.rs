@@ -208,7 +208,7 @@ impl SweepScore {
     }
 
     /// Parse `brilliance`, `fire`, `scintillation`, `objective` or a colour score
-    /// ([`COLOUR_SCORES`]).
+    /// (`colour_l`, `colour_c`, `extinction`, `windowing`).
     pub fn parse(s: &str) -> Result<SweepScore> {
         match s {
             "brilliance" => Ok(SweepScore::Brilliance),
