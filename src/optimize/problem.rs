@@ -126,6 +126,28 @@ pub fn check_constraints(cut: &Cut, c: &Constraints) -> Vec<ConstraintCheck> {
     out
 }
 
+/// Measure the configured limits on a coloured stone's colour scores (`max_extinction`,
+/// `max_windowing`) on its `scores`; a score the evaluator did not give counts as 0.
+pub fn check_score_constraints(scores: &ScoreSet, c: &Constraints) -> Vec<ConstraintCheck> {
+    [
+        ("extinction", c.max_extinction),
+        ("windowing", c.max_windowing),
+    ]
+    .into_iter()
+    .filter_map(|(name, hi)| {
+        let hi = hi?;
+        let v = scores.get(name).filter(|v| v.is_finite()).unwrap_or(0.0);
+        Some(ConstraintCheck {
+            name: name.into(),
+            value: v,
+            limit: format!("<= {hi}"),
+            violation: (v - hi).max(0.0),
+            ok: v <= hi,
+        })
+    })
+    .collect()
+}
+
 /// The penalty for a set of checks: `penalty · Σ violation / 0.01`.
 pub fn penalty(checks: &[ConstraintCheck], c: &Constraints) -> f64 {
     c.penalty * checks.iter().map(|k| k.violation / POINT).sum::<f64>()
@@ -227,7 +249,8 @@ impl<'a> Objective<'a> {
             Err(e) => return failed(e.to_string(), Some(cut)),
         };
         let score = weighted(&scores, &self.config.weights);
-        let checks = check_constraints(&cut, &self.config.constraints);
+        let mut checks = check_constraints(&cut, &self.config.constraints);
+        checks.extend(check_score_constraints(&scores, &self.config.constraints));
         let pen = penalty(&checks, &self.config.constraints);
         let cost = -score + pen;
         if !cost.is_finite() {
@@ -412,6 +435,33 @@ mod tests {
         assert!((e.checks[0].violation - (d - 0.55)).abs() < 1e-12);
         assert!((e.penalty - 2.0 * (d - 0.55) / 0.01).abs() < 1e-9);
         assert!((e.cost - (-0.34 + e.penalty)).abs() < 1e-12);
+    }
+
+    /// `max_extinction` and `max_windowing` limit a coloured stone's colour scores with the
+    /// same penalty per percentage point; without a body colour they are refused.
+    #[test]
+    fn colour_limits_cost_their_violation() {
+        let c = cfg(
+            "[score]\nmaterial = \"ruby\"\n[constraints]\nmax_extinction = 0.15\nmax_windowing = 0.1\npenalty = 2.0\n",
+        );
+        let dark = |cut: &Cut| -> Result<ScoreSet> {
+            let mut s = crown(cut)?;
+            s.extra = vec![("extinction".into(), 0.35), ("windowing".into(), 0.05)];
+            Ok(s)
+        };
+        let o = Objective::new(&c, &dark);
+        let e = o.evaluate(&[0.57, 34.0]);
+        let ext = e.checks.iter().find(|k| k.name == "extinction").unwrap();
+        let win = e.checks.iter().find(|k| k.name == "windowing").unwrap();
+        assert!(!ext.ok && win.ok);
+        assert!((ext.violation - 0.2).abs() < 1e-12);
+        assert!((e.penalty - 2.0 * 0.2 / 0.01).abs() < 1e-9, "{}", e.penalty);
+        let text = "[cut]\nfamily = \"round-brilliant\"\n[free]\ntable = [0.45, 0.7]\n[constraints]\nmax_extinction = 0.15\n";
+        let err = Config::from_str(text, "t.toml").unwrap_err().to_string();
+        assert!(
+            err.contains("constraints.max_extinction") && err.contains("no body colour"),
+            "{err}"
+        );
     }
 
     #[test]

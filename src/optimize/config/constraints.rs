@@ -25,6 +25,14 @@ pub struct RawConstraints {
     /// `excellent`, `very-good`, `good` or `fair`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub grade: Option<String>,
+    /// Largest allowed extinction of a coloured stone (share of its face-up picture darker
+    /// than L* 20; needs a body colour in `[score]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_extinction: Option<f64>,
+    /// Largest allowed windowing of a coloured stone (share of the face-up light seen from
+    /// below the girdle plane; needs a body colour in `[score]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_windowing: Option<f64>,
     /// Cost added per percentage point (0.01) of violation; default 1.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub penalty: Option<f64>,
@@ -43,6 +51,10 @@ pub struct Constraints {
     pub min_weight_retention: Option<f64>,
     /// Worst proportion grade estimate allowed (round brilliants).
     pub grade: Option<Grade>,
+    /// Largest extinction of a coloured stone's face-up picture.
+    pub max_extinction: Option<f64>,
+    /// Largest windowing of a coloured stone's face-up picture.
+    pub max_windowing: Option<f64>,
     /// Cost per percentage point of violation.
     pub penalty: f64,
 }
@@ -120,6 +132,8 @@ pub(super) fn validate(rk: &RawConstraints, at: At) -> Result<Constraints> {
             1.0,
         )?,
         grade,
+        max_extinction: frac("constraints.max_extinction", rk.max_extinction, 1.0)?,
+        max_windowing: frac("constraints.max_windowing", rk.max_windowing, 1.0)?,
         penalty,
     };
     Ok(constraints)

@@ -296,6 +296,17 @@ impl Config {
                 }
             }
         }
+        for (field, set) in [
+            ("constraints.max_extinction", constraints.max_extinction),
+            ("constraints.max_windowing", constraints.max_windowing),
+        ] {
+            if set.is_some() && score.material.colour.is_none() {
+                return Err(Error::invalid(
+                    at(field),
+                    "the stone has no body colour to limit; give [score] colour or a coloured material (facetlab materials)",
+                ));
+            }
+        }
 
         Ok(Config {
             source: source.to_string(),
@@ -389,6 +400,8 @@ impl Config {
                 min_girdle: c.min_girdle,
                 min_weight_retention: c.min_weight_retention,
                 grade: c.grade.map(|g| g.name().to_string()),
+                max_extinction: c.max_extinction,
+                max_windowing: c.max_windowing,
                 penalty: Some(c.penalty),
             }),
             method: Some(RawMethod {
