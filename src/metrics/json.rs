@@ -4,14 +4,16 @@
 //! [`crate::verify::json`] fills in).
 
 use super::{ScoreConfig, Scores, Tilt};
-use crate::optics::Dispersion;
+use crate::optics::{Dispersion, StoneSize};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
 /// A [`ScoreConfig`] as written to JSON: `material`, `ri` (null unless a fixed index),
 /// `polarization`, `head_shadow_deg`, `wavelength_nm`, `bands`, `tilts`,
 /// `scintillation_tilts`, `resolution`, `split_threshold`, `fire_split_threshold`,
-/// `face_up_split_threshold`, `threshold`, `ray_floor`, `narrow_forks`.
+/// `face_up_split_threshold`, `threshold`, `ray_floor`, `narrow_forks`, and for a coloured
+/// stone `colour` (`{name, density, source}`) and `size_mm` (`{width}`, `{length}` or
+/// `{length, width}`, as given).
 #[derive(Serialize)]
 pub struct SettingsJson<'a> {
     material: &'a str,
@@ -29,6 +31,18 @@ pub struct SettingsJson<'a> {
     threshold: f64,
     ray_floor: f64,
     narrow_forks: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    colour: Option<ColourJson<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    size_mm: Option<BTreeMap<&'static str, f64>>,
+}
+
+/// A body colour as the settings name it.
+#[derive(Serialize)]
+struct ColourJson<'a> {
+    name: &'a str,
+    density: f64,
+    source: &'a str,
 }
 
 impl<'a> SettingsJson<'a> {
@@ -53,6 +67,16 @@ impl<'a> SettingsJson<'a> {
             threshold: c.trace.threshold,
             ray_floor: c.trace.ray_floor,
             narrow_forks: c.trace.narrow_forks,
+            colour: c.material.colour.as_ref().map(|b| ColourJson {
+                name: &b.name,
+                density: b.density,
+                source: &b.source,
+            }),
+            size_mm: c.material.colour.as_ref().map(|_| match c.size {
+                StoneSize::Width(w) => BTreeMap::from([("width", w)]),
+                StoneSize::Length(l) => BTreeMap::from([("length", l)]),
+                StoneSize::LengthWidth(l, w) => BTreeMap::from([("length", l), ("width", w)]),
+            }),
         }
     }
 }
