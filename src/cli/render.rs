@@ -296,7 +296,7 @@ pub struct CutJson {
     pub fire: Option<f64>,
     /// Colour of a coloured stone's picture (a body colour under a grey light): `l`, `c`,
     /// `h_deg` (CIELAB L*, C*, h° of the mean colour), `l_spread` (standard deviation of the
-    /// pixels' L*), `extinction` (share of the outline darker than L* 20), `windowing`
+    /// pixels' L*), `extinction` (share of the outline whose light through the stone is darker than L* 20), `windowing`
     /// (share of the light seen that comes from below the girdle plane).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub colour: Option<render::ColourStats>,

@@ -17,6 +17,8 @@ use rayon::prelude::*;
 /// footprint (one per channel).
 struct Layer {
     tree: BeamTree,
+    /// Channels of `values` in use.
+    channels: usize,
     /// Per exit: values per unit area, one per channel.
     values: Vec<[f64; 5]>,
     /// Per exit: smallest and largest y of its footprint.
@@ -49,7 +51,12 @@ impl Layer {
             }
             values.push(v);
         }
-        Layer { tree, values, ys }
+        Layer {
+            tree,
+            channels,
+            values,
+            ys,
+        }
     }
 }
 
@@ -119,7 +126,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         .then_some(opts.material.colour.as_ref())
         .flatten();
     // A coloured picture's XYZ pixels and its windowing, for its colour statistics.
-    let mut colour_input: Option<(Vec<DVec3>, f64)> = None;
+    let mut colour_input: Option<(Vec<DVec3>, Vec<DVec3>, f64)> = None;
     let (channels, layers) = if opts.light == Light::Fire || body.is_some() {
         let fire = opts.light == Light::Fire;
         let body = opts.material.colour.as_ref();
@@ -167,15 +174,24 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                         }
                     })
                     .collect();
-                Layer::new(t, 1, |i| [v[i], 0.0, 0.0, 0.0, 0.0])
+                // A coloured stone's second channel: the light that went through it (the
+                // surface reflection left out), for its extinction.
+                let through: Vec<f64> = t
+                    .exits
+                    .iter()
+                    .zip(&v)
+                    .map(|(e, &x)| if e.external { 0.0 } else { x })
+                    .collect();
+                let n = if body.is_some() { 2 } else { 1 };
+                Layer::new(t, n, |i| [v[i], through[i], 0.0, 0.0, 0.0])
             })
             .collect();
-        let band_images: Vec<Raster> = band_layers
+        let band_rasters: Vec<Vec<Raster>> = band_layers
             .par_iter()
-            .map(|l| fill(std::slice::from_ref(l), 1, size, half).remove(0))
+            .map(|l| fill(std::slice::from_ref(l), l.channels, size, half))
             .collect();
         let images: Vec<&Raster> = (0..bands.len())
-            .map(|b| &band_images[if constant { 0 } else { b }])
+            .map(|b| &band_rasters[if constant { 0 } else { b }][0])
             .collect();
         for l in &band_layers {
             stats.cut_off = stats.cut_off.max(l.tree.stats.cut_off);
@@ -231,16 +247,19 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                 den += w.y;
             }
             let window = if den > 0.0 { num / den } else { 0.0 };
-            let xyz: Vec<DVec3> = (0..size * size)
-                .map(|p| {
-                    images
-                        .iter()
-                        .zip(&weights)
-                        .map(|(img, w)| *w * img.data[p])
-                        .sum()
-                })
-                .collect();
-            colour_input = Some((xyz, window));
+            let xyz_of = |channel: usize| -> Vec<DVec3> {
+                (0..size * size)
+                    .map(|p| {
+                        (0..bands.len())
+                            .zip(&weights)
+                            .map(|(b, w)| {
+                                *w * band_rasters[if constant { 0 } else { b }][channel].data[p]
+                            })
+                            .sum()
+                    })
+                    .collect()
+            };
+            colour_input = Some((xyz_of(0), xyz_of(1), window));
         }
         (rgb, band_layers)
     } else {
@@ -299,8 +318,8 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     if let Some(c) = outline.finish().pop() {
         coverage.data = c;
     }
-    if let Some((xyz, window)) = colour_input {
-        stats.colour = Some(ColourStats::of(&xyz, &coverage, window));
+    if let Some((xyz, through, window)) = colour_input {
+        stats.colour = Some(ColourStats::of(&xyz, &through, &coverage, window));
     }
     Image {
         light: opts.light,

@@ -25,8 +25,9 @@ pub struct AsetShares {
     pub port: f64,
 }
 
-/// Pixels darker than this CIELAB lightness L* count as extinct in [`ColourStats::extinction`]
-/// (about the lightness of a dark charcoal grey beside a white diffuser).
+/// Pixels whose light through the stone is darker than this CIELAB lightness L* count as
+/// extinct in [`ColourStats::extinction`] (about the lightness of a dark charcoal grey beside
+/// a white diffuser).
 pub const EXTINCTION_L: f64 = 20.0;
 
 /// The colour of a coloured stone's picture (a body colour under a grey light), as faceters
@@ -41,7 +42,9 @@ pub struct ColourStats {
     pub h_deg: f64,
     /// Spread of the lightness: the standard deviation of the pixels' L* over the outline.
     pub l_spread: f64,
-    /// Extinction: the share of the outline whose pixels are darker than [`EXTINCTION_L`].
+    /// Extinction: the share of the outline where the light that comes through the stone
+    /// (its surface reflection left out, as a faceter judges colour through the glare) is
+    /// darker than [`EXTINCTION_L`].
     pub extinction: f64,
     /// Windowing: the share of the light seen that comes from below the girdle plane (seen
     /// through the stone), weighted by luminance over the bands.
@@ -49,14 +52,20 @@ pub struct ColourStats {
 }
 
 impl ColourStats {
-    /// From a picture's XYZ pixels (radiance times the covered share of each pixel), the
-    /// outline's `coverage` and the windowing share.
-    pub(crate) fn of(xyz: &[DVec3], coverage: &Raster, windowing: f64) -> ColourStats {
+    /// From a picture's XYZ pixels (radiance times the covered share of each pixel), the same
+    /// of the light through the stone alone (`through`), the outline's `coverage` and the
+    /// windowing share.
+    pub(crate) fn of(
+        xyz: &[DVec3],
+        through: &[DVec3],
+        coverage: &Raster,
+        windowing: f64,
+    ) -> ColourStats {
         let white = color::d65_white();
         let lab = |c: DVec3| color::xyz_to_lab(c, white);
         let (mut sum, mut area) = (DVec3::ZERO, 0.0);
         let (mut l1, mut l2, mut dark) = (0.0, 0.0, 0.0);
-        for (p, &a) in xyz.iter().zip(&coverage.data) {
+        for ((p, q), &a) in xyz.iter().zip(through).zip(&coverage.data) {
             if a <= 1e-9 {
                 continue;
             }
@@ -66,7 +75,7 @@ impl ColourStats {
             let l = lab(*p / a).x;
             l1 += a * l;
             l2 += a * l * l;
-            if l < EXTINCTION_L {
+            if lab(*q / a).x < EXTINCTION_L {
                 dark += a;
             }
         }

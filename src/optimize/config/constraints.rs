@@ -25,8 +25,8 @@ pub struct RawConstraints {
     /// `excellent`, `very-good`, `good` or `fair`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub grade: Option<String>,
-    /// Largest allowed extinction of a coloured stone (share of its face-up picture darker
-    /// than L* 20; needs a body colour in `[score]`).
+    /// Largest allowed extinction of a coloured stone (share of its face-up picture whose
+    /// light through the stone is darker than L* 20; needs a body colour in `[score]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_extinction: Option<f64>,
     /// Largest allowed windowing of a coloured stone (share of the face-up light seen from

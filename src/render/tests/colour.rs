@@ -155,12 +155,10 @@ fn darker_colour_darkens_and_goes_extinct() {
         last_l = c.l;
         last_ext = c.extinction;
     }
-    // The surface reflection of the bright sky keeps most pixels above L* 20 even in a dark
-    // stone (extinction counts what the viewer sees, glare included), but some go dark.
-    assert!(
-        last_ext > 0.0,
-        "a dark yellow goes extinct somewhere: {last_ext}"
-    );
+    // Extinction counts the light through the stone: the sky's surface reflection, which
+    // keeps most pixels of even a dark stone above L* 20, is left out (with it counted this
+    // yellow was 1 % extinct; without it, 13 %).
+    assert!(last_ext > 0.1, "a dark yellow goes extinct: {last_ext}");
     let clear = render(&solid, &opts(Light::Cos, 40, Tilt::FACE_UP));
     assert!(clear.stats.colour.is_none());
 }
