@@ -268,8 +268,8 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
 
 /// The face-up colour of a coloured stone: its ISO picture drawn in colour (fire's bands,
 /// each with its exact absorption) at the scores' resolution (at least 64 pixels, the
-/// extinction share being a share of pixels) and face-up split threshold; `None` when the
-/// material is colourless.
+/// extinction share being a share of pixels) and fire's split threshold (its bands are
+/// fire's); `None` when the material is colourless.
 fn colour_of(solid: &Polyhedron, cfg: &ScoreConfig) -> Option<crate::render::ColourStats> {
     cfg.material.colour.as_ref()?;
     let (l, w) = crate::cut::units::outline_size(solid.vertices());
@@ -285,7 +285,8 @@ fn colour_of(solid: &Polyhedron, cfg: &ScoreConfig) -> Option<crate::render::Col
         polarization: cfg.polarization,
         bands: cfg.bands,
         trace: cfg.trace,
-        face_up_split_threshold: cfg.face_up_split_threshold,
+        // Fire's face-up split: the colour is traced in fire's bands too.
+        face_up_split_threshold: cfg.fire_split_threshold,
         width_mm,
         ..crate::render::RenderOptions::new(crate::render::Light::Iso)
     };
