@@ -14,6 +14,20 @@ pub use glam::{DVec2, DVec3};
 pub use hull::{convex_hull, convex_hull_with_tolerance, MERGE_TOL};
 pub use polyhedron::{Edge, Facet, Polyhedron};
 
+/// The outline's extents along x and y, as (length, width): the larger and the smaller.
+pub fn outline_size(pts: &[DVec3]) -> (f64, f64) {
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for p in pts {
+        lo = lo.min(p.truncate());
+        hi = hi.max(p.truncate());
+    }
+    let e = hi - lo;
+    if !(e.x.is_finite() && e.y.is_finite()) {
+        return (0.0, 0.0);
+    }
+    (e.x.max(e.y), e.x.min(e.y))
+}
+
 use serde::{Deserialize, Serialize};
 
 /// Tolerance for "on the plane" tests, in girdle diameters.

@@ -272,7 +272,7 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
 /// fire's); `None` when the material is colourless.
 fn colour_of(solid: &Polyhedron, cfg: &ScoreConfig) -> Option<crate::render::ColourStats> {
     cfg.material.colour.as_ref()?;
-    let (l, w) = crate::cut::units::outline_size(solid.vertices());
+    let (l, w) = crate::geometry::outline_size(solid.vertices());
     let l_w = l / w.max(1e-300);
     let width_mm = cfg
         .size

@@ -8,7 +8,7 @@ use super::options::RenderOptions;
 use super::pose::{picture_half, view_rotation};
 use super::raster::{Accumulator, Raster};
 use crate::beam::{BeamTree, Frame, Stone, TraceOptions};
-use crate::geometry::{canonical::canonical, clip2d, Polyhedron};
+use crate::geometry::{canonical::canonical, clip2d, outline_size, Polyhedron};
 use crate::optics::{color, Dispersion};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -122,18 +122,15 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     };
     // A coloured stone under a grey light is drawn in its colour, band by band like fire;
     // the false-colour lights keep their colours.
-    let body = (opts.light.channels() == 1)
-        .then_some(opts.material.colour.as_ref())
-        .flatten();
+    let coloured_grey = opts.light.channels() == 1 && opts.material.colour.is_some();
     // A coloured picture's XYZ pixels and its windowing, for its colour statistics.
     let mut colour_input: Option<(Vec<DVec3>, Vec<DVec3>, f64)> = None;
-    let (channels, layers) = if opts.light == Light::Fire || body.is_some() {
+    let (channels, layers) = if opts.light == Light::Fire || coloured_grey {
         let fire = opts.light == Light::Fire;
         let body = opts.material.colour.as_ref();
         // Absorption per girdle-diameter unit of the canonical solid: α per mm times the mm
         // one unit of its width stands for.
-        let (lo, hi) = solid.bounding_box();
-        let width = (hi.x - lo.x).min(hi.y - lo.y);
+        let width = outline_size(solid.vertices()).1;
         let mm_per_unit = opts.width_mm / width.max(1e-300);
         let absorption = |l: f64| body.map_or(0.0, |c| c.alpha(l) * mm_per_unit);
         // Faint bands (far out in the red) take a neighbour's trace, as in the scores.

@@ -60,8 +60,7 @@ fn a_coloured_pictures_luminance_is_its_band_traces_light() {
         let rot = view_rotation(Light::Cos, tilt);
         let frame = Frame::viewer(rot);
         let lighting = crate::render::lighting::Lighting::new(o.head_shadow(), &o.spots);
-        let (lo, hi) = c.bounding_box();
-        let mm_per_unit = 6.5 / (hi.x - lo.x).min(hi.y - lo.y);
+        let mm_per_unit = 6.5 / crate::geometry::outline_size(c.vertices()).1;
         let mut y = 0.0;
         for (l, w) in color::traced_bands(o.bands, color::FAINT_BAND) {
             let t = TraceOptions {
