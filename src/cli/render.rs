@@ -70,8 +70,9 @@ pub struct RenderArgs {
     /// `--tilt 10@45`.
     #[arg(long, value_name = "DEG[@AZ]", allow_hyphen_values = true)]
     pub tilt: Option<String>,
-    /// Half-angle of the viewer's head shadow, the ASET port or the IdealScope head, degrees
-    /// (0–60; default 10 for aset and idealscope, 0 otherwise).
+    /// Half-angle of the viewer's head shadow, the ASET port, the IdealScope head or the hearts
+    /// & arrows viewer's dark tube, degrees (0–60; default 10 for aset and idealscope, 20 for
+    /// arrows, 6 for hearts, 0 otherwise).
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     pub head_shadow: Option<String>,
     #[command(flatten)]

@@ -30,10 +30,32 @@ pub enum Light {
     Fire,
 }
 
-/// Half-angle of the dark tube around the line of sight in the hearts & arrows viewer,
-/// degrees: sight lines that leave the stone within it see the viewer's dark top, the rest see
-/// the bright white wall.
+/// The hearts & arrows viewer, face-up (arrows): half-angle of the dark tube around the line of
+/// sight as the stone sees it, degrees. Sight lines that leave the stone within it see the
+/// viewer's dark top; between it and [`SCOPE_WALL_DEG`] they see the lit reflector.
+///
+/// Face-up, a round brilliant's pavilion mains send the sight lines through the table back
+/// within 8–20° of the line of sight (the arrows' shafts, 12–20°, and heads, 8–12°): a tube
+/// of 20° shows them dark.
 pub const SCOPE_TUBE_DEG: f64 = 20.0;
+
+/// The hearts & arrows viewer, face-down (hearts): half-angle of the viewer's dark aperture as
+/// the stone sees it, degrees.
+///
+/// Table-down, a round brilliant returns the sight lines entering its pavilion in two narrow
+/// groups (measured on `tolkowsky` and `ags-ideal`, share of the light in brackets): within
+/// 0–4° of the line of sight (19 %: the dark eight-pointed star between the hearts) and at
+/// 8–12° (18 %: the eight hearts); 4–8° carries 0.3 %. An aperture of 6° separates them. With
+/// the arrows' 20° both groups are dark and no heart shows; with 6° face-up the arrows would
+/// be lit. No one aperture shows both patterns, and no viewer's dimensions are published that
+/// we could find, so each view has its own (`--head-shadow` changes it).
+pub const HEARTS_APERTURE_DEG: f64 = 6.0;
+
+/// The hearts & arrows viewer: angle from the line of sight beyond which the stone sees the
+/// viewer's dark lower wall and stage instead of its lit reflector, degrees. It keeps the
+/// external reflection of the facets (a pavilion main at 41° reflects the line of sight 82°
+/// away) dark, as in the viewer, where the patterns are seen on black.
+pub const SCOPE_WALL_DEG: f64 = 60.0;
 
 /// Default half-angle of the ASET's dark viewing port and of IdealScope's head obstruction,
 /// degrees.
@@ -94,10 +116,13 @@ impl Light {
     }
 
     /// Default head shadow (ISO, COS, fire: none, as the scores; ASET's port and IdealScope's
-    /// head: [`PORT_DEG`]; the hearts & arrows viewer has its own tube, [`SCOPE_TUBE_DEG`]).
+    /// head: [`PORT_DEG`]; the hearts & arrows viewer's dark tube: [`SCOPE_TUBE_DEG`] face-up,
+    /// [`HEARTS_APERTURE_DEG`] face-down).
     pub fn default_head_shadow_deg(self) -> f64 {
         match self {
             Light::Aset | Light::IdealScope => PORT_DEG,
+            Light::Arrows => SCOPE_TUBE_DEG,
+            Light::Hearts => HEARTS_APERTURE_DEG,
             _ => 0.0,
         }
     }
@@ -117,9 +142,10 @@ impl Light {
     /// counts toward [`Stats::mean`](super::Stats::mean):
     ///
     /// * `iso`, `cos`: the radiance of [`Lighting::iso`] or [`Lighting::cos`];
-    /// * `hearts`, `arrows`: radiance 1 from the viewer's bright wall, 0 within
-    ///   [`SCOPE_TUBE_DEG`] of the line of sight (the dark tube) and below the horizon, soft
-    ///   edges;
+    /// * `hearts`, `arrows`: radiance 1 from the viewer's lit reflector, 0 within the head
+    ///   shadow's angle of the line of sight (the dark tube: by default [`SCOPE_TUBE_DEG`]
+    ///   face-up, [`HEARTS_APERTURE_DEG`] face-down) and beyond [`SCOPE_WALL_DEG`] from it,
+    ///   soft edges;
     /// * `aset`: the shares of the ASET bins (blue, red, green, leak, port; the port is the
     ///   head shadow's cone), which add up to 1; the mean counts blue, red and green;
     /// * `idealscope`: returned (above the horizon, outside the head), leak (below the
@@ -139,7 +165,8 @@ impl Light {
             }
             Light::Hearts | Light::Arrows => {
                 let zen = 90.0 - lighting::elevation_deg(w);
-                let v = soft_above(zen, SCOPE_TUBE_DEG) * (1.0 - soft_above(zen, 90.0));
+                let v = soft_above(zen, light.head_shadow_deg)
+                    * (1.0 - soft_above(zen, SCOPE_WALL_DEG));
                 ([v, 0.0, 0.0, 0.0, 0.0], v)
             }
             Light::Aset => {

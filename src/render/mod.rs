@@ -41,6 +41,9 @@ mod tests;
 
 pub use draw::render;
 pub use image::{fire_of, AsetShares, ColourStats, Image, Stats, EXTINCTION_L};
-pub use light::{Light, ASET_COLOURS, IDEALSCOPE_COLOURS, PORT_DEG, SCOPE_TUBE_DEG};
+pub use light::{
+    Light, ASET_COLOURS, HEARTS_APERTURE_DEG, IDEALSCOPE_COLOURS, PORT_DEG, SCOPE_TUBE_DEG,
+    SCOPE_WALL_DEG,
+};
 pub use options::RenderOptions;
 pub use pose::{picture_half, view_rotation, Tilt};

@@ -7,19 +7,23 @@
 //!    p* = (180° − asin(sin 45° / n)) / 4;
 //! 3. the 8-fold symmetry of a face-up round brilliant (the pixel grid's part of it);
 //! 4. energy: ASET shares, per-pixel sums against the outline's coverage, a stone of index 1;
-//! 5. the picture's mean equals `stats.mean`.
+//! 5. the picture's mean equals `stats.mean`;
+//! 6. the hearts & arrows viewer shows eight even hearts face-down, uneven ones when a
+//!    pavilion main is steeper.
 //!
 //! Nothing here calls the beam tracer or `optics::fresnel`: the brute-force tracer only shares
 //! the renderer's definitions of the view (pose rotation, frame, picture square) and the
 //! lights' radiance functions ([`Light::shade`]).
 //!
-//! The checks live by subject: [`brute`] (1), [`views`] (2 and 3), [`energy`] (4 and 5).
+//! The checks live by subject: [`brute`] (1), [`views`] (2 and 3), [`energy`] (4 and 5),
+//! [`hearts`] (6).
 
 use super::{Light, RenderOptions, Tilt};
 
 mod brute;
 mod colour;
 mod energy;
+mod hearts;
 mod views;
 
 /// Render options of the comparisons: unpolarized, diamond at 589.3 nm.
