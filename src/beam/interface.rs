@@ -59,6 +59,7 @@ pub(super) fn cross<S: ExitSink>(
     if stt.x > 0.0 {
         match refract(m.t, m.n, cx.ri, 1.0) {
             Some(out) => {
+                let unabsorbed = stt.x;
                 if m.keep != 1.0 {
                     st.absorbed += stt.x * (1.0 - m.keep);
                     stt *= m.keep;
@@ -66,6 +67,7 @@ pub(super) fn cross<S: ExitSink>(
                 let e = ExitBeam {
                     direction: out,
                     power: stt.x,
+                    unabsorbed,
                     stokes: stt,
                     axis,
                     entry_facet: o.entry,

@@ -224,8 +224,14 @@ impl Frame {
 pub struct ExitBeam {
     /// Direction of travel after leaving (unit, stone coordinates).
     pub direction: DVec3,
-    /// Share of the total incoming power (the Stokes intensity).
+    /// Share of the total incoming power (the Stokes intensity), after the body colour's
+    /// absorption ([`TraceOptions::absorption`]).
     pub power: f64,
+    /// The same share without the absorption: the colourless stone's exit power. A trace's
+    /// splits and cut-offs follow this power (the light before absorption), so a coloured
+    /// trace has the colourless trace's exits, each with both powers; equal to `power` when
+    /// nothing absorbs.
+    pub unabsorbed: f64,
     /// Stokes vector `(I, Q, U, V)` with `I = power`, in the frame whose reference axis is
     /// [`ExitBeam::axis`].
     pub stokes: Stokes,

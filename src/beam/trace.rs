@@ -113,6 +113,7 @@ impl Stone {
             let ext = ExitBeam {
                 direction: reflect(d0, n),
                 power: sr.x,
+                unabsorbed: sr.x,
                 stokes: sr,
                 axis,
                 entry_facet: f,

@@ -6,7 +6,7 @@ use super::config::ScoreConfig;
 use super::fire::{fire_placements, turned, FireLattice};
 use super::scintillation::{scintillation_of, scintillation_turns};
 use super::scores::{Aset, PoseScore, Scores};
-use super::sink::{run_job, Job, PoseResult};
+use super::sink::{run_job, ColourImages, Job, PoseResult};
 use super::symmetry::{symmetric_pose, symmetric_pose_map};
 use crate::beam::{Frame, Stone};
 use crate::geometry::{canonical, Polyhedron};
@@ -85,6 +85,8 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
                     brilliance: false,
                     face_up: false,
                     split,
+                    absorption: 0.0,
+                    colour: false,
                 });
                 jobs.len() - 1
             }
@@ -143,6 +145,16 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
             k
         })
         .collect();
+    // A coloured stone's face-up colour rides on fire's band traces when each band has its
+    // own (the exits' unabsorbed power keeps fire and the rest colourless); otherwise
+    // `colour_of` draws it apart.
+    let shared_colour = shared_colour(solid, cfg, &bands, &fire, constant);
+    if let Some(alphas) = &shared_colour {
+        for (&k, &alpha) in fire.iter().zip(alphas) {
+            jobs[k].absorption = alpha;
+            jobs[k].colour = true;
+        }
+    }
     // Scintillation: per turn, the rocking sequence toward the turn's azimuth, under the spot
     // lights turned with it. A pose that a symmetry of the stone maps onto another is that
     // pose's trace seen through the symmetry (one trace for both).
@@ -262,22 +274,112 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
         },
         aset,
         poses,
-        colour: colour_of(solid, cfg),
+        colour: match shared_colour {
+            Some(_) => {
+                let images: Vec<&ColourImages> = fire
+                    .iter()
+                    .filter_map(|&k| results[k].colour.as_ref())
+                    .collect();
+                Some(colour_from_bands(solid, &images, &weights, cfg, half))
+            }
+            None => colour_of(solid, cfg),
+        },
     }
+}
+
+/// Per fire band, the body colour's absorption per unit of the canonical `solid`, when the
+/// colour can be drawn on fire's band traces: a coloured material whose index changes with
+/// the wavelength (so that every band has its own trace), fire scored, and the scores'
+/// resolution at least the 64 pixels [`colour_of`] draws at.
+fn shared_colour(
+    solid: &Polyhedron,
+    cfg: &ScoreConfig,
+    bands: &[(f64, DVec3)],
+    fire: &[usize],
+    constant: bool,
+) -> Option<Vec<f64>> {
+    let body = cfg.material.colour.as_ref()?;
+    let distinct = fire.iter().enumerate().all(|(i, k)| !fire[..i].contains(k));
+    if constant || !cfg.parts.fire || cfg.resolution < 64 || !distinct || fire.is_empty() {
+        return None;
+    }
+    let per_unit = stone_width_mm(solid, cfg)
+        / crate::geometry::outline_size(solid.vertices())
+            .1
+            .max(1e-300);
+    Some(
+        bands
+            .iter()
+            .map(|&(l, _)| body.alpha(l) * per_unit)
+            .collect(),
+    )
+}
+
+/// The width in mm a coloured stone's size gives `solid` (its length turned into a width by
+/// the outline's L/W when the size names a length).
+fn stone_width_mm(solid: &Polyhedron, cfg: &ScoreConfig) -> f64 {
+    let (l, w) = crate::geometry::outline_size(solid.vertices());
+    let l_w = l / w.max(1e-300);
+    cfg.size
+        .width_mm(l_w, "score.size_mm")
+        .unwrap_or(crate::optics::StoneSize::DEFAULT_WIDTH_MM)
+}
+
+/// The face-up colour from fire's band traces' ISO pictures ([`ColourImages`]): XYZ per pixel
+/// by the bands' colour weights, over the outline, as `render` draws a coloured stone.
+fn colour_from_bands(
+    solid: &Polyhedron,
+    images: &[&ColourImages],
+    weights: &[DVec3],
+    cfg: &ScoreConfig,
+    half: f64,
+) -> crate::render::ColourStats {
+    let n = cfg.resolution * cfg.resolution;
+    let xyz_of = |through: bool| -> Vec<DVec3> {
+        (0..n)
+            .map(|p| {
+                images
+                    .iter()
+                    .zip(weights)
+                    .map(|(c, w)| {
+                        *w * if through {
+                            c.through.data[p]
+                        } else {
+                            c.all.data[p]
+                        }
+                    })
+                    .sum()
+            })
+            .collect()
+    };
+    // The light seen that comes from below the girdle plane, weighted by luminance.
+    let (mut num, mut den) = (0.0, 0.0);
+    for (c, w) in images.iter().zip(weights) {
+        if c.seen > 0.0 {
+            num += w.y * c.below / c.seen;
+        }
+        den += w.y;
+    }
+    let window = if den > 0.0 { num / den } else { 0.0 };
+    let coverage = crate::render::outline_coverage(
+        solid,
+        &Frame::viewer(Tilt::FACE_UP.rotation()),
+        cfg.resolution,
+        half,
+    );
+    crate::render::ColourStats::of(&xyz_of(false), &xyz_of(true), &coverage, window)
 }
 
 /// The face-up colour of a coloured stone: its ISO picture drawn in colour (fire's bands,
 /// each with its exact absorption) at the scores' resolution (at least 64 pixels, the
 /// extinction share being a share of pixels) and fire's split threshold (its bands are
 /// fire's); `None` when the material is colourless.
-fn colour_of(solid: &Polyhedron, cfg: &ScoreConfig) -> Option<crate::render::ColourStats> {
+pub(super) fn colour_of(
+    solid: &Polyhedron,
+    cfg: &ScoreConfig,
+) -> Option<crate::render::ColourStats> {
     cfg.material.colour.as_ref()?;
-    let (l, w) = crate::geometry::outline_size(solid.vertices());
-    let l_w = l / w.max(1e-300);
-    let width_mm = cfg
-        .size
-        .width_mm(l_w, "score.size_mm")
-        .unwrap_or(crate::optics::StoneSize::DEFAULT_WIDTH_MM);
+    let width_mm = stone_width_mm(solid, cfg);
     let opts = crate::render::RenderOptions {
         size: cfg.resolution.max(64),
         head_shadow_deg: Some(cfg.head_shadow_deg),

@@ -34,6 +34,24 @@ pub(super) struct Job {
     pub(super) face_up: bool,
     /// Split threshold of this trace.
     pub(super) split: f64,
+    /// Body-colour absorption of this trace (per unit of the canonical solid; 0 = none) and
+    /// whether it draws the coloured stone's face-up ISO picture ([`ColourImages`]). Every
+    /// other measure of the job takes the exits' unabsorbed power, which is the colourless
+    /// trace's bit for bit.
+    pub(super) absorption: f64,
+    pub(super) colour: bool,
+}
+
+/// A coloured stone's face-up ISO picture in one wavelength band (radiance times covered
+/// share per pixel, absorbed), the same for the light through the stone alone (its surface
+/// reflection left out, for extinction), and the absorbed power seen and its part from below
+/// the girdle plane (windowing).
+#[derive(Clone, Debug)]
+pub(super) struct ColourImages {
+    pub(super) all: Raster,
+    pub(super) through: Raster,
+    pub(super) seen: f64,
+    pub(super) below: f64,
 }
 
 /// What a [`Job`] measured.
@@ -49,6 +67,7 @@ pub(super) struct PoseResult {
     /// `traced` is their power), for the closure of the rays' stopped power.
     late: Sums,
     pub(super) images: Vec<Raster>,
+    pub(super) colour: Option<ColourImages>,
 }
 
 /// Power-weighted sums over exits.
@@ -113,13 +132,17 @@ pub(super) struct PoseSink<'a> {
 
 impl ExitSink for PoseSink<'_> {
     fn wants_footprints(&self) -> bool {
-        !self.r.images.is_empty()
+        !self.r.images.is_empty() || self.r.colour.is_some()
     }
     /// Fire's face-up traces measure nothing else: an exit (with its symmetric copies, which
     /// share its elevation) that no placement of the spots can reach is skipped whole.
     fn wants_orbit(&self, e: &ExitBeam) -> bool {
         let fire_only = self.lattice.map_or(0, |l| l.lightings.len());
-        if self.face_up || self.brilliance || self.r.images.len() > fire_only {
+        if self.face_up
+            || self.brilliance
+            || self.r.images.len() > fire_only
+            || self.r.colour.is_some()
+        {
             return true;
         }
         self.lattice
@@ -133,7 +156,8 @@ impl ExitSink for PoseSink<'_> {
             self.orbit.start();
         }
         let w = self.rot * e.direction;
-        let p = e.power;
+        // Everything but the colour sees the colourless stone.
+        let p = e.unabsorbed;
         let r = &mut self.r;
         if self.face_up {
             r.traced += p;
@@ -188,6 +212,29 @@ impl ExitSink for PoseSink<'_> {
                     images[k].add_coverage(cov, l * scale / a);
                 }
             });
+        }
+        if let Some(c) = r.colour.as_mut() {
+            // The absorbed light under ISO (with the head shadow), as `render` draws a
+            // coloured stone.
+            c.seen += e.power;
+            if w.z < 0.0 {
+                c.below += e.power;
+            }
+            let l = self.light.iso(w);
+            if a < 0.0 {
+                a = clip2d::area(fp);
+            }
+            if l > 0.0 && a > 0.0 && e.power > 0.0 {
+                if !covered {
+                    orbit.cover(&c.all, e.sym, fp, cov);
+                    covered = true;
+                }
+                let v = l * e.power * self.area / a;
+                c.all.add_coverage(cov, v);
+                if !e.external {
+                    c.through.add_coverage(cov, v);
+                }
+            }
         }
         // Skipping on each slice iterator is O(1), unlike skipping the zipped pairs.
         for ((img, light), view) in r
@@ -275,6 +322,7 @@ pub(super) fn job_sink<'a>(
             cfg.trace.ray_floor
         },
         narrow_forks: cfg.trace.narrow_forks && !job.face_up,
+        absorption: job.absorption,
         ..cfg.trace
     };
     let spots: Vec<&Lighting> = job
@@ -301,6 +349,12 @@ pub(super) fn job_sink<'a>(
                 .iter()
                 .map(|_| Raster::new(cfg.resolution, half))
                 .collect(),
+            colour: job.colour.then(|| ColourImages {
+                all: Raster::new(cfg.resolution, half),
+                through: Raster::new(cfg.resolution, half),
+                seen: 0.0,
+                below: 0.0,
+            }),
             ..Default::default()
         },
         spots,

@@ -290,6 +290,8 @@ mod tests {
                     brilliance: false,
                     face_up: false,
                     split: cfg.trace.split_threshold,
+                    absorption: 0.0,
+                    colour: false,
                 };
                 let run =
                     |j: &Job| run_job(&stone, &solid, j, &light, &lightings, &lattice, &cfg, half);
@@ -386,6 +388,8 @@ mod tests {
                 brilliance: true,
                 face_up: true,
                 split: 1e-4,
+                absorption: 0.0,
+                colour: false,
             };
             let run = |clip_all: bool| {
                 let (frame, opts, mut sink) =

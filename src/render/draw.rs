@@ -298,23 +298,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         let layers = vec![layer];
         (fill(&layers, n, size, half), layers)
     };
-    // The outline: the facets facing the viewer tile it.
-    let entry = &layers[0].tree.frame;
-    let mut outline = Accumulator::new(size, half, (0, size), 1);
-    for (f, facet) in solid.facets().iter().enumerate() {
-        if facet.plane.normal.dot(entry.dir) < 0.0 {
-            let poly: Vec<DVec2> = solid
-                .facet_polygon(f)
-                .iter()
-                .map(|p| DVec2::new(p.dot(entry.u), p.dot(entry.v)))
-                .collect();
-            outline.add_polygon(&poly, &[1.0]);
-        }
-    }
-    let mut coverage = Raster::new(size, half);
-    if let Some(c) = outline.finish().pop() {
-        coverage.data = c;
-    }
+    let coverage = outline_coverage(&solid, &layers[0].tree.frame, size, half);
     if let Some((xyz, through, window)) = colour_input {
         stats.colour = Some(ColourStats::of(&xyz, &through, &coverage, window));
     }
@@ -324,4 +308,30 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         coverage,
         stats,
     }
+}
+
+/// Share of each pixel of a `size`-pixel picture spanning ±`half` that the outline of
+/// `solid` seen along `frame` covers: the facets facing the viewer tile it.
+pub(crate) fn outline_coverage(
+    solid: &Polyhedron,
+    frame: &Frame,
+    size: usize,
+    half: f64,
+) -> Raster {
+    let mut outline = Accumulator::new(size, half, (0, size), 1);
+    for (f, facet) in solid.facets().iter().enumerate() {
+        if facet.plane.normal.dot(frame.dir) < 0.0 {
+            let poly: Vec<DVec2> = solid
+                .facet_polygon(f)
+                .iter()
+                .map(|p| DVec2::new(p.dot(frame.u), p.dot(frame.v)))
+                .collect();
+            outline.add_polygon(&poly, &[1.0]);
+        }
+    }
+    let mut coverage = Raster::new(size, half);
+    if let Some(c) = outline.finish().pop() {
+        coverage.data = c;
+    }
+    coverage
 }

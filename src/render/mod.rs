@@ -39,6 +39,7 @@ pub mod raster;
 #[cfg(test)]
 mod tests;
 
+pub(crate) use draw::outline_coverage;
 pub use draw::render;
 pub use image::{fire_of, AsetShares, ColourStats, Image, Stats, EXTINCTION_L};
 pub use light::{

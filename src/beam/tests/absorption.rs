@@ -102,6 +102,10 @@ fn exit_powers_are_the_footprints_mean_transmittance() {
             for (i, (e, c)) in tree.exits.iter().zip(&clear.exits).enumerate() {
                 let seq = tree.sequence(e);
                 assert_eq!(seq, clear.sequence(c));
+                // The same exits as the colourless trace's, carrying its power too.
+                assert_eq!(e.direction, c.direction, "{name}");
+                assert_eq!(e.unabsorbed.to_bits(), c.power.to_bits(), "{name}");
+                assert_eq!(c.unabsorbed.to_bits(), c.power.to_bits(), "{name}");
                 if e.external {
                     assert_eq!(
                         e.power, c.power,
