@@ -7,7 +7,8 @@
 //!   1e-4), with the tree's size; a tilted pose (no symmetry), also at the scores' settings (their
 //!   ray floor); the paper's depth-8 setting;
 //! * `score`: the full default `score` of `tolkowsky` on the global rayon pool and on one thread,
-//!   and without fire and scintillation (what the default optimize's search computes);
+//!   without fire and scintillation (what the default optimize's search computes), and as a
+//!   coloured stone (blue sapphire against colourless sapphire, one thread, and their ratio);
 //! * `instructions` (only when named): ten tilted traces with no timing loop, to run under
 //!   `valgrind --tool=callgrind` for repeatable instruction counts;
 //! * `photons`: how many photons a Monte Carlo photon tracer needs to match the beam tracer's
@@ -201,6 +202,33 @@ fn main() {
             "score tolkowsky, default config without fire and scintillation (the default \
              optimize's search): {:.1} ms ({n} runs, global pool)",
             dt.as_secs_f64() * 1e3
+        );
+        // A coloured stone (its face-up colour drawn on fire's band traces), as a ratio to
+        // the same material colourless (issue 25: ≤ 1.5×), both on one thread.
+        let blue = facetlab::optics::Material::by_name("blue-sapphire").expect("a variety");
+        let mut ms = [0.0; 2];
+        for (k, colour) in [None, blue.colour.clone()].into_iter().enumerate() {
+            let cfg = ScoreConfig {
+                material: facetlab::optics::Material {
+                    colour,
+                    ..blue.clone()
+                },
+                ..ScoreConfig::default()
+            };
+            let (dt, _) = time(
+                || {
+                    one.install(|| std::hint::black_box(score(solid, &cfg)));
+                },
+                Duration::from_secs(4),
+            );
+            ms[k] = dt.as_secs_f64() * 1e3;
+        }
+        println!(
+            "score tolkowsky in sapphire, default config, 1 thread: colourless {:.1} ms, as a \
+             blue sapphire {:.1} ms ({:.2}×)",
+            ms[0],
+            ms[1],
+            ms[1] / ms[0]
         );
         let fast = ScoreConfig::fast();
         let (dt, n) = time(
