@@ -543,7 +543,7 @@ function fillProps() {
     $(`#prop-${name}-carats`).textContent = fmtProp('carats', 'ct', info ? info.carats : undefined);
   }
   const w = $('#prop-a-carats');
-  if (w) w.parentElement.firstChild.textContent = `Weight at ${state.stone.width} mm`;
+  if (w) w.parentElement.firstChild.textContent = `Weight at ${Number(state.stone.width.toFixed(2))} mm`;
   const a = state.slots.a;
   if (a && a.info) {
     $('#cut-name').textContent = a.info.name;

@@ -1,7 +1,7 @@
 // facetlab workbench: the "Plan from a rough" panel, over POST/GET /api/plan.
 'use strict';
 
-const plan = { meta: null, upload: null, timer: null, shown: null };
+const plan = { meta: null, upload: null, timer: null, shown: null, chosen: null, material: null };
 
 const $p = (sel) => document.querySelector(sel);
 
@@ -47,6 +47,8 @@ async function startPlan() {
     return;
   }
   plan.shown = null;
+  plan.chosen = null;
+  $p('#plan-open').hidden = true;
   $p('#plan-table').hidden = true;
   $p('#plan-views-link').hidden = true;
   $p('#plan-report').hidden = true;
@@ -78,6 +80,7 @@ async function pollPlan() {
   if (s.error) text += ' — ' + s.error;
   status.textContent = text;
   $p('#plan-report').hidden = !s.report;
+  plan.material = s.material || null;
   if (!running) {
     if (plan.timer) { clearInterval(plan.timer); plan.timer = null; }
     if (plan.shown !== s.id) {
@@ -112,10 +115,39 @@ function showPlans(plans) {
 
 function showViews(tr, p) {
   for (const r of document.querySelectorAll('#plan-table tbody tr')) r.classList.toggle('on', r === tr);
+  plan.chosen = p;
+  $p('#plan-open').hidden = !plan.meta.presets.some((x) => x.family === p.family);
   if (!p.views) return;
   $p('#plan-views').src = p.views;
   $p('#plan-views-link').href = p.views;
   $p('#plan-views-link').hidden = false;
+}
+
+// Load the chosen plan's cut as A (its family's first preset with the plan's parameters), at the
+// plan's width and in its material: the weight row then shows the plan's carats.
+async function openPlan() {
+  const p = plan.chosen;
+  const preset = p && plan.meta.presets.find((x) => x.family === p.family);
+  if (!preset) return;
+  const st = state.stone;
+  st.width = p.width_mm;
+  $p('#stone-mm').value = p.width_mm.toFixed(2);
+  if (plan.material && state.meta.materials.some((m) => m.name === plan.material)) {
+    st.material = plan.material;
+    $p('#material').value = plan.material;
+  }
+  const sel = $p('#preset');
+  const file = sel.querySelector('option[value="__file"]');
+  if (file) file.remove();
+  sel.value = preset.name;
+  if (!(await loadSource({ cut: preset.name }))) return;
+  const s = state.slots.a;
+  for (const [k, v] of Object.entries(p.params || {})) {
+    if (s.base[k] === undefined || Math.abs(v - s.base[k]) > 1e-12) s.set[k] = v;
+  }
+  buildParams();
+  s.t0 = performance.now();
+  schedule('a', 'all', 0);
 }
 
 function readRough(file) {
@@ -187,6 +219,7 @@ async function setupPlan() {
     ev.target.value = '';
   });
   $p('#plan-run').addEventListener('click', startPlan);
+  $p('#plan-open').addEventListener('click', openPlan);
   $p('#plan-stop').addEventListener('click', () => fetch('/api/plan/stop', { method: 'POST' }).then(pollPlan));
   pollPlan();
 }

@@ -5,7 +5,7 @@
 //! `POST /api/plan` starts a run (409 while one is going); the rough is read and checked in
 //! memory first, so a bad one (not a mesh, open, flat, too large) is a 422 naming `rough` and
 //! nothing is written. `GET /api/plan` gives its status (`state`: `running`, `done`, `stopped`
-//! or `failed`; `family`, `starts_done`, `starts`, `elapsed_s`, and once done `rough`, `plans`
+//! or `failed`; `family`, `starts_done`, `starts`, `elapsed_s`, and once done `rough`, `material`, `plans`
 //! as in `summary.json`, each with `views`: its three-view picture's address, `overview`,
 //! `report`); `POST /api/plan/stop` stops it after the family being planned (the families
 //! planned are kept); `GET /api/plan/report` is its `report.html`, `GET /api/plan/picture/NAME`
@@ -54,6 +54,7 @@ pub struct PlanStatus {
     starts: u64,
     elapsed_s: f64,
     rough: Option<Value>,
+    material: Option<String>,
     plans: Vec<Value>,
     overview: Option<String>,
     error: Option<String>,
@@ -363,6 +364,7 @@ fn execute(run: &PlanRun, rough: &Rough, config: &PlanConfig, material: &Materia
             st.state = if stopped { "stopped" } else { "done" };
             if let Some((summary, files)) = found {
                 st.rough = summary.get("rough").cloned();
+                st.material = summary["material"].as_str().map(str::to_string);
                 st.plans = summary["plans"]
                     .as_array()
                     .cloned()

@@ -465,6 +465,30 @@ async fn browser_session(
     page.save_screenshot(ScreenshotParams::builder().build(), shot("8-plan.png"))
         .await
         .unwrap();
+    // The chosen plan as A: its family and parameters, at its width: the plan's carats.
+    let carats: f64 = js(&page, "plan.chosen.carats").await;
+    let _: bool = js(
+        &page,
+        "(document.querySelector('#plan-open').click(), true)",
+    )
+    .await;
+    assert!(
+        wait_js(&page, "document.querySelector('#cut-family').textContent.includes('round-brilliant') && document.querySelector('#prop-a-carats').textContent !== '—' && document.querySelectorAll('#params .param.changed').length > 0 && !document.querySelector('#render-a').parentElement.classList.contains('busy')", 60).await,
+        "the plan did not open as A"
+    );
+    let shown: String = js(
+        &page,
+        "document.querySelector('#prop-a-carats').textContent",
+    )
+    .await;
+    let shown: f64 = shown.trim_end_matches(" ct").parse().unwrap();
+    assert!(
+        (shown - carats).abs() < 1.5e-3,
+        "the workbench weighs {shown} ct, the plan {carats} ct"
+    );
+    page.save_screenshot(ScreenshotParams::builder().build(), shot("9-plan-as-a.png"))
+        .await
+        .unwrap();
 
     let page_errs: Vec<String> = js(&page, "window.__errs || []").await;
     let errs = errors.lock().unwrap().clone();
