@@ -18,7 +18,7 @@
 //! - `POST /api/plan`, `GET /api/plan`: plans from an uploaded rough ([`plans`]).
 //!
 //! Every body is a JSON object: `cut` (a preset name, or the text of a file with `format`),
-//! `set` (parameter changes: a family's parameters, or a design's tier angles), and per endpoint `light`, `size`, `tilt`, `exposure`, `quick`, `to`. Errors are
+//! `set` (parameter changes: a family's parameters, or a design's tier angles), and per endpoint `light`, `size`, `tilt`, `exposure`, `quick`, `to`, and the stone's `material`, `colour`, `colour_density`, `diameter_mm` or `size_mm` (cut, score, render). Errors are
 //! 4xx JSON `{"error": "field: message", "field": "field"}`. Bodies over
 //! [`BODY_LIMIT`] bytes are refused. Uploads are parsed in memory; nothing a client sends
 //! becomes a file path. Heavy work (building, tracing, scoring) runs on blocking threads, at
