@@ -195,26 +195,57 @@ pub fn run(a: &PlanArgs) -> Result<()> {
         other => other,
     })?;
 
-    let planner = Planner::new(&rough, &config, material.density);
     let bar = progress::bar(
         (config.families.len() * config.starts) as u64,
         a.quiet,
         "{msg:>16} [{bar:40}] {pos}/{len} starts, {elapsed}",
     );
+    let tick = || bar.inc(1);
+    let family = |f: &str| {
+        bar.set_message(f.to_string());
+        true
+    };
+    let all = plan_families(&rough, &config, &material, &family, &tick)?;
+    bar.finish_and_clear();
+    let run = Run {
+        out: &a.out,
+        input: &a.rough,
+        config: &config,
+        material: &material,
+        rough: &rough,
+        all: &all,
+        started,
+    };
+    write_folder(&run)?;
+    print_summary(&run);
+    Ok(())
+}
+
+/// Plan each family of `config` in `rough` in turn: `family(name)` is asked before each
+/// (false stops, keeping the families planned so far), `tick` runs after each start. Refuses
+/// a rough too small for any cut (the widest plan narrower than `min_width_mm`).
+pub fn plan_families(
+    rough: &Rough,
+    config: &PlanConfig,
+    material: &Material,
+    family: &dyn Fn(&str) -> bool,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Vec<(String, Vec<Plan>)>> {
+    let planner = Planner::new(rough, config, material.density);
     let mut all: Vec<(String, Vec<Plan>)> = Vec::new();
     for f in &config.families {
-        bar.set_message(f.clone());
-        let tick = || bar.inc(1);
-        let plans = planner.plan_family(f, &tick)?;
+        if !family(f) {
+            break;
+        }
+        let plans = planner.plan_family(f, tick)?;
         all.push((f.clone(), plans));
     }
-    bar.finish_and_clear();
     // Too small: the best plan of every family is narrower than the config allows.
     let widest = all
         .iter()
         .flat_map(|(_, p)| p.iter().map(|p| p.scale))
         .fold(0.0, f64::max);
-    if widest < config.min_width_mm {
+    if !all.is_empty() && widest < config.min_width_mm {
         return Err(Error::invalid(
             "ROUGH",
             format!(
@@ -223,49 +254,46 @@ pub fn run(a: &PlanArgs) -> Result<()> {
             ),
         ));
     }
-    let run = Run {
-        a,
-        config: &config,
-        material: &material,
-        rough: &rough,
-        all: &all,
-        started,
-    };
-    write_folder(&run)
+    Ok(all)
 }
 
-/// What a finished plan writes.
-struct Run<'r> {
-    a: &'r PlanArgs,
-    config: &'r PlanConfig,
-    material: &'r Material,
-    rough: &'r Rough,
-    all: &'r [(String, Vec<Plan>)],
-    started: Instant,
+/// What a finished plan writes: the run folder `out`, for the rough given as `input`.
+pub struct Run<'r> {
+    pub out: &'r Path,
+    pub input: &'r str,
+    pub config: &'r PlanConfig,
+    pub material: &'r Material,
+    pub rough: &'r Rough,
+    pub all: &'r [(String, Vec<Plan>)],
+    pub started: Instant,
 }
 
-fn write_folder(run: &Run<'_>) -> Result<()> {
-    let a = run.a;
-    let name = a
-        .out
+/// Write the run folder (into a temporary folder beside it, renamed at the end; `out` must
+/// not exist or be an empty folder).
+pub fn write_folder(run: &Run<'_>) -> Result<()> {
+    let out = run.out;
+    let name = out
         .file_name()
         .map_or("plan".into(), |n| n.to_string_lossy().to_string());
-    let parent = a
-        .out
+    let parent = out
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
     let result = write_into(&tmp, run).and_then(|()| {
-        if a.out.is_dir() {
-            std::fs::remove_dir(&a.out).map_err(|e| Error::io(a.out.display().to_string(), e))?;
+        if out.is_dir() {
+            std::fs::remove_dir(out).map_err(|e| Error::io(out.display().to_string(), e))?;
         }
-        std::fs::rename(&tmp, &a.out).map_err(|e| Error::io(a.out.display().to_string(), e))
+        std::fs::rename(&tmp, out).map_err(|e| Error::io(out.display().to_string(), e))
     });
     if result.is_err() {
         let _ = std::fs::remove_dir_all(&tmp);
     }
-    result?;
+    result
+}
+
+/// The lines `facetlab plan` prints at the end: the rough, each family's best, the folder.
+fn print_summary(run: &Run<'_>) {
     let rough = run.rough;
     let hull = match rough.mesh_volume {
         Some(v) => format!(
@@ -285,8 +313,7 @@ fn write_folder(run: &Run<'_>) -> Result<()> {
             );
         }
     }
-    println!("{}", a.out.display());
-    Ok(())
+    println!("{}", run.out.display());
 }
 
 fn write(dir: &Path, file: &str, bytes: &[u8]) -> Result<()> {
@@ -312,12 +339,13 @@ fn obj_object(out: &mut String, name: &str, s: &Polyhedron, base: &mut usize) {
 
 fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
     let Run {
-        a,
+        input,
         config,
         material,
         rough,
         all,
         started,
+        out: _,
     } = *run;
     std::fs::create_dir(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
     let header = format!(
@@ -432,7 +460,7 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
     let summary = SummaryJson {
         rough: RoughJson {
             name: rough.name.clone(),
-            input: a.rough.clone(),
+            input: input.to_string(),
             volume_mm3: rough.volume(),
             mesh_volume_mm3: rough.mesh_volume,
             hull_excess: rough.hull_excess(),

@@ -15,9 +15,10 @@
 //!   [`ScoreConfig::fast`](facetlab::metrics::ScoreConfig::fast)).
 //! - `POST /api/render`: `image/png` of the face-up (or tilted) picture.
 //! - `POST /api/export`: the cut as `.asc`, `.obj`, `.stl` or `.toml` bytes.
+//! - `POST /api/plan`, `GET /api/plan`: plans from an uploaded rough ([`plans`]).
 //!
 //! Every body is a JSON object: `cut` (a preset name, or the text of a file with `format`),
-//! `set` (parameter changes: a family's parameters, or a design's tier angles), and per endpoint `light`, `size`, `tilt`, `exposure`, `quick`, `to`. Errors are
+//! `set` (parameter changes: a family's parameters, or a design's tier angles), and per endpoint `light`, `size`, `tilt`, `exposure`, `quick`, `to`, and the stone's `material`, `colour`, `colour_density`, `diameter_mm` or `size_mm` (cut, score, render). Errors are
 //! 4xx JSON `{"error": "field: message", "field": "field"}`. Bodies over
 //! [`BODY_LIMIT`] bytes are refused. Uploads are parsed in memory; nothing a client sends
 //! becomes a file path. Heavy work (building, tracing, scoring) runs on blocking threads, at
@@ -28,12 +29,14 @@
 //! [`routes`] (the router and the cut endpoints), [`request`] (request bodies, validated),
 //! [`error`] (the API's error replies), [`jobs`] (the heavy work on blocking threads),
 //! [`design`] (a design's tier angles as sliders, adopted once per design),
-//! [`runs`] (optimization runs in the background), [`page`] (the embedded page).
+//! [`runs`] (optimization runs in the background), [`plans`] (plans from a rough in the
+//! background), [`page`] (the embedded page).
 
 mod design;
 mod error;
 mod jobs;
 mod page;
+mod plans;
 mod request;
 mod routes;
 mod runs;
@@ -70,12 +73,13 @@ pub const TILT_LIMIT: f64 = 45.0;
 /// Largest exposure factor of a picture.
 pub const EXPOSURE_MAX: f64 = 16.0;
 
-/// Shared state: the job limit, the presets' JSON (built once), the optimization runs and the
-/// designs adopted lately.
+/// Shared state: the job limit, the presets' JSON (built once), the optimization and plan runs
+/// and the designs adopted lately.
 struct AppState {
     jobs: Arc<Semaphore>,
     presets: String,
     runs: runs::Runs,
+    plans: plans::PlanRuns,
     designs: Arc<design::Designs>,
 }
 

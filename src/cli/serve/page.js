@@ -15,6 +15,12 @@ const SCORE_ROWS = [
   ['aset.red', 'ASET red 45–75°', null],
   ['aset.green', 'ASET green 0–45°', null],
   ['aset.leak', 'ASET leak <0°', false],
+  // A coloured stone's face-up colour (shown when a slot has one).
+  ['colour.l', 'Colour L*', null, false, true],
+  ['colour.c', 'Colour C*', null, false, true],
+  ['colour.h_deg', 'Colour h°', null, false, true],
+  ['colour.extinction', 'Extinction', false, false, true],
+  ['colour.windowing', 'Windowing', false, false, true],
 ];
 // Proportion rows: key in `info --json` proportions, label, unit.
 const PROP_ROWS = [
@@ -44,6 +50,8 @@ const state = {
   tilt: 0,
   exposure: LIGHT_EXPOSURE.iso,
   slots: { a: null, b: null },
+  // The stone's material, body colour and width (both slots): see stoneBody().
+  stone: { material: 'diamond', own: false, colour: '#7a3fa0', colourMm: 10, density: 1, width: 6.5 },
 };
 
 function newSlot(source) {
@@ -86,8 +94,28 @@ async function api(key, path, body, as) {
 
 const aborted = (e) => e && e.name === 'AbortError';
 
+// The stone's fields of a score, render or cut request: material, colour, colour_density,
+// diameter_mm (validated by the server into the library's types).
+function stoneBody() {
+  const st = state.stone;
+  const b = { diameter_mm: st.width };
+  if (st.material !== 'diamond') b.material = st.material;
+  if (st.own) b.colour = `${st.colour}@${st.colourMm}mm`;
+  if (coloured() && st.density !== 1) b.colour_density = st.density;
+  return b;
+}
+
+// Whether the stone has a body colour: its own, or a coloured variety's.
+function coloured() {
+  const st = state.stone;
+  if (st.own) return true;
+  const m = state.meta && state.meta.materials.find((x) => x.name === st.material);
+  return !!(m && m.colour);
+}
+
 function requestBody(s, extra) {
-  return Object.assign({}, s.source, { set: s.set }, extra || {});
+  const stone = extra && extra.to ? {} : stoneBody();
+  return Object.assign({}, s.source, { set: s.set }, stone, extra || {});
 }
 
 // ---- refreshing a slot ----------------------------------------------------------------------
@@ -433,14 +461,16 @@ function get(obj, path) {
 
 function fmtScore(key, v) {
   if (typeof v !== 'number') return '—';
+  if (key === 'colour.l' || key === 'colour.c' || key === 'colour.h_deg') return v.toFixed(1);
   return v.toFixed(key === 'fire' ? 3 : 4);
 }
 
 function buildTables() {
   const tb = $('#scores tbody');
   tb.textContent = '';
-  for (const [key, label, , indent] of SCORE_ROWS) {
+  for (const [key, label, , indent, colourRow] of SCORE_ROWS) {
     const tr = document.createElement('tr');
+    if (colourRow) tr.className = 'colour-row';
     const id = key.replace('.', '-');
     tr.innerHTML = `<td></td><td id="score-a-${id}">—</td><td class="b-col" id="score-b-${id}">—</td><td class="b-col" id="score-d-${id}"></td>`;
     tr.firstChild.textContent = label;
@@ -449,7 +479,7 @@ function buildTables() {
   }
   const pb = $('#props tbody');
   pb.textContent = '';
-  const rows = PROP_ROWS.concat([['facet_count', 'Facets', ''], ['carats', 'Weight at 6.5 mm', 'ct']]);
+  const rows = PROP_ROWS.concat([['facet_count', 'Facets', ''], ['carats', 'Weight', 'ct']]);
   for (const [key, label] of rows) {
     const tr = document.createElement('tr');
     tr.innerHTML = `<td></td><td id="prop-a-${key}">—</td><td class="b-col" id="prop-b-${key}">—</td>`;
@@ -485,6 +515,9 @@ function fillScores() {
       ed.textContent = '';
     }
   }
+  const withColour = ['a', 'b'].some((n) => state.slots[n] && state.slots[n].scores && state.slots[n].scores.colour);
+  document.body.classList.toggle('coloured', withColour);
+  showSwatch();
   const kinds = ['a', 'b'].map((n) => state.slots[n]).filter((s) => s && s.scores).map((s) => s.quick);
   $('#score-kind').textContent = kinds.length === 0 ? '' : kinds.some((q) => q) ? 'quick' : 'full';
   if (!b) delete $('#scores').dataset.b;
@@ -509,6 +542,8 @@ function fillProps() {
     $(`#prop-${name}-facet_count`).textContent = info ? String(info.facet_count) : '—';
     $(`#prop-${name}-carats`).textContent = fmtProp('carats', 'ct', info ? info.carats : undefined);
   }
+  const w = $('#prop-a-carats');
+  if (w) w.parentElement.firstChild.textContent = `Weight at ${Number(state.stone.width.toFixed(2))} mm`;
   const a = state.slots.a;
   if (a && a.info) {
     $('#cut-name').textContent = a.info.name;
@@ -531,6 +566,7 @@ function caption(name) {
   parts.push('· ' + (LIGHT_NAMES[v.light] || v.light));
   if (v.tilt) parts.push(`· tilt ${v.tilt}°`);
   const st = v.stats || {};
+  if (st.colour) parts.push(`· L* ${st.colour.l.toFixed(1)} C* ${st.colour.c.toFixed(1)} h ${st.colour.h_deg.toFixed(0)}°`);
   if (typeof st.fire === 'number') parts.push(`· face-up fire ${st.fire.toFixed(3)}`);
   else if (!st.aset && typeof st.mean === 'number') parts.push(`· face-up mean ${st.mean.toFixed(3)}`);
   el.textContent = parts.join(' ');
@@ -576,6 +612,10 @@ function showError(name, e) {
     $('#source-err').textContent = msg;
   } else if (name === 'a' && field === 'set') {
     $('#params-note').textContent = msg;
+  } else if (STONE_FIELDS.includes(field)) {
+    $('#stone-err').textContent = msg;
+    $('#render-' + name).parentElement.classList.remove('busy');
+    return;
   } else {
     const el = $('#status');
     el.textContent = name.toUpperCase() + ': ' + msg;
@@ -597,6 +637,7 @@ function showError(name, e) {
 
 function clearError(name) {
   $('#veil-' + name).classList.remove('on');
+  $('#stone-err').textContent = '';
   if (name !== 'a') return;
   for (const row of document.querySelectorAll('.param.invalid')) {
     row.classList.remove('invalid');
@@ -720,6 +761,7 @@ async function start() {
   light.value = state.light;
   const exposure = $('#exposure');
   buildTables();
+  setupStone();
 
   sel.addEventListener('change', () => {
     if (sel.value === '__file') return;
@@ -877,8 +919,65 @@ async function setupRuns() {
   pollRun();
 }
 
+// ---- the stone: material, body colour, width ---------------------------------------------------
+
+const STONE_FIELDS = ['material', 'colour', 'colour_density', 'diameter_mm', 'size_mm'];
+
+function setupStone() {
+  const sel = $('#material');
+  for (const m of state.meta.materials) {
+    const o = document.createElement('option');
+    o.value = m.name;
+    o.textContent = m.colour ? `${m.name} (coloured)` : m.name;
+    if (m.colour) o.style.color = m.colour;
+    sel.appendChild(o);
+  }
+  sel.value = state.stone.material;
+  const own = $('#own-colour'), colour = $('#colour'), mm = $('#colour-mm'), density = $('#density');
+  const changed = () => {
+    const st = state.stone;
+    st.material = sel.value;
+    st.own = own.checked;
+    st.colour = colour.value;
+    const t = Number(mm.value);
+    if (Number.isFinite(t) && t > 0) st.colourMm = t;
+    st.density = Number(density.value);
+    const w = Number($('#stone-mm').value);
+    if (Number.isFinite(w) && w > 0) st.width = w;
+    colour.disabled = mm.disabled = !own.checked;
+    density.disabled = !coloured();
+    $('#density-val').textContent = st.density.toFixed(2);
+    for (const n of ['a', 'b']) if (state.slots[n]) { state.slots[n].t0 = performance.now(); schedule(n, 'all'); }
+  };
+  for (const el of [sel, own, colour, mm, $('#stone-mm')]) el.addEventListener('change', changed);
+  colour.addEventListener('input', changed);
+  density.addEventListener('input', changed);
+}
+
+// The swatch beside the width: A's face-up mean colour (CIELAB of its scores) in sRGB.
+function showSwatch() {
+  const el = $('#stone-swatch');
+  const a = state.slots.a;
+  const c = a && a.scores && a.scores.colour;
+  if (!c) { el.removeAttribute('style'); return; }
+  const h = c.h_deg * Math.PI / 180;
+  const [L, A, B] = [c.l, c.c * Math.cos(h), c.c * Math.sin(h)];
+  const fy = (L + 16) / 116, fx = fy + A / 500, fz = fy - B / 200;
+  const inv = (t) => (t > 6 / 29 ? t * t * t : 3 * (6 / 29) ** 2 * (t - 4 / 29));
+  const [X, Y, Z] = [0.95047 * inv(fx), inv(fy), 1.08883 * inv(fz)];
+  const lin = [3.2406 * X - 1.5372 * Y - 0.4986 * Z, -0.9689 * X + 1.8758 * Y + 0.0415 * Z, 0.0557 * X - 0.2040 * Y + 1.0570 * Z];
+  const g = lin.map((v) => {
+    v = Math.max(0, Math.min(1, v));
+    return Math.round(255 * (v <= 0.0031308 ? 12.92 * v : 1.055 * v ** (1 / 2.4) - 0.055));
+  });
+  el.style.background = `rgb(${g.join(',')})`;
+  el.title = `A's face-up mean colour: L* ${c.l.toFixed(1)}, C* ${c.c.toFixed(1)}, h ${c.h_deg.toFixed(0)}°`;
+}
+
+
 start().then(setupRuns).catch((e) => {
   const el = $('#status');
   el.textContent = 'Could not start: ' + e.message;
   el.classList.add('bad');
 });
+

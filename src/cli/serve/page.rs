@@ -1,5 +1,6 @@
-//! The page of the workbench, embedded in the binary: `page.html`, `page.js` and `page.css`
-//! beside this file, served at `/`, `/page.js` and `/page.css` (no build step, no network).
+//! The page of the workbench, embedded in the binary: `page.html`, `page.js`, `plan.js` (the
+//! rough-planning panel) and `page.css` beside this file, served at `/`, `/page.js`,
+//! `/plan.js` and `/page.css` (no build step, no network).
 
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
@@ -9,8 +10,9 @@ use axum::Router;
 const PAGE_HTML: &str = include_str!("page.html");
 const PAGE_JS: &str = include_str!("page.js");
 const PAGE_CSS: &str = include_str!("page.css");
+const PLAN_JS: &str = include_str!("plan.js");
 
-/// The page's three routes.
+/// The page's routes.
 pub fn routes<S: Clone + Send + Sync + 'static>() -> Router<S> {
     Router::new()
         .route(
@@ -20,6 +22,10 @@ pub fn routes<S: Clone + Send + Sync + 'static>() -> Router<S> {
         .route(
             "/page.js",
             get(|| async { asset("text/javascript; charset=utf-8", PAGE_JS) }),
+        )
+        .route(
+            "/plan.js",
+            get(|| async { asset("text/javascript; charset=utf-8", PLAN_JS) }),
         )
         .route(
             "/page.css",

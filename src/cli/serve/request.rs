@@ -11,6 +11,7 @@ use base64::engine::general_purpose::GeneralPurpose;
 use base64::engine::{DecodePaddingMode, GeneralPurposeConfig};
 use base64::Engine;
 use facetlab::io;
+use facetlab::optics::{BodyColour, ColourFields, Material, MaterialFields, StoneSize};
 use facetlab::render::Light;
 use serde::Deserialize;
 use serde_json::{Number, Value};
@@ -45,6 +46,10 @@ pub struct Req {
     pub exposure: f64,
     pub quick: bool,
     pub to: Option<&'static str>,
+    /// The material traced, with its body colour (`material`, `colour`, `colour_density`).
+    pub material: Material,
+    /// The stone's size for its body colour (`diameter_mm` or `size_mm`).
+    pub stone: StoneSize,
 }
 
 /// A field of a body as sent: absent, of the expected JSON type, or anything else (`null`
@@ -65,7 +70,7 @@ pub enum Field<T> {
 impl<T> Field<T> {
     /// `Ok(None)` when absent or `null`, `Ok(Some)` when of the expected type, else the value
     /// sent.
-    fn given(&self) -> Result<Option<&T>, &Value> {
+    pub fn given(&self) -> Result<Option<&T>, &Value> {
         match self {
             Field::Absent | Field::Other(Value::Null) => Ok(None),
             Field::Given(t) => Ok(Some(t)),
@@ -89,10 +94,24 @@ struct Body {
     exposure: Field<Number>,
     quick: Field<bool>,
     to: Field<String>,
+    material: Field<String>,
+    colour: Field<String>,
+    colour_density: Field<Number>,
+    diameter_mm: Field<Number>,
+    size_mm: Field<String>,
 }
 
 /// Which keys an endpoint takes beyond `cut`, `format`, `encoding`, `name`, `set`.
 const COMMON: [&str; 5] = ["cut", "format", "encoding", "name", "set"];
+
+/// The keys of a stone's material, body colour and size (`score`, `render`, `cut`).
+pub const STONE: [&str; 5] = [
+    "material",
+    "colour",
+    "colour_density",
+    "diameter_mm",
+    "size_mm",
+];
 
 /// A JSON object from a request's body, or the error about `body` (too large, not JSON, not
 /// an object: `not_object` says what was expected).
@@ -170,7 +189,10 @@ pub fn parse_req(
             ),
         )
     };
+    let (material, stone) = stone(&b)?;
     Ok(Req {
+        material,
+        stone,
         source: source(&b)?,
         set: set(&b)?,
         light: match b.light.given() {
@@ -345,6 +367,106 @@ fn clean_name(s: &str) -> String {
         .to_string()
 }
 
+/// A library error about a value of the right type (an unknown material, a colour that is
+/// not one, a size out of range): a 422 naming the field the library names.
+fn invalid(e: facetlab::error::Error) -> ApiError {
+    match e {
+        facetlab::error::Error::Invalid { field, message } => {
+            ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, field, message)
+        }
+        other => ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "colour",
+            other.to_string(),
+        ),
+    }
+}
+
+/// The material (with its body colour) and the stone's size, through the library's choosers
+/// that `score` and `render` use for `--material`, `--colour`, `--colour-density`,
+/// `--diameter-mm` and `--size-mm`; errors name the body's fields.
+fn stone(b: &Body) -> ApiResult<(Material, StoneSize)> {
+    let name = match b.material.given() {
+        Ok(n) => n.map(String::as_str),
+        Err(_) => {
+            return Err(ApiError::bad(
+                "material",
+                "must be a string such as \"amethyst\"",
+            ))
+        }
+    };
+    let mut material = Material::choose(
+        name,
+        None,
+        MaterialFields {
+            material: "material",
+            ri: "ri",
+        },
+    )
+    .map_err(invalid)?;
+    let colour = match b.colour.given() {
+        Ok(c) => c.map(|c| c.as_str()).filter(|c| !c.trim().is_empty()),
+        Err(_) => {
+            return Err(ApiError::bad(
+                "colour",
+                "must be a string such as \"#7a3fa0@10mm\" or \"lab(40,30,-40)\"",
+            ))
+        }
+    };
+    let density = match b.colour_density.given() {
+        Ok(d) => d.map(|d| d.as_f64().unwrap_or(f64::NAN)),
+        Err(v) => {
+            return Err(ApiError::bad(
+                "colour_density",
+                format!("{} is not a number", short(&v.to_string())),
+            ))
+        }
+    };
+    material.colour = BodyColour::choose(
+        material.colour.as_ref(),
+        colour,
+        density,
+        ColourFields {
+            colour: "colour",
+            density: "colour_density",
+        },
+    )
+    .map_err(invalid)?;
+    let size = match (b.diameter_mm.given(), b.size_mm.given()) {
+        (Ok(Some(_)), Ok(Some(_))) => {
+            return Err(ApiError::bad(
+                "size_mm",
+                "give either diameter_mm or size_mm, not both",
+            ))
+        }
+        (Ok(Some(w)), _) => {
+            StoneSize::width(w.as_f64().unwrap_or(f64::NAN), "diameter_mm").map_err(invalid)?
+        }
+        (_, Ok(Some(l))) => StoneSize::parse_length(l, "size_mm").map_err(invalid)?,
+        (Err(v), _) => {
+            return Err(ApiError::bad(
+                "diameter_mm",
+                format!("{} is not a number of millimetres", short(&v.to_string())),
+            ))
+        }
+        (_, Err(_)) => {
+            return Err(ApiError::bad(
+                "size_mm",
+                "must be a string: L or LxW in millimetres, e.g. \"10x5\"",
+            ))
+        }
+        (Ok(None), Ok(None)) => StoneSize::default(),
+    };
+    Ok((material, size))
+}
+
+/// The stone's width in mm for `cut` (a length follows from its L/W).
+pub fn width_mm(r: &Req, cut: &facetlab::cut::Cut) -> ApiResult<f64> {
+    r.stone
+        .width_mm(cut.ratios().l_w, "size_mm")
+        .map_err(invalid)
+}
+
 fn set(b: &Body) -> ApiResult<BTreeMap<String, f64>> {
     let mut out = BTreeMap::new();
     match b.set.given() {
@@ -380,7 +502,7 @@ fn set(b: &Body) -> ApiResult<BTreeMap<String, f64>> {
 /// Decode standard base64 as the page sends it, leniently: padding optional, whitespace
 /// ignored, the URL-safe `-` and `_` taken for `+` and `/`, and the bits of an incomplete
 /// last character dropped.
-fn decode_base64(s: &str) -> Option<Vec<u8>> {
+pub fn decode_base64(s: &str) -> Option<Vec<u8>> {
     const LENIENT: GeneralPurpose = GeneralPurpose::new(
         &base64::alphabet::STANDARD,
         GeneralPurposeConfig::new()

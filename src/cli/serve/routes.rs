@@ -4,8 +4,8 @@
 
 use super::error::{no_store, ApiError, ApiResult};
 use super::jobs::{build, build_design, heavy, jobs};
-use super::request::{parse_req, Source, EXPORTS, FORMATS};
-use super::{page, runs, AppState, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
+use super::request::{parse_req, width_mm, Source, EXPORTS, FORMATS, STONE};
+use super::{page, plans, runs, AppState, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
 use crate::cli::cuts::info_json;
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
@@ -32,6 +32,7 @@ pub fn app() -> Router {
         jobs: Arc::new(Semaphore::new(jobs())),
         presets: presets_json().to_string(),
         runs: runs::Runs::default(),
+        plans: plans::PlanRuns::default(),
         designs: Arc::default(),
     });
     Router::new()
@@ -45,6 +46,10 @@ pub fn app() -> Router {
         .route("/api/optimize", post(runs::start).get(runs::status))
         .route("/api/optimize/stop", post(runs::stop))
         .route("/api/optimize/report", get(runs::report))
+        .route("/api/plan", post(plans::start).get(plans::status))
+        .route("/api/plan/stop", post(plans::stop))
+        .route("/api/plan/report", get(plans::report))
+        .route("/api/plan/picture/{name}", get(plans::picture))
         .fallback(|| async {
             ApiError::new(StatusCode::NOT_FOUND, "path", "no such page or endpoint")
         })
@@ -101,13 +106,42 @@ fn presets_json() -> Value {
         "families": fams,
         "lights": Light::ALL.map(Light::name),
         "formats": FORMATS,
+        "materials": materials_json(),
+        "crystals": facetlab::plan::CRYSTALS,
+        "plan": {
+            "default_family": plans::DEFAULT_FAMILY,
+            "top": [plans::TOP.0, plans::TOP.1, plans::TOP.2],
+            "starts": [plans::STARTS.0, plans::STARTS.1, plans::STARTS.2],
+            "max_triangles": plans::MAX_ROUGH_TRIANGLES,
+        },
         "limits": {
+            "colour_density": [0.0, facetlab::optics::DENSITY_MAX],
+            "stone_mm": [0.0, 1000.0],
             "size": [SIZE_RANGE.0, SIZE_RANGE.1],
             "tilt": [-TILT_LIMIT, TILT_LIMIT],
             "exposure": [0.0, EXPOSURE_MAX],
             "body_bytes": BODY_LIMIT,
         },
     })
+}
+
+/// The materials a stone can be (`facetlab materials`): the table's, then the coloured
+/// varieties, each with `colour`: its body colour seen through the default width as
+/// `#rrggbb` (`null` when colourless or no spectrum is published).
+fn materials_json() -> Vec<Value> {
+    let w = facetlab::optics::StoneSize::DEFAULT_WIDTH_MM;
+    let table = Material::table()
+        .into_iter()
+        .map(|m| json!({"name": m.name, "colour": m.colour.as_ref().map(|c| c.hex_through(w))}));
+    let varieties = facetlab::optics::Variety::all().iter().map(|v| {
+        let c = v.body_colour();
+        json!({
+            "name": v.name,
+            "colour": c.as_ref().map(|c| c.hex_through(w)),
+            "source": c.map(|c| c.source),
+        })
+    });
+    table.chain(varieties).collect()
 }
 
 /// `POST /api/cut`: `info --json` plus the SVG diagram, and for a cut without a family its
@@ -117,11 +151,11 @@ async fn cut_info(
     State(st): State<Arc<AppState>>,
     body: std::result::Result<Bytes, BytesRejection>,
 ) -> ApiResult<Response> {
-    let r = parse_req(body, &[])?;
+    let r = parse_req(body, &STONE)?;
     let designs = st.designs.clone();
     let (v, probe) = heavy(&st, move || {
         let (cut, design) = build_design(&designs, &r, true)?;
-        let info = info_json(&cut, 6.5, &Material::diamond());
+        let info = info_json(&cut, width_mm(&r, &cut)?, &r.material);
         let mut v = serde_json::to_value(&info)
             .map_err(|e| ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "cut", e.to_string()))?;
         let mut probe = None;
@@ -167,15 +201,21 @@ async fn score_cut(
     State(st): State<Arc<AppState>>,
     body: std::result::Result<Bytes, BytesRejection>,
 ) -> ApiResult<Response> {
-    let r = parse_req(body, &["quick"])?;
+    let r = parse_req(body, &[&["quick"][..], &STONE].concat())?;
     let designs = st.designs.clone();
     let (text, timing) = heavy(&st, move || {
         let t0 = Instant::now();
         let cut = build(&designs, &r)?;
-        let cfg = if r.quick {
-            ScoreConfig::fast()
-        } else {
-            ScoreConfig::default()
+        // Refuses a length × width that disagrees with the cut's L/W.
+        width_mm(&r, &cut)?;
+        let cfg = ScoreConfig {
+            material: r.material.clone(),
+            size: r.stone,
+            ..if r.quick {
+                ScoreConfig::fast()
+            } else {
+                ScoreConfig::default()
+            }
         };
         let s = score(&cut.solid, &cfg);
         let text =
@@ -205,7 +245,10 @@ async fn render_cut(
     State(st): State<Arc<AppState>>,
     body: std::result::Result<Bytes, BytesRejection>,
 ) -> ApiResult<Response> {
-    let r = parse_req(body, &["light", "size", "tilt", "exposure"])?;
+    let r = parse_req(
+        body,
+        &[&["light", "size", "tilt", "exposure"][..], &STONE].concat(),
+    )?;
     let designs = st.designs.clone();
     let (png, stats, timing) = heavy(&st, move || {
         let t0 = Instant::now();
@@ -217,6 +260,8 @@ async fn render_cut(
             tilt_deg: r.tilt,
             azimuth_deg: 0.0,
         };
+        o.width_mm = width_mm(&r, &cut)?;
+        o.material = r.material.clone();
         o.validate()
             .map_err(|e| ApiError::bad("render", e.to_string()))?;
         let img = render(&cut.solid, &o);

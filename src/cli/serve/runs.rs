@@ -41,6 +41,9 @@ pub const CONFIGS: [(&str, &str); 5] = [
     ),
 ];
 
+/// What the status endpoints say before the first run.
+const NO_RUN: &str = "no run yet; POST /api/optimize";
+
 /// Largest config text accepted.
 const MAX_CONFIG: usize = 64 * 1024;
 
@@ -70,11 +73,73 @@ pub struct Run {
     report: Mutex<Option<String>>,
 }
 
-/// The runs of one server: the current (or last) one.
-#[derive(Default)]
-pub struct Runs {
-    current: Mutex<Option<Arc<Run>>>,
+/// The optimization runs of one server: the current (or last) one.
+pub type Runs = Slot<Run>;
+
+/// One background run of a kind at a time (an optimization, a plan): the current (or last)
+/// one, numbered from 1.
+pub struct Slot<T> {
+    current: Mutex<Option<Arc<T>>>,
     next: AtomicU64,
+}
+
+impl<T> Default for Slot<T> {
+    fn default() -> Self {
+        Slot {
+            current: Mutex::new(None),
+            next: AtomicU64::new(0),
+        }
+    }
+}
+
+/// A background run that says whether it is still going, and can be asked to stop.
+pub trait Going {
+    fn going(&self) -> bool;
+    fn stop(&self);
+}
+
+impl<T: Going> Slot<T> {
+    /// Number and keep the run `make(id)`, unless one is going: then a 409 naming `field`
+    /// that says `busy`.
+    pub fn start(
+        &self,
+        field: &str,
+        busy: &str,
+        make: impl FnOnce(u64) -> T,
+    ) -> ApiResult<(u64, Arc<T>)> {
+        let mut cur = self.current.lock().map_err(|_| lock_err())?;
+        if cur.as_ref().is_some_and(|r| r.going()) {
+            return Err(ApiError::new(StatusCode::CONFLICT, field, busy));
+        }
+        let id = self.next.fetch_add(1, Ordering::SeqCst) + 1;
+        let run = Arc::new(make(id));
+        *cur = Some(run.clone());
+        Ok((id, run))
+    }
+
+    /// The current (or last) run, or a 404 about `run` that says `none`.
+    pub fn current(&self, none: &str) -> ApiResult<Arc<T>> {
+        self.current
+            .lock()
+            .map_err(|_| lock_err())?
+            .clone()
+            .ok_or_else(|| ApiError::new(StatusCode::NOT_FOUND, "run", none))
+    }
+
+    /// Ask the current run to stop (`POST …/stop`); a 404 saying `none` when there is none.
+    pub fn stop(&self, none: &str) -> ApiResult<Response> {
+        self.current(none)?.stop();
+        Ok(axum::Json(json!({ "stopping": true })).into_response())
+    }
+}
+
+impl Going for Run {
+    fn going(&self) -> bool {
+        self.status.lock().is_ok_and(|s| s.state == "running")
+    }
+    fn stop(&self) {
+        self.stop.store(true, Ordering::SeqCst);
+    }
 }
 
 struct Watch(Arc<Run>);
@@ -100,7 +165,8 @@ impl Progress for Watch {
     }
 }
 
-fn lock_err() -> ApiError {
+/// The error of a poisoned lock.
+pub fn lock_err() -> ApiError {
     ApiError::new(
         StatusCode::INTERNAL_SERVER_ERROR,
         "server",
@@ -190,31 +256,21 @@ pub async fn start(
             e.to_string(),
         )
     })?;
-    let runs = &st.runs;
-    let mut cur = runs.current.lock().map_err(|_| lock_err())?;
-    if let Some(r) = cur.as_ref() {
-        if r.status.lock().map_err(|_| lock_err())?.state == "running" {
-            return Err(ApiError::new(
-                StatusCode::CONFLICT,
-                "config",
-                "a run is going; stop it first (POST /api/optimize/stop)",
-            ));
-        }
-    }
-    let id = runs.next.fetch_add(1, Ordering::SeqCst) + 1;
-    let run = Arc::new(Run {
-        stop: Arc::new(AtomicBool::new(false)),
-        status: Mutex::new(RunStatus {
-            id,
-            name: config.name.clone(),
-            state: "running",
-            budget: config.budget.max_evaluations,
-            ..Default::default()
-        }),
-        report: Mutex::new(None),
-    });
-    *cur = Some(run.clone());
-    drop(cur);
+    let (id, run) = st.runs.start(
+        "config",
+        "a run is going; stop it first (POST /api/optimize/stop)",
+        |id| Run {
+            stop: Arc::new(AtomicBool::new(false)),
+            status: Mutex::new(RunStatus {
+                id,
+                name: config.name.clone(),
+                state: "running",
+                budget: config.budget.max_evaluations,
+                ..Default::default()
+            }),
+            report: Mutex::new(None),
+        },
+    )?;
     std::thread::spawn(move || execute(run, config, id));
     Ok(axum::Json(json!({ "id": id })).into_response())
 }
@@ -283,18 +339,7 @@ fn execute(run: Arc<Run>, config: Config, id: u64) {
 }
 
 fn current(st: &AppState) -> ApiResult<Arc<Run>> {
-    st.runs
-        .current
-        .lock()
-        .map_err(|_| lock_err())?
-        .clone()
-        .ok_or_else(|| {
-            ApiError::new(
-                StatusCode::NOT_FOUND,
-                "run",
-                "no run yet; POST /api/optimize",
-            )
-        })
+    st.runs.current(NO_RUN)
 }
 
 /// `GET /api/optimize`: the current run's status.
@@ -306,9 +351,7 @@ pub async fn status(State(st): State<Arc<AppState>>) -> ApiResult<Response> {
 
 /// `POST /api/optimize/stop`.
 pub async fn stop(State(st): State<Arc<AppState>>) -> ApiResult<Response> {
-    let run = current(&st)?;
-    run.stop.store(true, Ordering::SeqCst);
-    Ok(axum::Json(json!({ "stopping": true })).into_response())
+    st.runs.stop(NO_RUN)
 }
 
 /// `GET /api/optimize/report`: the finished run's `report.html`.

@@ -20,7 +20,12 @@ async fn wait_js(page: &chromiumoxide::Page, expr: &str, secs: u64) -> bool {
 
 /// Put `file` into the page's file input (DOM.setFileInputFiles), as a user's upload.
 async fn upload(page: &chromiumoxide::Page, file: &std::path::Path) {
-    let input = page.find_element("#file").await.unwrap();
+    upload_to(page, "#file", file).await
+}
+
+/// Put `file` into the file input `selector`.
+async fn upload_to(page: &chromiumoxide::Page, selector: &str, file: &std::path::Path) {
+    let input = page.find_element(selector).await.unwrap();
     page.execute(
         chromiumoxide::cdp::browser_protocol::dom::SetFileInputFilesParams::builder()
             .file(file.display().to_string())
@@ -79,7 +84,9 @@ fn serve_page_works_in_a_browser() {
         .enable_all()
         .build()
         .unwrap();
-    rt.block_on(browser_session(&url, &shots, &asc, &round));
+    let rough = dir.path().join("octa.obj");
+    std::fs::write(&rough, super::plan::octahedron_obj(0)).unwrap();
+    rt.block_on(browser_session(&url, &shots, &asc, &round, &rough));
 }
 
 async fn browser_session(
@@ -87,6 +94,7 @@ async fn browser_session(
     shots: &std::path::Path,
     asc: &std::path::Path,
     round: &std::path::Path,
+    rough: &std::path::Path,
 ) {
     use chromiumoxide::browser::{Browser, BrowserConfig};
     use chromiumoxide::cdp::js_protocol::runtime::{
@@ -402,6 +410,85 @@ async fn browser_session(
     )
     .await
     .unwrap();
+
+    // The stone in its own colour, wider: the colour rows, a green picture, its caption.
+    let _: bool = js(
+        &page,
+        "(() => { const l = document.querySelector('#light'); l.value = 'iso'; l.dispatchEvent(new Event('change')); const o = document.querySelector('#own-colour'); o.checked = true; o.dispatchEvent(new Event('change')); const c = document.querySelector('#colour'); c.value = '#2e8b57'; c.dispatchEvent(new Event('input')); const w = document.querySelector('#stone-mm'); w.value = '8'; w.dispatchEvent(new Event('change')); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(&page, "document.body.classList.contains('coloured') && document.querySelector('#score-a-colour-l').textContent !== '—' && document.querySelector('#cap-a').textContent.includes('L*') && document.querySelector('#prop-a-carats').parentElement.firstChild.textContent === 'Weight at 8 mm' && !document.querySelector('#render-a').parentElement.classList.contains('busy')", 60).await,
+        "the colour rows and the coloured picture did not show"
+    );
+    // The picture's mean colour over the stone is green.
+    let mean: Vec<f64> = js(
+        &page,
+        "(() => { const i = document.querySelector('#render-a'); const c = document.createElement('canvas'); c.width = i.naturalWidth; c.height = i.naturalHeight; const g = c.getContext('2d'); g.drawImage(i, 0, 0); const d = g.getImageData(0, 0, c.width, c.height).data; const bg = [d[0], d[1], d[2]]; const s = [0, 0, 0]; let n = 0; for (let k = 0; k < d.length; k += 4) { if (d[k] === bg[0] && d[k + 1] === bg[1] && d[k + 2] === bg[2]) continue; s[0] += d[k]; s[1] += d[k + 1]; s[2] += d[k + 2]; n++; } return s.map((x) => x / Math.max(1, n)); })()",
+    )
+    .await;
+    assert!(
+        mean[1] > mean[0] + 5.0 && mean[1] > mean[2],
+        "not green: {mean:?}"
+    );
+    wait_js(
+        &page,
+        "document.querySelector('#scores').dataset.a === 'full'",
+        30,
+    )
+    .await;
+    page.save_screenshot(ScreenshotParams::builder().build(), shot("7-colour.png"))
+        .await
+        .unwrap();
+
+    // Plan from an uploaded rough: its plans in the table, the first one's three views.
+    upload_to(&page, "#plan-file", rough).await;
+    assert!(
+        wait_js(
+            &page,
+            "document.querySelector('#plan-rough').value === '__upload'",
+            10
+        )
+        .await,
+        "the rough was not taken"
+    );
+    let _: bool = js(&page, "(document.querySelector('#plan-run').click(), true)").await;
+    assert!(
+        wait_js(&page, "document.querySelectorAll('#plan-table tbody tr').length === 2 && !document.querySelector('#plan-table').hidden && document.querySelector('#plan-views').complete && document.querySelector('#plan-views').naturalWidth > 100 && document.querySelector('#plan-status').textContent.includes('done')", 120).await,
+        "the plans did not show"
+    );
+    let _: bool = js(
+        &page,
+        "(document.querySelector('#plan-views').scrollIntoView({block: 'end'}), true)",
+    )
+    .await;
+    page.save_screenshot(ScreenshotParams::builder().build(), shot("8-plan.png"))
+        .await
+        .unwrap();
+    // The chosen plan as A: its family and parameters, at its width: the plan's carats.
+    let carats: f64 = js(&page, "plan.chosen.carats").await;
+    let _: bool = js(
+        &page,
+        "(document.querySelector('#plan-open').click(), true)",
+    )
+    .await;
+    assert!(
+        wait_js(&page, "document.querySelector('#cut-family').textContent.includes('round-brilliant') && document.querySelector('#prop-a-carats').textContent !== '—' && document.querySelectorAll('#params .param.changed').length > 0 && !document.querySelector('#render-a').parentElement.classList.contains('busy')", 60).await,
+        "the plan did not open as A"
+    );
+    let shown: String = js(
+        &page,
+        "document.querySelector('#prop-a-carats').textContent",
+    )
+    .await;
+    let shown: f64 = shown.trim_end_matches(" ct").parse().unwrap();
+    assert!(
+        (shown - carats).abs() < 1.5e-3,
+        "the workbench weighs {shown} ct, the plan {carats} ct"
+    );
+    page.save_screenshot(ScreenshotParams::builder().build(), shot("9-plan-as-a.png"))
+        .await
+        .unwrap();
 
     let page_errs: Vec<String> = js(&page, "window.__errs || []").await;
     let errs = errors.lock().unwrap().clone();

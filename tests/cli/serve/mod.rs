@@ -5,7 +5,9 @@
 
 mod api;
 mod browser;
+mod colour;
 mod fuzz;
+mod plan;
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
@@ -211,4 +213,44 @@ fn assert_error(r: &Resp, field: &str) -> String {
 fn b64(bytes: &[u8]) -> String {
     use base64::Engine;
     base64::engine::general_purpose::STANDARD.encode(bytes)
+}
+
+/// The mean colour of a PNG's pixels that differ from its corner's (the stone, not the
+/// ground), as 0–255 RGB, and how many there are.
+fn stone_mean_rgb(b: &[u8]) -> ([f64; 3], usize) {
+    let mut reader = png::Decoder::new(std::io::Cursor::new(b))
+        .read_info()
+        .unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgb, "an RGB picture");
+    let px: Vec<&[u8]> = buf[..info.buffer_size()].chunks(3).collect();
+    let ground = px[0];
+    let mut sum = [0.0; 3];
+    let mut n = 0;
+    for p in px.iter().filter(|p| *p != &ground) {
+        for k in 0..3 {
+            sum[k] += p[k] as f64;
+        }
+        n += 1;
+    }
+    (sum.map(|s| s / n.max(1) as f64), n)
+}
+
+/// The hue of an RGB colour, degrees in [0, 360), and its chroma (max − min), 0–255.
+fn hue(c: [f64; 3]) -> (f64, f64) {
+    let [r, g, b] = c;
+    let (hi, lo) = (r.max(g).max(b), r.min(g).min(b));
+    let d = hi - lo;
+    if d <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let h = if hi == r {
+        60.0 * ((g - b) / d).rem_euclid(6.0)
+    } else if hi == g {
+        60.0 * ((b - r) / d + 2.0)
+    } else {
+        60.0 * ((r - g) / d + 4.0)
+    };
+    (h, d)
 }
