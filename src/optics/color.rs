@@ -138,6 +138,48 @@ pub fn srgb_encode(v: f64) -> f64 {
     }
 }
 
+/// The byte of [`srgb_encode`]: `round(255 · srgb_encode(v))`, the same for every `v`, found
+/// among 255 thresholds instead of a power (a picture encodes millions of pixels).
+///
+/// The byte never falls as `v` grows, so it is the number of thresholds `t_k` (the least `v`
+/// whose byte is `k`) at or below `v`; each threshold is found once by bisection down to
+/// adjacent floats.
+///
+/// ```
+/// use facetlab::optics::color::{srgb8, srgb_encode};
+/// for v in [-1.0, 0.0, 1e-4, 0.18, 0.5, 0.999, 1.0, 7.0] {
+///     assert_eq!(srgb8(v), (srgb_encode(v) * 255.0).round() as u8);
+/// }
+/// ```
+pub fn srgb8(v: f64) -> u8 {
+    static THRESHOLDS: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    let t = THRESHOLDS.get_or_init(|| {
+        let byte = |v: f64| (srgb_encode(v) * 255.0).round() as u8;
+        (1..=255u8)
+            .map(|k| {
+                // byte(lo) < k ≤ byte(hi).
+                let (mut lo, mut hi) = (0.0f64, 1.0f64);
+                loop {
+                    let mid = 0.5 * (lo + hi);
+                    if mid <= lo || mid >= hi {
+                        break hi;
+                    }
+                    if byte(mid) >= k {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+            })
+            .collect()
+    });
+    if v.is_nan() {
+        // srgb_encode clamps NaN to NaN, whose byte is 0.
+        return 0;
+    }
+    t.partition_point(|&x| x <= v) as u8
+}
+
 /// 8-bit sRGB from XYZ (clipped).
 pub fn xyz_to_srgb8(c: DVec3) -> [u8; 3] {
     let l = xyz_to_linear_srgb(c);
@@ -269,6 +311,41 @@ pub fn delta_e2000(lab1: DVec3, lab2: DVec3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The threshold search gives the power's byte everywhere: on a fine grid over [0, 1],
+    /// and on both sides of every place the byte changes, down to adjacent floats.
+    #[test]
+    fn srgb8_is_the_encoded_byte() {
+        let byte = |v: f64| (srgb_encode(v) * 255.0).round() as u8;
+        let n = 1 << 18;
+        let mut changes = 0;
+        let mut last = byte(0.0);
+        for i in 0..=n {
+            let v = i as f64 / n as f64;
+            assert_eq!(srgb8(v), byte(v), "{v}");
+            let b = byte(v);
+            if b != last {
+                changes += 1;
+                // Bisect the change down to adjacent floats and check both of them.
+                let (mut lo, mut hi) = ((i - 1) as f64 / n as f64, v);
+                while f64::from_bits(lo.to_bits() + 1) < hi {
+                    let mid = 0.5 * (lo + hi);
+                    if byte(mid) == b {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                assert_eq!(srgb8(lo), byte(lo), "{lo}");
+                assert_eq!(srgb8(hi), byte(hi), "{hi}");
+            }
+            last = b;
+        }
+        assert_eq!(changes, 255);
+        for v in [-1.0, 2.0, f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+            assert_eq!(srgb8(v), byte(v), "{v}");
+        }
+    }
 
     /// Faint bands are merged into their nearest traced neighbour: the weights still sum to
     /// the white, and only bands far out in the red (or violet) go.

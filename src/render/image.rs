@@ -159,6 +159,23 @@ impl Image {
                 for (i, px) in row.chunks_exact_mut(3).enumerate() {
                     let k = (n - 1 - j) * n + i;
                     let a = self.coverage.data[k].clamp(0.0, 1.0);
+                    if a == 1.0 && palette.is_empty() {
+                        // Inside the outline no background mixes in: the byte of the encoded
+                        // value straight away (the same byte, without a power per channel).
+                        match self.channels.as_slice() {
+                            [g] => {
+                                px.fill(color::srgb8(g.data[k] * exposure));
+                                continue;
+                            }
+                            [r, g, b] => {
+                                for (x, ch) in px.iter_mut().zip([r, g, b]) {
+                                    *x = color::srgb8(ch.data[k] * exposure);
+                                }
+                                continue;
+                            }
+                            _ => {}
+                        }
+                    }
                     let bg = background.map(|b| (1.0 - a) * b);
                     let c: [f64; 3] = match self.channels.as_slice() {
                         _ if !palette.is_empty() => {
