@@ -23,6 +23,8 @@ struct Layer {
     values: Vec<[f64; 5]>,
     /// Per exit: smallest and largest y of its footprint.
     ys: Vec<(f64, f64)>,
+    /// Per exit: smallest x of its footprint.
+    x_lo: Vec<f64>,
 }
 
 impl Layer {
@@ -30,15 +32,18 @@ impl Layer {
         let area = tree.stats.area;
         let mut values = Vec::with_capacity(tree.exits.len());
         let mut ys = Vec::with_capacity(tree.exits.len());
+        let mut x_lo = Vec::with_capacity(tree.exits.len());
         for (i, e) in tree.exits.iter().enumerate() {
             let fp = tree.footprint(i);
             let a = clip2d::area(fp);
-            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            let (mut lo, mut hi, mut left) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
             for p in fp {
                 lo = lo.min(p.y);
                 hi = hi.max(p.y);
+                left = left.min(p.x);
             }
             ys.push((lo, hi));
+            x_lo.push(left);
             let mut v = [0.0; 5];
             if a > 0.0 && e.power > 0.0 {
                 // Radiance through this beam: its power per unit of footprint, relative to
@@ -56,6 +61,7 @@ impl Layer {
             channels,
             values,
             ys,
+            x_lo,
         }
     }
 }
@@ -67,12 +73,19 @@ const BAND_ROWS: usize = 64;
 /// layer's channel values added to the same images), in bands of rows in parallel; each
 /// pixel receives its footprints in the layers' order, so the result does not depend on the
 /// number of threads.
-fn fill(layers: &[Layer], channels: usize, size: usize, half: f64) -> Vec<Raster> {
+///
+/// With `quadrant` (a picture that is its own mirror image across both image axes, see
+/// [`mirrored`]) only the bottom-left quadrant's pixels are drawn, from the footprints that
+/// reach it (a pixel's running sums take only edges to its left), and the rest mirrored.
+fn fill(layers: &[Layer], channels: usize, size: usize, half: f64, quadrant: bool) -> Vec<Raster> {
     let proto = Raster::new(size, half);
     let h = proto.pixel();
-    let bands: Vec<(usize, usize)> = (0..size)
+    // Rows and columns drawn: all, or the first half (with the middle one when odd).
+    let m = if quadrant { size.div_ceil(2) } else { size };
+    let x_m = -half + m as f64 * h;
+    let bands: Vec<(usize, usize)> = (0..m)
         .step_by(BAND_ROWS)
-        .map(|j| (j, (j + BAND_ROWS).min(size)))
+        .map(|j| (j, (j + BAND_ROWS).min(m)))
         .collect();
     let parts: Vec<Vec<Vec<f64>>> = bands
         .par_iter()
@@ -82,7 +95,11 @@ fn fill(layers: &[Layer], channels: usize, size: usize, half: f64) -> Vec<Raster
             for layer in layers {
                 for (i, v) in layer.values.iter().enumerate() {
                     let (lo, hi) = layer.ys[i];
-                    if hi < ylo || lo > yhi || v[..channels].iter().all(|&x| x == 0.0) {
+                    if hi < ylo
+                        || lo > yhi
+                        || (quadrant && layer.x_lo[i] >= x_m)
+                        || v[..channels].iter().all(|&x| x == 0.0)
+                    {
                         continue;
                     }
                     acc.add_polygon(layer.tree.footprint(i), &v[..channels]);
@@ -98,9 +115,43 @@ fn fill(layers: &[Layer], channels: usize, size: usize, half: f64) -> Vec<Raster
                 let p = &part[ch];
                 r.data[j0 * size..j0 * size + p.len()].copy_from_slice(p);
             }
+            if quadrant {
+                for j in 0..m {
+                    let row = &mut r.data[j * size..(j + 1) * size];
+                    for i in m..size {
+                        row[i] = row[size - 1 - i];
+                    }
+                }
+                for j in m..size {
+                    r.data
+                        .copy_within((size - 1 - j) * size..(size - j) * size, j * size);
+                }
+            }
             r
         })
         .collect()
+}
+
+/// Whether the picture of `solid` (canonical: centred on the picture) seen along `frame`
+/// under `light` is its own mirror image across both image axes: a light that depends on the
+/// elevation alone (every light but fire's spots) and a solid that each axis' mirror maps onto
+/// itself (every facet plane onto a facet plane, to 1e-9). Such a picture's exits come in
+/// mirrored pairs, footprints and values both.
+fn mirrored(solid: &Polyhedron, frame: &Frame, light: Light) -> bool {
+    if light == Light::Fire {
+        return false;
+    }
+    let planes = solid.facet_planes();
+    [frame.u, frame.v].iter().all(|&a| {
+        planes.iter().all(|p| {
+            let n = p.plane.normal;
+            let m = n - 2.0 * n.dot(a) * a;
+            planes.iter().any(|q| {
+                q.plane.normal.distance_squared(m) < 1e-18
+                    && (q.plane.offset - p.plane.offset).abs() < 1e-9
+            })
+        })
+    })
 }
 
 /// Draw `solid` as `opts` says. The solid is first put in its canonical placement
@@ -115,6 +166,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     let size = opts.size.max(1);
     let half = picture_half(&solid);
     let trace_opts = opts.trace_options();
+    let quadrant = mirrored(&solid, &frame, opts.light);
     let lighting = Lighting::new(opts.head_shadow(), &opts.spots);
     let mut stats = Stats {
         size,
@@ -185,7 +237,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
             .collect();
         let band_rasters: Vec<Vec<Raster>> = band_layers
             .par_iter()
-            .map(|l| fill(std::slice::from_ref(l), l.channels, size, half))
+            .map(|l| fill(std::slice::from_ref(l), l.channels, size, half, quadrant))
             .collect();
         let images: Vec<&Raster> = (0..bands.len())
             .map(|b| &band_rasters[if constant { 0 } else { b }][0])
@@ -296,7 +348,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         stats.exits = tree.exits.len();
         let layer = Layer::new(tree, n, |i| shades[i].0);
         let layers = vec![layer];
-        (fill(&layers, n, size, half), layers)
+        (fill(&layers, n, size, half, quadrant), layers)
     };
     let coverage = outline_coverage(&solid, &layers[0].tree.frame, size, half);
     if let Some((xyz, through, window)) = colour_input {
@@ -334,4 +386,85 @@ pub(crate) fn outline_coverage(
         coverage.data = c;
     }
     coverage
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::Tilt;
+
+    /// Drawing a quadrant and mirroring it gives the full fill's pixels (to rounding) for
+    /// every mirror-symmetric picture, and the check refuses the pictures that are not: fire's
+    /// spots, a pose tilted out of a mirror plane, a solid without the mirrors.
+    #[test]
+    fn a_mirrored_quadrant_is_the_whole_picture() {
+        let round = canonical(&crate::testkit::tolkowsky());
+        let cases = [
+            (Light::Iso, Tilt::FACE_UP, 96, true),
+            (Light::Aset, Tilt::FACE_UP, 95, true),
+            (Light::Hearts, Tilt::FACE_UP, 64, true),
+            (Light::Fire, Tilt::FACE_UP, 64, false),
+            (
+                Light::Iso,
+                Tilt {
+                    tilt_deg: 10.0,
+                    azimuth_deg: 0.0,
+                },
+                64,
+                false,
+            ),
+            (
+                Light::Iso,
+                Tilt {
+                    tilt_deg: 10.0,
+                    azimuth_deg: 33.0,
+                },
+                64,
+                false,
+            ),
+        ];
+        for (light, tilt, size, symmetric) in cases {
+            let frame = Frame::viewer(view_rotation(light, tilt));
+            assert_eq!(
+                mirrored(&round, &frame, light),
+                symmetric,
+                "{light:?} {tilt:?}"
+            );
+            if !symmetric {
+                continue;
+            }
+            let stone = Stone::new(&round);
+            let opts = RenderOptions::new(light);
+            let tree = stone.trace(&frame, 2.417, 589.3, &opts.trace_options());
+            let lighting = Lighting::new(opts.head_shadow(), &[]);
+            let rot = view_rotation(light, tilt);
+            let shades: Vec<[f64; 5]> = tree
+                .exits
+                .iter()
+                .map(|e| light.shade(&lighting, rot * e.direction).0)
+                .collect();
+            let n = light.channels();
+            let layers = [Layer::new(tree, n, |i| shades[i])];
+            let half = picture_half(&round);
+            let full = fill(&layers, n, size, half, false);
+            let quad = fill(&layers, n, size, half, true);
+            for (a, b) in full.iter().zip(&quad) {
+                let worst = a
+                    .data
+                    .iter()
+                    .zip(&b.data)
+                    .map(|(x, y)| (x - y).abs())
+                    .fold(0.0, f64::max);
+                assert!(worst < 1e-12, "{light:?} {size}: {worst}");
+            }
+        }
+        // A solid without the mirrors: one pavilion facet turned.
+        let mut planes = round.facet_planes();
+        let k = planes.iter().position(|p| p.plane.normal.z < -0.5).unwrap();
+        planes[k].plane.normal =
+            (planes[k].plane.normal + glam::DVec3::new(0.01, 0.02, 0.0)).normalize();
+        let skew = Polyhedron::from_planes(&planes).unwrap();
+        let frame = Frame::viewer(view_rotation(Light::Iso, Tilt::FACE_UP));
+        assert!(!mirrored(&skew, &frame, Light::Iso));
+    }
 }
