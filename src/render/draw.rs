@@ -2,135 +2,17 @@
 //! it sees, and add its footprint's exact coverage to the pixels ([`render`]).
 
 use super::image::{fire_of, AsetShares, ColourStats, Image, Stats};
+use super::layer::Layer;
 use super::light::Light;
 use super::lighting::Lighting;
 use super::options::RenderOptions;
 use super::pose::{picture_half, view_rotation};
 use super::raster::{Accumulator, Raster};
-use crate::beam::{BeamTree, Frame, Stone, TraceOptions};
-use crate::geometry::{canonical::canonical, clip2d, outline_size, Polyhedron};
+use crate::beam::{Frame, Stone, TraceOptions};
+use crate::geometry::{canonical::canonical, outline_size, Polyhedron};
 use crate::optics::{color, Dispersion};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
-
-/// One traced picture layer: its exits with footprints and each exit's values per unit of
-/// footprint (one per channel).
-struct Layer {
-    tree: BeamTree,
-    /// Channels of `values` in use.
-    channels: usize,
-    /// Per exit: values per unit area, one per channel.
-    values: Vec<[f64; 5]>,
-    /// Per exit: smallest and largest y of its footprint.
-    ys: Vec<(f64, f64)>,
-    /// Per exit: smallest x of its footprint.
-    x_lo: Vec<f64>,
-}
-
-impl Layer {
-    fn new(tree: BeamTree, channels: usize, value: impl Fn(usize) -> [f64; 5]) -> Layer {
-        let area = tree.stats.area;
-        let mut values = Vec::with_capacity(tree.exits.len());
-        let mut ys = Vec::with_capacity(tree.exits.len());
-        let mut x_lo = Vec::with_capacity(tree.exits.len());
-        for (i, e) in tree.exits.iter().enumerate() {
-            let fp = tree.footprint(i);
-            let a = clip2d::area(fp);
-            let (mut lo, mut hi, mut left) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
-            for p in fp {
-                lo = lo.min(p.y);
-                hi = hi.max(p.y);
-                left = left.min(p.x);
-            }
-            ys.push((lo, hi));
-            x_lo.push(left);
-            let mut v = [0.0; 5];
-            if a > 0.0 && e.power > 0.0 {
-                // Radiance through this beam: its power per unit of footprint, relative to
-                // the incoming power per unit of cross-section.
-                let c = value(i);
-                let k = e.power * area / a;
-                for ch in 0..channels {
-                    v[ch] = c[ch] * k;
-                }
-            }
-            values.push(v);
-        }
-        Layer {
-            tree,
-            channels,
-            values,
-            ys,
-            x_lo,
-        }
-    }
-}
-
-/// Rows per band of the parallel fill.
-const BAND_ROWS: usize = 64;
-
-/// Fill `channels` images of `size` pixels over `[−half, half]²` from the layers (each
-/// layer's channel values added to the same images), in bands of rows in parallel; each
-/// pixel receives its footprints in the layers' order, so the result does not depend on the
-/// number of threads.
-///
-/// With `quadrant` (a picture that is its own mirror image across both image axes, see
-/// [`mirrored`]) only the bottom-left quadrant's pixels are drawn, from the footprints that
-/// reach it (a pixel's running sums take only edges to its left), and the rest mirrored.
-fn fill(layers: &[Layer], channels: usize, size: usize, half: f64, quadrant: bool) -> Vec<Raster> {
-    let proto = Raster::new(size, half);
-    let h = proto.pixel();
-    // Rows and columns drawn: all, or the first half (with the middle one when odd).
-    let m = if quadrant { size.div_ceil(2) } else { size };
-    let x_m = -half + m as f64 * h;
-    let bands: Vec<(usize, usize)> = (0..m)
-        .step_by(BAND_ROWS)
-        .map(|j| (j, (j + BAND_ROWS).min(m)))
-        .collect();
-    let parts: Vec<Vec<Vec<f64>>> = bands
-        .par_iter()
-        .map(|&(j0, j1)| {
-            let (ylo, yhi) = (-half + j0 as f64 * h, -half + j1 as f64 * h);
-            let mut acc = Accumulator::new(size, half, (j0, j1), channels);
-            for layer in layers {
-                for (i, v) in layer.values.iter().enumerate() {
-                    let (lo, hi) = layer.ys[i];
-                    if hi < ylo
-                        || lo > yhi
-                        || (quadrant && layer.x_lo[i] >= x_m)
-                        || v[..channels].iter().all(|&x| x == 0.0)
-                    {
-                        continue;
-                    }
-                    acc.add_polygon(layer.tree.footprint(i), &v[..channels]);
-                }
-            }
-            acc.finish()
-        })
-        .collect();
-    (0..channels)
-        .map(|ch| {
-            let mut r = Raster::new(size, half);
-            for (part, &(j0, _)) in parts.iter().zip(&bands) {
-                let p = &part[ch];
-                r.data[j0 * size..j0 * size + p.len()].copy_from_slice(p);
-            }
-            if quadrant {
-                for j in 0..m {
-                    let row = &mut r.data[j * size..(j + 1) * size];
-                    for i in m..size {
-                        row[i] = row[size - 1 - i];
-                    }
-                }
-                for j in m..size {
-                    r.data
-                        .copy_within((size - 1 - j) * size..(size - j) * size, j * size);
-                }
-            }
-            r
-        })
-        .collect()
-}
 
 /// Whether the picture of `solid` (canonical: centred on the picture) seen along `frame`
 /// under `light` is its own mirror image across both image axes: a light that depends on the
@@ -177,7 +59,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     let coloured_grey = opts.light.channels() == 1 && opts.material.colour.is_some();
     // A coloured picture's XYZ pixels and its windowing, for its colour statistics.
     let mut colour_input: Option<(Vec<DVec3>, Vec<DVec3>, f64)> = None;
-    let (channels, layers) = if opts.light == Light::Fire || coloured_grey {
+    let channels = if opts.light == Light::Fire || coloured_grey {
         let fire = opts.light == Light::Fire;
         let body = opts.material.colour.as_ref();
         // Absorption per girdle-diameter unit of the canonical solid: α per mm times the mm
@@ -193,60 +75,59 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
             matches!(opts.material.dispersion, Dispersion::Constant(_)) && body.is_none();
         let ri0 = opts.material.ri(opts.wavelength_nm);
         // One trace per band (one for all when neither index nor colour changes with
-        // wavelength).
-        let traced: Vec<BeamTree> = if constant {
-            vec![stone.trace(&frame, ri0, opts.wavelength_nm, &trace_opts)]
+        // wavelength): each band's radiance image, and for a coloured stone a second channel,
+        // the light that went through it (the surface reflection left out, for its
+        // extinction), and the absorbed power seen and seen from below the girdle plane.
+        let n = if body.is_some() { 2 } else { 1 };
+        let traces: Vec<(f64, f64, f64)> = if constant {
+            vec![(opts.wavelength_nm, ri0, 0.0)]
         } else {
             centres
-                .par_iter()
-                .map(|&l| {
-                    let o = TraceOptions {
-                        absorption: absorption(l),
-                        ..trace_opts
-                    };
-                    stone.trace(&frame, opts.material.ri(l), l, &o)
-                })
+                .iter()
+                .map(|&l| (l, opts.material.ri(l), absorption(l)))
                 .collect()
         };
-        // Each band's radiance image (one channel), then XYZ → linear sRGB per pixel.
-        let band_layers: Vec<Layer> = traced
-            .into_iter()
-            .map(|t| {
-                let v: Vec<f64> = t
-                    .exits
-                    .iter()
-                    .map(|e| {
-                        if fire {
-                            lighting.spots(rot * e.direction)
-                        } else {
-                            opts.light.shade(&lighting, rot * e.direction).1
-                        }
-                    })
-                    .collect();
-                // A coloured stone's second channel: the light that went through it (the
-                // surface reflection left out), for its extinction.
-                let through: Vec<f64> = t
-                    .exits
-                    .iter()
-                    .zip(&v)
-                    .map(|(e, &x)| if e.external { 0.0 } else { x })
-                    .collect();
-                let n = if body.is_some() { 2 } else { 1 };
-                Layer::new(t, n, |i| [v[i], through[i], 0.0, 0.0, 0.0])
+        let traced: Vec<(Layer, f64, f64)> = traces
+            .par_iter()
+            .map(|&(_, ri, alpha)| {
+                let o = TraceOptions {
+                    absorption: alpha,
+                    ..trace_opts
+                };
+                let (mut seen, mut under) = (0.0, 0.0);
+                let layer = Layer::trace(&stone, &frame, ri, &o, n, |e| {
+                    let w = rot * e.direction;
+                    seen += e.power;
+                    if w.z < 0.0 {
+                        under += e.power;
+                    }
+                    let v = if fire {
+                        lighting.spots(w)
+                    } else {
+                        opts.light.shade(&lighting, w).1
+                    };
+                    [v, if e.external { 0.0 } else { v }, 0.0, 0.0, 0.0]
+                });
+                (layer, seen, under)
             })
             .collect();
+        let below: Vec<f64> = traced
+            .iter()
+            .map(|&(_, seen, under)| if seen > 0.0 { under / seen } else { 0.0 })
+            .collect();
+        let band_layers: Vec<Layer> = traced.into_iter().map(|t| t.0).collect();
         let band_rasters: Vec<Vec<Raster>> = band_layers
             .par_iter()
-            .map(|l| fill(std::slice::from_ref(l), l.channels, size, half, quadrant))
+            .map(|l| Layer::fill(&[l], l.channels, size, half, quadrant))
             .collect();
         let images: Vec<&Raster> = (0..bands.len())
             .map(|b| &band_rasters[if constant { 0 } else { b }][0])
             .collect();
         for l in &band_layers {
-            stats.cut_off = stats.cut_off.max(l.tree.stats.cut_off);
-            stats.exits += l.tree.exits.len();
+            stats.cut_off = stats.cut_off.max(l.stats.cut_off);
+            stats.exits += l.exits;
         }
-        let outline = band_layers[0].tree.stats.area;
+        let outline = band_layers[0].stats.area;
         if fire {
             stats.fire = Some(fire_of(&images, &weights, outline));
         }
@@ -271,24 +152,6 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
             0.0
         };
         if body.is_some() {
-            let below: Vec<f64> = band_layers
-                .iter()
-                .map(|l| {
-                    let seen: f64 = l.tree.exits.iter().map(|e| e.power).sum();
-                    let under: f64 = l
-                        .tree
-                        .exits
-                        .iter()
-                        .filter(|e| (rot * e.direction).z < 0.0)
-                        .map(|e| e.power)
-                        .sum();
-                    if seen > 0.0 {
-                        under / seen
-                    } else {
-                        0.0
-                    }
-                })
-                .collect();
             // The light seen that comes from below the girdle plane, weighted by luminance.
             let (mut num, mut den) = (0.0, 0.0);
             for (b, w) in weights.iter().enumerate() {
@@ -310,28 +173,26 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
             };
             colour_input = Some((xyz_of(0), xyz_of(1), window));
         }
-        (rgb, band_layers)
+        rgb
     } else {
-        let tree = stone.trace(
+        let n = opts.light.channels();
+        let (mut mean, mut bins) = (0.0, [0.0; 5]);
+        let layer = Layer::trace(
+            &stone,
             &frame,
             opts.material.ri(opts.wavelength_nm),
-            opts.wavelength_nm,
             &trace_opts,
+            n,
+            |e| {
+                let (c, y) = opts.light.shade(&lighting, rot * e.direction);
+                mean += e.power * y;
+                for (b, x) in bins.iter_mut().zip(c) {
+                    *b += e.power * x;
+                }
+                c
+            },
         );
-        let n = opts.light.channels();
-        let shades: Vec<([f64; 5], f64)> = tree
-            .exits
-            .iter()
-            .map(|e| opts.light.shade(&lighting, rot * e.direction))
-            .collect();
-        let (mut mean, mut bins) = (0.0, [0.0; 5]);
-        for (e, (c, y)) in tree.exits.iter().zip(&shades) {
-            mean += e.power * y;
-            for (b, x) in bins.iter_mut().zip(c) {
-                *b += e.power * x;
-            }
-        }
-        let power_in = tree.stats.power_in;
+        let power_in = layer.stats.power_in;
         stats.mean = if power_in > 0.0 { mean / power_in } else { 0.0 };
         if opts.light == Light::Aset {
             let t: f64 = bins.iter().sum();
@@ -344,13 +205,11 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                 port: bins[4] / t,
             });
         }
-        stats.cut_off = tree.stats.cut_off;
-        stats.exits = tree.exits.len();
-        let layer = Layer::new(tree, n, |i| shades[i].0);
-        let layers = vec![layer];
-        (fill(&layers, n, size, half, quadrant), layers)
+        stats.cut_off = layer.stats.cut_off;
+        stats.exits = layer.exits;
+        Layer::fill(&[&layer], n, size, half, quadrant)
     };
-    let coverage = outline_coverage(&solid, &layers[0].tree.frame, size, half);
+    let coverage = outline_coverage(&solid, &frame, size, half);
     if let Some((xyz, through, window)) = colour_input {
         stats.colour = Some(ColourStats::of(&xyz, &through, &coverage, window));
     }
@@ -435,19 +294,15 @@ mod tests {
             }
             let stone = Stone::new(&round);
             let opts = RenderOptions::new(light);
-            let tree = stone.trace(&frame, 2.417, 589.3, &opts.trace_options());
             let lighting = Lighting::new(opts.head_shadow(), &[]);
             let rot = view_rotation(light, tilt);
-            let shades: Vec<[f64; 5]> = tree
-                .exits
-                .iter()
-                .map(|e| light.shade(&lighting, rot * e.direction).0)
-                .collect();
             let n = light.channels();
-            let layers = [Layer::new(tree, n, |i| shades[i])];
+            let layer = Layer::trace(&stone, &frame, 2.417, &opts.trace_options(), n, |e| {
+                light.shade(&lighting, rot * e.direction).0
+            });
             let half = picture_half(&round);
-            let full = fill(&layers, n, size, half, false);
-            let quad = fill(&layers, n, size, half, true);
+            let full = Layer::fill(&[&layer], n, size, half, false);
+            let quad = Layer::fill(&[&layer], n, size, half, true);
             for (a, b) in full.iter().zip(&quad) {
                 let worst = a
                     .data

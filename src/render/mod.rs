@@ -30,6 +30,7 @@
 
 mod draw;
 mod image;
+mod layer;
 mod light;
 pub mod lighting;
 mod options;

@@ -1,0 +1,224 @@
+//! One traced picture layer ([`Layer`]): the beam tracer's exits kept as the picture needs
+//! them, and their footprints filled into rasters ([`Layer::fill`]).
+//!
+//! A face-up stone's trace hands out every exit once per symmetry of the stone (16 copies
+//! for a round brilliant). The layer keeps each traced exit's footprint once and, per copy
+//! that adds light, only its symmetry, its values and its footprint's box: the copy's
+//! footprint is the traced one under the symmetry's 2×2 map, made again when it is drawn
+//! (as the trace made it). Copies that add nothing (fire's spots reach few exits) are not
+//! kept at all. This is a tenth of the memory of the whole [`BeamTree`](crate::beam::BeamTree).
+
+use super::raster::{Accumulator, Raster};
+use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions, TraceStats};
+use crate::geometry::clip2d;
+use glam::DVec2;
+use rayon::prelude::*;
+
+/// Rows per band of the parallel fill.
+const BAND_ROWS: usize = 64;
+
+/// A copy of a traced exit that adds light to the picture.
+#[derive(Clone, Copy, Debug)]
+struct Drawn {
+    /// The traced exit (index into `Layer::ranges`).
+    exit: u32,
+    /// Its symmetry (index into `Layer::maps`; 0 = the traced exit itself).
+    sym: u16,
+    /// Smallest and largest y and smallest x of its footprint.
+    y_lo: f64,
+    y_hi: f64,
+    x_lo: f64,
+}
+
+/// One traced picture layer: the copies that add light, each with its values per unit of
+/// footprint (one per channel), and the trace's statistics.
+pub(super) struct Layer {
+    /// Channels of the values.
+    pub(super) channels: usize,
+    /// The trace's power accounting.
+    pub(super) stats: TraceStats,
+    /// Every exit the trace handed out (all copies).
+    pub(super) exits: usize,
+    /// Footprints of the traced exits, concatenated, and each one's range.
+    foot: Vec<DVec2>,
+    ranges: Vec<(u32, u32)>,
+    /// The 2×2 footprint map of each symmetry index (identity at 0).
+    maps: Vec<[f64; 4]>,
+    drawn: Vec<Drawn>,
+    /// `channels` values per drawn copy.
+    values: Vec<f64>,
+}
+
+/// The sink a [`Layer`] is traced into.
+struct LayerSink<F: FnMut(&ExitBeam) -> [f64; 5]> {
+    value: F,
+    layer: Layer,
+}
+
+impl<F: FnMut(&ExitBeam) -> [f64; 5]> ExitSink for LayerSink<F> {
+    fn wants_footprints(&self) -> bool {
+        true
+    }
+    fn symmetries(&mut self, maps: &[(u16, [f64; 4])]) {
+        let n = maps.iter().map(|&(i, _)| i as usize + 1).max().unwrap_or(1);
+        let mut m = vec![[1.0, 0.0, 0.0, 1.0]; n];
+        for &(i, map) in maps {
+            m[i as usize] = map;
+        }
+        self.layer.maps = m;
+    }
+    fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+        let l = &mut self.layer;
+        l.exits += 1;
+        if e.sym == 0 {
+            let a = l.foot.len() as u32;
+            l.foot.extend_from_slice(fp);
+            l.ranges.push((a, l.foot.len() as u32));
+        }
+        let c = (self.value)(e);
+        let c = &c[..l.channels];
+        // (Written so that a NaN power or area draws nothing.)
+        let drawable = e.power > 0.0 && c.iter().any(|&x| x != 0.0);
+        if !drawable {
+            return;
+        }
+        let a = clip2d::area(fp);
+        if a.is_nan() || a <= 0.0 {
+            return;
+        }
+        let (mut y_lo, mut y_hi, mut x_lo) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
+        for p in fp {
+            y_lo = y_lo.min(p.y);
+            y_hi = y_hi.max(p.y);
+            x_lo = x_lo.min(p.x);
+        }
+        l.drawn.push(Drawn {
+            exit: l.ranges.len() as u32 - 1,
+            sym: e.sym,
+            y_lo,
+            y_hi,
+            x_lo,
+        });
+        // Radiance through this beam: its power per unit of footprint (relative to the
+        // incoming power per unit of cross-section once multiplied by the cross-section,
+        // which the trace gives at its end).
+        let k = e.power / a;
+        l.values.extend(c.iter().map(|&x| x * k));
+    }
+}
+
+impl Layer {
+    /// Trace `stone` along `frame` at index `ri` and keep, for each exit (every copy),
+    /// `value(exit)`'s first `channels` values: the radiance the exit carries per unit of
+    /// its power. `value` sees every exit, so it may also sum what the caller measures.
+    pub(super) fn trace(
+        stone: &Stone,
+        frame: &Frame,
+        ri: f64,
+        opts: &TraceOptions,
+        channels: usize,
+        value: impl FnMut(&ExitBeam) -> [f64; 5],
+    ) -> Layer {
+        let mut sink = LayerSink {
+            value,
+            layer: Layer {
+                channels: channels.clamp(1, 5),
+                stats: TraceStats::default(),
+                exits: 0,
+                foot: Vec::new(),
+                ranges: Vec::new(),
+                maps: vec![[1.0, 0.0, 0.0, 1.0]],
+                drawn: Vec::new(),
+                values: Vec::new(),
+            },
+        };
+        let opts = TraceOptions {
+            footprints: true,
+            ..*opts
+        };
+        let (stats, _) = stone.trace_into(frame, ri, &opts, &mut sink, false);
+        let mut layer = sink.layer;
+        let area = stats.area;
+        layer.values.iter_mut().for_each(|v| *v *= area);
+        layer.stats = stats;
+        layer
+    }
+
+    /// Fill `channels` images of `size` pixels over `[−half, half]²` from the layers (each
+    /// layer's values added to the same images), in bands of rows in parallel; each pixel
+    /// receives its footprints in the layers' order, so the result does not depend on the
+    /// number of threads.
+    ///
+    /// With `quadrant` (a picture that is its own mirror image across both image axes, see
+    /// `mirrored` in the drawing) only the bottom-left quadrant's pixels are drawn, from the
+    /// footprints that reach it (a pixel's running sums take only edges to its left), and the
+    /// rest mirrored.
+    pub(super) fn fill(
+        layers: &[&Layer],
+        channels: usize,
+        size: usize,
+        half: f64,
+        quadrant: bool,
+    ) -> Vec<Raster> {
+        let proto = Raster::new(size, half);
+        let h = proto.pixel();
+        // Rows and columns drawn: all, or the first half (with the middle one when odd).
+        let m = if quadrant { size.div_ceil(2) } else { size };
+        let x_m = -half + m as f64 * h;
+        let bands: Vec<(usize, usize)> = (0..m)
+            .step_by(BAND_ROWS)
+            .map(|j| (j, (j + BAND_ROWS).min(m)))
+            .collect();
+        let parts: Vec<Vec<Vec<f64>>> = bands
+            .par_iter()
+            .map(|&(j0, j1)| {
+                let (ylo, yhi) = (-half + j0 as f64 * h, -half + j1 as f64 * h);
+                let mut acc = Accumulator::new(size, half, (j0, j1), channels);
+                let mut fp = Vec::new();
+                for layer in layers {
+                    let c = layer.channels;
+                    for (d, v) in layer.drawn.iter().zip(layer.values.chunks_exact(c)) {
+                        if d.y_hi < ylo || d.y_lo > yhi || (quadrant && d.x_lo >= x_m) {
+                            continue;
+                        }
+                        let (a, b) = layer.ranges[d.exit as usize];
+                        let traced = &layer.foot[a as usize..b as usize];
+                        if d.sym == 0 {
+                            acc.add_polygon(traced, &v[..c.min(channels)]);
+                        } else {
+                            let m2 = layer.maps[d.sym as usize];
+                            fp.clear();
+                            fp.extend(traced.iter().map(|p| {
+                                DVec2::new(m2[0] * p.x + m2[1] * p.y, m2[2] * p.x + m2[3] * p.y)
+                            }));
+                            acc.add_polygon(&fp, &v[..c.min(channels)]);
+                        }
+                    }
+                }
+                acc.finish()
+            })
+            .collect();
+        (0..channels)
+            .map(|ch| {
+                let mut r = Raster::new(size, half);
+                for (part, &(j0, _)) in parts.iter().zip(&bands) {
+                    let p = &part[ch];
+                    r.data[j0 * size..j0 * size + p.len()].copy_from_slice(p);
+                }
+                if quadrant {
+                    for j in 0..m {
+                        let row = &mut r.data[j * size..(j + 1) * size];
+                        for i in m..size {
+                            row[i] = row[size - 1 - i];
+                        }
+                    }
+                    for j in m..size {
+                        r.data
+                            .copy_within((size - 1 - j) * size..(size - j) * size, j * size);
+                    }
+                }
+                r
+            })
+            .collect()
+    }
+}
