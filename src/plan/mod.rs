@@ -28,6 +28,7 @@
 //! proportions, `config.rs` the plan config (objective, bounds, price table), `sample.rs` the
 //! example rough (a distorted octahedron mesh).
 
+pub mod ball;
 pub mod config;
 pub mod fit;
 pub mod mesh;
@@ -35,6 +36,7 @@ pub mod rough;
 pub mod sample;
 pub mod search;
 
+pub use ball::{enclosing_ball, Ball};
 pub use config::{Bound, Objective, PlanConfig, PriceTable, DEFAULT_FAMILIES};
 pub use fit::{largest_copy, Fit};
 pub use rough::{load_rough, Rough, CRYSTALS};

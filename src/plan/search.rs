@@ -11,6 +11,7 @@
 //! positions. The starts run in parallel and are gathered in start order, so the answer is
 //! the same on any number of threads.
 
+use super::ball::enclosing_ball;
 use super::config::{Bound, Objective, PlanConfig};
 use super::fit::largest_copy;
 use super::rough::Rough;
@@ -262,7 +263,19 @@ impl<'a> Planner<'a> {
         rotation: DQuat,
     ) -> Option<(super::Fit, f64, f64, Option<Grade>)> {
         let verts: Vec<DVec3> = cut.solid.vertices().iter().map(|v| rotation * *v).collect();
-        let fit = largest_copy(&self.planes, &verts, self.inside)?;
+        let fit = match self.rough.ball {
+            // In a ball: the cut's smallest enclosing ball scaled to the rough's.
+            Some(ball) => {
+                let around = enclosing_ball(&verts);
+                let scale = ball.radius / around.radius;
+                super::Fit {
+                    scale,
+                    shift: ball.centre - scale * around.centre,
+                    steps: 0,
+                }
+            }
+            None => largest_copy(&self.planes, &verts, self.inside)?,
+        };
         if fit.scale.is_nan() || fit.scale <= 0.0 {
             return None;
         }
