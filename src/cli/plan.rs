@@ -37,7 +37,7 @@ use std::time::Instant;
 #[derive(clap::Args, Debug, Clone)]
 pub struct PlanArgs {
     /// The rough: an .obj or .stl mesh in millimetres (its convex hull is planned), or a
-    /// crystal form (octahedron, dodecahedron, cube, macle) with --size-mm.
+    /// crystal form (octahedron, dodecahedron, cube, macle, or sphere: an exact ball) with --size-mm.
     #[arg(value_name = "ROUGH")]
     pub rough: String,
     /// A family to plan (repeat for more); default: the config's, or round-brilliant and the

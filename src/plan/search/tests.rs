@@ -403,3 +403,5 @@ fn in_a_sphere_the_yield_is_the_smallest_enclosing_balls() {
     assert!(lo < expected && expected < hi, "{lo} {expected} {hi}");
     assert!(hi - lo < 0.1 * expected);
 }
+
+mod cube;
