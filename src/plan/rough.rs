@@ -5,7 +5,7 @@ use super::ball::Ball;
 use super::mesh::{read_triangles, TriMesh};
 use crate::error::{Error, Result};
 use crate::geometry::{convex_hull_with_tolerance, DVec3, FacetPlane, Plane, Polyhedron};
-use glam::DQuat;
+use glam::{DMat3, DQuat};
 use std::path::Path;
 
 /// The bundled crystal forms, for `facetlab plan FORM --size-mm L` (`sphere` is an exact
@@ -272,6 +272,77 @@ impl Rough {
             mesh_volume: None,
             ball: None,
         })
+    }
+
+    /// The rough's symmetries: every orthogonal map `G` (turns and mirrors) with
+    /// `x ↦ c + G·(x − c)` carrying the rough onto itself, `c` its centroid, the identity
+    /// first; empty for a ball (every orthogonal map about its centre is one). Found by
+    /// sending a facet and a second, not parallel one to every pair of facets of the same
+    /// distance from `c`, area and angle, and keeping the maps that carry every facet onto a
+    /// facet (to 1e-6 of the rough's size).
+    pub fn symmetries(&self) -> Vec<DMat3> {
+        if self.ball.is_some() {
+            return Vec::new();
+        }
+        let c = self.solid.centroid();
+        let size = self.size();
+        let tol = 1e-6;
+        let sig: Vec<(DVec3, f64, f64)> = self
+            .solid
+            .facets()
+            .iter()
+            .map(|f| {
+                let n = f.plane.normal;
+                (
+                    n,
+                    (f.plane.offset - n.dot(c)) / size,
+                    f.area / (size * size),
+                )
+            })
+            .collect();
+        let alike = |a: &(DVec3, f64, f64), b: &(DVec3, f64, f64)| {
+            (a.1 - b.1).abs() < tol && (a.2 - b.2).abs() < tol
+        };
+        let mut out = vec![DMat3::IDENTITY];
+        let Some(f1) = (1..sig.len()).find(|&j| sig[j].0.cross(sig[0].0).length() > 0.1) else {
+            return out;
+        };
+        let (n0, n1) = (sig[0].0, sig[f1].0);
+        let from = DMat3::from_cols(n0, n1, n0.cross(n1));
+        let Some(from_inv) = (from.determinant().abs() > 1e-9).then(|| from.inverse()) else {
+            return out;
+        };
+        for m0 in sig.iter().filter(|m| alike(m, &sig[0])) {
+            for m1 in sig.iter().filter(|m| alike(m, &sig[f1])) {
+                if (m0.0.dot(m1.0) - n0.dot(n1)).abs() > tol {
+                    continue;
+                }
+                for hand in [1.0, -1.0] {
+                    let to = DMat3::from_cols(m0.0, m1.0, hand * m0.0.cross(m1.0));
+                    let g = to * from_inv;
+                    if (g - DMat3::IDENTITY)
+                        .abs()
+                        .to_cols_array()
+                        .iter()
+                        .all(|x| *x < tol)
+                    {
+                        continue;
+                    }
+                    let onto = sig.iter().all(|a| {
+                        let n = g * a.0;
+                        sig.iter().any(|b| alike(a, b) && (n - b.0).length() < tol)
+                    });
+                    if onto
+                        && !out
+                            .iter()
+                            .any(|h| (*h - g).abs().to_cols_array().iter().all(|x| *x < tol))
+                    {
+                        out.push(g);
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// The rough turned by `rotation` about the origin and then moved by `shift`.

@@ -405,3 +405,107 @@ fn in_a_sphere_the_yield_is_the_smallest_enclosing_balls() {
 }
 
 mod cube;
+
+/// The symmetry groups of the bundled forms: the cube's, octahedron's and rhombic
+/// dodecahedron's 48, the macle's 12 (a flattened octahedron keeps D3d), a scanned-like
+/// mesh's identity alone, none listed for the ball (all of O(3)).
+#[test]
+fn the_forms_have_their_symmetry_groups() {
+    for (form, count) in [
+        ("cube", 48),
+        ("octahedron", 48),
+        ("dodecahedron", 48),
+        ("macle", 12),
+        ("sphere", 0),
+    ] {
+        let rough = Rough::crystal(form, 5.0).unwrap();
+        let g = rough.symmetries();
+        assert_eq!(g.len(), count, "{form}");
+        // A group: closed under products.
+        for a in &g {
+            for b in &g {
+                let ab = *a * *b;
+                assert!(
+                    g.iter()
+                        .any(|c| (ab - *c).abs().to_cols_array().iter().all(|x| *x < 1e-9)),
+                    "{form}"
+                );
+            }
+        }
+    }
+    let mesh = Rough::from_trimesh("d", "d", distorted_octahedron(4), None).unwrap();
+    assert_eq!(mesh.symmetries().len(), 1);
+}
+
+/// Distinct plans (issue 26): in a cube every start meets a copy of the one optimum, so the
+/// second and third plans come from the further rounds, their tables at least 20° from the
+/// better plans' under all 48 symmetries of the cube. The top three are not copies of one plan
+/// by the cube's symmetries or the cut's own — their yields differ pairwise by more than 1e-6 —
+/// while a plan turned by a symmetry of the cube is recognised as the same plan (which the
+/// identity alone does not see); in a ball every plan of one set of proportions is one.
+#[test]
+fn the_top_plans_in_a_cube_are_genuinely_different() {
+    let rough = Rough::crystal("cube", 5.0).unwrap();
+    let config = PlanConfig {
+        starts: 12,
+        max_iterations: 150,
+        top: 3,
+        ..PlanConfig::default()
+    };
+    let planner = Planner::new(&rough, &config, 3.515);
+    let plans = planner.plan_family("round-brilliant", &|| {}).unwrap();
+    let yields: Vec<f64> = plans.iter().map(|p| p.yield_fraction).collect();
+    println!("cube, top 3: {yields:?}");
+    assert_eq!(plans.len(), 3);
+    for i in 0..3 {
+        for j in i + 1..3 {
+            assert!((yields[i] - yields[j]).abs() > 1e-6, "{yields:?}");
+            assert!(!planner.same_plan(&plans[i], &plans[j]));
+            let apart = rough
+                .symmetries()
+                .iter()
+                .map(|g| (*g * plans[i].up()).angle_between(plans[j].up()))
+                .fold(f64::MAX, f64::min);
+            assert!(
+                apart >= ALTERNATIVE_DEG.to_radians() - 1e-9,
+                "{}",
+                apart.to_degrees()
+            );
+        }
+    }
+    // The best plan turned a quarter about z and about a body diagonal (a third): the same.
+    let p = &plans[0];
+    for g in [
+        DQuat::from_rotation_z(PI / 2.0),
+        DQuat::from_axis_angle(DVec3::ONE.normalize(), 2.0 * PI / 3.0),
+    ] {
+        let mut q = p.clone();
+        q.rotation = g * p.rotation;
+        q.shift = g * p.shift;
+        assert!(planner.same_plan(p, &q));
+        let identity_only = placed(p)
+            .iter()
+            .map(|x| {
+                placed(&q)
+                    .iter()
+                    .map(|y| x.distance(*y))
+                    .fold(f64::MAX, f64::min)
+            })
+            .fold(0.0, f64::max);
+        assert!(identity_only > 0.02 * rough.size(), "{identity_only}");
+    }
+    let ball = Rough::crystal("sphere", 5.0).unwrap();
+    let in_ball = Planner::new(&ball, &config, 3.515)
+        .plan_family("round-brilliant", &|| {})
+        .unwrap();
+    assert_eq!(in_ball.len(), 1);
+}
+
+fn placed(p: &Plan) -> Vec<DVec3> {
+    p.cut
+        .solid
+        .vertices()
+        .iter()
+        .map(|v| p.scale * (p.rotation * *v) + p.shift)
+        .collect()
+}

@@ -223,8 +223,9 @@ fn zero_in_hull(g: &[DVec3]) -> bool {
             for r in 0..m {
                 if r != c {
                     let f = a[r][c] / a[c][c];
-                    for k in 0..5 {
-                        a[r][k] -= f * a[c][k];
+                    let pivot_row = a[c];
+                    for (x, p) in a[r].iter_mut().zip(pivot_row) {
+                        *x -= f * p;
                     }
                 }
             }
