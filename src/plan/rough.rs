@@ -96,7 +96,7 @@ impl Rough {
     }
 
     /// An exact ball of diameter `size_mm` centred on the origin (`solid` its circumscribed
-    /// polyhedron of [`BALL_PLANES`] tangent planes at Fibonacci points, for drawing).
+    /// polyhedron of `BALL_PLANES` tangent planes at Fibonacci points, for drawing).
     pub fn ball(size_mm: f64) -> Result<Rough> {
         let radius = 0.5 * size_mm;
         let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
