@@ -87,6 +87,16 @@ impl Plan {
         Polyhedron::from_planes(&self.placed_planes())
     }
 
+    /// The placed cut's vertices in the rough's coordinates (mm).
+    pub fn placed_vertices(&self) -> Vec<DVec3> {
+        self.cut
+            .solid
+            .vertices()
+            .iter()
+            .map(|v| self.scale * (self.rotation * *v) + self.shift)
+            .collect()
+    }
+
     /// Where the cut's table faces in the rough (unit vector).
     pub fn up(&self) -> DVec3 {
         self.rotation * DVec3::Z
@@ -353,14 +363,7 @@ impl<'a> Planner<'a> {
             .map(|k| {
                 let mut x = vec![0.0; 3 + free];
                 if k > 0 {
-                    let q = DQuat::from_xyzw(
-                        rng.random_range(-1.0..1.0),
-                        rng.random_range(-1.0..1.0),
-                        rng.random_range(-1.0..1.0),
-                        rng.random_range(-1.0..1.0),
-                    )
-                    .normalize();
-                    let w = q.to_scaled_axis();
+                    let w = random_turn(&mut rng).to_scaled_axis();
                     x[..3].copy_from_slice(&w.to_array());
                     for u in &mut x[3..] {
                         *u = rng.random_range(-1.5..1.5);
@@ -514,14 +517,15 @@ impl<'a> Planner<'a> {
     }
 }
 
-/// The placed cut's vertices in the rough's coordinates (mm).
-fn placed_vertices(p: &Plan) -> Vec<DVec3> {
-    p.cut
-        .solid
-        .vertices()
-        .iter()
-        .map(|v| p.scale * (p.rotation * *v) + p.shift)
-        .collect()
+/// A seeded turn: a normalised quaternion of four uniform numbers in [−1, 1).
+pub(crate) fn random_turn(rng: &mut SmallRng) -> DQuat {
+    DQuat::from_xyzw(
+        rng.random_range(-1.0..1.0),
+        rng.random_range(-1.0..1.0),
+        rng.random_range(-1.0..1.0),
+        rng.random_range(-1.0..1.0),
+    )
+    .normalize()
 }
 
 /// The largest distance from a point of either set to the nearest point of the other.
@@ -551,7 +555,7 @@ impl Planner<'_> {
             return false;
         }
         let tol = 0.02 * self.rough.size();
-        let (pa, pb) = (placed_vertices(a), placed_vertices(b));
+        let (pa, pb) = (a.placed_vertices(), b.placed_vertices());
         if let Some(ball) = self.rough.ball {
             let radii = |p: &[DVec3]| {
                 let mut r: Vec<f64> = p.iter().map(|x| x.distance(ball.centre)).collect();

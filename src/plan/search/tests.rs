@@ -483,10 +483,12 @@ fn the_top_plans_in_a_cube_are_genuinely_different() {
         q.rotation = g * p.rotation;
         q.shift = g * p.shift;
         assert!(planner.same_plan(p, &q));
-        let identity_only = placed(p)
+        let turned = q.placed_vertices();
+        let identity_only = p
+            .placed_vertices()
             .iter()
             .map(|x| {
-                placed(&q)
+                turned
                     .iter()
                     .map(|y| x.distance(*y))
                     .fold(f64::MAX, f64::min)
@@ -499,13 +501,4 @@ fn the_top_plans_in_a_cube_are_genuinely_different() {
         .plan_family("round-brilliant", &|| {})
         .unwrap();
     assert_eq!(in_ball.len(), 1);
-}
-
-fn placed(p: &Plan) -> Vec<DVec3> {
-    p.cut
-        .solid
-        .vertices()
-        .iter()
-        .map(|v| p.scale * (p.rotation * *v) + p.shift)
-        .collect()
 }

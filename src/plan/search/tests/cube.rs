@@ -118,12 +118,7 @@ fn in_a_cube_the_best_pose_is_the_derived_one() {
     println!("{} pieces: {grads:?}", grads.len());
     assert!(zero_in_hull(&grads), "{grads:?}");
     // The containment program agrees with the widths.
-    let side = 5.0;
-    let planes: Vec<(DVec3, f64)> = [DVec3::X, DVec3::Y, DVec3::Z]
-        .iter()
-        .flat_map(|n| [(*n, side / 2.0), (-*n, side / 2.0)])
-        .collect();
-    let rough = rough_from_planes("cube", &planes);
+    let rough = Rough::crystal("cube", 5.0).unwrap();
     let config = PlanConfig {
         starts: 8,
         max_iterations: 400,
@@ -137,13 +132,7 @@ fn in_a_cube_the_best_pose_is_the_derived_one() {
     let mut rng = SmallRng::seed_from_u64(48);
     let mut poses: Vec<(f64, DQuat)> = (0..8000)
         .map(|_| {
-            let q = DQuat::from_xyzw(
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-            )
-            .normalize();
+            let q = random_turn(&mut rng);
             (largest(&verts, q), q)
         })
         .collect();
