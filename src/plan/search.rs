@@ -454,6 +454,13 @@ impl<'a> Planner<'a> {
                 None => break,
             }
         }
+        // A later round, kept from more tables, can still beat an earlier one whose search
+        // stopped short: best first by the objective under the grade (every pair stays 20°
+        // apart either way).
+        if out.len() > 1 {
+            let value = |p: &Plan| self.penalised(p.objective, p.grade);
+            out.sort_by(|a, b| value(b).total_cmp(&value(a)));
+        }
         if out.is_empty() {
             return Err(Error::invalid(
                 "ROUGH",

@@ -457,6 +457,7 @@ fn the_top_plans_in_a_cube_are_genuinely_different() {
     let yields: Vec<f64> = plans.iter().map(|p| p.yield_fraction).collect();
     println!("cube, top 3: {yields:?}");
     assert_eq!(plans.len(), 3);
+    assert!(yields.windows(2).all(|w| w[0] >= w[1]), "{yields:?}");
     for i in 0..3 {
         for j in i + 1..3 {
             assert!((yields[i] - yields[j]).abs() > 1e-6, "{yields:?}");
