@@ -16,7 +16,8 @@
 //!   rough's coordinates, carats, yield, grade and objective, for the binary to write as a run
 //!   folder (with scores) and for the plot floor to draw.
 //!
-//! Not yet here: glTF, and the workbench's upload of a rough.
+//! Not yet here: the workbench's upload of a rough (the binary writes the glTF scene with
+//! `crate::io::gltf`).
 //!
 //! What it may import: [`crate::optimize`] and every floor below it (`verify`, `metrics`,
 //! `render`, the tracers, `optics`, `io`, `cut`, `geometry`, `error`). Never `plot`, `report`
