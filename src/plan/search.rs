@@ -428,6 +428,16 @@ impl<'a> Planner<'a> {
                 out.push(p);
             }
         }
+        // In a ball every orientation is as good: the plans are stood upright.
+        if self.rough.ball.is_some() {
+            out = out
+                .iter()
+                .map(|p| {
+                    self.place(&p.cut, DQuat::IDENTITY)
+                        .unwrap_or_else(|| p.clone())
+                })
+                .collect();
+        }
         // Too few distinct plans (the starts met in copies of one optimum, as in a symmetric
         // rough): search again with the table kept off every plan's so far, turned by every
         // symmetry of the rough, each round adding its best plan. Not in a ball, where a pose

@@ -373,6 +373,11 @@ fn in_a_sphere_the_yield_is_the_smallest_enclosing_balls() {
     }
     let best = &planner.plan_family("round-brilliant", &|| {}).unwrap()[0];
     assert!((best.yield_fraction - expected).abs() < 1e-9);
+    assert!(
+        (best.up() - DVec3::Z).length() < 1e-12,
+        "upright: {}",
+        best.up()
+    );
     // The bracket by polyhedral spheres.
     let n = 400;
     let golden = PI * (3.0 - 5f64.sqrt());
