@@ -1,7 +1,8 @@
 //! Rough planning's cost (issue 26's targets): the containment program on the example rough
 //! (`cuts/rough-octahedron.obj`, 2,048 triangles; its hull's planes) for a round brilliant
 //! (target ≤ 1 ms), and whole plans over one family and over every default family with the
-//! default search (12 starts; targets ≤ 20 s and ≤ 60 s). Run: `cargo bench --bench plan`.
+//! default search (12 starts; targets ≤ 20 s and ≤ 60 s), and the top 3 in symmetric
+//! crystals (cube, octahedron) and the sphere. Run: `cargo bench --bench plan`.
 
 use facetlab::cut::Cut;
 use facetlab::plan::sample::distorted_octahedron;
@@ -66,4 +67,25 @@ fn main() {
         t.elapsed().as_secs_f64(),
         rayon::current_num_threads()
     );
+    // Symmetric crystals: the starts meet copies of one optimum, so the top 3 takes further
+    // rounds with the table kept away from the plans found; the sphere needs no program.
+    for form in ["cube", "octahedron", "sphere"] {
+        let crystal = Rough::crystal(form, 6.0).expect("form");
+        let planner = Planner::new(&crystal, &config, 3.515);
+        let t = Instant::now();
+        let plans = planner
+            .plan_family("round-brilliant", &|| {})
+            .expect("plans");
+        let yields: Vec<String> = plans
+            .iter()
+            .map(|p| format!("{:.2} %", 100.0 * p.yield_fraction))
+            .collect();
+        println!(
+            "plan {form} (6 mm) round-brilliant, top {}: {:.2} s, {} plans: {}",
+            config.top,
+            t.elapsed().as_secs_f64(),
+            plans.len(),
+            yields.join(", ")
+        );
+    }
 }

@@ -23,6 +23,7 @@ use super::progress;
 use facetlab::cut::Cut;
 use facetlab::error::{Error, Result};
 use facetlab::geometry::Polyhedron;
+use facetlab::io::gltf::{write_gltf, GltfObject};
 use facetlab::metrics::{score, ScoreConfig};
 use facetlab::optics::Material;
 use facetlab::plan::{load_rough, Objective, Plan, PlanConfig, Planner, Rough, CRYSTALS};
@@ -37,7 +38,7 @@ use std::time::Instant;
 #[derive(clap::Args, Debug, Clone)]
 pub struct PlanArgs {
     /// The rough: an .obj or .stl mesh in millimetres (its convex hull is planned), or a
-    /// crystal form (octahedron, dodecahedron, cube, macle) with --size-mm.
+    /// crystal form (octahedron, dodecahedron, cube, macle, or sphere: an exact ball) with --size-mm.
     #[arg(value_name = "ROUGH")]
     pub rough: String,
     /// A family to plan (repeat for more); default: the config's, or round-brilliant and the
@@ -362,6 +363,7 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
     score_cfg.material = material.clone();
     let mut plans_json = Vec::new();
     let mut best: Vec<(Polyhedron, String)> = Vec::new();
+    let mut scene_solids: Vec<(String, Polyhedron)> = Vec::new();
     for (fam, plans) in all {
         for (k, p) in plans.iter().enumerate() {
             let stem = format!("{fam}-{}", k + 1);
@@ -369,6 +371,7 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
             let mut placed_cut = Cut::from_planes(&stem, &p.placed_planes())?;
             placed_cut.name = stem.clone();
             obj_object(&mut scene, &stem, &placed, &mut base);
+            scene_solids.push((stem.clone(), placed.clone()));
             let mut obj = header.clone();
             obj.push_str(&facetlab::io::mesh::write_obj(&placed_cut));
             write(dir, &format!("{stem}.obj"), obj.as_bytes())?;
@@ -438,6 +441,31 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
         }
     }
     write(dir, "scene.obj", scene.as_bytes())?;
+    // The same scene as glTF (metres): the rough see-through, the plans in four colours in turn.
+    let palette = [
+        [1.0, 1.0, 1.0, 1.0],
+        [1.0, 0.55, 0.2, 1.0],
+        [0.3, 0.8, 0.3, 1.0],
+        [0.9, 0.3, 0.6, 1.0],
+    ];
+    let mut objects = vec![GltfObject {
+        name: "rough",
+        solid: &rough.solid,
+        rgba: [0.75, 0.85, 1.0, 0.25],
+    }];
+    for (k, (stem, solid)) in scene_solids.iter().enumerate() {
+        objects.push(GltfObject {
+            name: stem,
+            solid,
+            rgba: palette[k % palette.len()],
+        });
+    }
+    let generator = format!("facetlab {} plan", env!("CARGO_PKG_VERSION"));
+    write(
+        dir,
+        "scene.gltf",
+        write_gltf(&objects, &generator).as_bytes(),
+    )?;
     let views: Vec<Vec<u8>> = all
         .iter()
         .map(|(fam, _)| {

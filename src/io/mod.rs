@@ -1,6 +1,8 @@
-//! Files: TOML cut specs, bundled presets, and safe (atomic) writing of outputs.
+//! Files: TOML cut specs, bundled presets, meshes (OBJ/STL, glTF scenes), and safe (atomic)
+//! writing of outputs.
 
 pub mod asc;
+pub mod gltf;
 pub mod mesh;
 pub mod png;
 pub mod presets;

@@ -15,7 +15,7 @@
 //! parameters themselves, kept in the box by the solver) and [`SigmoidProblem`] (Nelder–Mead;
 //! the point `u` is unbounded and mapped to `x = lo + (hi − lo)·sigmoid(u)`).
 
-use super::config::{Config, Constraints, Weights};
+use super::config::{Config, Constraints, Weights, COLOUR_WEIGHTS};
 use super::guard::Tracker;
 use super::{Evaluator, ScoreSet};
 use crate::cut::Cut;
@@ -153,10 +153,11 @@ pub fn penalty(checks: &[ConstraintCheck], c: &Constraints) -> f64 {
     c.penalty * checks.iter().map(|k| k.violation / POINT).sum::<f64>()
 }
 
-/// The weighted score `Σ weight · score`.
+/// The weighted score `Σ weight · score`, the colour scores' weights included (a colour
+/// score the evaluator did not give counts as 0, as in the colour constraints).
 pub fn weighted(s: &ScoreSet, w: &Weights) -> f64 {
     // A score weighed 0 may not have been computed (NaN): it takes no part.
-    [
+    let main: f64 = [
         (w.brilliance, s.brilliance),
         (w.fire, s.fire),
         (w.scintillation, s.scintillation),
@@ -164,7 +165,14 @@ pub fn weighted(s: &ScoreSet, w: &Weights) -> f64 {
     .iter()
     .filter(|(w, _)| *w != 0.0)
     .map(|(w, x)| w * x)
-    .sum()
+    .sum();
+    let colour: f64 = COLOUR_WEIGHTS
+        .iter()
+        .zip(w.colour)
+        .filter(|(_, w)| *w != 0.0)
+        .map(|(name, w)| w * s.get(name).filter(|v| v.is_finite()).unwrap_or(0.0))
+        .sum();
+    main + colour
 }
 
 /// Everything known about one evaluated point.
@@ -460,6 +468,56 @@ mod tests {
         let err = Config::from_str(text, "t.toml").unwrap_err().to_string();
         assert!(
             err.contains("constraints.max_extinction") && err.contains("no body colour"),
+            "{err}"
+        );
+    }
+
+    /// `[objective]` weighs a coloured stone's colour scores: the cost moves by −weight ×
+    /// score for each (a negative weight on extinction raises the cost of a dark stone); a
+    /// colourless config naming one is refused with one line.
+    #[test]
+    fn colour_weights_move_the_objective_by_weight_times_score() {
+        let coloured = |cut: &Cut| -> Result<ScoreSet> {
+            let mut s = crown(cut)?;
+            s.extra = vec![
+                ("colour_l".into(), 41.0),
+                ("colour_c".into(), 23.5),
+                ("extinction".into(), 0.35),
+                ("windowing".into(), 0.05),
+            ];
+            Ok(s)
+        };
+        let plain = cfg("[score]\nmaterial = \"ruby\"\n[objective]\nbrilliance = 1.0\n");
+        let base = Objective::new(&plain, &coloured)
+            .evaluate(&[0.57, 34.0])
+            .cost;
+        assert!((base - -0.34).abs() < 1e-12, "{base}");
+        for (key, w, score) in [
+            ("colour_l", 0.01, 41.0),
+            ("colour_c", 0.02, 23.5),
+            ("extinction", -0.5, 0.35),
+            ("windowing", -2.0, 0.05),
+        ] {
+            let c = cfg(&format!(
+                "[score]\nmaterial = \"ruby\"\n[objective]\nbrilliance = 1.0\n{key} = {w}\n"
+            ));
+            assert!(c.weights.weighs_colour());
+            let cost = Objective::new(&c, &coloured).evaluate(&[0.57, 34.0]).cost;
+            assert!((cost - (base - w * score)).abs() < 1e-12, "{key}: {cost}");
+            // The weight survives the config written back.
+            let again = Config::from_str(&c.as_used_toml(), "again.toml").unwrap();
+            assert_eq!(again.weights, c.weights, "{key}");
+        }
+        // A colour weight alone is an objective (brilliance then defaults to 0).
+        let c = cfg("[score]\nmaterial = \"ruby\"\n[objective]\nextinction = -1.0\n");
+        let cost = Objective::new(&c, &coloured).evaluate(&[0.57, 34.0]).cost;
+        assert!((cost - 0.35).abs() < 1e-12, "{cost}");
+        let text = "[cut]\nfamily = \"round-brilliant\"\n[free]\ntable = [0.45, 0.7]\n[objective]\nbrilliance = 1.0\nwindowing = -1.0\n";
+        let err = Config::from_str(text, "t.toml").unwrap_err().to_string();
+        assert!(
+            err.contains("objective.windowing")
+                && err.contains("no body colour")
+                && !err.contains('\n'),
             "{err}"
         );
     }

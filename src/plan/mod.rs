@@ -16,7 +16,8 @@
 //!   rough's coordinates, carats, yield, grade and objective, for the binary to write as a run
 //!   folder (with scores) and for the plot floor to draw.
 //!
-//! Not yet here: glTF, and the workbench's upload of a rough.
+//! Not yet here: the workbench's upload of a rough (the binary writes the glTF scene with
+//! `crate::io::gltf`).
 //!
 //! What it may import: [`crate::optimize`] and every floor below it (`verify`, `metrics`,
 //! `render`, the tracers, `optics`, `io`, `cut`, `geometry`, `error`). Never `plot`, `report`
@@ -28,6 +29,7 @@
 //! proportions, `config.rs` the plan config (objective, bounds, price table), `sample.rs` the
 //! example rough (a distorted octahedron mesh).
 
+pub mod ball;
 pub mod config;
 pub mod fit;
 pub mod mesh;
@@ -35,6 +37,7 @@ pub mod rough;
 pub mod sample;
 pub mod search;
 
+pub use ball::{enclosing_ball, Ball};
 pub use config::{Bound, Objective, PlanConfig, PriceTable, DEFAULT_FAMILIES};
 pub use fit::{largest_copy, Fit};
 pub use rough::{load_rough, Rough, CRYSTALS};

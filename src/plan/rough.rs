@@ -1,14 +1,19 @@
 //! The rough: a convex solid in millimetres, as half-spaces, from a scanned mesh (its convex
 //! hull) or a bundled crystal form.
 
+use super::ball::Ball;
 use super::mesh::{read_triangles, TriMesh};
 use crate::error::{Error, Result};
 use crate::geometry::{convex_hull_with_tolerance, DVec3, FacetPlane, Plane, Polyhedron};
-use glam::DQuat;
+use glam::{DMat3, DQuat};
 use std::path::Path;
 
-/// The bundled crystal forms, for `facetlab plan FORM --size-mm L`.
-pub const CRYSTALS: [&str; 4] = ["octahedron", "dodecahedron", "cube", "macle"];
+/// The bundled crystal forms, for `facetlab plan FORM --size-mm L` (`sphere` is an exact
+/// ball, a check with a closed form rather than a crystal).
+pub const CRYSTALS: [&str; 5] = ["octahedron", "dodecahedron", "cube", "macle", "sphere"];
+
+/// Tangent planes of the polyhedron that stands for a ball in pictures and meshes.
+const BALL_PLANES: usize = 192;
 
 /// A mesh whose largest extent is outside this range (mm) is taken not to be in millimetres
 /// unless `--size-mm` is given.
@@ -27,17 +32,24 @@ pub struct Rough {
     pub solid: Polyhedron,
     /// The volume the mesh itself encloses (mm³), for a mesh; `None` for a crystal form.
     pub mesh_volume: Option<f64>,
+    /// For the `sphere` form: the exact ball. The planner then places cuts by their smallest
+    /// enclosing ball (`super::ball`), and `solid` is only its circumscribed polyhedron, for
+    /// pictures and meshes.
+    pub ball: Option<Ball>,
 }
 
 impl Rough {
-    /// The rough's half-spaces `normal · x <= offset` (mm).
+    /// The rough's half-spaces `normal · x <= offset` (mm) (for a ball: its drawing's).
     pub fn planes(&self) -> Vec<Plane> {
         self.solid.facets().iter().map(|f| f.plane).collect()
     }
 
     /// The hull's volume in mm³ (what yields are measured against).
     pub fn volume(&self) -> f64 {
-        self.solid.volume()
+        match self.ball {
+            Some(b) => b.volume(),
+            None => self.solid.volume(),
+        }
     }
 
     /// How much volume the convex hull adds to a mesh that is not convex, as a fraction of the
@@ -51,6 +63,9 @@ impl Rough {
 
     /// The largest side of the rough's bounding box (mm).
     pub fn size(&self) -> f64 {
+        if let Some(b) = self.ball {
+            return 2.0 * b.radius;
+        }
         let (lo, hi) = self.solid.bounding_box();
         (hi - lo).max_element()
     }
@@ -76,6 +91,31 @@ impl Rough {
             name: name.to_string(),
             solid,
             mesh_volume,
+            ball: None,
+        })
+    }
+
+    /// An exact ball of diameter `size_mm` centred on the origin (`solid` its circumscribed
+    /// polyhedron of `BALL_PLANES` tangent planes at Fibonacci points, for drawing).
+    pub fn ball(size_mm: f64) -> Result<Rough> {
+        let radius = 0.5 * size_mm;
+        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+        let planes: Vec<Plane> = (0..BALL_PLANES)
+            .filter_map(|k| {
+                let z = 1.0 - (2 * k + 1) as f64 / BALL_PLANES as f64;
+                let rho = (1.0 - z * z).sqrt();
+                let a = golden * k as f64;
+                Plane::new(DVec3::new(rho * a.cos(), rho * a.sin(), z), radius)
+            })
+            .collect();
+        Ok(Rough {
+            name: "sphere".into(),
+            solid: rough_solid(&planes, "sphere")?,
+            mesh_volume: None,
+            ball: Some(Ball {
+                centre: DVec3::ZERO,
+                radius,
+            }),
         })
     }
 
@@ -164,6 +204,9 @@ impl Rough {
                 format!("{size_mm} is not a crystal size; allowed (0, {REACH_MM}] mm"),
             ));
         }
+        if form == "sphere" {
+            return Rough::ball(size_mm);
+        }
         let mut normals: Vec<(DVec3, f64)> = Vec::new();
         let signs = [-1.0, 1.0];
         match form {
@@ -227,11 +270,103 @@ impl Rough {
             name: form.to_string(),
             solid,
             mesh_volume: None,
+            ball: None,
         })
+    }
+
+    /// The rough's symmetries: every orthogonal map `G` (turns and mirrors) with
+    /// `x ↦ c + G·(x − c)` carrying the rough onto itself, `c` its centroid, the identity
+    /// first; empty for a ball (every orthogonal map about its centre is one). Found by
+    /// sending a facet and a second, not parallel one to every pair of facets of the same
+    /// distance from `c`, area and angle, and keeping the maps that carry every facet onto a
+    /// facet (to 1e-6 of the rough's size).
+    pub fn symmetries(&self) -> Vec<DMat3> {
+        if self.ball.is_some() {
+            return Vec::new();
+        }
+        let c = self.solid.centroid();
+        let size = self.size();
+        let tol = 1e-6;
+        let sig: Vec<(DVec3, f64, f64)> = self
+            .solid
+            .facets()
+            .iter()
+            .map(|f| {
+                let n = f.plane.normal;
+                (
+                    n,
+                    (f.plane.offset - n.dot(c)) / size,
+                    f.area / (size * size),
+                )
+            })
+            .collect();
+        let alike = |a: &(DVec3, f64, f64), b: &(DVec3, f64, f64)| {
+            (a.1 - b.1).abs() < tol && (a.2 - b.2).abs() < tol
+        };
+        let mut out = vec![DMat3::IDENTITY];
+        let Some(f1) = (1..sig.len()).find(|&j| sig[j].0.cross(sig[0].0).length() > 0.1) else {
+            return out;
+        };
+        let (n0, n1) = (sig[0].0, sig[f1].0);
+        let from = DMat3::from_cols(n0, n1, n0.cross(n1));
+        let Some(from_inv) = (from.determinant().abs() > 1e-9).then(|| from.inverse()) else {
+            return out;
+        };
+        for m0 in sig.iter().filter(|m| alike(m, &sig[0])) {
+            for m1 in sig.iter().filter(|m| alike(m, &sig[f1])) {
+                if (m0.0.dot(m1.0) - n0.dot(n1)).abs() > tol {
+                    continue;
+                }
+                for hand in [1.0, -1.0] {
+                    let to = DMat3::from_cols(m0.0, m1.0, hand * m0.0.cross(m1.0));
+                    let g = to * from_inv;
+                    if (g - DMat3::IDENTITY)
+                        .abs()
+                        .to_cols_array()
+                        .iter()
+                        .all(|x| *x < tol)
+                    {
+                        continue;
+                    }
+                    let onto = sig.iter().all(|a| {
+                        let n = g * a.0;
+                        sig.iter().any(|b| alike(a, b) && (n - b.0).length() < tol)
+                    });
+                    if onto
+                        && !out
+                            .iter()
+                            .any(|h| (*h - g).abs().to_cols_array().iter().all(|x| *x < tol))
+                    {
+                        out.push(g);
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// The rough turned by `rotation` about the origin and then moved by `shift`.
     pub fn moved(&self, rotation: DQuat, shift: DVec3) -> Result<Rough> {
+        if let Some(b) = self.ball {
+            let planes: Vec<Plane> = self
+                .planes()
+                .iter()
+                .map(|p| {
+                    let normal = rotation * p.normal;
+                    Plane {
+                        normal,
+                        offset: p.offset + normal.dot(shift),
+                    }
+                })
+                .collect();
+            let mut r = self.clone();
+            r.solid = rough_solid(&planes, "sphere")?;
+            r.ball = Some(Ball {
+                centre: rotation * b.centre + shift,
+                radius: b.radius,
+            });
+            return Ok(r);
+        }
         let pts: Vec<DVec3> = self
             .solid
             .vertices()

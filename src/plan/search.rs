@@ -11,6 +11,7 @@
 //! positions. The starts run in parallel and are gathered in start order, so the answer is
 //! the same on any number of threads.
 
+use super::ball::enclosing_ball;
 use super::config::{Bound, Objective, PlanConfig};
 use super::fit::largest_copy;
 use super::rough::Rough;
@@ -31,6 +32,11 @@ use std::sync::Mutex;
 
 /// Grams per cubic millimetre per (g/cm³), times carats per gram.
 const CARATS_PER_MM3_PER_DENSITY: f64 = 1e-3 * 5.0;
+
+/// When the starts find fewer distinct plans than asked for, the further plans keep their
+/// tables at least this far (degrees) from every better plan's and its images under the
+/// rough's symmetries.
+pub const ALTERNATIVE_DEG: f64 = 20.0;
 
 /// The cost of a point whose cut cannot be built or placed (every real cost is ≤ 0).
 const FAILED: f64 = 1.0;
@@ -81,6 +87,16 @@ impl Plan {
         Polyhedron::from_planes(&self.placed_planes())
     }
 
+    /// The placed cut's vertices in the rough's coordinates (mm).
+    pub fn placed_vertices(&self) -> Vec<DVec3> {
+        self.cut
+            .solid
+            .vertices()
+            .iter()
+            .map(|v| self.scale * (self.rotation * *v) + self.shift)
+            .collect()
+    }
+
     /// Where the cut's table faces in the rough (unit vector).
     pub fn up(&self) -> DVec3 {
         self.rotation * DVec3::Z
@@ -93,6 +109,9 @@ pub struct Planner<'a> {
     planes: Vec<Plane>,
     inside: DVec3,
     frame: DQuat,
+    /// The rough's centroid and symmetries about it (distinct plans).
+    centre: DVec3,
+    symmetries: Vec<DMat3>,
     density: f64,
     config: &'a PlanConfig,
 }
@@ -170,6 +189,9 @@ struct Problem<'p> {
     /// With a minimum brilliance: the score settings (brilliance only), the minimum, and the
     /// brilliance of each parameter set met so far (by the bits of its values).
     brilliance: Option<BrillianceCheck>,
+    /// Table directions (in the rough's frame) to keep at least [`ALTERNATIVE_DEG`] from:
+    /// a plan there keeps 1 % of its objective.
+    avoid: Vec<DVec3>,
 }
 
 /// A minimum brilliance: the score settings, the minimum, and the brilliance of each
@@ -214,6 +236,14 @@ impl Problem<'_> {
         };
         let (_, _, objective, grade) = self.planner.measure(cut, grade, rotation)?;
         let mut value = self.planner.penalised(objective, grade);
+        let up = rotation * DVec3::Z;
+        if self
+            .avoid
+            .iter()
+            .any(|a| up.angle_between(*a) < ALTERNATIVE_DEG.to_radians())
+        {
+            value *= 0.01;
+        }
         if let Some((cfg, min, seen)) = &self.brilliance {
             let key: Vec<u64> = cut.params.values().map(|v| v.to_bits()).collect();
             let known = seen.lock().ok().and_then(|m| m.get(&key).copied());
@@ -248,6 +278,8 @@ impl<'a> Planner<'a> {
             planes: rough.planes(),
             inside: rough.solid.centroid(),
             frame: principal_frame(rough.solid.vertices()),
+            centre: rough.solid.centroid(),
+            symmetries: rough.symmetries(),
             density,
             config,
         }
@@ -262,7 +294,19 @@ impl<'a> Planner<'a> {
         rotation: DQuat,
     ) -> Option<(super::Fit, f64, f64, Option<Grade>)> {
         let verts: Vec<DVec3> = cut.solid.vertices().iter().map(|v| rotation * *v).collect();
-        let fit = largest_copy(&self.planes, &verts, self.inside)?;
+        let fit = match self.rough.ball {
+            // In a ball: the cut's smallest enclosing ball scaled to the rough's.
+            Some(ball) => {
+                let around = enclosing_ball(&verts);
+                let scale = ball.radius / around.radius;
+                super::Fit {
+                    scale,
+                    shift: ball.centre - scale * around.centre,
+                    steps: 0,
+                }
+            }
+            None => largest_copy(&self.planes, &verts, self.inside)?,
+        };
         if fit.scale.is_nan() || fit.scale <= 0.0 {
             return None;
         }
@@ -319,14 +363,7 @@ impl<'a> Planner<'a> {
             .map(|k| {
                 let mut x = vec![0.0; 3 + free];
                 if k > 0 {
-                    let q = DQuat::from_xyzw(
-                        rng.random_range(-1.0..1.0),
-                        rng.random_range(-1.0..1.0),
-                        rng.random_range(-1.0..1.0),
-                        rng.random_range(-1.0..1.0),
-                    )
-                    .normalize();
-                    let w = q.to_scaled_axis();
+                    let w = random_turn(&mut rng).to_scaled_axis();
                     x[..3].copy_from_slice(&w.to_array());
                     for u in &mut x[3..] {
                         *u = rng.random_range(-1.5..1.5);
@@ -337,8 +374,10 @@ impl<'a> Planner<'a> {
             .collect()
     }
 
-    /// Plan one family: every start's best, best first, distinct plans only (at most the
-    /// config's `top`). `done` is called after each start (progress).
+    /// Plan one family: every start's best, best first, distinct plans only
+    /// ([`Planner::same_plan`]), at most the config's `top`; when the starts find fewer, further
+    /// rounds with the table kept [`ALTERNATIVE_DEG`] from the plans found. `done` is called
+    /// after each start of the first round (progress).
     pub fn plan_family(&self, name: &str, done: &(dyn Fn() + Sync)) -> Result<Vec<Plan>> {
         let space = family(name)?;
         let settings = self.config.params.get(name).cloned().unwrap_or_default();
@@ -377,31 +416,60 @@ impl<'a> Planner<'a> {
             free,
             built,
             brilliance,
+            avoid: Vec::new(),
         };
-        let starts = self.start_points(problem.free.len());
-        let finals: Vec<Option<(f64, Vec<f64>)>> = starts
-            .par_iter()
-            .map(|x0| {
-                let r = self.run_start(&problem, x0);
-                done();
-                r
-            })
-            .collect();
-        let mut plans: Vec<(f64, Plan)> = finals
-            .into_iter()
-            .flatten()
-            .filter_map(|(c, x)| Some((c, problem.plan(&x)?)))
-            .collect();
-        plans.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut problem = problem;
         let mut out: Vec<Plan> = Vec::new();
-        let size = self.rough.size();
-        for (_, p) in plans {
+        for (_, p) in self.search_round(&problem, done) {
             if out.len() >= self.config.top {
                 break;
             }
-            if !out.iter().any(|q| same_plan(q, &p, size)) {
+            if !out.iter().any(|q| self.same_plan(q, &p)) {
                 out.push(p);
             }
+        }
+        // In a ball every orientation is as good: the plans are stood upright.
+        if self.rough.ball.is_some() {
+            out = out
+                .iter()
+                .map(|p| {
+                    self.place(&p.cut, DQuat::IDENTITY)
+                        .unwrap_or_else(|| p.clone())
+                })
+                .collect();
+        }
+        // Too few distinct plans (the starts met in copies of one optimum, as in a symmetric
+        // rough): search again with the table kept off every plan's so far, turned by every
+        // symmetry of the rough, each round adding its best plan. Not in a ball, where a pose
+        // is no choice.
+        let apart = ALTERNATIVE_DEG.to_radians();
+        while !out.is_empty() && out.len() < self.config.top && self.rough.ball.is_none() {
+            problem.avoid = out
+                .iter()
+                .flat_map(|p| self.symmetries.iter().map(move |g| *g * p.up()))
+                .collect();
+            let next = self
+                .search_round(&problem, &|| {})
+                .into_iter()
+                .map(|(_, p)| p)
+                .find(|p| {
+                    problem
+                        .avoid
+                        .iter()
+                        .all(|a| p.up().angle_between(*a) >= apart - 1e-9)
+                        && !out.iter().any(|q| self.same_plan(q, p))
+                });
+            match next {
+                Some(p) => out.push(p),
+                None => break,
+            }
+        }
+        // A later round, kept from more tables, can still beat an earlier one whose search
+        // stopped short: best first by the objective under the grade (every pair stays 20°
+        // apart either way).
+        if out.len() > 1 {
+            let value = |p: &Plan| self.penalised(p.objective, p.grade);
+            out.sort_by(|a, b| value(b).total_cmp(&value(a)));
         }
         if out.is_empty() {
             return Err(Error::invalid(
@@ -413,6 +481,26 @@ impl<'a> Planner<'a> {
             ));
         }
         Ok(out)
+    }
+
+    /// Every start's best plan, best first. `done` is called after each start.
+    fn search_round(&self, problem: &Problem<'_>, done: &(dyn Fn() + Sync)) -> Vec<(f64, Plan)> {
+        let starts = self.start_points(problem.free.len());
+        let finals: Vec<Option<(f64, Vec<f64>)>> = starts
+            .par_iter()
+            .map(|x0| {
+                let r = self.run_start(problem, x0);
+                done();
+                r
+            })
+            .collect();
+        let mut plans: Vec<(f64, Plan)> = finals
+            .into_iter()
+            .flatten()
+            .filter_map(|(c, x)| Some((c, problem.plan(&x)?)))
+            .collect();
+        plans.sort_by(|a, b| a.0.total_cmp(&b.0));
+        plans
     }
 
     /// One start: Nelder–Mead from `x0`, then restarted twice from its best with smaller
@@ -446,13 +534,60 @@ impl<'a> Planner<'a> {
     }
 }
 
-/// Two plans are the same if their tables face within 5° of each other, their centres lie
-/// within 2 % of the rough's size and their weights within 1 %.
-fn same_plan(a: &Plan, b: &Plan, size: f64) -> bool {
-    let centre = |p: &Plan| p.scale * (p.rotation * p.cut.solid.centroid()) + p.shift;
-    a.up().angle_between(b.up()) < 5f64.to_radians()
-        && centre(a).distance(centre(b)) < 0.02 * size
-        && (a.carats - b.carats).abs() < 0.01 * a.carats.max(b.carats)
+/// A seeded turn: a normalised quaternion of four uniform numbers in [−1, 1).
+pub(crate) fn random_turn(rng: &mut SmallRng) -> DQuat {
+    DQuat::from_xyzw(
+        rng.random_range(-1.0..1.0),
+        rng.random_range(-1.0..1.0),
+        rng.random_range(-1.0..1.0),
+        rng.random_range(-1.0..1.0),
+    )
+    .normalize()
+}
+
+/// The largest distance from a point of either set to the nearest point of the other.
+fn hausdorff(a: &[DVec3], b: &[DVec3]) -> f64 {
+    let one_way = |a: &[DVec3], b: &[DVec3]| {
+        a.iter()
+            .map(|p| {
+                b.iter()
+                    .map(|q| p.distance(*q))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0, f64::max)
+    };
+    one_way(a, b).max(one_way(b, a))
+}
+
+impl Planner<'_> {
+    /// Whether two plans are copies of one plan (the top K keeps the first): their weights
+    /// agree within 1 % and a symmetry of the rough ([`Rough::symmetries`], the identity
+    /// first) carries the one's placed vertices onto the other's within 2 % of the rough's
+    /// size, compared as sets so that the cut's own symmetries count too (the identity alone
+    /// catches starts that stopped near one optimum). In a ball, where every turn and mirror
+    /// about the centre is a symmetry, the vertices' sorted distances from the centre are
+    /// compared instead.
+    pub fn same_plan(&self, a: &Plan, b: &Plan) -> bool {
+        if (a.carats - b.carats).abs() >= 0.01 * a.carats.max(b.carats) {
+            return false;
+        }
+        let tol = 0.02 * self.rough.size();
+        let (pa, pb) = (a.placed_vertices(), b.placed_vertices());
+        if let Some(ball) = self.rough.ball {
+            let radii = |p: &[DVec3]| {
+                let mut r: Vec<f64> = p.iter().map(|x| x.distance(ball.centre)).collect();
+                r.sort_by(f64::total_cmp);
+                r
+            };
+            let (ra, rb) = (radii(&pa), radii(&pb));
+            return ra.len() == rb.len() && ra.iter().zip(&rb).all(|(x, y)| (x - y).abs() < tol);
+        }
+        let c = self.centre;
+        self.symmetries.iter().any(|g| {
+            let moved: Vec<DVec3> = pa.iter().map(|x| c + *g * (*x - c)).collect();
+            hausdorff(&moved, &pb) < tol
+        })
+    }
 }
 
 #[cfg(test)]

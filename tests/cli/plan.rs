@@ -59,6 +59,7 @@ fn a_crystal_plan_writes_its_folder() {
         "report.html",
         "rough.obj",
         "scene.obj",
+        "scene.gltf",
         "overview.png",
         "round-brilliant-1.obj",
         "round-brilliant-1.toml",
@@ -74,6 +75,14 @@ fn a_crystal_plan_writes_its_folder() {
     let y = plan["yield"].as_f64().unwrap();
     assert!(y > 0.3 && y < 1.0, "{y}");
     assert_eq!(json["rough"]["volume_mm3"].as_f64().unwrap().round(), 36.0);
+    // The glTF scene holds the rough and every plan, in metres.
+    let gltf: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(p.join("run/scene.gltf")).unwrap()).unwrap();
+    assert_eq!(gltf["asset"]["version"], "2.0");
+    assert_eq!(
+        gltf["nodes"].as_array().unwrap().len(),
+        1 + json["plans"].as_array().unwrap().len()
+    );
     // The written cut is the planned one: read back, its volume is yield × rough volume.
     let back = ok(p, &["info", "run/round-brilliant-1.toml", "--json"]);
     assert!(back.contains("volume"), "{back}");

@@ -51,7 +51,7 @@ pub use constraints::{Constraints, RawConstraints};
 pub use cut::RawCut;
 pub use free::{axis_label, FreeParam};
 pub use method::{Budget, Method, NelderMeadSettings, RawMethod, Sampling, SwarmSettings};
-pub use objective::{ParetoSpec, RawObjective, Weights, PARETO_SCORES};
+pub use objective::{ParetoSpec, RawObjective, Weights, COLOUR_WEIGHTS, PARETO_SCORES};
 pub use score::{RawScore, ScoreSettings};
 pub use winners::{RawVerify, VerifySettings};
 
@@ -176,6 +176,11 @@ pub mod defaults {
     pub const SIGMA: f64 = 4.0;
 }
 
+/// A colour weight as the written config gives it (left out when 0).
+fn colour_weight(w: f64) -> Option<f64> {
+    (w != 0.0).then_some(w)
+}
+
 fn finite(field: &str, v: f64) -> Result<f64> {
     if v.is_finite() {
         Ok(v)
@@ -296,6 +301,15 @@ impl Config {
                 }
             }
         }
+        let colour_weights = raw.objective.clone().unwrap_or_default().colour();
+        for (name, set) in objective::COLOUR_WEIGHTS.iter().zip(colour_weights) {
+            if set.is_some() && score.material.colour.is_none() {
+                return Err(Error::invalid(
+                    at(&format!("objective.{name}")),
+                    "the stone has no body colour to weigh; give [score] colour or a coloured material (facetlab materials)",
+                ));
+            }
+        }
         for (field, set) in [
             ("constraints.max_extinction", constraints.max_extinction),
             ("constraints.max_windowing", constraints.max_windowing),
@@ -391,6 +405,10 @@ impl Config {
                 brilliance: Some(self.weights.brilliance),
                 fire: Some(self.weights.fire),
                 scintillation: Some(self.weights.scintillation),
+                colour_l: colour_weight(self.weights.colour[0]),
+                colour_c: colour_weight(self.weights.colour[1]),
+                extinction: colour_weight(self.weights.colour[2]),
+                windowing: colour_weight(self.weights.colour[3]),
                 pareto: self.pareto.as_ref().map(|p| p.scores.clone()),
                 pareto_points: self.pareto.as_ref().map(|p| p.points as u64),
             }),

@@ -17,6 +17,18 @@ pub struct RawObjective {
     /// Weight of scintillation (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scintillation: Option<f64>,
+    /// Weight of a coloured stone's face-up lightness L* (0–100; needs a body colour).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub colour_l: Option<f64>,
+    /// Weight of a coloured stone's face-up chroma C* (needs a body colour).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub colour_c: Option<f64>,
+    /// Weight of a coloured stone's extinction (0–1; negative to avoid it; needs a body colour).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extinction: Option<f64>,
+    /// Weight of a coloured stone's windowing (0–1; negative to avoid it; needs a body colour).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub windowing: Option<f64>,
     /// Trace the trade-off between two or three scores instead of one weighted search:
     /// `pareto = ["brilliance", "fire"]` (see [`crate::optimize::run_pareto`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -77,6 +89,10 @@ pub(super) fn validate_pareto(ro: &RawObjective, at: At) -> Result<Option<Pareto
     }))
 }
 
+/// The colour scores `[objective]` may weigh, as the optimizer's score sets name them
+/// (`Scores::colour` of a coloured stone).
+pub const COLOUR_WEIGHTS: [&str; 4] = ["colour_l", "colour_c", "extinction", "windowing"];
+
 /// Objective weights: score = Σ weight · score.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Weights {
@@ -86,11 +102,43 @@ pub struct Weights {
     pub fire: f64,
     /// Weight of scintillation.
     pub scintillation: f64,
+    /// Weights of a coloured stone's colour scores, in the order of `COLOUR_WEIGHTS`
+    /// (any sign: a negative weight on extinction or windowing avoids them); all 0 for a
+    /// colourless stone. Left out of the JSON when all 0.
+    #[serde(skip_serializing_if = "all_zero")]
+    pub colour: [f64; 4],
 }
 
-/// Validate `[objective]`.
+fn all_zero(w: &[f64; 4]) -> bool {
+    w.iter().all(|x| *x == 0.0)
+}
+
+impl Weights {
+    /// Whether any colour score is weighed.
+    pub fn weighs_colour(&self) -> bool {
+        !all_zero(&self.colour)
+    }
+}
+
+impl RawObjective {
+    /// The colour weights given, in the order of `COLOUR_WEIGHTS`.
+    pub fn colour(&self) -> [Option<f64>; 4] {
+        [
+            self.colour_l,
+            self.colour_c,
+            self.extinction,
+            self.windowing,
+        ]
+    }
+}
+
+/// Validate `[objective]` (a colour weight's need of a body colour is checked with `[score]`).
 pub(super) fn validate(ro: &RawObjective, at: At) -> Result<Weights> {
-    let any = ro.brilliance.is_some() || ro.fire.is_some() || ro.scintillation.is_some();
+    let colour_given = ro.colour();
+    let any = ro.brilliance.is_some()
+        || ro.fire.is_some()
+        || ro.scintillation.is_some()
+        || colour_given.iter().any(Option::is_some);
     let w = |field: &str, v: Option<f64>, dflt: f64| -> Result<f64> {
         let v = finite(&at(field), v.unwrap_or(dflt))?;
         if v < 0.0 {
@@ -101,7 +149,7 @@ pub(super) fn validate(ro: &RawObjective, at: At) -> Result<Weights> {
         }
         Ok(v)
     };
-    let weights = Weights {
+    let mut weights = Weights {
         brilliance: w(
             "objective.brilliance",
             ro.brilliance,
@@ -109,8 +157,13 @@ pub(super) fn validate(ro: &RawObjective, at: At) -> Result<Weights> {
         )?,
         fire: w("objective.fire", ro.fire, 0.0)?,
         scintillation: w("objective.scintillation", ro.scintillation, 0.0)?,
+        colour: [0.0; 4],
     };
-    if weights.brilliance + weights.fire + weights.scintillation <= 0.0 {
+    for (k, (name, v)) in COLOUR_WEIGHTS.iter().zip(colour_given).enumerate() {
+        weights.colour[k] = finite(&at(&format!("objective.{name}")), v.unwrap_or(0.0))?;
+    }
+    if weights.brilliance + weights.fire + weights.scintillation <= 0.0 && !weights.weighs_colour()
+    {
         return Err(Error::invalid(
             at("objective"),
             "every weight is 0; give brilliance, fire or scintillation a positive weight",
