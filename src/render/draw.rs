@@ -8,7 +8,7 @@ use super::lighting::Lighting;
 use super::options::RenderOptions;
 use super::pose::{picture_half, view_rotation};
 use super::raster::{Accumulator, Raster};
-use crate::beam::{Frame, Stone, TraceOptions};
+use crate::beam::{ExitBeam, Frame, Stone, TraceOptions};
 use crate::geometry::{canonical::canonical, outline_size, Polyhedron};
 use crate::optics::{color, Dispersion};
 use glam::{DVec2, DVec3};
@@ -95,7 +95,12 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                     ..trace_opts
                 };
                 let (mut seen, mut under) = (0.0, 0.0);
-                let layer = Layer::trace(&stone, &frame, ri, &o, n, |e| {
+                // A colourless fire picture sums nothing else: an exit whose elevation no
+                // spot reaches (its copies share it) is skipped with its copies.
+                let fire_only = fire && body.is_none();
+                let reach =
+                    |e: &ExitBeam| !fire_only || lighting.spots_reach_z((rot * e.direction).z);
+                let value = |e: &ExitBeam| {
                     let w = rot * e.direction;
                     seen += e.power;
                     if w.z < 0.0 {
@@ -107,7 +112,8 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                         opts.light.shade(&lighting, w).1
                     };
                     [v, if e.external { 0.0 } else { v }, 0.0, 0.0, 0.0]
-                });
+                };
+                let layer = Layer::trace(&stone, &frame, ri, &o, n, value, reach);
                 (layer, seen, under)
             })
             .collect();
@@ -191,6 +197,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                 }
                 c
             },
+            |_| true,
         );
         let power_in = layer.stats.power_in;
         stats.mean = if power_in > 0.0 { mean / power_in } else { 0.0 };
@@ -297,9 +304,16 @@ mod tests {
             let lighting = Lighting::new(opts.head_shadow(), &[]);
             let rot = view_rotation(light, tilt);
             let n = light.channels();
-            let layer = Layer::trace(&stone, &frame, 2.417, &opts.trace_options(), n, |e| {
-                light.shade(&lighting, rot * e.direction).0
-            });
+            let value = |e: &ExitBeam| light.shade(&lighting, rot * e.direction).0;
+            let layer = Layer::trace(
+                &stone,
+                &frame,
+                2.417,
+                &opts.trace_options(),
+                n,
+                value,
+                |_| true,
+            );
             let half = picture_half(&round);
             let full = Layer::fill(&[&layer], n, size, half, false);
             let quad = Layer::fill(&[&layer], n, size, half, true);

@@ -50,16 +50,29 @@ pub(super) struct Layer {
 }
 
 /// The sink a [`Layer`] is traced into.
-struct LayerSink<F: FnMut(&ExitBeam) -> [f64; 5]> {
+struct LayerSink<F: FnMut(&ExitBeam) -> [f64; 5], G: Fn(&ExitBeam) -> bool> {
     value: F,
+    orbit: G,
+    /// Copies the trace hands out per traced exit.
+    copies: usize,
+    /// Copies of orbits skipped whole (counted among the exits).
+    skipped: std::cell::Cell<usize>,
     layer: Layer,
 }
 
-impl<F: FnMut(&ExitBeam) -> [f64; 5]> ExitSink for LayerSink<F> {
+impl<F: FnMut(&ExitBeam) -> [f64; 5], G: Fn(&ExitBeam) -> bool> ExitSink for LayerSink<F, G> {
     fn wants_footprints(&self) -> bool {
         true
     }
+    fn wants_orbit(&self, e: &ExitBeam) -> bool {
+        let wanted = (self.orbit)(e);
+        if !wanted {
+            self.skipped.set(self.skipped.get() + self.copies);
+        }
+        wanted
+    }
     fn symmetries(&mut self, maps: &[(u16, [f64; 4])]) {
+        self.copies = maps.len();
         let n = maps.iter().map(|&(i, _)| i as usize + 1).max().unwrap_or(1);
         let mut m = vec![[1.0, 0.0, 0.0, 1.0]; n];
         for &(i, map) in maps {
@@ -68,6 +81,11 @@ impl<F: FnMut(&ExitBeam) -> [f64; 5]> ExitSink for LayerSink<F> {
         self.layer.maps = m;
     }
     fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+        if self.copies == 1 && !(self.orbit)(e) {
+            // A trace without symmetries hands every exit out without asking.
+            self.layer.exits += 1;
+            return;
+        }
         let l = &mut self.layer;
         l.exits += 1;
         if e.sym == 0 {
@@ -110,7 +128,10 @@ impl<F: FnMut(&ExitBeam) -> [f64; 5]> ExitSink for LayerSink<F> {
 impl Layer {
     /// Trace `stone` along `frame` at index `ri` and keep, for each exit (every copy),
     /// `value(exit)`'s first `channels` values: the radiance the exit carries per unit of
-    /// its power. `value` sees every exit, so it may also sum what the caller measures.
+    /// its power. `value` sees every exit for which `orbit` holds, so it may also sum what
+    /// the caller measures; `orbit(exit)` false says that neither the exit nor its symmetric
+    /// copies add anything (decided from what the copies share: power, and the direction's
+    /// component along the viewer's axis), so they are skipped whole.
     pub(super) fn trace(
         stone: &Stone,
         frame: &Frame,
@@ -118,9 +139,13 @@ impl Layer {
         opts: &TraceOptions,
         channels: usize,
         value: impl FnMut(&ExitBeam) -> [f64; 5],
+        orbit: impl Fn(&ExitBeam) -> bool,
     ) -> Layer {
         let mut sink = LayerSink {
             value,
+            orbit,
+            copies: 1,
+            skipped: std::cell::Cell::new(0),
             layer: Layer {
                 channels: channels.clamp(1, 5),
                 stats: TraceStats::default(),
@@ -138,6 +163,7 @@ impl Layer {
         };
         let (stats, _) = stone.trace_into(frame, ri, &opts, &mut sink, false);
         let mut layer = sink.layer;
+        layer.exits += sink.skipped.get();
         let area = stats.area;
         layer.values.iter_mut().for_each(|v| *v *= area);
         layer.stats = stats;

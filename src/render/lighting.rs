@@ -181,6 +181,17 @@ impl Lighting {
         }
     }
 
+    /// Whether [`Lighting::spots`] can be non-zero for some direction whose z component is
+    /// `z` (any azimuth): the nearest such direction to a spot's centre is at the same
+    /// azimuth, where their cosine is `z·c_z + √((1 − z²)(1 − c_z²))`.
+    #[inline]
+    pub fn spots_reach_z(&self, z: f64) -> bool {
+        let s = (1.0 - z * z).max(0.0).sqrt();
+        self.spots
+            .iter()
+            .any(|&(c, _, outer, _)| z * c.z + s * (1.0 - c.z * c.z).max(0.0).sqrt() > outer)
+    }
+
     /// Whether [`Lighting::spots`] can be non-zero for `w` (cheap pre-test).
     #[inline]
     pub fn near_spot(&self, w: DVec3) -> bool {
@@ -225,6 +236,32 @@ fn aset_bins_exact(w: DVec3) -> [f64; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `spots_reach_z` holds wherever a spot lights a direction of that z (on a fine grid
+    /// of directions), is tight (the grid finds a lit direction within 0.2° of every z it
+    /// allows) and refuses the elevations between and beyond the default spots.
+    #[test]
+    fn spots_reach_z_bounds_the_spots() {
+        let light = Lighting::new(0.0, &Spot::default_set());
+        for i in 0..=1800 {
+            let elev = -90.0 + 0.1 * i as f64;
+            let z = elev.to_radians().sin();
+            let lit = (0..3600).any(|k| light.spots(dir(elev, 0.1 * k as f64)) > 0.0);
+            if lit {
+                assert!(light.spots_reach_z(z), "elevation {elev}");
+            }
+            if light.spots_reach_z(z) {
+                let near = (-2..=2).any(|d| {
+                    let e = elev + 0.1 * d as f64;
+                    (0..3600).any(|k| light.spots(dir(e, 0.1 * k as f64)) > 0.0)
+                });
+                assert!(near, "elevation {elev} allowed, nothing lit near it");
+            }
+        }
+        for elev in [-10.0, 20.0, 50.0, 88.0] {
+            assert!(!light.spots_reach_z(f64::sin(f64::to_radians(elev))), "{elev}");
+        }
+    }
 
     fn dir(elev: f64, az: f64) -> DVec3 {
         Spot {
