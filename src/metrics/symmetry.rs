@@ -406,12 +406,7 @@ mod tests {
             assert_eq!(classes, want_classes, "{:?}", stone.symmetry());
             for (a, b) in moved.images.iter().zip(&clipped.images) {
                 let top = b.data.iter().fold(0.0f64, |m, &x| m.max(x));
-                let worst = a
-                    .data
-                    .iter()
-                    .zip(&b.data)
-                    .map(|(x, y)| (x - y).abs())
-                    .fold(0.0, f64::max);
+                let worst = a.max_difference(b);
                 // (A stone's mirror found to ~1e-11 counts as the grid's.)
                 assert!(worst <= 1e-9 * top, "{worst} of {top}");
             }

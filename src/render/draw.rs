@@ -318,12 +318,7 @@ mod tests {
             let full = Layer::fill(&[&layer], n, size, half, false);
             let quad = Layer::fill(&[&layer], n, size, half, true);
             for (a, b) in full.iter().zip(&quad) {
-                let worst = a
-                    .data
-                    .iter()
-                    .zip(&b.data)
-                    .map(|(x, y)| (x - y).abs())
-                    .fold(0.0, f64::max);
+                let worst = a.max_difference(b);
                 assert!(worst < 1e-12, "{light:?} {size}: {worst}");
             }
         }

@@ -259,7 +259,10 @@ mod tests {
             }
         }
         for elev in [-10.0, 20.0, 50.0, 88.0] {
-            assert!(!light.spots_reach_z(f64::sin(f64::to_radians(elev))), "{elev}");
+            assert!(
+                !light.spots_reach_z(f64::sin(f64::to_radians(elev))),
+                "{elev}"
+            );
         }
     }
 

@@ -475,6 +475,16 @@ pub struct Raster {
 }
 
 impl Raster {
+    /// Largest difference between two pictures' pixels (tests compare ways of drawing).
+    #[cfg(test)]
+    pub(crate) fn max_difference(&self, other: &Raster) -> f64 {
+        self.data
+            .iter()
+            .zip(&other.data)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max)
+    }
+
     /// A black image (at least one pixel; a non-positive or non-finite `half` gives an image
     /// that ignores everything).
     pub fn new(n: usize, half: f64) -> Raster {
