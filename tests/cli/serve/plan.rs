@@ -78,7 +78,7 @@ fn serve_plans_a_rough() {
     assert!(e.contains("20000"), "{e}");
     bad(serde_json::json!({"crystal": "octahedron"}), "size_mm", 422);
     bad(
-        serde_json::json!({"crystal": "sphere", "size_mm": 6}),
+        serde_json::json!({"crystal": "icosahedron", "size_mm": 6}),
         "crystal",
         422,
     );
