@@ -2,7 +2,7 @@
 //! it sees, and add its footprint's exact coverage to the pixels ([`render`]).
 
 use super::image::{fire_of, AsetShares, ColourStats, Image, Stats};
-use super::layer::Layer;
+use super::layer::{Layer, BAND_ROWS};
 use super::light::Light;
 use super::lighting::Lighting;
 use super::options::RenderOptions;
@@ -137,7 +137,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         if fire {
             stats.fire = Some(fire_of(&images, &weights, outline));
         }
-        let mut rgb = vec![Raster::new(size, half); 3];
+        let mut rgb: Vec<Raster> = (0..3).map(|_| Raster::new(size, half)).collect();
         let mut y_sum = 0.0;
         for p in 0..size * size {
             let xyz: DVec3 = images
@@ -236,20 +236,27 @@ pub(crate) fn outline_coverage(
     size: usize,
     half: f64,
 ) -> Raster {
-    let mut outline = Accumulator::new(size, half, (0, size), 1);
-    for (f, facet) in solid.facets().iter().enumerate() {
-        if facet.plane.normal.dot(frame.dir) < 0.0 {
-            let poly: Vec<DVec2> = solid
+    let polys: Vec<Vec<DVec2>> = (0..solid.facets().len())
+        .filter(|&f| solid.facets()[f].plane.normal.dot(frame.dir) < 0.0)
+        .map(|f| {
+            solid
                 .facet_polygon(f)
                 .iter()
                 .map(|p| DVec2::new(p.dot(frame.u), p.dot(frame.v)))
-                .collect();
-            outline.add_polygon(&poly, &[1.0]);
-        }
-    }
+                .collect()
+        })
+        .collect();
+    // Band by band with one accumulator: a whole picture's would be fresh memory, slower to
+    // touch the first time than to clear.
     let mut coverage = Raster::new(size, half);
-    if let Some(c) = outline.finish().pop() {
-        coverage.data = c;
+    let mut outline = Accumulator::new(size, half, (0, BAND_ROWS.min(size)), 1);
+    for (k, rows) in coverage.data.chunks_mut(BAND_ROWS * size).enumerate() {
+        let j0 = k * BAND_ROWS;
+        outline.reset((j0, j0 + rows.len() / size));
+        for poly in &polys {
+            outline.add_polygon(poly, &[1.0]);
+        }
+        outline.finish_into(&mut [rows]);
     }
     coverage
 }

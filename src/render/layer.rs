@@ -16,7 +16,7 @@ use glam::DVec2;
 use rayon::prelude::*;
 
 /// Rows per band of the parallel fill.
-const BAND_ROWS: usize = 64;
+pub(super) const BAND_ROWS: usize = 64;
 
 /// A copy of a traced exit that adds light to the picture.
 #[derive(Clone, Copy, Debug)]
@@ -192,11 +192,26 @@ impl Layer {
             .step_by(BAND_ROWS)
             .map(|j| (j, (j + BAND_ROWS).min(m)))
             .collect();
-        let parts: Vec<Vec<Vec<f64>>> = bands
-            .par_iter()
-            .map(|&(j0, j1)| {
+        let mut rasters: Vec<Raster> = (0..channels).map(|_| Raster::new(size, half)).collect();
+        // Per row band, its rows of every channel's picture: each band is drawn straight
+        // into them, with an accumulator reused from band to band on a thread.
+        let mut outs: Vec<Vec<&mut [f64]>> = bands.iter().map(|_| Vec::new()).collect();
+        for r in rasters.iter_mut() {
+            for (o, rows) in outs.iter_mut().zip(r.data.chunks_mut(BAND_ROWS * size)) {
+                o.push(rows);
+            }
+        }
+        bands.par_iter().zip(outs).for_each_init(
+            || None::<Accumulator>,
+            |slot, (&(j0, j1), mut out)| {
                 let (ylo, yhi) = (-half + j0 as f64 * h, -half + j1 as f64 * h);
-                let mut acc = Accumulator::new(size, half, (j0, j1), channels);
+                let acc = match slot {
+                    Some(acc) => {
+                        acc.reset((j0, j1));
+                        acc
+                    }
+                    None => slot.insert(Accumulator::new(size, half, (j0, j1), channels)),
+                };
                 let mut fp = Vec::new();
                 for layer in layers {
                     let c = layer.channels;
@@ -218,16 +233,12 @@ impl Layer {
                         }
                     }
                 }
-                acc.finish()
-            })
-            .collect();
-        (0..channels)
-            .map(|ch| {
-                let mut r = Raster::new(size, half);
-                for (part, &(j0, _)) in parts.iter().zip(&bands) {
-                    let p = &part[ch];
-                    r.data[j0 * size..j0 * size + p.len()].copy_from_slice(p);
-                }
+                acc.finish_into(&mut out);
+            },
+        );
+        rasters
+            .into_iter()
+            .map(|mut r| {
                 if quadrant {
                     for j in 0..m {
                         let row = &mut r.data[j * size..(j + 1) * size];

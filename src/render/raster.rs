@@ -287,6 +287,19 @@ impl Accumulator {
         }
     }
 
+    /// Empty again, for rows `rows.0 .. rows.1` (of the same image and channels): the same
+    /// as a new accumulator, reusing this one's memory (a fresh one is fresh pages, and a
+    /// page's first touch costs more than clearing it).
+    pub fn reset(&mut self, rows: (usize, usize)) {
+        let n = self.n;
+        self.rows = (rows.0.min(n), rows.1.min(n).max(rows.0.min(n)));
+        let len = (self.rows.1 - self.rows.0) * (n + 2) * self.channels;
+        for a in [&mut self.acc, &mut self.acc2] {
+            a.clear();
+            a.resize(len, 0.0);
+        }
+    }
+
     /// Add the convex polygon `poly` (image coordinates, either orientation) with `values`
     /// per unit area (one per channel; missing ones count as 0).
     pub fn add_polygon(&mut self, poly: &[DVec2], values: &[f64]) {
@@ -443,21 +456,30 @@ impl Accumulator {
     /// The accumulated rows as pixel averages: channel by channel, row-major from the band's
     /// first row, `n` values per row.
     pub fn finish(&self) -> Vec<Vec<f64>> {
+        let len = (self.rows.1 - self.rows.0) * self.n;
+        let mut out = vec![vec![0.0; len]; self.channels];
+        let mut outs: Vec<&mut [f64]> = out.iter_mut().map(|o| o.as_mut_slice()).collect();
+        self.finish_into(&mut outs);
+        out
+    }
+
+    /// [`Accumulator::finish`] into `outs` (one slice per channel, at least the band's rows
+    /// × `n` long, row `rows.0` first): the very same values, without new memory.
+    pub fn finish_into(&self, outs: &mut [&mut [f64]]) {
         let width = self.n + 2;
         let ch = self.channels;
-        let mut out = vec![Vec::with_capacity((self.rows.1 - self.rows.0) * self.n); ch];
         for r in 0..self.rows.1 - self.rows.0 {
-            for (k, o) in out.iter_mut().enumerate() {
+            for (k, o) in outs.iter_mut().enumerate().take(ch) {
+                let row = &mut o[r * self.n..(r + 1) * self.n];
                 let (mut run, mut run2) = (0.0, 0.0);
-                for i in 0..self.n {
+                for (i, px) in row.iter_mut().enumerate() {
                     let c = (r * width + i) * ch + k;
                     run2 += self.acc2[c];
                     run += self.acc[c] + run2;
-                    o.push(run);
+                    *px = run;
                 }
             }
         }
-        out
     }
 }
 
