@@ -1,9 +1,10 @@
 //! The per-photon loop.
 
+use super::reach::Reach;
 use super::solid::TraceSolid;
 use super::tally::{Counts, Fate, PhotonPath};
 use super::{
-    Absorption, Light, LightKind, LightSize, TraceConfig, WavelengthSampling, CHUNK,
+    Absorption, ExitWeights, Light, LightKind, LightSize, TraceConfig, WavelengthSampling, CHUNK,
     THESIS_ABSORPTION, UNLIMITED_CAP,
 };
 use crate::error::{Error, Result};
@@ -233,10 +234,12 @@ pub(crate) struct Tracer<'a> {
     fixed_n: Option<f64>,
     seed: u64,
     beam: Option<Beam>,
+    /// Undirected lights: which photons surely miss, from their start and polar angle.
+    reach: Option<Reach>,
     /// cos(k°) for k = 0..=180.
     cos_deg: Vec<f64>,
-    /// Weight of an exit direction, summed into [`Counts::weight_sum`].
-    pub(crate) exit_weight: Option<&'a (dyn Fn(DVec3) -> f64 + Sync)>,
+    /// Weights of an exit direction, summed into [`Counts::weight_sum`].
+    pub(crate) exit_weight: Option<&'a ExitWeights<'a>>,
 }
 
 /// Unpolarized Fresnel reflectance for incidence cosine `cos_i` and index ratio
@@ -325,7 +328,11 @@ impl<'a> Tracer<'a> {
             (_, WavelengthSampling::Fixed(l)) => Some(cfg.material.ri(l)),
             _ => None,
         };
+        let w = s.centre - centre;
+        let to_sphere = DVec3::new(axis.dot(w), u.dot(w), v.dot(w));
         Ok(Tracer {
+            reach: (light.kind == LightKind::Undirected)
+                .then(|| Reach::new(half, to_sphere, s.radius)),
             s,
             kind: light.kind,
             centre,
@@ -447,9 +454,10 @@ impl<'a> Tracer<'a> {
         k.angle_hist[bin] += 1;
         k.light_return += (d.z > 0.0) as u64;
         if let Some(w) = self.exit_weight {
-            let x = w(d);
-            k.weight_sum += x;
-            k.weight_sq += x * x;
+            for (i, x) in w(d).into_iter().enumerate() {
+                k.weight_sum[i] += x;
+                k.weight_sq[i] += x * x;
+            }
         }
     }
 
@@ -511,6 +519,11 @@ impl<'a> Tracer<'a> {
             LightKind::Undirected => {
                 let c = rng.random::<f64>();
                 let phi = std::f64::consts::TAU * rng.random::<f64>();
+                if self.reach.as_ref().is_some_and(|r| r.misses(a, b, c)) {
+                    // Counted exactly as the miss the full test below would find, after the
+                    // same random draws: only the trigonometry and the entry test are saved.
+                    return None;
+                }
                 let s = (1.0 - c * c).max(0.0).sqrt();
                 let (sp, cp) = phi.sin_cos();
                 self.axis * c + self.u * (s * cp) + self.v * (s * sp)
@@ -664,6 +677,58 @@ mod tests {
             }
         }
         assert!(tir > 100, "{tir}");
+    }
+
+    /// The undirected lights' early rejection (`reach.rs`) never drops a photon that reaches
+    /// the stone's bounding sphere (so none that hits the stone), and it rejects most of
+    /// those that miss.
+    #[test]
+    fn undirected_rejection_only_drops_misses() {
+        let cut = crate::io::load_cut("tolkowsky").unwrap();
+        let s = TraceSolid::new(&cut.solid).unwrap();
+        let close = Light {
+            centre: DVec3::new(0.2, -0.1, 0.9),
+            ..Light::overhead()
+        };
+        let turned = Light::rotated(LightKind::Undirected, 120.0);
+        for light in [Light::overhead(), Light::offset(), turned, close] {
+            let tr = Tracer::new(&s, &light, &TraceConfig::thesis()).unwrap();
+            let mut rng = SmallRng::seed_from_u64(9);
+            let (mut sphere, mut missed, mut rejected) = (0, 0, 0);
+            for _ in 0..200_000 {
+                let a = (2.0 * rng.random::<f64>() - 1.0) * tr.half;
+                let b = (2.0 * rng.random::<f64>() - 1.0) * tr.half;
+                let c = rng.random::<f64>();
+                let phi = std::f64::consts::TAU * rng.random::<f64>();
+                let sn = (1.0 - c * c).sqrt();
+                let o = tr.centre + tr.u * a + tr.v * b;
+                let d = tr.axis * c + tr.u * (sn * phi.cos()) + tr.v * (sn * phi.sin());
+                // The bounding sphere's own test, without the facets.
+                let w = s.centre - o;
+                let bd = w.dot(d);
+                let r2 = s.radius * s.radius;
+                let reaches =
+                    !(w.length_squared() - bd * bd > r2 || (bd < 0.0 && w.length_squared() > r2));
+                let rej = tr.reach.as_ref().unwrap().misses(a, b, c);
+                assert!(
+                    !(rej && reaches),
+                    "{}: a {a} b {b} c {c} phi {phi}",
+                    light.label
+                );
+                assert!(!rej || s.entry(o, d).is_none());
+                sphere += reaches as u32;
+                missed += !reaches as u32;
+                rejected += rej as u32;
+            }
+            assert!(sphere > 200, "{}: {sphere}", light.label);
+            eprintln!(
+                "{}: {rejected} of {missed} misses rejected early",
+                light.label
+            );
+            if light.centre.length() > 2.0 {
+                assert!(rejected as f64 > 0.8 * missed as f64, "{}", light.label);
+            }
+        }
     }
 
     #[test]

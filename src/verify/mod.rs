@@ -149,19 +149,19 @@ pub fn brilliance_mc(
         let world = turned(solid, tilt.rotation())?;
         let pc = photon_config(cfg, photons, seed.wrapping_add(k as u64 * 0x9E37_79B9));
         let down = Light::directed(0.0);
-        // One trace with the mean of the two environments as its weight, and one each for
-        // ISO and COS: the same seed makes them the same photons, so the mean's error is
-        // its own (not a sum of independent errors).
-        let i = photon::trace_weighted(&world, &down, &pc, &|w| light.iso(w))?;
-        let c = photon::trace_weighted(&world, &down, &pc, &|w| light.cos(w))?;
-        let b =
-            photon::trace_weighted(&world, &down, &pc, &|w| 0.5 * (light.iso(w) + light.cos(w)))?;
-        iso += i.mean;
-        iso_var += i.stderr * i.stderr;
-        cos += c.mean;
-        cos_var += c.stderr * c.stderr;
-        both += b.mean;
-        both_var += b.stderr * b.stderr;
+        // ISO, COS and their mean summed over the same photons in one trace, so the mean's
+        // error is its own (not a sum of independent errors).
+        let t = photon::trace_weights(&world, &down, &pc, &|w| {
+            let (i, c) = (light.iso(w), light.cos(w));
+            [i, c, 0.5 * (i + c)]
+        })?;
+        let (m, se) = (t.mean, t.stderr);
+        iso += m[0];
+        iso_var += se[0] * se[0];
+        cos += m[1];
+        cos_var += se[1] * se[1];
+        both += m[2];
+        both_var += se[2] * se[2];
     }
     let e = |v: f64, var: f64| Estimate {
         value: v / n,
