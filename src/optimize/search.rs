@@ -225,12 +225,13 @@ pub fn verify(outcome: &mut Outcome, config: &Config, verifier: &dyn Verifier, h
         }
         match config.space.build(&c.label, &c.params) {
             Ok(cut) => {
-                c.verification = Some(Verification::run(
+                c.verification = Some(Verification::run_scored(
                     verifier,
                     &cut,
                     v.photons,
                     config.seed,
                     v.sigma,
+                    c.scores.as_ref(),
                 ))
             }
             Err(e) => {
