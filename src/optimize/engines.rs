@@ -6,6 +6,7 @@ use crate::cut::Cut;
 use crate::error::Result;
 use crate::metrics::{score, Parts, ScoreConfig, Scores};
 use crate::verify::VerifyReport;
+use std::collections::BTreeMap;
 
 /// Scores a cut with the beam tracer ([`crate::metrics::score`]). Brilliance, fire and
 /// scintillation are the objective's terms; the other scores ride along as extras.
@@ -112,5 +113,19 @@ impl PhotonVerifier {
 impl Verifier for PhotonVerifier {
     fn verify(&self, cut: &Cut, photons: u64, seed: u64) -> Result<VerifyReport> {
         crate::verify::photon_report(cut, &self.config, photons, seed)
+    }
+
+    /// Reuses the beam scores a [`BeamEvaluator`] of the same config computed (its full
+    /// scores: `overhead_light_return` and `brilliance`), instead of tracing the cut again.
+    fn verify_scored(
+        &self,
+        cut: &Cut,
+        photons: u64,
+        seed: u64,
+        scores: Option<&BTreeMap<String, f64>>,
+    ) -> Result<VerifyReport> {
+        let beam =
+            scores.and_then(|s| Some((*s.get("overhead_light_return")?, *s.get("brilliance")?)));
+        crate::verify::photon_report_given(cut, &self.config, photons, seed, beam)
     }
 }

@@ -14,6 +14,7 @@ use super::{nelder_mead, pso, Evaluator};
 use crate::cut::Cut;
 use crate::error::Result;
 use crate::verify::{Verification, Verifier};
+use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
@@ -195,7 +196,9 @@ pub fn search(config: &Config, evaluator: &dyn Evaluator, hooks: &Hooks<'_>) -> 
 }
 
 /// Verify the start and the first `config.verify.winners` winners with the photon tracer.
-/// Skipped after Ctrl-C; a failing verifier is noted per cut, never fatal.
+/// Skipped after Ctrl-C; a failing verifier is noted per cut, never fatal. The cuts are
+/// independent and verified in parallel (each verification is deterministic, so the results,
+/// kept in candidate order, do not depend on the thread count).
 pub fn verify(outcome: &mut Outcome, config: &Config, verifier: &dyn Verifier, hooks: &Hooks<'_>) {
     let v = &config.verify;
     if v.winners == 0 {
@@ -209,26 +212,35 @@ pub fn verify(outcome: &mut Outcome, config: &Config, verifier: &dyn Verifier, h
     outcome.verified = true;
     let t = Instant::now();
     let n = v.winners.min(outcome.winners.len());
-    let cands = std::iter::once(&mut outcome.start).chain(outcome.winners.iter_mut().take(n));
-    for c in cands {
-        if hooks.stopped() {
-            outcome.verify_note = Some("cut short: interrupted".into());
-            break;
+    let mut cands: Vec<&mut Candidate> = std::iter::once(&mut outcome.start)
+        .chain(outcome.winners.iter_mut().take(n))
+        .collect();
+    let stop = hooks.stop;
+    let stopped = || stop.is_some_and(|s| s.load(Ordering::SeqCst));
+    let cut_short = AtomicBool::new(false);
+    cands.par_iter_mut().for_each(|c| {
+        if stopped() {
+            cut_short.store(true, Ordering::SeqCst);
+            return;
         }
-        let cut = match config.space.build(&c.label, &c.params) {
-            Ok(cut) => cut,
+        match config.space.build(&c.label, &c.params) {
+            Ok(cut) => {
+                c.verification = Some(Verification::run_scored(
+                    verifier,
+                    &cut,
+                    v.photons,
+                    config.seed,
+                    v.sigma,
+                    c.scores.as_ref(),
+                ))
+            }
             Err(e) => {
                 c.error.get_or_insert(e.to_string());
-                continue;
             }
-        };
-        c.verification = Some(Verification::run(
-            verifier,
-            &cut,
-            v.photons,
-            config.seed,
-            v.sigma,
-        ));
+        }
+    });
+    if cut_short.into_inner() {
+        outcome.verify_note = Some("cut short: interrupted".into());
     }
     outcome.verify_seconds = t.elapsed().as_secs_f64();
 }

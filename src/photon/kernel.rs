@@ -1,9 +1,10 @@
 //! The per-photon loop.
 
+use super::reach::Reach;
 use super::solid::TraceSolid;
 use super::tally::{Counts, Fate, PhotonPath};
 use super::{
-    Absorption, Light, LightKind, LightSize, TraceConfig, WavelengthSampling, CHUNK,
+    Absorption, ExitWeights, Light, LightKind, LightSize, TraceConfig, WavelengthSampling, CHUNK,
     THESIS_ABSORPTION, UNLIMITED_CAP,
 };
 use crate::error::{Error, Result};
@@ -30,18 +31,22 @@ struct Beam {
     back: [Vec<f64>; 3],
     parallel: Vec<[f64; 3]>,
     half: f64,
-    cells: Vec<Cell>,
+    /// Each cell packed in 4 bytes (the grid then mostly stays in cache): [`MISS`],
+    /// [`BORDER`], or an inside cell's candidates `start | len << 24`.
+    cells: Vec<u32>,
     candidates: Vec<u32>,
 }
 
-#[derive(Clone, Copy)]
-enum Cell {
-    Miss,
-    Inside { start: u32, len: u32 },
-    Border,
-}
+/// A cell outside the shadow.
+const MISS: u32 = u32::MAX;
+/// A cell on the shadow's border (or an inside cell too big to pack: the full test is exact
+/// everywhere).
+const BORDER: u32 = u32::MAX - 1;
 
 const BL: usize = 4;
+/// Cells of √(1 − z) ∈ [0, √2] in the exit-angle lookup.
+const ANGLE_CELLS: usize = 4096;
+const ANGLE_CELLS_PER_U: f64 = ANGLE_CELLS as f64 / std::f64::consts::SQRT_2;
 /// Cells per side of the beam grid.
 const GRID: usize = 128;
 
@@ -129,17 +134,17 @@ impl Beam {
         for (c, list) in lists.iter().enumerate() {
             let (i, j) = (c / GRID, c % GRID);
             let corners = [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)];
+            let start = beam.candidates.len();
             let cell = if list.is_empty() {
-                Cell::Miss
-            } else if corners.iter().all(|&(x, y)| inside[x * (GRID + 1) + y]) {
-                let start = beam.candidates.len() as u32;
+                MISS
+            } else if corners.iter().all(|&(x, y)| inside[x * (GRID + 1) + y])
+                && list.len() < 255
+                && start + list.len() < 1 << 24
+            {
                 beam.candidates.extend_from_slice(list);
-                Cell::Inside {
-                    start,
-                    len: list.len() as u32,
-                }
+                start as u32 | (list.len() as u32) << 24
             } else {
-                Cell::Border
+                BORDER
             };
             beam.cells.push(cell);
         }
@@ -153,12 +158,13 @@ impl Beam {
         let i = (((a + self.half) / step) as usize).min(GRID - 1);
         let j = (((b + self.half) / step) as usize).min(GRID - 1);
         match self.cells[i * GRID + j] {
-            Cell::Miss => None,
-            Cell::Border => self.entry_full(a, b),
-            Cell::Inside { start, len } => {
+            MISS => None,
+            BORDER => self.entry_full(a, b),
+            cell => {
+                let (start, len) = ((cell & 0xFF_FFFF) as usize, (cell >> 24) as usize);
                 let f = &self.front;
                 let mut best = (f64::NEG_INFINITY, usize::MAX);
-                for &k in &self.candidates[start as usize..(start + len) as usize] {
+                for &k in &self.candidates[start..start + len] {
                     let k = k as usize;
                     let t = f[0][k] + a * f[1][k] + b * f[2][k];
                     if t > best.0 {
@@ -233,10 +239,14 @@ pub(crate) struct Tracer<'a> {
     fixed_n: Option<f64>,
     seed: u64,
     beam: Option<Beam>,
+    /// Undirected lights: which photons surely miss, from their start and polar angle.
+    reach: Option<Reach>,
     /// cos(k°) for k = 0..=180.
     cos_deg: Vec<f64>,
-    /// Weight of an exit direction, summed into [`Counts::weight_sum`].
-    pub(crate) exit_weight: Option<&'a (dyn Fn(DVec3) -> f64 + Sync)>,
+    /// For each cell of √(1 − z), the exit-angle bin at the cell's top (largest z), less 1e-9.
+    angle_start: Vec<u8>,
+    /// Weights of an exit direction, summed into [`Counts::weight_sum`].
+    pub(crate) exit_weight: Option<&'a ExitWeights<'a>>,
 }
 
 /// Unpolarized Fresnel reflectance for incidence cosine `cos_i` and index ratio
@@ -325,7 +335,12 @@ impl<'a> Tracer<'a> {
             (_, WavelengthSampling::Fixed(l)) => Some(cfg.material.ri(l)),
             _ => None,
         };
+        let cos_deg: Vec<f64> = (0..=180).map(|k| (k as f64).to_radians().cos()).collect();
+        let w = s.centre - centre;
+        let to_sphere = DVec3::new(axis.dot(w), u.dot(w), v.dot(w));
         Ok(Tracer {
+            reach: (light.kind == LightKind::Undirected)
+                .then(|| Reach::new(half, to_sphere, s.radius)),
             s,
             kind: light.kind,
             centre,
@@ -340,7 +355,14 @@ impl<'a> Tracer<'a> {
             wavelengths: cfg.wavelengths,
             fixed_n,
             seed: cfg.seed,
-            cos_deg: (0..=180).map(|k| (k as f64).to_radians().cos()).collect(),
+            angle_start: (0..ANGLE_CELLS)
+                .map(|c| {
+                    let u = c as f64 / ANGLE_CELLS_PER_U;
+                    let z = (1.0 - u * u + 1e-9).min(1.0);
+                    cos_deg[1..180].partition_point(|&t| z <= t) as u8
+                })
+                .collect(),
+            cos_deg,
             beam: (light.kind == LightKind::Directed)
                 .then(|| Beam::new(s, centre, axis, u, v, half)),
             exit_weight: None,
@@ -437,19 +459,32 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// The exit-angle bin of a direction with z component `z`: bin k holds angles in
+    /// [k°, k+1°), so the bin is the count of thresholds cos(k°), k = 1..179, that z does not
+    /// exceed. The table gives a count no larger than that for z's cell of √(1 − z)
+    /// (near-linear in the angle); a step or two finishes it.
+    #[inline(always)]
+    fn angle_bin(&self, z: f64) -> usize {
+        let u = (1.0 - z).max(0.0).sqrt() * ANGLE_CELLS_PER_U;
+        let mut bin = self.angle_start[(u as usize).min(ANGLE_CELLS - 1)] as usize;
+        while bin < 179 && z <= self.cos_deg[bin + 1] {
+            bin += 1;
+        }
+        bin
+    }
+
     #[inline(always)]
     fn tally_exit(&self, k: &mut Counts, facet: usize, d: DVec3) {
         k.categories[self.s.category[facet] as usize] += 1;
         k.per_facet[facet] += 1;
-        // Bin k holds angles in [k°, k+1°): count the thresholds cos(k°), k = 1..179, that z
-        // does not exceed.
-        let bin = self.cos_deg[1..180].partition_point(|&c| d.z <= c);
+        let bin = self.angle_bin(d.z);
         k.angle_hist[bin] += 1;
         k.light_return += (d.z > 0.0) as u64;
         if let Some(w) = self.exit_weight {
-            let x = w(d);
-            k.weight_sum += x;
-            k.weight_sq += x * x;
+            for (i, x) in w(d).into_iter().enumerate() {
+                k.weight_sum[i] += x;
+                k.weight_sq[i] += x * x;
+            }
         }
     }
 
@@ -511,6 +546,11 @@ impl<'a> Tracer<'a> {
             LightKind::Undirected => {
                 let c = rng.random::<f64>();
                 let phi = std::f64::consts::TAU * rng.random::<f64>();
+                if self.reach.as_ref().is_some_and(|r| r.misses(a, b, c)) {
+                    // Counted exactly as the miss the full test below would find, after the
+                    // same random draws: only the trigonometry and the entry test are saved.
+                    return None;
+                }
                 let s = (1.0 - c * c).max(0.0).sqrt();
                 let (sp, cp) = phi.sin_cos();
                 self.axis * c + self.u * (s * cp) + self.v * (s * sp)
@@ -664,6 +704,82 @@ mod tests {
             }
         }
         assert!(tir > 100, "{tir}");
+    }
+
+    /// The undirected lights' early rejection (`reach.rs`) never drops a photon that reaches
+    /// the stone's bounding sphere (so none that hits the stone), and it rejects most of
+    /// those that miss.
+    #[test]
+    fn undirected_rejection_only_drops_misses() {
+        let cut = crate::io::load_cut("tolkowsky").unwrap();
+        let s = TraceSolid::new(&cut.solid).unwrap();
+        let close = Light {
+            centre: DVec3::new(0.2, -0.1, 0.9),
+            ..Light::overhead()
+        };
+        let turned = Light::rotated(LightKind::Undirected, 120.0);
+        for light in [Light::overhead(), Light::offset(), turned, close] {
+            let tr = Tracer::new(&s, &light, &TraceConfig::thesis()).unwrap();
+            let mut rng = SmallRng::seed_from_u64(9);
+            let (mut sphere, mut missed, mut rejected) = (0, 0, 0);
+            for _ in 0..200_000 {
+                let a = (2.0 * rng.random::<f64>() - 1.0) * tr.half;
+                let b = (2.0 * rng.random::<f64>() - 1.0) * tr.half;
+                let c = rng.random::<f64>();
+                let phi = std::f64::consts::TAU * rng.random::<f64>();
+                let sn = (1.0 - c * c).sqrt();
+                let o = tr.centre + tr.u * a + tr.v * b;
+                let d = tr.axis * c + tr.u * (sn * phi.cos()) + tr.v * (sn * phi.sin());
+                // The bounding sphere's own test, without the facets.
+                let w = s.centre - o;
+                let bd = w.dot(d);
+                let r2 = s.radius * s.radius;
+                let reaches =
+                    !(w.length_squared() - bd * bd > r2 || (bd < 0.0 && w.length_squared() > r2));
+                let rej = tr.reach.as_ref().unwrap().misses(a, b, c);
+                assert!(
+                    !(rej && reaches),
+                    "{}: a {a} b {b} c {c} phi {phi}",
+                    light.label
+                );
+                assert!(!rej || s.entry(o, d).is_none());
+                sphere += reaches as u32;
+                missed += !reaches as u32;
+                rejected += rej as u32;
+            }
+            assert!(sphere > 200, "{}: {sphere}", light.label);
+            eprintln!(
+                "{}: {rejected} of {missed} misses rejected early",
+                light.label
+            );
+            if light.centre.length() > 2.0 {
+                assert!(rejected as f64 > 0.8 * missed as f64, "{}", light.label);
+            }
+        }
+    }
+
+    /// The table-started exit-angle bin is the binary search's on every threshold, its
+    /// neighbouring floats, the ends and random z.
+    #[test]
+    fn angle_bins_match_the_binary_search() {
+        let s = TraceSolid::new(&crate::io::load_cut("tolkowsky").unwrap().solid).unwrap();
+        let tr = Tracer::new(&s, &Light::directed(0.0), &TraceConfig::thesis()).unwrap();
+        let search = |z: f64| tr.cos_deg[1..180].partition_point(|&c| z <= c);
+        let mut zs = vec![-1.0, 1.0, 0.0, -0.0, f64::NAN];
+        for &c in &tr.cos_deg {
+            zs.extend([c, c.next_up(), c.next_down()]);
+        }
+        let mut rng = SmallRng::seed_from_u64(2);
+        zs.extend((0..100_000).map(|_| 2.0 * rng.random::<f64>() - 1.0));
+        zs.extend((0..10_000).map(|_| 1.0 - 1e-3 * rng.random::<f64>()));
+        zs.extend((0..10_000).map(|_| -1.0 + 1e-3 * rng.random::<f64>()));
+        for z in zs {
+            if (-1.0..=1.0).contains(&z) || z.is_nan() {
+                assert_eq!(tr.angle_bin(z), search(z), "z = {z}");
+            }
+        }
+        assert_eq!(tr.angle_bin(-1.0), 179);
+        assert_eq!(tr.angle_bin(1.0), 0);
     }
 
     #[test]

@@ -41,6 +41,7 @@
 
 mod absorption;
 mod kernel;
+mod reach;
 mod solid;
 mod tally;
 #[cfg(test)]
@@ -375,6 +376,23 @@ pub struct WeightedTally {
     pub stderr: f64,
 }
 
+/// How many exit weights [`trace_weights`] sums at once.
+pub const WEIGHTS: usize = 3;
+
+/// Exit weights: [`WEIGHTS`] functions of the exit direction, computed together.
+pub type ExitWeights<'a> = dyn Fn(DVec3) -> [f64; WEIGHTS] + Sync + 'a;
+
+/// The mean exit weights of a [`trace_weights`] run, per photon that hit the stone.
+#[derive(Clone, Debug)]
+pub struct WeightsTally {
+    /// The ordinary tally (its counts carry the weight sums).
+    pub tally: Tally,
+    /// Σ weight / photons hit, for each weight: absorbed and depth-limited photons count as 0.
+    pub mean: [f64; WEIGHTS],
+    /// Standard errors of `mean`.
+    pub stderr: [f64; WEIGHTS],
+}
+
 /// [`trace`], also summing `weight(d)` over the exit directions `d` of the photons that leave
 /// the stone (external reflections included). With directed light from a viewer this is a
 /// Monte Carlo estimate of what the viewer sees under an environment of radiance `weight`
@@ -385,6 +403,22 @@ pub fn trace_weighted(
     cfg: &TraceConfig,
     weight: &(dyn Fn(DVec3) -> f64 + Sync),
 ) -> Result<WeightedTally> {
+    let t = trace_weights(solid, light, cfg, &|d| [weight(d), 0.0, 0.0])?;
+    Ok(WeightedTally {
+        tally: t.tally,
+        mean: t.mean[0],
+        stderr: t.stderr[0],
+    })
+}
+
+/// [`trace_weighted`] with [`WEIGHTS`] weights summed over the same photons in one run: each
+/// mean is what [`trace_weighted`] gives for that weight alone with the same seed, to the bit.
+pub fn trace_weights(
+    solid: &Polyhedron,
+    light: &Light,
+    cfg: &TraceConfig,
+    weight: &ExitWeights<'_>,
+) -> Result<WeightsTally> {
     cfg.validate()?;
     light.validate()?;
     let ts = TraceSolid::new(solid)?;
@@ -398,15 +432,16 @@ pub fn trace_weighted(
     };
     let elapsed = start.elapsed().as_secs_f64();
     let n = counts.hit as f64;
-    let (mean, stderr) = if counts.hit == 0 {
-        (0.0, 0.0)
-    } else {
-        let m = counts.weight_sum / n;
-        let var = (counts.weight_sq / n - m * m).max(0.0);
-        (m, (var / n).sqrt())
-    };
+    let (mut mean, mut stderr) = ([0.0; WEIGHTS], [0.0; WEIGHTS]);
+    if counts.hit > 0 {
+        for w in 0..WEIGHTS {
+            let m = counts.weight_sum[w] / n;
+            let var = (counts.weight_sq[w] / n - m * m).max(0.0);
+            (mean[w], stderr[w]) = (m, (var / n).sqrt());
+        }
+    }
     let tally = Tally::new(String::new(), light, &ts, counts, elapsed, Vec::new());
-    Ok(WeightedTally {
+    Ok(WeightsTally {
         tally,
         mean,
         stderr,

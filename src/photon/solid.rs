@@ -147,7 +147,7 @@ impl TraceSolid {
     /// the same arithmetic lane by lane, so both give the same facet); `t` is then computed in
     /// f64 on that facet's plane. Only rays within ~1e-6 D of an edge can pick the neighbour
     /// of the f64 choice, and they leave at (nearly) the same point.
-    #[inline]
+    #[inline(always)]
     pub fn exit(&self, p: DVec3, d: DVec3) -> (f64, usize) {
         let q = p - self.centre;
         let pf = [q.x as f32, q.y as f32, q.z as f32];
@@ -282,6 +282,7 @@ fn exit_index_scalar(f: &[Vec<f32>; 4], p: [f32; 3], d: [f32; 3]) -> usize {
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
+#[inline]
 unsafe fn exit_index_avx2(f: &[Vec<f32>; 4], p: [f32; 3], d: [f32; 3]) -> usize {
     use std::arch::x86_64::*;
     let n = f[0].len();

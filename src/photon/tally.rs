@@ -1,7 +1,7 @@
 //! Tallies: integer counts while tracing, shares with standard errors when reported.
 
 use super::solid::TraceSolid;
-use super::Light;
+use super::{Light, WEIGHTS};
 use crate::geometry::DVec3;
 use serde::ser::{Serialize, SerializeMap, Serializer};
 
@@ -31,10 +31,11 @@ pub struct Counts {
     pub angle_hist: Vec<u64>,
     /// Surface interactions of all hit photons.
     pub interactions: u64,
-    /// Sum over exited photons of the exit weight (see [`crate::photon::trace_weighted`]).
-    pub weight_sum: f64,
-    /// Sum over exited photons of the squared exit weight.
-    pub weight_sq: f64,
+    /// Sums over exited photons of the exit weights (see [`crate::photon::trace_weights`];
+    /// [`crate::photon::trace_weighted`] uses the first).
+    pub weight_sum: [f64; WEIGHTS],
+    /// Sums over exited photons of the squared exit weights.
+    pub weight_sq: [f64; WEIGHTS],
 }
 
 impl Counts {
@@ -50,8 +51,8 @@ impl Counts {
             per_facet: vec![0; facets],
             angle_hist: vec![0; 180],
             interactions: 0,
-            weight_sum: 0.0,
-            weight_sq: 0.0,
+            weight_sum: [0.0; WEIGHTS],
+            weight_sq: [0.0; WEIGHTS],
         }
     }
 
@@ -63,8 +64,10 @@ impl Counts {
         self.depth_limited += o.depth_limited;
         self.light_return += o.light_return;
         self.interactions += o.interactions;
-        self.weight_sum += o.weight_sum;
-        self.weight_sq += o.weight_sq;
+        for w in 0..WEIGHTS {
+            self.weight_sum[w] += o.weight_sum[w];
+            self.weight_sq[w] += o.weight_sq[w];
+        }
         for (a, b) in self.categories.iter_mut().zip(&o.categories) {
             *a += b;
         }

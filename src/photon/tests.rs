@@ -467,6 +467,18 @@ fn weighted_exits_reproduce_light_return_on_any_thread_count() {
     // A smooth weight: mean of z⁺ lies between 0 and the light return.
     let cosw = trace_weighted(&solid, &Light::directed(0.0), &c, &|d: DVec3| d.z.max(0.0)).unwrap();
     assert!(cosw.mean > 0.3 && cosw.mean < lr, "{}", cosw.mean);
+    // Several weights in one run: each is its own run's figure, to the bit.
+    let both = trace_weights(&solid, &Light::directed(0.0), &c, &|d: DVec3| {
+        [up(d), d.z.max(0.0), 0.5]
+    })
+    .unwrap();
+    for (i, w) in [&one, &cosw].into_iter().enumerate() {
+        assert_eq!(both.mean[i].to_bits(), w.mean.to_bits());
+        assert_eq!(both.stderr[i].to_bits(), w.stderr.to_bits());
+    }
+    assert_eq!(both.tally.counts.hit, one.tally.counts.hit);
+    let exited = both.tally.counts.exited() as f64 / both.tally.counts.hit as f64;
+    assert!((both.mean[2] - 0.5 * exited).abs() < 1e-12);
 }
 
 #[test]
@@ -477,7 +489,7 @@ fn counts_are_added_in_chunk_order_wave_by_wave_on_any_thread_count() {
         seed: 11,
         ..cfg(photons)
     };
-    let w = |d: DVec3| d.z.max(0.0).powf(0.3);
+    let w = |d: DVec3| [d.z.max(0.0).powf(0.3), d.x, 1.0];
     let mut tracer = kernel::Tracer::new(&solid, &Light::directed(0.0), &c).unwrap();
     tracer.exit_weight = Some(&w);
     // The previous reduction: every chunk's counts collected first, then added in chunk order.
@@ -489,7 +501,7 @@ fn counts_are_added_in_chunk_order_wave_by_wave_on_any_thread_count() {
         old.add(k);
     }
     assert_eq!(old.shot, photons);
-    assert!(old.weight_sum > 0.0);
+    assert!(old.weight_sum[0] > 0.0);
     for threads in [1, 2] {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -498,8 +510,10 @@ fn counts_are_added_in_chunk_order_wave_by_wave_on_any_thread_count() {
         for wave in [1, 2, WAVE] {
             let new = pool.install(|| run_shot_waves(&tracer, photons, None, wave));
             assert_eq!(new, old, "{threads} threads, waves of {wave}");
-            assert_eq!(new.weight_sum.to_bits(), old.weight_sum.to_bits());
-            assert_eq!(new.weight_sq.to_bits(), old.weight_sq.to_bits());
+            for i in 0..WEIGHTS {
+                assert_eq!(new.weight_sum[i].to_bits(), old.weight_sum[i].to_bits());
+                assert_eq!(new.weight_sq[i].to_bits(), old.weight_sq[i].to_bits());
+            }
         }
     }
 }

@@ -13,12 +13,27 @@ use super::VerifyReport;
 use crate::cut::Cut;
 use crate::error::Result;
 use serde::Serialize;
+use std::collections::BTreeMap;
 
 /// Re-scores a cut with photons. `seed` fixes every random number; the same seed gives the same
 /// report.
 pub trait Verifier: Sync {
     /// Trace `photons` photons per light through `cut`.
     fn verify(&self, cut: &Cut, photons: u64, seed: u64) -> Result<VerifyReport>;
+
+    /// [`Verifier::verify`], given the beam scores the caller already has for `cut` (by name,
+    /// computed under the verifier's own settings), so that a verifier needing them need not
+    /// trace the cut again. The report must be the one `verify` gives; by default it is.
+    fn verify_scored(
+        &self,
+        cut: &Cut,
+        photons: u64,
+        seed: u64,
+        scores: Option<&BTreeMap<String, f64>>,
+    ) -> Result<VerifyReport> {
+        let _ = scores;
+        self.verify(cut, photons, seed)
+    }
 }
 
 impl<F> Verifier for F
@@ -50,8 +65,20 @@ pub struct Verification {
 impl Verification {
     /// Verify `cut`, never failing: an error is kept in [`Verification::error`].
     pub fn run(verifier: &dyn Verifier, cut: &Cut, photons: u64, seed: u64, sigma: f64) -> Self {
+        Verification::run_scored(verifier, cut, photons, seed, sigma, None)
+    }
+
+    /// [`Verification::run`] through [`Verifier::verify_scored`].
+    pub fn run_scored(
+        verifier: &dyn Verifier,
+        cut: &Cut,
+        photons: u64,
+        seed: u64,
+        sigma: f64,
+        scores: Option<&BTreeMap<String, f64>>,
+    ) -> Self {
         let t = std::time::Instant::now();
-        let (report, error) = match verifier.verify(cut, photons, seed) {
+        let (report, error) = match verifier.verify_scored(cut, photons, seed, scores) {
             Ok(r) => (r, None),
             Err(e) => (
                 VerifyReport {
