@@ -233,6 +233,11 @@ impl Stone {
     /// leaves, and the distance `s`, found by walking over adjacent facets from a cube-map
     /// guess: each step moves to the neighbour whose plane the ray crosses first, so the
     /// distance falls strictly and the walk ends. `exclude` is the facet `x` lies on.
+    ///
+    /// Measured against it and dropped (2026-12-03): every facet tested four at a time with
+    /// AVX, without branches (and without dividing, in two independent chains), took 1.13 times
+    /// the CPU time of ten tilted traces, and a branch-free neighbour loop here gained nothing
+    /// measurable: the walk tests about 2 × 7 planes where a scan tests all of them.
     #[inline]
     pub(crate) fn exit_facet(&self, x: DVec3, t: DVec3, exclude: usize) -> Option<(usize, f64)> {
         let cell = cube_cell(t);
