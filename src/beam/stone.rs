@@ -4,7 +4,7 @@
 use super::symmetry::Symmetry;
 use crate::geometry::Polyhedron;
 use glam::DVec3;
-use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Facets with `|n · d|` below this are seen edge-on: no beam starts or ends on them.
 pub(super) const GRAZE: f64 = 1e-12;
@@ -33,15 +33,59 @@ pub struct Stone {
     /// Symmetries of the solid about the z axis.
     pub(super) symmetry: Symmetry,
     /// Per start facet and cube-map cell: the exit facet of the ray from the facet's centroid
-    /// in the cell's central direction (a better start for walks from that facet).
-    pub(super) facet_table: Vec<u32>,
+    /// in the cell's central direction (a better start for walks from that facet), found the
+    /// first time a walk needs it ([`Stone::table_entry`]): a trace uses few of the cells, and
+    /// filling all of them took a score 3 % of its time and every frame of an animation 2 ms.
+    facet_table: LazyTable,
+    /// Facet centroids (where the facet table's rays start).
+    centroids: Vec<DVec3>,
+}
+
+/// A table of `u32` entries filled on first use, shareable between threads: an entry is a
+/// pure function of its index, so whichever thread fills it, and however often, the table
+/// holds the same values (and a trace the same numbers) on any number of threads.
+#[derive(Debug, Default)]
+struct LazyTable(Vec<AtomicU32>);
+
+impl LazyTable {
+    /// Not yet filled.
+    const EMPTY: u32 = u32::MAX;
+
+    fn new(n: usize) -> LazyTable {
+        LazyTable((0..n).map(|_| AtomicU32::new(Self::EMPTY)).collect())
+    }
+
+    /// Entry `i`, filled by `make` if it is not yet.
+    #[inline]
+    fn get(&self, i: usize, make: impl FnOnce() -> u32) -> u32 {
+        let e = &self.0[i];
+        match e.load(Ordering::Relaxed) {
+            Self::EMPTY => {
+                let v = make();
+                e.store(v, Ordering::Relaxed);
+                v
+            }
+            v => v,
+        }
+    }
+}
+
+impl Clone for LazyTable {
+    fn clone(&self) -> Self {
+        LazyTable(
+            self.0
+                .iter()
+                .map(|e| AtomicU32::new(e.load(Ordering::Relaxed)))
+                .collect(),
+        )
+    }
 }
 
 /// Cells per cube-map face side of [`Stone::dir_table`].
 pub(super) const CUBE_RES: usize = 8;
 
 /// Central direction of cube-map cell (i, j) of `face`.
-fn cube_dir(face: usize, i: usize, j: usize) -> DVec3 {
+pub(super) fn cube_dir(face: usize, i: usize, j: usize) -> DVec3 {
     let u = (i as f64 + 0.5) / CUBE_RES as f64 * 2.0 - 1.0;
     let v = (j as f64 + 0.5) / CUBE_RES as f64 * 2.0 - 1.0;
     let s = if face.is_multiple_of(2) { 1.0 } else { -1.0 };
@@ -55,7 +99,7 @@ fn cube_dir(face: usize, i: usize, j: usize) -> DVec3 {
 
 /// Cube-map cell of a direction.
 #[inline]
-fn cube_cell(t: DVec3) -> usize {
+pub(super) fn cube_cell(t: DVec3) -> usize {
     let a = t.abs();
     let (face, u, v, m) = if a.x >= a.y && a.x >= a.z {
         (if t.x > 0.0 { 0 } else { 1 }, t.y, t.z, a.x)
@@ -151,7 +195,8 @@ impl Stone {
             fragile,
             symmetry,
             dir_table,
-            facet_table: Vec::new(),
+            facet_table: LazyTable::new(nf * cells),
+            centroids,
             normals,
             offsets,
             areas: solid.facets().iter().map(|f| f.area).collect(),
@@ -168,30 +213,6 @@ impl Stone {
             .iter()
             .map(|&h| stone.normals[h as usize].extend(stone.offsets[h as usize]))
             .collect();
-        // One row per facet, filled in parallel (each cell on its own: the same table on any
-        // number of threads); a score's traces wait for it.
-        let mut facet_table = vec![0u32; nf * cells];
-        facet_table
-            .par_chunks_mut(cells)
-            .enumerate()
-            .for_each(|(f, row)| {
-                for face in 0..6 {
-                    for i in 0..CUBE_RES {
-                        for j in 0..CUBE_RES {
-                            let t = cube_dir(face, i, j);
-                            let c = cube_cell(t);
-                            row[c] = if stone.normals[f].dot(t) < 0.0 {
-                                stone
-                                    .walk(stone.dir_table[c] as usize, centroids[f], t, f)
-                                    .map_or(stone.dir_table[c], |(g, _)| g as u32)
-                            } else {
-                                stone.dir_table[c]
-                            };
-                        }
-                    }
-                }
-            });
-        stone.facet_table = facet_table;
         stone
     }
 
@@ -241,12 +262,35 @@ impl Stone {
     #[inline]
     pub(crate) fn exit_facet(&self, x: DVec3, t: DVec3, exclude: usize) -> Option<(usize, f64)> {
         let cell = cube_cell(t);
-        let g = if exclude < self.facet_count() && !self.facet_table.is_empty() {
-            self.facet_table[exclude * 6 * CUBE_RES * CUBE_RES + cell]
+        let g = if exclude < self.facet_count() {
+            self.facet_table
+                .get(exclude * 6 * CUBE_RES * CUBE_RES + cell, || {
+                    self.table_entry(exclude, cell)
+                })
         } else {
             self.dir_table[cell]
         } as usize;
         self.walk(g, x, t, exclude)
+    }
+
+    /// The facet table's entry for start facet `f` and cube-map cell `cell`: where the ray from
+    /// `f`'s centroid in the cell's central direction leaves (the cell's closest facet when
+    /// the direction leaves `f` outward, or no facet is found).
+    #[cold]
+    fn table_entry(&self, f: usize, cell: usize) -> u32 {
+        let (face, i, j) = (
+            cell / (CUBE_RES * CUBE_RES),
+            cell / CUBE_RES % CUBE_RES,
+            cell % CUBE_RES,
+        );
+        let t = cube_dir(face, i, j);
+        let c = cube_cell(t);
+        if self.normals[f].dot(t) < 0.0 {
+            self.walk(self.dir_table[c] as usize, self.centroids[f], t, f)
+                .map_or(self.dir_table[c], |(g, _)| g as u32)
+        } else {
+            self.dir_table[c]
+        }
     }
 
     /// The walk of [`Stone::exit_facet`] from facet `g`.

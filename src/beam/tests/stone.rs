@@ -127,3 +127,22 @@ fn exit_facet_walk_agrees_with_scan() {
         }
     }
 }
+
+/// The facet table is filled lazily from a cell's index: each cell's central direction falls
+/// in that very cell, so an entry is what a table filled cell by cell from the directions
+/// held.
+#[test]
+fn every_cube_cell_holds_its_own_central_direction() {
+    use crate::beam::stone::{cube_cell, cube_dir, CUBE_RES};
+    for face in 0..6 {
+        for i in 0..CUBE_RES {
+            for j in 0..CUBE_RES {
+                assert_eq!(
+                    cube_cell(cube_dir(face, i, j)),
+                    (face * CUBE_RES + i) * CUBE_RES + j,
+                    "face {face} cell ({i}, {j})"
+                );
+            }
+        }
+    }
+}
