@@ -138,19 +138,34 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
             stats.fire = Some(fire_of(&images, &weights, outline));
         }
         let mut rgb: Vec<Raster> = (0..3).map(|_| Raster::new(size, half)).collect();
-        let mut y_sum = 0.0;
-        for p in 0..size * size {
-            let xyz: DVec3 = images
-                .iter()
-                .zip(&weights)
-                .map(|(img, w)| *w * img.data[p])
-                .sum();
-            y_sum += xyz.y;
-            let c = color::xyz_to_linear_srgb(xyz).max(DVec3::ZERO);
-            rgb[0].data[p] = c.x;
-            rgb[1].data[p] = c.y;
-            rgb[2].data[p] = c.z;
-        }
+        // Rows in parallel; their luminance sums added in row order (the same on any number
+        // of threads).
+        let [r, g, b] = &mut rgb[..] else {
+            unreachable!("three channels")
+        };
+        let row_y: Vec<f64> = r
+            .data
+            .par_chunks_mut(size)
+            .zip(g.data.par_chunks_mut(size))
+            .zip(b.data.par_chunks_mut(size))
+            .enumerate()
+            .map(|(j, ((r, g), b))| {
+                let mut y = 0.0;
+                for i in 0..size {
+                    let p = j * size + i;
+                    let xyz: DVec3 = images
+                        .iter()
+                        .zip(&weights)
+                        .map(|(img, w)| *w * img.data[p])
+                        .sum();
+                    y += xyz.y;
+                    let c = color::xyz_to_linear_srgb(xyz).max(DVec3::ZERO);
+                    (r[i], g[i], b[i]) = (c.x, c.y, c.z);
+                }
+                y
+            })
+            .collect();
+        let y_sum: f64 = row_y.iter().sum();
         let h = rgb[0].pixel();
         stats.mean = if outline > 0.0 {
             y_sum * h * h / outline

@@ -204,6 +204,9 @@ impl Image {
     }
 }
 
+/// Pictures at least this many pixels wide are summed row by row in parallel.
+const PARALLEL_ROWS_FROM: usize = 256;
+
 /// Saturated light of a spectral image in percent: `100 · Σ Y·s` over the pixels, times the
 /// pixel area, divided by `area`, where `s = C*ab / L*` is the pixel's CIELAB saturation
 /// (nearly independent of brightness, so the sum is linear in the light): `images[b]` is band `b`'s radiance image (relative to the
@@ -216,24 +219,39 @@ pub fn fire_of(images: &[&Raster], weights: &[DVec3], area: f64) -> f64 {
         return 0.0;
     }
     let white: DVec3 = weights.iter().copied().sum();
-    let mut yc = 0.0;
-    for p in 0..first.data.len() {
-        // A grey pixel (the same value in every band) has no saturation at all.
-        let v = first.data[p];
-        if images.iter().all(|img| img.data[p] == v) {
-            continue;
-        }
-        let xyz: DVec3 = images
-            .iter()
-            .zip(weights)
-            .map(|(img, w)| *w * img.data[p])
-            .sum();
-        if xyz.y > 0.0 {
-            let lab = color::xyz_to_lab(xyz, white);
-            if lab.x > 0.0 {
-                yc += xyz.y * color::chroma(lab) / lab.x;
+    let sum_over = |pixels: std::ops::Range<usize>| {
+        let mut yc = 0.0;
+        for p in pixels {
+            // A grey pixel (the same value in every band) has no saturation at all.
+            let v = first.data[p];
+            if images.iter().all(|img| img.data[p] == v) {
+                continue;
+            }
+            let xyz: DVec3 = images
+                .iter()
+                .zip(weights)
+                .map(|(img, w)| *w * img.data[p])
+                .sum();
+            if xyz.y > 0.0 {
+                let lab = color::xyz_to_lab(xyz, white);
+                if lab.x > 0.0 {
+                    yc += xyz.y * color::chroma(lab) / lab.x;
+                }
             }
         }
-    }
+        yc
+    };
+    let (n, len) = (first.n, first.data.len());
+    // A picture's rows in parallel, their sums added in row order (the same on any number of
+    // threads); the scores' small images pixel by pixel, as they always were.
+    let yc = if n >= PARALLEL_ROWS_FROM {
+        let rows: Vec<f64> = (0..len.div_ceil(n))
+            .into_par_iter()
+            .map(|r| sum_over(r * n..((r + 1) * n).min(len)))
+            .collect();
+        rows.iter().sum()
+    } else {
+        sum_over(0..len)
+    };
     100.0 * yc * first.pixel().powi(2) / area
 }
