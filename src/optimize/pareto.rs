@@ -21,6 +21,7 @@ use super::Evaluator;
 use crate::error::Result;
 use crate::io::write_atomic;
 use crate::verify::{Verification, Verifier};
+use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -253,16 +254,26 @@ pub fn run_pareto(
             .unwrap_or(0);
         front[knee].roles.push("knee".into());
         if let Some(v) = verifier {
-            for p in front.iter_mut().filter(|p| !p.roles.is_empty()) {
-                let cut = config.space.build(&p.label, &p.params)?;
-                p.verification = Some(Verification::run(
-                    v,
-                    &cut,
-                    config.verify.photons,
-                    config.seed,
-                    config.verify.sigma,
-                ));
-            }
+            // Corners and knee in parallel (each check is deterministic), reusing the beam
+            // scores their searches computed; the first error in front order is reported.
+            let mut picked: Vec<&mut FrontPoint> =
+                front.iter_mut().filter(|p| !p.roles.is_empty()).collect();
+            let done: Vec<Result<()>> = picked
+                .par_iter_mut()
+                .map(|p| {
+                    let cut = config.space.build(&p.label, &p.params)?;
+                    p.verification = Some(Verification::run_scored(
+                        v,
+                        &cut,
+                        config.verify.photons,
+                        config.seed,
+                        config.verify.sigma,
+                        Some(&p.scores),
+                    ));
+                    Ok(())
+                })
+                .collect();
+            done.into_iter().collect::<Result<()>>()?;
         }
     }
     // The family's presets on the same axes.
