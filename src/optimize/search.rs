@@ -149,19 +149,27 @@ pub fn search(config: &Config, evaluator: &dyn Evaluator, hooks: &Hooks<'_>) -> 
     let seconds = t.elapsed().as_secs_f64();
     let evaluations = history.rows.len() as u64;
 
-    let start_eval = objective.evaluate_full(&config.start_x());
-    let start = Candidate::new("start", config, &start_eval, None);
     let picks = pick_winners(
         config,
         &history,
         config.verify.winners.max(1),
         config.verify.min_distance,
     );
+    // The start and the winners are scored in full side by side, kept in this order.
+    let points: Vec<Vec<f64>> = std::iter::once(config.start_x())
+        .chain(picks.iter().map(|&i| history.rows[i].x.clone()))
+        .collect();
+    let mut evals = points
+        .par_iter()
+        .map(|x| objective.evaluate_full(x))
+        .collect::<Vec<_>>()
+        .into_iter();
+    let start_eval = evals.next().expect("the start's evaluation");
+    let start = Candidate::new("start", config, &start_eval, None);
     let mut winners = Vec::new();
     let mut best_cut = None;
-    for (k, &i) in picks.iter().enumerate() {
+    for ((k, &i), e) in picks.iter().enumerate().zip(evals) {
         let r = &history.rows[i];
-        let e = objective.evaluate_full(&r.x);
         if k == 0 {
             best_cut = e.cut.clone();
         }

@@ -30,6 +30,7 @@ use crate::error::Result;
 use crate::metrics::{score, ScoreConfig, Scores};
 use crate::render::{render, Image, Light, RenderOptions, Tilt};
 use crate::verify::{verify_scores, Check};
+use rayon::prelude::*;
 
 /// What a report shows and how it is made.
 #[derive(Clone, Debug)]
@@ -88,12 +89,6 @@ pub struct CutReport {
 
 /// Score, draw and (optionally) verify `cut` for a report.
 pub fn measure(label: &str, cut: &Cut, o: &ReportOptions) -> Result<CutReport> {
-    let scores = score(&cut.solid, &o.score);
-    let checks = if o.verify_photons > 0 {
-        verify_scores(&cut.solid, &o.score, &scores, o.verify_photons, o.seed)?
-    } else {
-        Vec::new()
-    };
     let picture = |light: Light, tilt_deg: f64| {
         let mut r = RenderOptions::new(light);
         r.size = o.size;
@@ -105,11 +100,36 @@ pub fn measure(label: &str, cut: &Cut, o: &ReportOptions) -> Result<CutReport> {
         };
         render(&cut.solid, &r)
     };
-    let pictures: Vec<(Light, Image)> = [Light::Iso, Light::Aset, Light::Fire]
-        .into_iter()
-        .map(|light| (light, picture(light, 0.0)))
+    // The face-up pictures, then the ISO pictures of the non-zero tilts (face-up is the ISO
+    // picture already made). The score and the pictures are independent: they run side by
+    // side, each picture whole (small pictures gain little from their own parallel rows), and
+    // are kept in this order, so the report is the same on any thread count.
+    let faces = [Light::Iso, Light::Aset, Light::Fire];
+    let jobs: Vec<(Light, f64)> = faces
+        .iter()
+        .map(|&l| (l, 0.0))
+        .chain(
+            o.tilts
+                .iter()
+                .filter(|&&t| t != 0.0)
+                .map(|&t| (Light::Iso, t)),
+        )
         .collect();
-    // Face-up is the ISO picture already made.
+    let (scores, mut images) = rayon::join(
+        || score(&cut.solid, &o.score),
+        || {
+            jobs.par_iter()
+                .map(|&(l, t)| picture(l, t))
+                .collect::<Vec<Image>>()
+        },
+    );
+    let checks = if o.verify_photons > 0 {
+        verify_scores(&cut.solid, &o.score, &scores, o.verify_photons, o.seed)?
+    } else {
+        Vec::new()
+    };
+    let mut rest = images.split_off(faces.len()).into_iter();
+    let pictures: Vec<(Light, Image)> = faces.into_iter().zip(images).collect();
     let tilted = o
         .tilts
         .iter()
@@ -117,7 +137,7 @@ pub fn measure(label: &str, cut: &Cut, o: &ReportOptions) -> Result<CutReport> {
             let img = if t == 0.0 {
                 pictures[0].1.clone()
             } else {
-                picture(Light::Iso, t)
+                rest.next().expect("one picture per non-zero tilt")
             };
             (t, img)
         })

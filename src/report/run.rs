@@ -10,6 +10,7 @@ use crate::cut::Cut;
 use crate::error::Result;
 use crate::optimize::{design_json, Config, Outcome};
 use crate::verify::Check;
+use rayon::prelude::*;
 use std::fmt::Write;
 
 /// Tilts, degrees, of a run page's tilt pictures and chart.
@@ -26,34 +27,40 @@ pub fn run_page(config: &Config, outcome: &Outcome) -> Result<String> {
         tilts: TILTS.to_vec(),
         ..Default::default()
     };
-    let mut cuts = Vec::new();
-    for c in std::iter::once(&outcome.start).chain(&outcome.winners) {
-        let cut = config.space.build(&c.label, &c.params)?;
-        let mut r = measure(&c.label, &cut, &o)?;
-        r.checks.clear();
-        if let Some(v) = &c.verification {
-            r.checks = v
-                .report
-                .rows
-                .iter()
-                .filter_map(|row| {
-                    let beam = row.beam?;
-                    Some(Check {
-                        name: row.name.clone(),
-                        beam,
-                        photon: row.value,
-                        stderr: row.stderr,
-                        z: if row.stderr > 0.0 {
-                            (beam - row.value) / row.stderr
-                        } else {
-                            0.0
-                        },
+    // The cuts are measured side by side and kept in candidate order.
+    let cands: Vec<_> = std::iter::once(&outcome.start)
+        .chain(&outcome.winners)
+        .collect();
+    let cuts = cands
+        .par_iter()
+        .map(|c| {
+            let cut = config.space.build(&c.label, &c.params)?;
+            let mut r = measure(&c.label, &cut, &o)?;
+            r.checks.clear();
+            if let Some(v) = &c.verification {
+                r.checks = v
+                    .report
+                    .rows
+                    .iter()
+                    .filter_map(|row| {
+                        let beam = row.beam?;
+                        Some(Check {
+                            name: row.name.clone(),
+                            beam,
+                            photon: row.value,
+                            stderr: row.stderr,
+                            z: if row.stderr > 0.0 {
+                                (beam - row.value) / row.stderr
+                            } else {
+                                0.0
+                            },
+                        })
                     })
-                })
-                .collect();
-        }
-        cuts.push(r);
-    }
+                    .collect();
+            }
+            Ok(r)
+        })
+        .collect::<Result<Vec<CutReport>>>()?;
     // The checks came from the run; the page names their photons and flag (measure above
     // traced none).
     o.verify_photons = config.verify.photons;
