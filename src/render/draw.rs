@@ -1,7 +1,7 @@
 //! The footprint → pixel path: trace the viewer backwards, weight each exit beam by the light
 //! it sees, and add its footprint's exact coverage to the pixels ([`render`]).
 
-use super::image::{fire_of, AsetShares, ColourStats, Image, Stats};
+use super::image::{fire_from_sum, saturated_y, AsetShares, ColourStats, Image, Stats};
 use super::layer::{Layer, BAND_ROWS};
 use super::light::Light;
 use super::lighting::Lighting;
@@ -134,23 +134,21 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
             stats.exits += l.exits;
         }
         let outline = band_layers[0].stats.area;
-        if fire {
-            stats.fire = Some(fire_of(&images, &weights, outline));
-        }
+        let white: DVec3 = weights.iter().copied().sum();
         let mut rgb: Vec<Raster> = (0..3).map(|_| Raster::new(size, half)).collect();
-        // Rows in parallel; their luminance sums added in row order (the same on any number
-        // of threads).
+        // Rows in parallel; their luminance sums (and fire's, [`fire_of`] from the same XYZ)
+        // added in row order (the same on any number of threads).
         let [r, g, b] = &mut rgb[..] else {
             unreachable!("three channels")
         };
-        let row_y: Vec<f64> = r
+        let rows: Vec<(f64, f64)> = r
             .data
             .par_chunks_mut(size)
             .zip(g.data.par_chunks_mut(size))
             .zip(b.data.par_chunks_mut(size))
             .enumerate()
             .map(|(j, ((r, g), b))| {
-                let mut y = 0.0;
+                let (mut y, mut yc) = (0.0, 0.0);
                 for i in 0..size {
                     let p = j * size + i;
                     let xyz: DVec3 = images
@@ -159,13 +157,20 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                         .map(|(img, w)| *w * img.data[p])
                         .sum();
                     y += xyz.y;
+                    if fire {
+                        yc += saturated_y(&images, p, || xyz, white);
+                    }
                     let c = color::xyz_to_linear_srgb(xyz).max(DVec3::ZERO);
                     (r[i], g[i], b[i]) = (c.x, c.y, c.z);
                 }
-                y
+                (y, yc)
             })
             .collect();
-        let y_sum: f64 = row_y.iter().sum();
+        let y_sum: f64 = rows.iter().map(|r| r.0).sum();
+        if fire {
+            let yc: f64 = rows.iter().map(|r| r.1).sum();
+            stats.fire = Some(fire_from_sum(yc, rgb[0].pixel(), outline));
+        }
         let h = rgb[0].pixel();
         stats.mean = if outline > 0.0 {
             y_sum * h * h / outline

@@ -204,6 +204,40 @@ impl Image {
     }
 }
 
+/// Pixel `p`'s term of [`fire_of`]'s sum, `Y·s`, given its XYZ (`Σ weights[b] · images[b]`,
+/// added in band order; asked for only when needed) and the white: 0 for a grey pixel (the
+/// same value in every band), which has no saturation at all.
+#[inline]
+pub(super) fn saturated_y(
+    images: &[&Raster],
+    p: usize,
+    xyz: impl FnOnce() -> DVec3,
+    white: DVec3,
+) -> f64 {
+    let v = images[0].data[p];
+    if images.iter().all(|img| img.data[p] == v) {
+        return 0.0;
+    }
+    let xyz = xyz();
+    if xyz.y <= 0.0 {
+        return 0.0;
+    }
+    let lab = color::xyz_to_lab(xyz, white);
+    if lab.x > 0.0 {
+        xyz.y * color::chroma(lab) / lab.x
+    } else {
+        0.0
+    }
+}
+
+/// [`fire_of`] from the sum of its pixels' [`saturated_y`] terms.
+pub(super) fn fire_from_sum(yc: f64, pixel: f64, area: f64) -> f64 {
+    if area.is_nan() || area <= 0.0 {
+        return 0.0;
+    }
+    100.0 * yc * pixel.powi(2) / area
+}
+
 /// Pictures at least this many pixels wide are summed row by row in parallel.
 const PARALLEL_ROWS_FROM: usize = 256;
 
@@ -220,26 +254,16 @@ pub fn fire_of(images: &[&Raster], weights: &[DVec3], area: f64) -> f64 {
     }
     let white: DVec3 = weights.iter().copied().sum();
     let sum_over = |pixels: std::ops::Range<usize>| {
-        let mut yc = 0.0;
-        for p in pixels {
-            // A grey pixel (the same value in every band) has no saturation at all.
-            let v = first.data[p];
-            if images.iter().all(|img| img.data[p] == v) {
-                continue;
-            }
-            let xyz: DVec3 = images
-                .iter()
-                .zip(weights)
-                .map(|(img, w)| *w * img.data[p])
-                .sum();
-            if xyz.y > 0.0 {
-                let lab = color::xyz_to_lab(xyz, white);
-                if lab.x > 0.0 {
-                    yc += xyz.y * color::chroma(lab) / lab.x;
-                }
-            }
-        }
-        yc
+        pixels.fold(0.0, |yc, p| {
+            let xyz = || {
+                images
+                    .iter()
+                    .zip(weights)
+                    .map(|(img, w)| *w * img.data[p])
+                    .sum()
+            };
+            yc + saturated_y(images, p, xyz, white)
+        })
     };
     let (n, len) = (first.n, first.data.len());
     // A picture's rows in parallel, their sums added in row order (the same on any number of
@@ -253,5 +277,5 @@ pub fn fire_of(images: &[&Raster], weights: &[DVec3], area: f64) -> f64 {
     } else {
         sum_over(0..len)
     };
-    100.0 * yc * first.pixel().powi(2) / area
+    fire_from_sum(yc, first.pixel(), area)
 }
