@@ -60,6 +60,9 @@ pub fn run_page(config: &Config, outcome: &Outcome) -> Result<String> {
             }
             Ok(r)
         })
+        .collect::<Vec<Result<CutReport>>>()
+        .into_iter()
+        // The first error in candidate order, as when the cuts were measured in turn.
         .collect::<Result<Vec<CutReport>>>()?;
     // The checks came from the run; the page names their photons and flag (measure above
     // traced none).
