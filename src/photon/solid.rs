@@ -344,7 +344,7 @@ unsafe fn exit_index8_avx2(
     use std::arch::x86_64::*;
     // The padded arrays hold whole pairs of facets.
     let n = n.next_multiple_of(2);
-    assert!(f.iter().all(|v| v.len() >= n));
+    let pairs = |k: usize| f[k][..n].as_chunks::<2>().0;
     // SAFETY: each array holds LANES f32s.
     let ([px, py, pz], [dx, dy, dz]) = unsafe {
         (
@@ -354,12 +354,12 @@ unsafe fn exit_index8_avx2(
     };
     let inf = _mm256_set1_ps(f32::INFINITY);
     let zero = _mm256_setzero_ps();
-    let t_of = |i: usize| {
+    let t_of = |x: f32, y: f32, z: f32, o: f32| {
         let (nx, ny, nz, off) = (
-            _mm256_set1_ps(f[0][i]),
-            _mm256_set1_ps(f[1][i]),
-            _mm256_set1_ps(f[2][i]),
-            _mm256_set1_ps(f[3][i]),
+            _mm256_set1_ps(x),
+            _mm256_set1_ps(y),
+            _mm256_set1_ps(z),
+            _mm256_set1_ps(o),
         );
         let nd = _mm256_fmadd_ps(nx, dx, _mm256_fmadd_ps(ny, dy, _mm256_mul_ps(nz, dz)));
         let np = _mm256_fmadd_ps(nx, px, _mm256_fmadd_ps(ny, py, _mm256_mul_ps(nz, pz)));
@@ -377,9 +377,10 @@ unsafe fn exit_index8_avx2(
     };
     let (mut b0, mut b1) = (inf, inf);
     let (mut i0, mut i1) = (_mm256_setzero_si256(), _mm256_setzero_si256());
-    for i in (0..n).step_by(2) {
-        keep(t_of(i), i, &mut b0, &mut i0);
-        keep(t_of(i + 1), i + 1, &mut b1, &mut i1);
+    let (fx, fy, fz, fo) = (pairs(0), pairs(1), pairs(2), pairs(3));
+    for (k, (((x, y), z), o)) in fx.iter().zip(fy).zip(fz).zip(fo).enumerate() {
+        keep(t_of(x[0], y[0], z[0], o[0]), 2 * k, &mut b0, &mut i0);
+        keep(t_of(x[1], y[1], z[1], o[1]), 2 * k + 1, &mut b1, &mut i1);
     }
     // The odd chain wins where its t is smaller, or equal with a smaller facet (it holds
     // facet 0 only while it found nothing, where the even chain's facet is the answer).
