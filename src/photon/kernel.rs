@@ -1,5 +1,6 @@
 //! The per-photon loop.
 
+use super::beam::Beam;
 use super::reach::Reach;
 use super::solid::TraceSolid;
 use super::tally::{Counts, Fate, PhotonPath};
@@ -14,213 +15,9 @@ use crate::optics::{fresnel, reflect, rotate_stokes, s_axis, Dispersion, Materia
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 
-/// A directed light's entry test, precomputed: for the photon leaving the light at
-/// `centre + a·u + b·v`, facet i's plane is met at `t_i = c0_i + a·cu_i + b·cv_i`. The photon
-/// enters through the facet with the largest `t` among those facing the light if that is no
-/// larger than the smallest `t` among those facing away, and it is inside every facet
-/// parallel to the beam (`g0 − a·gu − b·gv ≥ 0`).
-///
-/// A grid of cells over the light square speeds this up: a cell no front facet's projected
-/// bounding box touches is outside the stone's shadow; a cell whose four corners are inside
-/// the (convex) shadow is wholly inside, and there the entry facet is the best of the few
-/// front facets whose projected bounding boxes touch the cell. Only cells on the shadow's
-/// border run the full test.
-struct Beam {
-    front: [Vec<f64>; 3],
-    front_facet: Vec<usize>,
-    back: [Vec<f64>; 3],
-    parallel: Vec<[f64; 3]>,
-    half: f64,
-    /// Each cell packed in 4 bytes (the grid then mostly stays in cache): [`MISS`],
-    /// [`BORDER`], or an inside cell's candidates `start | len << 24`.
-    cells: Vec<u32>,
-    candidates: Vec<u32>,
-}
-
-/// A cell outside the shadow.
-const MISS: u32 = u32::MAX;
-/// A cell on the shadow's border (or an inside cell too big to pack: the full test is exact
-/// everywhere).
-const BORDER: u32 = u32::MAX - 1;
-
-const BL: usize = 4;
 /// Cells of √(1 − z) ∈ [0, √2] in the exit-angle lookup.
 const ANGLE_CELLS: usize = 4096;
 const ANGLE_CELLS_PER_U: f64 = ANGLE_CELLS as f64 / std::f64::consts::SQRT_2;
-/// Cells per side of the beam grid.
-const GRID: usize = 128;
-
-impl Beam {
-    fn new(s: &TraceSolid, centre: DVec3, axis: DVec3, u: DVec3, v: DVec3, half: f64) -> Beam {
-        let mut front: [Vec<f64>; 3] = Default::default();
-        let mut back: [Vec<f64>; 3] = Default::default();
-        let mut front_facet = Vec::new();
-        let mut parallel = Vec::new();
-        for (i, n) in s.normals.iter().enumerate() {
-            let nd = n.dot(axis);
-            let g0 = s.off[i] - n.dot(centre);
-            let (gu, gv) = (n.dot(u), n.dot(v));
-            if nd.abs() < 1e-12 {
-                parallel.push([g0, gu, gv]);
-                continue;
-            }
-            let c = [g0 / nd, -gu / nd, -gv / nd];
-            let dst = if nd < 0.0 { &mut front } else { &mut back };
-            for k in 0..3 {
-                dst[k].push(c[k]);
-            }
-            if nd < 0.0 {
-                front_facet.push(i);
-            }
-        }
-        let n_front = front_facet.len();
-        // Pad to whole lanes with planes that never decide anything.
-        while !front[0].len().is_multiple_of(BL) {
-            front[0].push(f64::NEG_INFINITY);
-            front[1].push(0.0);
-            front[2].push(0.0);
-            front_facet.push(usize::MAX);
-        }
-        while !back[0].len().is_multiple_of(BL) {
-            back[0].push(f64::INFINITY);
-            back[1].push(0.0);
-            back[2].push(0.0);
-        }
-        let mut beam = Beam {
-            front,
-            front_facet,
-            back,
-            parallel,
-            half,
-            cells: Vec::new(),
-            candidates: Vec::new(),
-        };
-        // The grid.
-        let step = 2.0 * half / GRID as f64;
-        let corner = |i: usize| -half + i as f64 * step;
-        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); GRID * GRID];
-        for (k, &f) in beam.front_facet[..n_front].iter().enumerate() {
-            let (mut alo, mut ahi, mut blo, mut bhi) = (
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-            );
-            for &vi in &s.facet_vertices[f] {
-                let r = s.vertices[vi] - centre;
-                let (a, b) = (r.dot(u), r.dot(v));
-                alo = alo.min(a);
-                ahi = ahi.max(a);
-                blo = blo.min(b);
-                bhi = bhi.max(b);
-            }
-            let pad = 1e-9 * (1.0 + half);
-            let cell = |x: f64| (((x + half) / step).floor().max(0.0) as usize).min(GRID - 1);
-            if ahi < -half - pad || alo > half + pad || bhi < -half - pad || blo > half + pad {
-                continue;
-            }
-            for i in cell(alo - pad)..=cell(ahi + pad) {
-                for j in cell(blo - pad)..=cell(bhi + pad) {
-                    lists[i * GRID + j].push(k as u32);
-                }
-            }
-        }
-        let inside: Vec<bool> = (0..(GRID + 1) * (GRID + 1))
-            .map(|c| {
-                beam.entry_full(corner(c / (GRID + 1)), corner(c % (GRID + 1)))
-                    .is_some()
-            })
-            .collect();
-        for (c, list) in lists.iter().enumerate() {
-            let (i, j) = (c / GRID, c % GRID);
-            let corners = [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)];
-            let start = beam.candidates.len();
-            let cell = if list.is_empty() {
-                MISS
-            } else if corners.iter().all(|&(x, y)| inside[x * (GRID + 1) + y])
-                && list.len() < 255
-                && start + list.len() < 1 << 24
-            {
-                beam.candidates.extend_from_slice(list);
-                start as u32 | (list.len() as u32) << 24
-            } else {
-                BORDER
-            };
-            beam.cells.push(cell);
-        }
-        beam
-    }
-
-    /// The entry facet of the photon at (a, b), or `None` if it misses.
-    #[inline(always)]
-    fn entry(&self, a: f64, b: f64) -> Option<usize> {
-        let step = 2.0 * self.half / GRID as f64;
-        let i = (((a + self.half) / step) as usize).min(GRID - 1);
-        let j = (((b + self.half) / step) as usize).min(GRID - 1);
-        match self.cells[i * GRID + j] {
-            MISS => None,
-            BORDER => self.entry_full(a, b),
-            cell => {
-                let (start, len) = ((cell & 0xFF_FFFF) as usize, (cell >> 24) as usize);
-                let f = &self.front;
-                let mut best = (f64::NEG_INFINITY, usize::MAX);
-                for &k in &self.candidates[start..start + len] {
-                    let k = k as usize;
-                    let t = f[0][k] + a * f[1][k] + b * f[2][k];
-                    if t > best.0 {
-                        best = (t, k);
-                    }
-                }
-                Some(self.front_facet[best.1])
-            }
-        }
-    }
-
-    /// The full entry test (every facet).
-    #[inline(always)]
-    fn entry_full(&self, a: f64, b: f64) -> Option<usize> {
-        let mut tin = [f64::NEG_INFINITY; BL];
-        let mut fin = [0usize; BL];
-        let f = &self.front;
-        for c in (0..f[0].len()).step_by(BL) {
-            for l in 0..BL {
-                let i = c + l;
-                let t = f[0][i] + a * f[1][i] + b * f[2][i];
-                if t > tin[l] {
-                    tin[l] = t;
-                    fin[l] = i;
-                }
-            }
-        }
-        let mut tout = [f64::INFINITY; BL];
-        let k = &self.back;
-        for c in (0..k[0].len()).step_by(BL) {
-            for (l, o) in tout.iter_mut().enumerate() {
-                let i = c + l;
-                let t = k[0][i] + a * k[1][i] + b * k[2][i];
-                *o = if t < *o { t } else { *o };
-            }
-        }
-        let (mut t_in, mut f_in) = (tin[0], fin[0]);
-        for l in 1..BL {
-            if tin[l] > t_in || (tin[l] == t_in && fin[l] < f_in) {
-                t_in = tin[l];
-                f_in = fin[l];
-            }
-        }
-        let t_out = tout.iter().copied().fold(f64::INFINITY, f64::min);
-        if t_in > t_out
-            || self
-                .parallel
-                .iter()
-                .any(|g| g[0] - a * g[1] - b * g[2] < 0.0)
-        {
-            return None;
-        }
-        let facet = self.front_facet[f_in];
-        (facet != usize::MAX).then_some(facet)
-    }
-}
 
 /// Everything the photon loop needs, resolved for one solid and light.
 pub(crate) struct Tracer<'a> {
@@ -284,6 +81,50 @@ fn chunk_seed(seed: u64, chunk: u64) -> u64 {
 struct Pol {
     s: Stokes,
     e: DVec3,
+}
+
+/// Photons in flight per chunk (see `Tracer::lanes`): one per lane of the batched exit search.
+const LANES: usize = super::solid::LANES;
+
+/// One lane of a chunk: its random stream, the photons it has still to shoot, and its
+/// photon in flight.
+struct Lane {
+    rng: SmallRng,
+    left: u64,
+    /// Whether a photon is inside the stone.
+    live: bool,
+    p: DVec3,
+    d: DVec3,
+    /// Refractive index and Beer–Lambert coefficient at the photon's wavelength.
+    n: f64,
+    beer: f64,
+    lambda: f64,
+    /// Surface interactions so far.
+    inter: u32,
+    pol: Pol,
+    /// The path's points (when recording).
+    path: Vec<DVec3>,
+}
+
+impl Lane {
+    fn new(seed: u64, photons: u64) -> Lane {
+        Lane {
+            rng: SmallRng::seed_from_u64(seed),
+            left: photons,
+            live: false,
+            p: DVec3::ZERO,
+            d: DVec3::ZERO,
+            n: 1.0,
+            beer: 0.0,
+            lambda: 0.0,
+            inter: 0,
+            pol: Pol {
+                s: Stokes::new(1.0, 0.0, 0.0, 0.0),
+                e: DVec3::X,
+            },
+            path: Vec::new(),
+        }
+    }
 }
 
 impl<'a> Tracer<'a> {
@@ -393,54 +234,90 @@ impl<'a> Tracer<'a> {
 
     #[inline(always)]
     fn chunk_impl(&self, c: u64, n: u64, hit_limit: Option<u64>) -> Counts {
-        let mut rng = SmallRng::seed_from_u64(chunk_seed(self.seed, c));
         let mut k = Counts::new(self.s.facets);
-        let limit = hit_limit.unwrap_or(u64::MAX);
-        let mut sink = Vec::new();
-        for _ in 0..n {
-            if k.hit >= limit {
-                break;
-            }
-            if self.polarization {
-                self.photon::<true, false>(&mut rng, &mut k, &mut sink);
-            } else {
-                self.photon::<false, false>(&mut rng, &mut k, &mut sink);
-            }
+        let mut none = Vec::new();
+        if self.polarization {
+            self.lanes::<true, false>(c, n, hit_limit, &mut k, &mut none, 0);
+        } else {
+            self.lanes::<false, false>(c, n, hit_limit, &mut k, &mut none, 0);
         }
         k
     }
 
-    /// Replay the run's first `shot` photons in order and record the paths of the first `n`
-    /// that hit the stone.
-    pub(crate) fn record_paths(&self, n: usize, shot: u64) -> Vec<PhotonPath> {
+    /// Replay the run's chunks in order (`shot` photons in all; `until_hit`: the run shot until
+    /// that many hit, so each chunk is replayed with the same hit limit) and record the paths
+    /// of the first `n` photons that hit the stone, in the order they finished.
+    pub(crate) fn record_paths(
+        &self,
+        n: usize,
+        shot: u64,
+        until_hit: Option<u64>,
+    ) -> Vec<PhotonPath> {
         let mut out = Vec::new();
-        let mut done = 0u64;
-        let mut c = 0u64;
+        let (mut done, mut hit, mut c) = (0u64, 0u64, 0u64);
         while done < shot && out.len() < n {
-            let mut rng = SmallRng::seed_from_u64(chunk_seed(self.seed, c));
+            let (photons, limit) = match until_hit {
+                Some(h) => (CHUNK, Some(h - hit)),
+                None => (CHUNK.min(shot - done), None),
+            };
             let mut k = Counts::new(self.s.facets);
-            for _ in 0..CHUNK.min(shot - done) {
-                let mut pts = Vec::new();
-                let r = if self.polarization {
-                    self.photon::<true, true>(&mut rng, &mut k, &mut pts)
-                } else {
-                    self.photon::<false, true>(&mut rng, &mut k, &mut pts)
-                };
-                if let Some((fate, wavelength)) = r {
-                    out.push(PhotonPath {
-                        wavelength,
-                        points: pts,
-                        fate,
-                    });
-                    if out.len() >= n {
-                        break;
-                    }
-                }
+            if self.polarization {
+                self.lanes::<true, true>(c, photons, limit, &mut k, &mut out, n);
+            } else {
+                self.lanes::<false, true>(c, photons, limit, &mut k, &mut out, n);
             }
-            done += CHUNK;
+            done += k.shot;
+            hit += k.hit;
             c += 1;
         }
+        out.truncate(n);
         out
+    }
+
+    /// Trace chunk `c`'s `n` photons, `LANES` in flight at once. Lane `l` shoots its share of
+    /// the chunk (`n / LANES`, one more for the first `n % LANES` lanes) from its own random
+    /// stream, seeded from the seed, the chunk and the lane. Each round refills the lanes
+    /// whose photon has ended (shooting until one is inside the stone), finds the exits of all
+    /// the lanes' photons in one batched search and advances each by one surface interaction:
+    /// the photons' long dependent chains (exit search, Fresnel, roulette) then overlap. With
+    /// a hit limit no photon is shot once that many have hit (those in flight finish). With
+    /// `REC`, the paths of finished photons that hit are pushed to `out` until it holds `want`.
+    #[inline(always)]
+    fn lanes<const POL: bool, const REC: bool>(
+        &self,
+        c: u64,
+        n: u64,
+        hit_limit: Option<u64>,
+        k: &mut Counts,
+        out: &mut Vec<PhotonPath>,
+        want: usize,
+    ) {
+        let limit = hit_limit.unwrap_or(u64::MAX);
+        let base = chunk_seed(self.seed, c);
+        let mut lanes: [Lane; LANES] = std::array::from_fn(|l| {
+            let l = l as u64;
+            Lane::new(
+                chunk_seed(base, l),
+                n / LANES as u64 + u64::from(l < n % LANES as u64),
+            )
+        });
+        loop {
+            for l in lanes.iter_mut() {
+                while !l.live && l.left > 0 {
+                    self.start::<POL, REC>(l, k, limit, out);
+                }
+            }
+            let live = lanes.each_ref().map(|l| l.live);
+            if !live.contains(&true) || (REC && out.len() >= want) {
+                break;
+            }
+            let exits = self.s.exits(&lanes.each_ref().map(|l| (l.p, l.d)), &live);
+            for (l, &(t, j)) in lanes.iter_mut().zip(&exits) {
+                if l.live {
+                    self.bounce::<POL, REC>(l, t, j, k, out);
+                }
+            }
+        }
     }
 
     #[inline(always)]
@@ -528,20 +405,77 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// One photon. Returns its fate and wavelength if it hit the stone. With `REC`, pushes
-    /// the path's points to `rec`.
+    /// Shoot the lane's next photons until one enters the stone (then do its first
+    /// interaction) or the lane has none left or the hit limit is reached.
     #[inline(always)]
-    fn photon<const POL: bool, const REC: bool>(
+    fn start<const POL: bool, const REC: bool>(
         &self,
-        rng: &mut SmallRng,
+        l: &mut Lane,
         k: &mut Counts,
-        rec: &mut Vec<DVec3>,
-    ) -> Option<(Fate, f64)> {
+        limit: u64,
+        out: &mut Vec<PhotonPath>,
+    ) {
+        let (o, d, t, f) = loop {
+            if l.left == 0 || k.hit >= limit {
+                l.left = 0;
+                return;
+            }
+            l.left -= 1;
+            if let Some(entry) = self.shoot(&mut l.rng, k) {
+                break entry;
+            }
+        };
+        k.hit += 1;
+        let lambda = self.wavelength(&mut l.rng);
+        l.lambda = lambda;
+        l.n = self.fixed_n.unwrap_or_else(|| self.material.ri(lambda));
+        // Beer–Lambert coefficient per unit of path at this photon's wavelength (0 unless the
+        // model is Beer–Lambert).
+        l.beer = self
+            .absorption
+            .beer_per_width(self.material.colour.as_ref(), lambda)
+            .unwrap_or(0.0);
+        l.pol = Pol {
+            s: Stokes::new(1.0, 0.0, 0.0, 0.0),
+            e: if POL {
+                d.any_orthonormal_vector()
+            } else {
+                DVec3::X
+            },
+        };
+        l.p = o + t * d;
+        if REC {
+            l.path.clear();
+            l.path.push(o);
+            l.path.push(l.p);
+        }
+        l.inter = 1;
+        let m = self.s.normals[f];
+        let (nd, transmitted) = self.interface::<POL>(&mut l.rng, &mut l.pol, d, m, 1.0, l.n);
+        l.d = nd;
+        if !transmitted {
+            self.tally_exit(k, f, nd);
+            if REC {
+                l.path.push(l.p + nd);
+            }
+            self.finish::<REC>(l, k, Fate::Exited(f), out);
+        } else if l.inter >= self.max_depth {
+            k.depth_limited += 1;
+            self.finish::<REC>(l, k, Fate::DepthLimited, out);
+        } else {
+            l.live = true;
+        }
+    }
+
+    /// One photon leaves the light: its start, direction, and where it enters the stone
+    /// (`None` if it misses).
+    #[inline(always)]
+    fn shoot(&self, rng: &mut SmallRng, k: &mut Counts) -> Option<(DVec3, DVec3, f64, usize)> {
         k.shot += 1;
         let a = (2.0 * rng.random::<f64>() - 1.0) * self.half;
         let b = (2.0 * rng.random::<f64>() - 1.0) * self.half;
         let o = self.centre + self.u * a + self.v * b;
-        let mut d = match self.kind {
+        let d = match self.kind {
             LightKind::Directed => self.axis,
             LightKind::Undirected => {
                 let c = rng.random::<f64>();
@@ -569,92 +503,82 @@ impl<'a> Tracer<'a> {
             }
             None => self.s.entry(o, d)?,
         };
-        k.hit += 1;
-        let lambda = self.wavelength(rng);
-        let n = self.fixed_n.unwrap_or_else(|| self.material.ri(lambda));
-        // Beer–Lambert coefficient per unit of path at this photon's wavelength (0 unless the
-        // model is Beer–Lambert).
-        let beer = self
-            .absorption
-            .beer_per_width(self.material.colour.as_ref(), lambda)
-            .unwrap_or(0.0);
-        let mut pol = Pol {
-            s: Stokes::new(1.0, 0.0, 0.0, 0.0),
-            e: if POL {
-                d.any_orthonormal_vector()
-            } else {
-                DVec3::X
-            },
-        };
-        let mut p = o + t * d;
-        if REC {
-            rec.push(o);
-            rec.push(p);
+        Some((o, d, t, f))
+    }
+
+    /// The lane's photon inside the stone meets its next facet (`j`, at distance `t`): absorbed
+    /// on the way, or leaves, or is reflected back in (and is then depth-limited if it has no interactions
+    /// left).
+    #[inline(always)]
+    fn bounce<const POL: bool, const REC: bool>(
+        &self,
+        l: &mut Lane,
+        t: f64,
+        j: usize,
+        k: &mut Counts,
+        out: &mut Vec<PhotonPath>,
+    ) {
+        let (p, d) = (l.p, l.d);
+        if t >= f64::INFINITY || t.is_nan() {
+            // Numerically impossible for a bounded solid; counted, never a panic.
+            k.depth_limited += 1;
+            return self.finish::<REC>(l, k, Fate::DepthLimited, out);
         }
-        let mut inter = 1u32;
-        let m = self.s.normals[f];
-        let (nd, transmitted) = self.interface::<POL>(rng, &mut pol, d, m, 1.0, n);
-        d = nd;
-        let fate = if !transmitted {
-            self.tally_exit(k, f, d);
-            if REC {
-                rec.push(p + d);
-            }
-            Fate::Exited(f)
-        } else {
-            loop {
-                if inter >= self.max_depth {
-                    k.depth_limited += 1;
-                    break Fate::DepthLimited;
-                }
-                let (t, j) = self.s.exit(p, d);
-                if t >= f64::INFINITY || t.is_nan() {
-                    // Numerically impossible for a bounded solid; counted, never a panic.
-                    k.depth_limited += 1;
-                    break Fate::DepthLimited;
-                }
-                match self.absorption {
-                    Absorption::None => {}
-                    Absorption::Thesis => {
-                        if rng.random::<f64>() < THESIS_ABSORPTION {
-                            k.absorbed += 1;
-                            if REC {
-                                rec.push(p + t * d);
-                            }
-                            break Fate::Absorbed;
-                        }
-                    }
-                    Absorption::Beer(_) | Absorption::Body { .. } => {
-                        let u: f64 = rng.random();
-                        let s = -(1.0 - u).ln() / beer;
-                        if s < t {
-                            k.absorbed += 1;
-                            if REC {
-                                rec.push(p + s * d);
-                            }
-                            break Fate::Absorbed;
-                        }
-                    }
-                }
-                p += t * d;
-                inter += 1;
-                if REC {
-                    rec.push(p);
-                }
-                let m = self.s.normals[j];
-                let (nd, transmitted) = self.interface::<POL>(rng, &mut pol, d, -m, n, 1.0);
-                d = nd;
-                if transmitted {
-                    self.tally_exit(k, j, d);
-                    if REC {
-                        rec.push(p + d);
-                    }
-                    break Fate::Exited(j);
-                }
+        let absorbed_at = match self.absorption {
+            Absorption::None => None,
+            Absorption::Thesis => (l.rng.random::<f64>() < THESIS_ABSORPTION).then_some(t),
+            Absorption::Beer(_) | Absorption::Body { .. } => {
+                let u: f64 = l.rng.random();
+                let s = -(1.0 - u).ln() / l.beer;
+                (s < t).then_some(s)
             }
         };
-        k.interactions += inter as u64;
-        Some((fate, lambda))
+        if let Some(s) = absorbed_at {
+            k.absorbed += 1;
+            if REC {
+                l.path.push(p + s * d);
+            }
+            return self.finish::<REC>(l, k, Fate::Absorbed, out);
+        }
+        let p = p + t * d;
+        l.p = p;
+        l.inter += 1;
+        if REC {
+            l.path.push(p);
+        }
+        let m = self.s.normals[j];
+        let (nd, transmitted) = self.interface::<POL>(&mut l.rng, &mut l.pol, d, -m, l.n, 1.0);
+        l.d = nd;
+        if transmitted {
+            self.tally_exit(k, j, nd);
+            if REC {
+                l.path.push(p + nd);
+            }
+            self.finish::<REC>(l, k, Fate::Exited(j), out);
+        } else if l.inter >= self.max_depth {
+            k.depth_limited += 1;
+            self.finish::<REC>(l, k, Fate::DepthLimited, out);
+        }
+    }
+
+    /// The lane's photon has ended with `fate`.
+    #[inline(always)]
+    fn finish<const REC: bool>(
+        &self,
+        l: &mut Lane,
+        k: &mut Counts,
+        fate: Fate,
+        out: &mut Vec<PhotonPath>,
+    ) {
+        k.interactions += l.inter as u64;
+        l.live = false;
+        if REC {
+            out.push(PhotonPath {
+                wavelength: l.lambda,
+                points: std::mem::take(&mut l.path),
+                fate,
+            });
+        }
     }
 }
 

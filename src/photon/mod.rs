@@ -22,12 +22,15 @@
 //! in a loop would otherwise never end); photons reaching it are also counted as
 //! depth-limited.
 //!
-//! **Determinism.** Work is split into chunks of [`CHUNK`] photons; chunk `c` draws from its own
-//! RNG seeded from `(seed, c)`; tallies are integer counts, so their sum does not depend on
-//! the order or the thread count: the same seed gives the same numbers on any number of
-//! threads. Chunks are traced in parallel a wave at a time and their counts added in chunk
-//! order as each wave finishes (so the float sums of [`trace_weighted`] are the same on any
-//! thread count too, and memory does not grow with the photon count). At most
+//! **Determinism.** Work is split into chunks of [`CHUNK`] photons. A chunk traces its photons
+//! eight at a time in lanes (one batched exit search serves all eight, so their dependent
+//! chains overlap); lane `l` of chunk `c` draws from its own RNG seeded from `(seed, c, l)`,
+//! so the order in which its photons finish follows from those streams alone. Tallies are
+//! integer counts, so their sum does not depend on the order or the thread count: the same
+//! seed gives the same numbers on any number of threads. Chunks are traced in parallel a wave
+//! at a time and their counts added in chunk order as each wave finishes (so the float sums
+//! of [`trace_weighted`] are the same on any thread count too, and memory does not grow with
+//! the photon count). At most
 //! [`MAX_PHOTONS`] photons per run.
 //!
 //! ```
@@ -40,6 +43,7 @@
 //! ```
 
 mod absorption;
+mod beam;
 mod kernel;
 mod reach;
 mod solid;
@@ -351,7 +355,11 @@ pub fn trace(
     };
     let elapsed = start.elapsed().as_secs_f64();
     let paths = if cfg.record_paths > 0 {
-        tracer.record_paths(cfg.record_paths, counts.shot)
+        tracer.record_paths(
+            cfg.record_paths,
+            counts.shot,
+            cfg.until_hit.then_some(counts.hit),
+        )
     } else {
         Vec::new()
     };

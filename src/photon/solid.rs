@@ -161,6 +161,53 @@ impl TraceSolid {
         };
         #[cfg(not(target_arch = "x86_64"))]
         let j = exit_index_scalar(&self.f, pf, df);
+        self.exit_on(p, d, j)
+    }
+
+    /// [`TraceSolid::exit`] for [`LANES`] rays `(p, d)` at once (those with `live` false are
+    /// skipped: their result is meaningless). The same facets and distances as ray by ray:
+    /// with AVX2 each lane of the f32 search is one ray, computing its `t`s with the same fused
+    /// operations and keeping the first smallest, as the one-ray search does.
+    #[inline(always)]
+    pub(crate) fn exits(
+        &self,
+        rays: &[(DVec3, DVec3); LANES],
+        live: &[bool; LANES],
+    ) -> [(f64, usize); LANES] {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            let mut pf = [[0f32; LANES]; 3];
+            let mut df = [[0f32; LANES]; 3];
+            for (l, (p, d)) in rays.iter().enumerate() {
+                let q = *p - self.centre;
+                for (k, (x, y)) in [(q.x, d.x), (q.y, d.y), (q.z, d.z)].into_iter().enumerate() {
+                    pf[k][l] = x as f32;
+                    df[k][l] = y as f32;
+                }
+            }
+            // SAFETY: AVX2 was detected at run time when this solid was built.
+            let js = unsafe { exit_index8_avx2(&self.f, self.facets, &pf, &df) };
+            let mut out = [(f64::INFINITY, 0); LANES];
+            for l in 0..LANES {
+                if live[l] {
+                    out[l] = self.exit_on(rays[l].0, rays[l].1, js[l] as usize);
+                }
+            }
+            return out;
+        }
+        std::array::from_fn(|l| {
+            if live[l] {
+                self.exit(rays[l].0, rays[l].1)
+            } else {
+                (f64::INFINITY, 0)
+            }
+        })
+    }
+
+    /// The exit by facet `j` the f32 search chose: `t` in f64 on its plane (or the f64 search
+    /// when f64 finds the ray parallel to it).
+    #[inline(always)]
+    fn exit_on(&self, p: DVec3, d: DVec3, j: usize) -> (f64, usize) {
         let nd = self.nx[j] * d.x + self.ny[j] * d.y + self.nz[j] * d.z;
         let np = self.nx[j] * p.x + self.ny[j] * p.y + self.nz[j] * p.z;
         if nd > 0.0 {
@@ -278,6 +325,79 @@ fn exit_index_scalar(f: &[Vec<f32>; 4], p: [f32; 3], d: [f32; 3]) -> usize {
         }
     }
     idx
+}
+
+/// The f32 exit search of [`LANES`] rays at once, one ray per lane (positions relative to the
+/// centre and directions, coordinate by coordinate), over the first `n` facets: each lane's
+/// facet is [`exit_index_scalar`]'s for its ray. Facets go in two independent chains (even
+/// and odd); each keeps its first smallest `t`, and the two are merged to the smaller `t`,
+/// the smaller facet on ties.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+unsafe fn exit_index8_avx2(
+    f: &[Vec<f32>; 4],
+    n: usize,
+    p: &[[f32; LANES]; 3],
+    d: &[[f32; LANES]; 3],
+) -> [i32; LANES] {
+    use std::arch::x86_64::*;
+    // The padded arrays hold whole pairs of facets.
+    let n = n.next_multiple_of(2);
+    let pairs = |k: usize| f[k][..n].as_chunks::<2>().0;
+    // SAFETY: each array holds LANES f32s.
+    let ([px, py, pz], [dx, dy, dz]) = unsafe {
+        (
+            p.map(|v| _mm256_loadu_ps(v.as_ptr())),
+            d.map(|v| _mm256_loadu_ps(v.as_ptr())),
+        )
+    };
+    let inf = _mm256_set1_ps(f32::INFINITY);
+    let zero = _mm256_setzero_ps();
+    let t_of = |x: f32, y: f32, z: f32, o: f32| {
+        let (nx, ny, nz, off) = (
+            _mm256_set1_ps(x),
+            _mm256_set1_ps(y),
+            _mm256_set1_ps(z),
+            _mm256_set1_ps(o),
+        );
+        let nd = _mm256_fmadd_ps(nx, dx, _mm256_fmadd_ps(ny, dy, _mm256_mul_ps(nz, dz)));
+        let np = _mm256_fmadd_ps(nx, px, _mm256_fmadd_ps(ny, py, _mm256_mul_ps(nz, pz)));
+        let t = _mm256_div_ps(_mm256_sub_ps(off, np), nd);
+        _mm256_blendv_ps(inf, t, _mm256_cmp_ps(nd, zero, _CMP_GT_OQ))
+    };
+    let keep = |t: __m256, i: usize, best: &mut __m256, idx: &mut __m256i| {
+        let lt = _mm256_cmp_ps(t, *best, _CMP_LT_OQ);
+        *best = _mm256_blendv_ps(*best, t, lt);
+        *idx = _mm256_castps_si256(_mm256_blendv_ps(
+            _mm256_castsi256_ps(*idx),
+            _mm256_castsi256_ps(_mm256_set1_epi32(i as i32)),
+            lt,
+        ));
+    };
+    let (mut b0, mut b1) = (inf, inf);
+    let (mut i0, mut i1) = (_mm256_setzero_si256(), _mm256_setzero_si256());
+    let (fx, fy, fz, fo) = (pairs(0), pairs(1), pairs(2), pairs(3));
+    for (k, (((x, y), z), o)) in fx.iter().zip(fy).zip(fz).zip(fo).enumerate() {
+        keep(t_of(x[0], y[0], z[0], o[0]), 2 * k, &mut b0, &mut i0);
+        keep(t_of(x[1], y[1], z[1], o[1]), 2 * k + 1, &mut b1, &mut i1);
+    }
+    // The odd chain wins where its t is smaller, or equal with a smaller facet (it holds
+    // facet 0 only while it found nothing, where the even chain's facet is the answer).
+    let smaller = _mm256_cmp_ps(b1, b0, _CMP_LT_OQ);
+    let tie = _mm256_and_ps(
+        _mm256_cmp_ps(b1, b0, _CMP_EQ_OQ),
+        _mm256_castsi256_ps(_mm256_cmpgt_epi32(i0, i1)),
+    );
+    let i = _mm256_castps_si256(_mm256_blendv_ps(
+        _mm256_castsi256_ps(i0),
+        _mm256_castsi256_ps(i1),
+        _mm256_or_ps(smaller, tie),
+    ));
+    let mut out = [0i32; LANES];
+    // SAFETY: out holds LANES i32s.
+    unsafe { _mm256_storeu_si256(out.as_mut_ptr() as *mut __m256i, i) };
+    out
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -408,6 +528,29 @@ mod tests {
             assert_eq!(scalar, j);
         }
         assert!(differ <= 2, "{differ} exits chose another facet than f64");
+    }
+
+    /// The batched search gives every live lane the one-ray search's facet and distance, to
+    /// the bit, whatever the other lanes hold.
+    #[test]
+    fn exits_of_eight_rays_are_those_of_each_ray() {
+        let cut = crate::io::load_cut("tolkowsky").unwrap();
+        let s = TraceSolid::new(&cut.solid).unwrap();
+        let mut rng = SmallRng::seed_from_u64(4);
+        for round in 0..5_000 {
+            let rays: [(DVec3, DVec3); LANES] = std::array::from_fn(|_| {
+                let p = s.centre + 0.3 * random_dir(&mut rng) * rng.random::<f64>();
+                (p, random_dir(&mut rng))
+            });
+            let live: [bool; LANES] = std::array::from_fn(|l| round % 7 != l);
+            let got = s.exits(&rays, &live);
+            for l in 0..LANES {
+                if live[l] {
+                    let (t, j) = s.exit(rays[l].0, rays[l].1);
+                    assert_eq!((got[l].0.to_bits(), got[l].1), (t.to_bits(), j));
+                }
+            }
+        }
     }
 
     #[test]
