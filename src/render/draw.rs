@@ -167,11 +167,11 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
             })
             .collect();
         let y_sum: f64 = rows.iter().map(|r| r.0).sum();
+        let h = rgb[0].pixel();
         if fire {
             let yc: f64 = rows.iter().map(|r| r.1).sum();
-            stats.fire = Some(fire_from_sum(yc, rgb[0].pixel(), outline));
+            stats.fire = Some(fire_from_sum(yc, h, outline));
         }
-        let h = rgb[0].pixel();
         stats.mean = if outline > 0.0 {
             y_sum * h * h / outline
         } else {
