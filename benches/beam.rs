@@ -5,10 +5,13 @@
 //! * `pose`: one pose (overhead / face-up, where the stone's 16 symmetries apply) at one
 //!   wavelength for `tolkowsky`, one thread, at several split thresholds (the default is
 //!   1e-4), with the tree's size; a tilted pose (no symmetry), also at the scores' settings (their
-//!   ray floor); the paper's depth-8 setting;
+//!   ray floor), with its narrow beams cut off (the exact part alone), a fire band's face-up
+//!   trace with and without its narrow beams; the paper's depth-8 setting;
 //! * `score`: the full default `score` of `tolkowsky` on the global rayon pool and on one thread,
 //!   without fire and scintillation (what the default optimize's search computes), and as a
 //!   coloured stone (blue sapphire against colourless sapphire, one thread, and their ratio);
+//! * `topology`: how much of fire's band traces' exit power follows facet sequences that
+//!   every band's trace has (exact beams and narrow rays apart);
 //! * `instructions` (only when named): ten tilted traces with no timing loop, to run under
 //!   `valgrind --tool=callgrind` for repeatable instruction counts;
 //! * `photons`: how many photons a Monte Carlo photon tracer needs to match the beam tracer's
@@ -110,6 +113,45 @@ fn main() {
             tree.stats.ray_segments,
             tree.stats.ray_closed
         );
+        // The same with every narrow beam cut off instead of followed: the exact part alone,
+        // what the trace would cost if narrow rays cost nothing.
+        let exact_part = TraceOptions {
+            threshold: opts.split_threshold,
+            ..opts
+        };
+        let (_, dt4, n) = trace_timed(&tilted, &exact_part);
+        println!(
+            "pose tolkowsky tilted 10°, the scores' settings with narrow beams cut off (the exact \
+             part alone): {:.3} ms/trace ({n} runs, {:.2} of the scores' settings)",
+            dt4.as_secs_f64() * 1e3,
+            dt4.as_secs_f64() / dt2.as_secs_f64(),
+        );
+        // One of fire's band traces as the scores make it (face-up, split to the fire split
+        // threshold), with its narrow rays and without: the trace alone (the scores also draw
+        // each exit's footprint into fire's pictures, which this collecting sink does not).
+        let cfg = ScoreConfig::default();
+        let fire_opts = TraceOptions {
+            split_threshold: cfg.fire_split_threshold,
+            ..cfg.trace
+        };
+        let (tree, dt5, n) = trace_timed(&frame, &fire_opts);
+        let (_, dt6, _) = trace_timed(
+            &frame,
+            &TraceOptions {
+                threshold: fire_opts.split_threshold,
+                ..fire_opts
+            },
+        );
+        println!(
+            "pose tolkowsky face-up, a fire band's settings (split {:e}, no footprints): {:.3} ms/trace ({n} runs); \
+             rays {} ({} segments); narrow beams cut off: {:.3} ms ({:.2})",
+            fire_opts.split_threshold,
+            dt5.as_secs_f64() * 1e3,
+            tree.stats.rays,
+            tree.stats.ray_segments,
+            dt6.as_secs_f64() * 1e3,
+            dt6.as_secs_f64() / dt5.as_secs_f64(),
+        );
         // The narrow beams as forking discs (`[score] narrow_forks`), at the split threshold
         // and ray floor they are measured with.
         let opts = TraceOptions {
@@ -139,6 +181,65 @@ fn main() {
             tree.stats.beams,
             tree.stats.cut_off
         );
+    }
+
+    // How far fire's band traces share their beam tree (the lever of tracing the bands as one
+    // traversal): per band, the share of its exit power whose facet sequence every band's
+    // trace also has, for the exact exits and the narrow rays' exits apart.
+    if run("topology") {
+        let cfg = ScoreConfig::default();
+        let opts = TraceOptions {
+            split_threshold: cfg.fire_split_threshold,
+            ..cfg.trace
+        };
+        let bands =
+            facetlab::optics::color::traced_bands(cfg.bands, facetlab::optics::color::FAINT_BAND);
+        type Seqs = std::collections::HashMap<(bool, Vec<usize>), f64>;
+        let trees: Vec<Seqs> = bands
+            .iter()
+            .map(|&(l, _)| {
+                let tree = stone.trace(&frame, cfg.material.ri(l), l, &opts);
+                let mut m = Seqs::new();
+                for e in &tree.exits {
+                    *m.entry((e.narrow, tree.sequence(e))).or_default() += e.power;
+                }
+                m
+            })
+            .collect();
+        for narrow in [false, true] {
+            let (mut lo, mut hi, mut kinds) = (f64::INFINITY, 0.0f64, 0usize);
+            for m in &trees {
+                let (mut all, mut shared) = (0.0, 0.0);
+                for ((nw, seq), p) in m {
+                    if *nw != narrow {
+                        continue;
+                    }
+                    all += p;
+                    // A narrow ray's sequence counts as shared when every band has it,
+                    // narrow or exact.
+                    let key = |w: bool| (w, seq.clone());
+                    if trees
+                        .iter()
+                        .all(|o| o.contains_key(&key(false)) || o.contains_key(&key(true)))
+                    {
+                        shared += p;
+                    }
+                }
+                let f = if all > 0.0 { shared / all } else { 1.0 };
+                lo = lo.min(f);
+                hi = hi.max(f);
+                kinds = kinds.max(m.keys().filter(|k| k.0 == narrow).count());
+            }
+            println!(
+                "topology: tolkowsky face-up, {} fire bands at split {:e}: {} exits' power in facet \
+                 sequences every band has: {:.4}–{:.4} of each band's (up to {kinds} sequences a band)",
+                bands.len(),
+                opts.split_threshold,
+                if narrow { "narrow rays'" } else { "exact beams'" },
+                lo,
+                hi
+            );
+        }
     }
 
     // Exactly ten traces of the tilted pose and nothing else, no timing loop: for instruction
