@@ -83,7 +83,11 @@ impl BeamEvaluator {
 
 impl Evaluator for BeamEvaluator {
     fn evaluate(&self, cut: &Cut) -> Result<ScoreSet> {
-        Ok(Self::score_set(&score(&cut.solid, &self.config)))
+        let scores = score(&cut.solid, &self.config);
+        Ok(ScoreSet {
+            detail: Some(std::sync::Arc::new(scores.clone())),
+            ..Self::score_set(&scores)
+        })
     }
     fn evaluate_for_search(&self, cut: &Cut) -> Result<ScoreSet> {
         Ok(Self::score_set(&score(&cut.solid, &self.search)))

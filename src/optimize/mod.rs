@@ -159,6 +159,11 @@ pub struct ScoreSet {
     /// Further named scores, shown in reports in this order.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub extra: Vec<(String, f64)>,
+    /// The beam tracer's whole scores behind these, when the evaluator keeps them
+    /// ([`BeamEvaluator`]'s full evaluations do): a run's report draws its table and tilt chart
+    /// from them instead of scoring the cut again. Not serialised.
+    #[serde(skip)]
+    pub detail: Option<std::sync::Arc<crate::metrics::Scores>>,
 }
 
 impl ScoreSet {
@@ -169,6 +174,7 @@ impl ScoreSet {
             fire,
             scintillation,
             extra: Vec::new(),
+            detail: None,
         }
     }
 

@@ -75,6 +75,10 @@ pub struct Candidate {
     /// Score names in display order (not serialised; JSON maps are sorted).
     #[serde(skip)]
     pub score_order: Vec<String>,
+    /// The evaluator's whole scores of this cut ([`ScoreSet::detail`](super::ScoreSet::detail)),
+    /// when it kept them. Not serialised.
+    #[serde(skip)]
+    pub detail: Option<std::sync::Arc<crate::metrics::Scores>>,
 }
 
 /// A free parameter at (within 1 % of its range from) one of its bounds.
@@ -146,6 +150,7 @@ impl Candidate {
             grade: e.cut.as_ref().and_then(crate::cut::grade::estimate),
             at_bounds: at_bounds(config, &e.x),
             score_order: all.into_iter().map(|(k, _)| k).collect(),
+            detail: e.scores.as_ref().and_then(|s| s.detail.clone()),
         }
     }
 }

@@ -89,6 +89,17 @@ pub struct CutReport {
 
 /// Score, draw and (optionally) verify `cut` for a report.
 pub fn measure(label: &str, cut: &Cut, o: &ReportOptions) -> Result<CutReport> {
+    measure_scored(label, cut, None, o)
+}
+
+/// [`measure`], with `cut`'s scores under `o.score` when they are known already (an optimizer
+/// run's full evaluations): the cut is then drawn and verified but not scored again.
+pub fn measure_scored(
+    label: &str,
+    cut: &Cut,
+    known: Option<Scores>,
+    o: &ReportOptions,
+) -> Result<CutReport> {
     let picture = |light: Light, tilt_deg: f64| {
         let mut r = RenderOptions::new(light);
         r.size = o.size;
@@ -116,7 +127,7 @@ pub fn measure(label: &str, cut: &Cut, o: &ReportOptions) -> Result<CutReport> {
         )
         .collect();
     let (scores, mut images) = rayon::join(
-        || score(&cut.solid, &o.score),
+        || known.unwrap_or_else(|| score(&cut.solid, &o.score)),
         || {
             jobs.par_iter()
                 .map(|&(l, t)| picture(l, t))

@@ -5,7 +5,7 @@
 //! file, its meets and how many are kept, the tier angles the winners turned, and the footnote
 //! each winner's `.asc` carries.
 
-use super::{escape, html, measure, CutReport, ReportOptions};
+use super::{escape, html, measure_scored, CutReport, ReportOptions};
 use crate::cut::Cut;
 use crate::error::Result;
 use crate::optimize::{design_json, Config, Outcome};
@@ -35,7 +35,9 @@ pub fn run_page(config: &Config, outcome: &Outcome) -> Result<String> {
         .par_iter()
         .map(|c| {
             let cut = config.space.build(&c.label, &c.params)?;
-            let mut r = measure(&c.label, &cut, &o)?;
+            // The run scored its start and winners in full with these settings already.
+            let known = c.detail.as_deref().cloned();
+            let mut r = measure_scored(&c.label, &cut, known, &o)?;
             r.checks.clear();
             if let Some(v) = &c.verification {
                 r.checks = v
@@ -259,5 +261,48 @@ mod tests {
         if let Ok(keep) = std::env::var("FACETLAB_KEEP_PAGE") {
             std::fs::write(keep, &page).unwrap();
         }
+    }
+
+    /// A run scored by the beam tracer hands its start's and winners' whole scores to the
+    /// page: the page made from them is the page made by scoring each cut again, byte for
+    /// byte, and the kept scores are the ones the run reported.
+    #[test]
+    fn a_run_page_reuses_the_runs_scores() {
+        let dir = tempfile::tempdir().unwrap();
+        let toml = r#"
+            name = "reuse"
+            [cut]
+            family = "round-brilliant"
+            [free]
+            pavilion_angle = [40.0, 42.0]
+            [method]
+            name = "nelder-mead"
+            starts = 1
+            max_evaluations = 8
+            [verify]
+            winners = 1
+            [score]
+            split_threshold = 1e-2
+            fire_split_threshold = 1e-2
+            ray_floor = 0.5
+        "#;
+        let path = dir.path().join("run.toml");
+        std::fs::write(&path, toml).unwrap();
+        let config = Config::load(&path).unwrap();
+        let evaluator = crate::optimize::BeamEvaluator::new(&config);
+        let mut outcome = search(&config, &evaluator, &Hooks::default()).unwrap();
+        for c in std::iter::once(&outcome.start).chain(&outcome.winners) {
+            let kept = c.detail.as_ref().expect("the run kept its full scores");
+            let reported = c.scores.as_ref().expect("scores");
+            assert_eq!(kept.brilliance, reported["brilliance"]);
+            assert_eq!(kept.fire, reported["fire"]);
+            assert_eq!(kept.scintillation, reported["scintillation"]);
+        }
+        let kept = run_page(&config, &outcome).unwrap();
+        for c in std::iter::once(&mut outcome.start).chain(&mut outcome.winners) {
+            c.detail = None;
+        }
+        let scored = run_page(&config, &outcome).unwrap();
+        assert!(kept == scored, "the pages differ");
     }
 }
