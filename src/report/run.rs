@@ -183,6 +183,19 @@ mod tests {
     use super::*;
     use crate::optimize::{search, Hooks, ScoreSet};
 
+    /// The run config `head` (its name, cut and free parameters) in `dir`, searched by one
+    /// Nelder–Mead start of `evaluations`, one winner, scored coarsely.
+    fn coarse_run(dir: &std::path::Path, head: &str, evaluations: usize) -> Config {
+        let toml = format!(
+            "{head}\n[method]\nname = \"nelder-mead\"\nstarts = 1\nmax_evaluations = \
+             {evaluations}\n[verify]\nwinners = 1\n[score]\nsplit_threshold = 1e-2\n\
+             fire_split_threshold = 1e-2\nray_floor = 0.5\n"
+        );
+        let path = dir.join("run.toml");
+        std::fs::write(&path, toml).unwrap();
+        Config::load(&path).unwrap()
+    }
+
     /// A design run (the round brilliant preset written to `.asc` by the test, two tier
     /// angles free, scored by a made-up bump with its top away from the start): the page
     /// shows the tilt chart and each cut's tilted pictures, and a Design section naming the
@@ -203,20 +216,8 @@ mod tests {
             [free]
             "pavilion-main" = [40.0, 42.0]
             bezel = [33.0, 36.0]
-            [method]
-            name = "nelder-mead"
-            starts = 1
-            max_evaluations = 40
-            [verify]
-            winners = 1
-            [score]
-            split_threshold = 1e-2
-            fire_split_threshold = 1e-2
-            ray_floor = 0.5
         "#;
-        let path = dir.path().join("run.toml");
-        std::fs::write(&path, toml).unwrap();
-        let config = Config::load(&path).unwrap();
+        let config = coarse_run(dir.path(), toml, 40);
         assert!(config.design.is_some());
         // The bump's top: pavilion mains at 41.5°, bezels at 35°.
         let bump = |cut: &Cut| -> Result<ScoreSet> {
@@ -275,20 +276,8 @@ mod tests {
             family = "round-brilliant"
             [free]
             pavilion_angle = [40.0, 42.0]
-            [method]
-            name = "nelder-mead"
-            starts = 1
-            max_evaluations = 8
-            [verify]
-            winners = 1
-            [score]
-            split_threshold = 1e-2
-            fire_split_threshold = 1e-2
-            ray_floor = 0.5
         "#;
-        let path = dir.path().join("run.toml");
-        std::fs::write(&path, toml).unwrap();
-        let config = Config::load(&path).unwrap();
+        let config = coarse_run(dir.path(), toml, 8);
         let evaluator = crate::optimize::BeamEvaluator::new(&config);
         let mut outcome = search(&config, &evaluator, &Hooks::default()).unwrap();
         for c in std::iter::once(&outcome.start).chain(&outcome.winners) {
