@@ -39,9 +39,9 @@ pub(crate) struct Tracer<'a> {
     /// Undirected lights: which photons surely miss, from their start and polar angle.
     reach: Option<Reach>,
     /// cos(k°) for k = 0..=180.
-    cos_deg: Vec<f64>,
+    cos_deg: [f64; 181],
     /// For each cell of √(1 − z), the exit-angle bin at the cell's top (largest z), less 1e-9.
-    angle_start: Vec<u8>,
+    angle_start: Box<[u8; ANGLE_CELLS]>,
     /// Weights of an exit direction, summed into [`Counts::weight_sum`].
     pub(crate) exit_weight: Option<&'a ExitWeights<'a>>,
 }
@@ -176,7 +176,7 @@ impl<'a> Tracer<'a> {
             (_, WavelengthSampling::Fixed(l)) => Some(cfg.material.ri(l)),
             _ => None,
         };
-        let cos_deg: Vec<f64> = (0..=180).map(|k| (k as f64).to_radians().cos()).collect();
+        let cos_deg: [f64; 181] = std::array::from_fn(|k| (k as f64).to_radians().cos());
         let w = s.centre - centre;
         let to_sphere = DVec3::new(axis.dot(w), u.dot(w), v.dot(w));
         Ok(Tracer {
@@ -196,13 +196,11 @@ impl<'a> Tracer<'a> {
             wavelengths: cfg.wavelengths,
             fixed_n,
             seed: cfg.seed,
-            angle_start: (0..ANGLE_CELLS)
-                .map(|c| {
-                    let u = c as f64 / ANGLE_CELLS_PER_U;
-                    let z = (1.0 - u * u + 1e-9).min(1.0);
-                    cos_deg[1..180].partition_point(|&t| z <= t) as u8
-                })
-                .collect(),
+            angle_start: Box::new(std::array::from_fn(|c| {
+                let u = c as f64 / ANGLE_CELLS_PER_U;
+                let z = (1.0 - u * u + 1e-9).min(1.0);
+                cos_deg[1..180].partition_point(|&t| z <= t) as u8
+            })),
             cos_deg,
             beam: (light.kind == LightKind::Directed)
                 .then(|| Beam::new(s, centre, axis, u, v, half)),
@@ -311,7 +309,7 @@ impl<'a> Tracer<'a> {
             if !live.contains(&true) || (REC && out.len() >= want) {
                 break;
             }
-            let exits = self.s.exits(&lanes.each_ref().map(|l| (l.p, l.d)), &live);
+            let exits = self.s.exits_by(|l| (lanes[l].p, lanes[l].d), &live);
             for (l, &(t, j)) in lanes.iter_mut().zip(&exits) {
                 if l.live {
                     self.bounce::<POL, REC>(l, t, j, k, out);
@@ -435,14 +433,12 @@ impl<'a> Tracer<'a> {
             .absorption
             .beer_per_width(self.material.colour.as_ref(), lambda)
             .unwrap_or(0.0);
-        l.pol = Pol {
-            s: Stokes::new(1.0, 0.0, 0.0, 0.0),
-            e: if POL {
-                d.any_orthonormal_vector()
-            } else {
-                DVec3::X
-            },
-        };
+        if POL {
+            l.pol = Pol {
+                s: Stokes::new(1.0, 0.0, 0.0, 0.0),
+                e: d.any_orthonormal_vector(),
+            };
+        }
         l.p = o + t * d;
         if REC {
             l.path.clear();
