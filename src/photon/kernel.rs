@@ -361,7 +361,8 @@ impl<'a> Tracer<'a> {
     #[inline(always)]
     fn angle_bin(&self, z: f64) -> usize {
         let u = (1.0 - z).max(0.0).sqrt() * ANGLE_CELLS_PER_U;
-        let mut bin = self.angle_start[(u as usize).min(ANGLE_CELLS - 1)] as usize;
+        let cell = (u as i32).clamp(0, ANGLE_CELLS as i32 - 1) as usize;
+        let mut bin = self.angle_start[cell] as usize;
         while bin < 179 && z <= self.cos_deg[bin + 1] {
             bin += 1;
         }
