@@ -13,7 +13,7 @@ use crate::geometry::DVec3;
 use crate::optics::color::{d65, D65_MAX, LAMBDA_MAX, LAMBDA_MIN};
 use crate::optics::{fresnel, reflect, rotate_stokes, s_axis, Dispersion, Material, Stokes};
 use rand::rngs::SmallRng;
-use rand::{Rng, SeedableRng};
+use rand::{RngCore, SeedableRng};
 
 /// Cells of √(1 − z) ∈ [0, √2] in the exit-angle lookup.
 const ANGLE_CELLS: usize = 4096;
@@ -39,9 +39,9 @@ pub(crate) struct Tracer<'a> {
     /// Undirected lights: which photons surely miss, from their start and polar angle.
     reach: Option<Reach>,
     /// cos(k°) for k = 0..=180.
-    cos_deg: Vec<f64>,
+    cos_deg: [f64; 181],
     /// For each cell of √(1 − z), the exit-angle bin at the cell's top (largest z), less 1e-9.
-    angle_start: Vec<u8>,
+    angle_start: Box<[u8; ANGLE_CELLS]>,
     /// Weights of an exit direction, summed into [`Counts::weight_sum`].
     pub(crate) exit_weight: Option<&'a ExitWeights<'a>>,
 }
@@ -66,6 +66,20 @@ fn reflectance(cos_i: f64, eta: f64) -> (f64, f64) {
 #[inline(always)]
 fn refracted(d: DVec3, n: DVec3, cos_i: f64, cos_t: f64, eta: f64) -> DVec3 {
     eta * d + (eta * cos_i - cos_t) * n
+}
+
+/// Two uniforms in [0, 1) from one 64-bit draw: its high and its low 32 bits, each `k·2⁻³²`
+/// (exact in f64). xoshiro256++ scrambles every output bit (its low bits are as good as its
+/// high ones), so the halves are independent and uniform. Every use needs no more than 32
+/// bits: a roulette `u < p` then fires with probability `p` to within 2⁻³² ≈ 2.3e-10 (far
+/// below the ~2e-6 standard error of the largest run, `MAX_PHOTONS`), a
+/// photon's start on the light square is placed to 2⁻³¹ of its side and its wavelength to
+/// 1e-7 nm; Beer–Lambert's `−ln(1 − u)` is finite (at most 22.2, a 2.3e-10 tail cut).
+#[inline(always)]
+fn two_uniforms(rng: &mut SmallRng) -> (f64, f64) {
+    const SCALE: f64 = 1.0 / (1u64 << 32) as f64;
+    let x = rng.next_u64();
+    ((x >> 32) as f64 * SCALE, (x as u32) as f64 * SCALE)
 }
 
 fn chunk_seed(seed: u64, chunk: u64) -> u64 {
@@ -176,7 +190,7 @@ impl<'a> Tracer<'a> {
             (_, WavelengthSampling::Fixed(l)) => Some(cfg.material.ri(l)),
             _ => None,
         };
-        let cos_deg: Vec<f64> = (0..=180).map(|k| (k as f64).to_radians().cos()).collect();
+        let cos_deg: [f64; 181] = std::array::from_fn(|k| (k as f64).to_radians().cos());
         let w = s.centre - centre;
         let to_sphere = DVec3::new(axis.dot(w), u.dot(w), v.dot(w));
         Ok(Tracer {
@@ -196,13 +210,11 @@ impl<'a> Tracer<'a> {
             wavelengths: cfg.wavelengths,
             fixed_n,
             seed: cfg.seed,
-            angle_start: (0..ANGLE_CELLS)
-                .map(|c| {
-                    let u = c as f64 / ANGLE_CELLS_PER_U;
-                    let z = (1.0 - u * u + 1e-9).min(1.0);
-                    cos_deg[1..180].partition_point(|&t| z <= t) as u8
-                })
-                .collect(),
+            angle_start: Box::new(std::array::from_fn(|c| {
+                let u = c as f64 / ANGLE_CELLS_PER_U;
+                let z = (1.0 - u * u + 1e-9).min(1.0);
+                cos_deg[1..180].partition_point(|&t| z <= t) as u8
+            })),
             cos_deg,
             beam: (light.kind == LightKind::Directed)
                 .then(|| Beam::new(s, centre, axis, u, v, half)),
@@ -311,7 +323,7 @@ impl<'a> Tracer<'a> {
             if !live.contains(&true) || (REC && out.len() >= want) {
                 break;
             }
-            let exits = self.s.exits(&lanes.each_ref().map(|l| (l.p, l.d)), &live);
+            let exits = self.s.exits_by(|l| (lanes[l].p, lanes[l].d), &live);
             for (l, &(t, j)) in lanes.iter_mut().zip(&exits) {
                 if l.live {
                     self.bounce::<POL, REC>(l, t, j, k, out);
@@ -320,19 +332,25 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// A photon's wavelength from the uniform `u` (and, for D65's rejection sampling, as many
+    /// more draws as it takes: each candidate from a fresh uniform, its acceptance another).
     #[inline(always)]
-    fn wavelength(&self, rng: &mut SmallRng) -> f64 {
+    fn wavelength(&self, u: f64, rng: &mut SmallRng) -> f64 {
+        let span = LAMBDA_MAX - LAMBDA_MIN;
         match self.wavelengths {
-            WavelengthSampling::Uniform => {
-                LAMBDA_MIN + (LAMBDA_MAX - LAMBDA_MIN) * rng.random::<f64>()
-            }
+            WavelengthSampling::Uniform => LAMBDA_MIN + span * u,
             WavelengthSampling::Fixed(l) => l,
-            WavelengthSampling::D65 => loop {
-                let l = LAMBDA_MIN + (LAMBDA_MAX - LAMBDA_MIN) * rng.random::<f64>();
-                if rng.random::<f64>() * D65_MAX < d65(l) {
-                    break l;
+            WavelengthSampling::D65 => {
+                let mut u = u;
+                loop {
+                    let l = LAMBDA_MIN + span * u;
+                    let (accept, next) = two_uniforms(rng);
+                    if accept * D65_MAX < d65(l) {
+                        break l;
+                    }
+                    u = next;
                 }
-            },
+            }
         }
     }
 
@@ -343,7 +361,8 @@ impl<'a> Tracer<'a> {
     #[inline(always)]
     fn angle_bin(&self, z: f64) -> usize {
         let u = (1.0 - z).max(0.0).sqrt() * ANGLE_CELLS_PER_U;
-        let mut bin = self.angle_start[(u as usize).min(ANGLE_CELLS - 1)] as usize;
+        let cell = (u as i32).clamp(0, ANGLE_CELLS as i32 - 1) as usize;
+        let mut bin = self.angle_start[cell] as usize;
         while bin < 179 && z <= self.cos_deg[bin + 1] {
             bin += 1;
         }
@@ -365,13 +384,13 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// Choose reflection or transmission at facet normal `m` (outward) for a photon moving in
-    /// `d` from index `n1` into `n2`; `m_in` is the normal facing against `d`. Returns the new
-    /// direction and whether it was transmitted.
+    /// Choose reflection or transmission (by the uniform `x`) at facet normal `m` (outward)
+    /// for a photon moving in `d` from index `n1` into `n2`; `m_in` is the normal facing
+    /// against `d`. Returns the new direction and whether it was transmitted.
     #[inline(always)]
     fn interface<const POL: bool>(
         &self,
-        rng: &mut SmallRng,
+        x: f64,
         pol: &mut Pol,
         d: DVec3,
         m_in: DVec3,
@@ -380,7 +399,6 @@ impl<'a> Tracer<'a> {
     ) -> (DVec3, bool) {
         let cos_i = -m_in.dot(d);
         let eta = n1 / n2;
-        let x: f64 = rng.random();
         if POL {
             let es = s_axis(d, m_in).unwrap_or(pol.e);
             let s1 = rotate_stokes(pol.s, pol.e, es, d);
@@ -426,7 +444,9 @@ impl<'a> Tracer<'a> {
             }
         };
         k.hit += 1;
-        let lambda = self.wavelength(&mut l.rng);
+        // One draw for the wavelength and the entry's roulette.
+        let (u, x) = two_uniforms(&mut l.rng);
+        let lambda = self.wavelength(u, &mut l.rng);
         l.lambda = lambda;
         l.n = self.fixed_n.unwrap_or_else(|| self.material.ri(lambda));
         // Beer–Lambert coefficient per unit of path at this photon's wavelength (0 unless the
@@ -435,14 +455,12 @@ impl<'a> Tracer<'a> {
             .absorption
             .beer_per_width(self.material.colour.as_ref(), lambda)
             .unwrap_or(0.0);
-        l.pol = Pol {
-            s: Stokes::new(1.0, 0.0, 0.0, 0.0),
-            e: if POL {
-                d.any_orthonormal_vector()
-            } else {
-                DVec3::X
-            },
-        };
+        if POL {
+            l.pol = Pol {
+                s: Stokes::new(1.0, 0.0, 0.0, 0.0),
+                e: d.any_orthonormal_vector(),
+            };
+        }
         l.p = o + t * d;
         if REC {
             l.path.clear();
@@ -451,7 +469,7 @@ impl<'a> Tracer<'a> {
         }
         l.inter = 1;
         let m = self.s.normals[f];
-        let (nd, transmitted) = self.interface::<POL>(&mut l.rng, &mut l.pol, d, m, 1.0, l.n);
+        let (nd, transmitted) = self.interface::<POL>(x, &mut l.pol, d, m, 1.0, l.n);
         l.d = nd;
         if !transmitted {
             self.tally_exit(k, f, nd);
@@ -472,14 +490,15 @@ impl<'a> Tracer<'a> {
     #[inline(always)]
     fn shoot(&self, rng: &mut SmallRng, k: &mut Counts) -> Option<(DVec3, DVec3, f64, usize)> {
         k.shot += 1;
-        let a = (2.0 * rng.random::<f64>() - 1.0) * self.half;
-        let b = (2.0 * rng.random::<f64>() - 1.0) * self.half;
+        let (ua, ub) = two_uniforms(rng);
+        let a = (2.0 * ua - 1.0) * self.half;
+        let b = (2.0 * ub - 1.0) * self.half;
         let o = self.centre + self.u * a + self.v * b;
         let d = match self.kind {
             LightKind::Directed => self.axis,
             LightKind::Undirected => {
-                let c = rng.random::<f64>();
-                let phi = std::f64::consts::TAU * rng.random::<f64>();
+                let (c, uphi) = two_uniforms(rng);
+                let phi = std::f64::consts::TAU * uphi;
                 if self.reach.as_ref().is_some_and(|r| r.misses(a, b, c)) {
                     // Counted exactly as the miss the full test below would find, after the
                     // same random draws: only the trigonometry and the entry test are saved.
@@ -524,11 +543,12 @@ impl<'a> Tracer<'a> {
             k.depth_limited += 1;
             return self.finish::<REC>(l, k, Fate::DepthLimited, out);
         }
+        // One draw for the absorption and the surface's roulette.
+        let (u, x) = two_uniforms(&mut l.rng);
         let absorbed_at = match self.absorption {
             Absorption::None => None,
-            Absorption::Thesis => (l.rng.random::<f64>() < THESIS_ABSORPTION).then_some(t),
+            Absorption::Thesis => (u < THESIS_ABSORPTION).then_some(t),
             Absorption::Beer(_) | Absorption::Body { .. } => {
-                let u: f64 = l.rng.random();
                 let s = -(1.0 - u).ln() / l.beer;
                 (s < t).then_some(s)
             }
@@ -547,7 +567,7 @@ impl<'a> Tracer<'a> {
             l.path.push(p);
         }
         let m = self.s.normals[j];
-        let (nd, transmitted) = self.interface::<POL>(&mut l.rng, &mut l.pol, d, -m, l.n, 1.0);
+        let (nd, transmitted) = self.interface::<POL>(x, &mut l.pol, d, -m, l.n, 1.0);
         l.d = nd;
         if transmitted {
             self.tally_exit(k, j, nd);
@@ -585,6 +605,7 @@ impl<'a> Tracer<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::Rng;
 
     /// The kernel's own unpolarized Fresnel reflectance and refraction are the library's
     /// (`optics::fresnel`, `optics::refract`): same reflectance, refraction cosine, total

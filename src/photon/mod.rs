@@ -24,8 +24,8 @@
 //!
 //! **Determinism.** Work is split into chunks of [`CHUNK`] photons. A chunk traces its photons
 //! eight at a time in lanes (one batched exit search serves all eight, so their dependent
-//! chains overlap); lane `l` of chunk `c` draws from its own RNG seeded from `(seed, c, l)`,
-//! so the order in which its photons finish follows from those streams alone. Tallies are
+//! chains overlap); lane `l` of chunk `c` draws from its own RNG seeded from `(seed, c, l)`
+//! (each 64-bit draw giving two 32-bit uniforms), so the order in which its photons finish follows from those streams alone. Tallies are
 //! integer counts, so their sum does not depend on the order or the thread count: the same
 //! seed gives the same numbers on any number of threads. Chunks are traced in parallel a wave
 //! at a time and their counts added in chunk order as each wave finishes (so the float sums

@@ -19,6 +19,8 @@ const CELLS: usize = 64;
 /// Per-cell intervals of `cos θ` that can reach the stone.
 pub(crate) struct Reach {
     half: f64,
+    /// Cells per unit of `a` and `b`: `CELLS / (2 half)`.
+    scale: f64,
     /// (lowest, highest) reachable `cos θ` of each cell, row-major in (a, b).
     bounds: Vec<(f64, f64)>,
 }
@@ -54,16 +56,19 @@ impl Reach {
                 bounds.push((lo, hi));
             }
         }
-        Reach { half, bounds }
+        Reach {
+            half,
+            scale: CELLS as f64 / (2.0 * half),
+            bounds,
+        }
     }
 
     /// Whether the photon leaving at `(a, b)` (in the square) with polar-angle cosine `c`
     /// surely misses the stone.
     #[inline(always)]
     pub(crate) fn misses(&self, a: f64, b: f64, c: f64) -> bool {
-        let scale = CELLS as f64 / (2.0 * self.half);
-        let i = (((a + self.half) * scale) as usize).min(CELLS - 1);
-        let j = (((b + self.half) * scale) as usize).min(CELLS - 1);
+        let i = (((a + self.half) * self.scale) as usize).min(CELLS - 1);
+        let j = (((b + self.half) * self.scale) as usize).min(CELLS - 1);
         let (lo, hi) = self.bounds[i * CELLS + j];
         c < lo || c > hi
     }

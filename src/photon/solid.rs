@@ -168,18 +168,30 @@ impl TraceSolid {
     /// skipped: their result is meaningless). The same facets and distances as ray by ray:
     /// with AVX2 each lane of the f32 search is one ray, computing its `t`s with the same fused
     /// operations and keeping the first smallest, as the one-ray search does.
-    #[inline(always)]
+    #[cfg(test)]
     pub(crate) fn exits(
         &self,
         rays: &[(DVec3, DVec3); LANES],
+        live: &[bool; LANES],
+    ) -> [(f64, usize); LANES] {
+        self.exits_by(|l| rays[l], live)
+    }
+
+    /// [`TraceSolid::exits`] with ray `l` given by `ray(l)` (read where it lies, not copied
+    /// into an array first).
+    #[inline(always)]
+    pub(crate) fn exits_by(
+        &self,
+        ray: impl Fn(usize) -> (DVec3, DVec3),
         live: &[bool; LANES],
     ) -> [(f64, usize); LANES] {
         #[cfg(target_arch = "x86_64")]
         if self.avx2 {
             let mut pf = [[0f32; LANES]; 3];
             let mut df = [[0f32; LANES]; 3];
-            for (l, (p, d)) in rays.iter().enumerate() {
-                let q = *p - self.centre;
+            for l in 0..LANES {
+                let (p, d) = ray(l);
+                let q = p - self.centre;
                 for (k, (x, y)) in [(q.x, d.x), (q.y, d.y), (q.z, d.z)].into_iter().enumerate() {
                     pf[k][l] = x as f32;
                     df[k][l] = y as f32;
@@ -190,14 +202,16 @@ impl TraceSolid {
             let mut out = [(f64::INFINITY, 0); LANES];
             for l in 0..LANES {
                 if live[l] {
-                    out[l] = self.exit_on(rays[l].0, rays[l].1, js[l] as usize);
+                    let (p, d) = ray(l);
+                    out[l] = self.exit_on(p, d, js[l] as usize);
                 }
             }
             return out;
         }
         std::array::from_fn(|l| {
             if live[l] {
-                self.exit(rays[l].0, rays[l].1)
+                let (p, d) = ray(l);
+                self.exit(p, d)
             } else {
                 (f64::INFINITY, 0)
             }
