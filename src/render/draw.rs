@@ -1,7 +1,7 @@
 //! The footprint → pixel path: trace the viewer backwards, weight each exit beam by the light
 //! it sees, and add its footprint's exact coverage to the pixels ([`render`]).
 
-use super::image::{fire_from_sum, saturated_y, AsetShares, ColourStats, Image, Stats};
+use super::image::{fire_from_sum, pixel_xyz, saturated_y, AsetShares, ColourStats, Image, Stats};
 use super::layer::{Layer, BAND_ROWS};
 use super::light::Light;
 use super::lighting::Lighting;
@@ -151,11 +151,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                 let (mut y, mut yc) = (0.0, 0.0);
                 for i in 0..size {
                     let p = j * size + i;
-                    let xyz: DVec3 = images
-                        .iter()
-                        .zip(&weights)
-                        .map(|(img, w)| *w * img.data[p])
-                        .sum();
+                    let xyz = pixel_xyz(&images, &weights, p);
                     y += xyz.y;
                     if fire {
                         yc += saturated_y(&images, p, || xyz, white);

@@ -204,9 +204,19 @@ impl Image {
     }
 }
 
-/// Pixel `p`'s term of [`fire_of`]'s sum, `Y·s`, given its XYZ (`Σ weights[b] · images[b]`,
-/// added in band order; asked for only when needed) and the white: 0 for a grey pixel (the
-/// same value in every band), which has no saturation at all.
+/// Pixel `p`'s XYZ in a spectral picture: `Σ weights[b] · images[b]`, added in band order.
+#[inline]
+pub(super) fn pixel_xyz(images: &[&Raster], weights: &[DVec3], p: usize) -> DVec3 {
+    images
+        .iter()
+        .zip(weights)
+        .map(|(img, w)| *w * img.data[p])
+        .sum()
+}
+
+/// Pixel `p`'s term of [`fire_of`]'s sum, `Y·s`, given its XYZ ([`pixel_xyz`]; asked for
+/// only when needed) and the white: 0 for a grey pixel (the same value in every band), which
+/// has no saturation at all.
 #[inline]
 pub(super) fn saturated_y(
     images: &[&Raster],
@@ -255,14 +265,7 @@ pub fn fire_of(images: &[&Raster], weights: &[DVec3], area: f64) -> f64 {
     let white: DVec3 = weights.iter().copied().sum();
     let sum_over = |pixels: std::ops::Range<usize>| {
         pixels.fold(0.0, |yc, p| {
-            let xyz = || {
-                images
-                    .iter()
-                    .zip(weights)
-                    .map(|(img, w)| *w * img.data[p])
-                    .sum()
-            };
-            yc + saturated_y(images, p, xyz, white)
+            yc + saturated_y(images, p, || pixel_xyz(images, weights, p), white)
         })
     };
     let (n, len) = (first.n, first.data.len());
