@@ -156,9 +156,8 @@ impl Beam {
     /// box touches it, so both answer exactly for points that near them.
     #[inline(always)]
     pub(super) fn entry(&self, a: f64, b: f64) -> Option<usize> {
-        // `as i32` converts in one instruction and a check (`as usize` needs more on x86).
-        let cell = |x: f64| (((x + self.half) * self.scale) as i32).clamp(0, GRID as i32 - 1);
-        match self.cells[(cell(a) * GRID as i32 + cell(b)) as usize] {
+        let cell = |x: f64| super::grid_cell((x + self.half) * self.scale, GRID);
+        match self.cells[cell(a) * GRID + cell(b)] {
             MISS => None,
             BORDER => self.entry_full(a, b),
             cell => {

@@ -361,8 +361,7 @@ impl<'a> Tracer<'a> {
     #[inline(always)]
     fn angle_bin(&self, z: f64) -> usize {
         let u = (1.0 - z).max(0.0).sqrt() * ANGLE_CELLS_PER_U;
-        let cell = (u as i32).clamp(0, ANGLE_CELLS as i32 - 1) as usize;
-        let mut bin = self.angle_start[cell] as usize;
+        let mut bin = self.angle_start[super::grid_cell(u, ANGLE_CELLS)] as usize;
         while bin < 179 && z <= self.cos_deg[bin + 1] {
             bin += 1;
         }

@@ -25,12 +25,12 @@
 //! **Determinism.** Work is split into chunks of [`CHUNK`] photons. A chunk traces its photons
 //! eight at a time in lanes (one batched exit search serves all eight, so their dependent
 //! chains overlap); lane `l` of chunk `c` draws from its own RNG seeded from `(seed, c, l)`
-//! (each 64-bit draw giving two 32-bit uniforms), so the order in which its photons finish follows from those streams alone. Tallies are
-//! integer counts, so their sum does not depend on the order or the thread count: the same
-//! seed gives the same numbers on any number of threads. Chunks are traced in parallel a wave
-//! at a time and their counts added in chunk order as each wave finishes (so the float sums
-//! of [`trace_weighted`] are the same on any thread count too, and memory does not grow with
-//! the photon count). At most
+//! (each 64-bit draw giving two 32-bit uniforms), so the order in which its photons finish
+//! follows from those streams alone. Tallies are integer counts, so their sum does not depend
+//! on the order or the thread count: the same seed gives the same numbers on any number of
+//! threads. Chunks are traced in parallel a wave at a time and their counts added in chunk
+//! order as each wave finishes (so the float sums of [`trace_weighted`] are the same on any
+//! thread count too, and memory does not grow with the photon count). At most
 //! [`MAX_PHOTONS`] photons per run.
 //!
 //! ```
@@ -64,6 +64,15 @@ use std::time::Instant;
 
 /// Photons per deterministic chunk.
 pub const CHUNK: u64 = 8192;
+
+/// The cell of a grid of `cells` cells that `x` (in cell units from the grid's edge) falls
+/// in; points on or past the edges (and NaN) fall in the edge cells. The photon kernel's
+/// lookups (entry grid, sure-miss cells, exit-angle cells) find their cells with it: `as i32`
+/// converts in one instruction and a check, where `as usize` needs more on x86.
+#[inline(always)]
+fn grid_cell(x: f64, cells: usize) -> usize {
+    (x as i32).clamp(0, cells as i32 - 1) as usize
+}
 /// Interaction cap of the "unlimited" depth mode.
 pub const UNLIMITED_CAP: u32 = 100_000;
 /// Most photons one run may shoot (or, with `until_hit`, need to hit): 1e11. At the few

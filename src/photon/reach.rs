@@ -67,8 +67,8 @@ impl Reach {
     /// surely misses the stone.
     #[inline(always)]
     pub(crate) fn misses(&self, a: f64, b: f64, c: f64) -> bool {
-        let i = (((a + self.half) * self.scale) as usize).min(CELLS - 1);
-        let j = (((b + self.half) * self.scale) as usize).min(CELLS - 1);
+        let cell = |x: f64| super::grid_cell((x + self.half) * self.scale, CELLS);
+        let (i, j) = (cell(a), cell(b));
         let (lo, hi) = self.bounds[i * CELLS + j];
         c < lo || c > hi
     }
