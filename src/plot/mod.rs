@@ -27,7 +27,9 @@
 //! * [`pareto`]: the trade-off front between two scores, with the reference cuts;
 //! * [`plan`]: a rough planned (`facetlab plan`): three views of the rough with the cuts inside
 //!   ([`plan::ThreeViews`]);
-//! * [`palette`]: every colour handed out here, the grounds of stone pictures included.
+//! * [`palette`]: every colour handed out here, the grounds of stone pictures included;
+//! * [`text`]: text set with its bearings, kerning and baseline ([`text::TextBackend`] wraps
+//!   every backend this floor draws on).
 
 pub mod contour;
 pub mod diagram;
@@ -37,6 +39,7 @@ pub mod pareto;
 pub mod paths;
 pub mod plan;
 pub mod render;
+pub mod text;
 pub mod trace;
 
 pub use palette::{SERIES, TAB10};
@@ -53,7 +56,7 @@ use plotters::style::FontStyle;
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
-const FONT: &[u8] = include_bytes!("DejaVuSans.ttf");
+pub(crate) const FONT: &[u8] = include_bytes!("DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
 /// Register the bundled DejaVu Sans as `sans-serif` (once per process), so text draws without
@@ -130,7 +133,7 @@ pub fn save_to(fig: &impl Figure, png: &Path, svg: &Path) -> Result<()> {
     let tmp = dir.join(format!(".{name}.tmp-{}.png", std::process::id()));
     let done = draw_on(
         fig,
-        BitMapBackend::new(&tmp, fig.size()).into_drawing_area(),
+        text::TextBackend::raster(BitMapBackend::new(&tmp, fig.size())).into_drawing_area(),
         png,
     )
     .and_then(|_| std::fs::rename(&tmp, png).map_err(|e| Error::io(png.display().to_string(), e)));
@@ -141,7 +144,8 @@ pub fn save_to(fig: &impl Figure, png: &Path, svg: &Path) -> Result<()> {
     let mut text = String::new();
     draw_on(
         fig,
-        SVGBackend::with_string(&mut text, fig.size()).into_drawing_area(),
+        text::TextBackend::vector(SVGBackend::with_string(&mut text, fig.size()))
+            .into_drawing_area(),
         svg,
     )?;
     crate::io::write_atomic(svg, text.as_bytes())
