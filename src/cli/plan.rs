@@ -385,7 +385,7 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
             write(
                 dir,
                 &format!("{stem}.asc"),
-                facetlab::io::asc::write(&design, 96).as_bytes(),
+                facetlab::io::asc::write_for(&design, 96, material.ri_d()).as_bytes(),
             )?;
             let label = format!(
                 "{stem}: {:.3} ct, yield {:.1} %",
