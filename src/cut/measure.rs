@@ -113,7 +113,29 @@ const TABLE_TILT_DEG: f64 = 2.0;
 /// band (a design's nearly vertical facets beside its girdle).
 const MAIN_MAX_DEG: f64 = 80.0;
 
-/// The table: the facets within [`TABLE_TILT_DEG`] of level connected (by shared vertices) to
+/// How close two facets' vertices must come for the facets to touch, in W: a design read from
+/// a file leaves the corners where several of its rounded planes meet a little apart (~1e-8).
+const TOUCH: f64 = 1e-6;
+
+/// Whether facets `a` and `b` touch: a vertex of one within [`TOUCH`] of a vertex of the other.
+fn touch(s: &Polyhedron, a: usize, b: usize) -> bool {
+    let (fa, fb) = (&s.facets()[a], &s.facets()[b]);
+    fa.vertices.iter().any(|&u| {
+        fb.vertices
+            .iter()
+            .any(|&v| s.vertices()[u].distance(s.vertices()[v]) <= TOUCH)
+    })
+}
+
+/// Whether point `p` is within [`TOUCH`] of a corner of facet `f`.
+fn at_corner(s: &Polyhedron, f: usize, p: crate::geometry::DVec3) -> bool {
+    s.facets()[f]
+        .vertices
+        .iter()
+        .any(|&k| s.vertices()[k].distance(p) <= TOUCH)
+}
+
+/// The table: the facets within [`TABLE_TILT_DEG`] of level connected (by touching corners) to
 /// the one that holds the stone's highest vertex; empty when that facet is steeper (a cut
 /// with no table: a point or a ridge on top).
 fn table_facets(s: &Polyhedron) -> Vec<usize> {
@@ -131,12 +153,12 @@ fn table_facets(s: &Polyhedron) -> Vec<usize> {
     // Grow by shared vertices over level facets.
     let mut k = 0;
     while k < table.len() {
-        let vs = &s.facets()[table[k]].vertices;
+        let t = table[k];
         for j in 0..s.facets().len() {
             if !table.contains(&j)
                 && s.facets()[j].plane.normal.z > 0.0
                 && level(j)
-                && s.facets()[j].vertices.iter().any(|v| vs.contains(v))
+                && touch(s, t, j)
             {
                 table.push(j);
             }
@@ -146,16 +168,16 @@ fn table_facets(s: &Polyhedron) -> Vec<usize> {
     table
 }
 
-/// The vertical extent of the girdle facets `girdle` that hold vertex `v`, on the vertical
-/// line through it (each such facet's polygon cut by that line; a vertical edge counts
-/// whole), as (bottom, top).
-fn band_at(s: &Polyhedron, v: usize, girdle: &[usize]) -> Option<(f64, f64)> {
-    let p = s.vertices()[v];
+/// The vertical extent of the girdle facets `girdle` with a corner at `p` (within
+/// [`TOUCH`]), on the vertical line through it (each such facet's polygon cut by that line; a
+/// vertical edge counts whole), as (bottom, top).
+fn band_at(s: &Polyhedron, p: crate::geometry::DVec3, girdle: &[usize]) -> Option<(f64, f64)> {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for f in girdle.iter().map(|&j| &s.facets()[j]) {
-        if !f.vertices.contains(&v) {
+    for &j in girdle {
+        if !at_corner(s, j, p) {
             continue;
         }
+        let f = &s.facets()[j];
         let n = f.plane.normal;
         let t = crate::geometry::DVec2::new(-n.y, n.x).normalize_or_zero();
         let at = t.dot(p.truncate());
@@ -204,14 +226,7 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
     let girdle_set: Vec<usize> = (0..s.facets().len())
         .filter(|&i| is_girdle(s.facets()[i].plane.normal))
         .collect();
-    let shares = |f: &crate::geometry::Facet, set: &[usize]| {
-        set.iter().any(|&j| {
-            s.facets()[j]
-                .vertices
-                .iter()
-                .any(|v| f.vertices.contains(v))
-        })
-    };
+    let shares = |i: usize, set: &[usize]| set.iter().any(|&j| touch(s, i, j));
     // Main facets, chosen facet by facet (never by tier name, so that a design read from a
     // mesh, whose tiers are only grouped by angle, measures as its source). Crown: the facets
     // that touch the table (or reach the top) and meet the girdle (a bezel); else, with a
@@ -253,14 +268,14 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
         let meets = if girdle_set.is_empty() {
             (zmin - knife).abs() <= tol || (zmax - knife).abs() <= tol
         } else {
-            shares(f, &girdle_set)
+            shares(i, &girdle_set)
         };
         match side_of(n.z) {
             "crown" if n.z < 1.0 - 1e-9 => {
                 let top = if table_set.is_empty() {
                     zmax >= hi.z - tol
                 } else {
-                    shares(f, &table_set)
+                    shares(i, &table_set)
                 };
                 crown.push((top, meets, zmin, facing(n), f.area, angle, i));
             }
@@ -318,16 +333,12 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
             s.facets()[x.6]
                 .vertices
                 .iter()
-                .copied()
-                .filter(|v| {
-                    girdle_set
-                        .iter()
-                        .any(|&j| s.facets()[j].vertices.contains(v))
-                })
-                .min_by(|a, b| s.vertices()[*a].z.total_cmp(&s.vertices()[*b].z))
+                .map(|&v| s.vertices()[v])
+                .filter(|p| girdle_set.iter().any(|&j| at_corner(s, j, *p)))
+                .min_by(|a, b| a.z.total_cmp(&b.z))
         });
     let (g_bot, g_top) = at
-        .and_then(|v| band_at(s, v, &girdle_set))
+        .and_then(|p| band_at(s, p, &girdle_set))
         .unwrap_or((knife, knife));
     let crown_angle = crown_main.map_or(0.0, |x| x.5);
     Proportions {

@@ -349,12 +349,27 @@ mod tests {
             o_left > stem_right + 1,
             "o at {o_left}, T stem to {stem_right}"
         );
-        // Every letter of "Tolkowsky" has ink of its own: as many separate columns of ink
-        // runs as letters (no two glyphs merge).
+        // No two neighbouring letters of "Tolkowsky" share a pixel of solid ink: each drawn
+        // alone where the line puts it.
         let word = "Tolkowsky";
         let (glyphs, _) = layout(word, size);
-        for pair in glyphs.windows(2) {
-            assert!(pair[1].x > pair[0].x + 3.0, "{pair:?}");
+        let solid = |c: char, x: f32| {
+            let mut v = std::collections::HashSet::new();
+            draw(&c.to_string(), size, (10.0 + x, 100.0), |px, py, cov| {
+                if cov > 0.5 {
+                    v.insert((px, py));
+                }
+            });
+            v
+        };
+        let inks: Vec<_> = word
+            .chars()
+            .zip(&glyphs)
+            .map(|(c, g)| solid(c, g.x))
+            .collect();
+        for (k, pair) in inks.windows(2).enumerate() {
+            let shared = pair[0].intersection(&pair[1]).count();
+            assert_eq!(shared, 0, "letters {k} and {} touch", k + 1);
         }
     }
 
