@@ -121,26 +121,17 @@ pub fn save(fig: &impl Figure, stem: &Path) -> Result<()> {
 /// renamed, so a failure leaves no half-written picture.
 pub fn save_to(fig: &impl Figure, png: &Path, svg: &Path) -> Result<()> {
     register_font();
-    let dir = png
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .map(Path::to_path_buf)
-        .unwrap_or_else(|| PathBuf::from("."));
-    let name = png
-        .file_name()
-        .map(|n| n.to_string_lossy().to_string())
-        .unwrap_or_else(|| "plot.png".into());
-    let tmp = dir.join(format!(".{name}.tmp-{}.png", std::process::id()));
-    let done = draw_on(
+    // Drawn in memory and encoded by the crate's own PNG writer (plotters' file encoder
+    // would bring the whole `image` crate into the build for it), written atomically.
+    let (w, h) = fig.size();
+    let mut rgb = vec![0u8; w as usize * h as usize * 3];
+    draw_on(
         fig,
-        text::TextBackend::raster(BitMapBackend::new(&tmp, fig.size())).into_drawing_area(),
+        text::TextBackend::raster(BitMapBackend::with_buffer(&mut rgb, (w, h))).into_drawing_area(),
         png,
-    )
-    .and_then(|_| std::fs::rename(&tmp, png).map_err(|e| Error::io(png.display().to_string(), e)));
-    if done.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-        return done;
-    }
+    )?;
+    let bytes = crate::io::png::encode_rgb8(w, h, &[&rgb], 0)?;
+    crate::io::write_atomic(png, &bytes)?;
     let mut text = String::new();
     draw_on(
         fig,
