@@ -370,3 +370,25 @@ fn a_mesh_of_a_preset_has_the_presets_tiers() {
         same_vertices(&b.base().solid, &again.solid, 1e-9);
     }
 }
+
+#[test]
+fn an_index_just_past_the_gears_zero_stays_itself() {
+    use crate::design::Gear;
+    use crate::geometry::facet_normal;
+    let g = Gear {
+        teeth: 96.0,
+        offset: 0.0,
+    };
+    // Index i is azimuth −90° + 3.75° i: 0.0745 of a tooth past index 0 (= 96) stays 0.0745;
+    // within 1e-6 of a tooth either side it is 96, as GemCad writes index 0.
+    for (i, want) in [
+        (0.0745, 0.0745),
+        (95.93, 95.93),
+        (1e-8, 96.0),
+        (96.0 - 1e-8, 96.0),
+        (48.0, 48.0),
+    ] {
+        let n = facet_normal(40.0, -90.0 + 3.75 * i, true);
+        assert!((g.index(n) - want).abs() < 1e-9, "{i}: {}", g.index(n));
+    }
+}

@@ -350,17 +350,18 @@ function setFileOption(label) {
 function readFile(file) {
   const ext = (file.name.split('.').pop() || '').toLowerCase();
   if (!state.meta.formats.includes(ext)) {
-    $('#source-err').textContent = `cut: ${file.name} is not a .asc, .obj, .stl or .toml file`;
+    $('#source-err').textContent = `cut: ${file.name} is not a .asc, .gem, .obj, .stl or .toml file`;
     return;
   }
   const limit = state.meta.limits.body_bytes;
-  if (file.size > (ext === 'stl' ? limit * 0.7 : limit * 0.9)) {
+  const binary = ext === 'stl' || ext === 'gem';
+  if (file.size > (binary ? limit * 0.7 : limit * 0.9)) {
     $('#source-err').textContent = `cut: ${file.name} is too large (over ${Math.round(limit / 1048576)} MB)`;
     return;
   }
   const reader = new FileReader();
   reader.onerror = () => { $('#source-err').textContent = `cut: could not read ${file.name}`; };
-  if (ext === 'stl') {
+  if (binary) {
     reader.onload = () => {
       const bytes = new Uint8Array(reader.result);
       let bin = '';
