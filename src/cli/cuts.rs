@@ -63,7 +63,8 @@ pub struct InfoArgs {
 pub fn parse_sets(sets: &[String]) -> Result<BTreeMap<String, f64>> {
     let mut out = BTreeMap::new();
     for s in sets {
-        let Some((k, v)) = s.split_once('=') else {
+        // The value follows the last `=`: a tie `C1=C2=35` sets both tiers to 35.
+        let Some((k, v)) = s.rsplit_once('=') else {
             return Err(Error::invalid(
                 "--set",
                 format!("expected KEY=VALUE, got `{s}`"),
@@ -107,12 +108,14 @@ pub fn generate(a: &GenerateArgs) -> Result<()> {
     let bytes: Vec<u8> = match ext.as_str() {
         "svg" => facetlab::plot::diagram::diagram(&cut).into_bytes(),
         e if io::CUT_FORMATS.contains(&e) => io::write_cut(&cut, e)?,
-        _ => return Err(Error::invalid(
-            "-o",
-            format!(
+        _ => {
+            return Err(Error::invalid(
+                "-o",
+                format!(
                 "cannot write `.{ext}`; allowed extensions: .toml, .asc, .gem, .obj, .stl, .svg"
             ),
-        )),
+            ))
+        }
     };
     io::write_atomic(&a.output, &bytes)?;
     eprintln!(
