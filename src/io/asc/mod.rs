@@ -90,7 +90,7 @@ mod write;
 pub(in crate::io) mod fixtures;
 
 pub use instructions::{cutting_instructions, CuttingInstructions, CuttingStep};
-pub(in crate::io) use read::{assemble, generated_tier, RawFacet};
+pub(in crate::io) use read::{assemble, generated_tier, read_design, RawFacet};
 pub use read::{parse, read, AscDesign, AscTier};
 pub(in crate::io) use write::derived_name;
 pub use write::write;

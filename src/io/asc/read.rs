@@ -64,7 +64,7 @@ impl AscDesign {
     }
 
     /// The solid, scaled, with the design's record ([`GemcadRecord`]) attached.
-    pub(in crate::io) fn build(&self, name: &str, ctx: &str) -> Result<Cut> {
+    fn build(&self, name: &str, ctx: &str) -> Result<Cut> {
         let (mut cut, scale) = build_cut(&self.planes, name, ctx)?;
         cut.record = Some(GemcadRecord {
             ri: self.ri,
@@ -84,8 +84,17 @@ impl AscDesign {
 /// Read a GemCad `.asc` file into a cut named after the file stem, with the design's record
 /// (index, titles, notes, gear, symmetry, instructions) in [`Cut::record`].
 pub fn read(path: &Path) -> Result<Cut> {
+    read_design(path, parse)
+}
+
+/// A design file read with `parse` (of a `.asc` or a `.gem`) into a cut named after the file
+/// stem; errors name the file.
+pub(in crate::io) fn read_design(
+    path: &Path,
+    parse: fn(&[u8], &str) -> Result<AscDesign>,
+) -> Result<Cut> {
     let shown = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| Error::io(&shown, e))?;
+    let bytes = crate::io::read_bytes(path)?;
     let design = parse(&bytes, &shown)?;
     let stem = path
         .file_stem()

@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use crate::geometry::DVec3;
 use crate::io::asc::check::{gear_problem, offset_problem, ri_problem};
 use crate::io::asc::decode::byte_char;
-use crate::io::asc::{assemble, AscDesign, AscTier, RawFacet};
+use crate::io::asc::{assemble, read_design, AscDesign, AscTier, RawFacet};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -326,12 +326,5 @@ fn design(
 /// (index, titles, notes, gear, symmetry, instructions) in [`Cut::record`], scaled to W = 1 as
 /// a `.asc` is.
 pub fn read(path: &Path) -> Result<Cut> {
-    let shown = path.display().to_string();
-    let bytes = crate::io::read_bytes(path)?;
-    let design = parse(&bytes, &shown)?;
-    let stem = path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "design".into());
-    design.build(&stem, &shown)
+    read_design(path, parse)
 }
