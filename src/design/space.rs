@@ -291,8 +291,9 @@ impl DesignSpace {
         Ok((tiers, Some(tie.kind)))
     }
 
-    /// Each tier's angle at `values` (completed): tier keys first, then `=` ties set their
-    /// tiers, then `+` ties turn theirs. An angle outside (0, 90) is an error naming its key.
+    /// Each tier's angle at `values` (completed by [`CutSpace::complete`]): tier keys first,
+    /// then `=` ties set their tiers, then `+` ties turn theirs. An angle outside (0, 90) is
+    /// an error naming its key.
     fn targets(&self, values: &BTreeMap<String, f64>) -> Result<Vec<f64>> {
         let mut target = self.angles.clone();
         let mut ties = Vec::new();
@@ -303,19 +304,10 @@ impl DesignSpace {
                 Some(kind) => ties.push((k, v, tiers, kind)),
             }
         }
-        let mut set: Vec<Option<&str>> = vec![None; target.len()];
-        for (k, v, tiers, kind) in &ties {
+        // `=` ties first (a tier is in one tie at most: `complete` checks it).
+        for (_, v, tiers, kind) in &ties {
             if *kind == TieKind::Equal {
                 for &t in tiers {
-                    if let Some(other) = set[t].replace(k) {
-                        return Err(Error::invalid(
-                            k.as_str(),
-                            format!(
-                                "tier {} is also set by `{other}`; set each tier in one key",
-                                self.model.names[t]
-                            ),
-                        ));
-                    }
                     target[t] = *v;
                 }
             }

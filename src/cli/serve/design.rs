@@ -25,6 +25,10 @@ pub const SLIDER_STEP: f64 = 0.01;
 /// Designs kept adopted (the most recently used).
 const CACHED: usize = 8;
 
+/// What moving one tier alone does: the meets it opens (by their tiers), and the smallest tie
+/// that keeps them.
+type Alone = (Vec<String>, Option<String>);
+
 /// A design adopted once: its space, its tiers' slider bounds and, once probed
 /// ([`Design::probe`]), the meets each tier opens when moved alone.
 #[derive(Debug)]
@@ -35,7 +39,7 @@ pub struct Design {
     bounds: Vec<(String, f64, f64, f64)>,
     /// Per key, the meets (by their tiers, `P1·P2·G1`) it opens when moved alone, and the
     /// smallest tie that keeps them ([`DesignSpace::tie_for`]).
-    alone: OnceLock<BTreeMap<String, (Vec<String>, Option<String>)>>,
+    alone: OnceLock<BTreeMap<String, Alone>>,
     /// Whether a probe was started.
     probing: AtomicBool,
 }
@@ -81,7 +85,7 @@ impl Design {
             .iter()
             .map(|(k, _, lo, hi)| (k.clone(), *lo, *hi))
             .collect();
-        let mut alone: BTreeMap<String, (Vec<String>, Option<String>)> = BTreeMap::new();
+        let mut alone: BTreeMap<String, Alone> = BTreeMap::new();
         if let Ok(opened) = self.space.unkeepable(&free) {
             for o in opened {
                 let meet = self
