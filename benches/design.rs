@@ -8,24 +8,13 @@
 //! their free ranges walked (the default) and with `facet_changes = "skip"`, and the smallest
 //! tie found for a tier that cannot turn alone.
 
+mod common;
+
+use common::median;
 use facetlab::cut::CutSpace;
 use facetlab::design::{DesignSpace, OpenMeets, MEET_TOL};
 use facetlab::metrics::{score, ScoreConfig};
 use std::collections::BTreeMap;
-use std::time::Instant;
-
-/// Median seconds of `runs` calls of `f`.
-fn median(runs: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..runs)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64()
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[runs / 2]
-}
 
 fn main() {
     println!(
@@ -87,5 +76,8 @@ fn main() {
     let tie = median(5, || {
         assert_eq!(space.tie_for("P1", 42.0).as_deref(), Some("P1+P1b"));
     });
-    println!("quartz-split.asc: the tie for P1 found in {:.1} ms", tie * 1e3);
+    println!(
+        "quartz-split.asc: the tie for P1 found in {:.1} ms",
+        tie * 1e3
+    );
 }

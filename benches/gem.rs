@@ -10,21 +10,10 @@
 //! read whole (`.gem` → the cut, its solid built and scaled) and written. `-- instructions`
 //! reads the big file once, for counting instructions under callgrind.
 
-use facetlab::geometry::facet_normal;
-use std::time::Instant;
+mod common;
 
-/// Median seconds of `runs` calls of `f`.
-fn median(runs: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..runs)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64()
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[runs / 2]
-}
+use common::median;
+use facetlab::geometry::facet_normal;
 
 fn push_str(b: &mut Vec<u8>, s: &str) {
     b.push(u8::try_from(s.len()).expect("short string"));
