@@ -145,19 +145,20 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
     } else {
         r.best()
     };
-    let mut out = chosen.cut.clone();
-    let mut record = out.record.clone().unwrap_or_default();
-    record.ri = Some((r.to_ri * 1e4).round() / 1e4);
-    out.record = Some(record);
+    for w in r.warnings(chosen) {
+        eprintln!("warning: {w}");
+    }
+    let out = r.file_cut(chosen);
     let bytes: Vec<u8> = match ext.as_str() {
         "svg" => facetlab::plot::diagram::diagram(&out).into_bytes(),
         e => io::write_cut(&out, e)?,
     };
     io::write_atomic(&a.output, &bytes)?;
     println!(
-        "wrote {} (the {} variant)",
+        "wrote {} (the {} variant)\n  its note: {}",
         a.output.display(),
-        chosen.label
+        chosen.label,
+        r.footnote(chosen)
     );
     Ok(())
 }
