@@ -56,9 +56,11 @@
 //! with the very planes its `.asc` gives (its facets' angles and distances are its lines'),
 //! any other cut with its own planes to about 1e-12 of its size (a `.gem` keeps each facet's
 //! plane, where a `.asc` line writes one angle and distance for its facets), and a `.gem`
-//! written by facetlab, read and written again, comes back byte for byte. A generated cut (no GemCad record) is written on gear 96
-//! with its name as the title and index 2.42 (diamond's, the material facetlab traces it in:
-//! GemCad needs one). More than four titles or footnotes are joined into the fourth.
+//! written by facetlab, read and written again, comes back byte for byte. A generated cut (no GemCad record) is written with the
+//! record the `.asc` writer gives it ([`crate::cut::GemcadRecord::generated`]: gear 96, its name
+//! as the title, its own symmetry, the index of diamond or of the material [`write_for`] names);
+//! a design read without an index is written with 2.42 (GemCad needs one). More than four
+//! titles or footnotes are joined into the fourth.
 //!
 //! ```
 //! use facetlab::io::{gem, load_cut};
@@ -85,7 +87,7 @@ mod tests;
 mod write;
 
 pub use read::{parse, read};
-pub use write::write;
+pub use write::{write, write_for};
 
 /// The `f64` that ends the facet records.
 pub const END_OF_FACETS: f64 = -99999.0;

@@ -4,6 +4,7 @@
 //! same solid; and files cut short, oversized or garbled.
 
 use super::*;
+use crate::cut::record::DIAMOND_RI;
 use crate::cut::Cut;
 use crate::geometry::{facet_normal, FacetPlane};
 use crate::io::asc::fixtures::{messy, same_planes, MINI, STAR80};
@@ -280,10 +281,17 @@ fn every_preset_goes_to_gem_and_back_byte_for_byte_and_to_its_own_solid() {
             .unwrap_or_else(|e| panic!("{name}: {e}"));
         let rec = back.record.as_ref().unwrap();
         assert_eq!(rec.title, vec![cut.name.clone()]);
+        // The record the .asc writer gives a generated cut: gear 96, diamond's index, the
+        // cut's own symmetry and mirror.
+        let want = crate::cut::GemcadRecord::generated(&cut, 0, DIAMOND_RI);
         assert_eq!(
-            (rec.gear, rec.gear_offset, rec.ri),
-            (96.0, 0.0, Some(write::DEFAULT_RI))
+            (rec.gear, rec.gear_offset, rec.ri, rec.symmetry, rec.mirror),
+            (96.0, 0.0, Some(DIAMOND_RI), want.symmetry, want.mirror),
+            "{name}"
         );
+        // Written for another material, its index.
+        let quartz = parse(&write_for(&cut, 0, 1.5442).unwrap(), name).unwrap();
+        assert_eq!(quartz.ri, Some(1.5442), "{name}");
         assert_eq!(write(&back, 0).unwrap(), bytes, "{name}");
         // Asked for another gear, the azimuths keep their places (fractional indices).
         let on80 = write(&cut, 80).unwrap();

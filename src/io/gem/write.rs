@@ -3,6 +3,7 @@
 //! grids (see the module docs), the vertices of the solid those planes make, and the trailer.
 
 use super::{snap_angle, snap_distance, snap_index, CONSTANT, END_OF_FACETS, TEXT_SLOTS};
+use crate::cut::record::{GemcadRecord, DIAMOND_RI};
 use crate::cut::Cut;
 use crate::design::{tiers, token, Gear};
 use crate::error::{Error, Result};
@@ -31,7 +32,14 @@ struct Facet {
 /// longer make the solid once put on the file's grids (never seen: they move by less than
 /// 1e-11 of the stone).
 pub fn write(cut: &Cut, gear: u32) -> Result<Vec<u8>> {
-    let record = cut.record.clone().unwrap_or_default();
+    write_for(cut, gear, DIAMOND_RI)
+}
+
+/// [`write`], a generated cut written for the index `ri` (its material's n_D) with the record
+/// [`GemcadRecord::for_file`] gives it, as [`crate::io::asc::write_for`] does; a design keeps
+/// its own record.
+pub fn write_for(cut: &Cut, gear: u32, ri: f64) -> Result<Vec<u8>> {
+    let record = GemcadRecord::for_file(cut, gear, ri);
     let gear = Gear::for_record(&record, gear);
     let teeth = gear.teeth;
     if !(teeth.fract() == 0.0 && teeth != 0.0 && teeth.abs() <= f64::from(i32::MAX)) {
@@ -124,17 +132,7 @@ pub fn write(cut: &Cut, gear: u32) -> Result<Vec<u8>> {
     out.extend_from_slice(&record.ri.unwrap_or(DEFAULT_RI).to_le_bytes());
     out.extend_from_slice(&CONSTANT.to_le_bytes());
     out.extend_from_slice(&gear.offset.to_le_bytes());
-    let title = if cut.record.is_some() {
-        record.title.clone()
-    } else {
-        let t = cut.name.split_whitespace().collect::<Vec<_>>().join(" ");
-        if t.is_empty() {
-            Vec::new()
-        } else {
-            vec![t]
-        }
-    };
-    for s in slots(&title).iter().chain(&slots(&record.footnotes)) {
+    for s in slots(&record.title).iter().chain(&slots(&record.footnotes)) {
         string(&mut out, s);
     }
     Ok(out)
