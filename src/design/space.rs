@@ -78,7 +78,7 @@ impl OpenMeets {
 /// angles on GemCad's grid ([`ANGLE_DECIMALS`]), so the `.asc` written of it is the cut scored.
 ///
 /// Tiers can also be **tied** ([`Tie`]): a key `P1+P2` turns both by its value (a change of
-/// angle, 0 at the design), `C1=C2` sets both to its value; see [`super::ties`].
+/// angle, 0 at the design), `C1=C2` sets both to its value; see `ties.rs`.
 #[derive(Clone, Debug)]
 pub struct DesignSpace {
     pub(super) name: String,

@@ -35,7 +35,7 @@ pub fn write(cut: &Cut, gear: u32) -> Result<Vec<u8>> {
     write_for(cut, gear, DIAMOND_RI)
 }
 
-/// [`write`], a generated cut written for the index `ri` (its material's n_D) with the record
+/// [`write()`], a generated cut written for the index `ri` (its material's n_D) with the record
 /// [`GemcadRecord::for_file`] gives it, as [`crate::io::asc::write_for`] does; a design keeps
 /// its own record.
 pub fn write_for(cut: &Cut, gear: u32, ri: f64) -> Result<Vec<u8>> {
