@@ -3,26 +3,18 @@
 //! against a full default score of the same cut. Run: `cargo bench --bench design`.
 //!
 //! Each design is a bundled preset written to `.asc` and read back, so it is what a faceter's
-//! file gives; the build turns every tier by +0.3°.
+//! file gives; the build turns every tier by +0.3°. Then the checks a design config costs
+//! before its search: loading `optim/design-quartz.toml` and `optim/design-tied.toml` with
+//! their free ranges walked (the default) and with `facet_changes = "skip"`, and the smallest
+//! tie found for a tier that cannot turn alone.
 
+mod common;
+
+use common::median;
 use facetlab::cut::CutSpace;
 use facetlab::design::{DesignSpace, OpenMeets, MEET_TOL};
 use facetlab::metrics::{score, ScoreConfig};
 use std::collections::BTreeMap;
-use std::time::Instant;
-
-/// Median seconds of `runs` calls of `f`.
-fn median(runs: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..runs)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64()
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[runs / 2]
-}
 
 fn main() {
     println!(
@@ -61,4 +53,31 @@ fn main() {
             build / scored
         );
     }
+    let optim = concat!(env!("CARGO_MANIFEST_DIR"), "/optim");
+    for name in ["design-quartz", "design-tied"] {
+        let path = format!("{optim}/{name}.toml");
+        let text = std::fs::read_to_string(&path).expect("bundled config");
+        let skip = text.replacen("[cut]", "[cut]\nfacet_changes = \"skip\"", 1);
+        let walked = median(5, || {
+            facetlab::optimize::Config::from_str(&text, &path).expect("loads");
+        });
+        let skipped = median(5, || {
+            facetlab::optimize::Config::from_str(&skip, &path).expect("loads");
+        });
+        println!(
+            "{name}.toml: loaded with its free ranges walked {:.1} ms, without {:.1} ms (walk {:.1} ms)",
+            walked * 1e3,
+            skipped * 1e3,
+            (walked - skipped) * 1e3
+        );
+    }
+    let split = facetlab::io::load_cut(&format!("{optim}/quartz-split.asc")).expect("design");
+    let space = DesignSpace::new(&split, MEET_TOL, OpenMeets::Refuse).expect("adopts");
+    let tie = median(5, || {
+        assert_eq!(space.tie_for("P1", 42.0).as_deref(), Some("P1+P1b"));
+    });
+    println!(
+        "quartz-split.asc: the tie for P1 found in {:.1} ms",
+        tie * 1e3
+    );
 }

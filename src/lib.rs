@@ -10,7 +10,7 @@
 //!
 //! # A short tour
 //!
-//! Load a preset (or a `.toml`, `.asc`, `.obj`, `.stl` file) with [`io::load_cut`], change its
+//! Load a preset (or a `.toml`, `.asc`, `.gem`, `.obj`, `.stl` file) with [`io::load_cut`], change its
 //! parameters with [`cut::Cut::with_params`] (or build any family with
 //! [`cut::Cut::from_family`]), and score it with [`metrics::score`]:
 //!

@@ -1,7 +1,7 @@
 //! `facetlab score --batch FILE --jsonl OUT [--shard K/N]`: score many cuts, one per line of
 //! FILE, into one JSON line each, resumably.
 //!
-//! **FILE.** One cut per line: a preset name or a path (.toml, .asc, .obj, .stl), optionally
+//! **FILE.** One cut per line: a preset name or a path (.toml, .asc, .gem, .obj, .stl), optionally
 //! followed by `--set KEY=VALUE` pairs (`tolkowsky --set crown_angle=34.5 --set table=0.55`).
 //! Blank lines and lines starting with `#` are skipped. Lines are numbered from 1 as in the file.
 //!

@@ -12,13 +12,13 @@ use std::path::PathBuf;
 /// Flags of `facetlab generate`.
 #[derive(Debug, Args)]
 pub struct GenerateArgs {
-    /// Preset name or path (.toml, .asc, .obj, .stl).
+    /// Preset name or path (.toml, .asc, .gem, .obj, .stl).
     pub cut: String,
     /// Change a parameter: a family's (`--set crown_angle=34.5`) or a design's tier angle
     /// (`--set P1=41.2`, depths solved so its meets are kept). Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
-    /// Output file; the format follows the extension: .toml .asc .obj .stl .svg.
+    /// Output file; the format follows the extension: .toml .asc .gem .obj .stl .svg.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: PathBuf,
 }
@@ -26,7 +26,7 @@ pub struct GenerateArgs {
 /// Flags of `facetlab info`.
 #[derive(Debug, Args)]
 pub struct InfoArgs {
-    /// Preset name or path (.toml, .asc, .obj, .stl).
+    /// Preset name or path (.toml, .asc, .gem, .obj, .stl).
     pub cut: String,
     /// Change a parameter: a family's (`--set table=0.55`) or a design's tier angle
     /// (`--set P1=41.2`, depths solved so its meets are kept). Repeatable.
@@ -63,7 +63,8 @@ pub struct InfoArgs {
 pub fn parse_sets(sets: &[String]) -> Result<BTreeMap<String, f64>> {
     let mut out = BTreeMap::new();
     for s in sets {
-        let Some((k, v)) = s.split_once('=') else {
+        // The value follows the last `=`: a tie `C1=C2=35` sets both tiers to 35.
+        let Some((k, v)) = s.rsplit_once('=') else {
             return Err(Error::invalid(
                 "--set",
                 format!("expected KEY=VALUE, got `{s}`"),
@@ -105,15 +106,14 @@ pub fn generate(a: &GenerateArgs) -> Result<()> {
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
     let bytes: Vec<u8> = match ext.as_str() {
-        "toml" => io::spec::write(&cut).into_bytes(),
-        "asc" => io::asc::write(&cut, 0).into_bytes(),
-        "obj" => io::mesh::write_obj(&cut).into_bytes(),
-        "stl" => io::mesh::write_stl(&cut),
         "svg" => facetlab::plot::diagram::diagram(&cut).into_bytes(),
+        e if io::CUT_FORMATS.contains(&e) => io::write_cut(&cut, e)?,
         _ => {
             return Err(Error::invalid(
                 "-o",
-                format!("cannot write `.{ext}`; allowed extensions: .toml, .asc, .obj, .stl, .svg"),
+                format!(
+                "cannot write `.{ext}`; allowed extensions: .toml, .asc, .gem, .obj, .stl, .svg"
+            ),
             ))
         }
     };

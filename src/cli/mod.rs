@@ -23,8 +23,8 @@ pub use outputs::Exit;
 
 /// facetlab: design, score and optimize cut gemstones with real optics.
 ///
-/// CUT is a preset name (tolkowsky, gia-reference, …) or a path to a .toml spec, a GemCad .asc,
-/// or an .obj/.stl mesh (taken as its convex hull). Lengths are fractions of the girdle
+/// CUT is a preset name (tolkowsky, gia-reference, …) or a path to a .toml spec, a GemCad .asc
+/// or .gem design, or an .obj/.stl mesh (taken as its convex hull). Lengths are fractions of the girdle
 /// diameter (table 0.57), angles are degrees.
 #[derive(Debug, Parser)]
 #[command(
@@ -44,7 +44,8 @@ pub struct Cli {
 /// Subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Write a cut to a file: .toml spec, .asc (GemCad), .obj, .stl or .svg diagram, by extension.
+    /// Write a cut to a file: .toml spec, .asc or .gem (GemCad), .obj, .stl or .svg diagram, by
+    /// extension.
     Generate(cuts::GenerateArgs),
     /// Show a cut's proportions, tiers, facet count, volume and carat weight.
     Info(cuts::InfoArgs),

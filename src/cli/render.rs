@@ -44,7 +44,7 @@ use std::time::Instant;
 /// Flags of `facetlab render`.
 #[derive(clap::Args, Debug, Clone)]
 pub struct RenderArgs {
-    /// Cuts to draw side by side: preset names (tolkowsky, princess) or .toml/.asc/.obj/.stl
+    /// Cuts to draw side by side: preset names (tolkowsky, princess) or .toml/.asc/.gem/.obj/.stl
     /// files.
     #[arg(required = true, value_name = "CUT")]
     pub cuts: Vec<String>,

@@ -13,7 +13,7 @@ use std::path::PathBuf;
 /// Flags of `facetlab report`.
 #[derive(clap::Args, Debug, Clone)]
 pub struct ReportArgs {
-    /// Cuts to report, side by side: preset names or .toml/.asc/.obj/.stl files.
+    /// Cuts to report, side by side: preset names or .toml/.asc/.gem/.obj/.stl files.
     #[arg(required = true, value_name = "CUT")]
     pub cuts: Vec<String>,
     /// Change a parameter: a family's (`--set crown_angle=34.5`) or a design's tier angle

@@ -16,7 +16,7 @@ use std::path::PathBuf;
 /// Flags of `facetlab retarget`.
 #[derive(clap::Args, Debug, Clone)]
 pub struct RetargetArgs {
-    /// The design: a preset name or a .toml/.asc/.obj/.stl file.
+    /// The design: a preset name or a .toml/.asc/.gem/.obj/.stl file.
     #[arg(value_name = "CUT")]
     pub cut: String,
     /// The new refractive index (n_D, 1–10), with a generic dispersion (as `ri:N`).
@@ -35,7 +35,7 @@ pub struct RetargetArgs {
     /// Replace -o if it exists (an input is never replaced).
     #[arg(long)]
     pub force: bool,
-    /// The retargeted design (.asc, .toml, .obj, .stl or .svg, by extension).
+    /// The retargeted design (.asc, .gem, .toml, .obj, .stl or .svg, by extension).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: PathBuf,
 }
@@ -81,10 +81,12 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    if !["asc", "toml", "obj", "stl", "svg"].contains(&ext.as_str()) {
+    if !(ext == "svg" || io::CUT_FORMATS.contains(&ext.as_str())) {
         return Err(Error::invalid(
             "-o",
-            format!("cannot write `.{ext}`; allowed extensions: .asc, .toml, .obj, .stl, .svg"),
+            format!(
+                "cannot write `.{ext}`; allowed extensions: .asc, .gem, .toml, .obj, .stl, .svg"
+            ),
         ));
     }
     super::outputs::check_new_file("-o", &a.output, a.force)?;
@@ -148,11 +150,8 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
     }
     let out = r.file_cut(chosen);
     let bytes: Vec<u8> = match ext.as_str() {
-        "toml" => io::spec::write(&out).into_bytes(),
-        "asc" => io::asc::write(&out, 0).into_bytes(),
-        "obj" => io::mesh::write_obj(&out).into_bytes(),
-        "stl" => io::mesh::write_stl(&out),
-        _ => facetlab::plot::diagram::diagram(&out).into_bytes(),
+        "svg" => facetlab::plot::diagram::diagram(&out).into_bytes(),
+        e => io::write_cut(&out, e)?,
     };
     io::write_atomic(&a.output, &bytes)?;
     println!(

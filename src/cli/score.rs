@@ -37,7 +37,7 @@ use std::path::PathBuf;
 /// Flags of `facetlab score`.
 #[derive(clap::Args, Debug, Clone)]
 pub struct ScoreArgs {
-    /// Cuts to score: preset names (tolkowsky, gia-reference) or .toml/.asc/.obj/.stl files.
+    /// Cuts to score: preset names (tolkowsky, gia-reference) or .toml/.asc/.gem/.obj/.stl files.
     #[arg(required_unless_present = "batch", value_name = "CUT")]
     pub cuts: Vec<String>,
     /// Score the cuts listed in FILE, one per line (a preset or path, optionally with

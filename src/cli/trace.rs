@@ -35,7 +35,7 @@ use std::path::{Path, PathBuf};
 /// Flags of `facetlab trace`.
 #[derive(clap::Args, Debug, Clone)]
 pub struct TraceArgs {
-    /// Cuts to compare: preset names (tolkowsky, gia-reference) or .toml/.asc/.obj/.stl files.
+    /// Cuts to compare: preset names (tolkowsky, gia-reference) or .toml/.asc/.gem/.obj/.stl files.
     #[arg(required = true, value_name = "CUT")]
     pub cuts: Vec<String>,
     /// Light: overhead (undirected, 1.5 D square 4 D above), offset (moved by (−1, −1) D),

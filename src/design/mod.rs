@@ -26,6 +26,9 @@
 //! - `meets.rs`: meets of a solid, the depth solve, a small dense least-squares solver.
 //! - `reangle.rs`: tiers turned to new angles with the meets kept (or reported open).
 //! - `space.rs`: [`DesignSpace`], a design's tier angles as a cut space; [`with_set`].
+//! - `ties.rs`: tied tiers ([`Tie`]: `P1+P2` turned by one change, `C1=C2` set to one angle),
+//!   the smallest tie that keeps a refused tier's meets, and the walk of free ranges before a
+//!   search ([`Breach`]).
 //!
 //! [`GemcadRecord`]: crate::cut::GemcadRecord
 
@@ -35,8 +38,10 @@ mod space;
 #[cfg(test)]
 pub(crate) mod tests;
 mod tiers;
+mod ties;
 
 pub use meets::{find_meets, Meet};
 pub use reangle::{TierModel, MEET_TOL};
 pub use space::{with_set, DesignSpace, OpenMeets, OpenedMeet, KEPT};
 pub use tiers::{fixed, tiers, token, Gear, Tier, TierFacet, ANGLE_DECIMALS, DEPTH_DECIMALS};
+pub use ties::{Breach, Tie, TieKind};

@@ -317,8 +317,18 @@ pub struct Reangled {
 
 /// The facet adjacency of a solid: the unordered pairs of facet names that share an edge.
 pub fn adjacency(s: &Polyhedron) -> BTreeSet<(String, String)> {
+    adjacency_over(s, 0.0)
+}
+
+/// The pairs of facet names that share an edge longer than `min` (of W). At a meet, where
+/// four or more facets pass through one point, which of them share an edge is a matter of
+/// rounding (an edge of 1e-9 W appears between two of them, or between the other two): a
+/// design's own adjacency is the edges longer than its meet tolerance.
+pub fn adjacency_over(s: &Polyhedron, min: f64) -> BTreeSet<(String, String)> {
+    let v = s.vertices();
     s.edges()
         .iter()
+        .filter(|e| v[e.a].distance(v[e.b]) > min)
         .map(|e| {
             let (a, b) = (&s.facets()[e.facets[0]].name, &s.facets()[e.facets[1]].name);
             if a <= b {

@@ -24,8 +24,9 @@
 //! ```
 
 use super::meets::Meet;
-use super::reangle::{adjacency, Reangled, TierModel};
+use super::reangle::{adjacency_over, Reangled, TierModel};
 use super::tiers::{fixed, ANGLE_DECIMALS};
+use super::ties::{Tie, TieKind};
 use crate::cut::{Cut, CutSpace, ParamRange, Unit};
 use crate::error::{Error, Result};
 use crate::geometry::Polyhedron;
@@ -72,19 +73,23 @@ impl OpenMeets {
 /// The space starts from the design as it **adopts its meets**: the first solve snaps every
 /// meet found within the tolerance to an exact point ([`DesignSpace::base`]), so a rounded file
 /// and the solid it means are one design. Every cut built has the base's facets and facet
-/// adjacency (else it is refused: a facet that would vanish, an edge that would appear), and
+/// adjacency (else it is refused: a facet that would vanish, an edge that would appear; edges
+/// shorter than the meet tolerance, a meet's rounding, are not counted), and
 /// angles on GemCad's grid ([`ANGLE_DECIMALS`]), so the `.asc` written of it is the cut scored.
+///
+/// Tiers can also be **tied** ([`Tie`]): a key `P1+P2` turns both by its value (a change of
+/// angle, 0 at the design), `C1=C2` sets both to its value; see `ties.rs`.
 #[derive(Clone, Debug)]
 pub struct DesignSpace {
-    name: String,
-    base: Cut,
-    model: TierModel,
+    pub(super) name: String,
+    pub(super) base: Cut,
+    pub(super) model: TierModel,
     /// The tiers that are keys, in tier order.
-    key_tiers: Vec<usize>,
+    pub(super) key_tiers: Vec<usize>,
     /// The base's angle of every tier.
-    angles: Vec<f64>,
-    open: OpenMeets,
-    adjacency: BTreeSet<(String, String)>,
+    pub(super) angles: Vec<f64>,
+    pub(super) open: OpenMeets,
+    pub(super) adjacency: BTreeSet<(String, String)>,
 }
 
 /// One meet a set of free tiers cannot keep.
@@ -118,7 +123,7 @@ impl DesignSpace {
         let key_tiers = (0..model.names.len())
             .filter(|&t| !model.held[t] && turnable(&model, t))
             .collect();
-        let adjacency = adjacency(&solid);
+        let adjacency = adjacency_over(&solid, tol);
         let base = Cut {
             name: cut.name.clone(),
             family: None,
@@ -180,9 +185,10 @@ impl DesignSpace {
         )
     }
 
-    /// The meets the `free` tiers (key, lower and upper bound) cannot keep: each free tier is
-    /// turned alone to a point of its bounds, then all of them together to different points
-    /// of theirs, and every meet that opens is listed with the tiers that open it alone.
+    /// The meets the `free` keys (key, lower and upper bound; a tier or a [`Tie`]) cannot
+    /// keep: each free key is turned alone to a point of its bounds, then all of them together
+    /// to different points of theirs, and every meet that opens is listed with the keys that
+    /// open it alone.
     pub fn unkeepable(&self, free: &[(String, f64, f64)]) -> Result<Vec<OpenedMeet>> {
         let mut out: Vec<OpenedMeet> = Vec::new();
         let mut note = |meets: Vec<usize>, by: Option<&str>| {
@@ -197,8 +203,8 @@ impl DesignSpace {
                 }
             }
         };
-        // Probe points: away from the start by a share of the box that differs per tier, so
-        // that tiers turned together are turned independently.
+        // Probe points: away from the start by a share of the box that differs per key, so
+        // that keys turned together are turned independently.
         let probe = |k: usize, lo: f64, hi: f64, start: f64| -> f64 {
             let f = 0.5 + 0.41 * ((k as f64 + 1.0) * 0.618_033_988_75).fract() - 0.2;
             let v = lo + (hi - lo) * f;
@@ -210,10 +216,17 @@ impl DesignSpace {
         };
         let mut together = vec![None; self.model.names.len()];
         for (k, (key, lo, hi)) in free.iter().enumerate() {
-            let t = self.tier(key)?;
+            let (tiers, kind) = self.resolve(key)?;
+            let start = self.range(key).map_or(0.0, |r| r.default);
+            let v = probe(k, *lo, *hi, start);
             let mut alone = vec![None; self.model.names.len()];
-            alone[t] = Some(probe(k, *lo, *hi, self.angles[t]));
-            together[t] = alone[t];
+            for &t in &tiers {
+                alone[t] = Some(match kind {
+                    Some(TieKind::Together) => self.angles[t] + v,
+                    _ => v,
+                });
+                together[t] = alone[t];
+            }
             note(self.opened(&self.model.reangled(&alone)?), Some(key));
         }
         note(self.opened(&self.model.reangled(&together)?), None);
@@ -236,7 +249,7 @@ impl DesignSpace {
                 Error::invalid(
                     key,
                     format!(
-                        "{} has no tier `{key}` whose angle can turn; its tiers: {}",
+                        "{} has no tier `{key}` whose angle can turn; its tiers: {} (or a tie of them: `A+B` turned by one change of angle, `A=B` set to one angle)",
                         self.name,
                         self.keys().join(", ")
                     ),
@@ -244,7 +257,112 @@ impl DesignSpace {
             })
     }
 
-    fn opened(&self, r: &Reangled) -> Vec<usize> {
+    /// The names of the tiers a key turns: a tier key its own, a tie ([`Tie`]) its tiers.
+    pub fn tiers_of(&self, key: &str) -> Result<Vec<&str>> {
+        let (tiers, _) = self.resolve(key)?;
+        Ok(tiers
+            .iter()
+            .map(|&t| self.model.names[t].as_str())
+            .collect())
+    }
+
+    /// A key's tiers, and the tie it is (`None`: one tier).
+    pub(super) fn resolve(&self, key: &str) -> Result<(Vec<usize>, Option<TieKind>)> {
+        if let Ok(t) = self.tier(key) {
+            return Ok((vec![t], None));
+        }
+        let Some(tie) = Tie::parse(key) else {
+            return Err(self.tier(key).unwrap_err());
+        };
+        let mut tiers = Vec::new();
+        for name in &tie.tiers {
+            let t = self.tier(name).map_err(|e| match e {
+                Error::Invalid { message, .. } => Error::invalid(key, message),
+                other => other,
+            })?;
+            if tiers.contains(&t) {
+                return Err(Error::invalid(
+                    key,
+                    format!("tier {name} is tied twice; name each tier once"),
+                ));
+            }
+            tiers.push(t);
+        }
+        Ok((tiers, Some(tie.kind)))
+    }
+
+    /// Each tier's angle at `values` (completed by [`CutSpace::complete`]): tier keys first,
+    /// then `=` ties set their tiers, then `+` ties turn theirs. An angle outside (0, 90) is
+    /// an error naming its key.
+    fn targets(&self, values: &BTreeMap<String, f64>) -> Result<Vec<f64>> {
+        let mut target = self.angles.clone();
+        let mut ties = Vec::new();
+        for (k, &v) in values {
+            let (tiers, kind) = self.resolve(k)?;
+            match kind {
+                None => target[tiers[0]] = v,
+                Some(kind) => ties.push((k, v, tiers, kind)),
+            }
+        }
+        // `=` ties first (a tier is in one tie at most: `complete` checks it).
+        for (_, v, tiers, kind) in &ties {
+            if *kind == TieKind::Equal {
+                for &t in tiers {
+                    target[t] = *v;
+                }
+            }
+        }
+        for (k, v, tiers, kind) in &ties {
+            if *kind == TieKind::Together {
+                for &t in tiers {
+                    target[t] += v;
+                    if !(target[t] > 0.0 && target[t] < 90.0) {
+                        return Err(Error::invalid(
+                            k.as_str(),
+                            format!(
+                                "turns tier {} to {:.4}°, outside (0, 90) degrees",
+                                self.model.names[t], target[t]
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        Ok(target)
+    }
+
+    /// The range of a resolved key: a tier's angle (0, 90); a `+` tie's change of angle that
+    /// keeps each of its tiers in (0, 90), default 0; a `=` tie's angle (0, 90), default its
+    /// tiers' mean angle on GemCad's grid.
+    fn range_of(&self, tiers: &[usize], kind: Option<TieKind>) -> ParamRange {
+        let (default, min, max) = match kind {
+            None => (self.angles[tiers[0]], 0.0, 90.0),
+            Some(TieKind::Together) => (
+                0.0,
+                tiers
+                    .iter()
+                    .map(|&t| -self.angles[t])
+                    .fold(f64::MIN, f64::max),
+                tiers
+                    .iter()
+                    .map(|&t| 90.0 - self.angles[t])
+                    .fold(f64::MAX, f64::min),
+            ),
+            Some(TieKind::Equal) => {
+                let mean = tiers.iter().map(|&t| self.angles[t]).sum::<f64>() / tiers.len() as f64;
+                (on_grid(mean), 0.0, 90.0)
+            }
+        };
+        ParamRange {
+            default,
+            min,
+            max,
+            open: true,
+            unit: Unit::Degrees,
+        }
+    }
+
+    pub(super) fn opened(&self, r: &Reangled) -> Vec<usize> {
         (0..r.gaps.len())
             .filter(|&m| r.gaps[m] > self.model.tol + self.model.slack[m])
             .collect()
@@ -324,25 +442,38 @@ impl CutSpace for DesignSpace {
     }
 
     fn range(&self, key: &str) -> Option<ParamRange> {
-        let t = self.tier(key).ok()?;
-        Some(ParamRange {
-            default: self.angles[t],
-            min: 0.0,
-            max: 90.0,
-            open: true,
-            unit: Unit::Degrees,
-        })
+        let (tiers, kind) = self.resolve(key).ok()?;
+        Some(self.range_of(&tiers, kind))
     }
 
     fn complete(&self, values: &BTreeMap<String, f64>) -> Result<BTreeMap<String, f64>> {
         let mut out = self.defaults();
+        let mut given: Vec<Option<&str>> = vec![None; self.model.names.len()];
         for (k, &v) in values {
-            let r = self.range(k).ok_or_else(|| self.tier(k).unwrap_err())?;
+            let (tiers, kind) = self.resolve(k)?;
+            let r = self.range_of(&tiers, kind);
             if !(v.is_finite() && r.contains(v)) {
-                return Err(Error::invalid(
-                    k.as_str(),
-                    format!("{v} is not an angle in (0, 90) degrees"),
-                ));
+                let what = match kind {
+                    Some(TieKind::Together) => format!(
+                        "{v} is not a change of angle that keeps every tier of the tie in (0, 90) degrees; allowed ({:.4}, {:.4})",
+                        r.min, r.max
+                    ),
+                    _ => format!("{v} is not an angle in (0, 90) degrees"),
+                };
+                return Err(Error::invalid(k.as_str(), what));
+            }
+            // A tier in two ties is ambiguous (a tier key beside a tie is not: a `+` tie
+            // turns it from its value, a `=` tie sets it).
+            for &t in tiers.iter().filter(|_| kind.is_some()) {
+                if let Some(other) = given[t].replace(k) {
+                    return Err(Error::invalid(
+                        k.as_str(),
+                        format!(
+                            "tier {} is also in `{other}`; give each tier in one key",
+                            self.model.names[t]
+                        ),
+                    ));
+                }
             }
             out.insert(k.clone(), v);
         }
@@ -350,12 +481,26 @@ impl CutSpace for DesignSpace {
     }
 
     fn build(&self, name: &str, values: &BTreeMap<String, f64>) -> Result<Cut> {
-        let values = self.complete(values)?;
+        self.build_at(name, values, true)
+    }
+}
+
+impl DesignSpace {
+    /// [`CutSpace::build`]; `suggest`: a refusal of one turned key names the tie that would
+    /// keep its meets ([`DesignSpace::tie_for`], a few dozen depth solves).
+    pub(super) fn build_at(
+        &self,
+        name: &str,
+        values: &BTreeMap<String, f64>,
+        suggest: bool,
+    ) -> Result<Cut> {
+        let completed = self.complete(values)?;
+        let target = self.targets(&completed)?;
         let mut angles = vec![None; self.model.names.len()];
         let mut used = BTreeMap::new();
         for &t in &self.key_tiers {
             let key = &self.model.names[t];
-            let v = values[key];
+            let v = target[t];
             if v != self.angles[t] {
                 let g = on_grid(v);
                 angles[t] = Some(g);
@@ -369,23 +514,45 @@ impl CutSpace for DesignSpace {
         if self.open == OpenMeets::Refuse {
             if let Some(&m) = opened.first() {
                 let tiers = self.model.meet_tiers(&self.model.meets[m]);
-                // Name the turned tier of the meet, else the first turned tier.
-                let turned: Vec<&str> = self
-                    .key_tiers
+                // The keys that turn something, and of them the one in the meet (else the
+                // first).
+                let turned: Vec<&String> = completed
                     .iter()
-                    .filter(|&&t| angles[t].is_some())
-                    .map(|&t| self.model.names[t].as_str())
+                    .filter(|(k, _)| {
+                        self.resolve(k)
+                            .is_ok_and(|(ts, _)| ts.iter().any(|&t| angles[t].is_some()))
+                    })
+                    .map(|(k, _)| k)
                     .collect();
                 let key = turned
                     .iter()
-                    .find(|t| tiers.contains(t))
+                    .find(|k| {
+                        self.resolve(k).is_ok_and(|(ts, _)| {
+                            ts.iter()
+                                .any(|&t| tiers.contains(&self.model.names[t].as_str()))
+                        })
+                    })
                     .or(turned.first())
-                    .copied()
+                    .map(|k| k.as_str())
                     .unwrap_or_default();
+                let tie = match turned.as_slice() {
+                    [one] if suggest => {
+                        let v = completed[*one];
+                        self.tie_for(one, v)
+                            .and_then(|t| Some((t, self.change_of(one, v).ok()?.1)))
+                    }
+                    _ => None,
+                };
+                let advice = match tie {
+                    Some((t, d)) => format!(
+                        "tie it: `{t}`, its tiers turned by one change of angle (here {d:+.2}°), keeps every meet"
+                    ),
+                    None => "turn its tiers together".to_string(),
+                };
                 return Err(Error::invalid(
                     key,
                     format!(
-                        "these angles open the meet {} by {:.2e} W; turn its tiers together, or allow open meets (`open_meets = \"allow\"`)",
+                        "these angles open the meet {} by {:.2e} W; {advice}, or allow open meets (`open_meets = \"allow\"`)",
                         self.describe(m),
                         r.gaps[m]
                     ),
@@ -395,7 +562,7 @@ impl CutSpace for DesignSpace {
         let solid = Polyhedron::from_planes(&r.planes)
             .map_err(|e| e.context(&format!("{name}: the design at these angles")))?;
         // Same design: the same edges, except (where allowed) around the opened meets.
-        let now = adjacency(&solid);
+        let now = adjacency_over(&solid, self.model.meet_tol());
         let free: BTreeSet<&str> = opened
             .iter()
             .flat_map(|&m| &self.model.meets[m].facets)

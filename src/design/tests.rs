@@ -370,3 +370,212 @@ fn a_mesh_of_a_preset_has_the_presets_tiers() {
         same_vertices(&b.base().solid, &again.solid, 1e-9);
     }
 }
+
+#[test]
+fn an_index_just_past_the_gears_zero_stays_itself() {
+    use crate::design::Gear;
+    use crate::geometry::facet_normal;
+    let g = Gear {
+        teeth: 96.0,
+        offset: 0.0,
+    };
+    // Index i is azimuth −90° + 3.75° i: 0.0745 of a tooth past index 0 (= 96) stays 0.0745;
+    // within 1e-6 of a tooth either side it is 96, as GemCad writes index 0.
+    for (i, want) in [
+        (0.0745, 0.0745),
+        (95.93, 95.93),
+        (1e-8, 96.0),
+        (96.0 - 1e-8, 96.0),
+        (48.0, 48.0),
+    ] {
+        let n = facet_normal(40.0, -90.0 + 3.75 * i, true);
+        assert!((g.index(n) - want).abs() < 1e-9, "{i}: {}", g.index(n));
+    }
+}
+
+/// A 57-facet brilliant for quartz whose eight pavilion mains are cut as two tiers, `P1` and
+/// `P1b`, at one angle and depth: they meet at the culet, so neither turns alone (the culet
+/// would open) and both, tied, do: the bundled example `optim/quartz-split.asc`.
+pub(crate) const SPLIT: &str = include_str!("../../optim/quartz-split.asc");
+
+fn split() -> DesignSpace {
+    let cut = crate::io::asc::parse(SPLIT.as_bytes(), "split.asc")
+        .unwrap()
+        .to_cut("split")
+        .unwrap();
+    DesignSpace::new(&cut, MEET_TOL, OpenMeets::Refuse).unwrap()
+}
+
+/// Every meet of `space` is a point of `cut`'s planes by brute force: its facets (by name) all
+/// pass through one vertex of the solid within 1e-9 of W.
+fn meets_kept_by_brute_force(space: &DesignSpace, cut: &Cut) {
+    let brute = brute_vertices(&cut.solid.facet_planes());
+    for meet in space.meets() {
+        let names: BTreeSet<String> = meet
+            .facets
+            .iter()
+            .map(|&f| space.model().solid.facets()[f].name.clone())
+            .collect();
+        assert!(
+            brute.iter().any(|(_, on)| names.is_subset(on)),
+            "meet {names:?} is open"
+        );
+    }
+}
+
+#[test]
+fn a_rigid_pair_of_tiers_turns_as_a_tie_and_not_alone() {
+    let space = split();
+    // Alone, either main tier opens the culet; the refusal names the tie that keeps it.
+    for key in ["P1", "P1b"] {
+        let e = space
+            .build("s", &BTreeMap::from([(key.to_string(), 42.0)]))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("P1·P1b") && e.contains("tie it: `P1+P1b`") && e.contains("-1.00°"),
+            "{e}"
+        );
+        assert_eq!(space.tie_for(key, 42.0).as_deref(), Some("P1+P1b"));
+    }
+    // Tied, by one change or to one angle: the same cut, every meet kept, the same design.
+    let together = space
+        .build("s", &BTreeMap::from([("P1+P1b".to_string(), -1.0)]))
+        .unwrap();
+    let equal = space
+        .build("s", &BTreeMap::from([("P1=P1b".to_string(), 42.0)]))
+        .unwrap();
+    assert_eq!(
+        (together.params["P1"], together.params["P1b"]),
+        (42.0, 42.0)
+    );
+    same_facets(&together.solid, &equal.solid, 1e-12);
+    assert!(
+        space.gaps(&together).iter().all(|g| *g <= super::KEPT),
+        "{:?}",
+        space.gaps(&together)
+    );
+    meets_kept_by_brute_force(&space, &together);
+    assert_eq!(
+        together.solid.facets().len(),
+        space.base().solid.facets().len()
+    );
+    assert_eq!(adjacency(&together.solid), adjacency(&space.base().solid));
+    // The tie is a parameter like any other: its range keeps both tiers in (0, 90), its
+    // default is no change; a tier may not be in two ties, nor an unknown tier in one.
+    let r = space.range("P1+P1b").unwrap();
+    assert_eq!((r.default, r.min, r.max), (0.0, -43.0, 47.0));
+    assert_eq!(space.range("P1=P1b").unwrap().default, 43.0);
+    let e = space
+        .complete(&BTreeMap::from([
+            ("P1+P1b".to_string(), 0.5),
+            ("P1b=C1".to_string(), 40.0),
+        ]))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("tier P1b is also in `P1+P1b`"), "{e}");
+    let e = space
+        .complete(&BTreeMap::from([("P1+Z".to_string(), 0.5)]))
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("P1+Z:") && e.contains("no tier `Z`"), "{e}");
+    assert!(space
+        .complete(&BTreeMap::from([("P1+P1b".to_string(), 50.0)]))
+        .is_err());
+    // The free-range probe: tied, nothing opens; alone, the culet.
+    assert!(space
+        .unkeepable(&[("P1+P1b".into(), -2.0, 0.5)])
+        .unwrap()
+        .is_empty());
+    let opened = space.unkeepable(&[("P1".into(), 41.0, 43.5)]).unwrap();
+    assert!(
+        opened.iter().any(|o| o.name.starts_with("P1·P1b at (")),
+        "{opened:?}"
+    );
+    assert!(
+        opened.iter().all(|o| o.by == vec!["P1".to_string()]),
+        "{opened:?}"
+    );
+}
+
+#[test]
+fn the_tie_found_is_the_smallest_that_keeps_the_meets() {
+    // A square crown of two tiers meeting at an apex over a girdle: the tie is A+B.
+    let asc = "g 96 0.0\na -90 0.5 96 24 48 72 n G\na 40 0.35969603 96 48 n A\n\
+               a 40 0.35969603 24 72 n B\na 0 -0.3 96 n U\n";
+    let cut = crate::io::asc::parse(asc.as_bytes(), "p")
+        .unwrap()
+        .to_cut("p")
+        .unwrap();
+    let space = DesignSpace::new(&cut, MEET_TOL, OpenMeets::Refuse).unwrap();
+    assert_eq!(space.tie_for("A", 41.0).as_deref(), Some("A+B"));
+    assert_eq!(space.tie_for("B", 39.0).as_deref(), Some("A+B"));
+    // A tier that turns alone needs no tie.
+    assert_eq!(split().tie_for("C1", 41.0), None);
+    // The split brilliant's tie has two tiers, and no single other tier than P1b helps P1.
+    let space = split();
+    for other in ["P2", "C1", "C2", "C3"] {
+        let key = format!("P1+{other}");
+        assert!(
+            space
+                .build("s", &BTreeMap::from([(key.clone(), -1.0)]))
+                .is_err(),
+            "{key} keeps the culet"
+        );
+    }
+}
+
+#[test]
+fn a_free_range_where_a_facet_vanishes_is_found_with_its_angle() {
+    // The split brilliant's crown mains C1 alone: somewhere below 40° a facet or an edge goes.
+    let space = split();
+    let start = space.defaults();
+    let b = space.breaches(&[("C1".into(), 20.0, 44.0)], &start);
+    assert_eq!(b.len(), 1, "{b:?}");
+    let b = &b[0];
+    assert!(
+        b.at < 40.0 && b.holds.0 > b.at && b.holds.0 - b.at <= 0.0051,
+        "{b:?}"
+    );
+    // Independently, by brute force: the base's facets all touch the solid at the bound that
+    // holds, and at the angle found some facet's plane no longer does, or the edges differ.
+    let touching = |angle: f64| -> (usize, BTreeSet<(String, String)>) {
+        let planes = {
+            // Built with the open-meets rule off and no adjacency check: the raw planes.
+            let r = space.model().reangled(&{
+                let mut a = vec![None; space.model().names.len()];
+                let t = space.model().names.iter().position(|n| n == "C1").unwrap();
+                a[t] = Some(angle);
+                a
+            });
+            r.unwrap().planes
+        };
+        let brute = brute_vertices(&planes);
+        let on: BTreeSet<&String> = brute.iter().flat_map(|(_, on)| on.iter()).collect();
+        let pairs = match Polyhedron::from_planes(&planes) {
+            Ok(s) => super::reangle::adjacency_over(&s, MEET_TOL),
+            Err(_) => BTreeSet::new(),
+        };
+        (on.len(), pairs)
+    };
+    let (n_ok, adj_ok) = touching(b.holds.0);
+    let (n_bad, adj_bad) = touching(b.at);
+    let all = space.base().solid.facets().len();
+    assert_eq!(n_ok, all);
+    assert_eq!(
+        adj_ok,
+        super::reangle::adjacency_over(&space.base().solid, MEET_TOL)
+    );
+    assert!(
+        n_bad < all || adj_bad != adj_ok,
+        "{b:?}: nothing changed at {}",
+        b.at
+    );
+    // A range that holds throughout has no breach; a tie walks like a tier.
+    assert!(space
+        .breaches(&[("C1".into(), 39.0, 41.0)], &start)
+        .is_empty());
+    assert!(space
+        .breaches(&[("P1+P1b".into(), -1.0, 0.5)], &start)
+        .is_empty());
+}

@@ -49,7 +49,9 @@ impl Gear {
         } else {
             let az = n.y.atan2(n.x).to_degrees();
             let i = (offset + g * (az + 90.0) / 360.0).rem_euclid(teeth);
-            if i.round() == 0.0 || i.round() == teeth && (i - teeth).abs() < 1e-6 {
+            // Index 0 (within 1e-6 of a tooth either side) is written as the tooth count; a
+            // fractional index just past it stays itself.
+            if i < 1e-6 || teeth - i < 1e-6 {
                 teeth
             } else {
                 i

@@ -1,7 +1,8 @@
-//! Files: TOML cut specs, bundled presets, meshes (OBJ/STL, glTF scenes), and safe (atomic)
-//! writing of outputs.
+//! Files: TOML cut specs, bundled presets, GemCad designs (`.asc` text and `.gem` binary),
+//! meshes (OBJ/STL, glTF scenes), and safe (atomic) writing of outputs.
 
 pub mod asc;
+pub mod gem;
 pub mod gltf;
 pub mod mesh;
 pub mod png;
@@ -125,7 +126,7 @@ pub fn line_of(text: &str, pos: usize) -> usize {
 }
 
 /// Load a cut from a command-line argument: a preset name (see [`presets::names`]) or a path
-/// to a `.toml` spec, a GemCad `.asc`, or an `.obj`/`.stl` mesh (convex hull).
+/// to a `.toml` spec, a GemCad `.asc` or `.gem`, or an `.obj`/`.stl` mesh (convex hull).
 ///
 /// ```
 /// let cut = facetlab::io::load_cut("tolkowsky").unwrap();
@@ -152,17 +153,18 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
             spec::parse(&text, arg)?.to_cut(&stem, arg)
         }
         Some("asc") => asc::read(path),
+        Some("gem") => gem::read(path),
         Some("obj") | Some("stl") => mesh::read(path),
         Some(other) if path.exists() || other.len() <= 4 => Err(Error::invalid(
             arg,
-            format!("unknown file type `.{other}`; CUT is a preset ({}) or a .toml, .asc, .obj or .stl file", presets::names().join(", ")),
+            format!("unknown file type `.{other}`; CUT is a preset ({}) or a .toml, .asc, .gem, .obj or .stl file", presets::names().join(", ")),
         )),
         _ => match presets::load(arg) {
             Some(cut) => cut,
             None => Err(Error::invalid(
                 arg,
                 format!(
-                    "unknown preset; presets: {}; or give a path to a .toml, .asc, .obj or .stl file",
+                    "unknown preset; presets: {}; or give a path to a .toml, .asc, .gem, .obj or .stl file",
                     presets::names().join(", ")
                 ),
             )),
@@ -170,8 +172,39 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
     }
 }
 
+/// The file types [`write_cut`] writes (by extension, lower case): the ones [`load_cut`] reads.
+pub const CUT_FORMATS: [&str; 5] = ["toml", "asc", "gem", "obj", "stl"];
+
+/// A cut as the bytes of a file of type `format` (one of [`CUT_FORMATS`]): a TOML spec, a
+/// GemCad `.asc` or `.gem` on the design's own gear ([`asc::write`], [`gem::write`]), an OBJ
+/// or a binary STL mesh.
+///
+/// ```
+/// use facetlab::io::{load_cut, write_cut};
+/// let cut = load_cut("tolkowsky").unwrap();
+/// assert!(write_cut(&cut, "asc").unwrap().starts_with(b"GemCad 5.0"));
+/// assert_eq!(write_cut(&cut, "gem").unwrap(), facetlab::io::gem::write(&cut, 0).unwrap());
+/// assert!(write_cut(&cut, "pdf").is_err());
+/// ```
+pub fn write_cut(cut: &crate::cut::Cut, format: &str) -> Result<Vec<u8>> {
+    match format {
+        "toml" => Ok(spec::write(cut).into_bytes()),
+        "asc" => Ok(asc::write(cut, 0).into_bytes()),
+        "gem" => gem::write(cut, 0),
+        "obj" => Ok(mesh::write_obj(cut).into_bytes()),
+        "stl" => Ok(mesh::write_stl(cut)),
+        other => Err(Error::invalid(
+            "format",
+            format!(
+                "cannot write `.{other}`; allowed: {}",
+                CUT_FORMATS.join(", ")
+            ),
+        )),
+    }
+}
+
 /// Read a cut from a file's contents in memory (an upload, say): `format` is the file type
-/// [`load_cut`] picks by extension (`toml`, `asc`, `obj` or `stl`, lower case), `name` the
+/// [`load_cut`] picks by extension (`toml`, `asc`, `gem`, `obj` or `stl`, lower case), `name` the
 /// cut's name, and `source` names the contents in errors.
 ///
 /// ```
@@ -191,6 +224,7 @@ pub fn parse_cut(format: &str, bytes: &[u8], name: &str, source: &str) -> Result
             spec::parse(&text, source)?.to_cut(name, source)
         }
         "asc" => asc::parse(bytes, source)?.to_cut(name),
+        "gem" => gem::parse(bytes, source)?.to_cut(name),
         "obj" | "stl" => {
             let planes = if format == "obj" {
                 mesh::read_obj(bytes, source)?

@@ -110,8 +110,8 @@ pub use engines::{BeamEvaluator, PhotonVerifier};
 pub use guard::{Progress, Status, Stop};
 // Searches and run folders: `search` then `verify`, or both and the folder: `run`.
 pub use run::{
-    design_json, new_run_dir, run, ConvergenceChart, CutWriter, FnWriter, RunOptions, RunPage,
-    RunSummary, TOML_WRITER,
+    design_json, new_run_dir, run, ConvergenceChart, CutWriter, FnWriter, GemWriter, RunOptions,
+    RunPage, RunSummary, TOML_WRITER,
 };
 pub use search::{search, verify, Hooks, Outcome};
 // The trade-off between scores (`[objective] pareto`).

@@ -7,7 +7,7 @@
 //! | `config.toml` | the config as used, every default written out |
 //! | `history.csv` | every evaluated point (see [`super::history`]) |
 //! | `convergence.png`, `.svg` (with a [`ConvergenceChart`]) | best and current cost against evaluations |
-//! | `best.toml` (+ `.asc`, `.obj`, `.svg` with those writers) | the best cut |
+//! | `best.toml` (+ `.asc`, `.gem`, `.obj`, `.svg` with those writers) | the best cut |
 //! | `report.html` (with a [`RunPage`]) | the one-page report of the start and the winners |
 //! | `report.md`, `report.json` | start and winners side by side, verification, timing |
 //!
@@ -64,6 +64,18 @@ fn toml_spec(cut: &Cut) -> Result<String> {
 
 /// The TOML spec writer (always available).
 pub const TOML_WRITER: FnWriter = FnWriter::new("toml", toml_spec);
+
+/// The GemCad `.gem` writer: binary, on the design's own gear ([`crate::io::gem::write`]).
+pub struct GemWriter;
+
+impl CutWriter for GemWriter {
+    fn extension(&self) -> &str {
+        "gem"
+    }
+    fn render(&self, cut: &Cut) -> Result<Vec<u8>> {
+        crate::io::gem::write(cut, 0)
+    }
+}
 
 /// Draws a run's convergence chart (best and current cost against evaluations) from its history,
 /// under `title`, as the PNG `png` and the SVG `svg`. The optimizer draws no charts itself: the

@@ -214,15 +214,15 @@ mod tests {
             [cut]
             file = "round.asc"
             [free]
-            "pavilion-main" = [40.0, 42.0]
+            "pavilion-main" = [40.0, 41.4]
             bezel = [33.0, 36.0]
         "#;
         let config = coarse_run(dir.path(), toml, 40);
         assert!(config.design.is_some());
-        // The bump's top: pavilion mains at 41.5°, bezels at 35°.
+        // The bump's top: pavilion mains at 41.2°, bezels at 35°.
         let bump = |cut: &Cut| -> Result<ScoreSet> {
             let p = &cut.params;
-            let b = (-(p["pavilion-main"] - 41.5).powi(2) - (p["bezel"] - 35.0).powi(2)).exp();
+            let b = (-(p["pavilion-main"] - 41.2).powi(2) - (p["bezel"] - 35.0).powi(2)).exp();
             Ok(ScoreSet::new(b, 0.0, 0.0))
         };
         let outcome = search(&config, &bump, &Hooks::default()).unwrap();

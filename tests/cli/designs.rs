@@ -1,5 +1,6 @@
 //! Issue 23: a design the user brings, optimized over its tier angles with its meets kept;
-//! `--set` on a design; a config whose free angles would open a meet is refused.
+//! `--set` on a design; a config whose free angles would open a meet is refused. Issue 39:
+//! GemCad's binary `.gem` wherever a design is read, tiers tied, free ranges walked.
 
 use super::{bad, ok};
 use tempfile::tempdir;
@@ -12,8 +13,8 @@ seed = 2
 [cut]
 file = "t.asc"
 [free]
-pavilion-main = [40.0, 42.0]
-lower-half = [41.0, 43.5]
+pavilion-main = [40.0, 41.4]
+lower-half = [41.35, 43.5]
 [method]
 starts = 1
 max_evaluations = 12
@@ -137,5 +138,130 @@ fn free_angles_that_open_a_meet_are_refused_naming_the_tier_and_the_meet() {
         p,
         &["score", "pyramid.asc", "--set", "Z=41"],
         &["--set Z", "A, B"],
+    );
+}
+
+/// The bundled split brilliant (`optim/quartz-split.asc`): pavilion mains cut as two tiers,
+/// P1 and P1b, meeting at the culet, so that neither turns alone.
+fn split(dir: &std::path::Path) {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/optim/quartz-split.asc"
+    ))
+    .unwrap();
+    std::fs::write(dir.join("split.asc"), text).unwrap();
+}
+
+/// The meets `info --meets --json` finds within `tol` (of W).
+fn meets(dir: &std::path::Path, cut: &str, tol: &str) -> usize {
+    let j: serde_json::Value = serde_json::from_str(&ok(
+        dir,
+        &["info", cut, "--meets", "--meet-tol", tol, "--json"],
+    ))
+    .unwrap();
+    j["meets"].as_array().unwrap().len()
+}
+
+#[test]
+fn a_tied_rigid_design_from_a_gem_is_optimized_brighter_with_every_meet_kept() {
+    let dir = tempdir().unwrap();
+    let p = dir.path();
+    split(p);
+    // The design as GemCad's binary file, written by facetlab and read back.
+    ok(p, &["generate", "split.asc", "-o", "split.gem"]);
+    let (a, g) = (
+        brilliance(p, "split.asc", &[]),
+        brilliance(p, "split.gem", &[]),
+    );
+    assert!((a - g).abs() < 1e-9, ".asc {a}, .gem {g}");
+    // Neither main tier turns alone; the refusal names the tie that does.
+    bad(
+        p,
+        &["score", "split.gem", "--set", "P1=42"],
+        &["--set P1", "P1·P1b", "tie it: `P1+P1b`"],
+    );
+    let together = brilliance(p, "split.gem", &["--set", "P1+P1b=-1"]);
+    let equal = brilliance(p, "split.gem", &["--set", "P1=P1b=42"]);
+    assert!((together - equal).abs() < 1e-12, "{together} {equal}");
+    assert!(
+        together > g,
+        "the tie's turn moves brilliance: {g} → {together}"
+    );
+    // A config freeing P1 alone is refused with the tie and its bounds; the tie is optimized.
+    let config = |free: &str| {
+        format!("name = \"tied\"\nseed = 3\n[cut]\nfile = \"split.gem\"\n[free]\n{free}\n[method]\nstarts = 1\nmax_evaluations = 12\n[verify]\nwinners = 0\n")
+    };
+    std::fs::write(p.join("alone.toml"), config("P1 = [40.5, 43.7]")).unwrap();
+    bad(
+        p,
+        &["optimize", "alone.toml", "--out", "run"],
+        &[
+            "free.P1",
+            "turning P1 alone opens the meet P1·P1b",
+            "\"P1+P1b\" = [-2.50, 0.70]",
+        ],
+    );
+    std::fs::write(p.join("tied.toml"), config("\"P1+P1b\" = [-2.5, 0.7]")).unwrap();
+    ok(p, &["optimize", "tied.toml", "--out", "run", "--quiet"]);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(p.join("run/report.json")).unwrap()).unwrap();
+    let (start, winner) = (&report["start"], &report["winners"][0]);
+    let score = |c: &serde_json::Value| c["scores"]["brilliance"].as_f64().unwrap();
+    assert!(
+        score(winner) > score(start),
+        "{} → {}",
+        score(start),
+        score(winner)
+    );
+    assert_eq!(winner["params"]["P1"], winner["params"]["P1b"]);
+    assert_eq!(report["design"]["opened"], serde_json::json!([]));
+    // The winner, written as .gem (its planes kept to 1e-12), has every meet of the design,
+    // each within 1e-9 of W.
+    let want = meets(p, "split.gem", "1e-4");
+    assert!(want > 10, "{want} meets");
+    assert_eq!(meets(&p.join("run"), "best.gem", "1e-9"), want);
+    let again = brilliance(&p.join("run"), "best.gem", &[]);
+    assert!(
+        (again - score(winner)).abs() < 1e-6,
+        "best.gem {again}, the run {}",
+        score(winner)
+    );
+    let history = std::fs::read_to_string(p.join("run/history.csv")).unwrap();
+    assert!(
+        history.lines().next().unwrap().ends_with(",P1+P1b"),
+        "{history}"
+    );
+}
+
+#[test]
+fn a_free_range_where_the_design_changes_is_refused_with_its_angle() {
+    let dir = tempdir().unwrap();
+    let p = dir.path();
+    ok(p, &["generate", "tolkowsky", "-o", "t.gem"]);
+    // Tolkowsky's mains turned alone past its lower halves' angle: the mains vanish.
+    let config = "[cut]\nfile = \"t.gem\"\n[free]\npavilion-main = [40.0, 42.0]\n[method]\nstarts = 1\nmax_evaluations = 4\n[verify]\nwinners = 0\n";
+    std::fs::write(p.join("wide.toml"), config).unwrap();
+    let line = bad(
+        p,
+        &["optimize", "wide.toml", "--out", "run"],
+        &[
+            "free.pavilion-main: at 41.",
+            "never touches",
+            "holds from 40.00° to 41.",
+            "facet_changes",
+        ],
+    );
+    assert!(!p.join("run").exists(), "{line}");
+    // Searched anyway when asked.
+    let skip = config.replace("[free]", "facet_changes = \"skip\"\n[free]");
+    std::fs::write(p.join("skip.toml"), skip).unwrap();
+    ok(p, &["optimize", "skip.toml", "--out", "run", "--quiet"]);
+    // A .gem cut short is one line naming the file and the byte.
+    let bytes = std::fs::read(p.join("t.gem")).unwrap();
+    std::fs::write(p.join("short.gem"), &bytes[..bytes.len() / 2]).unwrap();
+    bad(
+        p,
+        &["info", "short.gem"],
+        &["short.gem: byte ", "cut short"],
     );
 }

@@ -18,7 +18,7 @@ use facetlab::error::{Error, Result};
 use facetlab::optimize as opt;
 use facetlab::optimize::{BeamEvaluator, PhotonVerifier, Progress, Status};
 use facetlab::optimize::{Config, Evaluator, Verifier};
-use facetlab::optimize::{CutWriter, FnWriter, Hooks, RunOptions};
+use facetlab::optimize::{CutWriter, FnWriter, GemWriter, Hooks, RunOptions};
 use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -82,12 +82,23 @@ impl Progress for Bar {
     }
 }
 
-/// The writers of the best cut besides `best.toml`: GemCad, OBJ and the SVG diagram.
-fn cut_writers() -> Vec<&'static dyn CutWriter> {
+/// The writers of the best cut besides `best.toml`: GemCad, OBJ and the SVG diagram; and
+/// GemCad's binary `.gem` when the design came as one.
+fn cut_writers(config: &Config) -> Vec<&'static dyn CutWriter> {
     static ASC: FnWriter = FnWriter::new("asc", |c| Ok(facetlab::io::asc::write(c, 0)));
     static OBJ: FnWriter = FnWriter::new("obj", |c| Ok(facetlab::io::mesh::write_obj(c)));
     static SVG: FnWriter = FnWriter::new("svg", |c| Ok(facetlab::plot::diagram::diagram(c)));
-    vec![&ASC, &OBJ, &SVG]
+    static GEM: GemWriter = GemWriter;
+    let mut all: Vec<&'static dyn CutWriter> = vec![&ASC, &OBJ, &SVG];
+    let gem = config.cut_file.as_ref().is_some_and(|(file, _)| {
+        std::path::Path::new(file)
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("gem"))
+    });
+    if gem {
+        all.push(&GEM);
+    }
+    all
 }
 
 /// The objective's scorer and the winners' verifier for a loaded config.
@@ -103,13 +114,14 @@ pub fn real_scorers(config: &Config) -> Scorers {
 }
 
 /// The files a run folder may hold (see `write_folder` in src/optimize/run.rs).
-const RUN_FILES: [&str; 10] = [
+const RUN_FILES: [&str; 11] = [
     "config.toml",
     "history.csv",
     "convergence.png",
     "convergence.svg",
     "best.toml",
     "best.asc",
+    "best.gem",
     "best.obj",
     "best.svg",
     "report.json",
@@ -182,7 +194,7 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     let progress = Bar(pb.clone());
     let opts = RunOptions {
         out: a.out.clone(),
-        writers: cut_writers(),
+        writers: cut_writers(&config),
         convergence: Some(facetlab::plot::optimize::convergence),
         hooks: Hooks {
             stop: Some(&STOP),

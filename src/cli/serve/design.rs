@@ -25,6 +25,10 @@ pub const SLIDER_STEP: f64 = 0.01;
 /// Designs kept adopted (the most recently used).
 const CACHED: usize = 8;
 
+/// What moving one tier alone does: the meets it opens (by their tiers), and the smallest tie
+/// that keeps them.
+type Alone = (Vec<String>, Option<String>);
+
 /// A design adopted once: its space, its tiers' slider bounds and, once probed
 /// ([`Design::probe`]), the meets each tier opens when moved alone.
 #[derive(Debug)]
@@ -33,8 +37,9 @@ pub struct Design {
     pub space: DesignSpace,
     /// Each key with its default angle and slider bounds, in tier order.
     bounds: Vec<(String, f64, f64, f64)>,
-    /// Per key, the meets (by their tiers, `P1·P2·G1`) it opens when moved alone.
-    alone: OnceLock<BTreeMap<String, Vec<String>>>,
+    /// Per key, the meets (by their tiers, `P1·P2·G1`) it opens when moved alone, and the
+    /// smallest tie that keeps them ([`DesignSpace::tie_for`]).
+    alone: OnceLock<BTreeMap<String, Alone>>,
     /// Whether a probe was started.
     probing: AtomicBool,
 }
@@ -73,14 +78,14 @@ impl Design {
     }
 
     /// Turn each tier alone over its slider bounds ([`DesignSpace::unkeepable`]) and keep
-    /// which meets it opens.
+    /// which meets it opens, and the tie that would keep them.
     pub fn probe(&self) {
         let free: Vec<(String, f64, f64)> = self
             .bounds
             .iter()
             .map(|(k, _, lo, hi)| (k.clone(), *lo, *hi))
             .collect();
-        let mut alone: BTreeMap<String, Vec<String>> = BTreeMap::new();
+        let mut alone: BTreeMap<String, Alone> = BTreeMap::new();
         if let Ok(opened) = self.space.unkeepable(&free) {
             for o in opened {
                 let meet = self
@@ -89,11 +94,16 @@ impl Design {
                     .meet_tiers(&self.space.meets()[o.meet])
                     .join("·");
                 for k in o.by {
-                    let list = alone.entry(k).or_default();
+                    let (list, _) = alone.entry(k).or_default();
                     if !list.contains(&meet) {
                         list.push(meet.clone());
                     }
                 }
+            }
+        }
+        for (k, _, _, hi) in &self.bounds {
+            if let Some((_, tie)) = alone.get_mut(k) {
+                *tie = self.space.tie_for(k, *hi);
             }
         }
         let _ = self.alone.set(alone);
@@ -155,7 +165,8 @@ impl Design {
                     "key": k, "default": d, "min": lo, "max": hi, "open": false,
                     "unit": "degrees", "step": SLIDER_STEP,
                     "doc": format!("angle of tier {k} to the girdle plane; its depth is solved so that the design's meets stay meets"),
-                    "alone_opens": alone.map(|a| a.get(k).cloned().unwrap_or_default()),
+                    "alone_opens": alone.map(|a| a.get(k).map(|x| x.0.clone()).unwrap_or_default()),
+                    "tie": alone.and_then(|a| a.get(k).and_then(|x| x.1.clone())),
                 })
             })
             .collect();

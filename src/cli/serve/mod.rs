@@ -14,7 +14,7 @@
 //! - `POST /api/score`: the keys of `score --json` (`"quick": true` uses
 //!   [`ScoreConfig::fast`](facetlab::metrics::ScoreConfig::fast)).
 //! - `POST /api/render`: `image/png` of the face-up (or tilted) picture.
-//! - `POST /api/export`: the cut as `.asc`, `.obj`, `.stl` or `.toml` bytes.
+//! - `POST /api/export`: the cut as `.asc`, `.gem`, `.obj`, `.stl` or `.toml` bytes.
 //! - `POST /api/plan`, `GET /api/plan`: plans from an uploaded rough ([`plans`]).
 //!
 //! Every body is a JSON object: `cut` (a preset name, or the text of a file with `format`),

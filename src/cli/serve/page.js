@@ -57,7 +57,8 @@ const state = {
 function newSlot(source) {
   // design: a cut without a family whose tier angles are sliders (`design_space` of /api/cut);
   // lastKey: the slider moved last (a refusal that names no tier is shown there).
-  return { source, base: {}, set: {}, family: null, design: null, designError: '', lastKey: null, info: null, scores: null, quick: true, t0: 0, img: null, ms: {} };
+  // tied: the design's tiers whose sliders move together (by one change of angle).
+  return { source, base: {}, set: {}, tied: new Set(), family: null, design: null, designError: '', lastKey: null, info: null, scores: null, quick: true, t0: 0, img: null, ms: {} };
 }
 
 // ---- requests -------------------------------------------------------------------------------
@@ -319,6 +320,18 @@ function showNotes() {
     el.textContent = meets.length === 0 ? ''
       : `moving ${t.key} alone opens the meet ${meets[0]}` + (meets.length > 1 ? ` (and ${meets.length - 1} more)` : '');
     el.title = meets.join('\n');
+    if (meets.length && t.tie) {
+      // The smallest tie that keeps the meets: one click ties those sliders.
+      const b = document.createElement('button');
+      b.type = 'button';
+      b.className = 'small tie-it';
+      b.textContent = `tie ${t.tie}`;
+      b.title = 'move these tiers together, by one change of angle: every meet stays';
+      b.addEventListener('click', () => {
+        for (const k of t.tie.split('+')) setTied(k, true);
+      });
+      el.append(' — ', b);
+    }
   }
   designNote();
 }
@@ -330,7 +343,7 @@ function designNote() {
   const d = s.design;
   const stuck = d.probed ? d.tiers.filter((t) => (t.alone_opens || []).length).length : 0;
   let text = `${d.tiers.length} tier angles; each depth is solved so that the design's ${d.meets} meets stay meets.`;
-  text += d.probed ? (stuck ? ` ${stuck} of the tiers cannot move alone: move them together with the tiers of the meet they open.` : ' Moved alone, every tier keeps its meets.')
+  text += d.probed ? (stuck ? ` ${stuck} of the tiers cannot move alone: tie them (☐ tie) to the tiers of the meet they open, and the tied sliders move together.` : ' Moved alone, every tier keeps its meets.')
     : ' Checking which tiers can move alone…';
   $('#params-note').textContent = text;
 }
@@ -350,17 +363,18 @@ function setFileOption(label) {
 function readFile(file) {
   const ext = (file.name.split('.').pop() || '').toLowerCase();
   if (!state.meta.formats.includes(ext)) {
-    $('#source-err').textContent = `cut: ${file.name} is not a .asc, .obj, .stl or .toml file`;
+    $('#source-err').textContent = `cut: ${file.name} is not a .asc, .gem, .obj, .stl or .toml file`;
     return;
   }
   const limit = state.meta.limits.body_bytes;
-  if (file.size > (ext === 'stl' ? limit * 0.7 : limit * 0.9)) {
+  const binary = ext === 'stl' || ext === 'gem';
+  if (file.size > (binary ? limit * 0.7 : limit * 0.9)) {
     $('#source-err').textContent = `cut: ${file.name} is too large (over ${Math.round(limit / 1048576)} MB)`;
     return;
   }
   const reader = new FileReader();
   reader.onerror = () => { $('#source-err').textContent = `cut: could not read ${file.name}`; };
-  if (ext === 'stl') {
+  if (binary) {
     reader.onload = () => {
       const bytes = new Uint8Array(reader.result);
       let bin = '';
@@ -403,7 +417,7 @@ function buildParams() {
     row.className = 'param' + (p.key in s.set ? ' changed' : '');
     row.dataset.key = p.key;
     const unit = p.unit === 'degrees' ? '°' : p.unit === 'fraction' ? '× D' : p.unit === 'ratio' ? 'ratio' : '';
-    row.innerHTML = `<div class="head"><label class="key"></label><span class="unit"></span></div>
+    row.innerHTML = `<div class="head"><label class="key"></label><span class="unit"></span>${fam ? '' : '<label class="tie"><input type="checkbox"> tie</label>'}</div>
       <div class="ctl"><input type="range"><input type="number"></div><div class="err" role="alert"></div><div class="note"></div>`;
     const label = row.querySelector('label');
     label.textContent = fam ? p.key.replace(/_/g, ' ') : p.key;
@@ -425,8 +439,15 @@ function buildParams() {
     }
     range.value = String(value);
     num.value = Number(value).toFixed(dec);
+    const tie = row.querySelector('.tie input');
+    if (tie) {
+      tie.checked = s.tied.has(p.key);
+      tie.setAttribute('aria-label', `tie ${p.key}`);
+      tie.addEventListener('change', () => setTied(p.key, tie.checked));
+    }
     range.addEventListener('input', () => {
       num.value = Number(range.value).toFixed(dec);
+      moveTied(p.key, Number(range.value));
       setParam(p.key, Number(range.value));
     });
     num.addEventListener('change', () => {
@@ -435,11 +456,39 @@ function buildParams() {
         range.value = String(v);
         num.value = v.toFixed(Math.max(dec, decimals(v)));
       }
+      if (Number.isFinite(v)) moveTied(p.key, v);
       setParam(p.key, Number.isFinite(v) ? v : null);
     });
     box.appendChild(row);
   }
   if (s.design) showNotes();
+}
+
+// Tie or untie a design's tier: tied sliders move together.
+function setTied(key, on) {
+  const s = state.slots.a;
+  if (on) s.tied.add(key); else s.tied.delete(key);
+  const box = document.querySelector(`.param[data-key="${CSS.escape(key)}"] .tie input`);
+  if (box) box.checked = on;
+}
+
+// A tied tier moved to `v`: the other tied tiers turn by the same change of angle.
+function moveTied(key, v) {
+  const s = state.slots.a;
+  if (!s.tied.has(key) || s.tied.size < 2) return;
+  const now = (k) => (k in s.set ? s.set[k] : s.base[k]);
+  const d = v - now(key);
+  for (const k of s.tied) {
+    if (k === key || now(k) === undefined) continue;
+    const w = Math.round((now(k) + d) * 1e6) / 1e6;
+    if (Math.abs(w - s.base[k]) < 1e-12) delete s.set[k];
+    else s.set[k] = w;
+    const row = document.querySelector(`.param[data-key="${CSS.escape(k)}"]`);
+    if (!row) continue;
+    row.classList.toggle('changed', k in s.set);
+    row.querySelector('input[type=range]').value = String(w);
+    row.querySelector('input[type=number]').value = w.toFixed(2);
+  }
 }
 
 function setParam(key, v) {

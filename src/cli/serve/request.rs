@@ -18,11 +18,11 @@ use serde_json::{Number, Value};
 use std::collections::BTreeMap;
 
 /// File formats accepted as `format` and produced as `to`.
-pub const FORMATS: [&str; 4] = ["asc", "obj", "stl", "toml"];
+pub const FORMATS: [&str; 5] = ["asc", "gem", "obj", "stl", "toml"];
 
 /// What `POST /api/export` writes: the cut's files, and `html`, its one-page report
 /// ([`facetlab::report`]).
-pub const EXPORTS: [&str; 5] = ["asc", "obj", "stl", "toml", "html"];
+pub const EXPORTS: [&str; 6] = ["asc", "gem", "obj", "stl", "toml", "html"];
 
 /// Where a cut comes from.
 #[derive(Clone, Debug)]
@@ -288,7 +288,7 @@ fn source(b: &Body) -> ApiResult<Source> {
         Ok(None) => {
             return Err(ApiError::bad(
                 "cut",
-                "missing; give a preset name or the text of a .asc, .obj, .stl or .toml file with \"format\"",
+                "missing; give a preset name or the contents of a .asc, .gem, .obj, .stl or .toml file with \"format\" (binary files base64 with \"encoding\")",
             ))
         }
         Err(_) => return Err(ApiError::bad("cut", "must be a string")),

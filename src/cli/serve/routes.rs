@@ -311,6 +311,9 @@ async fn export_cut(
         let bytes: Vec<u8> = match to {
             "toml" => io::spec::write(&cut).into_bytes(),
             "asc" => io::asc::write(&cut, io::asc::DEFAULT_GEAR).into_bytes(),
+            "gem" => io::gem::write(&cut, io::asc::DEFAULT_GEAR).map_err(|e| {
+                ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, "to", e.to_string())
+            })?,
             "obj" => io::mesh::write_obj(&cut).into_bytes(),
             "html" => {
                 let o = facetlab::report::ReportOptions {
@@ -348,6 +351,7 @@ async fn export_cut(
     .await?;
     let kind = match to {
         "stl" => "model/stl",
+        "gem" => "application/octet-stream",
         "html" => "text/html; charset=utf-8",
         _ => "text/plain; charset=utf-8",
     };

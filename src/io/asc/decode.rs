@@ -9,7 +9,8 @@ const CP1252_HIGH: [char; 32] = [
     '\u{02DC}', '\u{2122}', '\u{0161}', '\u{203A}', '\u{0153}', '\u{009D}', '\u{017E}', '\u{0178}',
 ];
 
-fn byte_char(b: u8) -> char {
+/// The character of one Windows-1252 byte (Latin-1 outside 0x80–0x9F).
+pub(in crate::io) fn byte_char(b: u8) -> char {
     match b {
         0x80..=0x9F => CP1252_HIGH
             .get(usize::from(b - 0x80))
@@ -17,6 +18,21 @@ fn byte_char(b: u8) -> char {
             .unwrap_or('\u{FFFD}'),
         _ => char::from(b),
     }
+}
+
+/// `text` as Windows-1252 bytes (what GemCad writes): ASCII and Latin-1 as themselves, the
+/// characters of 0x80–0x9F (€, ‘ ’ “ ”, – —, …) as their bytes, anything else as `?`.
+pub(in crate::io) fn encode_cp1252(text: &str) -> Vec<u8> {
+    text.chars()
+        .map(|c| match u32::from(c) {
+            0..=0x7F | 0xA0..=0xFF => u8::try_from(u32::from(c)).unwrap_or(b'?'),
+            _ => CP1252_HIGH
+                .iter()
+                .position(|&h| h == c)
+                .and_then(|i| u8::try_from(0x80 + i).ok())
+                .unwrap_or(b'?'),
+        })
+        .collect()
 }
 
 /// UTF-8 where valid, Windows-1252/Latin-1 for the other bytes; a BOM is dropped.
@@ -76,4 +92,20 @@ pub(super) fn continues(t: &str) -> bool {
 
 pub(super) fn number(s: &str) -> Option<f64> {
     s.parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn windows_1252_both_ways() {
+        let all: Vec<u8> = (1..=255).collect();
+        let text: String = all.iter().map(|&b| byte_char(b)).collect();
+        assert_eq!(encode_cp1252(&text), all);
+        assert_eq!(
+            encode_cp1252("Caf\u{e9} \u{2013} \u{20ac}5 \u{4e2d}"),
+            b"Caf\xe9 \x96 \x805 ?"
+        );
+    }
 }

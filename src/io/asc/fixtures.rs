@@ -6,7 +6,7 @@ use crate::geometry::FacetPlane;
 
 /// A small brilliant on a 96 gear: 16 girdle facets (tier named `G`), 8 pavilion mains,
 /// 8 bezels, table, culet. Girdle radius 1 (GemCad units), girdle 0.06 thick at the mains.
-pub(super) const MINI: &str = "GemCad 5.0
+pub(in crate::io) const MINI: &str = "GemCad 5.0
 g 96 0.0
 y 8 y
 I 2.42
@@ -24,7 +24,7 @@ F Footnote one
 /// title, glued `g96` and `a-41`, the girdle's index list wrapped over three lines, a
 /// fractional table index, negative and out-of-turn bezel indices, the culet as `a -0`,
 /// unknown lines and blank lines, a repeated facet.
-pub(super) fn messy() -> Vec<u8> {
+pub(in crate::io) fn messy() -> Vec<u8> {
     let mut b: Vec<u8> =
         b"\xEF\xBB\xBFGemCad 5.0\r\ng96 0.0\r\ny8y\r\nI 2.42\r\nH Mini brilliant \x96 test\r\n"
             .to_vec();
@@ -40,7 +40,7 @@ pub(super) fn messy() -> Vec<u8> {
     b
 }
 
-pub(super) fn same_planes(
+pub(in crate::io) fn same_planes(
     a: &[FacetPlane],
     b: &[FacetPlane],
     tol: f64,
@@ -64,7 +64,7 @@ pub(super) fn same_planes(
 }
 
 /// A gear-80 design of our own with every kind of metadata GemCad writes.
-pub(super) const STAR80: &str = "GemCad 5.0
+pub(in crate::io) const STAR80: &str = "GemCad 5.0
 g 80 0.0
 y 5 y
 I 1.61

@@ -64,6 +64,8 @@
 //!
 //! # Files
 //!
+//! - `check.rs`: the rules for a design's index, gear and offset, shared with the `.gem`
+//!   reader ([`crate::io::gem`]);
 //! - `decode.rs`: bytes to lines (UTF-8, Windows-1252, Latin-1; line ends), keywords and
 //!   continuation lines;
 //! - `read.rs`: the reader: [`parse`], [`read()`], [`AscDesign`] and its [`AscTier`]s, and the
@@ -78,18 +80,21 @@
 //! [`facet_normal`]: crate::geometry::facet_normal
 //! [`GemcadRecord::scale`]: crate::cut::GemcadRecord::scale
 
-mod decode;
+pub(in crate::io) mod check;
+pub(in crate::io) mod decode;
 mod instructions;
 mod read;
 mod write;
 
 #[cfg(test)]
-mod fixtures;
+pub(in crate::io) mod fixtures;
 #[cfg(test)]
 mod measure_tests;
 
 pub use instructions::{cutting_instructions, CuttingInstructions, CuttingStep};
+pub(in crate::io) use read::{assemble, generated_tier, read_design, RawFacet};
 pub use read::{parse, read, AscDesign, AscTier};
+pub(in crate::io) use write::derived_name;
 pub use write::{write, write_for};
 
 /// The index gear used when a file has no `g` line, and by [`write()`] for a cut without a

@@ -2,13 +2,15 @@
 //! as [`AscTier`]s, its metadata and its facet planes), and the solid built from it, scaled to
 //! W = 1, with the design's [`GemcadRecord`] on the cut.
 
+use super::check;
 use super::decode::{continues, decode, keyword, lines, number};
 use super::DEFAULT_GEAR;
 use crate::cut::units::outline_size;
 use crate::cut::{Cut, GemcadRecord};
 use crate::error::{Error, Result};
-use crate::geometry::{facet_normal, FacetPlane, Polyhedron};
+use crate::geometry::{facet_normal, DVec3, FacetPlane, Plane, Polyhedron};
 use std::collections::{BTreeMap, HashMap, HashSet};
+use std::hash::{BuildHasherDefault, Hasher};
 use std::path::Path;
 
 /// One `a` line (with its continuation lines) as written in the file.
@@ -82,8 +84,17 @@ impl AscDesign {
 /// Read a GemCad `.asc` file into a cut named after the file stem, with the design's record
 /// (index, titles, notes, gear, symmetry, instructions) in [`Cut::record`].
 pub fn read(path: &Path) -> Result<Cut> {
+    read_design(path, parse)
+}
+
+/// A design file read with `parse` (of a `.asc` or a `.gem`) into a cut named after the file
+/// stem; errors name the file.
+pub(in crate::io) fn read_design(
+    path: &Path,
+    parse: fn(&[u8], &str) -> Result<AscDesign>,
+) -> Result<Cut> {
     let shown = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| Error::io(&shown, e))?;
+    let bytes = crate::io::read_bytes(path)?;
     let design = parse(&bytes, &shown)?;
     let stem = path
         .file_stem()
@@ -183,19 +194,21 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
             'g' => {
                 let mut it = rest.split_whitespace();
                 let g = it.next().unwrap_or("");
-                d.gear = number(g).filter(|v| *v != 0.0).ok_or_else(|| {
+                d.gear = number(g).filter(|v| check::gear_problem(*v).is_none()).ok_or_else(|| {
                     Error::parse(
                         at(line),
                         format!("gear {g:?} is not allowed; write `g TEETH OFFSET` with a non-zero tooth count, e.g. `g 96 0.0`"),
                     )
                 })?;
                 if let Some(o) = it.next() {
-                    d.gear_offset = number(o).ok_or_else(|| {
-                        Error::parse(
-                            at(line),
-                            format!("gear offset {o:?} is not a number; e.g. `g 96 0.0`"),
-                        )
-                    })?;
+                    d.gear_offset = number(o)
+                        .filter(|v| check::offset_problem(*v).is_none())
+                        .ok_or_else(|| {
+                            Error::parse(
+                                at(line),
+                                format!("gear offset {o:?} is not a number; e.g. `g 96 0.0`"),
+                            )
+                        })?;
                 }
             }
             'y' => {
@@ -219,12 +232,16 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
             }
             'I' => {
                 let v = rest.split_whitespace().next().unwrap_or("");
-                d.ri = Some(number(v).filter(|n| *n > 0.0).ok_or_else(|| {
-                    Error::parse(
+                d.ri = Some(
+                    number(v)
+                        .filter(|n| check::ri_problem(*n).is_none())
+                        .ok_or_else(|| {
+                            Error::parse(
                         at(line),
                         format!("refractive index {v:?} is not a positive number, e.g. `I 1.54`"),
                     )
-                })?);
+                        })?,
+                );
             }
             'H' => d.title.push(rest.to_string()),
             'F' => d.footnotes.push(rest.to_string()),
@@ -305,7 +322,7 @@ fn parse_tier(o: &OpenTier, source: &str) -> Result<AscTier> {
 }
 
 /// Generated tier name for unnamed facets, from the facet's effective side and angle.
-pub(super) fn generated_tier(angle: f64, crown: bool) -> String {
+pub(in crate::io) fn generated_tier(angle: f64, crown: bool) -> String {
     if angle == 90.0 {
         "girdle".into()
     } else if angle == 0.0 {
@@ -315,78 +332,206 @@ pub(super) fn generated_tier(angle: f64, crown: bool) -> String {
     }
 }
 
+/// One facet of a design before its name is settled: the line (tier) it is on, its plane in
+/// the file's units (outward normal, any length; offset along the unit normal) and the name
+/// given to it (`n NAME`), if any. Both readers make these: the `.asc` reader from a line's
+/// angle, distance and indices, the `.gem` reader from its facet records' plane vectors
+/// (`p · x = 1`).
+pub(in crate::io) struct RawFacet {
+    /// Index of the facet's line in the design's tiers.
+    pub line: usize,
+    /// Outward normal, of any length: the plane is `normal · x = offset`.
+    pub normal: DVec3,
+    /// The plane's offset along `normal` (as [`FacetPlane::new`] takes it).
+    pub offset: f64,
+    /// The facet's own name.
+    pub name: Option<String>,
+}
+
+/// The tier name of a line: its first name, else the name generated from its angle and side.
+pub(in crate::io) fn line_tier(t: &AscTier) -> String {
+    let crown = !t.angle.is_sign_negative();
+    // A negative distance puts the plane on the other side of the origin.
+    let eff_crown = crown != (t.distance < 0.0);
+    t.name
+        .clone()
+        .unwrap_or_else(|| generated_tier(t.angle.abs(), eff_crown))
+}
+
 /// Facet planes of all tiers, exact repeats dropped, names made unique; and each line's
 /// instructions keyed by the name of its first facet.
 fn planes_of(d: &AscDesign) -> (Vec<FacetPlane>, BTreeMap<String, String>) {
-    let mut planes: Vec<FacetPlane> = Vec::new();
-    let mut line_of: Vec<usize> = Vec::new();
+    let mut facets = Vec::new();
     for (k, t) in d.tiers.iter().enumerate() {
         let a = t.angle.abs();
         let crown = !t.angle.is_sign_negative();
         // A negative distance puts the plane on the other side of the origin: flip it.
         let flip = t.distance < 0.0;
-        let offset = t.distance.abs();
-        let eff_crown = crown != flip;
-        let tier = t
-            .name
-            .clone()
-            .unwrap_or_else(|| generated_tier(a, eff_crown));
         for (index, name) in &t.indices {
             let az = -90.0 + 360.0 * (index - d.gear_offset) / d.gear;
             let n = facet_normal(a, az, crown);
-            let normal = if flip { -n } else { n };
-            let repeat = planes.iter().any(|p| {
-                p.plane.normal.distance(normal) < 1e-9
-                    && (p.plane.offset - offset).abs() < 1e-9 * offset.max(1.0)
+            facets.push(RawFacet {
+                line: k,
+                normal: if flip { -n } else { n },
+                offset: t.distance.abs(),
+                name: name.clone(),
             });
-            if repeat {
-                continue;
-            }
-            let base = name.clone().unwrap_or_else(|| tier.clone());
-            planes.push(FacetPlane::new(normal, offset, base, tier.clone()));
-            line_of.push(k);
         }
     }
-    let names = unique_names(planes.iter().map(|p| p.name.as_str()));
-    for (p, n) in planes.iter_mut().zip(names) {
-        p.name = n;
+    assemble(&d.tiers, facets)
+}
+
+/// The planes of a design's facets: exact repeats dropped (a repeat cuts nothing; real files
+/// have them), each facet named by its own name, else its line's tier name ([`line_tier`]),
+/// names made unique; and each line's instructions keyed by the name of its first facet.
+/// Repeats are found through a grid on the normals, so a design of thousands of facets is
+/// read in linear time.
+pub(in crate::io) fn assemble(
+    tiers: &[AscTier],
+    facets: Vec<RawFacet>,
+) -> (Vec<FacetPlane>, BTreeMap<String, String>) {
+    let names: Vec<String> = tiers.iter().map(line_tier).collect();
+    // The kept facets: plane, line, own name.
+    let mut kept: Vec<(Plane, usize, Option<String>)> = Vec::with_capacity(facets.len());
+    // Kept planes by their normal's (x, y) on a 1e-6 grid: a repeat (normals within 1e-9)
+    // is in the same cell, or in the neighbouring one when it lies within 1e-9 of the cell's
+    // edge.
+    let cells = |v: f64| {
+        let u = v * 1e6;
+        let c = u.floor();
+        let f = u - c;
+        let c = c as i64;
+        (c - i64::from(f < 1e-3), c + i64::from(f > 1.0 - 1e-3))
+    };
+    // Each cell's last kept plane, and each kept plane's predecessor in its cell.
+    let mut grid: HashMap<(i64, i64), usize, Fast> =
+        HashMap::with_capacity_and_hasher(facets.len(), Fast::default());
+    let mut before: Vec<Option<usize>> = Vec::with_capacity(facets.len());
+    for f in facets {
+        if f.line >= names.len() {
+            continue;
+        }
+        // As `FacetPlane::new`: a plane that is none is kept, to be refused by the solid.
+        let plane = Plane::new(f.normal, f.offset).unwrap_or(Plane {
+            normal: DVec3::Z,
+            offset: f64::NAN,
+        });
+        let (n, offset) = (plane.normal, plane.offset);
+        let ((x0, x1), (y0, y1)) = (cells(n.x), cells(n.y));
+        let repeat = (x0..=x1).any(|x| {
+            (y0..=y1).any(|y| {
+                let mut at = grid.get(&(x, y)).copied();
+                while let Some(i) = at {
+                    let p = &kept[i].0;
+                    if p.normal.distance(n) < 1e-9
+                        && (p.offset - offset).abs() < 1e-9 * offset.max(1.0)
+                    {
+                        return true;
+                    }
+                    at = before[i];
+                }
+                false
+            })
+        });
+        if repeat {
+            continue;
+        }
+        let home = ((n.x * 1e6).floor() as i64, (n.y * 1e6).floor() as i64);
+        before.push(grid.insert(home, kept.len()));
+        kept.push((plane, f.line, f.name));
+    }
+    let unique = unique_names(
+        kept.iter()
+            .map(|(_, line, own)| own.as_deref().unwrap_or(&names[*line])),
+    );
+    let line_of: Vec<usize> = kept.iter().map(|k| k.1).collect();
+    let planes: Vec<FacetPlane> = kept
+        .into_iter()
+        .zip(unique)
+        .map(|((plane, line, _), name)| FacetPlane {
+            plane,
+            name,
+            tier: names[line].clone(),
+        })
+        .collect();
+    // The first kept facet of each line.
+    let mut first: Vec<Option<usize>> = vec![None; tiers.len()];
+    for (i, &l) in line_of.iter().enumerate() {
+        first[l].get_or_insert(i);
     }
     let mut instructions = BTreeMap::new();
-    for (k, t) in d.tiers.iter().enumerate() {
+    for (t, f) in tiers.iter().zip(&first) {
         let Some(text) = t.instructions.as_ref().filter(|s| !s.is_empty()) else {
             continue;
         };
-        if let Some(i) = line_of.iter().position(|&l| l == k) {
+        if let Some(i) = *f {
             instructions.insert(planes[i].name.clone(), text.clone());
         }
     }
     (planes, instructions)
 }
 
+/// The hasher of the reader's own maps (the repeat grid's cells, the facet names): one
+/// multiply-rotate step per word, as rustc's FxHash does. A design's names and cells need no
+/// defence against chosen collisions (a file is read once, its size bounded), and SipHash was
+/// a third of the time of reading a large `.gem`.
+#[derive(Default)]
+struct FastHasher(u64);
+
+type Fast = BuildHasherDefault<FastHasher>;
+
+impl Hasher for FastHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        let mut chunks = bytes.chunks_exact(8);
+        for c in &mut chunks {
+            let mut w = [0u8; 8];
+            w.copy_from_slice(c);
+            self.write_u64(u64::from_le_bytes(w));
+        }
+        let mut w = [0u8; 8];
+        let rest = chunks.remainder();
+        w[..rest.len()].copy_from_slice(rest);
+        self.write_u64(u64::from_le_bytes(w) ^ (rest.len() as u64) << 56);
+    }
+    fn write_u8(&mut self, v: u8) {
+        self.write_u64(u64::from(v));
+    }
+    fn write_u64(&mut self, v: u64) {
+        self.0 = (self.0.rotate_left(5) ^ v).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+    fn write_i64(&mut self, v: i64) {
+        self.write_u64(v as u64);
+    }
+}
+
 /// Names used once stay; names used several times become `NAME-1`, `NAME-2`, … skipping any
 /// name already taken.
 fn unique_names<'a>(bases: impl Iterator<Item = &'a str> + Clone) -> Vec<String> {
-    let mut count: HashMap<&str, usize> = HashMap::new();
+    let mut count: HashMap<&str, usize, Fast> = HashMap::default();
     for b in bases.clone() {
         *count.entry(b).or_default() += 1;
     }
-    let once = |b: &str| count.get(b).copied().unwrap_or(0) <= 1;
-    let mut used: HashSet<String> = bases
-        .clone()
-        .filter(|b| once(b))
-        .map(str::to_string)
+    // A generated `NAME-K` can only meet a name used once: two generated names never meet
+    // (the last `-` of one splits it into its base and its number).
+    let once: HashSet<&str, Fast> = count
+        .iter()
+        .filter(|(_, &c)| c == 1)
+        .map(|(&b, _)| b)
         .collect();
-    let mut next: HashMap<&str, usize> = HashMap::new();
+    let mut next: HashMap<&str, usize, Fast> = HashMap::default();
     bases
         .map(|b| {
-            if once(b) {
+            if once.contains(b) {
                 return b.to_string();
             }
             let k = next.entry(b).or_default();
             loop {
                 *k += 1;
                 let cand = format!("{b}-{k}");
-                if used.insert(cand.clone()) {
+                if !once.contains(cand.as_str()) {
                     return cand;
                 }
             }

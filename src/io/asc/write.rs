@@ -43,7 +43,7 @@ pub(super) fn reader_tier(angle: &str, dist: &str) -> String {
 
 /// Whether `name` is what the reader makes of an unnamed facet of tier `tier` (`tier` or
 /// `tier-K`).
-fn derived_name(name: &str, tier: &str) -> bool {
+pub(in crate::io) fn derived_name(name: &str, tier: &str) -> bool {
     name == tier
         || name
             .strip_prefix(tier)

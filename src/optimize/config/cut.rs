@@ -23,6 +23,11 @@ pub struct RawCut {
     /// A design's meets that the free angles cannot keep: `refuse` (default) or `allow`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub open_meets: Option<String>,
+    /// A free range in which the design changes (a facet vanishes, an edge appears or
+    /// vanishes): `refuse` (default, the config is refused naming the angle) or `skip` (the
+    /// search counts such points as failed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub facet_changes: Option<String>,
     /// Within how much of W four or more facet planes make a meet (default 1e-4).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub meet_tol: Option<f64>,
@@ -41,6 +46,8 @@ pub(super) struct CutSection {
     pub design: Option<Arc<DesignSpace>>,
     /// The design file as the config names it and where it was found (`None` for a preset).
     pub file: Option<(String, Option<PathBuf>)>,
+    /// `facet_changes = "skip"`: free ranges in which the design changes are searched anyway.
+    pub skip_changes: bool,
 }
 
 /// Validate `[cut]`: the cut space and the start cut's full parameter set (defaults filled in).
@@ -60,9 +67,10 @@ pub(super) fn validate(rc: &RawCut, source: &str, at: At) -> Result<CutSection> 
             ))
         }
         (Some(fam_name), None) => {
-            for key in ["open_meets", "meet_tol"] {
+            for key in ["open_meets", "meet_tol", "facet_changes"] {
                 let given = match key {
                     "open_meets" => rc.open_meets.is_some(),
+                    "facet_changes" => rc.facet_changes.is_some(),
                     _ => rc.meet_tol.is_some(),
                 };
                 if given {
@@ -123,11 +131,22 @@ pub(super) fn validate(rc: &RawCut, source: &str, at: At) -> Result<CutSection> 
         }
         other => other,
     })?;
+    let skip_changes = match rc.facet_changes.as_deref() {
+        None | Some("refuse") => false,
+        Some("skip") => true,
+        Some(w) => {
+            return Err(Error::invalid(
+                at("cut.facet_changes"),
+                format!("`{w}` is not allowed; use \"refuse\" (the default) or \"skip\""),
+            ))
+        }
+    };
     Ok(CutSection {
         space,
         start,
         design,
         file,
+        skip_changes,
     })
 }
 

@@ -64,14 +64,22 @@ pub(super) fn validate(
         ));
     }
     let mut free = Vec::new();
-    for key in space.keys() {
+    // The space's own keys in its order, then any other key it knows (a design's tied tiers,
+    // `P1+P2`), in the config's order.
+    let own = space.keys();
+    let others = raw
+        .keys()
+        .map(String::as_str)
+        .filter(|k| !own.contains(k) && space.range(k).is_some());
+    let order: Vec<&str> = own.iter().copied().chain(others).collect();
+    for key in order {
         let Some(&[lo, hi]) = raw.get(key) else {
             continue;
         };
         let Some(def) = space.range(key) else {
             continue;
         };
-        let field = at(&format!("free.{key}"));
+        let field = at(&format!("free.{}", super::cut::quoted(key)));
         if !(lo.is_finite() && hi.is_finite()) {
             return Err(Error::invalid(
                 field,
@@ -108,7 +116,7 @@ pub(super) fn validate(
                 ),
             ));
         }
-        let s = start[key];
+        let s = start.get(key).copied().unwrap_or(def.default);
         if !(lo..=hi).contains(&s) {
             let from = if given.contains_key(key) {
                 "cut.params"

@@ -140,6 +140,9 @@ pub struct Config {
     /// The design's meets the free angles cannot keep (only with `open_meets = "allow"`;
     /// otherwise such a config is refused).
     pub open_meets: Vec<OpenedMeet>,
+    /// `[cut] facet_changes = "skip"`: free ranges in which the design changes were not
+    /// refused.
+    pub skip_changes: bool,
 }
 
 /// Defaults (also in the config-file table of `README.md`).
@@ -251,11 +254,15 @@ impl Config {
 
         let raw_cut = raw.cut.clone().unwrap_or_default();
         let section = cut::validate(&raw_cut, source, &at)?;
-        let (space, start) = (section.space, section.start);
+        let (space, mut start) = (section.space, section.start);
         let rc_params = raw_cut.params.clone();
         let free = free::validate(&raw.free, space.as_ref(), &start, &rc_params, &at)?;
+        // A free key the start does not name (a design's tie) starts at its default.
+        for f in &free {
+            start.entry(f.key.clone()).or_insert(f.start);
+        }
         let open_meets = match &section.design {
-            Some(d) => meets::check(d, &free, &at)?,
+            Some(d) => meets::check(d, &free, &start, section.skip_changes, &at)?,
             None => Vec::new(),
         };
         let weights = objective::validate(&raw.objective.clone().unwrap_or_default(), &at)?;
@@ -341,6 +348,7 @@ impl Config {
             design: section.design,
             cut_file: section.file,
             open_meets,
+            skip_changes: section.skip_changes,
         })
     }
 
@@ -387,6 +395,9 @@ impl Config {
                             .to_string()
                     })),
                     open_meets: Some(d.open_meets().name().to_string()),
+                    facet_changes: Some(
+                        if self.skip_changes { "skip" } else { "refuse" }.to_string(),
+                    ),
                     meet_tol: Some(d.model().meet_tol()),
                     params: self.start.clone(),
                 },

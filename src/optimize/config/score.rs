@@ -282,7 +282,9 @@ mod tests {
         std::fs::write(d.path().join("ruby.asc"), with_note("Material: ruby")).unwrap();
         std::fs::write(d.path().join("bad.asc"), with_note("Material: kryptonite")).unwrap();
         let text = |file: &str, score: &str| {
-            format!("[cut]\nfile = \"{file}\"\n[free]\npavilion-main = [40, 42]\n[score]\n{score}")
+            format!(
+                "[cut]\nfile = \"{file}\"\n[free]\npavilion-main = [40, 41.4]\n[score]\n{score}"
+            )
         };
         let path = d.path().join("c.toml");
         let load =

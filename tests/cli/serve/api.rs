@@ -77,7 +77,7 @@ fn serve_api_answers_and_refuses_bad_requests() {
     assert_eq!(info["family"], "round-brilliant");
     assert!((info["proportions"]["table"].as_f64().unwrap() - 0.55).abs() < 1e-9);
     assert!(info["svg"].as_str().unwrap().contains("<svg"));
-    for to in ["asc", "obj", "stl", "toml"] {
+    for to in ["asc", "gem", "obj", "stl", "toml"] {
         let r = s.post(
             "/api/export",
             &format!(r#"{{"cut": "tolkowsky", "to": "{to}"}}"#),
@@ -90,8 +90,8 @@ fn serve_api_answers_and_refuses_bad_requests() {
                 .contains(&format!("filename=\"tolkowsky.{to}\"")),
             "{to}"
         );
-        let body = if to == "stl" {
-            serde_json::json!({"cut": b64(&r.body), "format": to, "encoding": "base64", "name": "back.stl"})
+        let body = if to == "stl" || to == "gem" {
+            serde_json::json!({"cut": b64(&r.body), "format": to, "encoding": "base64", "name": format!("back.{to}")})
         } else {
             serde_json::json!({"cut": String::from_utf8(r.body).unwrap(), "format": to, "name": format!("back.{to}")})
         };
@@ -335,6 +335,15 @@ fn serve_design_tiers_are_sliders() {
         &upload(serde_json::json!({"pavilion-main": 40.5, "lower-half": 42.0})),
     );
     assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
+    // Tiers tied: turned by one change of angle, or set to one angle.
+    let tied = s
+        .post(
+            "/api/cut",
+            &upload(serde_json::json!({"pavilion-main+lower-half": 0.25})),
+        )
+        .json();
+    let got = tied["proportions"]["pavilion_angle"].as_f64().unwrap();
+    assert!((got - pav - 0.25).abs() < 1e-6, "pavilion angle {got}");
     assert_error(
         &s.post("/api/cut", &upload(serde_json::json!({"nosuch": 40.0}))),
         "set.nosuch",

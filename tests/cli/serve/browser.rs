@@ -86,7 +86,20 @@ fn serve_page_works_in_a_browser() {
         .unwrap();
     let rough = dir.path().join("octa.obj");
     std::fs::write(&rough, super::plan::octahedron_obj(0)).unwrap();
-    rt.block_on(browser_session(&url, &shots, &asc, &round, &rough));
+    // A design two of whose tiers cannot turn alone: the bundled split brilliant, as .gem.
+    let split = dir.path().join("fixture-split.gem");
+    let out = Command::new(env!("CARGO_BIN_EXE_facetlab"))
+        .arg("generate")
+        .arg(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/optim/quartz-split.asc"
+        ))
+        .arg("-o")
+        .arg(&split)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    rt.block_on(browser_session(&url, &shots, &asc, &round, &split, &rough));
 }
 
 async fn browser_session(
@@ -94,6 +107,7 @@ async fn browser_session(
     shots: &std::path::Path,
     asc: &std::path::Path,
     round: &std::path::Path,
+    split: &std::path::Path,
     rough: &std::path::Path,
 ) {
     use chromiumoxide::browser::{Browser, BrowserConfig};
@@ -407,6 +421,39 @@ async fn browser_session(
     page.save_screenshot(
         ScreenshotParams::builder().build(),
         shot("6-design-turned.png"),
+    )
+    .await
+    .unwrap();
+
+    // A .gem whose main tiers meet at the culet: the note under P1 offers the tie; tied, the
+    // two sliders move together and the design turns.
+    upload(&page, split).await;
+    assert!(
+        wait_js(&page, "document.querySelector('#render-a').dataset.name === 'fixture-split' && document.querySelector('#params input[type=range][data-key=P1b]') !== null && !document.querySelector('#score-a-brilliance').classList.contains('stale')", 60).await,
+        "the .gem design did not load with its sliders"
+    );
+    assert!(
+        wait_js(&page, "document.querySelector('.param[data-key=P1] .note .tie-it') !== null && document.querySelector('.param[data-key=P1] .note .tie-it').textContent === 'tie P1+P1b'", 30).await,
+        "no tie offered under P1"
+    );
+    let before_src: String = js(&page, "document.querySelector('#render-a').src").await;
+    let _: bool = js(
+        &page,
+        "(() => { document.querySelector('.param[data-key=P1] .note .tie-it').click(); const r = document.querySelector('#params input[type=range][data-key=P1]'); r.value = '42'; r.dispatchEvent(new Event('input', {bubbles: true})); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(
+            &page,
+            &format!("document.querySelector('#params input[type=number][data-key=P1b]').value === '42.00' && document.querySelector('.param[data-key=P1b] .tie input').checked && document.querySelector('#render-a').src !== {before_src:?} && document.querySelector('.param[data-key=P1] .err').textContent === '' && !document.querySelector('#score-a-brilliance').classList.contains('stale')"),
+            30
+        )
+        .await,
+        "the tied sliders did not move together and turn the design"
+    );
+    page.save_screenshot(
+        ScreenshotParams::builder().build(),
+        shot("6b-design-tied.png"),
     )
     .await
     .unwrap();
