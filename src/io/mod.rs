@@ -3,6 +3,7 @@
 
 pub mod asc;
 pub mod gltf;
+pub mod hdr;
 pub mod mesh;
 pub mod png;
 pub mod presets;

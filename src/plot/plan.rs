@@ -23,30 +23,6 @@ const PANEL: u32 = 360;
 type View = (&'static str, fn(DVec3) -> DVec2);
 const TOP: u32 = 56;
 
-/// Convex hull of 2-D points, counter-clockwise (Andrew's monotone chain).
-fn hull2(mut pts: Vec<DVec2>) -> Vec<DVec2> {
-    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    let turn = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
-    let mut out: Vec<DVec2> = Vec::new();
-    for pass in 0..2 {
-        let start = out.len();
-        let iter: Box<dyn Iterator<Item = &DVec2>> = if pass == 0 {
-            Box::new(pts.iter())
-        } else {
-            Box::new(pts.iter().rev())
-        };
-        for p in iter {
-            while out.len() >= start + 2 && turn(out[out.len() - 2], out[out.len() - 1], *p) <= 0.0
-            {
-                out.pop();
-            }
-            out.push(*p);
-        }
-        out.pop();
-    }
-    out
-}
-
 impl Figure for ThreeViews<'_> {
     fn size(&self) -> (u32, u32) {
         (3 * PANEL, PANEL + TOP)
@@ -85,7 +61,7 @@ impl Figure for ThreeViews<'_> {
             ))?;
             let shadow = |s: &Polyhedron| -> Vec<(i32, i32)> {
                 let pts: Vec<DVec2> = s.vertices().iter().map(|p| project(*p)).collect();
-                hull2(pts)
+                crate::geometry::clip2d::convex_hull(pts)
                     .into_iter()
                     .map(|q| {
                         let q = (q - c2) * scale;
