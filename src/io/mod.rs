@@ -2,6 +2,7 @@
 //! writing of outputs.
 
 pub mod asc;
+pub mod gif;
 pub mod gltf;
 pub mod hdr;
 pub mod mesh;

@@ -6,7 +6,7 @@
 
 use super::camera::{Camera, Projection, Tile};
 use super::env::{luminance, Environment, Rgb};
-use super::ground::{land, GroundField, GroundKind, Lit};
+use super::ground::{land, GroundField, GroundKind, Lit, LitTrace};
 use super::options::PhotoOptions;
 use super::{Photo, PhotoStats};
 use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions};
@@ -289,39 +289,51 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
             .map(|b| rgb_at(opts.ground.kind.albedo(), b.rgb))
             .collect();
         let samples = env.samples(opts.ground_cells);
+        // Round lights are traced in every band (their caustics show fire); a cell of the
+        // diffuse light once, at the middle band's index, standing for every band (its
+        // caustic is too spread to show fire; a coloured stone's bands share its absorption
+        // by their exponents).
+        let alpha_max = bands.iter().map(|b| b.alpha).fold(0.0, f64::max);
+        let mid = &bands[nb / 2];
         let lights: Vec<Lit> = samples
             .iter()
-            .enumerate()
-            .map(|(k, s)| {
-                let per: Vec<(usize, f64, f64, f64)> = if !spectral {
-                    (0..nb)
-                        .map(|b| (b, bands[b].ri, 0.0, rgb_at(s.irradiance, bands[b].rgb)))
-                        .collect()
-                } else if s.point {
-                    (0..nb)
-                        .map(|b| {
-                            let bb = &bands[b];
-                            (b, bb.ri, bb.alpha, rgb_at(s.irradiance, bb.rgb))
+            .map(|s| {
+                let e = |b: &Band| rgb_at(s.irradiance, b.rgb);
+                let traces = if spectral && s.point {
+                    bands
+                        .iter()
+                        .enumerate()
+                        .map(|(i, b)| LitTrace {
+                            ri: b.ri,
+                            alpha: b.alpha,
+                            bands: vec![(i, e(b), 1.0)],
                         })
                         .collect()
                 } else {
-                    // A cell of the sky is traced in one band (in turn), standing for all.
-                    let b = k % nb;
-                    let bb = &bands[b];
-                    let mut v: Vec<(usize, f64, f64, f64)> = Vec::new();
-                    v.push((b, bb.ri, bb.alpha, rgb_at(s.irradiance, bb.rgb) * nb as f64));
-                    v
+                    vec![LitTrace {
+                        ri: mid.ri,
+                        alpha: alpha_max,
+                        bands: bands
+                            .iter()
+                            .enumerate()
+                            .map(|(i, b)| {
+                                let k = if alpha_max > 0.0 {
+                                    b.alpha / alpha_max
+                                } else {
+                                    0.0
+                                };
+                                (i, e(b), k)
+                            })
+                            .collect(),
+                    }]
                 };
-                Lit {
-                    sample: *s,
-                    bands: per,
-                }
+                Lit { sample: *s, traces }
             })
             .collect();
-        // The raster: around the stone, out to where a camera above sees, cells about the
-        // picture's pixels.
+        // The raster: around the stone, out to where a camera above sees, cells about two
+        // of the picture's pixels.
         let reach = (half / view.elevation_deg.to_radians().sin().abs().max(0.4)).max(2.0 * half);
-        let n = ((size as f64 * reach / half) as usize).clamp(64, 1024);
+        let n = ((0.5 * size as f64 * reach / half) as usize).clamp(64, 512);
         let gt = TraceOptions {
             polarization: opts.polarization,
             ..opts.ground_trace
@@ -349,68 +361,61 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
     };
     let trace_opts = opts.trace_options();
     let frame0 = cam.frame();
-    let units: Vec<(usize, Option<usize>)> = (0..groups.len())
-        .flat_map(|g| {
-            let n = tiles.len();
-            let v: Vec<(usize, Option<usize>)> = if n == 0 {
-                vec![(g, None)]
-            } else {
-                (0..n).map(|t| (g, Some(t))).collect()
-            };
-            v
-        })
-        .collect();
-    let layers: Vec<(usize, Layer)> = units
+    // Each group traced (its tiles in parallel) and filled at once, its layers dropped
+    // before the next ones are made: a layer keeps every exit's footprint.
+    let trace_unit = |which: &[usize], tile: Option<&Tile>| -> Layer {
+        let b0 = &bands[which[0]];
+        let mut sink = PhotoSink {
+            layer: Layer::new(which.len()),
+            rot,
+            env: &env,
+            which,
+            bands: &bands,
+            ground: ground.as_ref(),
+            tile,
+            fp: Vec::new(),
+            values: Vec::new(),
+        };
+        let o = TraceOptions {
+            absorption: b0.alpha,
+            ..trace_opts
+        };
+        let frame: Frame = tile.map_or(frame0, |t| t.frame);
+        let window = tile.map_or(&[][..], |t| &t.window[..]);
+        let (st, _) = stone.trace_window_into(&frame, b0.ri, &o, window, &mut sink, false);
+        let mut layer = sink.layer;
+        layer.finish(st);
+        layer
+    };
+    let filled: Vec<(Vec<Raster>, f64, usize, usize)> = groups
         .par_iter()
-        .map(|&(g, t)| {
-            let which = &groups[g];
-            let b0 = &bands[which[0]];
-            let tile = t.map(|t| &tiles[t]);
-            let mut sink = PhotoSink {
-                layer: Layer::new(which.len()),
-                rot,
-                env: &env,
-                which,
-                bands: &bands,
-                ground: ground.as_ref(),
-                tile,
-                fp: Vec::new(),
-                values: Vec::new(),
+        .map(|which| {
+            let layers: Vec<Layer> = if tiles.is_empty() {
+                vec![trace_unit(which, None)]
+            } else {
+                tiles
+                    .par_iter()
+                    .map(|t| trace_unit(which, Some(t)))
+                    .collect()
             };
-            let o = TraceOptions {
-                absorption: b0.alpha,
-                ..trace_opts
-            };
-            let frame: Frame = tile.map_or(frame0, |t| t.frame);
-            let window = tile.map_or(&[][..], |t| &t.window[..]);
-            let (st, _) = stone.trace_window_into(&frame, b0.ri, &o, window, &mut sink, false);
-            let mut layer = sink.layer;
-            layer.finish(st);
-            (g, layer)
+            let cut: f64 = layers.iter().map(|l| l.stats.cut_off).sum();
+            let exits: usize = layers.iter().map(|l| l.exits).sum();
+            let refs: Vec<&Layer> = layers.iter().collect();
+            let r = Layer::fill(&refs, which.len(), size, half, false);
+            (r, cut, exits, layers.len())
         })
         .collect();
     let mut stats = PhotoStats {
         size,
         light: env.name.clone(),
-        traces: layers.len(),
         ..PhotoStats::default()
     };
-    // Per group: its layers filled into one raster per channel.
-    let mut band_rasters: Vec<Raster> = (0..nb).map(|_| Raster::new(size, half)).collect();
-    for (g, which) in groups.iter().enumerate() {
-        let ls: Vec<&Layer> = layers.iter().filter(|l| l.0 == g).map(|l| &l.1).collect();
-        let (mut cut, mut power) = (0.0, 0.0);
-        for l in &ls {
-            cut += l.stats.cut_off;
-            power += l.stats.power_in;
-            stats.exits += l.exits;
-        }
-        let _ = power;
+    let mut band_rasters: Vec<Raster> = Vec::with_capacity(nb);
+    for (r, cut, exits, traces) in filled {
         stats.cut_off = stats.cut_off.max(cut);
-        let filled = Layer::fill(&ls, which.len(), size, half, false);
-        for (r, &b) in filled.into_iter().zip(which) {
-            band_rasters[b] = r;
-        }
+        stats.exits += exits;
+        stats.traces += traces;
+        band_rasters.extend(r);
     }
     let cov = coverage(&solid, &cam, &tiles);
     // The stone's light in XYZ, then the background through the rest of each pixel.

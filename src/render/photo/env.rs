@@ -341,7 +341,7 @@ impl Environment {
     /// The light on a horizontal plane, as directions carrying shares of its irradiance (see
     /// the module documentation): every round light above the horizon in up to seven
     /// directions over its disc, and the rest in about `cells` cells of equal solid angle
-    /// over the upper hemisphere (cells with over 4 % of the light split in four, twice at
+    /// over the upper hemisphere (cells with over 8 % of the light split in four, twice at
     /// most). Their sum is the unshadowed irradiance.
     pub fn samples(&self, cells: usize) -> Vec<LightSample> {
         let mut out = Vec::new();
@@ -386,21 +386,32 @@ impl Environment {
             }
         }
         let mut cells_out: Vec<(Rgb, DVec3)> = Vec::new();
-        let mut total = 0.0;
-        while let Some((z0, z1, a0, a1, depth)) = queue.pop() {
-            let (e, w) = self.cell(z0, z1, a0, a1);
-            let y = luminance(e);
-            if depth < 2 && y > 0.0 && total > 0.0 && y > 0.04 * (total + y) {
-                let (zm, am) = (0.5 * (z0 + z1), 0.5 * (a0 + a1));
-                queue.push((z0, zm, a0, am, depth + 1));
-                queue.push((z0, zm, am, a1, depth + 1));
-                queue.push((zm, z1, a0, am, depth + 1));
-                queue.push((zm, z1, am, a1, depth + 1));
-                continue;
-            }
-            total += y;
-            if y > 0.0 {
-                cells_out.push((e, w));
+        // The whole diffuse light first, so that "bright" means the same for every cell.
+        let top: Vec<(Rgb, DVec3)> = queue
+            .iter()
+            .map(|&(z0, z1, a0, a1, _)| self.cell(z0, z1, a0, a1))
+            .collect();
+        let total: f64 = top.iter().map(|c| luminance(c.0)).sum();
+        for (&cell, &(e, w)) in queue.iter().zip(&top) {
+            let mut stack = vec![(cell, e, w)];
+            while let Some(((z0, z1, a0, a1, depth), e, w)) = stack.pop() {
+                let y = luminance(e);
+                if depth < 2 && y > 0.08 * total && y > 0.0 {
+                    let (zm, am) = (0.5 * (z0 + z1), 0.5 * (a0 + a1));
+                    for c in [
+                        (z0, zm, a0, am, depth + 1),
+                        (z0, zm, am, a1, depth + 1),
+                        (zm, z1, a0, am, depth + 1),
+                        (zm, z1, am, a1, depth + 1),
+                    ] {
+                        let (e, w) = self.cell(c.0, c.1, c.2, c.3);
+                        stack.push((c, e, w));
+                    }
+                    continue;
+                }
+                if y > 0.0 {
+                    cells_out.push((e, w));
+                }
             }
         }
         // Deterministic order: by direction.

@@ -34,8 +34,9 @@ pub struct EnvMap {
     cols: usize,
     /// Cell averages, row-major.
     cells: Vec<Rgb>,
-    /// Azimuth-filtered values at each cell's centre, row-major.
-    filtered: Vec<Rgb>,
+    /// Azimuth-filtered values at each cell's centre, row-major (single precision: a
+    /// quarter of the cache a lookup's rows take).
+    filtered: Vec<[f32; 3]>,
     grey: bool,
 }
 
@@ -142,7 +143,11 @@ impl EnvMap {
             filtered: Vec::new(),
             grey,
         };
-        map.filtered = map.filter_azimuth();
+        map.filtered = map
+            .filter_azimuth()
+            .into_iter()
+            .map(|c| c.map(|v| v as f32))
+            .collect();
         map
     }
 
@@ -212,7 +217,8 @@ impl EnvMap {
             self.filtered[r * self.cols + i0],
             self.filtered[r * self.cols + i1],
         );
-        if f == 0.0 || a == b {
+        let (same, a, b) = (a == b, a.map(f64::from), b.map(f64::from));
+        if f == 0.0 || same {
             return a;
         }
         [0, 1, 2].map(|q| a[q] + (b[q] - a[q]) * f)
@@ -224,27 +230,28 @@ impl EnvMap {
         let az = w.y.atan2(w.x).to_degrees();
         // Column coordinate from azimuth: c + ½ = (180° − az) W / 360°.
         let x = (180.0 - az) * self.cols as f64 / 360.0 - 0.5;
-        // The rows within the kernel's reach; row r spans [top(r + 1), top(r)], the first
-        // reaching up past the zenith and the last down past the nadir. Each weighs the
-        // kernel's mass inside it: mass(top − e) − mass(bottom − e).
+        // The rows the kernel reaches, [e − EDGE, e + EDGE]; row r spans
+        // [top(r + 1), top(r)], the first reaching up past the zenith and the last down past
+        // the nadir. Each weighs the kernel's mass inside it, mass(top − e) − mass(bottom − e),
+        // a row's bottom being the next one's top.
         let h = 180.0 / self.rows as f64;
         let last = self.rows as i64 - 1;
-        let r_mid = ((90.0 - e) / h).floor() as i64;
-        let reach = (EDGE_DEG / h).ceil() as i64 + 1;
-        let (r0, r1) = ((r_mid - reach).max(0), (r_mid + reach).min(last));
+        let r0 = (((90.0 - e - EDGE_DEG) / h).floor() as i64).clamp(0, last);
+        let r1 = (((90.0 - e + EDGE_DEG) / h).floor() as i64).clamp(0, last);
         let mut out = [0.0; 3];
+        let mut top = if r0 == 0 {
+            1.0
+        } else {
+            mass(self.row_top(r0 as usize) - e)
+        };
         for r in r0..=r1 {
-            let top = if r == 0 {
-                1.0
-            } else {
-                mass(self.row_top(r as usize) - e)
-            };
             let bottom = if r == last {
                 0.0
             } else {
                 mass(self.row_top(r as usize + 1) - e)
             };
             let wgt = top - bottom;
+            top = bottom;
             if wgt <= 0.0 {
                 continue;
             }

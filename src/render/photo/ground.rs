@@ -109,14 +109,29 @@ pub struct GroundStats {
     pub irradiance: f64,
 }
 
-/// How the light of one direction is traced: in which bands, each with its index, its
-/// absorption and the horizontal irradiance it brings in that band.
+/// How the light of one direction is traced: one or more traces, each standing for some
+/// bands.
 #[derive(Clone, Debug)]
 pub struct Lit {
     /// The light's direction and irradiance.
     pub sample: LightSample,
-    /// `(band, index, absorption per unit length, irradiance in that band)`.
-    pub bands: Vec<(usize, f64, f64, f64)>,
+    /// Its traces.
+    pub traces: Vec<LitTrace>,
+}
+
+/// One trace of a light's direction: at index `ri` with absorption `alpha` (per unit
+/// length), standing for the bands `(band, irradiance, exponent)`: a band's light is the
+/// trace's light before absorption times `T^exponent`, `T` being what the trace's
+/// absorption left of it (exponent 1: the band traced itself; `α_b / alpha` for a band of
+/// absorption `α_b` that shares the trace: exact for a beam of one path length).
+#[derive(Clone, Debug)]
+pub struct LitTrace {
+    /// Refractive index.
+    pub ri: f64,
+    /// Absorption per unit length.
+    pub alpha: f64,
+    /// `(band, horizontal irradiance, exponent)`.
+    pub bands: Vec<(usize, f64, f64)>,
 }
 
 /// The ground's irradiance per band on a raster of `n × n` cells over `[−half, half]²`
@@ -141,24 +156,33 @@ pub struct GroundField {
     pub stats: GroundStats,
 }
 
-/// One trace of one direction's light: its polygons on the plane with their power per unit
-/// area per unit of the trace's power share, the power (per band) a unit share stands for,
-/// and its shares leaving upward, downward, absorbed and cut off.
+/// A downward exit on the plane: its polygon, its light before absorption per unit area
+/// (per unit of the trace's share) and what absorption left of it.
+struct Landed {
+    poly: Vec<DVec2>,
+    density: f64,
+    kept: f64,
+}
+
+/// One trace's result: where its light landed, per band the power a unit share stands for
+/// and the exponent of its absorption, its shares escaping upward (per band) and its stats.
 struct Trace {
-    polys: Vec<(Vec<DVec2>, f64)>,
-    power: Vec<(usize, f64)>,
+    landed: Vec<Landed>,
+    bands: Vec<(usize, f64, f64)>,
+    up: Vec<f64>,
     stats: TraceStats,
-    up: f64,
 }
 
 /// Collects the exits of a light's trace: downward ones as polygons on the plane.
-struct CausticSink {
+struct CausticSink<'a> {
     rot: DMat3,
     z: f64,
     /// Side of the square a narrow exit's light is spread over.
     dot: f64,
-    polys: Vec<(Vec<DVec2>, f64)>,
-    up: f64,
+    /// The exponents of the bands the trace stands for.
+    exponents: &'a [f64],
+    landed: Vec<Landed>,
+    up: Vec<f64>,
 }
 
 /// Where the ray from `x` along `w` (world, `w.z < 0`) meets the plane `z`.
@@ -168,28 +192,40 @@ pub fn land(x: DVec3, w: DVec3, z: f64) -> DVec2 {
     DVec2::new(x.x + w.x * t, x.y + w.y * t)
 }
 
-impl ExitSink for CausticSink {
+/// `kept^k` (1 when nothing was absorbed; `kept` itself for k = 1).
+#[inline]
+fn kept_to(kept: f64, k: f64) -> f64 {
+    if kept == 1.0 || k == 0.0 {
+        1.0
+    } else if k == 1.0 {
+        kept
+    } else {
+        kept.powf(k)
+    }
+}
+
+impl ExitSink for CausticSink<'_> {
     fn wants_exit_places(&self) -> bool {
         true
     }
-    fn exit(&mut self, e: &ExitBeam, _: &[DVec2]) {
-        // Only reached without a place (never, as places are wanted): count it as escaped.
-        self.up += e.power;
+    fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+        self.exit_at(e, fp, &[]);
     }
     fn exit_at(&mut self, e: &ExitBeam, _: &[DVec2], place: &[DVec3]) {
         let w = self.rot * e.direction;
+        let kept = if e.unabsorbed > 0.0 {
+            (e.power / e.unabsorbed).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
         if w.z >= 0.0 || place.is_empty() {
-            self.up += e.power;
+            for (u, &k) in self.up.iter_mut().zip(self.exponents) {
+                *u += e.unabsorbed * kept_to(kept, k);
+            }
             return;
         }
-        let poly: Vec<DVec2> = if place.len() >= 3 {
-            place
-                .iter()
-                .map(|&x| land(self.rot * x, w, self.z))
-                .collect()
-        } else {
-            let c = land(self.rot * place[0], w, self.z);
-            let h = 0.5 * self.dot;
+        let h = 0.5 * self.dot;
+        let square = |c: DVec2| {
             vec![
                 c + DVec2::new(-h, -h),
                 c + DVec2::new(h, -h),
@@ -197,27 +233,31 @@ impl ExitSink for CausticSink {
                 c + DVec2::new(-h, h),
             ]
         };
-        let a = clip2d::area(&poly);
-        if a > 0.0 && a.is_finite() {
-            self.polys.push((poly, e.power / a));
+        let mut poly: Vec<DVec2> = if place.len() >= 3 {
+            place
+                .iter()
+                .map(|&x| land(self.rot * x, w, self.z))
+                .collect()
         } else {
-            // A beam landing edge-on (a sliver): its light, on a dot.
-            self.polys.push((
-                vec![
-                    poly[0] + DVec2::new(-0.5 * self.dot, -0.5 * self.dot),
-                    poly[0] + DVec2::new(0.5 * self.dot, -0.5 * self.dot),
-                    poly[0] + DVec2::new(0.5 * self.dot, 0.5 * self.dot),
-                    poly[0] + DVec2::new(-0.5 * self.dot, 0.5 * self.dot),
-                ],
-                e.power / (self.dot * self.dot),
-            ));
+            square(land(self.rot * place[0], w, self.z))
+        };
+        let mut a = clip2d::area(&poly);
+        if !(a > 0.0 && a.is_finite()) {
+            // A beam landing edge-on (a sliver): its light on a dot.
+            poly = square(poly[0]);
+            a = self.dot * self.dot;
         }
+        self.landed.push(Landed {
+            poly,
+            density: e.unabsorbed / a,
+            kept,
+        });
     }
 }
 
 impl GroundField {
     /// The ground under `stone` (posed by `rot`, stone → world) with its plane at `z`, on a
-    /// raster of `n` cells over ±`half`, lit by `lights` (each traced in its bands with
+    /// raster of `n` cells over ±`half`, lit by `lights` (each traced as it says, with
     /// `opts`); `albedo` per band; `luminance` turns per-band values into luminance Y for the
     /// bookkeeping.
     #[allow(clippy::too_many_arguments)]
@@ -239,8 +279,10 @@ impl GroundField {
         let verts: Vec<DVec3> = stone.vertices().iter().map(|&v| rot * v).collect();
         let mut e0 = vec![0.0; bands];
         for l in lights {
-            for &(b, _, _, e) in &l.bands {
-                e0[b] += e;
+            for tr in &l.traces {
+                for &(b, e, _) in &tr.bands {
+                    e0[b] += e;
+                }
             }
         }
         // Per light: its shadow (polygon, per-band irradiance taken) and its traces.
@@ -250,77 +292,153 @@ impl GroundField {
             .map(|l| {
                 let w = l.sample.dir;
                 let shadow = clip2d::convex_hull(verts.iter().map(|&x| land(x, -w, z)).collect());
-                let shade: Vec<(usize, f64)> = l.bands.iter().map(|&(b, _, _, e)| (b, e)).collect();
+                let shade: Vec<(usize, f64)> = l
+                    .traces
+                    .iter()
+                    .flat_map(|tr| tr.bands.iter().map(|&(b, e, _)| (b, e)))
+                    .collect();
                 let frame = Frame::new(t * -w).unwrap_or_else(Frame::overhead);
-                let mut traces: Vec<(f64, f64, Trace)> = Vec::new();
-                for &(b, ri, alpha, e) in &l.bands {
-                    // Normal irradiance of the parallel beam.
-                    let normal = e / w.z.max(1e-12);
-                    if let Some(tr) = traces.iter_mut().find(|x| x.0 == ri && x.1 == alpha) {
-                        tr.2.power.push((b, normal * tr.2.stats.area));
-                        continue;
-                    }
-                    let mut sink = CausticSink {
-                        rot,
-                        z,
-                        dot: 0.5 * cell,
-                        polys: Vec::new(),
-                        up: 0.0,
-                    };
-                    let o = TraceOptions {
-                        absorption: alpha,
-                        footprints: false,
-                        ..*opts
-                    };
-                    let (ts, _) = stone.trace_into(&frame, ri, &o, &mut sink, false);
-                    traces.push((
-                        ri,
-                        alpha,
+                let traces = l
+                    .traces
+                    .iter()
+                    .map(|lt| {
+                        let exponents: Vec<f64> = lt.bands.iter().map(|x| x.2).collect();
+                        let mut sink = CausticSink {
+                            rot,
+                            z,
+                            dot: 0.5 * cell,
+                            exponents: &exponents,
+                            landed: Vec::new(),
+                            up: vec![0.0; exponents.len()],
+                        };
+                        let o = TraceOptions {
+                            absorption: lt.alpha,
+                            footprints: false,
+                            ..*opts
+                        };
+                        let (ts, _) = stone.trace_into(&frame, lt.ri, &o, &mut sink, false);
+                        // Normal irradiance of the parallel beam times its cross-section.
+                        let bands = lt
+                            .bands
+                            .iter()
+                            .map(|&(b, e, k)| (b, e / w.z.max(1e-12) * ts.area, k))
+                            .collect();
                         Trace {
-                            polys: sink.polys,
-                            power: vec![(b, normal * ts.area)],
-                            stats: ts,
+                            landed: sink.landed,
+                            bands,
                             up: sink.up,
-                        },
-                    ));
-                }
-                ((shadow, shade), traces.into_iter().map(|x| x.2).collect())
+                            stats: ts,
+                        }
+                    })
+                    .collect();
+                ((shadow, shade), traces)
             })
             .collect();
-        // Bookkeeping (luminance) and the polygons each band's raster receives, in the
-        // lights' order.
+        // The rasters, up to eight bands at once (one walk along each polygon's edges adds
+        // all of them).
+        let chunks: Vec<(usize, usize)> = (0..bands)
+            .step_by(8)
+            .map(|b0| (b0, (b0 + 8).min(bands)))
+            .collect();
+        let fill = |(b0, b1): (usize, usize), shadows: bool| -> Vec<Vec<f64>> {
+            let m = b1 - b0;
+            let mut acc = Accumulator::new(n, half, (0, n), m);
+            let mut v = [0.0; 8];
+            for ((shadow, shade), traces) in &traced {
+                if shadows {
+                    v.fill(0.0);
+                    for &(b, e) in shade {
+                        if (b0..b1).contains(&b) {
+                            v[b - b0] += e;
+                        }
+                    }
+                    acc.add_polygon(shadow, &v[..m]);
+                    continue;
+                }
+                for tr in traces {
+                    if !tr
+                        .bands
+                        .iter()
+                        .any(|x| (b0..b1).contains(&x.0) && x.1 != 0.0)
+                    {
+                        continue;
+                    }
+                    for l in &tr.landed {
+                        v.fill(0.0);
+                        for &(b, phi, k) in &tr.bands {
+                            if (b0..b1).contains(&b) {
+                                v[b - b0] += l.density * kept_to(l.kept, k) * phi;
+                            }
+                        }
+                        acc.add_polygon(&l.poly, &v[..m]);
+                    }
+                }
+            }
+            acc.finish()
+        };
+        let caustic: Vec<Vec<f64>> = chunks
+            .par_iter()
+            .flat_map_iter(|&c| fill(c, false))
+            .collect();
+        let shadow: Vec<Vec<f64>> = chunks
+            .par_iter()
+            .flat_map_iter(|&c| fill(c, true))
+            .collect();
+        // Bookkeeping, per band then as luminance.
+        let per = |f: &dyn Fn(&Trace, usize, f64, f64) -> f64| -> f64 {
+            let mut v = vec![0.0; bands];
+            for (_, traces) in &traced {
+                for tr in traces {
+                    for (i, &(b, phi, k)) in tr.bands.iter().enumerate() {
+                        v[b] += f(tr, i, phi, k);
+                    }
+                }
+            }
+            luminance(&v)
+        };
+        let down_of = |tr: &Trace, k: f64| -> f64 {
+            tr.landed
+                .iter()
+                .map(|l| clip2d::area(&l.poly) * l.density * kept_to(l.kept, k))
+                .sum()
+        };
+        let intercepted = per(&|tr, _, phi, _| phi * tr.stats.power_in);
+        let down = per(&|tr, _, phi, k| phi * down_of(tr, k));
+        let escaped = per(&|tr, i, phi, _| phi * tr.up[i]);
+        let cut_off = per(&|tr, _, phi, _| phi * tr.stats.cut_off);
+        let absorbed = per(&|tr, i, phi, k| {
+            if k == 1.0 {
+                phi * tr.stats.absorbed
+            } else {
+                // A band sharing another's trace: what its exponent took.
+                phi * (tr.stats.power_in - tr.stats.cut_off - tr.up[i] - down_of(tr, k))
+            }
+        });
+        let h2 = cell * cell;
+        let inside = luminance(
+            &caustic
+                .iter()
+                .map(|c| c.iter().sum::<f64>() * h2)
+                .collect::<Vec<_>>(),
+        );
         let mut st = GroundStats {
             directions: lights.len(),
+            intercepted,
+            caustic: inside,
+            caustic_outside: down - inside,
+            escaped,
+            absorbed,
+            cut_off,
             ..GroundStats::default()
         };
-        let lo = DVec2::splat(-half);
-        let hi = DVec2::splat(half);
-        let per_band = |v: &[(usize, f64)]| {
-            let mut p = vec![0.0; bands];
-            for &(b, x) in v {
-                p[b] += x;
+        for ((shadow, shade), _) in &traced {
+            let mut v = vec![0.0; bands];
+            for &(b, e) in shade {
+                v[b] += e;
             }
-            p
-        };
-        for ((shadow, shade), traces) in &traced {
-            let e_y = luminance(&per_band(shade));
+            let e_y = luminance(&v);
             st.shadow_area += clip2d::area(shadow) * e_y;
             st.irradiance += e_y;
-            for tr in traces {
-                let phi = luminance(&per_band(&tr.power));
-                let down: f64 = tr.polys.iter().map(|(p, s)| clip2d::area(p) * s).sum();
-                let inside: f64 = tr
-                    .polys
-                    .iter()
-                    .map(|(p, s)| clip2d::rect_overlap_area(p, lo, hi) * s)
-                    .sum();
-                st.intercepted += phi * tr.stats.power_in;
-                st.caustic += phi * inside;
-                st.caustic_outside += phi * (down - inside);
-                st.escaped += phi * tr.up;
-                st.absorbed += phi * tr.stats.absorbed;
-                st.cut_off += phi * tr.stats.cut_off;
-            }
         }
         if st.irradiance > 0.0 {
             st.shadow_area /= st.irradiance;
@@ -331,31 +449,6 @@ impl GroundField {
             - st.escaped
             - st.absorbed
             - st.cut_off;
-        let fill = |b: usize, shadows: bool| -> Vec<f64> {
-            let mut acc = Accumulator::new(n, half, (0, n), 1);
-            for ((shadow, shade), traces) in &traced {
-                if shadows {
-                    for &(bb, e) in shade {
-                        if bb == b {
-                            acc.add_polygon(shadow, &[e]);
-                        }
-                    }
-                    continue;
-                }
-                for tr in traces {
-                    let p: f64 = tr.power.iter().filter(|x| x.0 == b).map(|x| x.1).sum();
-                    if p == 0.0 {
-                        continue;
-                    }
-                    for (poly, s) in &tr.polys {
-                        acc.add_polygon(poly, &[s * p]);
-                    }
-                }
-            }
-            acc.finish().swap_remove(0)
-        };
-        let caustic: Vec<Vec<f64>> = (0..bands).into_par_iter().map(|b| fill(b, false)).collect();
-        let shadow: Vec<Vec<f64>> = (0..bands).into_par_iter().map(|b| fill(b, true)).collect();
         GroundField {
             z,
             half,

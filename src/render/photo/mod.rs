@@ -28,6 +28,7 @@ pub mod env;
 pub mod envmap;
 pub mod ground;
 mod options;
+mod record;
 pub mod rigs;
 pub mod tone;
 
@@ -40,6 +41,7 @@ pub use env::{Disc, Environment, LightSample, Part};
 pub use envmap::EnvMap;
 pub use ground::{Ground, GroundKind, GroundStats};
 pub use options::{PhotoLight, PhotoOptions, STUDIO};
+pub use record::{caption, turntable, PhotoFrame, PhotoRecord};
 pub use rigs::Rig;
 pub use tone::Tone;
 

@@ -168,7 +168,7 @@ impl PhotoOptions {
             bands: 8,
             polarization: true,
             ground: Ground::default(),
-            ground_cells: 48,
+            ground_cells: 32,
             trace: TraceOptions {
                 split_threshold: crate::render::RenderOptions::SPLIT_THRESHOLD,
                 ..TraceOptions::default()
@@ -177,6 +177,7 @@ impl PhotoOptions {
             ground_trace: TraceOptions {
                 split_threshold: 1e-4,
                 threshold: 1e-7,
+                ray_floor: 0.02,
                 ..TraceOptions::default()
             },
             tone: Tone::Filmic,
