@@ -123,56 +123,52 @@ impl ExitSink for PhotoSink<'_> {
     }
     fn exit_at(&mut self, e: &ExitBeam, fp: &[DVec2], place: &[DVec3]) {
         let w = self.rot * e.direction;
+        // The beam's radiance per unit of the light it started with: its power per unit of
+        // its footprint (in the traced frame's coordinates), before the layer's scaling by
+        // the cross-section.
+        let a_src = clip2d::area(fp);
+        if !(a_src > 0.0) || !(e.power > 0.0) {
+            self.layer.exits += 1;
+            return;
+        }
+        let k = e.power / a_src;
         self.fp.clear();
         match self.tile {
             Some(t) => self.fp.extend(fp.iter().map(|&p| t.image(p))),
             None => self.fp.extend_from_slice(fp),
         }
         let fp = std::mem::take(&mut self.fp);
-        // Copies of a symmetric trace are kept as footprints of their own.
-        let own = ExitBeam { sym: 0, ..*e };
+        self.layer.exits += 1;
         match self.ground {
             Some(g) if w.z < 0.0 && !place.is_empty() => {
-                let a_fp = clip2d::area(&fp);
                 let landed: Vec<DVec2> =
                     place.iter().map(|&x| land(self.rot * x, w, g.z)).collect();
                 let mut done = false;
-                if landed.len() == fp.len() && landed.len() >= 3 && a_fp > 0.0 {
-                    // The ground polygon → footprint map (affine, from three vertex pairs).
+                if landed.len() == fp.len() && landed.len() >= 3 {
+                    // The ground polygon → picture map (affine, from three vertex pairs).
                     if let Some((m, t)) = affine(&landed, &fp) {
-                        self.layer.exits += 1;
-                        let k = e.power / a_fp;
-                        let which = self.which;
                         let mut pieces: Vec<(Vec<DVec2>, i64, i64)> = Vec::new();
-                        let small = g.pieces(&landed, 48, |piece, i, j| {
+                        done = g.pieces(&landed, 48, |piece, i, j| {
                             pieces.push((piece.iter().map(|&p| m * p + t).collect(), i, j));
                         });
-                        if small {
-                            for (poly, i, j) in pieces {
-                                self.ground_values(g, Ok((i, j)));
-                                let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
-                                let _ = which;
-                                self.layer.add_polygon(&poly, &v);
-                            }
-                            done = true;
-                        } else {
-                            self.layer.exits -= 1;
+                        for (poly, i, j) in pieces {
+                            self.ground_values(g, Ok((i, j)));
+                            let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
+                            self.layer.add_polygon(&poly, &v);
                         }
                     }
                 }
                 if !done {
                     let c = clip2d::centroid(&landed).unwrap_or(landed[0]);
                     self.ground_values(g, Err(c));
-                    let v = std::mem::take(&mut self.values);
-                    self.layer.record(&own, &fp, &v);
-                    self.values = v;
+                    let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
+                    self.layer.add_polygon(&fp, &v);
                 }
             }
             _ => {
                 self.env_values(w);
-                let v = std::mem::take(&mut self.values);
-                self.layer.record(&own, &fp, &v);
-                self.values = v;
+                let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
+                self.layer.add_polygon(&fp, &v);
             }
         }
         self.fp = fp;

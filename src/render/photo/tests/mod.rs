@@ -3,6 +3,9 @@
 
 use super::*;
 use crate::geometry::canonical::canonical;
+
+mod ground;
+mod perspective;
 use crate::optics::Material;
 use crate::render::{render, Light, RenderOptions, Tilt};
 use crate::testkit::{princess, tolkowsky};
@@ -148,4 +151,28 @@ fn environment_gives_the_iso_and_cos_pictures() {
     // The picture is the same whatever the map's turn for a map that does not depend on
     // azimuth, and the stone is canonical (a moved copy gives the same picture).
     let _ = canonical(&solid);
+}
+
+/// Check 1 (perspective): the white furnace holds in perspective tiles too.
+#[test]
+fn white_furnace_perspective() {
+    for (name, solid) in [("tolkowsky", tolkowsky()), ("princess", princess())] {
+        let mut o = small(
+            Environment::uniform(),
+            40,
+            View {
+                elevation_deg: 35.0,
+                azimuth_deg: 15.0,
+            },
+        );
+        o.distance_mm = Some(30.0);
+        o.tile = 8;
+        o.trace.threshold = 1e-12;
+        o.trace.max_depth = 100_000;
+        let p = photo(&solid, &o);
+        let err = furnace_error(&p);
+        eprintln!("furnace perspective {name}: worst pixel {err:.2e}");
+        assert!(err < 1e-4, "{name}: {err}");
+        assert_eq!(p.stats.traces, 25 * p.stats.bands);
+    }
 }
