@@ -75,12 +75,7 @@ impl<F: FnMut(&ExitBeam) -> [f64; 5], G: Fn(&ExitBeam) -> bool> ExitSink for Lay
     }
     fn symmetries(&mut self, maps: &[(u16, [f64; 4])]) {
         self.copies = maps.len();
-        let n = maps.iter().map(|&(i, _)| i as usize + 1).max().unwrap_or(1);
-        let mut m = vec![[1.0, 0.0, 0.0, 1.0]; n];
-        for &(i, map) in maps {
-            m[i as usize] = map;
-        }
-        self.layer.maps = m;
+        self.layer.set_symmetries(maps);
     }
     fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
         let c = (self.value)(e);
@@ -102,6 +97,18 @@ impl Layer {
             drawn: Vec::new(),
             values: Vec::new(),
         }
+    }
+
+    /// The symmetries' footprint maps a trace hands its copies out under
+    /// ([`ExitSink::symmetries`]), for [`Layer::record`] to draw copies from their traced
+    /// footprint.
+    pub(super) fn set_symmetries(&mut self, maps: &[(u16, [f64; 4])]) {
+        let n = maps.iter().map(|&(i, _)| i as usize + 1).max().unwrap_or(1);
+        let mut m = vec![[1.0, 0.0, 0.0, 1.0]; n];
+        for &(i, map) in maps {
+            m[i as usize] = map;
+        }
+        self.maps = m;
     }
 
     /// Keep exit `e` with its footprint `fp` and its values per unit of its power `c` (the

@@ -34,8 +34,9 @@ pub(super) struct Band {
 /// colour do not change with wavelength is traced once, in three pseudo-bands that carry
 /// linear sRGB's red, green and blue (their XYZ weights being what the spectral bands would
 /// give them, so the two ways give the same colours); any other in fire's bands (faint ones
-/// merged into a neighbour, as fire pictures do).
-pub(super) fn bands(opts: &PhotoOptions, mm_per_unit: f64) -> (Vec<Band>, bool) {
+/// merged into a neighbour, as fire pictures do). Under `grey` light (every radiance grey,
+/// and every ground is) the three pseudo-bands are one.
+pub(super) fn bands(opts: &PhotoOptions, mm_per_unit: f64, grey: bool) -> (Vec<Band>, bool) {
     let m = &opts.material;
     let body = m.colour.as_ref();
     let absorption = |l: f64| body.map_or(0.0, |c| c.alpha(l) * mm_per_unit);
@@ -50,6 +51,17 @@ pub(super) fn bands(opts: &PhotoOptions, mm_per_unit: f64) -> (Vec<Band>, bool) 
             }
         }
         let ri = m.ri(589.3);
+        if grey {
+            // Grey light on a grey ground: one channel (red, equal to the others) with the
+            // white's XYZ weight.
+            let band = Band {
+                xyz: cols[0] + cols[1] + cols[2],
+                rgb: [1.0, 0.0, 0.0],
+                ri,
+                alpha: 0.0,
+            };
+            return (vec![band], false);
+        }
         let unit = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
         let v = (0..3)
             .map(|c| Band {
@@ -115,6 +127,9 @@ impl ExitSink for PhotoSink<'_> {
     fn wants_footprints(&self) -> bool {
         true
     }
+    fn symmetries(&mut self, maps: &[(u16, [f64; 4])]) {
+        self.layer.set_symmetries(maps);
+    }
     fn wants_exit_places(&self) -> bool {
         self.ground.is_some()
     }
@@ -132,6 +147,15 @@ impl ExitSink for PhotoSink<'_> {
             return;
         }
         let k = e.power / a_src;
+        // Orthographic with the environment all round: the layer keeps a symmetric trace's
+        // copies as maps of the traced footprint.
+        if self.tile.is_none() && self.ground.is_none() {
+            self.env_values(w);
+            let v = std::mem::take(&mut self.values);
+            self.layer.record(e, fp, &v);
+            self.values = v;
+            return;
+        }
         self.fp.clear();
         match self.tile {
             Some(t) => self.fp.extend(fp.iter().map(|&p| t.image(p))),
@@ -268,7 +292,7 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
         view.world_azimuth_deg(),
         opts.light_rotation_deg - opts.turn_deg,
     );
-    let (bands, spectral) = bands(opts, mm_per_unit);
+    let (bands, spectral) = bands(opts, mm_per_unit, env.is_grey());
     let nb = bands.len();
     let luminance_of = |v: &[f64]| -> f64 { v.iter().zip(&bands).map(|(x, b)| x * b.xyz.y).sum() };
 

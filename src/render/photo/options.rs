@@ -185,6 +185,27 @@ impl PhotoOptions {
         }
     }
 
+    /// The quick settings of a picture taken while a slider moves (the workbench): the
+    /// stone's index at 589.3 nm for a colourless stone (one trace: no fire; a coloured stone
+    /// keeps three bands for its colour), beams split down to 1e-4 of the light (the
+    /// tracer's default), the ground's light in 8 cells and round lights.
+    pub fn quick(&self) -> PhotoOptions {
+        let mut o = self.clone();
+        if o.material.colour.is_none() {
+            let n = o.material.ri(589.3);
+            o.material = Material {
+                dispersion: crate::optics::Dispersion::Constant(n),
+                ..o.material.clone()
+            };
+        } else {
+            o.bands = 3;
+        }
+        o.trace.split_threshold = TraceOptions::SPLIT_THRESHOLD;
+        o.face_up_split_threshold = TraceOptions::SPLIT_THRESHOLD;
+        o.ground_cells = 8;
+        o
+    }
+
     /// Whether the camera looks straight down at an untilted stone from an orthographic
     /// distance (the laboratory pictures' view: traced as finely as they are).
     pub fn face_up(&self) -> bool {
