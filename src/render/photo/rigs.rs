@@ -13,16 +13,18 @@ use glam::DVec3;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Rig {
     /// A light tent (light box) with a bare spark light: the product photographer's
-    /// translucent box lit evenly from outside (radiance 1 over the upper hemisphere, its
-    /// white floor 0.6 below), the camera looking in through a port (a dark disc of 7°
-    /// around the lens), and one small clear bulb (2° radius, radiance 25, at 55° elevation,
-    /// 135° round from the camera) for sparkle: a tent alone makes a diamond look flat and
-    /// grey, because every facet sees the same white.
+    /// translucent box lit from outside, its fabric brightest overhead (radiance 1 at the
+    /// zenith, 0.35 at the horizon) and where two lamps shine through its sides (25° glows
+    /// of +0.8 at 20° elevation, left and right of the camera), its white floor in shade
+    /// (0.25); the camera looking in through a port (a dark disc of 12° around the lens: the
+    /// lens, the camera, the photographer); and one small clear bulb (2° radius, radiance 40,
+    /// at 55° elevation, 135° round from the camera) for sparkle. A tent alone makes a
+    /// diamond look flat and grey: every facet sees the same white.
     Tent,
     /// Dark-field: point lights on black, the jeweller's "sparkle" setup (as under a
     /// gemmological microscope's dark-field illumination, light from the sides on a black
-    /// ground): eight 1.5° lights of radiance 40 around the stone, alternately at 25° and
-    /// 50° elevation, every 45° of azimuth from 22.5°; black everywhere else.
+    /// ground): twelve 3° lights of radiance 25 around the stone, at 20°, 40° and 60°
+    /// elevation in turn, every 30° of azimuth from 15°; black everywhere else.
     Darkfield,
     /// Daylight: a clear sky (radiance from 0.75 sRGB-blue-grey at the horizon to deeper
     /// blue at the zenith) with the sun (0.27° radius, warm white, radiance 9·10⁴, so that it
@@ -85,24 +87,36 @@ impl Rig {
             Rig::Tent => vec![
                 Part::Sky {
                     zenith: [1.0; 3],
-                    horizon: [1.0; 3],
+                    horizon: [0.35; 3],
                 },
-                Part::Floor([0.6; 3]),
+                Part::Floor([0.25; 3]),
+                Part::Ring {
+                    axis: direction(20.0, az(90.0)),
+                    inner_deg: 0.0,
+                    outer_deg: 25.0,
+                    radiance: [0.8; 3],
+                },
+                Part::Ring {
+                    axis: direction(20.0, az(-90.0)),
+                    inner_deg: 0.0,
+                    outer_deg: 25.0,
+                    radiance: [0.8; 3],
+                },
                 Part::Ring {
                     axis: to_camera,
                     inner_deg: 0.0,
-                    outer_deg: 7.0,
-                    radiance: [-2.0; 3],
+                    outer_deg: 12.0,
+                    radiance: [-3.0; 3],
                 },
-                Part::Disc(Disc::new(direction(55.0, az(135.0)), 2.0, [25.0; 3])),
+                Part::Disc(Disc::new(direction(55.0, az(135.0)), 2.0, [40.0; 3])),
             ],
-            Rig::Darkfield => (0..8)
+            Rig::Darkfield => (0..12)
                 .map(|k| {
-                    let e = if k % 2 == 0 { 25.0 } else { 50.0 };
+                    let e = [20.0, 40.0, 60.0][k % 3];
                     Part::Disc(Disc::new(
-                        direction(e, az(22.5 + 45.0 * k as f64)),
-                        1.5,
-                        [40.0; 3],
+                        direction(e, az(15.0 + 30.0 * k as f64)),
+                        3.0,
+                        [25.0; 3],
                     ))
                 })
                 .collect(),
@@ -166,9 +180,13 @@ mod tests {
         let view = -direction(30.0, -90.0);
         let tent = Rig::Tent.environment(view, -90.0);
         assert_eq!(tent.radiance(-view), [0.0; 3]);
-        assert_eq!(tent.radiance(direction(60.0, 0.0)), [1.0; 3]);
+        // Overhead: the sky's 1 at the zenith (no glow, port or bulb there).
+        assert!((tent.radiance(direction(90.0, 0.0))[0] - 1.0).abs() < 1e-12);
+        // A lamp's glow on the tent's side.
+        let side = tent.radiance(direction(20.0, 0.0))[0];
+        assert!((side - (0.35 + 0.65 * 20f64.to_radians().sin() + 0.8)).abs() < 1e-12, "{side}");
         let spark = tent.radiance(direction(55.0, 45.0));
-        assert!(spark[0] > 20.0, "{spark:?}");
+        assert!(spark[0] > 30.0, "{spark:?}");
         let ring = Rig::Ring.environment(view, -90.0);
         let (a, b) = view.any_orthonormal_pair();
         for k in 0..12 {
