@@ -28,7 +28,7 @@ pub struct PhotoArgs {
     pub view: Option<String>,
     /// Photographs: a perspective camera this many mm from the stone's centre (the stone's
     /// width from --diameter-mm, default 6.5 mm); default: orthographic.
-    #[arg(long, value_name = "MM")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     pub distance: Option<String>,
     /// Photographs: the ground the stone rests on, culet-down: white (paper), black
     /// (velvet) or none (default), with its shadow and caustics.
@@ -36,7 +36,7 @@ pub struct PhotoArgs {
     pub ground: Option<String>,
     /// Photographs: height of the stone's lowest point above the ground, girdle diameters
     /// (0–10; default 0: resting on it).
-    #[arg(long, value_name = "X")]
+    #[arg(long, value_name = "X", allow_hyphen_values = true)]
     pub ground_gap: Option<String>,
     /// Photographs: turn the light about the vertical, degrees (counter-clockwise seen from
     /// above).
@@ -44,7 +44,7 @@ pub struct PhotoArgs {
     pub light_rotation: Option<String>,
     /// Photographs: a turntable animation of FRAMES frames (2–360), the stone turned a full
     /// circle under the camera and lights.
-    #[arg(long, value_name = "FRAMES")]
+    #[arg(long, value_name = "FRAMES", allow_hyphen_values = true)]
     pub turn: Option<String>,
     /// Photographs: the tone curve from linear radiance to the picture: filmic (default) or
     /// clip.
@@ -55,7 +55,7 @@ pub struct PhotoArgs {
     #[arg(long, value_name = "FILE.exr")]
     pub hdr_out: Option<PathBuf>,
     /// Photographs: wavelength bands of a dispersive or coloured stone (3–64; default 8).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub bands: Option<String>,
 }
 

@@ -184,7 +184,10 @@ mod tests {
         assert!((tent.radiance(direction(90.0, 0.0))[0] - 1.0).abs() < 1e-12);
         // A lamp's glow on the tent's side.
         let side = tent.radiance(direction(20.0, 0.0))[0];
-        assert!((side - (0.35 + 0.65 * 20f64.to_radians().sin() + 0.8)).abs() < 1e-12, "{side}");
+        assert!(
+            (side - (0.35 + 0.65 * 20f64.to_radians().sin() + 0.8)).abs() < 1e-12,
+            "{side}"
+        );
         let spark = tent.radiance(direction(55.0, 45.0));
         assert!(spark[0] > 30.0, "{spark:?}");
         let ring = Rig::Ring.environment(view, -90.0);
