@@ -188,7 +188,7 @@ fn photo(reps: usize) {
     ];
     let runs: Vec<(&str, Vec<&str>, &str)> = vec![
         (
-            "studio 800², 30° above, 7 bands",
+            "studio 800², 30° above, spectral (8 bands)",
             vec!["--light", "studio", "--size", "800"],
             "≤ 2× iso",
         ),

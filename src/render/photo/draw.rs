@@ -97,6 +97,8 @@ struct PhotoSink<'a> {
     bands: &'a [Band],
     ground: Option<&'a GroundField>,
     tile: Option<&'a Tile>,
+    /// Side of the picture's pixel in image coordinates.
+    pixel: f64,
     fp: Vec<DVec2>,
     values: Vec<f64>,
 }
@@ -173,12 +175,60 @@ impl ExitSink for PhotoSink<'_> {
                     if let Some((m, t)) = affine(&landed, &fp) {
                         let mut pieces: Vec<(Vec<DVec2>, i64, i64)> = Vec::new();
                         done = g.pieces(&landed, 48, |piece, i, j| {
-                            pieces.push((piece.iter().map(|&p| m * p + t).collect(), i, j));
+                            pieces.push((piece.to_vec(), i, j));
                         });
-                        for (poly, i, j) in pieces {
-                            self.ground_values(g, Ok((i, j)));
-                            let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
-                            self.layer.add_polygon(&poly, &v);
+                        // A ground cell the stone magnifies past a pixel and a half is drawn
+                        // in sub-cells of about a pixel, each with the field's bilinear
+                        // radiance at its centre (the ground seen directly is bilinear too):
+                        // a cell's constant would show its edges as steps through the
+                        // pavilion.
+                        let h = g.cell();
+                        let sub = ((h * m.determinant().abs().sqrt() / self.pixel).ceil() as usize)
+                            .clamp(1, 16);
+                        let (mut strip, mut cellp, mut scratch) =
+                            (Vec::new(), Vec::new(), Vec::new());
+                        for (piece, i, j) in pieces {
+                            if sub < 2 {
+                                self.ground_values(g, Ok((i, j)));
+                                let poly: Vec<DVec2> = piece.iter().map(|&p| m * p + t).collect();
+                                let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
+                                self.layer.add_polygon(&poly, &v);
+                                continue;
+                            }
+                            let hs = h / sub as f64;
+                            let (x0, y0) = (-g.half + i as f64 * h, -g.half + j as f64 * h);
+                            for b in 0..sub {
+                                let y = y0 + b as f64 * hs;
+                                clip2d::clip_strip_y_into(
+                                    &piece,
+                                    y,
+                                    y + hs,
+                                    &mut strip,
+                                    &mut scratch,
+                                );
+                                if strip.len() < 3 {
+                                    continue;
+                                }
+                                for a in 0..sub {
+                                    let x = x0 + a as f64 * hs;
+                                    clip2d::clip_strip_x_into(
+                                        &strip,
+                                        x,
+                                        x + hs,
+                                        &mut cellp,
+                                        &mut scratch,
+                                    );
+                                    if cellp.len() < 3 {
+                                        continue;
+                                    }
+                                    let c = clip2d::centroid(&cellp).unwrap_or(cellp[0]);
+                                    self.ground_values(g, Err(c));
+                                    let poly: Vec<DVec2> =
+                                        cellp.iter().map(|&p| m * p + t).collect();
+                                    let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
+                                    self.layer.add_polygon(&poly, &v);
+                                }
+                            }
                         }
                     }
                 }
@@ -393,6 +443,7 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
             bands: &bands,
             ground: ground.as_ref(),
             tile,
+            pixel: 2.0 * half / size as f64,
             fp: Vec::new(),
             values: Vec::new(),
         };
