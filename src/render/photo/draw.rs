@@ -144,7 +144,7 @@ impl ExitSink for PhotoSink<'_> {
         // its footprint (in the traced frame's coordinates), before the layer's scaling by
         // the cross-section.
         let a_src = clip2d::area(fp);
-        if !(a_src > 0.0) || !(e.power > 0.0) {
+        if a_src.is_nan() || e.power.is_nan() || a_src <= 0.0 || e.power <= 0.0 {
             self.layer.exits += 1;
             return;
         }

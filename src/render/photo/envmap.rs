@@ -68,7 +68,7 @@ impl EnvMap {
     /// A map from `width × height` linear RGB values, rows from the top.
     pub fn from_rgb(width: usize, height: usize, rgb: &[Rgb]) -> EnvMap {
         let rows = {
-            let r = height.min(MAX_ROWS).max(2);
+            let r = height.clamp(2, MAX_ROWS);
             r - r % 2
         };
         let cols = (2 * rows).min(width.max(2)).max(2);
