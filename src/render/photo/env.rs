@@ -15,7 +15,7 @@
 //! is a disc of radius `max(R, 1°)` with that ramp at its rim, its radiance scaled so that its
 //! power (radiance × solid angle) is the source's: the sun (R = 0.27°) is a 1° disc of
 //! 0.07 of its radiance. An equirectangular map is filtered by the same kernel along
-//! elevation and azimuth ([`EnvMap`](super::envmap::EnvMap)). The sky's horizon is the ISO
+//! elevation and azimuth ([`EnvMap`]). The sky's horizon is the ISO
 //! light's ramp, so that a sky of radiance 1 is [`Lighting::iso`](crate::render::lighting::Lighting::iso)
 //! and a sky of radiance cos(zenith) is [`Lighting::cos`](crate::render::lighting::Lighting::cos),
 //! to the last bit.

@@ -7,11 +7,11 @@
 //! a bundle of sight lines leaving the stone in one direction `w`, and its footprint the part
 //! of the picture they start from, so the picture is exact:
 //!
-//! * the light an exit beam sees is the [environment's](env) filtered radiance from `w`
+//! * the light an exit beam sees is the [environment's](mod@env) filtered radiance from `w`
 //!   (the rigs of [`rigs`], an equirectangular map, [`envmap`]), per wavelength band (fire's
 //!   bands: each traced at its own index, with the body colour's exact absorption), with its
 //!   polarization tracked through the stone;
-//! * sight lines leaving downward onto a [ground](ground) see its radiance over the exact
+//! * sight lines leaving downward onto a [ground](mod@ground) see its radiance over the exact
 //!   polygon they land on (cut into the ground raster's cells, each piece mapped back onto
 //!   the footprint);
 //! * the ground's shadow and caustics are the lights' own beam traces: exit beams projected
