@@ -6,7 +6,11 @@
 //! bench).
 //!
 //! `cargo bench --bench render` (add `-- quick` for fewer repetitions, `-- instructions` for
-//! one picture to count under callgrind).
+//! one picture to count under callgrind). `-- photo` times the photographs as whole
+//! processes against `render tolkowsky --size 800` in the same run (alternated, medians of
+//! CPU and wall time, and their ratios): an 800² studio picture 30° above (spectral), the same
+//! face-up at one index, with a white ground, in perspective at 250 mm, 512² at one index,
+//! a 36-frame 512² turntable; then the workbench slider's quick 512² picture in process.
 
 use facetlab::beam::{Frame, Stone};
 use facetlab::geometry::canonical::canonical;
@@ -41,6 +45,9 @@ fn main() {
     let quick = std::env::args().any(|a| a == "quick");
     if std::env::args().any(|a| a == "commands") {
         return commands(if quick { 3 } else { 10 });
+    }
+    if std::env::args().any(|a| a == "photo") {
+        return photo(if quick { 3 } else { 7 });
     }
     let reps = if quick { 3 } else { 10 };
     let cut = facetlab::io::load_cut("tolkowsky").expect("preset");
@@ -125,4 +132,159 @@ fn commands(reps: usize) {
             t * 1e3
         );
     }
+}
+
+/// One whole process's (CPU seconds, wall seconds), CPU from the child's rusage.
+fn timed(args: &[&str]) -> (f64, f64) {
+    let t = Instant::now();
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_facetlab"))
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .expect("run facetlab");
+    let (status, cpu) = wait_cpu(child);
+    assert!(status, "facetlab {args:?} failed");
+    (cpu, t.elapsed().as_secs_f64())
+}
+
+/// Wait for `child`; whether it succeeded and its user + system CPU seconds (from the
+/// kernel's accounting of the finished process).
+fn wait_cpu(child: std::process::Child) -> (bool, f64) {
+    let pid = child.id() as libc::pid_t;
+    let mut status = 0;
+    // SAFETY: an all-zero rusage is a valid value; wait4 fills it for our own child.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    let r = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
+    assert_eq!(r, pid, "wait4");
+    let tv = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    (
+        libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0,
+        tv(usage.ru_utime) + tv(usage.ru_stime),
+    )
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Photographs as whole processes, each alternated with `render tolkowsky --size 800` (the
+/// ISO picture) `reps` times: medians of CPU and wall seconds and of the ratios run by run.
+fn photo(reps: usize) {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let out = dir.path().join("picture.png");
+    let gif = dir.path().join("turn.png");
+    let o = out.to_str().unwrap();
+    let g = gif.to_str().unwrap();
+    let iso: Vec<&str> = vec![
+        "render",
+        "tolkowsky",
+        "--size",
+        "800",
+        "--quiet",
+        "--force",
+        "-o",
+        o,
+    ];
+    let runs: Vec<(&str, Vec<&str>, &str)> = vec![
+        (
+            "studio 800², 30° above, spectral (8 bands)",
+            vec!["--light", "studio", "--size", "800"],
+            "≤ 2× iso",
+        ),
+        (
+            "studio 800², face-up, one index",
+            vec![
+                "--light", "studio", "--size", "800", "--view", "90", "--ri", "2.4173",
+            ],
+            "≤ 2× iso",
+        ),
+        (
+            "studio 800², white ground",
+            vec!["--light", "studio", "--size", "800", "--ground", "white"],
+            "≤ 1 s",
+        ),
+        (
+            "studio 800², perspective 250 mm",
+            vec!["--light", "studio", "--size", "800", "--distance", "250"],
+            "≤ 1 s",
+        ),
+        (
+            "studio 512², one index (whole process)",
+            vec!["--light", "studio", "--size", "512", "--ri", "2.4173"],
+            "—",
+        ),
+        (
+            "turntable 36 × 512²",
+            vec![
+                "--light", "studio", "--size", "512", "--turn", "36", "--bare",
+            ],
+            "≤ 6 s",
+        ),
+    ];
+    for (name, extra, target) in runs {
+        let mut args: Vec<&str> = vec!["render", "tolkowsky", "--quiet", "--force", "-o"];
+        args.push(if name.starts_with("turntable") { g } else { o });
+        args.extend(extra.iter().copied());
+        let n = if name.starts_with("turntable") {
+            reps.min(3)
+        } else {
+            reps
+        };
+        let (mut cpu, mut wall, mut rc, mut rw) = (vec![], vec![], vec![], vec![]);
+        for _ in 0..n {
+            let (ic, iw) = timed(&iso);
+            let (c, w) = timed(&args);
+            cpu.push(c);
+            wall.push(w);
+            rc.push(c / ic);
+            rw.push(w / iw);
+        }
+        println!(
+            "{name}: CPU {:.3} s, wall {:.3} s; against `render --size 800`: {:.1}× CPU, {:.1}× wall (target {target})",
+            median(cpu),
+            median(wall),
+            median(rc),
+            median(rw)
+        );
+    }
+    quick_slider(reps);
+}
+
+/// The workbench's slider: the quick 512² photograph (`PhotoOptions::quick`) and its sRGB
+/// pixels, in process (the server keeps the stone loaded), the light turned a little each
+/// time as the slider turns it (PNG encoding and the request not counted); median of `reps` pictures after one to warm up, wall and
+/// the process's CPU time.
+fn quick_slider(reps: usize) {
+    use facetlab::render::photo::{photo, PhotoLight, PhotoOptions, Tone};
+    let cut = facetlab::io::load_cut("tolkowsky").expect("preset");
+    let mut o = PhotoOptions::new(PhotoLight::studio());
+    o.size = 512;
+    let q = o.quick();
+    let (mut wall, mut cpu) = (vec![], vec![]);
+    for k in 0..=reps {
+        let mut qk = q.clone();
+        qk.light_rotation_deg = 5.0 * k as f64;
+        let (c0, t) = (cpu_seconds(), Instant::now());
+        let p = photo(&cut.solid, &qk);
+        std::hint::black_box(p.to_srgb8(1.0, Tone::Filmic));
+        if k > 0 {
+            wall.push(t.elapsed().as_secs_f64());
+            cpu.push(cpu_seconds() - c0);
+        }
+    }
+    println!(
+        "workbench slider, quick 512² in process: wall {:.0} ms, CPU {:.0} ms (target ≤ 200 ms)",
+        median(wall) * 1e3,
+        median(cpu) * 1e3
+    );
+}
+
+/// This process's user + system CPU seconds so far.
+fn cpu_seconds() -> f64 {
+    // SAFETY: an all-zero rusage is valid; getrusage fills it for this process.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut usage) };
+    let tv = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    tv(usage.ru_utime) + tv(usage.ru_stime)
 }

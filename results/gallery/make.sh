@@ -20,6 +20,12 @@ render tolkowsky --material tourmaline --colour "#1f5a36@10mm" --diameter-mm 9 -
     --light cos --head-shadow 15 --size 320 -o "$out/tourmaline-dark-cos.png"
 render tolkowsky --material beryl --colour "#bfe0ea@10mm" --diameter-mm 8 \
     --light cos --head-shadow 15 --size 320 -o "$out/aquamarine-pale-cos.png"
+# Photographs (`--light` a studio rig or the procedural studio map; `--view`, `--ground`).
+render tolkowsky --light tent --view 30 --size 420 -o "$out/photo-tolkowsky-tent.png"
+render princess --light darkfield --view 45 --size 420 -o "$out/photo-princess-darkfield.png"
+render oval --material blue-sapphire --diameter-mm 7 --light daylight --ground white --view 35 \
+    --exposure 0.45 --size 420 -o "$out/photo-sapphire-daylight.png"
+render tolkowsky --light studio --view 8 --ground white --size 420 -o "$out/photo-tolkowsky-side.png"
 # `facetlab plan`: the best round brilliant in the example rough, three views.
 plan_dir=$(mktemp -d)
 cargo run --quiet --release -- plan cuts/rough-octahedron.obj --family round-brilliant --top 1 --quiet -o "$plan_dir/run"

@@ -214,7 +214,7 @@ impl Stone {
                 late: false,
                 node,
             };
-            let (sr, axis) = cross(cx, meet, origin, &w.foot, st, sink);
+            let (sr, axis) = cross(cx, meet, origin, &w.foot, &w.cur, st, sink);
             let next = Beam {
                 dir: reflect(t, n),
                 stokes: sr,

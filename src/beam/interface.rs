@@ -35,8 +35,8 @@ pub(super) struct Origin {
 }
 
 /// Cross the interface at `m`: split by Fresnel (polarized or unpolarized as `cx` says), hand
-/// the transmitted part to `sink` as an exit beam with footprint `foot` (counted in
-/// `st.exits`), and return the reflected Stokes vector with its reference axis (the
+/// the transmitted part to `sink` as an exit beam with footprint `foot` and its place on the
+/// facet `place` (see [`ExitSink::exit_at`]; counted in `st.exits`), and return the reflected Stokes vector with its reference axis (the
 /// interface's s axis when polarized). When Fresnel and Snell disagree (only at the critical
 /// angle itself) the transmitted power is reflected instead, so power is conserved.
 #[inline(always)]
@@ -45,6 +45,7 @@ pub(super) fn cross<S: ExitSink>(
     m: Meet,
     o: Origin,
     foot: &[DVec2],
+    place: &[DVec3],
     st: &mut TraceStats,
     sink: &mut S,
 ) -> (Stokes, DVec3) {
@@ -80,7 +81,7 @@ pub(super) fn cross<S: ExitSink>(
                     sym: 0,
                 };
                 st.exits += 1;
-                sink.exit(&e, foot);
+                sink.exit_at(&e, foot, place);
             }
             None => sr.x += stt.x,
         }

@@ -25,6 +25,8 @@ struct RayAt {
     late: bool,
     /// Path length inside the stone from the entry facet to this crossing.
     path: f64,
+    /// Where the ray meets the facet.
+    x: DVec3,
 }
 
 impl Stone {
@@ -70,6 +72,7 @@ impl Stone {
             path += best.max(0.0);
             let at = RayAt {
                 path,
+                x,
                 t,
                 facet: g,
                 s,
@@ -128,7 +131,7 @@ impl Stone {
             late: at.late,
             node,
         };
-        let (sr, ax) = cross(cx, meet, origin, &w.foot, st, sink);
+        let (sr, ax) = cross(cx, meet, origin, &w.foot, &[at.x], st, sink);
         let depth = at.depth + 1;
         if sr.x.is_nan() || sr.x <= 0.0 || sr.x < floor || depth > cx.max_depth {
             st.cut_off += sr.x.max(0.0);
@@ -216,6 +219,7 @@ impl Stone {
                     prev: part.prev,
                     late: s_in.x <= 0.5 * share * p0,
                     path: path + along,
+                    x: y,
                 };
                 if let Some((sr, axis, node)) =
                     self.ray_cross(beam.entry, at, floor, cx, w, st, sink)

@@ -2,7 +2,7 @@
 //! accounting and work counters of the whole trace ([`TraceStats`]).
 
 use super::ExitBeam;
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 /// Receives exit beams as the tracer produces them.
 pub(crate) trait ExitSink {
@@ -27,6 +27,22 @@ pub(crate) trait ExitSink {
     /// One exit beam, with its footprint in the frame's image coordinates (empty unless
     /// [`ExitSink::wants_footprints`]).
     fn exit(&mut self, beam: &ExitBeam, footprint: &[DVec2]);
+    /// Whether [`ExitSink::exit_at`] should be given where each beam leaves the stone (the
+    /// symmetric copies' places are then computed too). Default: no.
+    fn wants_exit_places(&self) -> bool {
+        false
+    }
+    /// One exit beam with its footprint and where it leaves the stone (stone coordinates):
+    /// the polygon it crosses the exit facet's plane in, vertex for vertex the footprint's
+    /// (each footprint vertex's ray leaves there), or one point, where a narrow beam's ray
+    /// leaves (its footprint is the whole narrow beam's). `place` is empty unless
+    /// [`ExitSink::wants_exit_places`]. The tracer hands every exit out through this; by
+    /// default it is [`ExitSink::exit`].
+    #[inline(always)]
+    fn exit_at(&mut self, beam: &ExitBeam, footprint: &[DVec2], place: &[DVec3]) {
+        let _ = place;
+        self.exit(beam, footprint);
+    }
 }
 
 /// Power accounting and work counters of one trace. Powers are shares of the whole incoming

@@ -245,6 +245,11 @@ impl Stone {
         self.symmetry.permutation(i)
     }
 
+    /// The solid's vertices.
+    pub fn vertices(&self) -> &[DVec3] {
+        &self.vertices
+    }
+
     /// Outward unit normal of facet `i`.
     pub fn normal(&self, i: usize) -> DVec3 {
         self.normals[i]

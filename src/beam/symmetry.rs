@@ -30,6 +30,7 @@ pub(super) struct SymSink<'a, S: ExitSink> {
     inner: &'a mut S,
     ops: Vec<(u16, &'a SymOp, [f64; 4])>,
     foot: Vec<DVec2>,
+    place: Vec<DVec3>,
 }
 
 impl<'a, S: ExitSink> SymSink<'a, S> {
@@ -64,6 +65,7 @@ impl<'a, S: ExitSink> SymSink<'a, S> {
             inner,
             ops,
             foot: Vec::new(),
+            place: Vec::new(),
         }
     }
 }
@@ -75,13 +77,19 @@ impl<S: ExitSink> ExitSink for SymSink<'_, S> {
     fn wants_orbit(&self, e: &ExitBeam) -> bool {
         self.inner.wants_orbit(e)
     }
+    fn wants_exit_places(&self) -> bool {
+        self.inner.wants_exit_places()
+    }
     fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+        self.exit_at(e, fp, &[]);
+    }
+    fn exit_at(&mut self, e: &ExitBeam, fp: &[DVec2], place: &[DVec3]) {
         if !self.inner.wants_orbit(e) {
             return;
         }
         for &(i, op, m2) in &self.ops {
             if i == 0 {
-                self.inner.exit(e, fp);
+                self.inner.exit_at(e, fp, place);
                 continue;
             }
             let mut stokes = e.stokes;
@@ -104,7 +112,11 @@ impl<S: ExitSink> ExitSink for SymSink<'_, S> {
                 fp.iter()
                     .map(|p| DVec2::new(m2[0] * p.x + m2[1] * p.y, m2[2] * p.x + m2[3] * p.y)),
             );
-            self.inner.exit(&t, &self.foot);
+            self.place.clear();
+            if !place.is_empty() && self.inner.wants_exit_places() {
+                self.place.extend(place.iter().map(|&x| op.m * x));
+            }
+            self.inner.exit_at(&t, &self.foot, &self.place);
         }
     }
 }
@@ -131,11 +143,16 @@ fn facet_permutation(normals: &[DVec3], offsets: &[f64], m: &DMat3) -> Option<Ve
 
 /// Clip a convex planar polygon by the half-space `n · x <= 0`.
 pub(super) fn clip_halfspace(poly: &[DVec3], n: DVec3, out: &mut Vec<DVec3>) {
+    clip_halfspace_at(poly, n, 0.0, out);
+}
+
+/// Clip a convex planar polygon by the half-space `n · x <= c`.
+pub(super) fn clip_halfspace_at(poly: &[DVec3], n: DVec3, c: f64, out: &mut Vec<DVec3>) {
     out.clear();
     let k = poly.len();
     for i in 0..k {
         let (p, q) = (poly[i], poly[(i + 1) % k]);
-        let (dp, dq) = (n.dot(p), n.dot(q));
+        let (dp, dq) = (n.dot(p) - c, n.dot(q) - c);
         if dp <= 0.0 {
             out.push(p);
         }

@@ -6,7 +6,7 @@ use super::footprint::{Affine, PathLength};
 use super::interface::split;
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
-use super::symmetry::{clip_halfspace, SymSink};
+use super::symmetry::{clip_halfspace, clip_halfspace_at, SymSink};
 use super::work::{Beam, Ctx};
 use super::{ExitBeam, Frame, TraceOptions};
 use crate::geometry::clip2d;
@@ -22,6 +22,23 @@ impl Stone {
         frame: &Frame,
         ri: f64,
         opts: &TraceOptions,
+        sink: &mut S,
+        keep_nodes: bool,
+    ) -> (TraceStats, Vec<(u32, u32)>) {
+        self.trace_window_into(frame, ri, opts, &[], sink, keep_nodes)
+    }
+
+    /// [`Stone::trace_into`] for the part of the cross-section inside `window`: the points
+    /// `x` of the facets facing the light with `n · x <= c` for every `(n, c)` in it (a
+    /// convex window; empty: the whole stone). Powers stay shares of the whole stone's
+    /// incoming light (`power_in` is the window's share of it), and the stone's symmetry is
+    /// not used (a window breaks it). Tiles of a picture traced this way add up to the whole.
+    pub(crate) fn trace_window_into<S: ExitSink>(
+        &self,
+        frame: &Frame,
+        ri: f64,
+        opts: &TraceOptions,
+        window: &[DVec4],
         sink: &mut S,
         keep_nodes: bool,
     ) -> (TraceStats, Vec<(u32, u32)>) {
@@ -64,7 +81,7 @@ impl Stone {
             b: DVec2::ZERO,
         };
         // Symmetry: trace a fundamental wedge and hand out every exit once per symmetry.
-        let (group, wedge) = if opts.symmetry {
+        let (group, wedge) = if opts.symmetry && window.is_empty() {
             self.symmetry.frame_symmetry(d0)
         } else {
             (vec![0], vec![])
@@ -84,13 +101,20 @@ impl Stone {
             w.cur
                 .extend(verts.iter().map(|&v| self.vertices[v as usize]));
             let mut p = c * self.areas[f] / total;
-            if !wedge.is_empty() {
+            if !wedge.is_empty() || !window.is_empty() {
                 for h in &wedge {
                     clip_halfspace(&w.cur, *h, &mut piece);
                     std::mem::swap(&mut w.cur, &mut piece);
                     if w.cur.is_empty() {
                         break;
                     }
+                }
+                for h in window {
+                    if w.cur.is_empty() {
+                        break;
+                    }
+                    clip_halfspace_at(&w.cur, h.truncate(), h.w, &mut piece);
+                    std::mem::swap(&mut w.cur, &mut piece);
                 }
                 if w.cur.is_empty() {
                     continue;
@@ -126,7 +150,7 @@ impl Stone {
                 sym: 0,
             };
             st.exits += 1;
-            sym.exit(&ext, &w.foot);
+            sym.exit_at(&ext, &w.foot, &w.cur);
             let beam = match refract(d0, n, 1.0, ri) {
                 Some(t) if stt.x > 0.0 => Beam {
                     dir: t,

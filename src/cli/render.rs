@@ -50,11 +50,15 @@ pub struct RenderArgs {
     pub cuts: Vec<String>,
     /// Lighting: iso (uniform sky), cos (cosine sky), aset (false colour by the elevation the
     /// light comes from), idealscope (red returned, white leak), hearts (face-down in the
-    /// hearts & arrows viewer), arrows (face-up in it), fire (spectral, under spot lights).
+    /// hearts & arrows viewer), arrows (face-up in it), fire (spectral, under spot lights);
+    /// or a photograph under a studio rig: tent (light box with a spark light), darkfield
+    /// (point lights on black), daylight (sky and sun), office (ceiling panels), ring (ring
+    /// light round the lens), studio (the bundled procedural environment map), or
+    /// env:FILE (your equirectangular .hdr or .exr environment map).
     #[arg(
         long,
         default_value = "iso",
-        value_name = "iso|cos|aset|idealscope|hearts|arrows|fire"
+        value_name = "iso|cos|aset|idealscope|hearts|arrows|fire|tent|darkfield|daylight|office|ring|studio|env:FILE"
     )]
     pub light: String,
     /// Pixels per side of each stone's picture (8–8192); the captions (and a grey margin)
@@ -113,6 +117,8 @@ pub struct RenderArgs {
     /// The stones' pictures alone: no margin, captions or legend (one cut: exactly PX × PX).
     #[arg(long)]
     pub bare: bool,
+    #[command(flatten)]
+    pub photo: super::photo::PhotoArgs,
 }
 
 /// The flags, validated.
@@ -151,9 +157,10 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
         Error::invalid(
             "--light",
             format!(
-                "`{}` is not allowed; use {}",
+                "`{}` is not allowed; use {}, {} or env:FILE",
                 a.light,
-                Light::ALL.map(Light::name).join(", ")
+                Light::ALL.map(Light::name).join(", "),
+                facetlab::render::photo::PhotoLight::names().join(", ")
             ),
         )
     })?;
@@ -461,6 +468,18 @@ fn delay_ms(frames: usize) -> u16 {
 
 /// Run `facetlab render`.
 pub fn run(a: &RenderArgs) -> Result<()> {
+    if let Some(light) = facetlab::render::photo::PhotoLight::parse(&a.light)? {
+        return super::photo::run(a, light);
+    }
+    if let Some(flag) = a.photo.first_given() {
+        return Err(Error::invalid(
+            flag,
+            format!(
+                "is for photographs; give a photographic --light ({} or env:FILE)",
+                facetlab::render::photo::PhotoLight::names().join(", ")
+            ),
+        ));
+    }
     let s = settings(a)?;
     check_outputs(a)?;
     let cuts = a

@@ -192,6 +192,35 @@ pub fn clip_convex_into(
     clean(out);
 }
 
+/// Convex hull of 2-D points, counter-clockwise (Andrew's monotone chain), points within
+/// 1e-12 of each other taken as one; fewer than three points come back as they are.
+pub fn convex_hull(mut pts: Vec<DVec2>) -> Vec<DVec2> {
+    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    pts.dedup_by(|a, b| a.distance(*b) < 1e-12);
+    if pts.len() < 3 {
+        return pts;
+    }
+    let turn = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
+    let mut lower: Vec<DVec2> = Vec::new();
+    for &p in &pts {
+        while lower.len() >= 2 && turn(lower[lower.len() - 2], lower[lower.len() - 1], p) <= 0.0 {
+            lower.pop();
+        }
+        lower.push(p);
+    }
+    let mut upper: Vec<DVec2> = Vec::new();
+    for &p in pts.iter().rev() {
+        while upper.len() >= 2 && turn(upper[upper.len() - 2], upper[upper.len() - 1], p) <= 0.0 {
+            upper.pop();
+        }
+        upper.push(p);
+    }
+    lower.pop();
+    upper.pop();
+    lower.extend(upper);
+    lower
+}
+
 /// Intersection of `subject` with the convex polygon `clip`, allocating. See
 /// [`clip_convex_into`].
 pub fn clip_convex(subject: &[DVec2], clip: &[DVec2]) -> Vec<DVec2> {

@@ -3,7 +3,9 @@
 
 pub mod asc;
 pub mod gem;
+pub mod gif;
 pub mod gltf;
+pub mod hdr;
 pub mod mesh;
 pub mod png;
 pub mod presets;

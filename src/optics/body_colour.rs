@@ -256,7 +256,7 @@ fn sigmoid(x: f64) -> f64 {
 
 /// T(λ) = S(c0 t² + c1 t + c2) with t = (λ − 380) / 400 in [0, 1] (the normalised
 /// wavelength keeps the three coefficients of one scale).
-fn sigmoid_poly(c: [f64; 3], nm: f64) -> f64 {
+pub(super) fn sigmoid_poly(c: [f64; 3], nm: f64) -> f64 {
     let t = (nm - LAMBDA_MIN) / (LAMBDA_MAX - LAMBDA_MIN);
     sigmoid((c[0] * t + c[1]) * t + c[2])
 }

@@ -23,6 +23,7 @@ mod fresnel;
 mod material;
 mod polarization;
 mod table;
+pub mod upsample;
 mod varieties;
 
 pub use absorption::{Absorption, THESIS_ABSORPTION};

@@ -71,30 +71,6 @@ const SIDE_VIEW: View = View {
     toward: DVec3::X,
 };
 
-/// Convex hull of 2-D points, counter-clockwise (Andrew's monotone chain).
-fn hull2(mut pts: Vec<DVec2>) -> Vec<DVec2> {
-    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    let turn = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
-    let mut out: Vec<DVec2> = Vec::new();
-    for pass in 0..2 {
-        let start = out.len();
-        let iter: Box<dyn Iterator<Item = &DVec2>> = if pass == 0 {
-            Box::new(pts.iter())
-        } else {
-            Box::new(pts.iter().rev())
-        };
-        for p in iter {
-            while out.len() >= start + 2 && turn(out[out.len() - 2], out[out.len() - 1], *p) <= 0.0
-            {
-                out.pop();
-            }
-            out.push(*p);
-        }
-        out.pop();
-    }
-    out
-}
-
 /// The brightness of a facet with outward normal `n` (cut frame) seen in `view`: ambient 0.45
 /// and the rest by its slope to a light above the viewer's left shoulder.
 fn shade(n: DVec3, view: &View) -> f64 {
@@ -133,11 +109,12 @@ fn draw_view<DB: DrawingBackend>(
             (cy - q.y * scale).round() as i32,
         )
     };
-    let outline: Vec<(i32, i32)> =
-        hull2(rough.vertices().iter().map(|p| flat(to_view(*p))).collect())
-            .into_iter()
-            .map(px)
-            .collect();
+    let outline: Vec<(i32, i32)> = crate::geometry::clip2d::convex_hull(
+        rough.vertices().iter().map(|p| flat(to_view(*p))).collect(),
+    )
+    .into_iter()
+    .map(px)
+    .collect();
     root.draw(&Polygon::new(outline.clone(), RGBColor(222, 222, 222)))?;
     let mut closed = outline;
     if let Some(&first) = closed.first() {

@@ -75,23 +75,53 @@ impl<F: FnMut(&ExitBeam) -> [f64; 5], G: Fn(&ExitBeam) -> bool> ExitSink for Lay
     }
     fn symmetries(&mut self, maps: &[(u16, [f64; 4])]) {
         self.copies = maps.len();
+        self.layer.set_symmetries(maps);
+    }
+    fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+        let c = (self.value)(e);
+        self.layer.record(e, fp, &c);
+    }
+}
+
+impl Layer {
+    /// An empty layer of `channels` values per footprint, for a sink of its own that
+    /// [`Layer::record`]s exits and [`Layer::add_polygon`]s, then [`Layer::finish`]es.
+    pub(super) fn new(channels: usize) -> Layer {
+        Layer {
+            channels: channels.clamp(1, 5),
+            stats: TraceStats::default(),
+            exits: 0,
+            foot: Vec::new(),
+            ranges: Vec::new(),
+            maps: vec![[1.0, 0.0, 0.0, 1.0]],
+            drawn: Vec::new(),
+            values: Vec::new(),
+        }
+    }
+
+    /// The symmetries' footprint maps a trace hands its copies out under
+    /// ([`ExitSink::symmetries`]), for [`Layer::record`] to draw copies from their traced
+    /// footprint.
+    pub(super) fn set_symmetries(&mut self, maps: &[(u16, [f64; 4])]) {
         let n = maps.iter().map(|&(i, _)| i as usize + 1).max().unwrap_or(1);
         let mut m = vec![[1.0, 0.0, 0.0, 1.0]; n];
         for &(i, map) in maps {
             m[i as usize] = map;
         }
-        self.layer.maps = m;
+        self.maps = m;
     }
-    fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
-        let l = &mut self.layer;
-        l.exits += 1;
+
+    /// Keep exit `e` with its footprint `fp` and its values per unit of its power `c` (the
+    /// first `channels` are used). A copy (`e.sym` ≠ 0) needs the symmetries' maps
+    /// ([`ExitSink::symmetries`] of the layer's own sink).
+    pub(super) fn record(&mut self, e: &ExitBeam, fp: &[DVec2], c: &[f64]) {
+        self.exits += 1;
         if e.sym == 0 {
-            let a = l.foot.len() as u32;
-            l.foot.extend_from_slice(fp);
-            l.ranges.push((a, l.foot.len() as u32));
+            let a = self.foot.len() as u32;
+            self.foot.extend_from_slice(fp);
+            self.ranges.push((a, self.foot.len() as u32));
         }
-        let c = (self.value)(e);
-        let c = &c[..l.channels];
+        let c = &c[..self.channels.min(c.len())];
         // (Written so that a NaN power or area draws nothing.)
         let drawable = e.power > 0.0 && c.iter().any(|&x| x != 0.0);
         if !drawable {
@@ -101,28 +131,54 @@ impl<F: FnMut(&ExitBeam) -> [f64; 5], G: Fn(&ExitBeam) -> bool> ExitSink for Lay
         if a.is_nan() || a <= 0.0 {
             return;
         }
+        // Radiance through this beam: its power per unit of footprint (relative to the
+        // incoming power per unit of cross-section once multiplied by the cross-section,
+        // which the trace gives at its end).
+        self.push(e.sym, fp, e.power / a, c);
+    }
+
+    /// Add the polygon `poly` (image coordinates) with `values` per unit area as they stand
+    /// before [`Layer::finish`] multiplies them by the cross-section (a beam's power per unit
+    /// of its footprint times the radiance it carries).
+    pub(super) fn add_polygon(&mut self, poly: &[DVec2], values: &[f64]) {
+        if poly.len() < 3 || !values.iter().any(|&v| v != 0.0 && v.is_finite()) {
+            return;
+        }
+        let a = self.foot.len() as u32;
+        self.foot.extend_from_slice(poly);
+        self.ranges.push((a, self.foot.len() as u32));
+        let c = &values[..self.channels.min(values.len())];
+        self.push(0, poly, 1.0, c);
+    }
+
+    /// The drawn copy of the last footprint kept (under symmetry `sym`), values `c · k`.
+    fn push(&mut self, sym: u16, fp: &[DVec2], k: f64, c: &[f64]) {
         let (mut y_lo, mut y_hi, mut x_lo) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
         for p in fp {
             y_lo = y_lo.min(p.y);
             y_hi = y_hi.max(p.y);
             x_lo = x_lo.min(p.x);
         }
-        l.drawn.push(Drawn {
-            exit: l.ranges.len() as u32 - 1,
-            sym: e.sym,
+        self.drawn.push(Drawn {
+            exit: self.ranges.len() as u32 - 1,
+            sym,
             y_lo,
             y_hi,
             x_lo,
         });
-        // Radiance through this beam: its power per unit of footprint (relative to the
-        // incoming power per unit of cross-section once multiplied by the cross-section,
-        // which the trace gives at its end).
-        let k = e.power / a;
-        l.values.extend(c.iter().map(|&x| x * k));
+        let n = self.channels;
+        self.values
+            .extend((0..n).map(|i| c.get(i).copied().unwrap_or(0.0) * k));
     }
-}
 
-impl Layer {
+    /// Scale the kept values by the trace's cross-section and keep its statistics: the layer
+    /// is then ready to [`Layer::fill`].
+    pub(super) fn finish(&mut self, stats: TraceStats) {
+        let area = stats.area;
+        self.values.iter_mut().for_each(|v| *v *= area);
+        self.stats = stats;
+    }
+
     /// Trace `stone` along `frame` at index `ri` and keep, for each exit (every copy),
     /// `value(exit)`'s first `channels` values: the radiance the exit carries per unit of
     /// its power. `value` sees every exit for which `orbit` holds, so it may also sum what
@@ -143,16 +199,7 @@ impl Layer {
             orbit,
             copies: 1,
             skipped: std::cell::Cell::new(0),
-            layer: Layer {
-                channels: channels.clamp(1, 5),
-                stats: TraceStats::default(),
-                exits: 0,
-                foot: Vec::new(),
-                ranges: Vec::new(),
-                maps: vec![[1.0, 0.0, 0.0, 1.0]],
-                drawn: Vec::new(),
-                values: Vec::new(),
-            },
+            layer: Layer::new(channels),
         };
         let opts = TraceOptions {
             footprints: true,
@@ -161,9 +208,7 @@ impl Layer {
         let (stats, _) = stone.trace_into(frame, ri, &opts, &mut sink, false);
         let mut layer = sink.layer;
         layer.exits += sink.skipped.get();
-        let area = stats.area;
-        layer.values.iter_mut().for_each(|v| *v *= area);
-        layer.stats = stats;
+        layer.finish(stats);
         layer
     }
 

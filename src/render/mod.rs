@@ -34,6 +34,7 @@ mod layer;
 mod light;
 pub mod lighting;
 mod options;
+pub mod photo;
 pub mod pose;
 pub mod raster;
 

@@ -4,6 +4,7 @@ mod designs;
 mod foundation;
 mod materials;
 mod optimize;
+mod photo;
 mod plan;
 mod render;
 mod safety;

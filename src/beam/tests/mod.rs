@@ -14,6 +14,7 @@ mod absorption;
 mod accounting;
 mod closed_form;
 mod grids;
+mod places;
 mod stone;
 
 fn solids() -> Vec<(&'static str, Polyhedron)> {

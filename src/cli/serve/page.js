@@ -35,11 +35,16 @@ const PROP_ROWS = [
 const LIGHT_NAMES = {
   iso: 'ISO (uniform sky)', cos: 'COS (cosine sky)', aset: 'ASET', fire: 'Fire (spot lights)',
   idealscope: 'IdealScope', hearts: 'Hearts (face down)', arrows: 'Arrows (face up)',
+  tent: 'Photo: light tent', darkfield: 'Photo: dark-field', daylight: 'Photo: daylight',
+  office: 'Photo: office', ring: 'Photo: ring light', studio: 'Photo: studio map',
 };
+// Photographic lights (a camera under a studio rig): filled from /api/presets.
+let PHOTO_LIGHTS = [];
+const isPhoto = (l) => PHOTO_LIGHTS.includes(l);
 // Exposure each light starts with (the slider changes it): the ISO sky returns ~0.9 of a white
 // diffuser from a good stone, so at 1 the picture is nearly white and its contrast pattern is
 // hard to see; the fire picture is dark flashes on black. False-colour lights ignore exposure.
-const LIGHT_EXPOSURE = { iso: 0.7, cos: 1, fire: 1.5, hearts: 1, arrows: 1 };
+const LIGHT_EXPOSURE = { iso: 0.7, cos: 1, fire: 1.5, hearts: 1, arrows: 1, tent: 0.8, darkfield: 1, daylight: 0.5, office: 1, ring: 1.2, studio: 1 };
 const QUICK_DELAY = 15;     // ms of quiet before a request leaves (debounce) …
 const MAX_WAIT = 100;       // … but while a slider keeps moving, one leaves at least this often
 const FULL_DELAY = 700;     // ms of quiet before the full (slow) scores are asked for
@@ -49,6 +54,10 @@ const state = {
   light: 'iso',
   tilt: 0,
   exposure: LIGHT_EXPOSURE.iso,
+  // A photograph's camera elevation, light rotation and ground.
+  view: 30,
+  rotation: 0,
+  ground: 'none',
   slots: { a: null, b: null },
   // The stone's material, body colour and width (both slots): see stoneBody().
   stone: { material: 'diamond', own: false, colour: '#7a3fa0', colourMm: 10, density: 1, width: 6.5 },
@@ -144,6 +153,7 @@ function refresh(name, what) {
   const s = state.slots[name];
   if (!s) return;
   if (what === 'render') doRender(name);
+  if (what === 'photo') doRender(name, false);
   if (what === 'all') {
     // The picture first, then the quick scores: both use every core of the server, so
     // asking for them one after the other shows the picture sooner and the scores no later.
@@ -155,16 +165,25 @@ function refresh(name, what) {
   }
 }
 
-async function doRender(name) {
+// A photograph is drawn quick while its controls move (one wavelength, coarser beams) and
+// in full FULL_DELAY ms after the last change; `quick` false asks for the full one.
+async function doRender(name, quick) {
   const s = state.slots[name];
   const t = performance.now();
   const t0 = s.t0 || t;
   const img = $('#render-' + name);
   const frame = img.parentElement;
   const want = { light: state.light, tilt: state.tilt, exposure: state.exposure };
+  const photo = isPhoto(state.light);
+  clearTimeout(timers[name + 'photo']);
+  if (photo) {
+    Object.assign(want, { view: state.view, light_rotation: state.rotation, ground: state.ground });
+    want.quick = quick !== false;
+  }
   frame.classList.add('busy');
   try {
     const { blob, headers } = await api('render-' + name, '/api/render', requestBody(s, Object.assign({ size: 512 }, want)), 'blob');
+    if (photo && want.quick) timers[name + 'photo'] = setTimeout(() => refresh(name, 'photo'), FULL_DELAY);
     if (state.slots[name] !== s) return false;
     const url = URL.createObjectURL(blob);
     const old = s.img;
@@ -178,6 +197,8 @@ async function doRender(name) {
       s.ms.slider = Math.round(now - t0);
       img.dataset.ms = String(s.ms.slider);
       img.dataset.light = want.light;
+      img.dataset.quick = want.quick ? '1' : '0';
+      img.dataset.rotation = photo ? String(want.light_rotation) : '';
       img.dataset.name = s.info ? s.info.name : '';
       s.shown = Object.assign({ stats, name: s.info ? s.info.name : '', changed: Object.keys(s.set).length }, want);
       frame.classList.remove('busy');
@@ -614,6 +635,17 @@ function caption(name) {
   if (v.changed) parts.push(`(${v.changed} changed)`);
   parts.push('· ' + (LIGHT_NAMES[v.light] || v.light));
   if (v.tilt) parts.push(`· tilt ${v.tilt}°`);
+  if (isPhoto(v.light)) {
+    parts.push(`· view ${v.view}°`);
+    if (v.light_rotation) parts.push(`· light turned ${v.light_rotation}°`);
+    if (v.ground !== 'none') parts.push(`· ${v.ground} ground`);
+    if (v.quick) parts.push('· quick');
+    const st = v.stats || {};
+    if (typeof st.mean === 'number') parts.push(`· mean ${st.mean.toFixed(3)}`);
+    el.textContent = parts.join(' ');
+    el.title = el.textContent;
+    return;
+  }
   const st = v.stats || {};
   if (st.colour) parts.push(`· L* ${st.colour.l.toFixed(1)} C* ${st.colour.c.toFixed(1)} h ${st.colour.h_deg.toFixed(0)}°`);
   if (typeof st.fire === 'number') parts.push(`· face-up fire ${st.fire.toFixed(3)}`);
@@ -801,7 +833,8 @@ async function start() {
     sel.appendChild(o);
   }
   const light = $('#light');
-  for (const l of state.meta.lights) {
+  PHOTO_LIGHTS = state.meta.photo_lights || [];
+  for (const l of state.meta.lights.concat(PHOTO_LIGHTS)) {
     const o = document.createElement('option');
     o.value = l;
     o.textContent = LIGHT_NAMES[l] || l;
@@ -831,11 +864,27 @@ async function start() {
     $('#exposure-val').textContent = falseColour ? 'n/a' : v.toFixed(2);
   };
   setExposure(state.exposure);
+  const photoBar = $('#photo-bar');
   light.addEventListener('change', () => {
     state.light = light.value;
+    photoBar.hidden = !isPhoto(state.light);
     setExposure(LIGHT_EXPOSURE[state.light] || 1);
     for (const n of ['a', 'b']) if (state.slots[n]) { state.slots[n].t0 = performance.now(); schedule(n, 'render', 0); }
   });
+  // The photograph's controls: every move re-draws quick pictures (debounced), the full one
+  // follows when they rest.
+  const photoControl = (id, key, unit) => {
+    const el = $('#' + id);
+    el.addEventListener('input', () => {
+      state[key] = el.type === 'range' ? Number(el.value) : el.value;
+      const val = $('#' + id + '-val');
+      if (val) val.textContent = el.value + unit;
+      for (const n of ['a', 'b']) if (state.slots[n]) { state.slots[n].t0 = performance.now(); schedule(n, 'render'); }
+    });
+  };
+  photoControl('view', 'view', '°');
+  photoControl('rotation', 'rotation', '°');
+  photoControl('ground', 'ground', '');
   exposure.addEventListener('input', () => {
     state.exposure = Number(exposure.value);
     $('#exposure-val').textContent = state.exposure.toFixed(2);

@@ -12,6 +12,7 @@ use base64::engine::{DecodePaddingMode, GeneralPurposeConfig};
 use base64::Engine;
 use facetlab::io;
 use facetlab::optics::{BodyColour, ColourFields, Material, MaterialFields, StoneSize};
+use facetlab::render::photo::{GroundKind, PhotoLight, View};
 use facetlab::render::Light;
 use serde::Deserialize;
 use serde_json::{Number, Value};
@@ -50,6 +51,14 @@ pub struct Req {
     pub material: Material,
     /// The stone's size for its body colour (`diameter_mm` or `size_mm`).
     pub stone: StoneSize,
+    /// A photographic `light` (a rig or the studio map): `/api/render` takes a photograph.
+    pub photo: Option<PhotoLight>,
+    /// A photograph's camera (`view` elevation, `view_az` azimuth).
+    pub view: View,
+    /// A photograph's light turned about the vertical (`light_rotation`), degrees.
+    pub light_rotation: f64,
+    /// A photograph's ground (`ground`).
+    pub ground: GroundKind,
 }
 
 /// A field of a body as sent: absent, of the expected JSON type, or anything else (`null`
@@ -99,6 +108,41 @@ struct Body {
     colour_density: Field<Number>,
     diameter_mm: Field<Number>,
     size_mm: Field<String>,
+    view: Field<Number>,
+    view_az: Field<Number>,
+    light_rotation: Field<Number>,
+    ground: Field<String>,
+}
+
+/// The keys of a photograph (`render` with a photographic light).
+pub const PHOTO: [&str; 4] = ["view", "view_az", "light_rotation", "ground"];
+
+/// A number field within `[lo, hi]` (default `default`), the error naming `field` and `what`.
+fn bounded(
+    f: &Field<Number>,
+    field: &str,
+    lo: f64,
+    hi: f64,
+    default: f64,
+    what: &str,
+) -> ApiResult<f64> {
+    let bad = |sent: String| {
+        ApiError::bad(
+            field,
+            format!(
+                "{} is not allowed; give {what} from {lo} to {hi}",
+                short(&sent)
+            ),
+        )
+    };
+    match f.given() {
+        Ok(None) => Ok(default),
+        Ok(Some(n)) => match n.as_f64() {
+            Some(x) if (lo..=hi).contains(&x) => Ok(x),
+            _ => Err(bad(n.to_string())),
+        },
+        Err(v) => Err(bad(v.to_string())),
+    }
 }
 
 /// Which keys an endpoint takes beyond `cut`, `format`, `encoding`, `name`, `set`.
@@ -190,20 +234,79 @@ pub fn parse_req(
         )
     };
     let (material, stone) = stone(&b)?;
+    // A photographic light (a rig or the bundled studio map; a map file is for the command
+    // line: nothing a client sends becomes a path).
+    let photo = match b.light.given() {
+        Ok(Some(l)) if Light::parse(l).is_err() && !l.trim().starts_with("env:") => {
+            PhotoLight::parse(l).ok().flatten()
+        }
+        _ => None,
+    };
+    let view = View {
+        elevation_deg: bounded(
+            &b.view,
+            "view",
+            -90.0,
+            90.0,
+            30.0,
+            "the camera's elevation in degrees",
+        )?,
+        azimuth_deg: bounded(
+            &b.view_az,
+            "view_az",
+            -360.0,
+            360.0,
+            0.0,
+            "the camera's azimuth in degrees",
+        )?,
+    };
+    let light_rotation = bounded(
+        &b.light_rotation,
+        "light_rotation",
+        -360.0,
+        360.0,
+        0.0,
+        "degrees",
+    )?;
+    let ground = match b.ground.given() {
+        Ok(None) => GroundKind::None,
+        Ok(Some(g)) => GroundKind::ALL
+            .into_iter()
+            .find(|k| k.name() == g.trim())
+            .ok_or_else(|| {
+                ApiError::bad(
+                    "ground",
+                    format!("{:?} is not allowed; give none, white or black", short(g)),
+                )
+            })?,
+        Err(_) => {
+            return Err(ApiError::bad(
+                "ground",
+                "must be a string: none, white or black",
+            ))
+        }
+    };
+    let is_photo = photo.is_some();
     Ok(Req {
+        photo,
+        view,
+        light_rotation,
+        ground,
         material,
         stone,
         source: source(&b)?,
         set: set(&b)?,
         light: match b.light.given() {
             Ok(None) => Light::Iso,
+            Ok(Some(_)) if is_photo => Light::Iso,
             Ok(Some(s)) => Light::parse(s).map_err(|_| {
                 ApiError::bad(
                     "light",
                     format!(
-                        "unknown light {:?}; allowed {}",
+                        "unknown light {:?}; allowed {}, {}",
                         short(s),
-                        Light::ALL.map(Light::name).join(", ")
+                        Light::ALL.map(Light::name).join(", "),
+                        PhotoLight::names().join(", ")
                     ),
                 )
             })?,

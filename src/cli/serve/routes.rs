@@ -4,7 +4,7 @@
 
 use super::error::{no_store, ApiError, ApiResult};
 use super::jobs::{build, build_design, heavy, jobs};
-use super::request::{parse_req, width_mm, Source, EXPORTS, FORMATS, STONE};
+use super::request::{parse_req, width_mm, Source, EXPORTS, FORMATS, PHOTO, STONE};
 use super::{page, plans, runs, AppState, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
 use crate::cli::cuts::info_json;
 use axum::body::Bytes;
@@ -105,6 +105,7 @@ fn presets_json() -> Value {
         "presets": presets,
         "families": fams,
         "lights": Light::ALL.map(Light::name),
+        "photo_lights": facetlab::render::photo::PhotoLight::names(),
         "formats": FORMATS,
         "materials": materials_json(),
         "crystals": facetlab::plan::CRYSTALS,
@@ -247,13 +248,21 @@ async fn render_cut(
 ) -> ApiResult<Response> {
     let r = parse_req(
         body,
-        &[&["light", "size", "tilt", "exposure"][..], &STONE].concat(),
+        &[
+            &["light", "size", "tilt", "exposure", "quick"][..],
+            &STONE,
+            &PHOTO,
+        ]
+        .concat(),
     )?;
     let designs = st.designs.clone();
     let (png, stats, timing) = heavy(&st, move || {
         let t0 = Instant::now();
         let cut = build(&designs, &r)?;
         let t1 = Instant::now();
+        if let Some(light) = r.photo.clone() {
+            return photograph(&r, &cut, light, t0, t1);
+        }
         let mut o = RenderOptions::new(r.light);
         o.size = r.size;
         o.tilt = Tilt {
@@ -291,6 +300,54 @@ async fn render_cut(
         resp.headers_mut().insert("x-facetlab-stats", h);
     }
     Ok(no_store(resp))
+}
+
+/// The photograph of `/api/render` with a photographic light: the PNG, its statistics as
+/// JSON and the timing header. `quick` takes the slider's quick settings.
+fn photograph(
+    r: &super::request::Req,
+    cut: &facetlab::cut::Cut,
+    light: facetlab::render::photo::PhotoLight,
+    t0: Instant,
+    t1: Instant,
+) -> ApiResult<(Vec<u8>, String, String)> {
+    use facetlab::render::photo::{photo, Ground, PhotoOptions};
+    let mut o = PhotoOptions::new(light);
+    o.size = r.size;
+    o.view = r.view;
+    o.tilt = Tilt {
+        tilt_deg: r.tilt,
+        azimuth_deg: 0.0,
+    };
+    o.light_rotation_deg = r.light_rotation;
+    o.ground = Ground {
+        kind: r.ground,
+        gap: 0.0,
+    };
+    o.width_mm = width_mm(r, cut)?;
+    o.material = r.material.clone();
+    if r.quick {
+        o = o.quick();
+    }
+    o.validate().map_err(|e| match e {
+        facetlab::error::Error::Invalid { field, message } => ApiError::bad(&field, message),
+        other => ApiError::bad("render", other.to_string()),
+    })?;
+    let p = photo(&cut.solid, &o);
+    let t2 = Instant::now();
+    let rgb = p.to_srgb8(r.exposure, o.tone);
+    let n = r.size as u32;
+    let png = io::png::encode_rgb8(n, n, &[&rgb], 0)
+        .map_err(|e| ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "render", e.to_string()))?;
+    let stats = serde_json::to_string(&p.stats).unwrap_or_default();
+    let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;
+    let timing = format!(
+        "build;dur={:.1}, trace;dur={:.1}, png;dur={:.1}",
+        ms(t0, t1),
+        ms(t1, t2),
+        ms(t2, Instant::now())
+    );
+    Ok((png, stats, timing))
 }
 
 /// `POST /api/export`: the cut as a file.

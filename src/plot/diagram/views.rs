@@ -11,34 +11,6 @@ const TINTS: &[&str] = &[
     "#e6d3c4", "#dfe6f2",
 ];
 
-/// Convex hull of 2-D points, counter-clockwise (monotone chain).
-fn hull2(mut pts: Vec<DVec2>) -> Vec<DVec2> {
-    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    pts.dedup_by(|a, b| a.distance(*b) < 1e-12);
-    if pts.len() < 3 {
-        return pts;
-    }
-    let cross = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
-    let mut lower: Vec<DVec2> = Vec::new();
-    for &p in &pts {
-        while lower.len() >= 2 && cross(lower[lower.len() - 2], lower[lower.len() - 1], p) <= 0.0 {
-            lower.pop();
-        }
-        lower.push(p);
-    }
-    let mut upper: Vec<DVec2> = Vec::new();
-    for &p in pts.iter().rev() {
-        while upper.len() >= 2 && cross(upper[upper.len() - 2], upper[upper.len() - 1], p) <= 0.0 {
-            upper.pop();
-        }
-        upper.push(p);
-    }
-    lower.pop();
-    upper.pop();
-    lower.extend(upper);
-    lower
-}
-
 pub(super) fn tint(tiers: &[String], tier: &str) -> &'static str {
     if tier == "girdle" {
         return "#e4e4e4";
@@ -82,7 +54,9 @@ pub(super) fn facet_view(
             esc(&f.tier)
         );
     }
-    let outline = hull2(solid.vertices().iter().map(|p| view.px(proj(*p))).collect());
+    let outline = crate::geometry::clip2d::convex_hull(
+        solid.vertices().iter().map(|p| view.px(proj(*p))).collect(),
+    );
     let _ = writeln!(
         out,
         r#"<polygon points="{}" fill="none" stroke="{INK}" stroke-width="1.8" stroke-linejoin="round"/>"#,

@@ -537,6 +537,53 @@ async fn browser_session(
         .await
         .unwrap();
 
+    // The photo view: the studio map, the light turned by the slider; quick pictures while it
+    // moves, the full one after; a white ground.
+    let _: bool = js(
+        &page,
+        "(() => { const l = document.querySelector('#light'); l.value = 'studio'; l.dispatchEvent(new Event('change')); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(&page, "!document.querySelector('#photo-bar').hidden && document.querySelector('#render-a').dataset.light === 'studio' && document.querySelector('#render-a').dataset.quick === '0' && !document.querySelector('#render-a').parentElement.classList.contains('busy')", 60).await,
+        "the photo view did not show"
+    );
+    let full_src: String = js(&page, "document.querySelector('#render-a').src").await;
+    let _: bool = js(
+        &page,
+        "(() => { const r = document.querySelector('#rotation'); r.value = '120'; r.dispatchEvent(new Event('input', {bubbles: true})); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(&page, "document.querySelector('#render-a').dataset.rotation === '120' && document.querySelector('#render-a').dataset.quick === '1'", 30).await,
+        "turning the light gave no quick picture"
+    );
+    let quick_ms: String = js(&page, "document.querySelector('#render-a').dataset.ms").await;
+    eprintln!("photo view: light rotation slider → quick 512² picture in {quick_ms} ms");
+    assert!(
+        wait_js(&page, "document.querySelector('#render-a').dataset.rotation === '120' && document.querySelector('#render-a').dataset.quick === '0'", 60).await,
+        "the full picture did not follow the quick one"
+    );
+    let turned_src: String = js(&page, "document.querySelector('#render-a').src").await;
+    assert_ne!(full_src, turned_src);
+    let cap: String = js(&page, "document.querySelector('#cap-a').textContent").await;
+    assert!(
+        cap.contains("light turned 120°") && cap.contains("view 30°"),
+        "{cap}"
+    );
+    let _: bool = js(
+        &page,
+        "(() => { const g = document.querySelector('#ground'); g.value = 'white'; g.dispatchEvent(new Event('input', {bubbles: true})); return true; })()",
+    )
+    .await;
+    assert!(
+        wait_js(&page, "document.querySelector('#cap-a').textContent.includes('white ground') && document.querySelector('#render-a').dataset.quick === '0' && !document.querySelector('#render-a').parentElement.classList.contains('busy')", 90).await,
+        "the ground did not show"
+    );
+    page.save_screenshot(ScreenshotParams::builder().build(), shot("10-photo.png"))
+        .await
+        .unwrap();
+
     let page_errs: Vec<String> = js(&page, "window.__errs || []").await;
     let errs = errors.lock().unwrap().clone();
     assert!(

@@ -1,0 +1,158 @@
+//! Where exit beams leave ([`ExitSink::exit_at`](crate::beam::ExitSink::exit_at)) and traces
+//! of part of the cross-section ([`Stone::trace_window_into`]).
+
+use super::{dirs, solids};
+use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions};
+use crate::optics::refract;
+use crate::testkit::{boxed, tolkowsky};
+use glam::{DVec2, DVec3, DVec4};
+
+/// Keeps every exit with its footprint and place.
+#[derive(Default)]
+struct Places {
+    exits: Vec<(ExitBeam, Vec<DVec2>, Vec<DVec3>)>,
+}
+
+impl ExitSink for Places {
+    fn wants_footprints(&self) -> bool {
+        true
+    }
+    fn wants_exit_places(&self) -> bool {
+        true
+    }
+    fn exit(&mut self, _: &ExitBeam, _: &[DVec2]) {
+        unreachable!("the tracer hands exits out with their places");
+    }
+    fn exit_at(&mut self, e: &ExitBeam, fp: &[DVec2], place: &[DVec3]) {
+        self.exits.push((*e, fp.to_vec(), place.to_vec()));
+    }
+}
+
+/// Light straight through a box, tilted: each footprint vertex's ray, refracted at the top
+/// by Snell's law (computed here) and run to the bottom, leaves at the place vertex handed
+/// out with it.
+#[test]
+fn straight_through_places_follow_snell() {
+    let solid = boxed(0.5, 0.5, 0.2);
+    let stone = Stone::new(&solid);
+    let frame = Frame::new(DVec3::new(0.3, -0.2, -1.0)).unwrap();
+    let ri = 1.7;
+    let mut sink = Places::default();
+    let opts = TraceOptions::exact(1e-9);
+    stone.trace_into(&frame, ri, &opts, &mut sink, false);
+    let t = refract(frame.dir, DVec3::Z, 1.0, ri).unwrap();
+    let mut checked = 0;
+    for (e, fp, place) in &sink.exits {
+        // Entered the top (z = 0.2) and left the bottom (z = −0.2) at once.
+        if e.external || e.reflections != 0 || stone.normal(e.exit_facet).z > -0.5 {
+            continue;
+        }
+        assert_eq!(fp.len(), place.len());
+        for (p, x) in fp.iter().zip(place) {
+            // The entry point on the top plane whose image coordinates are p.
+            let (u, v) = (frame.u, frame.v);
+            let base = u * p.x + v * p.y;
+            let top = base + frame.dir * ((0.2 - base.z) / frame.dir.z);
+            let bottom = top + t * ((-0.2 - top.z) / t.z);
+            assert!((bottom - *x).length() < 1e-12, "{bottom} {x}");
+        }
+        checked += 1;
+    }
+    assert!(checked > 0);
+}
+
+/// Every exit's place lies on its exit facet's plane; an exact beam's has its footprint's
+/// vertex count, a narrow beam's is one point; symmetric copies' places are the traced ones
+/// turned (their facets' planes hold them too).
+#[test]
+fn places_lie_on_the_exit_facets() {
+    for (name, s) in solids() {
+        let stone = Stone::new(&s);
+        for frame in dirs() {
+            let mut sink = Places::default();
+            stone.trace_into(&frame, 2.4173, &TraceOptions::default(), &mut sink, false);
+            assert!(!sink.exits.is_empty());
+            for (e, fp, place) in &sink.exits {
+                if e.narrow {
+                    assert_eq!(place.len(), 1, "{name}");
+                } else {
+                    assert_eq!(place.len(), fp.len(), "{name}");
+                }
+                let f = &s.facets()[e.exit_facet];
+                for x in place {
+                    let off = f.plane.normal.dot(*x) - f.plane.offset;
+                    assert!(off.abs() < 1e-9, "{name}: {off}");
+                }
+            }
+        }
+    }
+}
+
+/// Four quadrant windows trace the whole cross-section between them: their incoming power
+/// adds up to 1 and their exits' power to the whole trace's: to rounding for the light that
+/// leaves after at most two internal reflections, within the light cut off upward and
+/// downward (exact traces, split to 1e-10).
+#[test]
+fn windows_add_up_to_the_whole() {
+    let stone = Stone::new(&tolkowsky());
+    let frame = Frame::new(DVec3::new(0.2, -0.35, -1.0)).unwrap();
+    let opts = TraceOptions {
+        symmetry: false,
+        ..TraceOptions::exact(1e-10)
+    };
+    let whole = stone.trace(&frame, 2.4173, 589.3, &opts);
+    let (x0, y0) = (0.031, -0.047);
+    let (u, v) = (frame.u, frame.v);
+    let quadrants = [
+        [(u, x0), (v, y0)],
+        [(-u, -x0), (v, y0)],
+        [(u, x0), (-v, -y0)],
+        [(-u, -x0), (-v, -y0)],
+    ];
+    let (mut power_in, mut up, mut down, mut cut) = (0.0, 0.0, 0.0, 0.0);
+    // Light that left after at most two internal reflections: no beam of it is anywhere
+    // near the threshold, so it is the same light to rounding.
+    let (mut early, mut whole_early) = (0.0, 0.0);
+    for q in quadrants {
+        let window: Vec<DVec4> = q.iter().map(|&(n, c)| n.extend(c)).collect();
+        let mut sink = Places::default();
+        let (st, _) = stone.trace_window_into(&frame, 2.4173, &opts, &window, &mut sink, false);
+        power_in += st.power_in;
+        cut += st.cut_off;
+        for (e, fp, _) in &sink.exits {
+            // Every footprint inside its window.
+            for p in fp {
+                let x = u * p.x + v * p.y;
+                for h in &window {
+                    assert!(h.truncate().dot(x) <= h.w + 1e-9);
+                }
+            }
+            if e.direction.z > 0.0 {
+                up += e.power;
+            } else {
+                down += e.power;
+            }
+            if e.reflections <= 2 {
+                early += e.power;
+            }
+        }
+    }
+    for e in whole.exits.iter().filter(|e| e.reflections <= 2) {
+        whole_early += e.power;
+    }
+    assert!((early - whole_early).abs() < 1e-11, "{early} {whole_early}");
+    let (wu, wd): (f64, f64) = whole.exits.iter().fold((0.0, 0.0), |(a, b), e| {
+        if e.direction.z > 0.0 {
+            (a + e.power, b)
+        } else {
+            (a, b + e.power)
+        }
+    });
+    assert!((power_in - 1.0).abs() < 1e-12, "{power_in}");
+    // Smaller root beams are cut off a little differently below the threshold.
+    let slack = cut + whole.stats.cut_off;
+    assert!(slack < 1e-4, "{slack}");
+    assert!((up - wu).abs() <= slack, "{up} {wu}");
+    assert!((down - wd).abs() <= slack, "{down} {wd}");
+    assert!((up + down + cut - 1.0).abs() < 1e-12);
+}

@@ -1,0 +1,588 @@
+//! The photograph's pipeline ([`photo`]): the camera's sight lines traced backwards by the
+//! beam tracer (one orthographic trace, or perspective tiles), band by band; every exit
+//! beam shaded by the environment in its direction or, leaving downward onto a ground, by
+//! the ground's radiance over the exact polygon it lands on; the background seen past the
+//! stone; all summed in CIE XYZ.
+
+use super::camera::{Camera, Projection, Tile};
+use super::env::{luminance, Environment, Rgb};
+use super::ground::{land, GroundField, GroundKind, Lit, LitTrace};
+use super::options::PhotoOptions;
+use super::{Photo, PhotoStats};
+use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions};
+use crate::geometry::{canonical::canonical, clip2d, outline_size, Polyhedron};
+use crate::optics::color;
+use crate::optics::upsample::{rgb_at, rgb_weights};
+use crate::optics::Dispersion;
+use crate::render::layer::{Layer, BAND_ROWS};
+use crate::render::pose::picture_half;
+use crate::render::raster::{Accumulator, Raster};
+use glam::{DMat2, DMat3, DVec2, DVec3};
+use rayon::prelude::*;
+
+/// One band of the picture: its XYZ weight, its weights of linear sRGB's primaries
+/// ([`rgb_weights`]), and the index and absorption the stone has in it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Band {
+    pub xyz: DVec3,
+    pub rgb: [f64; 3],
+    pub ri: f64,
+    pub alpha: f64,
+}
+
+/// The bands of a picture of `opts`, and whether they are spectral. A stone whose index and
+/// colour do not change with wavelength is traced once, in three pseudo-bands that carry
+/// linear sRGB's red, green and blue (their XYZ weights being what the spectral bands would
+/// give them, so the two ways give the same colours); any other in fire's bands (faint ones
+/// merged into a neighbour, as fire pictures do). Under `grey` light (every radiance grey,
+/// and every ground is) the three pseudo-bands are one.
+pub(super) fn bands(opts: &PhotoOptions, mm_per_unit: f64, grey: bool) -> (Vec<Band>, bool) {
+    let m = &opts.material;
+    let body = m.colour.as_ref();
+    let absorption = |l: f64| body.map_or(0.0, |c| c.alpha(l) * mm_per_unit);
+    let spectral_bands = color::traced_bands(opts.bands.max(1), color::FAINT_BAND);
+    let constant = matches!(m.dispersion, Dispersion::Constant(_)) && body.is_none();
+    if constant {
+        let mut cols = [DVec3::ZERO; 3];
+        for (l, w) in &spectral_bands {
+            let b = rgb_weights(*l);
+            for c in 0..3 {
+                cols[c] += *w * b[c];
+            }
+        }
+        let ri = m.ri(589.3);
+        if grey {
+            // Grey light on a grey ground: one channel (red, equal to the others) with the
+            // white's XYZ weight.
+            let band = Band {
+                xyz: cols[0] + cols[1] + cols[2],
+                rgb: [1.0, 0.0, 0.0],
+                ri,
+                alpha: 0.0,
+            };
+            return (vec![band], false);
+        }
+        let unit = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let v = (0..3)
+            .map(|c| Band {
+                xyz: cols[c],
+                rgb: unit[c],
+                ri,
+                alpha: 0.0,
+            })
+            .collect();
+        (v, false)
+    } else {
+        let v = spectral_bands
+            .iter()
+            .map(|&(l, w)| Band {
+                xyz: w,
+                rgb: rgb_weights(l),
+                ri: m.ri(l),
+                alpha: absorption(l),
+            })
+            .collect();
+        (v, true)
+    }
+}
+
+/// The sink of one trace of the picture (one band group, one tile): every exit's footprint
+/// (in image coordinates) with its radiance, into a layer of one value per band traced.
+struct PhotoSink<'a> {
+    layer: Layer,
+    rot: DMat3,
+    env: &'a Environment,
+    /// The bands this trace draws (indices into `bands`).
+    which: &'a [usize],
+    bands: &'a [Band],
+    ground: Option<&'a GroundField>,
+    tile: Option<&'a Tile>,
+    /// Side of the picture's pixel in image coordinates.
+    pixel: f64,
+    fp: Vec<DVec2>,
+    values: Vec<f64>,
+}
+
+impl PhotoSink<'_> {
+    /// Values of the environment seen along `w` in the bands drawn.
+    fn env_values(&mut self, w: DVec3) {
+        let c = self.env.radiance(w);
+        self.values.clear();
+        for &b in self.which {
+            self.values.push(rgb_at(c, self.bands[b].rgb));
+        }
+    }
+
+    /// Values of the ground in the bands drawn, at cell (i, j) or at point p.
+    fn ground_values(&mut self, g: &GroundField, at: Result<(i64, i64), DVec2>) {
+        self.values.clear();
+        for &b in self.which {
+            self.values.push(match at {
+                Ok((i, j)) => (g.k[b] * g.cell_irradiance(b, i, j)).max(0.0),
+                Err(p) => g.radiance(b, p),
+            });
+        }
+    }
+}
+
+impl ExitSink for PhotoSink<'_> {
+    fn wants_footprints(&self) -> bool {
+        true
+    }
+    fn symmetries(&mut self, maps: &[(u16, [f64; 4])]) {
+        self.layer.set_symmetries(maps);
+    }
+    fn wants_exit_places(&self) -> bool {
+        self.ground.is_some()
+    }
+    fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+        self.exit_at(e, fp, &[]);
+    }
+    fn exit_at(&mut self, e: &ExitBeam, fp: &[DVec2], place: &[DVec3]) {
+        let w = self.rot * e.direction;
+        // The beam's radiance per unit of the light it started with: its power per unit of
+        // its footprint (in the traced frame's coordinates), before the layer's scaling by
+        // the cross-section.
+        let a_src = clip2d::area(fp);
+        if a_src.is_nan() || e.power.is_nan() || a_src <= 0.0 || e.power <= 0.0 {
+            self.layer.exits += 1;
+            return;
+        }
+        let k = e.power / a_src;
+        // Orthographic with the environment all round: the layer keeps a symmetric trace's
+        // copies as maps of the traced footprint.
+        if self.tile.is_none() && self.ground.is_none() {
+            self.env_values(w);
+            let v = std::mem::take(&mut self.values);
+            self.layer.record(e, fp, &v);
+            self.values = v;
+            return;
+        }
+        self.fp.clear();
+        match self.tile {
+            Some(t) => self.fp.extend(fp.iter().map(|&p| t.image(p))),
+            None => self.fp.extend_from_slice(fp),
+        }
+        let fp = std::mem::take(&mut self.fp);
+        self.layer.exits += 1;
+        match self.ground {
+            Some(g) if w.z < 0.0 && !place.is_empty() => {
+                let landed: Vec<DVec2> =
+                    place.iter().map(|&x| land(self.rot * x, w, g.z)).collect();
+                let mut done = false;
+                if landed.len() == fp.len() && landed.len() >= 3 {
+                    // The ground polygon → picture map (affine, from three vertex pairs).
+                    if let Some((m, t)) = affine(&landed, &fp) {
+                        let mut pieces: Vec<(Vec<DVec2>, i64, i64)> = Vec::new();
+                        done = g.pieces(&landed, 48, |piece, i, j| {
+                            pieces.push((piece.to_vec(), i, j));
+                        });
+                        // A ground cell the stone magnifies past a pixel and a half is drawn
+                        // in sub-cells of about a pixel, each with the field's bilinear
+                        // radiance at its centre (the ground seen directly is bilinear too):
+                        // a cell's constant would show its edges as steps through the
+                        // pavilion.
+                        let h = g.cell();
+                        let sub = ((h * m.determinant().abs().sqrt() / self.pixel).ceil() as usize)
+                            .clamp(1, 16);
+                        let (mut strip, mut cellp, mut scratch) =
+                            (Vec::new(), Vec::new(), Vec::new());
+                        for (piece, i, j) in pieces {
+                            if sub < 2 {
+                                self.ground_values(g, Ok((i, j)));
+                                let poly: Vec<DVec2> = piece.iter().map(|&p| m * p + t).collect();
+                                let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
+                                self.layer.add_polygon(&poly, &v);
+                                continue;
+                            }
+                            let hs = h / sub as f64;
+                            let (x0, y0) = (-g.half + i as f64 * h, -g.half + j as f64 * h);
+                            for b in 0..sub {
+                                let y = y0 + b as f64 * hs;
+                                clip2d::clip_strip_y_into(
+                                    &piece,
+                                    y,
+                                    y + hs,
+                                    &mut strip,
+                                    &mut scratch,
+                                );
+                                if strip.len() < 3 {
+                                    continue;
+                                }
+                                for a in 0..sub {
+                                    let x = x0 + a as f64 * hs;
+                                    clip2d::clip_strip_x_into(
+                                        &strip,
+                                        x,
+                                        x + hs,
+                                        &mut cellp,
+                                        &mut scratch,
+                                    );
+                                    if cellp.len() < 3 {
+                                        continue;
+                                    }
+                                    let c = clip2d::centroid(&cellp).unwrap_or(cellp[0]);
+                                    self.ground_values(g, Err(c));
+                                    let poly: Vec<DVec2> =
+                                        cellp.iter().map(|&p| m * p + t).collect();
+                                    let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
+                                    self.layer.add_polygon(&poly, &v);
+                                }
+                            }
+                        }
+                    }
+                }
+                if !done {
+                    let c = clip2d::centroid(&landed).unwrap_or(landed[0]);
+                    self.ground_values(g, Err(c));
+                    let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
+                    self.layer.add_polygon(&fp, &v);
+                }
+            }
+            _ => {
+                self.env_values(w);
+                let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
+                self.layer.add_polygon(&fp, &v);
+            }
+        }
+        self.fp = fp;
+    }
+}
+
+/// The affine map `p ↦ m p + t` taking polygon `from`'s vertices to `to`'s (from its first
+/// vertex and the two that span the largest triangle with it); `None` when degenerate.
+fn affine(from: &[DVec2], to: &[DVec2]) -> Option<(DMat2, DVec2)> {
+    let n = from.len();
+    let (mut best, mut bi, mut bj) = (0.0, 1, 2);
+    for i in 1..n {
+        for j in i + 1..n {
+            let a = clip2d::cross(from[i] - from[0], from[j] - from[0]).abs();
+            if a > best {
+                (best, bi, bj) = (a, i, j);
+            }
+        }
+    }
+    let g = DMat2::from_cols(from[bi] - from[0], from[bj] - from[0]);
+    let det = g.determinant();
+    let scale = (from[bi] - from[0]).length_squared() + (from[bj] - from[0]).length_squared();
+    if !(det.abs() > 1e-12 * scale && det.is_finite()) {
+        return None;
+    }
+    let f = DMat2::from_cols(to[bi] - to[0], to[bj] - to[0]);
+    let m = f * g.inverse();
+    let t = to[0] - m * from[0];
+    Some((m, t))
+}
+
+/// The outline's coverage of each pixel: facets facing the sight lines, each tile's through
+/// its window.
+fn coverage(solid: &Polyhedron, cam: &Camera, tiles: &[Tile]) -> Raster {
+    if tiles.is_empty() {
+        return crate::render::outline_coverage(solid, &cam.frame(), cam.size, cam.half);
+    }
+    let n = cam.size;
+    let mut cov = Raster::new(n, cam.half);
+    let mut acc = Accumulator::new(n, cam.half, (0, n), 1);
+    for t in tiles {
+        for f in 0..solid.facets().len() {
+            if solid.facets()[f].plane.normal.dot(t.frame.dir) >= 0.0 {
+                continue;
+            }
+            let poly: Vec<DVec2> = solid
+                .facet_polygon(f)
+                .iter()
+                .map(|p| DVec2::new(p.dot(t.frame.u), p.dot(t.frame.v)))
+                .collect();
+            let inside = clip2d::clip_convex(&poly, &t.quad);
+            if inside.len() >= 3 {
+                let img: Vec<DVec2> = inside.iter().map(|&p| t.image(p)).collect();
+                acc.add_polygon(&img, &[1.0]);
+            }
+        }
+    }
+    cov.data = acc.finish().swap_remove(0);
+    cov
+}
+
+/// Take `opts` as a photograph of `solid`. The solid is first put in its canonical placement
+/// (centred, unit size; not turned), then posed by `opts.tilt` and set on the ground (its
+/// lowest point `opts.ground.gap` above it). Options should have passed
+/// [`PhotoOptions::validate`]; out-of-range values never panic.
+pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
+    let solid = canonical(solid);
+    let stone = Stone::new(&solid);
+    let rot = opts.tilt.rotation();
+    let size = opts.size.max(1);
+    let half = picture_half(&solid) * opts.margin;
+    let width = outline_size(solid.vertices()).1;
+    let mm_per_unit = opts.width_mm / width.max(1e-300);
+    // The turntable turns the stone under the camera and lights: the same as turning the
+    // camera and lights the other way round the stone.
+    let mut view = opts.view;
+    view.azimuth_deg -= opts.turn_deg;
+    let (dir, right, up) = view.axes();
+    let projection = match opts.distance_mm {
+        Some(d) => Projection::Perspective {
+            distance: d / mm_per_unit,
+            tile: opts.tile,
+        },
+        None => Projection::Orthographic,
+    };
+    let cam = Camera {
+        dir,
+        right,
+        up,
+        rot,
+        half,
+        size,
+        projection,
+    };
+    let env = opts.light.environment(
+        dir,
+        view.world_azimuth_deg(),
+        opts.light_rotation_deg - opts.turn_deg,
+    );
+    let (bands, spectral) = bands(opts, mm_per_unit, env.is_grey());
+    let nb = bands.len();
+    let luminance_of = |v: &[f64]| -> f64 { v.iter().zip(&bands).map(|(x, b)| x * b.xyz.y).sum() };
+
+    // The ground: its plane under the posed stone's lowest point, its light.
+    let ground = (opts.ground.kind != GroundKind::None).then(|| {
+        let lowest = stone
+            .vertices()
+            .iter()
+            .map(|&v| (rot * v).z)
+            .fold(f64::INFINITY, f64::min);
+        let z = lowest - opts.ground.gap;
+        let albedo: Vec<f64> = bands
+            .iter()
+            .map(|b| rgb_at(opts.ground.kind.albedo(), b.rgb))
+            .collect();
+        let samples = env.samples(opts.ground_cells);
+        // Round lights are traced in every band (their caustics show fire); a cell of the
+        // diffuse light once, at the middle band's index, standing for every band (its
+        // caustic is too spread to show fire; a coloured stone's bands share its absorption
+        // by their exponents).
+        let alpha_max = bands.iter().map(|b| b.alpha).fold(0.0, f64::max);
+        let mid = &bands[nb / 2];
+        let lights: Vec<Lit> = samples
+            .iter()
+            .map(|s| {
+                let e = |b: &Band| rgb_at(s.irradiance, b.rgb);
+                let traces = if spectral && s.point {
+                    bands
+                        .iter()
+                        .enumerate()
+                        .map(|(i, b)| LitTrace {
+                            ri: b.ri,
+                            alpha: b.alpha,
+                            bands: vec![(i, e(b), 1.0)],
+                        })
+                        .collect()
+                } else {
+                    vec![LitTrace {
+                        ri: mid.ri,
+                        alpha: alpha_max,
+                        bands: bands
+                            .iter()
+                            .enumerate()
+                            .map(|(i, b)| {
+                                let k = if alpha_max > 0.0 {
+                                    b.alpha / alpha_max
+                                } else {
+                                    0.0
+                                };
+                                (i, e(b), k)
+                            })
+                            .collect(),
+                    }]
+                };
+                Lit { sample: *s, traces }
+            })
+            .collect();
+        // The raster: around the stone, out to where a camera above sees, cells about two
+        // of the picture's pixels.
+        let reach = (half / view.elevation_deg.to_radians().sin().abs().max(0.4)).max(2.0 * half);
+        let n = ((0.5 * size as f64 * reach / half) as usize).clamp(64, 512);
+        let gt = TraceOptions {
+            polarization: opts.polarization,
+            ..opts.ground_trace
+        };
+        GroundField::new(
+            &stone,
+            rot,
+            z,
+            reach,
+            n,
+            &albedo,
+            &lights,
+            &luminance_of,
+            &gt,
+        )
+    });
+
+    // The picture's traces: per band group (spectral: one band each; otherwise one trace of
+    // three channels), per tile.
+    let tiles = cam.tiles();
+    let groups: Vec<Vec<usize>> = if spectral {
+        (0..nb).map(|b| vec![b]).collect()
+    } else {
+        vec![(0..nb).collect()]
+    };
+    let trace_opts = opts.trace_options();
+    let frame0 = cam.frame();
+    // Each group traced (its tiles in parallel) and filled at once, its layers dropped
+    // before the next ones are made: a layer keeps every exit's footprint.
+    let trace_unit = |which: &[usize], tile: Option<&Tile>| -> Layer {
+        let b0 = &bands[which[0]];
+        let mut sink = PhotoSink {
+            layer: Layer::new(which.len()),
+            rot,
+            env: &env,
+            which,
+            bands: &bands,
+            ground: ground.as_ref(),
+            tile,
+            pixel: 2.0 * half / size as f64,
+            fp: Vec::new(),
+            values: Vec::new(),
+        };
+        let o = TraceOptions {
+            absorption: b0.alpha,
+            ..trace_opts
+        };
+        let frame: Frame = tile.map_or(frame0, |t| t.frame);
+        let window = tile.map_or(&[][..], |t| &t.window[..]);
+        let (st, _) = stone.trace_window_into(&frame, b0.ri, &o, window, &mut sink, false);
+        let mut layer = sink.layer;
+        layer.finish(st);
+        layer
+    };
+    let filled: Vec<(Vec<Raster>, f64, usize, usize)> = groups
+        .par_iter()
+        .map(|which| {
+            let layers: Vec<Layer> = if tiles.is_empty() {
+                vec![trace_unit(which, None)]
+            } else {
+                tiles
+                    .par_iter()
+                    .map(|t| trace_unit(which, Some(t)))
+                    .collect()
+            };
+            let cut: f64 = layers.iter().map(|l| l.stats.cut_off).sum();
+            let exits: usize = layers.iter().map(|l| l.exits).sum();
+            let refs: Vec<&Layer> = layers.iter().collect();
+            let r = Layer::fill(&refs, which.len(), size, half, false);
+            (r, cut, exits, layers.len())
+        })
+        .collect();
+    let mut stats = PhotoStats {
+        size,
+        light: env.name.clone(),
+        ..PhotoStats::default()
+    };
+    let mut band_rasters: Vec<Raster> = Vec::with_capacity(nb);
+    for (r, cut, exits, traces) in filled {
+        stats.cut_off = stats.cut_off.max(cut);
+        stats.exits += exits;
+        stats.traces += traces;
+        band_rasters.extend(r);
+    }
+    let cov = coverage(&solid, &cam, &tiles);
+    // The stone's light in XYZ, then the background through the rest of each pixel.
+    let h = 2.0 * half / size as f64;
+    let mut xyz: Vec<Raster> = (0..3).map(|_| Raster::new(size, half)).collect();
+    let mut stone_y = Raster::new(size, half);
+    let uniform_bg: Option<Rgb> = match (&ground, cam.projection) {
+        (None, Projection::Orthographic) => Some(env.radiance(cam.dir)),
+        _ => None,
+    };
+    let rows: Vec<(Vec<DVec3>, Vec<f64>)> = (0..size)
+        .into_par_iter()
+        .map(|j| {
+            let mut row = vec![DVec3::ZERO; size];
+            let mut ys = vec![0.0; size];
+            let y = -half + (j as f64 + 0.5) * h;
+            for i in 0..size {
+                let k = j * size + i;
+                let mut s = DVec3::ZERO;
+                for (b, band) in bands.iter().enumerate() {
+                    s += band.xyz * band_rasters[b].data[k];
+                }
+                ys[i] = s.y;
+                let c = cov.data[k].clamp(0.0, 1.0);
+                if c < 1.0 {
+                    let x = -half + (i as f64 + 0.5) * h;
+                    let bg = background(
+                        &cam,
+                        &env,
+                        ground.as_ref(),
+                        &bands,
+                        uniform_bg,
+                        DVec2::new(x, y),
+                    );
+                    s += bg * (1.0 - c);
+                }
+                row[i] = s;
+            }
+            (row, ys)
+        })
+        .collect();
+    for (j, (row, ys)) in rows.into_iter().enumerate() {
+        for (i, (v, y)) in row.into_iter().zip(ys).enumerate() {
+            let k = j * size + i;
+            xyz[0].data[k] = v.x;
+            xyz[1].data[k] = v.y;
+            xyz[2].data[k] = v.z;
+            stone_y.data[k] = y;
+        }
+    }
+    let outline = cov.integral();
+    stats.mean = if outline > 0.0 {
+        stone_y.integral() / outline
+    } else {
+        0.0
+    };
+    stats.spectral = spectral;
+    stats.bands = if spectral { nb } else { 0 };
+    stats.ground = ground.as_ref().map(|g| g.stats);
+    let _ = (luminance, BAND_ROWS);
+    let [x, y, z]: [Raster; 3] = xyz
+        .try_into()
+        .unwrap_or_else(|_| unreachable!("three channels"));
+    Photo {
+        xyz: [x, y, z],
+        stone: stone_y,
+        coverage: cov,
+        stats,
+    }
+}
+
+/// XYZ of what the sight line through image point `p` sees past the stone: the ground, or
+/// the environment.
+fn background(
+    cam: &Camera,
+    env: &Environment,
+    ground: Option<&GroundField>,
+    bands: &[Band],
+    uniform: Option<Rgb>,
+    p: DVec2,
+) -> DVec3 {
+    let (o, d) = cam.ray(p);
+    if let Some(g) = ground {
+        if d.z < -1e-9 {
+            let at = land(o, d, g.z);
+            let mut s = DVec3::ZERO;
+            for (b, band) in bands.iter().enumerate() {
+                s += band.xyz * g.radiance(b, at);
+            }
+            return s;
+        }
+    }
+    let c = uniform.unwrap_or_else(|| env.radiance(d));
+    let mut s = DVec3::ZERO;
+    for band in bands {
+        s += band.xyz * rgb_at(c, band.rgb);
+    }
+    s
+}

@@ -1,0 +1,540 @@
+//! The ground the stone rests on ([`Ground`]): a flat diffuse plane under the stone with its
+//! shadow and caustics, from each direction of light the environment sends
+//! ([`Environment::samples`](super::env::Environment::samples)).
+//!
+//! For one direction `ω` with horizontal irradiance `E`, the stone intercepts the power
+//! `Φ = (E / ω_z) · A⊥` of a parallel beam over its cross-section `A⊥`. The beam tracer traces
+//! it (light travelling along `−ω`); its exit beams leaving downward land on the plane as
+//! exact polygons (each exit polygon slid along its direction), each adding its power over
+//! its polygon's area (Watt 1990; Heckbert & Hanrahan 1984): the caustic, exact for a
+//! directional light, per band. The shadow is the stone's outline projected along `ω` (the
+//! convex hull of its vertices' projections), where the plane loses `E`. So on the plane
+//!
+//! `caustic power + light escaping upward + absorbed + cut off = Φ`,
+//!
+//! to rounding ([`GroundStats`]). Area lights are summed over their sampled directions.
+//! Light the ground sends back to the stone is left out (it is seen, not traced twice): the
+//! stone is lit by the environment alone, and sight lines leaving the stone downward see the
+//! ground with its shadow and caustics.
+//!
+//! The irradiance is kept on a square raster around the stone (exact area coverage of every
+//! polygon, [`Accumulator`]); beyond it the ground has its unshadowed irradiance. The
+//! ground's radiance is `ρ / π · E` (a Lambertian plane of albedo `ρ`).
+
+use super::env::{LightSample, Rgb};
+use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions, TraceStats};
+use crate::geometry::clip2d;
+use crate::render::raster::Accumulator;
+use glam::{DMat3, DVec2, DVec3};
+use rayon::prelude::*;
+
+/// What the stone stands on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum GroundKind {
+    /// No ground: the environment all round.
+    None,
+    /// White paper or card (albedo 0.8).
+    White,
+    /// Black velvet (albedo 0.03).
+    Black,
+}
+
+impl GroundKind {
+    /// Every kind, in the order the command line lists them.
+    pub const ALL: [GroundKind; 3] = [GroundKind::None, GroundKind::White, GroundKind::Black];
+
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            GroundKind::None => "none",
+            GroundKind::White => "white",
+            GroundKind::Black => "black",
+        }
+    }
+
+    /// Albedo (linear sRGB).
+    pub fn albedo(self) -> Rgb {
+        match self {
+            GroundKind::None => [0.0; 3],
+            GroundKind::White => [0.8; 3],
+            GroundKind::Black => [0.03; 3],
+        }
+    }
+}
+
+/// The ground: its kind and the gap under the stone's lowest point (girdle diameters; 0:
+/// resting on it, culet-down or on whatever its pose puts lowest).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Ground {
+    /// Its kind.
+    pub kind: GroundKind,
+    /// Height of the stone's lowest point above it.
+    pub gap: f64,
+}
+
+impl Default for Ground {
+    fn default() -> Self {
+        Ground {
+            kind: GroundKind::None,
+            gap: 0.0,
+        }
+    }
+}
+
+/// The power bookkeeping of the light on the ground, summed over the directions traced; in
+/// the units of irradiance × area (relative to the ISO sky's π on a white diffuser).
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct GroundStats {
+    /// Directions of light traced.
+    pub directions: usize,
+    /// Power the stone intercepts (luminance Y).
+    pub intercepted: f64,
+    /// Of it, landing on the ground as caustics inside the raster.
+    pub caustic: f64,
+    /// Landing on the ground beyond the raster.
+    pub caustic_outside: f64,
+    /// Leaving the stone upward.
+    pub escaped: f64,
+    /// Absorbed by a body colour.
+    pub absorbed: f64,
+    /// Cut off by the tracer's thresholds.
+    pub cut_off: f64,
+    /// `intercepted − caustic − caustic_outside − escaped − absorbed − cut_off`: 0 to
+    /// rounding.
+    pub balance: f64,
+    /// The shadows' area, each direction's weighted by its share of the irradiance.
+    pub shadow_area: f64,
+    /// Unshadowed irradiance of the ground (luminance).
+    pub irradiance: f64,
+}
+
+/// How the light of one direction is traced: one or more traces, each standing for some
+/// bands.
+#[derive(Clone, Debug)]
+pub struct Lit {
+    /// The light's direction and irradiance.
+    pub sample: LightSample,
+    /// Its traces.
+    pub traces: Vec<LitTrace>,
+}
+
+/// One trace of a light's direction: at index `ri` with absorption `alpha` (per unit
+/// length), standing for the bands `(band, irradiance, exponent)`: a band's light is the
+/// trace's light before absorption times `T^exponent`, `T` being what the trace's
+/// absorption left of it (exponent 1: the band traced itself; `α_b / alpha` for a band of
+/// absorption `α_b` that shares the trace: exact for a beam of one path length).
+#[derive(Clone, Debug)]
+pub struct LitTrace {
+    /// Refractive index.
+    pub ri: f64,
+    /// Absorption per unit length.
+    pub alpha: f64,
+    /// `(band, horizontal irradiance, exponent)`.
+    pub bands: Vec<(usize, f64, f64)>,
+}
+
+/// The ground's irradiance per band on a raster of `n × n` cells over `[−half, half]²`
+/// (world x, y), with the plane at height `z`.
+#[derive(Clone, Debug)]
+pub struct GroundField {
+    /// Height of the plane (world z).
+    pub z: f64,
+    /// Half the raster's side.
+    pub half: f64,
+    /// Cells per side.
+    pub n: usize,
+    /// Radiance per unit irradiance in each band: albedo / π.
+    pub k: Vec<f64>,
+    /// Unshadowed irradiance per band.
+    pub e0: Vec<f64>,
+    /// Irradiance the caustics bring, per band and cell (row-major, row 0 at y = −half).
+    pub caustic: Vec<Vec<f64>>,
+    /// Irradiance the shadows take, per band and cell.
+    pub shadow: Vec<Vec<f64>>,
+    /// The bookkeeping.
+    pub stats: GroundStats,
+}
+
+/// A downward exit on the plane: its polygon, its light before absorption per unit area
+/// (per unit of the trace's share) and what absorption left of it.
+struct Landed {
+    poly: Vec<DVec2>,
+    density: f64,
+    kept: f64,
+}
+
+/// One trace's result: where its light landed, per band the power a unit share stands for
+/// and the exponent of its absorption, its shares escaping upward (per band) and its stats.
+struct Trace {
+    landed: Vec<Landed>,
+    bands: Vec<(usize, f64, f64)>,
+    up: Vec<f64>,
+    stats: TraceStats,
+}
+
+/// Collects the exits of a light's trace: downward ones as polygons on the plane.
+struct CausticSink<'a> {
+    rot: DMat3,
+    z: f64,
+    /// Side of the square a narrow exit's light is spread over.
+    dot: f64,
+    /// The exponents of the bands the trace stands for.
+    exponents: &'a [f64],
+    landed: Vec<Landed>,
+    up: Vec<f64>,
+}
+
+/// Where the ray from `x` along `w` (world, `w.z < 0`) meets the plane `z`.
+#[inline]
+pub fn land(x: DVec3, w: DVec3, z: f64) -> DVec2 {
+    let t = (z - x.z) / w.z;
+    DVec2::new(x.x + w.x * t, x.y + w.y * t)
+}
+
+/// `kept^k` (1 when nothing was absorbed; `kept` itself for k = 1).
+#[inline]
+fn kept_to(kept: f64, k: f64) -> f64 {
+    if kept == 1.0 || k == 0.0 {
+        1.0
+    } else if k == 1.0 {
+        kept
+    } else {
+        kept.powf(k)
+    }
+}
+
+impl ExitSink for CausticSink<'_> {
+    fn wants_exit_places(&self) -> bool {
+        true
+    }
+    fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
+        self.exit_at(e, fp, &[]);
+    }
+    fn exit_at(&mut self, e: &ExitBeam, _: &[DVec2], place: &[DVec3]) {
+        let w = self.rot * e.direction;
+        let kept = if e.unabsorbed > 0.0 {
+            (e.power / e.unabsorbed).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        if w.z >= 0.0 || place.is_empty() {
+            for (u, &k) in self.up.iter_mut().zip(self.exponents) {
+                *u += e.unabsorbed * kept_to(kept, k);
+            }
+            return;
+        }
+        let h = 0.5 * self.dot;
+        let square = |c: DVec2| {
+            vec![
+                c + DVec2::new(-h, -h),
+                c + DVec2::new(h, -h),
+                c + DVec2::new(h, h),
+                c + DVec2::new(-h, h),
+            ]
+        };
+        let mut poly: Vec<DVec2> = if place.len() >= 3 {
+            place
+                .iter()
+                .map(|&x| land(self.rot * x, w, self.z))
+                .collect()
+        } else {
+            square(land(self.rot * place[0], w, self.z))
+        };
+        let mut a = clip2d::area(&poly);
+        if !(a > 0.0 && a.is_finite()) {
+            // A beam landing edge-on (a sliver): its light on a dot.
+            poly = square(poly[0]);
+            a = self.dot * self.dot;
+        }
+        self.landed.push(Landed {
+            poly,
+            density: e.unabsorbed / a,
+            kept,
+        });
+    }
+}
+
+impl GroundField {
+    /// The ground under `stone` (posed by `rot`, stone → world) with its plane at `z`, on a
+    /// raster of `n` cells over ±`half`, lit by `lights` (each traced as it says, with
+    /// `opts`); `albedo` per band; `luminance` turns per-band values into luminance Y for the
+    /// bookkeeping.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        stone: &Stone,
+        rot: DMat3,
+        z: f64,
+        half: f64,
+        n: usize,
+        albedo: &[f64],
+        lights: &[Lit],
+        luminance: &(dyn Fn(&[f64]) -> f64 + Sync),
+        opts: &TraceOptions,
+    ) -> GroundField {
+        let bands = albedo.len();
+        let n = n.max(1);
+        let cell = 2.0 * half / n as f64;
+        let t = rot.transpose();
+        let verts: Vec<DVec3> = stone.vertices().iter().map(|&v| rot * v).collect();
+        let mut e0 = vec![0.0; bands];
+        for l in lights {
+            for tr in &l.traces {
+                for &(b, e, _) in &tr.bands {
+                    e0[b] += e;
+                }
+            }
+        }
+        // Per light: its shadow (polygon, per-band irradiance taken) and its traces.
+        type Shadow = (Vec<DVec2>, Vec<(usize, f64)>);
+        let traced: Vec<(Shadow, Vec<Trace>)> = lights
+            .par_iter()
+            .map(|l| {
+                let w = l.sample.dir;
+                let shadow = clip2d::convex_hull(verts.iter().map(|&x| land(x, -w, z)).collect());
+                let shade: Vec<(usize, f64)> = l
+                    .traces
+                    .iter()
+                    .flat_map(|tr| tr.bands.iter().map(|&(b, e, _)| (b, e)))
+                    .collect();
+                let frame = Frame::new(t * -w).unwrap_or_else(Frame::overhead);
+                let traces = l
+                    .traces
+                    .iter()
+                    .map(|lt| {
+                        let exponents: Vec<f64> = lt.bands.iter().map(|x| x.2).collect();
+                        let mut sink = CausticSink {
+                            rot,
+                            z,
+                            dot: 0.5 * cell,
+                            exponents: &exponents,
+                            landed: Vec::new(),
+                            up: vec![0.0; exponents.len()],
+                        };
+                        let o = TraceOptions {
+                            absorption: lt.alpha,
+                            footprints: false,
+                            ..*opts
+                        };
+                        let (ts, _) = stone.trace_into(&frame, lt.ri, &o, &mut sink, false);
+                        // Normal irradiance of the parallel beam times its cross-section.
+                        let bands = lt
+                            .bands
+                            .iter()
+                            .map(|&(b, e, k)| (b, e / w.z.max(1e-12) * ts.area, k))
+                            .collect();
+                        Trace {
+                            landed: sink.landed,
+                            bands,
+                            up: sink.up,
+                            stats: ts,
+                        }
+                    })
+                    .collect();
+                ((shadow, shade), traces)
+            })
+            .collect();
+        // The rasters, up to eight bands at once (one walk along each polygon's edges adds
+        // all of them).
+        let chunks: Vec<(usize, usize)> = (0..bands)
+            .step_by(8)
+            .map(|b0| (b0, (b0 + 8).min(bands)))
+            .collect();
+        let fill = |(b0, b1): (usize, usize), shadows: bool| -> Vec<Vec<f64>> {
+            let m = b1 - b0;
+            let mut acc = Accumulator::new(n, half, (0, n), m);
+            let mut v = [0.0; 8];
+            for ((shadow, shade), traces) in &traced {
+                if shadows {
+                    v.fill(0.0);
+                    for &(b, e) in shade {
+                        if (b0..b1).contains(&b) {
+                            v[b - b0] += e;
+                        }
+                    }
+                    acc.add_polygon(shadow, &v[..m]);
+                    continue;
+                }
+                for tr in traces {
+                    if !tr
+                        .bands
+                        .iter()
+                        .any(|x| (b0..b1).contains(&x.0) && x.1 != 0.0)
+                    {
+                        continue;
+                    }
+                    for l in &tr.landed {
+                        v.fill(0.0);
+                        for &(b, phi, k) in &tr.bands {
+                            if (b0..b1).contains(&b) {
+                                v[b - b0] += l.density * kept_to(l.kept, k) * phi;
+                            }
+                        }
+                        acc.add_polygon(&l.poly, &v[..m]);
+                    }
+                }
+            }
+            acc.finish()
+        };
+        let caustic: Vec<Vec<f64>> = chunks
+            .par_iter()
+            .flat_map_iter(|&c| fill(c, false))
+            .collect();
+        let shadow: Vec<Vec<f64>> = chunks
+            .par_iter()
+            .flat_map_iter(|&c| fill(c, true))
+            .collect();
+        // Bookkeeping, per band then as luminance.
+        let per = |f: &dyn Fn(&Trace, usize, f64, f64) -> f64| -> f64 {
+            let mut v = vec![0.0; bands];
+            for (_, traces) in &traced {
+                for tr in traces {
+                    for (i, &(b, phi, k)) in tr.bands.iter().enumerate() {
+                        v[b] += f(tr, i, phi, k);
+                    }
+                }
+            }
+            luminance(&v)
+        };
+        let down_of = |tr: &Trace, k: f64| -> f64 {
+            tr.landed
+                .iter()
+                .map(|l| clip2d::area(&l.poly) * l.density * kept_to(l.kept, k))
+                .sum()
+        };
+        let intercepted = per(&|tr, _, phi, _| phi * tr.stats.power_in);
+        let down = per(&|tr, _, phi, k| phi * down_of(tr, k));
+        let escaped = per(&|tr, i, phi, _| phi * tr.up[i]);
+        let cut_off = per(&|tr, _, phi, _| phi * tr.stats.cut_off);
+        let absorbed = per(&|tr, i, phi, k| {
+            if k == 1.0 {
+                phi * tr.stats.absorbed
+            } else {
+                // A band sharing another's trace: what its exponent took.
+                phi * (tr.stats.power_in - tr.stats.cut_off - tr.up[i] - down_of(tr, k))
+            }
+        });
+        let h2 = cell * cell;
+        let inside = luminance(
+            &caustic
+                .iter()
+                .map(|c| c.iter().sum::<f64>() * h2)
+                .collect::<Vec<_>>(),
+        );
+        let mut st = GroundStats {
+            directions: lights.len(),
+            intercepted,
+            caustic: inside,
+            caustic_outside: down - inside,
+            escaped,
+            absorbed,
+            cut_off,
+            ..GroundStats::default()
+        };
+        for ((shadow, shade), _) in &traced {
+            let mut v = vec![0.0; bands];
+            for &(b, e) in shade {
+                v[b] += e;
+            }
+            let e_y = luminance(&v);
+            st.shadow_area += clip2d::area(shadow) * e_y;
+            st.irradiance += e_y;
+        }
+        if st.irradiance > 0.0 {
+            st.shadow_area /= st.irradiance;
+        }
+        st.balance = st.intercepted
+            - st.caustic
+            - st.caustic_outside
+            - st.escaped
+            - st.absorbed
+            - st.cut_off;
+        GroundField {
+            z,
+            half,
+            n,
+            k: albedo.iter().map(|a| a / std::f64::consts::PI).collect(),
+            e0,
+            caustic,
+            shadow,
+            stats: st,
+        }
+    }
+
+    /// Side of a cell.
+    pub fn cell(&self) -> f64 {
+        2.0 * self.half / self.n as f64
+    }
+
+    /// Irradiance in band `b` of cell (i, j) (beyond the raster: the unshadowed one).
+    #[inline]
+    pub fn cell_irradiance(&self, b: usize, i: i64, j: i64) -> f64 {
+        let n = self.n as i64;
+        if i < 0 || j < 0 || i >= n || j >= n {
+            return self.e0[b];
+        }
+        let k = (j * n + i) as usize;
+        self.e0[b] - self.shadow[b][k] + self.caustic[b][k]
+    }
+
+    /// Radiance in band `b` at ground point `p` (bilinear between cell centres).
+    #[inline]
+    pub fn radiance(&self, b: usize, p: DVec2) -> f64 {
+        let h = self.cell();
+        let x = (p.x + self.half) / h - 0.5;
+        let y = (p.y + self.half) / h - 0.5;
+        let (i, j) = (x.floor(), y.floor());
+        let (fx, fy) = (x - i, y - j);
+        let (i, j) = (i as i64, j as i64);
+        let e = (1.0 - fy)
+            * ((1.0 - fx) * self.cell_irradiance(b, i, j) + fx * self.cell_irradiance(b, i + 1, j))
+            + fy * ((1.0 - fx) * self.cell_irradiance(b, i, j + 1)
+                + fx * self.cell_irradiance(b, i + 1, j + 1));
+        (self.k[b] * e).max(0.0)
+    }
+
+    /// The cells a polygon on the ground covers (clipped to each), with each piece: calls
+    /// `f(piece, i, j)` for the pieces inside the raster's reach of `max_cells` per side;
+    /// returns false (calling nothing) when the polygon's box spans more cells than that.
+    pub fn pieces(
+        &self,
+        poly: &[DVec2],
+        max_cells: usize,
+        mut f: impl FnMut(&[DVec2], i64, i64),
+    ) -> bool {
+        let h = self.cell();
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        for p in poly {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+        if !(lo.is_finite() && hi.is_finite()) {
+            return false;
+        }
+        let idx = |v: f64| ((v + self.half) / h).floor() as i64;
+        let (i0, i1, j0, j1) = (idx(lo.x), idx(hi.x), idx(lo.y), idx(hi.y));
+        if (i1 - i0) as usize >= max_cells || (j1 - j0) as usize >= max_cells {
+            return false;
+        }
+        if i0 == i1 && j0 == j1 {
+            f(poly, i0, j0);
+            return true;
+        }
+        let (mut strip, mut piece, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
+        for j in j0..=j1 {
+            let y0 = -self.half + j as f64 * h;
+            clip2d::clip_strip_y_into(poly, y0, y0 + h, &mut strip, &mut scratch);
+            if strip.is_empty() {
+                continue;
+            }
+            for i in i0..=i1 {
+                let x0 = -self.half + i as f64 * h;
+                clip2d::clip_strip_x_into(&strip, x0, x0 + h, &mut piece, &mut scratch);
+                if piece.len() >= 3 {
+                    f(&piece, i, j);
+                }
+            }
+        }
+        true
+    }
+}

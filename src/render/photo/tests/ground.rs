@@ -1,0 +1,194 @@
+//! Check 4: the ground's caustics and shadow. Power is conserved to rounding, the shadow's
+//! area is the stone's projected outline, and the caustic's pattern agrees with the photon
+//! tracer's hits on the same plane within 4 standard errors per cell.
+
+use super::super::env::{direction, LightSample};
+use super::super::ground::{land, GroundField, Lit, LitTrace};
+use crate::beam::{Frame, Stone, TraceOptions};
+use crate::geometry::canonical::canonical;
+use crate::optics::Material;
+use crate::photon::{self, Fate, LightKind, LightSize, TraceConfig, WavelengthSampling};
+use crate::testkit::{princess, tolkowsky};
+use glam::{DMat3, DVec2};
+
+/// The ground under `solid` (canonical, resting on its lowest point) lit from `w` with
+/// horizontal irradiance 1 at index `ri`, on a raster of `n` cells over ±`half`.
+fn field(
+    solid: &crate::geometry::Polyhedron,
+    w: glam::DVec3,
+    ri: f64,
+    half: f64,
+    n: usize,
+) -> (GroundField, f64) {
+    let stone = Stone::new(solid);
+    let z = solid
+        .vertices()
+        .iter()
+        .map(|v| v.z)
+        .fold(f64::INFINITY, f64::min);
+    let lights = [Lit {
+        sample: LightSample {
+            dir: w,
+            irradiance: [1.0; 3],
+            point: true,
+        },
+        traces: vec![LitTrace {
+            ri,
+            alpha: 0.0,
+            bands: vec![(0, 1.0, 1.0)],
+        }],
+    }];
+    let opts = TraceOptions {
+        split_threshold: 1e-5,
+        threshold: 1e-10,
+        ..TraceOptions::default()
+    };
+    let g = GroundField::new(
+        &stone,
+        DMat3::IDENTITY,
+        z,
+        half,
+        n,
+        &[0.8],
+        &lights,
+        &|v: &[f64]| v[0],
+        &opts,
+    );
+    (g, z)
+}
+
+/// Power in = caustic on the ground (inside and beyond the raster) + escaping upward +
+/// absorbed + cut off, to 1e-9; the light intercepted is the projected outline's area over
+/// the light's cosine; the caustic's and the escaping light are the beam tree's downward and
+/// upward exits (traced again here); the shadow's area is the projected outline's.
+#[test]
+fn caustic_power_and_shadow_area() {
+    for (name, solid) in [("tolkowsky", tolkowsky()), ("princess", princess())] {
+        let solid = canonical(&solid);
+        for (elev, az) in [(50.0, 30.0), (70.0, -100.0), (30.0, 200.0)] {
+            let w = direction(elev, az);
+            let (g, _) = field(&solid, w, 2.4173, 3.0, 256);
+            let st = g.stats;
+            let a_perp = solid.projected_area(w);
+            let phi = a_perp / w.z;
+            assert!((st.intercepted - phi).abs() < 1e-12 * phi, "{name}");
+            let sum = st.caustic + st.caustic_outside + st.escaped + st.absorbed + st.cut_off;
+            assert!(
+                (sum - st.intercepted).abs() < 1e-9 * phi,
+                "{name} {elev}: {st:?}"
+            );
+            assert!(st.cut_off < 1e-4 * phi && st.absorbed.abs() < 1e-12);
+            // The beam tree, traced again: down and up.
+            let stone = Stone::new(&solid);
+            let tree = stone.trace(
+                &Frame::new(-w).unwrap(),
+                2.4173,
+                589.3,
+                &TraceOptions {
+                    split_threshold: 1e-5,
+                    threshold: 1e-10,
+                    ..TraceOptions::default()
+                },
+            );
+            let (mut up, mut down) = (0.0, 0.0);
+            for e in &tree.exits {
+                if e.direction.z >= 0.0 {
+                    up += e.power;
+                } else {
+                    down += e.power;
+                }
+            }
+            assert!((st.escaped - phi * up).abs() < 1e-9 * phi, "{name}");
+            assert!(
+                (st.caustic + st.caustic_outside - phi * down).abs() < 1e-9 * phi,
+                "{name}"
+            );
+            // The raster's integral is the caustic inside it.
+            let h = g.cell();
+            let inside: f64 = g.caustic[0].iter().sum::<f64>() * h * h;
+            assert!((inside - st.caustic).abs() < 1e-12 * phi);
+            // Shadow: the raster loses the irradiance (1) over the projected outline.
+            let shadow: f64 = g.shadow[0].iter().sum::<f64>() * h * h;
+            assert!((shadow - phi).abs() < 1e-9 * phi, "{name}: {shadow} {phi}");
+            assert!((st.shadow_area - phi).abs() < 1e-9 * phi);
+        }
+    }
+}
+
+/// The caustic's pattern against the photon tracer's hits on the same plane: a directed
+/// light over the stone, each photon that leaves downward landed on the plane; per cell of
+/// an 8 × 8 grid, the beam tracer's share of the intercepted power within 4 standard
+/// errors of the photons' share (plus 1e-4 for the narrow beams' rays).
+#[test]
+fn caustic_agrees_with_the_photon_tracer() {
+    let solid = canonical(&tolkowsky());
+    let w = direction(55.0, 20.0);
+    let ri = 2.4173;
+    let half = 1.2;
+    let (g, z) = field(&solid, w, ri, half, 256);
+    let phi = g.stats.intercepted;
+    let grid = 8;
+    let per = 256 / grid;
+    let h = g.cell();
+    let mut beam = vec![0.0; grid * grid];
+    for j in 0..256 {
+        for i in 0..256 {
+            beam[(j / per) * grid + i / per] += g.caustic[0][j * 256 + i] * h * h / phi;
+        }
+    }
+    let light = photon::Light {
+        kind: LightKind::Directed,
+        centre: w * photon::LIGHT_DISTANCE,
+        axis: -w,
+        size: LightSize::CoverStone,
+        angle: None,
+        label: "directed".into(),
+    };
+    let n = 60_000usize;
+    let cfg = TraceConfig {
+        photons: n as u64,
+        until_hit: true,
+        depth: None,
+        absorption: crate::optics::Absorption::None,
+        polarization: true,
+        material: Material::constant(ri),
+        wavelengths: WavelengthSampling::Fixed(589.3),
+        seed: 7,
+        record_paths: n,
+    };
+    let t = photon::trace(&solid, &light, &cfg, None).unwrap();
+    assert_eq!(t.paths.len(), n);
+    let mut hits = vec![0usize; grid * grid];
+    for p in &t.paths {
+        if !matches!(p.fate, Fate::Exited(_)) {
+            continue;
+        }
+        let k = p.points.len();
+        let (x, end) = (p.points[k - 2], p.points[k - 1]);
+        let d = end - x;
+        if d.z >= 0.0 {
+            continue;
+        }
+        let at: DVec2 = land(x, d.normalize(), z);
+        let (fx, fy) = ((at.x + half) / (2.0 * half), (at.y + half) / (2.0 * half));
+        if !(0.0..1.0).contains(&fx) || !(0.0..1.0).contains(&fy) {
+            continue;
+        }
+        hits[(fy * grid as f64) as usize * grid + (fx * grid as f64) as usize] += 1;
+    }
+    let mut worst: f64 = 0.0;
+    for c in 0..grid * grid {
+        let p = hits[c] as f64 / n as f64;
+        let se = (p.max(1.0 / n as f64) * (1.0 - p) / n as f64).sqrt();
+        let z = (beam[c] - p).abs() / (4.0 * se + 1e-4);
+        worst = worst.max(z);
+        assert!(z <= 1.0, "cell {c}: beam {} photons {p} ± {se}", beam[c]);
+    }
+    let lit = beam.iter().filter(|&&b| b > 0.003).count();
+    let total: f64 = beam.iter().sum();
+    eprintln!(
+        "caustic against photons: worst cell at {worst:.2} of its allowance; {lit} cells over 0.3 %, {total:.3} of the light in the grid"
+    );
+    // The pattern is not trivially empty.
+    assert!(lit >= 3 && total > 0.1, "{beam:?}");
+}
