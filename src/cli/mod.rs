@@ -8,7 +8,6 @@ pub mod materials;
 pub mod merge;
 pub mod optimize;
 pub mod outputs;
-pub mod photo;
 pub mod plan;
 mod progress;
 pub mod render;

@@ -37,11 +37,12 @@ pub mod reangle;
 mod space;
 #[cfg(test)]
 pub(crate) mod tests;
+mod tie_key;
 mod tiers;
 mod ties;
 
 pub use meets::{find_meets, Meet};
 pub use reangle::{TierModel, MEET_TOL};
 pub use space::{with_set, DesignSpace, OpenMeets, OpenedMeet, KEPT};
+pub use tie_key::{Breach, Tie, TieKind};
 pub use tiers::{fixed, tiers, token, Gear, Tier, TierFacet, ANGLE_DECIMALS, DEPTH_DECIMALS};
-pub use ties::{Breach, Tie, TieKind};

@@ -25,8 +25,8 @@
 
 use super::meets::Meet;
 use super::reangle::{adjacency_over, Reangled, TierModel};
+use super::tie_key::{Tie, TieKind};
 use super::tiers::{fixed, ANGLE_DECIMALS};
-use super::ties::{Tie, TieKind};
 use crate::cut::{Cut, CutSpace, ParamRange, Unit};
 use crate::error::{Error, Result};
 use crate::geometry::Polyhedron;

@@ -30,13 +30,11 @@
 //! is their sum; each one casts the stone's shadow and its caustics.
 
 use super::envmap::EnvMap;
+pub use super::sky::{direction, luminance, Rgb};
 use crate::render::lighting::{smoothstep, soft_above, EDGE_DEG};
 use glam::DVec3;
 use std::f64::consts::TAU;
 use std::sync::Arc;
-
-/// Linear sRGB.
-pub type Rgb = [f64; 3];
 
 fn scale(c: Rgb, k: f64) -> Rgb {
     [c[0] * k, c[1] * k, c[2] * k]
@@ -46,11 +44,6 @@ fn add(a: &mut Rgb, b: Rgb) {
     a[0] += b[0];
     a[1] += b[1];
     a[2] += b[2];
-}
-
-/// Luminance Y of linear sRGB (white = 1).
-pub fn luminance(c: Rgb) -> f64 {
-    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 }
 
 /// A round light: `radiance` over a disc of angular radius `radius_deg` around `dir`.
@@ -477,12 +470,6 @@ impl Environment {
             Part::Map(m) => m.is_grey(),
         })
     }
-}
-
-/// Unit vector at `elevation_deg` above the horizon toward `azimuth_deg` (from +x toward +y).
-pub fn direction(elevation_deg: f64, azimuth_deg: f64) -> DVec3 {
-    let (e, a) = (elevation_deg.to_radians(), azimuth_deg.to_radians());
-    DVec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
 }
 
 /// Solid angle of a cap of angular radius `deg`.

@@ -15,7 +15,7 @@
 //! whole), precomputed at each cell's centre and interpolated linearly between them. A map
 //! of 1 above the horizon and 0 below is so the ISO light exactly.
 
-use super::env::Rgb;
+use super::sky::{direction, Rgb};
 use crate::error::{Error, Result};
 use crate::io::hdr::HdrImage;
 use crate::render::lighting::{smoothstep, EDGE_DEG};
@@ -283,8 +283,8 @@ impl EnvMap {
                     [0.22, 0.21, 0.2]
                 };
                 // Soft box overhead: elevation above 62°, centred slightly off the zenith.
-                let d = super::env::direction(e, az);
-                let top = super::env::direction(80.0, 200.0);
+                let d = direction(e, az);
+                let top = direction(80.0, 200.0);
                 if d.dot(top) > 18f64.to_radians().cos() {
                     p = [3.0, 3.0, 3.0];
                 }
@@ -296,7 +296,7 @@ impl EnvMap {
                     }
                 }
                 // Warm key light: a 6° disc at 35° elevation, azimuth 30°.
-                let key = super::env::direction(35.0, 30.0);
+                let key = direction(35.0, 30.0);
                 if d.dot(key) > 6f64.to_radians().cos() {
                     p = [12.0, 10.0, 7.5];
                 }
@@ -317,7 +317,6 @@ impl EnvMap {
 mod tests {
     use super::*;
     use crate::render::lighting::Lighting;
-    use crate::render::photo::env::direction;
 
     /// A map of 1 above the horizon and 0 below is the ISO light to rounding, at any
     /// resolution whose rows put the horizon on a row boundary (and averaged down from a

@@ -30,6 +30,7 @@ pub mod ground;
 mod options;
 mod record;
 pub mod rigs;
+mod sky;
 pub mod tone;
 
 #[cfg(test)]

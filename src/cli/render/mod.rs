@@ -28,6 +28,8 @@
 //! frame with `frame`, `tilt_deg`, `azimuth_deg`, `mean`, `aset`, `fire`, `cut_off`, `exits`,
 //! `elapsed_s`; the top-level statistics are frame 0's (the centre of the rock).
 
+mod photo;
+
 use super::flags;
 use super::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
@@ -118,7 +120,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub bare: bool,
     #[command(flatten)]
-    pub photo: super::photo::PhotoArgs,
+    pub photo: photo::PhotoArgs,
 }
 
 /// The flags, validated.
@@ -469,7 +471,7 @@ fn delay_ms(frames: usize) -> u16 {
 /// Run `facetlab render`.
 pub fn run(a: &RenderArgs) -> Result<()> {
     if let Some(light) = facetlab::render::photo::PhotoLight::parse(&a.light)? {
-        return super::photo::run(a, light);
+        return photo::run(a, light);
     }
     if let Some(flag) = a.photo.first_given() {
         return Err(Error::invalid(

@@ -4,9 +4,9 @@
 //! The flags are parsed here into [`PhotoOptions`]; the pictures, captions and JSON records
 //! come from the library.
 
-use super::flags;
-use super::outputs::{cut_files, refuse_overwrite};
-use super::render::RenderArgs;
+use super::RenderArgs;
+use crate::cli::flags;
+use crate::cli::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
 use facetlab::plot::render::{bare, compose, Panel, Sheet};
 use facetlab::render::photo::{
@@ -262,7 +262,7 @@ fn check_outputs(a: &RenderArgs) -> Result<()> {
     }
     for (i, (fa, pa)) in outs.iter().enumerate() {
         for (fb, pb) in &outs[i + 1..] {
-            if super::outputs::resolved(pa) == super::outputs::resolved(pb) {
+            if crate::cli::outputs::resolved(pa) == crate::cli::outputs::resolved(pb) {
                 return Err(Error::invalid(
                     *fb,
                     format!("{} is also the {fa} file; give another file", pb.display()),
@@ -271,7 +271,7 @@ fn check_outputs(a: &RenderArgs) -> Result<()> {
         }
     }
     for (flag, p) in &outs {
-        super::outputs::check_new_file(flag, p, a.force)?;
+        crate::cli::outputs::check_new_file(flag, p, a.force)?;
     }
     Ok(())
 }
@@ -292,7 +292,7 @@ pub fn run(a: &RenderArgs, light: PhotoLight) -> Result<()> {
     let cuts = a
         .cuts
         .iter()
-        .map(|c| super::cuts::load_with_sets(c, &a.set))
+        .map(|c| crate::cli::cuts::load_with_sets(c, &a.set))
         .collect::<Result<Vec<_>>>()?;
     let chosen = a.material.chosen();
     let (mut materials, notes) = flags::design_materials(&cuts, &s.opts.material, chosen);
@@ -305,7 +305,7 @@ pub fn run(a: &RenderArgs, light: PhotoLight) -> Result<()> {
     }
     let size = s.opts.size;
     let nframes = s.frames();
-    let bar = super::progress::bar(
+    let bar = crate::cli::progress::bar(
         (nframes * cuts.len()) as u64,
         a.quiet,
         "{spinner} photographing [{bar:30}] {pos}/{len} pictures, eta {eta}",
