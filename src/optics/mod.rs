@@ -19,6 +19,7 @@ mod absorption;
 mod body_colour;
 mod choose;
 pub mod color;
+pub mod crystal;
 mod fresnel;
 mod material;
 mod polarization;
