@@ -126,6 +126,17 @@ struct Field {
 }
 
 impl Field {
+    /// A field with `E = e` as given (not normalised): powers are ratios of amplitude squared
+    /// times flux, so they do not depend on the scale.
+    #[inline]
+    fn raw(k: CVec3, e: CVec3, propagating: bool) -> Field {
+        Field {
+            k,
+            e,
+            h: k.cross(e),
+            propagating,
+        }
+    }
     fn new(k: CVec3, e: CVec3, propagating: bool) -> Field {
         let n = e.norm_sqr().sqrt();
         let e = e.scale(1.0 / n);
@@ -191,13 +202,6 @@ fn isotropic_modes(n: f64, tg: &Tangent, sigma: f64) -> [Field; 2] {
     let k = CVec3::affine(tg.kt, tg.nu, q);
     let s = CVec3::real(tg.t2);
     [Field::new(k, s, real), Field::new(k, k.cross(s), real)]
-}
-
-/// The s and p waves of the isotropic side as used for polarization: unit vectors s and
-/// `p = d × s` for a real direction `d`.
-#[inline]
-fn sp_frame(tg: &Tangent, d: DVec3) -> (DVec3, DVec3) {
-    (tg.t2, d.cross(tg.t2))
 }
 
 /// Stokes vector `(I, Q, U, V)` of a Jones vector `(a_s, a_p)`: `Q = |a_s|² − |a_p|²`,
@@ -320,6 +324,13 @@ impl Crystal {
     /// The two modes (ordinary, extraordinary) with tangential wave vector `tg.kt` leaving
     /// the facet along `σ ν`.
     fn modes(&self, tg: &Tangent, sigma: f64) -> [Field; 2] {
+        self.raw_modes(tg, sigma)
+            .map(|f| Field::new(f.k, f.e, f.propagating))
+    }
+
+    /// [`Crystal::modes`] with fields not normalised.
+    #[inline]
+    fn raw_modes(&self, tg: &Tangent, sigma: f64) -> [Field; 2] {
         let c = self.axis;
         let (eo, ee) = (self.eps_o, self.eps_e);
         // Ordinary.
@@ -355,19 +366,129 @@ impl Crystal {
             ee_field = CVec3::real(c).cross(eo_field);
         }
         [
-            Field::new(ko, eo_field, real_o),
-            Field::new(ke, ee_field, real_e),
+            Field::raw(ko, eo_field, real_o),
+            Field::raw(ke, ee_field, real_e),
         ]
     }
 
-    /// A propagating wave of mode `mode` from its boundary field.
+    /// Both modes' real wave vectors and (not normalised) fields when both propagate, the
+    /// common case: [`Crystal::raw_modes`] in real arithmetic.
+    #[inline]
+    fn real_modes(&self, tg: &Tangent, sigma: f64) -> Option<[(DVec3, DVec3); 2]> {
+        let c = self.axis;
+        let (eo, ee) = (self.eps_o, self.eps_e);
+        let go = eo - tg.kt2;
+        let d = ee - eo;
+        let (a, b) = (tg.kt.dot(c), tg.nu.dot(c));
+        let qa = eo + d * b * b;
+        let qb = d * a * b;
+        let qc = eo * tg.kt2 + d * a * a - eo * ee;
+        let disc = qb * qb - qa * qc;
+        if go < 0.0 || disc < 0.0 {
+            return None;
+        }
+        let ko = tg.kt + tg.nu * (sigma * go.sqrt());
+        let ke = tg.kt + tg.nu * ((sigma * disc.sqrt() - qb) / qa);
+        let mut fo = ko.cross(c);
+        let dfield = ke * ke.dot(c) - c * ke.length_squared();
+        let mut fe = dfield / eo + c * (dfield.dot(c) * (1.0 / ee - 1.0 / eo));
+        if fo.length_squared() <= 1e-24 * ko.length_squared() {
+            let s = tg.t2 - c * tg.t2.dot(c);
+            let s = if s.length_squared() > 1e-12 {
+                s.normalize()
+            } else {
+                (tg.t1 - c * tg.t1.dot(c)).normalize()
+            };
+            fo = s;
+            fe = c.cross(s);
+        } else if fe.length_squared() <= 1e-24 * ke.length_squared() * ke.length_squared() {
+            fe = c.cross(fo);
+        }
+        Some([(ko, fo), (ke, fe)])
+    }
+
+    /// [`Crystal::meet`] when the incident and both reflected modes propagate (`inc`, `refl`:
+    /// wave vectors and fields from [`Crystal::real_modes`]): the same equations with the
+    /// crystal's side in real arithmetic.
+    #[inline]
+    fn meet_real(
+        &self,
+        tg: &Tangent,
+        inc: (DVec3, DVec3),
+        refl: [(DVec3, DVec3); 2],
+    ) -> Option<Meeting> {
+        let (q, out_real) = signed_root(1.0 - tg.kt2, 1.0);
+        let nu = tg.nu;
+        // Tangential E and H, and the flux along ν (½ (E × H) · ν), of a real field.
+        let tan = |(k, e): (DVec3, DVec3)| {
+            let h = k.cross(e);
+            (
+                [e.dot(tg.t1), e.dot(tg.t2), h.dot(tg.t1), h.dot(tg.t2)],
+                0.5 * e.cross(h).dot(nu),
+            )
+        };
+        let ((i, f_in), (o, f_o), (e, f_e)) = (tan(inc), tan(refl[0]), tan(refl[1]));
+        if f_in.is_nan() || f_in <= 0.0 {
+            return None;
+        }
+        let a11 = C::real(o[0]) - q.scale(o[3]);
+        let a12 = C::real(e[0]) - q.scale(e[3]);
+        let a21 = C::real(o[2]) + q.scale(o[1]);
+        let a22 = C::real(e[2]) + q.scale(e[1]);
+        let b1 = q.scale(i[3]) - C::real(i[0]);
+        let b2 = -q.scale(i[1]) - C::real(i[2]);
+        let det = a11 * a22 - a12 * a21;
+        if !(det.norm_sqr() > 0.0 && det.norm_sqr().is_finite()) {
+            return None;
+        }
+        let r = [(b1 * a22 - a12 * b2) / det, (a11 * b2 - b1 * a21) / det];
+        let wave = |(k, e): (DVec3, DVec3), mode| {
+            let s = k * e.length_squared() - e * e.dot(k);
+            Wave {
+                mode,
+                k,
+                ray: s.normalize(),
+                field: e.normalize(),
+            }
+        };
+        let reflected = [
+            (
+                wave(refl[0], WaveMode::Ordinary),
+                -r[0].norm_sqr() * f_o / f_in,
+            ),
+            (
+                wave(refl[1], WaveMode::Extraordinary),
+                -r[1].norm_sqr() * f_e / f_in,
+            ),
+        ];
+        let (exit_dir, exit_power, exit) = if out_real {
+            let t_s = C::real(i[1]) + r[0].scale(o[1]) + r[1].scale(e[1]);
+            let t_p = -(C::real(i[3]) + r[0].scale(o[3]) + r[1].scale(e[3]));
+            let st = jones_stokes(t_s, t_p) * (0.5 * q.re / f_in);
+            ((tg.kt + tg.nu * q.re).normalize(), st.x, st)
+        } else {
+            (DVec3::ZERO, 0.0, DVec4::ZERO)
+        };
+        Some(Meeting {
+            reflected,
+            exit_dir,
+            exit_power,
+            exit,
+            axis: tg.t2,
+        })
+    }
+
+    /// A propagating wave of mode `mode` from its boundary field (real for a propagating
+    /// wave: `S = E × (k × E) = k |E|² − E (E · k)`).
+    #[inline]
     fn wave(f: &Field, mode: WaveMode) -> Wave {
-        let s = f.e.cross_conj_re(f.h);
+        let (k, e) = (f.k.re, f.e.re);
+        let s = k * e.length_squared() - e * e.dot(k);
         Wave {
             mode,
-            k: f.k.re,
+            k,
             ray: s.normalize(),
-            field: f.e.re.normalize(),
+            field: e.normalize(),
         }
     }
 
@@ -457,38 +578,71 @@ impl Crystal {
     /// Light inside in `wave` (of unit power) meeting a facet with outward unit normal `n`
     /// (`wave.ray · n > 0`), the outside of index 1: the two reflected waves and the light
     /// leaving. `None` at grazing incidence.
+    ///
+    /// The outside's s and p waves are simple enough to take out of the four boundary
+    /// equations by hand (their tangential E and H are `(0, 1)`, `(−q, 0)` for s and
+    /// `(−q, 0)`, `(0, −1)` for p, in the frame `t1, t2`), which leaves two equations for the
+    /// reflected amplitudes: the same solution as the 4×4 system of [`Crystal::enter`]
+    /// (both are held to Berreman's in the tests) for a fifth of the time.
     pub fn meet(&self, wave: &Wave, n: DVec3) -> Option<Meeting> {
         let nu = n;
         let tg = Tangent::new(wave.k, nu);
-        let inc = self.modes(&tg, 1.0)[wave.mode.index()];
-        let refl = self.modes(&tg, -1.0);
-        let trans = isotropic_modes(1.0, &tg, 1.0);
-        let (r, t) = amplitudes(&tg, &inc, &refl, &trans)?;
+        if let (Some(mi), Some(mr)) = (self.real_modes(&tg, 1.0), self.real_modes(&tg, -1.0)) {
+            return self.meet_real(&tg, mi[wave.mode.index()], mr);
+        }
+        let inc = self.raw_modes(&tg, 1.0)[wave.mode.index()];
+        let refl = self.raw_modes(&tg, -1.0);
+        let (q, out_real) = signed_root(1.0 - tg.kt2, 1.0);
+        let tan = |f: &Field| {
+            [
+                f.e.dot_real(tg.t1),
+                f.e.dot_real(tg.t2),
+                f.h.dot_real(tg.t1),
+                f.h.dot_real(tg.t2),
+            ]
+        };
+        let (i, o, e) = (tan(&inc), tan(&refl[0]), tan(&refl[1]));
+        // (E1 − q H2) · r = q H2ᵢ − E1ᵢ and (H1 + q E2) · r = −q E2ᵢ − H1ᵢ.
+        let a11 = o[0] - q * o[3];
+        let a12 = e[0] - q * e[3];
+        let a21 = o[2] + q * o[1];
+        let a22 = e[2] + q * e[1];
+        let b1 = q * i[3] - i[0];
+        let b2 = -(q * i[1]) - i[2];
+        let det = a11 * a22 - a12 * a21;
+        if !(det.norm_sqr() > 0.0 && det.norm_sqr().is_finite()) {
+            return None;
+        }
+        let r = [(b1 * a22 - a12 * b2) / det, (a11 * b2 - b1 * a21) / det];
         let f_in = inc.flux(nu);
         if f_in.is_nan() || f_in <= 0.0 {
             return None;
         }
         let reflected = [0, 1].map(|m| {
             let f = &refl[m];
-            let p = if f.propagating {
-                -r[m].norm_sqr() * f.flux(nu) / f_in
+            if f.propagating {
+                let p = -r[m].norm_sqr() * f.flux(nu) / f_in;
+                (Crystal::wave(f, WaveMode::BOTH[m]), p)
             } else {
-                0.0
-            };
-            (Crystal::wave(f, WaveMode::BOTH[m]), p)
+                (
+                    Wave {
+                        mode: WaveMode::BOTH[m],
+                        k: DVec3::ZERO,
+                        ray: DVec3::ZERO,
+                        field: DVec3::ZERO,
+                    },
+                    0.0,
+                )
+            }
         });
-        let out = &trans[0];
-        let exit_dir = out.k.re.normalize_or_zero();
-        let (exit_power, exit) = if out.propagating {
-            let gain = out.flux(nu) / f_in;
-            let (_, p) = sp_frame(&tg, exit_dir);
-            // The p wave's field is k × s = d × s for a real unit wave vector: the Jones
-            // components are the amplitudes themselves.
-            debug_assert!((trans[1].e.re - p).length() < 1e-9 || exit_dir == DVec3::ZERO);
-            let st = jones_stokes(t[0], t[1]) * gain;
-            (st.x, st)
+        let (exit_dir, exit_power, exit) = if out_real {
+            let t_s = i[1] + r[0] * o[1] + r[1] * e[1];
+            let t_p = -(i[3] + r[0] * o[3] + r[1] * e[3]);
+            // The s and p waves carry ½ q of flux per amplitude squared.
+            let st = jones_stokes(t_s, t_p) * (0.5 * q.re / f_in);
+            ((tg.kt + tg.nu * q.re).normalize(), st.x, st)
         } else {
-            (0.0, DVec4::ZERO)
+            (DVec3::ZERO, 0.0, DVec4::ZERO)
         };
         Some(Meeting {
             reflected,
