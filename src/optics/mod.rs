@@ -32,6 +32,6 @@ pub use body_colour::{
     DENSITY_MAX, FIT_TOLERANCE, SAMPLES, STEP_NM,
 };
 pub use fresnel::{critical_angle, fresnel, reflect, refract, Complex, Interface};
-pub use material::{Dispersion, Material, MaterialFields};
+pub use material::{Dispersion, Material, MaterialFields, OpticAxis, Uniaxial};
 pub use polarization::{rotate_stokes, s_axis, Mueller, Stokes};
-pub use varieties::Variety;
+pub use varieties::{Variety, MISSING_E};
