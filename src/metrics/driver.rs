@@ -29,11 +29,9 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
 /// into a neighbour ([`color::traced_bands`]; 0 traces every band).
 pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64) -> Scores {
     // A birefringent stone's optic axis, carried into the canonical placement with it.
-    let axis = cfg
-        .material
-        .uniaxial
-        .as_ref()
-        .map_or(DVec3::Z, |u| canonical::canonical_axis(solid, u.axis.vector()));
+    let axis = cfg.material.uniaxial.as_ref().map_or(DVec3::Z, |u| {
+        canonical::canonical_axis(solid, u.axis.vector())
+    });
     let solid = &canonical::canonical(solid);
     let stone = Stone::new(solid);
     let light = Lighting::new(cfg.head_shadow_deg, &cfg.spots);
@@ -72,57 +70,59 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
     // A job is named by its pose, its index (which names the wavelength: a stone's ordinary
     // index is one-to-one with it) and its split; a birefringent stone's medium follows from
     // the wavelength `l`.
-    let index = |tilt: Tilt, ri: f64, l: f64, what: Use, split: f64, jobs: &mut Vec<Job>| -> usize {
-        // Every face-up pose is the same trace, whatever azimuth it names.
-        let tilt = if tilt.tilt_deg == 0.0 {
-            Tilt::FACE_UP
-        } else {
-            tilt
-        };
-        let split = if tilt != Tilt::FACE_UP {
-            split
-        } else if ri.to_bits() == ri0.to_bits() {
-            split
-                .min(cfg.fire_split_threshold)
-                .min(cfg.face_up_split_threshold)
-        } else {
-            split.min(cfg.fire_split_threshold)
-        };
-        let same = |j: &Job| j.tilt == tilt && j.ri.to_bits() == ri.to_bits() && j.split == split;
-        let k = match jobs.iter().position(same) {
-            Some(k) => k,
-            None => {
-                jobs.push(Job {
-                    tilt,
-                    ri,
-                    medium: if cfg.material.birefringent() {
-                        medium_at(l, false)
-                    } else {
-                        crate::beam::Medium::Isotropic(ri)
-                    },
-                    images: Vec::new(),
-                    views: Vec::new(),
-                    brilliance: false,
-                    face_up: false,
-                    split,
-                    absorption: 0.0,
-                    colour: false,
-                });
-                jobs.len() - 1
-            }
-        };
-        match what {
-            Use::FaceUp => jobs[k].face_up = true,
-            Use::Brilliance => jobs[k].brilliance = true,
-            Use::Image(l, view) => {
-                if !jobs[k].images.contains(&l) {
-                    jobs[k].images.push(l);
-                    jobs[k].views.push(view);
+    let index =
+        |tilt: Tilt, ri: f64, l: f64, what: Use, split: f64, jobs: &mut Vec<Job>| -> usize {
+            // Every face-up pose is the same trace, whatever azimuth it names.
+            let tilt = if tilt.tilt_deg == 0.0 {
+                Tilt::FACE_UP
+            } else {
+                tilt
+            };
+            let split = if tilt != Tilt::FACE_UP {
+                split
+            } else if ri.to_bits() == ri0.to_bits() {
+                split
+                    .min(cfg.fire_split_threshold)
+                    .min(cfg.face_up_split_threshold)
+            } else {
+                split.min(cfg.fire_split_threshold)
+            };
+            let same =
+                |j: &Job| j.tilt == tilt && j.ri.to_bits() == ri.to_bits() && j.split == split;
+            let k = match jobs.iter().position(same) {
+                Some(k) => k,
+                None => {
+                    jobs.push(Job {
+                        tilt,
+                        ri,
+                        medium: if cfg.material.birefringent() {
+                            medium_at(l, false)
+                        } else {
+                            crate::beam::Medium::Isotropic(ri)
+                        },
+                        images: Vec::new(),
+                        views: Vec::new(),
+                        brilliance: false,
+                        face_up: false,
+                        split,
+                        absorption: 0.0,
+                        colour: false,
+                    });
+                    jobs.len() - 1
+                }
+            };
+            match what {
+                Use::FaceUp => jobs[k].face_up = true,
+                Use::Brilliance => jobs[k].brilliance = true,
+                Use::Image(l, view) => {
+                    if !jobs[k].images.contains(&l) {
+                        jobs[k].images.push(l);
+                        jobs[k].views.push(view);
+                    }
                 }
             }
-        }
-        k
-    };
+            k
+        };
     let split = cfg.trace.split_threshold;
     // The face-up figures (overhead light return, ASET) are the cross-checked ones: the
     // face-up trace at the reference wavelength splits down to `face_up_split_threshold`
@@ -203,7 +203,10 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
                     };
                     let l = first_turn + j;
                     let (rep, view) = symmetric_pose_map(tilt, symmetry);
-                    (index(rep, ri0, l0, Use::Image(l, view), split, &mut jobs), l)
+                    (
+                        index(rep, ri0, l0, Use::Image(l, view), split, &mut jobs),
+                        l,
+                    )
                 })
                 .collect()
         })

@@ -21,10 +21,9 @@ pub fn overhead_light_return(
         split_threshold: ScoreConfig::default().face_up_split_threshold,
         ..Default::default()
     };
-    let axis = material
-        .uniaxial
-        .as_ref()
-        .map_or(glam::DVec3::Z, |u| canonical::canonical_axis(solid, u.axis.vector()));
+    let axis = material.uniaxial.as_ref().map_or(glam::DVec3::Z, |u| {
+        canonical::canonical_axis(solid, u.axis.vector())
+    });
     let solid = canonical::canonical(solid);
     let medium = material.medium(wavelength_nm, axis, 0.0, false);
     overhead_light_return_with(&Stone::new(&solid), &medium, &opts)

@@ -397,7 +397,13 @@ mod tests {
                 let (frame, opts, mut sink) =
                     job_sink(&solid, &job, &light, &lightings, &lattice, &cfg, half);
                 let (stats, _) = if clip_all {
-                    stone.trace_medium_into(&frame, &job.medium, &opts, &mut Clipped(&mut sink), false)
+                    stone.trace_medium_into(
+                        &frame,
+                        &job.medium,
+                        &opts,
+                        &mut Clipped(&mut sink),
+                        false,
+                    )
                 } else {
                     stone.trace_medium_into(&frame, &job.medium, &opts, &mut sink, false)
                 };

@@ -16,6 +16,7 @@
 //! incidence, and there the Mueller matrices have the block form of [`Mueller`].
 
 mod absorption;
+mod birefringence;
 mod body_colour;
 mod choose;
 pub mod color;
@@ -27,6 +28,7 @@ mod table;
 mod varieties;
 
 pub use absorption::{Absorption, THESIS_ABSORPTION};
+pub use birefringence::{BirefringenceJson, CrystalFields, BIAXIAL_REASON};
 pub use body_colour::{
     fit_sigmoid, BodyColour, ColourFields, StoneSize, UserColour, COLOUR_FORMS, DEFAULT_PATH_MM,
     DENSITY_MAX, FIT_TOLERANCE, SAMPLES, STEP_NM,
