@@ -6,6 +6,7 @@
 mod api;
 mod browser;
 mod colour;
+mod crystal;
 mod fuzz;
 mod plan;
 
