@@ -76,16 +76,7 @@ fn serve_turns_the_optic_axis() {
     assert!(l90 < l0 - 1.0, "L* {l90} at 90° vs {l0} at 0°");
 
     // Bad values: one line naming the field.
-    let bad = |b: &str, field: &str, status: u16| {
-        let r = s.post("/api/score", b);
-        assert_eq!(
-            r.status,
-            status,
-            "{b}: {}",
-            String::from_utf8_lossy(&r.body)
-        );
-        assert_error(&r, field)
-    };
+    let bad = |b: &str, field: &str, status: u16| score_refused(&s, b, field, status);
     let e = bad(
         r#"{"cut": "tolkowsky", "optic_axis": 30}"#,
         "optic_axis",
