@@ -240,23 +240,20 @@ pub fn design_json(config: &Config, o: &Outcome) -> Option<DesignJson> {
 /// and `best.asc` gets the note `F Optic axis: DEG@AZ` that `score` and configs read.
 fn split_axis(config: &Config, cut: &Cut) -> (Cut, Option<String>) {
     let mut cut = cut.clone();
-    let axis = cut
-        .params
-        .remove(super::config::OPTIC_AXIS)
-        .map(|tilt| {
-            let mut a = config
-                .score
-                .material
-                .uniaxial
-                .as_ref()
-                .map(|u| u.axis)
-                .unwrap_or(crate::optics::OpticAxis {
-                    tilt_deg: 0.0,
-                    azimuth_deg: 0.0,
-                });
-            a.tilt_deg = tilt;
-            a.label()
-        });
+    let axis = cut.params.remove(super::config::OPTIC_AXIS).map(|tilt| {
+        let mut a = config
+            .score
+            .material
+            .uniaxial
+            .as_ref()
+            .map(|u| u.axis)
+            .unwrap_or(crate::optics::OpticAxis {
+                tilt_deg: 0.0,
+                azimuth_deg: 0.0,
+            });
+        a.tilt_deg = tilt;
+        a.label()
+    });
     // The design's own optic-axis note gives way to the one found.
     if let (Some(_), Some(r)) = (&axis, cut.record.as_mut()) {
         let is_axis = |l: &String| {
@@ -308,24 +305,33 @@ pub fn write_folder(
         files.push("convergence.png".into());
         files.push("convergence.svg".into());
     }
-    if let Some(cut) = &outcome.best_cut {
-        let (cut, axis) = split_axis(config, cut);
+    if let Some(best) = &outcome.best_cut {
+        let (mut cut, axis) = split_axis(config, best);
+        // A family's winner carries the GemCad record its files need (`I` the index it was
+        // scored in, its symmetry, its name as the title); a design's winner has its own.
+        if cut.record.is_none() {
+            cut.record = Some(crate::cut::GemcadRecord::generated(
+                &cut,
+                0,
+                config.score.material.ri_d(),
+            ));
+        }
+        if let (Some(a), Some(r)) = (&axis, cut.record.as_mut()) {
+            r.footnotes.push(format!("Optic axis: {a}"));
+        }
+        let cut = &cut;
         let mut all: Vec<&dyn CutWriter> = vec![&TOML_WRITER];
         all.extend(writers.iter().filter(|w| w.extension() != "toml"));
         for w in all {
             let name = format!("best.{}", w.extension());
-            let mut bytes = w.render(&cut)?;
-            if let Some(a) = &axis {
-                match w.extension() {
-                    "asc" => bytes.extend(format!("F Optic axis: {a}\n").bytes()),
-                    "toml" => bytes.extend(
-                        format!(
-                            "\n# The stone's optic axis found (not part of the cut): --optic-axis {a}, [score] optic_axis = \"{a}\"\n"
-                        )
-                        .bytes(),
-                    ),
-                    _ => {}
-                }
+            let mut bytes = w.render(cut)?;
+            if let (Some(a), "toml") = (&axis, w.extension()) {
+                bytes.extend(
+                    format!(
+                        "\n# The stone's optic axis found (not part of the cut): --optic-axis {a}, [score] optic_axis = \"{a}\"\n"
+                    )
+                    .bytes(),
+                );
             }
             write_atomic(&dir.join(&name), &bytes)?;
             files.push(name);

@@ -131,15 +131,13 @@ fn presets_json() -> Value {
 /// uniaxial stone's default optic axis, degrees from the table's normal (`null` for others).
 fn materials_json() -> Vec<Value> {
     let w = facetlab::optics::StoneSize::DEFAULT_WIDTH_MM;
-    let table = Material::table()
-        .into_iter()
-        .map(|m| {
-            json!({
-                "name": m.name,
-                "colour": m.colour.as_ref().map(|c| c.hex_through(w)),
-                "optic_axis": m.uniaxial.as_ref().map(|u| u.axis.tilt_deg),
-            })
-        });
+    let table = Material::table().into_iter().map(|m| {
+        json!({
+            "name": m.name,
+            "colour": m.colour.as_ref().map(|c| c.hex_through(w)),
+            "optic_axis": m.uniaxial.as_ref().map(|u| u.axis.tilt_deg),
+        })
+    });
     let varieties = facetlab::optics::Variety::all().iter().map(|v| {
         let c = v.body_colour();
         json!({

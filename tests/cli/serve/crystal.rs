@@ -43,7 +43,10 @@ fn serve_turns_the_optic_axis() {
     let up = score(r#", "optic_axis": 0"#);
     assert_eq!(brilliance(&up), brilliance(&default));
     let flat = score(r#", "optic_axis": 90"#);
-    assert_eq!(flat["settings"]["birefringence"]["optic_axis"]["tilt_deg"], 90.0);
+    assert_eq!(
+        flat["settings"]["birefringence"]["optic_axis"]["tilt_deg"],
+        90.0
+    );
     assert!(
         (brilliance(&flat) - brilliance(&up)).abs() > 1e-6,
         "{} vs {}",
