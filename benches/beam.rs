@@ -19,7 +19,7 @@
 //!   the real photon tracer (`facetlab::photon::trace`: directed light from above, unpolarized,
 //!   no absorption, one wavelength).
 
-use facetlab::beam::{Frame, Stone, TraceOptions};
+use facetlab::beam::{Frame, Medium, Stone, TraceOptions};
 use facetlab::metrics::{overhead_light_return_with, score, ScoreConfig};
 use std::time::{Duration, Instant};
 
@@ -351,15 +351,19 @@ fn main() {
             split_threshold: 1e-5,
             ..Default::default()
         };
-        let p = overhead_light_return_with(&stone, ri, &accurate);
+        let p = overhead_light_return_with(&stone, &Medium::Isotropic(ri), &accurate);
         let default = TraceOptions {
             polarization: false,
             ..Default::default()
         };
-        let p_default = overhead_light_return_with(&stone, ri, &default);
+        let p_default = overhead_light_return_with(&stone, &Medium::Isotropic(ri), &default);
         let (beam_dt, _) = time(
             || {
-                std::hint::black_box(overhead_light_return_with(&stone, ri, &default));
+                std::hint::black_box(overhead_light_return_with(
+                    &stone,
+                    &Medium::Isotropic(ri),
+                    &default,
+                ));
             },
             Duration::from_secs(2),
         );

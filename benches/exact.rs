@@ -12,7 +12,7 @@
 //! and in standard errors, and the time of one trace).
 
 use facetlab::beam::reference::{overhead_light_return as reference, GridOptions};
-use facetlab::beam::{Stone, TraceOptions};
+use facetlab::beam::{Medium, Stone, TraceOptions};
 use facetlab::geometry::{FacetPlane, Polyhedron};
 use facetlab::metrics::{overhead_light_return_with, ScoreConfig};
 use facetlab::optics::Material;
@@ -104,7 +104,7 @@ fn main() {
                     ..Default::default()
                 };
                 let t1 = Instant::now();
-                let b = overhead_light_return_with(&stone, ri, &opts);
+                let b = overhead_light_return_with(&stone, &Medium::Isotropic(ri), &opts);
                 let bt = t1.elapsed().as_secs_f64() * 1e3;
                 let tag = if split == scored { " (score)" } else { "" };
                 line += &format!(

@@ -23,7 +23,7 @@ const BOX_MARGIN: f64 = 1e-10;
 /// Area centroid and area of the planar polygon `poly` (normal `n`): unlike the mean of its
 /// vertices, the centroid moves continuously when a clip adds a vertex. The vertex mean (and
 /// area 0) for a degenerate polygon.
-fn area_centroid(poly: &[DVec3], n: DVec3) -> (DVec3, f64) {
+pub(super) fn area_centroid(poly: &[DVec3], n: DVec3) -> (DVec3, f64) {
     let mean = poly.iter().copied().sum::<DVec3>() / poly.len().max(1) as f64;
     let (mut a, mut c) = (0.0, DVec3::ZERO);
     for i in 1..poly.len().saturating_sub(1) {
@@ -86,86 +86,10 @@ impl Stone {
     ) {
         st.beams += 1;
         let t = beam.dir;
-        // Take the beam's polygon off the point stack (it is on top).
-        w.cur.clear();
-        let (a, b) = (beam.start as usize, (beam.start + beam.len) as usize);
-        w.cur.extend_from_slice(&w.pts[a..b]);
-        w.pts.truncate(a);
-
-        let (e1, e2) = t.any_orthonormal_pair();
-        w.q.clear();
-        w.q.extend(w.cur.iter().map(|x| DVec2::new(x.dot(e1), x.dot(e2))));
-        let aq = clip2d::area(&w.q);
-        if aq.is_nan() || aq <= 0.0 {
-            st.cut_off += beam.stokes.x;
-            return;
-        }
-        let (mut lo, mut hi) = (w.q[0], w.q[0]);
-        for &p in &w.q[1..] {
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
-        // Widened far beyond the clip's tolerance (TOL): facets whose projected bounding box
-        // misses this one overlap the beam in nothing the clip would keep.
-        w.qlo = lo - DVec2::splat(BOX_MARGIN);
-        w.qhi = hi + DVec2::splat(BOX_MARGIN);
-        w.stamp = w.stamp.wrapping_add(1);
-        if w.stamp == 0 {
-            w.vstamp.iter_mut().for_each(|s| *s = 0);
-            w.fstamp.iter_mut().for_each(|s| *s = 0);
-            w.stamp = 1;
-        }
-        let stamp = w.stamp;
-
-        // Seed: the facet the ray through the polygon's vertex mean leaves by.
-        let c = w.cur.iter().copied().sum::<DVec3>() / w.cur.len() as f64;
-        let Some((seed, _)) = self.exit_facet(c, t, beam.facet as usize) else {
+        let Some((e1, e2, sum)) = self.tile(beam.start, beam.len, t, beam.facet, w, st) else {
             st.cut_off += beam.stokes.x;
             return;
         };
-        let seed = seed as u32;
-
-        // Flood over adjacent facets from the seed: the facets the beam reaches form a
-        // connected patch of the silhouette's tiling.
-        w.queue.clear();
-        w.children.clear();
-        w.cpts.clear();
-        w.queue.push(seed);
-        w.fstamp[seed as usize] = stamp;
-        let min_area = aq * SLIVER;
-        let mut sum = 0.0;
-        let mut qi = 0;
-        while qi < w.queue.len() {
-            let g = w.queue[qi] as usize;
-            qi += 1;
-            let a = self.clip_facet(g, e1, e2, w, min_area);
-            if a > min_area {
-                sum += a;
-                for &h in self.facet_neighbors(g) {
-                    if w.fstamp[h as usize] != stamp && self.normals[h as usize].dot(t) > GRAZE {
-                        w.fstamp[h as usize] = stamp;
-                        w.queue.push(h);
-                    }
-                }
-            }
-        }
-        if sum < aq * (1.0 - 1e-9) {
-            // Robustness net (never needed on sound solids): try every facet not yet tried.
-            for h in 0..self.facet_count() {
-                if w.fstamp[h] != stamp && self.normals[h].dot(t) > GRAZE {
-                    w.fstamp[h] = stamp;
-                    let a = self.clip_facet(h, e1, e2, w, min_area);
-                    if a > min_area {
-                        sum += a;
-                    }
-                }
-            }
-        }
-        st.max_tiling_error = st.max_tiling_error.max((sum - aq).abs() / aq);
-        if sum.is_nan() || sum <= 0.0 {
-            st.cut_off += beam.stokes.x;
-            return;
-        }
 
         let f = beam.facet as usize;
         let map = beam.map.slide(t, self.normals[f], self.offsets[f]);
@@ -181,12 +105,7 @@ impl Stone {
             let n = self.normals[g];
             let o = self.offsets[g];
             let cos_i = n.dot(t);
-            // Lift the child's polygon onto facet g's plane.
-            w.cur.clear();
-            for p in &w.cpts[ch.start as usize..(ch.start + ch.len) as usize] {
-                let x = e1 * p.x + e2 * p.y;
-                w.cur.push(x + t * ((o - n.dot(x)) / cos_i));
-            }
+            w.lift(ch, e1, e2, t, n, o, cos_i);
             w.foot.clear();
             if cx.want_fp {
                 w.foot.extend(w.cur.iter().map(|&x| map.apply(x)));
@@ -230,6 +149,99 @@ impl Stone {
             };
             self.continue_beam(next, cx, w, st, sink);
         }
+    }
+
+    /// Take the beam's polygon (`pts[start..start + len]`, on top of the point stack, on
+    /// `facet`'s plane) off the stack into `w.cur` and tile its cross-section across
+    /// direction `t` by the facets it reaches: their pieces (projected on `(e1, e2)`) go to
+    /// `w.children`, and the sum of their areas is returned with `e1, e2`. `None` when the
+    /// beam has no cross-section or reaches no facet (its power is then the caller's to cut
+    /// off).
+    pub(super) fn tile(
+        &self,
+        start: u32,
+        len: u32,
+        t: DVec3,
+        facet: u32,
+        w: &mut Work,
+        st: &mut TraceStats,
+    ) -> Option<(DVec3, DVec3, f64)> {
+        // Take the beam's polygon off the point stack (it is on top).
+        w.cur.clear();
+        let (a, b) = (start as usize, (start + len) as usize);
+        w.cur.extend_from_slice(&w.pts[a..b]);
+        w.pts.truncate(a);
+
+        let (e1, e2) = t.any_orthonormal_pair();
+        w.q.clear();
+        w.q.extend(w.cur.iter().map(|x| DVec2::new(x.dot(e1), x.dot(e2))));
+        let aq = clip2d::area(&w.q);
+        if aq.is_nan() || aq <= 0.0 {
+            return None;
+        }
+        let (mut lo, mut hi) = (w.q[0], w.q[0]);
+        for &p in &w.q[1..] {
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        // Widened far beyond the clip's tolerance (TOL): facets whose projected bounding box
+        // misses this one overlap the beam in nothing the clip would keep.
+        w.qlo = lo - DVec2::splat(BOX_MARGIN);
+        w.qhi = hi + DVec2::splat(BOX_MARGIN);
+        w.stamp = w.stamp.wrapping_add(1);
+        if w.stamp == 0 {
+            w.vstamp.iter_mut().for_each(|s| *s = 0);
+            w.fstamp.iter_mut().for_each(|s| *s = 0);
+            w.stamp = 1;
+        }
+        let stamp = w.stamp;
+
+        // Seed: the facet the ray through the polygon's vertex mean leaves by.
+        let c = w.cur.iter().copied().sum::<DVec3>() / w.cur.len() as f64;
+        let (seed, _) = self.exit_facet(c, t, facet as usize)?;
+        let seed = seed as u32;
+
+        // Flood over adjacent facets from the seed: the facets the beam reaches form a
+        // connected patch of the silhouette's tiling.
+        w.queue.clear();
+        w.children.clear();
+        w.cpts.clear();
+        w.queue.push(seed);
+        w.fstamp[seed as usize] = stamp;
+        let min_area = aq * SLIVER;
+        let mut sum = 0.0;
+        let mut qi = 0;
+        while qi < w.queue.len() {
+            let g = w.queue[qi] as usize;
+            qi += 1;
+            let a = self.clip_facet(g, e1, e2, w, min_area);
+            if a > min_area {
+                sum += a;
+                for &h in self.facet_neighbors(g) {
+                    if w.fstamp[h as usize] != stamp && self.normals[h as usize].dot(t) > GRAZE {
+                        w.fstamp[h as usize] = stamp;
+                        w.queue.push(h);
+                    }
+                }
+            }
+        }
+        if sum < aq * (1.0 - 1e-9) {
+            // Robustness net (never needed on sound solids): try every facet not yet tried.
+            for h in 0..self.facet_count() {
+                if w.fstamp[h] != stamp && self.normals[h].dot(t) > GRAZE {
+                    w.fstamp[h] = stamp;
+                    let a = self.clip_facet(h, e1, e2, w, min_area);
+                    if a > min_area {
+                        sum += a;
+                    }
+                }
+            }
+        }
+        st.max_tiling_error = st.max_tiling_error.max((sum - aq).abs() / aq);
+        if sum.is_nan() || sum <= 0.0 {
+            return None;
+        }
+        Some((e1, e2, sum))
     }
 
     /// Clip the current beam (`w.q`) by facet `g` projected on (e1, e2); append a child if the

@@ -40,6 +40,20 @@ impl PathLength {
     }
 }
 
+impl PathLength {
+    /// [`PathLength::slide`] for a weighted length: each unit of path travelled along `t`
+    /// adds `a` (an optical depth `Σ αᵢ Lᵢ`, a birefringent stone's per-mode absorption
+    /// times each segment's length: still affine over a beam's cross-section).
+    #[inline]
+    pub(super) fn slide_weighted(&self, t: DVec3, n: DVec3, o: f64, a: f64) -> PathLength {
+        let k = (a - self.h.dot(t)) / n.dot(t);
+        PathLength {
+            h: self.h + n * k,
+            l: self.l - o * k,
+        }
+    }
+}
+
 impl Affine {
     #[inline]
     pub(super) fn apply(&self, x: DVec3) -> DVec2 {

@@ -77,6 +77,7 @@ pub(super) fn cross<S: ExitSink>(
                     external: false,
                     narrow: o.narrow,
                     late: o.late,
+                    mode: None,
                     node: o.node,
                     sym: 0,
                 };

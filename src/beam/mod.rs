@@ -30,6 +30,7 @@
 //! The tracer knows nothing of lighting or scores; see [`crate::metrics`].
 
 pub mod attenuation;
+mod crystal;
 mod disc;
 mod exact;
 mod footprint;
@@ -45,12 +46,14 @@ mod work;
 #[cfg(test)]
 pub(crate) mod tests;
 
+pub use crystal::Medium;
 pub(crate) use sink::ExitSink;
 pub use sink::TraceStats;
 pub use stone::Stone;
 pub(crate) use symmetry::mirror_matrix;
 
 use crate::geometry::Polyhedron;
+use crate::optics::crystal::WaveMode;
 use crate::optics::{Material, Stokes};
 use glam::{DMat3, DVec2, DVec3};
 
@@ -136,9 +139,20 @@ pub struct TraceOptions {
     /// absorbed on the way out is [`TraceStats::absorbed`]; beams that are cut off keep the
     /// power they had before absorption in [`TraceStats::cut_off`].
     pub absorption: f64,
+    /// Birefringent stones ([`Medium::Uniaxial`]): a narrow beam's ray splits into a ray per
+    /// reflected mode only where each carries at least this share of the narrow beam's
+    /// starting power; a weaker mode's light stays with the other mode's ray (its power
+    /// added, its path that ray's). A ray then branches into at most `1/mode_floor` rays
+    /// instead of doubling at every facet (see the module documentation of `beam::crystal`
+    /// for what it costs and leaves out). Default [`TraceOptions::MODE_FLOOR`]; 0 follows
+    /// every mode down to the other floors.
+    pub mode_floor: f64,
 }
 
 impl TraceOptions {
+    /// Default [`TraceOptions::mode_floor`].
+    pub const MODE_FLOOR: f64 = 1.0;
+
     /// Default split threshold.
     pub const SPLIT_THRESHOLD: f64 = 1e-4;
 
@@ -165,6 +179,7 @@ impl Default for TraceOptions {
             ray_floor: 0.0,
             narrow_forks: false,
             absorption: 0.0,
+            mode_floor: Self::MODE_FLOOR,
         }
     }
 }
@@ -254,6 +269,10 @@ pub struct ExitBeam {
     /// before this crossing: the light most like what [`TraceOptions::ray_floor`] stops (its
     /// mean is that light's closure; the narrow exits as a whole leave brighter).
     pub late: bool,
+    /// The mode a birefringent stone's light travelled in before it left
+    /// ([`WaveMode::Ordinary`] or [`WaveMode::Extraordinary`]); `None` for an external
+    /// reflection and for a singly refractive trace.
+    pub mode: Option<WaveMode>,
     pub(crate) node: u32,
     /// Index of the symmetry that maps the traced beam to this one (0 = identity).
     pub(crate) sym: u16,
@@ -264,8 +283,10 @@ pub struct ExitBeam {
 pub struct BeamTree {
     /// The incoming direction and image axes.
     pub frame: Frame,
-    /// Refractive index used.
+    /// Refractive index used (a birefringent stone's ordinary index).
     pub ri: f64,
+    /// The medium traced (its indices, optic axis and per-mode absorption).
+    pub medium: Medium,
     /// Wavelength in nm (as given; informative when the index was fixed).
     pub wavelength_nm: f64,
     /// Whether polarization was tracked.
@@ -351,20 +372,33 @@ impl Stone {
         wavelength_nm: f64,
         opts: &TraceOptions,
     ) -> BeamTree {
+        self.trace_medium(frame, &Medium::Isotropic(ri), wavelength_nm, opts)
+    }
+
+    /// Trace one direction through `medium` (singly refractive, or a birefringent crystal)
+    /// and collect the whole result.
+    pub fn trace_medium(
+        &self,
+        frame: &Frame,
+        medium: &Medium,
+        wavelength_nm: f64,
+        opts: &TraceOptions,
+    ) -> BeamTree {
         let mut sink = Collect {
             exits: Vec::new(),
             footprints: Vec::new(),
             ranges: Vec::new(),
             want: opts.footprints,
         };
-        let (stats, nodes) = self.trace_into(frame, ri, opts, &mut sink, true);
+        let (stats, nodes) = self.trace_medium_into(frame, medium, opts, &mut sink, true);
         let perms = (0..self.symmetry_order())
             .map(|i| self.permutation(i).to_vec())
             .collect();
         BeamTree {
             perms,
             frame: *frame,
-            ri,
+            ri: medium.ri(),
+            medium: *medium,
             wavelength_nm,
             polarization: opts.polarization,
             stats,

@@ -11,6 +11,8 @@ use glam::{DMat3, DVec2, DVec3};
 pub(super) struct SymOp {
     m: DMat3,
     mirror: bool,
+    /// A mirror's line azimuth (radians); 0 for a rotation.
+    azimuth: f64,
     perm: Vec<u32>,
 }
 
@@ -204,17 +206,20 @@ impl Symmetry {
                 ops.push(SymOp {
                     m,
                     mirror: false,
+                    azimuth: 0.0,
                     perm,
                 });
             }
         }
         if let Some(phi0) = mirror {
             for j in 0..k {
-                let m = mirror_matrix(phi0 + std::f64::consts::PI * j as f64 / k as f64);
+                let azimuth = phi0 + std::f64::consts::PI * j as f64 / k as f64;
+                let m = mirror_matrix(azimuth);
                 if let Some(perm) = facet_permutation(normals, offsets, &m) {
                     ops.push(SymOp {
                         m,
                         mirror: true,
+                        azimuth,
                         perm,
                     });
                 }
@@ -232,6 +237,7 @@ impl Symmetry {
                 ops: vec![SymOp {
                     m: DMat3::IDENTITY,
                     mirror: false,
+                    azimuth: 0.0,
                     perm: (0..normals.len() as u32).collect(),
                 }],
                 rot_order: 1,
@@ -287,5 +293,41 @@ impl Symmetry {
             }
         }
         (vec![0], vec![])
+    }
+
+    /// [`Symmetry::frame_symmetry`] for a birefringent stone with optic axis `axis`: only the
+    /// symmetries that also map the axis onto itself (or its opposite: a uniaxial crystal is
+    /// the same either way) are kept, with a fundamental wedge of the group they form — for
+    /// an axis along z all of them, for a tilted one at most the half-turn and the mirrors
+    /// through and across the axis's azimuth.
+    pub(super) fn frame_symmetry_keeping(&self, d: DVec3, axis: DVec3) -> (Vec<usize>, Vec<DVec3>) {
+        use std::f64::consts::{FRAC_PI_2, PI};
+        let (group, wedge) = self.frame_symmetry(d);
+        let keeps = |i: usize| {
+            let m = self.ops[i].m * axis;
+            (m - axis).length() < 1e-9 || (m + axis).length() < 1e-9
+        };
+        if group.iter().all(|&i| keeps(i)) {
+            return (group, wedge);
+        }
+        let sub: Vec<usize> = group.into_iter().filter(|&i| keeps(i)).collect();
+        let side = |a: f64| DVec3::new(a.sin(), -a.cos(), 0.0);
+        let mirrors: Vec<f64> = sub
+            .iter()
+            .filter(|&&i| self.ops[i].mirror)
+            .map(|&i| self.ops[i].azimuth.rem_euclid(PI))
+            .collect();
+        let half_turn = sub.iter().any(|&i| i != 0 && !self.ops[i].mirror);
+        let wedge = match (half_turn, mirrors.as_slice()) {
+            (false, []) => vec![],
+            (false, [a]) => vec![side(*a)],
+            (true, []) if sub.len() == 2 => vec![side(0.0)],
+            (true, [a, b]) if sub.len() == 4 => {
+                let a = a.min(*b);
+                vec![side(a), -side(a + FRAC_PI_2)]
+            }
+            _ => return (vec![0], vec![]),
+        };
+        (sub, wedge)
     }
 }

@@ -61,19 +61,7 @@ impl Stone {
         if total.is_nan() || total <= 0.0 {
             return (st, Vec::new());
         }
-        let clean = |x: f64| if x.is_finite() { x.max(0.0) } else { 0.0 };
-        let cx = Ctx {
-            ri,
-            pol: opts.polarization,
-            threshold: clean(opts.threshold),
-            split_threshold: clean(opts.split_threshold),
-            ray_floor: clean(opts.ray_floor),
-            forks: opts.narrow_forks,
-            max_depth: opts.max_depth,
-            alpha: clean(opts.absorption),
-            want_fp: sink.wants_footprints(),
-            keep_nodes,
-        };
+        let cx = Ctx::new(ri, opts, sink.wants_footprints(), keep_nodes);
         let mut w = self.work();
         let map0 = Affine {
             a1: frame.u,
@@ -146,6 +134,7 @@ impl Stone {
                 external: true,
                 narrow: false,
                 late: false,
+                mode: None,
                 node,
                 sym: 0,
             };

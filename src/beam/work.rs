@@ -1,6 +1,7 @@
 //! The state of one trace: its cleaned settings ([`Ctx`]), a beam waiting to be split
 //! ([`Beam`]) and the working memory reused across beams ([`Work`]).
 
+use super::crystal::{ModeBeam, ModeRay};
 use super::disc::{Fork, Part};
 use super::footprint::{Affine, PathLength};
 use super::stone::Stone;
@@ -51,6 +52,26 @@ pub(super) struct Ctx {
     pub(super) keep_nodes: bool,
 }
 
+impl Ctx {
+    /// The settings of a trace at index `ri` under `opts` (negative and non-finite powers
+    /// read as 0).
+    pub(super) fn new(ri: f64, opts: &super::TraceOptions, want_fp: bool, keep_nodes: bool) -> Ctx {
+        let clean = |x: f64| if x.is_finite() { x.max(0.0) } else { 0.0 };
+        Ctx {
+            ri,
+            pol: opts.polarization,
+            threshold: clean(opts.threshold),
+            split_threshold: clean(opts.split_threshold),
+            ray_floor: clean(opts.ray_floor),
+            forks: opts.narrow_forks,
+            max_depth: opts.max_depth,
+            alpha: clean(opts.absorption),
+            want_fp,
+            keep_nodes,
+        }
+    }
+}
+
 /// Working memory of one trace, reused across beams.
 pub(super) struct Work {
     pub(super) pts: Vec<DVec3>,
@@ -76,9 +97,34 @@ pub(super) struct Work {
     pub(super) nodes: Vec<(u32, u32)>,
     pub(super) parts: Vec<Part>,
     pub(super) forks: Vec<Fork>,
+    /// A birefringent trace's beams waiting to be split, and a narrow beam's rays.
+    pub(super) mode_stack: Vec<ModeBeam>,
+    pub(super) mode_rays: Vec<ModeRay>,
 }
 
 impl Work {
+    /// Lift child `ch`'s polygon (projected on `(e1, e2)`, in `cpts`) along `t` onto the
+    /// plane `n · x = o` of the facet it meets (`cos_i = n · t`), into `cur`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    pub(super) fn lift(
+        &mut self,
+        ch: Child,
+        e1: DVec3,
+        e2: DVec3,
+        t: DVec3,
+        n: DVec3,
+        o: f64,
+        cos_i: f64,
+    ) {
+        // Lift the child's polygon onto facet g's plane.
+        self.cur.clear();
+        for p in &self.cpts[ch.start as usize..(ch.start + ch.len) as usize] {
+            let x = e1 * p.x + e2 * p.y;
+            self.cur.push(x + t * ((o - n.dot(x)) / cos_i));
+        }
+    }
+
     /// A new node (parent, facet) of the facet-sequence tree: its id, or `u32::MAX` when the
     /// tree is not kept.
     #[inline]
@@ -116,6 +162,8 @@ impl Stone {
             nodes: Vec::with_capacity(4096),
             parts: Vec::with_capacity(32),
             forks: Vec::with_capacity(8),
+            mode_stack: Vec::new(),
+            mode_rays: Vec::new(),
         }
     }
 }

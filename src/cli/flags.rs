@@ -175,6 +175,79 @@ impl ColourArgs {
     }
 }
 
+/// `--birefringence`, `--optic-axis` and `--colour-e`, shared by the commands that trace:
+/// how a uniaxial stone is traced ([`Material::choose_crystal`]).
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct CrystalArgs {
+    /// Trace a uniaxial stone (sapphire, quartz, tourmaline, …) birefringent: on (the
+    /// default for those stones) or off (its ordinary ray alone).
+    #[arg(long, value_name = "on|off")]
+    pub birefringence: Option<String>,
+    /// The optic (c-)axis of a uniaxial stone: DEG[@AZ], its angle from the table's normal
+    /// toward azimuth AZ (0 = c ⟂ table; 90@0 = c in the table along azimuth 0). Default: as
+    /// cutters orient the material.
+    #[arg(long, value_name = "DEG[@AZ]")]
+    pub optic_axis: Option<String>,
+    /// A uniaxial stone's colour for light polarized ∥ its optic axis (the e-ray), as
+    /// --colour takes it; --colour then gives the E⊥c (o-ray) colour.
+    #[arg(long, value_name = "COLOUR")]
+    pub colour_e: Option<String>,
+}
+
+impl CrystalArgs {
+    /// Apply the flags to every material ([`Material::choose_crystal`]; `--colour-density`'s
+    /// `density` scales an `--colour-e` colour too) and return a line per cut for stderr
+    /// saying how each birefringent stone is traced at `wavelength_nm`.
+    pub fn apply(
+        &self,
+        cuts: &[facetlab::cut::Cut],
+        materials: &mut [Material],
+        density: Option<f64>,
+        wavelength_nm: f64,
+    ) -> Result<Vec<String>> {
+        let on = self
+            .birefringence
+            .as_deref()
+            .map(|b| on_off("--birefringence", b))
+            .transpose()?;
+        let mut notes = Vec::new();
+        for (cut, m) in cuts.iter().zip(materials.iter_mut()) {
+            m.choose_crystal(
+                on,
+                self.optic_axis.as_deref(),
+                self.colour_e.as_deref(),
+                density,
+                facetlab::optics::CrystalFields {
+                    birefringence: "--birefringence",
+                    optic_axis: "--optic-axis",
+                    colour_e: "--colour-e",
+                },
+            )?;
+            if let Some(n) = m.birefringence_note(wavelength_nm) {
+                notes.push(format!("{}: {n}", cut.name));
+            }
+        }
+        Ok(notes)
+    }
+}
+
+impl ColourArgs {
+    /// `--colour-density` as a number, if given.
+    pub fn density(&self) -> Result<Option<f64>> {
+        self.colour_density
+            .as_deref()
+            .map(|d| {
+                d.trim().parse::<f64>().map_err(|_| {
+                    Error::invalid(
+                        "--colour-density",
+                        format!("`{d}` is not a number; give a factor on the absorption in (0, {DENSITY_MAX}]"),
+                    )
+                })
+            })
+            .transpose()
+    }
+}
+
 /// The material from `--ri N` or `--material NAME` (diamond when neither is given), chosen by
 /// [`Material::choose`] like a config's `score.material`/`score.ri`.
 pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {

@@ -87,6 +87,9 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     {
         eprintln!("{note}");
     }
+    for note in flags::CrystalArgs::default().apply(&cuts, &mut materials, None, 589.3)? {
+        eprintln!("{note}");
+    }
     let material = materials.first().cloned().unwrap_or(material);
     let score = ScoreConfig {
         material,

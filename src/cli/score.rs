@@ -61,6 +61,8 @@ pub struct ScoreArgs {
     pub material: super::flags::MaterialArgs,
     #[command(flatten)]
     pub colour: super::flags::ColourArgs,
+    #[command(flatten)]
+    pub crystal: super::flags::CrystalArgs,
     /// Track polarization with Stokes vectors and Mueller matrices (on) or use the
     /// unpolarized average (off).
     #[arg(long, default_value = "on", value_name = "on|off")]
@@ -263,6 +265,13 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
         eprintln!("{note}");
     }
     for note in a.colour.apply_traced(&cuts, &mut materials, true)?.0 {
+        eprintln!("{note}");
+    }
+    let density = a.colour.density()?;
+    for note in a
+        .crystal
+        .apply(&cuts, &mut materials, density, s.config.wavelength_nm)?
+    {
         eprintln!("{note}");
     }
     let configs: Vec<ScoreConfig> = materials

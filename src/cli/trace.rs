@@ -85,6 +85,8 @@ pub struct TraceArgs {
     pub polarization: String,
     #[command(flatten)]
     pub material: super::flags::MaterialArgs,
+    #[command(flatten)]
+    pub crystal: super::flags::CrystalArgs,
     /// Wavelengths: uniform over 380–780 nm (the thesis), weighted by D65, or one fixed
     /// wavelength in nm.
     #[arg(
@@ -344,6 +346,9 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     // A coloured material (`--material ruby`, a design's note) is traced in colour only with
     // `--absorption colour[:W]`; otherwise say that it is not, with the default width.
     let colour_notes = flags::ColourArgs::default().apply(&cuts, &mut materials)?;
+    for note in args.crystal.apply(&cuts, &mut materials, None, 589.3)? {
+        eprintln!("{note}");
+    }
     if !matches!(set.config.absorption, Absorption::Body { .. }) {
         for note in colour_notes {
             eprintln!("{note}");

@@ -96,6 +96,11 @@ const ZERO_HARMONIC: f64 = 1e-5;
 /// azimuth (see the module documentation), and 0 when no harmonic up to order 96 stands out
 /// (a solid of revolution, or one with no tilted facets).
 pub fn azimuth_turn(solid: &Polyhedron) -> f64 {
+    turn_and_order(solid).0
+}
+
+/// [`azimuth_turn`] and the rotation order it found (1 when none).
+fn turn_and_order(solid: &Polyhedron) -> (f64, usize) {
     // Per tilted facet: weight and unit horizontal direction of its normal.
     // Per tilted facet: weight and unit horizontal direction of its normal (normals, unlike
     // vertices, are known to the last bit, so the phase is too).
@@ -111,7 +116,7 @@ pub fn azimuth_turn(solid: &Polyhedron) -> f64 {
         .collect();
     let total: f64 = terms.iter().map(|t| t.0).sum();
     if !(total.is_finite() && total > 0.0) {
-        return 0.0;
+        return (0.0, 1);
     }
     // Complex powers e^{i m φ} by repeated multiplication, all orders at once.
     let mul = |a: DVec2, b: DVec2| DVec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
@@ -129,13 +134,50 @@ pub fn azimuth_turn(solid: &Polyhedron) -> f64 {
             // The phase is known to ~1e-13 (the harmonic is a sum of terms that largely
             // cancel): a smaller turn is none, so a stone already at its canonical azimuth,
             // or turned onto itself by a symmetry, keeps its very numbers.
-            return if psi.abs() < SNAP_TURN { 0.0 } else { psi };
+            return (if psi.abs() < SNAP_TURN { 0.0 } else { psi }, m);
         }
         for (p, t) in pow.iter_mut().zip(&terms) {
             *p = mul(*p, t.1);
         }
     }
-    0.0
+    (0.0, 1)
+}
+
+/// A birefringent stone's optic axis (unit, in `solid`'s coordinates) as it lies in the
+/// canonical solid ([`canonical`]), so that a stone turned with its axis scores as it does
+/// unturned. The canonical turn takes it along; then, of the turns through 2π/k that the
+/// stone's rotation order `k` allows (they leave the canonical solid as it is), the one that
+/// brings the axis's azimuth into [0, 2π/k) is taken, and the axis is given pointing up (a
+/// uniaxial crystal is the same along ĉ and −ĉ; a horizontal axis's azimuth in [0, π)).
+/// Azimuths within 1e-9 radians of the range's end count as 0, so that turned copies do
+/// not land on either end by rounding.
+pub fn canonical_axis(solid: &Polyhedron, axis: DVec3) -> DVec3 {
+    use std::f64::consts::{PI, TAU};
+    let (psi, k) = turn_and_order(solid);
+    let mut a = DMat3::from_rotation_z(psi) * axis.normalize();
+    if a.truncate().length() < 1e-12 {
+        return DVec3::Z;
+    }
+    let horizontal = a.z.abs() < 1e-12;
+    if horizontal {
+        a.z = 0.0;
+    } else if a.z < 0.0 {
+        a = -a;
+    }
+    let k = k.max(1);
+    // The azimuths equivalent to the axis's: turns through 2π/k, and for a horizontal axis
+    // the half-turn of the line as well (together, turns through π/k when k is odd).
+    let period = if horizontal && k % 2 == 1 {
+        PI / k as f64
+    } else {
+        TAU / k as f64
+    };
+    let mut phi = a.y.atan2(a.x).rem_euclid(period);
+    if period - phi < 1e-9 {
+        phi = 0.0;
+    }
+    let r = a.truncate().length();
+    DVec3::new(r * phi.cos(), r * phi.sin(), a.z).normalize()
 }
 
 /// Quantised (tilt, offset, azimuth in [0, 2π)) of a facet plane; an azimuth a hair below 2π

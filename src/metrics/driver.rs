@@ -28,6 +28,10 @@ pub fn score(solid: &Polyhedron, cfg: &ScoreConfig) -> Scores {
 /// [`score`], with fire's bands whose colour weight is below `faint` of the white's merged
 /// into a neighbour ([`color::traced_bands`]; 0 traces every band).
 pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64) -> Scores {
+    // A birefringent stone's optic axis, carried into the canonical placement with it.
+    let axis = cfg.material.uniaxial.as_ref().map_or(DVec3::Z, |u| {
+        canonical::canonical_axis(solid, u.axis.vector())
+    });
     let solid = &canonical::canonical(solid);
     let stone = Stone::new(solid);
     let light = Lighting::new(cfg.head_shadow_deg, &cfg.spots);
@@ -45,6 +49,12 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
     );
     let half = crate::render::picture_half(solid);
     let ri0 = cfg.material.ri(cfg.wavelength_nm);
+    // Absorption per unit of the canonical solid is α per mm times this.
+    let mm_per_unit = {
+        let (width_mm, width) = stone_width(solid, cfg);
+        width_mm / width.max(1e-300)
+    };
+    let medium_at = |l: f64, absorbing: bool| cfg.material.medium(l, axis, mm_per_unit, absorbing);
     // Fire's bands: the faint ones (far out in the red) take a neighbour's trace.
     let bands = color::traced_bands(cfg.bands.max(1), faint);
     // Distinct traces, each shared by every score that needs it (same pose, same index).
@@ -57,60 +67,72 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
         /// of the stone, of another ([`Job::views`]).
         Image(usize, Option<DMat3>),
     }
-    let index = |tilt: Tilt, ri: f64, what: Use, split: f64, jobs: &mut Vec<Job>| -> usize {
-        // Every face-up pose is the same trace, whatever azimuth it names.
-        let tilt = if tilt.tilt_deg == 0.0 {
-            Tilt::FACE_UP
-        } else {
-            tilt
-        };
-        let split = if tilt != Tilt::FACE_UP {
-            split
-        } else if ri.to_bits() == ri0.to_bits() {
-            split
-                .min(cfg.fire_split_threshold)
-                .min(cfg.face_up_split_threshold)
-        } else {
-            split.min(cfg.fire_split_threshold)
-        };
-        let same = |j: &Job| j.tilt == tilt && j.ri.to_bits() == ri.to_bits() && j.split == split;
-        let k = match jobs.iter().position(same) {
-            Some(k) => k,
-            None => {
-                jobs.push(Job {
-                    tilt,
-                    ri,
-                    images: Vec::new(),
-                    views: Vec::new(),
-                    brilliance: false,
-                    face_up: false,
-                    split,
-                    absorption: 0.0,
-                    colour: false,
-                });
-                jobs.len() - 1
-            }
-        };
-        match what {
-            Use::FaceUp => jobs[k].face_up = true,
-            Use::Brilliance => jobs[k].brilliance = true,
-            Use::Image(l, view) => {
-                if !jobs[k].images.contains(&l) {
-                    jobs[k].images.push(l);
-                    jobs[k].views.push(view);
+    // A job is named by its pose, its index (which names the wavelength: a stone's ordinary
+    // index is one-to-one with it) and its split; a birefringent stone's medium follows from
+    // the wavelength `l`.
+    let index =
+        |tilt: Tilt, ri: f64, l: f64, what: Use, split: f64, jobs: &mut Vec<Job>| -> usize {
+            // Every face-up pose is the same trace, whatever azimuth it names.
+            let tilt = if tilt.tilt_deg == 0.0 {
+                Tilt::FACE_UP
+            } else {
+                tilt
+            };
+            let split = if tilt != Tilt::FACE_UP {
+                split
+            } else if ri.to_bits() == ri0.to_bits() {
+                split
+                    .min(cfg.fire_split_threshold)
+                    .min(cfg.face_up_split_threshold)
+            } else {
+                split.min(cfg.fire_split_threshold)
+            };
+            let same =
+                |j: &Job| j.tilt == tilt && j.ri.to_bits() == ri.to_bits() && j.split == split;
+            let k = match jobs.iter().position(same) {
+                Some(k) => k,
+                None => {
+                    jobs.push(Job {
+                        tilt,
+                        ri,
+                        medium: if cfg.material.birefringent() {
+                            medium_at(l, false)
+                        } else {
+                            crate::beam::Medium::Isotropic(ri)
+                        },
+                        images: Vec::new(),
+                        views: Vec::new(),
+                        brilliance: false,
+                        face_up: false,
+                        split,
+                        absorption: 0.0,
+                        colour: false,
+                    });
+                    jobs.len() - 1
+                }
+            };
+            match what {
+                Use::FaceUp => jobs[k].face_up = true,
+                Use::Brilliance => jobs[k].brilliance = true,
+                Use::Image(l, view) => {
+                    if !jobs[k].images.contains(&l) {
+                        jobs[k].images.push(l);
+                        jobs[k].views.push(view);
+                    }
                 }
             }
-        }
-        k
-    };
+            k
+        };
     let split = cfg.trace.split_threshold;
     // The face-up figures (overhead light return, ASET) are the cross-checked ones: the
     // face-up trace at the reference wavelength splits down to `face_up_split_threshold`
     // (cheap: a face-up stone traces one symmetry wedge), the other face-up traces (fire's
     // bands) to `fire_split_threshold`.
+    let l0 = cfg.wavelength_nm;
     let face_up = index(
         Tilt::FACE_UP,
         ri0,
+        l0,
         Use::FaceUp,
         cfg.fire_split_threshold,
         &mut jobs,
@@ -123,7 +145,7 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
         .iter()
         .map(|t| {
             let t = symmetric_pose(*t, symmetry);
-            index(t, ri0, Use::Brilliance, split, &mut jobs)
+            index(t, ri0, l0, Use::Brilliance, split, &mut jobs)
         })
         .collect();
     let constant = matches!(cfg.material.dispersion, Dispersion::Constant(_));
@@ -131,12 +153,17 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
         .iter()
         .filter(|_| cfg.parts.fire)
         .map(|&(l, _)| {
-            let ri = if constant { ri0 } else { cfg.material.ri(l) };
+            let (ri, l) = if constant {
+                (ri0, l0)
+            } else {
+                (cfg.material.ri(l), l)
+            };
             let mut k = 0;
             for p in 0..placements.len() {
                 k = index(
                     Tilt::FACE_UP,
                     ri,
+                    l,
                     Use::Image(p, None),
                     cfg.fire_split_threshold,
                     &mut jobs,
@@ -150,9 +177,13 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
     // `colour_of` draws it apart.
     let shared_colour = shared_colour(solid, cfg, &bands, &fire, constant);
     if let Some(alphas) = &shared_colour {
-        for (&k, &alpha) in fire.iter().zip(alphas) {
+        for ((&k, &alpha), band) in fire.iter().zip(alphas).zip(&bands) {
             jobs[k].absorption = alpha;
             jobs[k].colour = true;
+            if cfg.material.birefringent() {
+                // The crystal's own absorption per mode (pleochroism).
+                jobs[k].medium = medium_at(band.0, true);
+            }
         }
     }
     // Scintillation: per turn, the rocking sequence toward the turn's azimuth, under the spot
@@ -172,7 +203,10 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
                     };
                     let l = first_turn + j;
                     let (rep, view) = symmetric_pose_map(tilt, symmetry);
-                    (index(rep, ri0, Use::Image(l, view), split, &mut jobs), l)
+                    (
+                        index(rep, ri0, l0, Use::Image(l, view), split, &mut jobs),
+                        l,
+                    )
                 })
                 .collect()
         })

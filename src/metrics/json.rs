@@ -13,7 +13,8 @@ use std::collections::BTreeMap;
 /// `scintillation_tilts`, `resolution`, `split_threshold`, `fire_split_threshold`,
 /// `face_up_split_threshold`, `threshold`, `ray_floor`, `narrow_forks`, and for a coloured
 /// stone `colour` (`{name, density, source}`) and `size_mm` (`{width}`, `{length}` or
-/// `{length, width}`, as given).
+/// `{length, width}`, as given), and for a uniaxial stone `birefringence`
+/// ([`BirefringenceJson`](crate::optics::BirefringenceJson)).
 #[derive(Serialize)]
 pub struct SettingsJson<'a> {
     material: &'a str,
@@ -35,6 +36,8 @@ pub struct SettingsJson<'a> {
     colour: Option<ColourJson<'a>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     size_mm: Option<BTreeMap<&'static str, f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    birefringence: Option<crate::optics::BirefringenceJson>,
 }
 
 /// A body colour as the settings name it.
@@ -72,6 +75,7 @@ impl<'a> SettingsJson<'a> {
                 density: b.density,
                 source: &b.source,
             }),
+            birefringence: c.material.birefringence_json(c.wavelength_nm),
             size_mm: c.material.colour.as_ref().map(|_| match c.size {
                 StoneSize::Width(w) => BTreeMap::from([("width", w)]),
                 StoneSize::Length(l) => BTreeMap::from([("length", l)]),

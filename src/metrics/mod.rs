@@ -187,6 +187,8 @@ mod sink;
 mod symmetry;
 
 #[cfg(test)]
+mod birefringence;
+#[cfg(test)]
 mod golden;
 #[cfg(test)]
 mod invariance;

@@ -2,7 +2,7 @@
 //! the upper hemisphere (the figure for cross-checks with the photon tracer).
 
 use super::config::ScoreConfig;
-use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions};
+use crate::beam::{ExitBeam, ExitSink, Frame, Medium, Stone, TraceOptions};
 use crate::geometry::{canonical, Polyhedron};
 use crate::optics::Material;
 use glam::DVec2;
@@ -21,12 +21,17 @@ pub fn overhead_light_return(
         split_threshold: ScoreConfig::default().face_up_split_threshold,
         ..Default::default()
     };
+    let axis = material.uniaxial.as_ref().map_or(glam::DVec3::Z, |u| {
+        canonical::canonical_axis(solid, u.axis.vector())
+    });
     let solid = canonical::canonical(solid);
-    overhead_light_return_with(&Stone::new(&solid), material.ri(wavelength_nm), &opts)
+    let medium = material.medium(wavelength_nm, axis, 0.0, false);
+    overhead_light_return_with(&Stone::new(&solid), &medium, &opts)
 }
 
-/// [`overhead_light_return`] on a prepared stone at index `ri` with explicit settings.
-pub fn overhead_light_return_with(stone: &Stone, ri: f64, opts: &TraceOptions) -> f64 {
+/// [`overhead_light_return`] on a prepared stone through `medium` (an index, or a
+/// birefringent crystal) with explicit settings.
+pub fn overhead_light_return_with(stone: &Stone, medium: &Medium, opts: &TraceOptions) -> f64 {
     struct Up(f64);
     impl ExitSink for Up {
         fn exit(&mut self, e: &ExitBeam, _: &[DVec2]) {
@@ -40,7 +45,7 @@ pub fn overhead_light_return_with(stone: &Stone, ri: f64, opts: &TraceOptions) -
         footprints: false,
         ..*opts
     };
-    let (stats, _) = stone.trace_into(&Frame::overhead(), ri, &opts, &mut up, false);
+    let (stats, _) = stone.trace_medium_into(&Frame::overhead(), medium, &opts, &mut up, false);
     if stats.power_in > 0.0 {
         up.0 / stats.power_in
     } else {

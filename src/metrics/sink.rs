@@ -5,7 +5,7 @@
 use super::config::ScoreConfig;
 use super::fire::{FireLattice, Reach};
 use super::symmetry::OrbitCoverage;
-use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions, TraceStats};
+use crate::beam::{ExitBeam, ExitSink, Frame, Medium, Stone, TraceOptions, TraceStats};
 use crate::geometry::{clip2d, Polyhedron};
 use crate::render::lighting::{aset_bins, Lighting};
 use crate::render::raster::{Coverage, Raster};
@@ -17,6 +17,9 @@ use glam::{DMat3, DVec2};
 pub(super) struct Job {
     pub(super) tilt: Tilt,
     pub(super) ri: f64,
+    /// What the trace goes through (the index `ri` alone, or a birefringent crystal whose
+    /// absorption per mode is this job's body colour when it draws the colour).
+    pub(super) medium: Medium,
     /// Spot-light images: indices into the lightings of [`score`] (fire's placements, then
     /// scintillation's turns), in the order of [`PoseResult::images`].
     ///
@@ -294,7 +297,7 @@ pub(super) fn run_job(
     half: f64,
 ) -> PoseResult {
     let (frame, opts, mut sink) = job_sink(solid, job, light, lightings, lattice, cfg, half);
-    let (stats, _) = stone.trace_into(&frame, job.ri, &opts, &mut sink, false);
+    let (stats, _) = stone.trace_medium_into(&frame, &job.medium, &opts, &mut sink, false);
     sink.finish(stats)
 }
 

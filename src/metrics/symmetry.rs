@@ -285,6 +285,7 @@ mod tests {
                 let job = |tilt: Tilt, view: Option<DMat3>| Job {
                     tilt,
                     ri: 2.417,
+                    medium: crate::beam::Medium::Isotropic(2.417),
                     images: vec![0],
                     views: vec![view],
                     brilliance: false,
@@ -383,6 +384,7 @@ mod tests {
             let job = Job {
                 tilt: Tilt::FACE_UP,
                 ri: 2.417,
+                medium: crate::beam::Medium::Isotropic(2.417),
                 images: (0..lightings.len()).collect(),
                 views: vec![None; lightings.len()],
                 brilliance: true,
@@ -395,9 +397,15 @@ mod tests {
                 let (frame, opts, mut sink) =
                     job_sink(&solid, &job, &light, &lightings, &lattice, &cfg, half);
                 let (stats, _) = if clip_all {
-                    stone.trace_into(&frame, job.ri, &opts, &mut Clipped(&mut sink), false)
+                    stone.trace_medium_into(
+                        &frame,
+                        &job.medium,
+                        &opts,
+                        &mut Clipped(&mut sink),
+                        false,
+                    )
                 } else {
-                    stone.trace_into(&frame, job.ri, &opts, &mut sink, false)
+                    stone.trace_medium_into(&frame, &job.medium, &opts, &mut sink, false)
                 };
                 let classes = sink.orbit.first.len();
                 (sink.finish(stats), classes)

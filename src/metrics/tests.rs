@@ -132,7 +132,7 @@ fn overhead_light_return_agrees_with_score_and_polarization_matters_little() {
     };
     let olr = overhead_light_return_with(
         &Stone::new(&canonical::canonical(&s)),
-        cfg.material.ri(cfg.wavelength_nm),
+        &crate::beam::Medium::Isotropic(cfg.material.ri(cfg.wavelength_nm)),
         &fine,
     );
     assert_eq!(olr, score(&s, &cfg).overhead_light_return);

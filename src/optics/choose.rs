@@ -17,6 +17,7 @@ impl Material {
             optic: Optic::Isotropic,
             source: "a fixed index (--ri): no dispersion, no fire".into(),
             colour: None,
+            uniaxial: None,
         }
     }
 
@@ -103,6 +104,7 @@ impl Material {
                 format!("Cauchy through n_D = {n} with the given B–G = {bg}")
             },
             colour: None,
+            uniaxial: None,
         };
         let red = m.ri(780.0);
         if red <= 1.0 {
@@ -118,13 +120,16 @@ impl Material {
     /// and/or `colour: COLOUR` (or `color:`; a user colour as `--colour` takes it, e.g.
     /// `F Colour: #7a3fa0@10mm`), case ignored. A colour note without a material note
     /// colours `base` (the material the design's index gives). `None` when no line names
-    /// either; an error (naming the note) when one is malformed.
+    /// either; an error (naming the note) when one is malformed. A line `optic axis: DEG[@AZ]`
+    /// (`F Optic axis: 90@0`, see [`OpticAxis::parse`](super::OpticAxis::parse)) orients a
+    /// uniaxial material's c-axis in the design (and is ignored for any other).
     pub fn from_design_notes<'a>(
         lines: impl IntoIterator<Item = &'a String>,
         base: &Material,
     ) -> Result<Option<Material>> {
         let mut name = None;
         let mut colour = None;
+        let mut axis = None;
         for line in lines {
             let t = line.trim();
             let Some((key, value)) = t.split_once(':') else {
@@ -133,10 +138,13 @@ impl Material {
             match key.trim().to_ascii_lowercase().as_str() {
                 "material" if name.is_none() => name = Some(value.trim().to_string()),
                 "colour" | "color" if colour.is_none() => colour = Some(value.trim().to_string()),
+                "optic axis" | "optic-axis" | "c-axis" if axis.is_none() => {
+                    axis = Some(value.trim().to_string())
+                }
                 _ => {}
             }
         }
-        if name.is_none() && colour.is_none() {
+        if name.is_none() && colour.is_none() && axis.is_none() {
             return Ok(None);
         }
         let mut m = match &name {
@@ -159,6 +167,13 @@ impl Material {
                     density: &field,
                 },
             )?;
+        }
+        if let Some(a) = &axis {
+            let field = format!("the design's note `optic axis: {a}`");
+            let parsed = super::OpticAxis::parse(a, &field)?;
+            if let Some(u) = m.uniaxial.as_mut() {
+                u.axis = parsed;
+            }
         }
         Ok(Some(m))
     }
@@ -373,6 +388,19 @@ mod tests {
             .to_string();
         assert!(
             e.starts_with("the design's note `material: kryptonite`: unknown material"),
+            "{e}"
+        );
+        let m =
+            Material::from_design_notes(&lines(&["Material: ruby", "Optic axis: 90@30"]), &base)
+                .unwrap()
+                .unwrap();
+        let axis = m.uniaxial.unwrap().axis;
+        assert_eq!((axis.tilt_deg, axis.azimuth_deg), (90.0, 30.0));
+        let e = Material::from_design_notes(&lines(&["Optic axis: 120"]), &base)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("the design's note `optic axis: 120`: "),
             "{e}"
         );
         let e = Material::from_design_notes(&lines(&["Color: mauve"]), &base)

@@ -30,9 +30,39 @@ pub enum Dispersion {
     },
     /// The same index at every wavelength (no fire).
     Constant(f64),
+    /// `n² = a + b / (λ² − c) − d λ²`, λ in µm (a pole in the ultraviolet and an infrared
+    /// term; the form of some crystals' published fits).
+    Pole {
+        /// The constant term.
+        a: f64,
+        /// The pole's strength, µm².
+        b: f64,
+        /// The pole's position, µm².
+        c: f64,
+        /// The infrared term's coefficient, µm⁻².
+        d: f64,
+    },
 }
 
 impl Dispersion {
+    /// The index at `wavelength_nm`.
+    #[inline]
+    pub fn at(&self, wavelength_nm: f64) -> f64 {
+        match self {
+            Dispersion::Constant(n) => *n,
+            Dispersion::Sellmeier(terms) => {
+                let l2 = (wavelength_nm * 1e-3).powi(2);
+                let s: f64 = terms.iter().map(|(b, c)| b * l2 / (l2 - c)).sum();
+                (1.0 + s).sqrt()
+            }
+            Dispersion::Cauchy { a, b } => a + b / (wavelength_nm * 1e-3).powi(2),
+            Dispersion::Pole { a, b, c, d } => {
+                let l2 = (wavelength_nm * 1e-3).powi(2);
+                (a + b / (l2 - c) - d * l2).sqrt()
+            }
+        }
+    }
+
     /// The Cauchy curve `n = a + b/λ²` through index `nd` at the sodium D line whose B–G
     /// dispersion n(G) − n(B) is `bg` (an exact two-point fit).
     pub fn cauchy_through(nd: f64, bg: f64) -> Dispersion {
@@ -64,13 +94,20 @@ impl Dispersion {
                 format!("Cauchy n = {} + {}/λ², λ in µm", sig(*a), sig(*b))
             }
             Dispersion::Constant(n) => format!("n = {n} at every wavelength (no dispersion)"),
+            Dispersion::Pole { a, b, c, d } => format!(
+                "n² = {} + {}/(λ² − {}) − {}λ², λ in µm",
+                sig(*a),
+                sig(*b),
+                sig(*c),
+                sig(*d)
+            ),
         }
     }
 
     /// A one-word kind: `Sellmeier`, `Cauchy` or `constant`.
     pub fn kind(&self) -> &'static str {
         match self {
-            Dispersion::Sellmeier(_) => "Sellmeier",
+            Dispersion::Sellmeier(_) | Dispersion::Pole { .. } => "Sellmeier",
             Dispersion::Cauchy { .. } => "Cauchy",
             Dispersion::Constant(_) => "constant",
         }
@@ -96,7 +133,8 @@ fn sig(x: f64) -> String {
 pub enum Optic {
     /// Singly refractive (cubic crystal or glass).
     Isotropic,
-    /// Uniaxial: the ordinary ray ω; the extraordinary ray is not modelled.
+    /// Uniaxial: the ordinary ray ω is [`Material::ri`]; the extraordinary ray ε and the
+    /// optic axis are [`Material::uniaxial`] (traced birefringent unless switched off).
     OrdinaryRay,
     /// Biaxial: the lowest index α; β and γ are not modelled.
     BiaxialAlpha,
@@ -111,7 +149,7 @@ impl Optic {
     pub fn label(self) -> &'static str {
         match self {
             Optic::Isotropic => "isotropic",
-            Optic::OrdinaryRay => "ordinary ray (ω)",
+            Optic::OrdinaryRay => "uniaxial (ω, ε)",
             Optic::BiaxialAlpha => "biaxial, α",
         }
     }
@@ -131,8 +169,151 @@ pub struct Material {
     /// Where the formula comes from (author, year, journal, range of validity), or how it
     /// was fitted.
     pub source: String,
-    /// Body colour (absorption per mm over 380–780 nm); `None` is a colourless stone.
+    /// Body colour (absorption per mm over 380–780 nm); `None` is a colourless stone. A
+    /// uniaxial stone's is the spectrum for light polarized ⊥ its optic axis (E ⊥ c, the
+    /// ordinary ray's).
     pub colour: Option<super::body_colour::BodyColour>,
+    /// A uniaxial stone's extraordinary ray, E ∥ c spectrum and optic axis, and whether it
+    /// is traced birefringent; `None` for singly refractive and biaxial stones.
+    pub uniaxial: Option<Uniaxial>,
+}
+
+/// A uniaxial stone's second index, its pleochroism and how the stone is cut from the
+/// crystal.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Uniaxial {
+    /// The extraordinary index n_ε and its dispersion.
+    pub extraordinary: Dispersion,
+    /// Where the extraordinary formula comes from (or how it was fitted).
+    pub source: String,
+    /// The body colour for light polarized ∥ the optic axis (E ∥ c); `None`: the same as
+    /// [`Material::colour`] (no pleochroism known).
+    pub colour_e: Option<super::body_colour::BodyColour>,
+    /// The optic axis in the stone (default: as cutters orient the material).
+    pub axis: OpticAxis,
+    /// Traced birefringent (default); `false` traces the ordinary ray alone, as before
+    /// birefringence was modelled (`--birefringence off`).
+    pub traced: bool,
+}
+
+/// The optic axis (c-axis) in a stone: tilted `tilt_deg` from the table's normal (+z) toward
+/// azimuth `azimuth_deg` (counter-clockwise from +x, the stone's own azimuths). 0 puts the
+/// c-axis perpendicular to the table ("c ⟂ table"); 90 lays it in the table's plane.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct OpticAxis {
+    /// Angle from the table's normal, degrees in [0, 90].
+    pub tilt_deg: f64,
+    /// Azimuth it tilts toward, degrees.
+    pub azimuth_deg: f64,
+}
+
+impl OpticAxis {
+    /// `DEG` or `DEG@AZ` (degrees; the azimuth 0 when not given), e.g. `90@0`. Errors name
+    /// `field` and say what is allowed.
+    pub fn parse(text: &str, field: &str) -> crate::error::Result<OpticAxis> {
+        let t = text.trim();
+        let (tilt, az) = match t.split_once('@') {
+            Some((a, b)) => (a.trim(), Some(b.trim())),
+            None => (t, None),
+        };
+        let bad = || {
+            crate::error::Error::invalid(
+                field,
+                format!(
+                    "`{t}` is not an optic axis; give DEG[@AZ]: the angle of the c-axis from the table's normal in [0, 90] degrees, toward azimuth AZ in degrees (e.g. 0, 90@0, 45@22.5)"
+                ),
+            )
+        };
+        let tilt_deg: f64 = tilt.trim_end_matches('°').parse().map_err(|_| bad())?;
+        let azimuth_deg: f64 = match az {
+            Some(a) => a.trim_end_matches('°').parse().map_err(|_| bad())?,
+            None => 0.0,
+        };
+        if !((0.0..=90.0).contains(&tilt_deg) && azimuth_deg.is_finite()) {
+            return Err(bad());
+        }
+        Ok(OpticAxis {
+            tilt_deg,
+            azimuth_deg,
+        })
+    }
+
+    /// The unit vector along the axis, in the stone's coordinates.
+    pub fn vector(&self) -> glam::DVec3 {
+        let (t, a) = (self.tilt_deg.to_radians(), self.azimuth_deg.to_radians());
+        glam::DVec3::new(t.sin() * a.cos(), t.sin() * a.sin(), t.cos())
+    }
+
+    /// `DEG@AZ` as [`OpticAxis::parse`] reads it (`DEG` alone when the azimuth is 0).
+    pub fn label(&self) -> String {
+        if self.azimuth_deg == 0.0 {
+            format!("{}", self.tilt_deg)
+        } else {
+            format!("{}@{}", self.tilt_deg, self.azimuth_deg)
+        }
+    }
+}
+
+impl Material {
+    /// Whether the stone is traced birefringent: uniaxial with birefringence on.
+    pub fn birefringent(&self) -> bool {
+        self.uniaxial.as_ref().is_some_and(|u| u.traced)
+    }
+
+    /// The extraordinary index at `wavelength_nm` of a uniaxial stone (its ordinary index
+    /// for any other).
+    pub fn ri_e(&self, wavelength_nm: f64) -> f64 {
+        match &self.uniaxial {
+            Some(u) => u.extraordinary.at(wavelength_nm),
+            None => self.ri(wavelength_nm),
+        }
+    }
+
+    /// The body colour for light polarized ∥ the optic axis: a uniaxial stone's E ∥ c
+    /// spectrum, or its one spectrum when none is known.
+    pub fn colour_e(&self) -> Option<&super::body_colour::BodyColour> {
+        self.uniaxial
+            .as_ref()
+            .and_then(|u| u.colour_e.as_ref())
+            .or(self.colour.as_ref())
+    }
+
+    /// The medium a trace at `wavelength_nm` sees: a crystal with optic axis `axis` (in the
+    /// traced solid's coordinates) when the stone is traced birefringent, its absorption
+    /// per mode `mm_per_unit` times the body colour's α per mm (0 when `absorbing` is false);
+    /// else the ordinary index alone, whose absorption the caller gives in
+    /// [`TraceOptions::absorption`](crate::beam::TraceOptions::absorption). A uniaxial stone
+    /// whose two indices and spectra coincide at this wavelength is singly refractive there
+    /// and is traced so.
+    pub fn medium(
+        &self,
+        wavelength_nm: f64,
+        axis: glam::DVec3,
+        mm_per_unit: f64,
+        absorbing: bool,
+    ) -> crate::beam::Medium {
+        let n_o = self.ri(wavelength_nm);
+        if !self.birefringent() {
+            return crate::beam::Medium::Isotropic(n_o);
+        }
+        let n_e = self.ri_e(wavelength_nm);
+        let alpha = |c: Option<&super::body_colour::BodyColour>| {
+            if absorbing {
+                c.map_or(0.0, |c| c.alpha(wavelength_nm) * mm_per_unit)
+            } else {
+                0.0
+            }
+        };
+        let (alpha_o, alpha_e) = (alpha(self.colour.as_ref()), alpha(self.colour_e()));
+        if n_e == n_o && alpha_o == alpha_e {
+            return crate::beam::Medium::Isotropic(n_o);
+        }
+        crate::beam::Medium::Uniaxial {
+            crystal: super::crystal::Crystal::new(n_o, n_e, axis),
+            alpha_o,
+            alpha_e,
+        }
+    }
 }
 
 /// The names under which a material choice reaches [`Material::choose`] (a flag pair such as
@@ -153,18 +334,11 @@ pub const LINE_G_NM: f64 = 430.8;
 pub const LINE_D_NM: f64 = 589.3;
 
 impl Material {
-    /// Refractive index at `wavelength_nm`.
+    /// Refractive index at `wavelength_nm` (a birefringent stone's ordinary ray ω; see
+    /// [`Material::uniaxial`] for its extraordinary one).
     #[inline]
     pub fn ri(&self, wavelength_nm: f64) -> f64 {
-        match &self.dispersion {
-            Dispersion::Constant(n) => *n,
-            Dispersion::Sellmeier(terms) => {
-                let l2 = (wavelength_nm * 1e-3).powi(2);
-                let s: f64 = terms.iter().map(|(b, c)| b * l2 / (l2 - c)).sum();
-                (1.0 + s).sqrt()
-            }
-            Dispersion::Cauchy { a, b } => a + b / (wavelength_nm * 1e-3).powi(2),
-        }
+        self.dispersion.at(wavelength_nm)
     }
 
     /// Refractive index at the sodium D line.

@@ -16,9 +16,11 @@
 //! incidence, and there the Mueller matrices have the block form of [`Mueller`].
 
 mod absorption;
+mod birefringence;
 mod body_colour;
 mod choose;
 pub mod color;
+pub mod crystal;
 mod fresnel;
 mod material;
 mod polarization;
@@ -27,11 +29,12 @@ pub mod upsample;
 mod varieties;
 
 pub use absorption::{Absorption, THESIS_ABSORPTION};
+pub use birefringence::{BirefringenceJson, CrystalFields, BIAXIAL_REASON};
 pub use body_colour::{
     fit_sigmoid, BodyColour, ColourFields, StoneSize, UserColour, COLOUR_FORMS, DEFAULT_PATH_MM,
     DENSITY_MAX, FIT_TOLERANCE, SAMPLES, STEP_NM,
 };
 pub use fresnel::{critical_angle, fresnel, reflect, refract, Complex, Interface};
-pub use material::{Dispersion, Material, MaterialFields};
+pub use material::{Dispersion, Material, MaterialFields, OpticAxis, Uniaxial};
 pub use polarization::{rotate_stokes, s_axis, Mueller, Stokes};
-pub use varieties::Variety;
+pub use varieties::{Variety, MISSING_E};

@@ -3,7 +3,7 @@
 //! and listings that read it ([`Material::table`], [`Material::NAMES`], [`Material::diamond`],
 //! …).
 
-use super::material::{Dispersion, Material, Optic};
+use super::material::{Dispersion, Material, Optic, OpticAxis, Uniaxial};
 
 /// How a table entry's index is computed.
 enum Model {
@@ -11,7 +11,38 @@ enum Model {
     Sellmeier(&'static [(f64, f64)]),
     /// A Cauchy curve fitted exactly to the handbook's n_D and B–G.
     HandbookFit { nd: f64, bg: f64 },
+    /// `n² = a + b/(λ² − c) − dλ²`.
+    Pole { a: f64, b: f64, c: f64, d: f64 },
 }
+
+impl Model {
+    fn dispersion(&self) -> Dispersion {
+        match *self {
+            Model::Sellmeier(terms) => Dispersion::Sellmeier(terms.to_vec()),
+            Model::HandbookFit { nd, bg } => Dispersion::cauchy_through(nd, bg),
+            Model::Pole { a, b, c, d } => Dispersion::Pole { a, b, c, d },
+        }
+    }
+}
+
+/// A uniaxial stone's extraordinary ray: its index model, where it comes from, and the
+/// optic axis cutters most often give the table (with the reason).
+struct Extraordinary {
+    model: Model,
+    source: &'static str,
+    axis: OpticAxis,
+}
+
+/// The c-axis perpendicular to the table.
+const C_UP: OpticAxis = OpticAxis {
+    tilt_deg: 0.0,
+    azimuth_deg: 0.0,
+};
+/// The c-axis in the table's plane, along azimuth 0.
+const C_FLAT: OpticAxis = OpticAxis {
+    tilt_deg: 90.0,
+    azimuth_deg: 0.0,
+};
 
 /// One row of the material table.
 pub(super) struct Entry {
@@ -21,6 +52,8 @@ pub(super) struct Entry {
     pub(super) density: f64,
     optic: Optic,
     source: &'static str,
+    /// A uniaxial stone's extraordinary ray (`None` for singly refractive and biaxial ones).
+    extraordinary: Option<Extraordinary>,
 }
 
 /// Borosilicate crown glass, SCHOTT N-BK7: Sellmeier from the SCHOTT optical glass catalogue
@@ -36,6 +69,7 @@ const GLASS: Entry = Entry {
     density: 2.51,
     optic: Optic::Isotropic,
     source: "SCHOTT optical glass catalogue, N-BK7 (2017); valid 0.3–2.5 µm; n_d 1.5168, v_d 64.17",
+    extraordinary: None,
 };
 
 /// Quartz, ordinary ray: G. Ghosh, "Dispersion-equation coefficients for the refractive index
@@ -53,6 +87,17 @@ const QUARTZ: Entry = Entry {
     density: 2.66,
     optic: Optic::OrdinaryRay,
     source: "G. Ghosh, Opt. Commun. 163, 95–102 (1999), ordinary ray; valid 0.198–2.05 µm",
+    // G. Ghosh (1999), extraordinary ray; quartz is usually oriented with the table ⟂ c
+    // (no preference of colour in colourless quartz; amethyst shows its deeper o-ray purple).
+    extraordinary: Some(Extraordinary {
+        model: Model::Sellmeier(&[
+            (0.28851804, 0.0),
+            (1.09509924, 1.02101864e-2),
+            (1.15662475, 100.0),
+        ]),
+        source: "G. Ghosh, Opt. Commun. 163, 95–102 (1999), extraordinary ray; valid 0.198–2.05 µm",
+        axis: C_UP,
+    }),
 };
 
 /// Beryl (aquamarine, emerald, morganite), ordinary ray. No published dispersion formula: a
@@ -68,6 +113,16 @@ const BERYL: Entry = Entry {
     density: 2.72,
     optic: Optic::OrdinaryRay,
     source: "Cauchy fitted to handbook n_ω 1.583 (1.577–1.583, uniaxial −), B–G 0.014 (GIA Gem Reference Guide); no published formula",
+    // No formula: Cauchy through the handbook's n_ε 1.577 with the same B–G. Emerald is
+    // cut with the table ⟂ c where the rough allows (its o-ray is the bluer green).
+    extraordinary: Some(Extraordinary {
+        model: Model::HandbookFit {
+            nd: 1.577,
+            bg: 0.014,
+        },
+        source: "Cauchy fitted to handbook n_ε 1.577, B–G 0.014 (GIA Gem Reference Guide); no published formula",
+        axis: C_UP,
+    }),
 };
 
 /// Topaz, lowest index α. No published dispersion formula: a Cauchy curve fitted exactly to the
@@ -82,6 +137,7 @@ const TOPAZ: Entry = Entry {
     density: 3.53,
     optic: Optic::BiaxialAlpha,
     source: "Cauchy fitted to handbook n_α 1.619 (1.619–1.627, biaxial +), B–G 0.014 (GIA Gem Reference Guide); no published formula",
+    extraordinary: None,
 };
 
 /// Dense lead flint glass, SCHOTT F2 (the classic "paste"): Sellmeier from the SCHOTT optical
@@ -98,6 +154,7 @@ const LEAD_GLASS: Entry = Entry {
     density: 3.599,
     optic: Optic::Isotropic,
     source: "SCHOTT optical glass catalogue, F2 (2017); valid 0.32–2.5 µm; n_d 1.62004, v_d 36.37",
+    extraordinary: None,
 };
 
 /// Tourmaline, ordinary ray. No published dispersion formula: a Cauchy curve fitted exactly to
@@ -112,6 +169,16 @@ const TOURMALINE: Entry = Entry {
     density: 3.06,
     optic: Optic::OrdinaryRay,
     source: "Cauchy fitted to handbook n_ω 1.644 (1.624–1.644, uniaxial −), B–G 0.017 (GIA Gem Reference Guide); no published formula",
+    // No formula: Cauchy through the handbook's n_ε 1.624 with the same B–G. Tourmaline's
+    // o-ray is the darker ("closed c-axis"): cutters lay the table parallel to c.
+    extraordinary: Some(Extraordinary {
+        model: Model::HandbookFit {
+            nd: 1.624,
+            bg: 0.017,
+        },
+        source: "Cauchy fitted to handbook n_ε 1.624, B–G 0.017 (GIA Gem Reference Guide); no published formula",
+        axis: C_FLAT,
+    }),
 };
 
 /// Peridot (olivine), lowest index α. No published dispersion formula: a Cauchy curve fitted
@@ -127,6 +194,7 @@ const PERIDOT: Entry = Entry {
     density: 3.34,
     optic: Optic::BiaxialAlpha,
     source: "Cauchy fitted to handbook n_α 1.654 (1.654–1.690, biaxial +), B–G 0.020 (GIA Gem Reference Guide); no published formula",
+    extraordinary: None,
 };
 
 /// Spinel (MgAl₂O₄): W. J. Tropf and M. E. Thomas, "Magnesium aluminum spinel (MgAl₂O₄)", in
@@ -140,6 +208,7 @@ const SPINEL: Entry = Entry {
     density: 3.60,
     optic: Optic::Isotropic,
     source: "W. J. Tropf, M. E. Thomas, Handbook of Optical Constants of Solids II (Palik, ed.), 881–895 (1991); valid 0.35–5.5 µm",
+    extraordinary: None,
 };
 
 /// Grossular garnet (hessonite, tsavorite). No published dispersion formula: a Cauchy curve
@@ -154,6 +223,7 @@ const GROSSULAR: Entry = Entry {
     density: 3.61,
     optic: Optic::Isotropic,
     source: "Cauchy fitted to handbook n 1.740, B–G 0.028 (GIA Gem Reference Guide); no published formula",
+    extraordinary: None,
 };
 
 /// Pyrope garnet. No published dispersion formula: a Cauchy curve fitted exactly to the GIA
@@ -168,6 +238,7 @@ const PYROPE: Entry = Entry {
     density: 3.78,
     optic: Optic::Isotropic,
     source: "Cauchy fitted to handbook n 1.746, B–G 0.022 (GIA Gem Reference Guide); no published formula",
+    extraordinary: None,
 };
 
 /// Sapphire and ruby (corundum), ordinary ray: I. H. Malitson and M. J. Dodge, "Refractive
@@ -186,6 +257,17 @@ const SAPPHIRE: Entry = Entry {
     density: 3.98,
     optic: Optic::OrdinaryRay,
     source: "I. H. Malitson, M. J. Dodge, J. Opt. Soc. Am. 62, 1405 (1972), ordinary ray; valid 0.2–5.0 µm",
+    // Malitson & Dodge (1972), extraordinary ray. Ruby and sapphire are cut with the table
+    // ⟂ c for their best (o-ray) colour.
+    extraordinary: Some(Extraordinary {
+        model: Model::Sellmeier(&[
+            (1.5039759, 0.0740288 * 0.0740288),
+            (0.55069141, 0.1216529 * 0.1216529),
+            (6.5927379, 20.072248 * 20.072248),
+        ]),
+        source: "I. H. Malitson, M. J. Dodge, J. Opt. Soc. Am. 62, 1405 (1972), extraordinary ray; valid 0.2–5.0 µm",
+        axis: C_UP,
+    }),
 };
 
 /// Almandine garnet. No published dispersion formula: a Cauchy curve fitted exactly to the GIA
@@ -200,6 +282,7 @@ const ALMANDINE: Entry = Entry {
     density: 4.05,
     optic: Optic::Isotropic,
     source: "Cauchy fitted to handbook n 1.790, B–G 0.024 (GIA Gem Reference Guide); no published formula",
+    extraordinary: None,
 };
 
 /// Yttrium aluminium garnet (YAG, Y₃Al₅O₁₂): D. E. Zelmon, D. L. Small and R. Page,
@@ -212,6 +295,7 @@ const YAG: Entry = Entry {
     density: 4.55,
     optic: Optic::Isotropic,
     source: "D. E. Zelmon, D. L. Small, R. Page, Appl. Opt. 37, 4933–4935 (1998); valid 0.4–5.0 µm",
+    extraordinary: None,
 };
 
 /// High zircon, ordinary ray. No published dispersion formula: a Cauchy curve fitted exactly to
@@ -226,6 +310,16 @@ const ZIRCON: Entry = Entry {
     density: 4.70,
     optic: Optic::OrdinaryRay,
     source: "Cauchy fitted to handbook n_ω 1.925 (1.925–1.984, uniaxial +), B–G 0.039 (GIA Gem Reference Guide); no published formula",
+    // No formula: Cauchy through the handbook's n_ε 1.984 with the same B–G. Zircon is cut
+    // with the table ⟂ c so that its strong doubling is not seen face-up.
+    extraordinary: Some(Extraordinary {
+        model: Model::HandbookFit {
+            nd: 1.984,
+            bg: 0.039,
+        },
+        source: "Cauchy fitted to handbook n_ε 1.984, B–G 0.039 (GIA Gem Reference Guide); no published formula",
+        axis: C_UP,
+    }),
 };
 
 /// Gadolinium gallium garnet (GGG, Gd₃Ga₅O₁₂). No dispersion formula was found in the sources
@@ -242,6 +336,7 @@ const GGG: Entry = Entry {
     optic: Optic::Isotropic,
     source:
         "Cauchy fitted to handbook n 1.970, B–G 0.045 (GIA Gem Reference Guide); no formula found",
+    extraordinary: None,
 };
 
 /// Cubic zirconia (ZrO₂ stabilised with 12 mol % Y₂O₃): D. L. Wood and K. Nassau, "Refractive
@@ -259,6 +354,7 @@ const CUBIC_ZIRCONIA: Entry = Entry {
     density: 5.80,
     optic: Optic::Isotropic,
     source: "D. L. Wood, K. Nassau, Appl. Opt. 21, 2978–2981 (1982), 12 mol % Y2O3; valid 0.361–5.135 µm",
+    extraordinary: None,
 };
 
 /// Strontium titanate (SrTiO₃, "Fabulite"). No dispersion formula was found in the sources we
@@ -275,6 +371,7 @@ const STRONTIUM_TITANATE: Entry = Entry {
     density: 5.13,
     optic: Optic::Isotropic,
     source: "Cauchy fitted to handbook n 2.409, B–G 0.190; within 0.003 of W. L. Bond, J. Appl. Phys. 36, 1674 (1965) at 0.5–0.7 µm",
+    extraordinary: None,
 };
 
 /// Diamond: F. Peter, "Über Brechungsindizes und Absorptionskonstanten des Diamanten zwischen
@@ -287,6 +384,7 @@ pub(super) const DIAMOND: Entry = Entry {
     density: 3.515,
     optic: Optic::Isotropic,
     source: "F. Peter, Z. Phys. 15, 358–368 (1923); valid 0.226–0.76 µm",
+    extraordinary: None,
 };
 
 /// Moissanite (4H-SiC), ordinary ray: S. Wang, M. Zhan, G. Wang, H. Xuan, W. Zhang, C. Liu,
@@ -304,6 +402,18 @@ const MOISSANITE: Entry = Entry {
     density: 3.22,
     optic: Optic::OrdinaryRay,
     source: "S. Wang et al., Laser Photonics Rev. 7, 831–838 (2013), 4H-SiC ordinary ray; valid 0.4047–5 µm",
+    // S. Wang et al. (2013), extraordinary ray (n² = A + B/(λ² − C) − Dλ²). Moissanite is cut
+    // with the table ⟂ c so that its doubling is not seen face-up.
+    extraordinary: Some(Extraordinary {
+        model: Model::Pole {
+            a: 6.79485,
+            b: 0.15558,
+            c: 0.03535,
+            d: 0.02296,
+        },
+        source: "S. Wang et al., Laser Photonics Rev. 7, 831–838 (2013), 4H-SiC extraordinary ray; valid 0.4047–2.325 µm",
+        axis: C_UP,
+    }),
 };
 
 /// The table, in order of rising n_D.
@@ -333,14 +443,18 @@ impl Entry {
     pub(super) fn material(&self) -> Material {
         Material {
             name: self.name.into(),
-            dispersion: match self.model {
-                Model::Sellmeier(terms) => Dispersion::Sellmeier(terms.to_vec()),
-                Model::HandbookFit { nd, bg } => Dispersion::cauchy_through(nd, bg),
-            },
+            dispersion: self.model.dispersion(),
             density: self.density,
             optic: self.optic,
             source: self.source.into(),
             colour: None,
+            uniaxial: self.extraordinary.as_ref().map(|x| Uniaxial {
+                extraordinary: x.model.dispersion(),
+                source: x.source.into(),
+                colour_e: None,
+                axis: x.axis,
+                traced: true,
+            }),
         }
     }
 }
@@ -473,6 +587,52 @@ mod tests {
         assert!((Material::cubic_zirconia().ri_d() - 2.1585).abs() < 3e-4);
     }
 
+    /// The uniaxial stones' extraordinary index at the D line against the handbook's n_ε
+    /// (sapphire 1.760, quartz 1.553, beryl 1.577, tourmaline 1.624, zircon 1.984,
+    /// moissanite 2.691 (4H-SiC's formula: 2.699)), the sign of the birefringence, and the
+    /// optic axis cutters give each.
+    #[test]
+    fn uniaxial_stones_have_their_handbook_extraordinary_index() {
+        for (name, ne, tol, axis) in [
+            ("sapphire", 1.760, 0.002, 0.0),
+            ("quartz", 1.553, 0.001, 0.0),
+            ("beryl", 1.577, 1e-9, 0.0),
+            ("tourmaline", 1.624, 1e-9, 90.0),
+            ("zircon", 1.984, 1e-9, 0.0),
+            ("moissanite", 2.691, 0.01, 0.0),
+        ] {
+            let m = Material::by_name(name).unwrap();
+            let u = m.uniaxial.as_ref().expect(name);
+            assert!(
+                (m.ri_e(LINE_D) - ne).abs() <= tol,
+                "{name}: {}",
+                m.ri_e(LINE_D)
+            );
+            assert!(u.traced && u.axis.tilt_deg == axis, "{name}");
+            assert!(m.birefringent() && !u.source.is_empty());
+            // Dispersion: the index falls with wavelength.
+            assert!(m.ri_e(430.8) > m.ri_e(686.7), "{name}");
+        }
+        // Negative (ω > ε) and positive stones.
+        for (name, negative) in [
+            ("sapphire", true),
+            ("quartz", false),
+            ("zircon", false),
+            ("tourmaline", true),
+        ] {
+            let m = Material::by_name(name).unwrap();
+            assert_eq!(m.ri(LINE_D) > m.ri_e(LINE_D), negative, "{name}");
+        }
+        for name in ["diamond", "spinel", "topaz", "peridot", "glass"] {
+            assert!(
+                Material::by_name(name).unwrap().uniaxial.is_none(),
+                "{name}"
+            );
+        }
+    }
+
+    const LINE_D: f64 = 589.3;
+
     #[test]
     fn glasses_match_schott_nd_and_abbe_number() {
         // SCHOTT: N-BK7 n_d 1.5168, v_d 64.17; F2 n_d 1.62004, v_d 36.37 (d 587.56 nm,
@@ -511,6 +671,7 @@ mod tests {
         }
         for (n, ray) in [
             ("quartz", Optic::OrdinaryRay),
+            ("tourmaline", Optic::OrdinaryRay),
             ("sapphire", Optic::OrdinaryRay),
             ("moissanite", Optic::OrdinaryRay),
             ("zircon", Optic::OrdinaryRay),

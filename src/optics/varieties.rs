@@ -35,6 +35,10 @@ pub struct Variety {
     pub missing: &'static str,
 }
 
+/// Why no variety has its E ∥ c spectrum (pleochroism): the polarized companions of the
+/// spectra above are not reachable from where this was built.
+pub const MISSING_E: &str = "no E∥c spectrum: the polarized companion files of the Caltech samples could not be reached from where facetlab was built (its stored copies of the server hold the index pages, not the data), and no other source of E∥c absorption coefficients of the same stones was found; the extraordinary ray takes the E⊥c spectrum (no pleochroism) unless --colour-e gives one";
+
 /// Ruby: Caltech GRR 1843, Chanthaburi, Thailand, 0.787 mm, E⊥c (file ru1843.a); Cr³⁺
 /// ⁴A₂→⁴T₁ at 410 nm and ⁴A₂→⁴T₂ at 560 nm, the R lines at 692–694 nm.
 const RUBY: [f64; SAMPLES] = [
@@ -212,6 +216,8 @@ impl Variety {
             .unwrap_or_else(Material::diamond);
         m.name = self.name.into();
         m.colour = self.body_colour();
+        // No variety has an E ∥ c spectrum here (see MISSING_E): `colour_e` stays `None`,
+        // the extraordinary ray taking the one spectrum.
         m
     }
 }

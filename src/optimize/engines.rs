@@ -81,16 +81,40 @@ impl BeamEvaluator {
     }
 }
 
+/// `config` with the cut's own optic axis (a free `optic_axis` the optimizer set on the
+/// cut, degrees from the table's normal toward the configured azimuth), when it has one.
+pub(crate) fn with_cut_axis<'a>(
+    config: &'a ScoreConfig,
+    cut: &Cut,
+) -> std::borrow::Cow<'a, ScoreConfig> {
+    match (
+        cut.params.get(super::config::OPTIC_AXIS),
+        &config.material.uniaxial,
+    ) {
+        (Some(&tilt), Some(_)) => {
+            let mut c = config.clone();
+            if let Some(u) = c.material.uniaxial.as_mut() {
+                u.axis.tilt_deg = tilt;
+            }
+            std::borrow::Cow::Owned(c)
+        }
+        _ => std::borrow::Cow::Borrowed(config),
+    }
+}
+
 impl Evaluator for BeamEvaluator {
     fn evaluate(&self, cut: &Cut) -> Result<ScoreSet> {
-        let scores = score(&cut.solid, &self.config);
+        let scores = score(&cut.solid, &with_cut_axis(&self.config, cut));
         Ok(ScoreSet {
             detail: Some(std::sync::Arc::new(scores.clone())),
             ..Self::score_set(&scores)
         })
     }
     fn evaluate_for_search(&self, cut: &Cut) -> Result<ScoreSet> {
-        Ok(Self::score_set(&score(&cut.solid, &self.search)))
+        Ok(Self::score_set(&score(
+            &cut.solid,
+            &with_cut_axis(&self.search, cut),
+        )))
     }
 }
 
@@ -116,7 +140,7 @@ impl PhotonVerifier {
 
 impl Verifier for PhotonVerifier {
     fn verify(&self, cut: &Cut, photons: u64, seed: u64) -> Result<VerifyReport> {
-        crate::verify::photon_report(cut, &self.config, photons, seed)
+        crate::verify::photon_report(cut, &with_cut_axis(&self.config, cut), photons, seed)
     }
 
     /// Reuses the beam scores a [`BeamEvaluator`] of the same config computed (its full
@@ -130,6 +154,12 @@ impl Verifier for PhotonVerifier {
     ) -> Result<VerifyReport> {
         let beam =
             scores.and_then(|s| Some((*s.get("overhead_light_return")?, *s.get("brilliance")?)));
-        crate::verify::photon_report_given(cut, &self.config, photons, seed, beam)
+        crate::verify::photon_report_given(
+            cut,
+            &with_cut_axis(&self.config, cut),
+            photons,
+            seed,
+            beam,
+        )
     }
 }

@@ -261,7 +261,7 @@ pub fn run_pareto(
             let done: Vec<Result<()>> = picked
                 .par_iter_mut()
                 .map(|p| {
-                    let cut = config.space.build(&p.label, &p.params)?;
+                    let cut = config.build(&p.label, &p.params)?;
                     p.verification = Some(Verification::run_scored(
                         v,
                         &cut,

@@ -214,7 +214,6 @@ impl<'a> Objective<'a> {
     /// The cut at free parameters `x`.
     pub fn cut_at(&self, x: &[f64]) -> Result<Cut> {
         self.config
-            .space
             .build(&self.config.name, &self.config.params_at(x))
     }
 

@@ -246,6 +246,42 @@ pub fn design_json(config: &Config, o: &Outcome) -> Option<DesignJson> {
     })
 }
 
+/// The best cut as its files hold it, and a free optic axis it carries (`[free] optic_axis`,
+/// riding on the cut's params), as `DEG@AZ` with the config's azimuth: the axis is the
+/// stone's, not the cut's, so `best.toml` keeps only the cut's own parameters (it reads back)
+/// and `best.asc` gets the note `F Optic axis: DEG@AZ` that `score` and configs read.
+fn split_axis(config: &Config, cut: &Cut) -> (Cut, Option<String>) {
+    let mut cut = cut.clone();
+    let axis = cut.params.remove(super::config::OPTIC_AXIS).map(|tilt| {
+        let mut a = config
+            .score
+            .material
+            .uniaxial
+            .as_ref()
+            .map(|u| u.axis)
+            .unwrap_or(crate::optics::OpticAxis {
+                tilt_deg: 0.0,
+                azimuth_deg: 0.0,
+            });
+        a.tilt_deg = tilt;
+        a.label()
+    });
+    // The design's own optic-axis note gives way to the one found.
+    if let (Some(_), Some(r)) = (&axis, cut.record.as_mut()) {
+        let is_axis = |l: &String| {
+            l.split_once(':').is_some_and(|(k, _)| {
+                matches!(
+                    k.trim().to_ascii_lowercase().as_str(),
+                    "optic axis" | "optic-axis" | "c-axis"
+                )
+            })
+        };
+        r.footnotes.retain(|l| !is_axis(l));
+        r.title.retain(|l| !is_axis(l));
+    }
+    (cut, axis)
+}
+
 /// Write the run folder for an outcome; `convergence` draws its chart and `html_report` makes
 /// its page.
 pub fn write_folder(
@@ -282,9 +318,9 @@ pub fn write_folder(
         files.push("convergence.svg".into());
     }
     if let Some(best) = &outcome.best_cut {
+        let (mut cut, axis) = split_axis(config, best);
         // A family's winner carries the GemCad record its files need (`I` the index it was
         // scored in, its symmetry, its name as the title); a design's winner has its own.
-        let mut cut = best.clone();
         if cut.record.is_none() {
             cut.record = Some(crate::cut::GemcadRecord::generated(
                 &cut,
@@ -292,12 +328,23 @@ pub fn write_folder(
                 config.score.material.ri_d(),
             ));
         }
+        if let (Some(a), Some(r)) = (&axis, cut.record.as_mut()) {
+            r.footnotes.push(format!("Optic axis: {a}"));
+        }
         let cut = &cut;
         let mut all: Vec<&dyn CutWriter> = vec![&TOML_WRITER];
         all.extend(writers.iter().filter(|w| w.extension() != "toml"));
         for w in all {
             let name = format!("best.{}", w.extension());
-            let bytes = w.render(cut)?;
+            let mut bytes = w.render(cut)?;
+            if let (Some(a), "toml") = (&axis, w.extension()) {
+                bytes.extend(
+                    format!(
+                        "\n# The stone's optic axis found (not part of the cut): --optic-axis {a}, [score] optic_axis = \"{a}\"\n"
+                    )
+                    .bytes(),
+                );
+            }
             write_atomic(&dir.join(&name), &bytes)?;
             files.push(name);
         }

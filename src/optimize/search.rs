@@ -231,7 +231,7 @@ pub fn verify(outcome: &mut Outcome, config: &Config, verifier: &dyn Verifier, h
             cut_short.store(true, Ordering::SeqCst);
             return;
         }
-        match config.space.build(&c.label, &c.params) {
+        match config.build(&c.label, &c.params) {
             Ok(cut) => {
                 c.verification = Some(Verification::run_scored(
                     verifier,

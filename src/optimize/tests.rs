@@ -620,3 +620,71 @@ fn scores_left_out_of_the_search_are_reported_for_the_winners() {
         crate::metrics::Parts::default()
     );
 }
+
+/// The bump, plus a peak at an optic axis 30° from the table's normal.
+fn bump_with_axis(cut: &Cut) -> Result<ScoreSet> {
+    let a = cut.params[super::config::OPTIC_AXIS];
+    let mut s = ScoreSet::new(
+        bump_value(cut) * (-((a - 30.0) / 20.0).powi(2)).exp(),
+        0.0,
+        0.0,
+    );
+    s.extra.push(("aset_red".into(), 0.5));
+    Ok(s)
+}
+
+/// `[free] optic_axis` is the stone's, not the cut's: the run folder's `best.toml` keeps the
+/// cut's own parameters (and reads back), `best.asc` carries the axis found as the note
+/// `F Optic axis: DEG@AZ` (with `[score] optic_axis`'s azimuth) that replaces the design's own
+/// and that the material chooser reads back to the same axis.
+#[test]
+fn a_free_optic_axis_is_written_as_the_stones_note() {
+    let text = r#"
+        name = "axis"
+        seed = 5
+        [cut]
+        family = "round-brilliant"
+        [free]
+        crown_angle = [28.0, 40.0]
+        optic_axis = [0.0, 90.0]
+        [score]
+        material = "sapphire"
+        optic_axis = "10@40"
+        [method]
+        name = "nelder-mead"
+        starts = 2
+        max_evaluations = 200
+        "#;
+    let c = Config::from_str(text, "axis.toml").unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let asc = FnWriter::new("asc", |c| Ok(crate::io::asc::write(c, 0)));
+    let opts = RunOptions {
+        out: Some(out.clone()),
+        writers: vec![&asc],
+        ..RunOptions::default()
+    };
+    let s = run::run(&c, &bump_with_axis, None, &opts).unwrap();
+    let found = s.outcome.best().free[super::config::OPTIC_AXIS];
+    assert!((found - 30.0).abs() < 1.0, "{found}");
+    let best = crate::io::load_cut(out.join("best.toml").to_str().unwrap()).unwrap();
+    assert!(!best.params.contains_key(super::config::OPTIC_AXIS));
+    assert!((best.params["crown_angle"] - s.outcome.best().free["crown_angle"]).abs() < 1e-12);
+    let text = std::fs::read_to_string(out.join("best.asc")).unwrap();
+    let d = crate::io::asc::parse(text.as_bytes(), "best.asc").unwrap();
+    let notes: Vec<&String> = d.footnotes.iter().collect();
+    assert_eq!(
+        notes
+            .iter()
+            .filter(|l| l.to_ascii_lowercase().starts_with("optic axis"))
+            .count(),
+        1,
+        "{notes:?}"
+    );
+    let base = crate::optics::Material::by_name("sapphire").unwrap();
+    let m = crate::optics::Material::from_design_notes(notes, &base)
+        .unwrap()
+        .unwrap();
+    let axis = m.uniaxial.unwrap().axis;
+    assert_eq!((axis.tilt_deg, axis.azimuth_deg), (found, 40.0));
+}

@@ -1,6 +1,7 @@
 //! The per-photon loop.
 
 use super::beam::Beam;
+use super::crystal::CrystalSetup;
 use super::reach::Reach;
 use super::solid::TraceSolid;
 use super::tally::{Counts, Fate, PhotonPath};
@@ -21,20 +22,20 @@ const ANGLE_CELLS_PER_U: f64 = ANGLE_CELLS as f64 / std::f64::consts::SQRT_2;
 
 /// Everything the photon loop needs, resolved for one solid and light.
 pub(crate) struct Tracer<'a> {
-    s: &'a TraceSolid,
+    pub(super) s: &'a TraceSolid,
     kind: LightKind,
     centre: DVec3,
     axis: DVec3,
     u: DVec3,
     v: DVec3,
     half: f64,
-    max_depth: u32,
-    absorption: Absorption,
+    pub(super) max_depth: u32,
+    pub(super) absorption: Absorption,
     polarization: bool,
     material: Material,
     wavelengths: WavelengthSampling,
-    fixed_n: Option<f64>,
-    seed: u64,
+    pub(super) fixed_n: Option<f64>,
+    pub(super) seed: u64,
     beam: Option<Beam>,
     /// Undirected lights: which photons surely miss, from their start and polar angle.
     reach: Option<Reach>,
@@ -44,6 +45,8 @@ pub(crate) struct Tracer<'a> {
     angle_start: Box<[u8; ANGLE_CELLS]>,
     /// Weights of an exit direction, summed into [`Counts::weight_sum`].
     pub(crate) exit_weight: Option<&'a ExitWeights<'a>>,
+    /// A birefringent stone's crystal (its photons take the kernel of `crystal.rs`).
+    crystal: Option<CrystalSetup>,
 }
 
 /// Unpolarized Fresnel reflectance for incidence cosine `cos_i` and index ratio
@@ -76,13 +79,13 @@ fn refracted(d: DVec3, n: DVec3, cos_i: f64, cos_t: f64, eta: f64) -> DVec3 {
 /// photon's start on the light square is placed to 2⁻³¹ of its side and its wavelength to
 /// 1e-7 nm; Beer–Lambert's `−ln(1 − u)` is finite (at most 22.2, a 2.3e-10 tail cut).
 #[inline(always)]
-fn two_uniforms(rng: &mut SmallRng) -> (f64, f64) {
+pub(super) fn two_uniforms(rng: &mut SmallRng) -> (f64, f64) {
     const SCALE: f64 = 1.0 / (1u64 << 32) as f64;
     let x = rng.next_u64();
     ((x >> 32) as f64 * SCALE, (x as u32) as f64 * SCALE)
 }
 
-fn chunk_seed(seed: u64, chunk: u64) -> u64 {
+pub(super) fn chunk_seed(seed: u64, chunk: u64) -> u64 {
     // SplitMix64 finaliser of a combination of the two.
     let mut z =
         seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ chunk.wrapping_add(0x632B_E59B_D9B4_E019);
@@ -219,6 +222,7 @@ impl<'a> Tracer<'a> {
             beam: (light.kind == LightKind::Directed)
                 .then(|| Beam::new(s, centre, axis, u, v, half)),
             exit_weight: None,
+            crystal: CrystalSetup::of(&cfg.material),
         })
     }
 
@@ -248,7 +252,9 @@ impl<'a> Tracer<'a> {
     fn chunk_impl(&self, c: u64, n: u64, hit_limit: Option<u64>) -> Counts {
         let mut k = Counts::new(self.s.facets);
         let mut none = Vec::new();
-        if self.polarization {
+        if let Some(cs) = &self.crystal {
+            self.lanes_crystal::<false>(cs, c, n, hit_limit, &mut k, &mut none, 0);
+        } else if self.polarization {
             self.lanes::<true, false>(c, n, hit_limit, &mut k, &mut none, 0);
         } else {
             self.lanes::<false, false>(c, n, hit_limit, &mut k, &mut none, 0);
@@ -273,7 +279,9 @@ impl<'a> Tracer<'a> {
                 None => (CHUNK.min(shot - done), None),
             };
             let mut k = Counts::new(self.s.facets);
-            if self.polarization {
+            if let Some(cs) = &self.crystal {
+                self.lanes_crystal::<true>(cs, c, photons, limit, &mut k, &mut out, n);
+            } else if self.polarization {
                 self.lanes::<true, true>(c, photons, limit, &mut k, &mut out, n);
             } else {
                 self.lanes::<false, true>(c, photons, limit, &mut k, &mut out, n);
@@ -335,7 +343,7 @@ impl<'a> Tracer<'a> {
     /// A photon's wavelength from the uniform `u` (and, for D65's rejection sampling, as many
     /// more draws as it takes: each candidate from a fresh uniform, its acceptance another).
     #[inline(always)]
-    fn wavelength(&self, u: f64, rng: &mut SmallRng) -> f64 {
+    pub(super) fn wavelength(&self, u: f64, rng: &mut SmallRng) -> f64 {
         let span = LAMBDA_MAX - LAMBDA_MIN;
         match self.wavelengths {
             WavelengthSampling::Uniform => LAMBDA_MIN + span * u,
@@ -369,7 +377,7 @@ impl<'a> Tracer<'a> {
     }
 
     #[inline(always)]
-    fn tally_exit(&self, k: &mut Counts, facet: usize, d: DVec3) {
+    pub(super) fn tally_exit(&self, k: &mut Counts, facet: usize, d: DVec3) {
         k.categories[self.s.category[facet] as usize] += 1;
         k.per_facet[facet] += 1;
         let bin = self.angle_bin(d.z);
@@ -487,7 +495,11 @@ impl<'a> Tracer<'a> {
     /// One photon leaves the light: its start, direction, and where it enters the stone
     /// (`None` if it misses).
     #[inline(always)]
-    fn shoot(&self, rng: &mut SmallRng, k: &mut Counts) -> Option<(DVec3, DVec3, f64, usize)> {
+    pub(super) fn shoot(
+        &self,
+        rng: &mut SmallRng,
+        k: &mut Counts,
+    ) -> Option<(DVec3, DVec3, f64, usize)> {
         k.shot += 1;
         let (ua, ub) = two_uniforms(rng);
         let a = (2.0 * ua - 1.0) * self.half;

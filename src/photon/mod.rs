@@ -44,6 +44,7 @@
 
 mod absorption;
 mod beam;
+mod crystal;
 mod kernel;
 mod reach;
 mod solid;

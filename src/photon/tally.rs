@@ -36,6 +36,12 @@ pub struct Counts {
     pub weight_sum: [f64; WEIGHTS],
     /// Sums over exited photons of the squared exit weights.
     pub weight_sq: [f64; WEIGHTS],
+    /// A birefringent stone's exited photons by the mode they left from (ordinary,
+    /// extraordinary; external reflections in neither), and of those the ones leaving
+    /// upward (z > 0).
+    pub mode_exits: [u64; 2],
+    /// See [`Counts::mode_exits`].
+    pub mode_return: [u64; 2],
 }
 
 impl Counts {
@@ -53,6 +59,8 @@ impl Counts {
             interactions: 0,
             weight_sum: [0.0; WEIGHTS],
             weight_sq: [0.0; WEIGHTS],
+            mode_exits: [0; 2],
+            mode_return: [0; 2],
         }
     }
 
@@ -67,6 +75,10 @@ impl Counts {
         for w in 0..WEIGHTS {
             self.weight_sum[w] += o.weight_sum[w];
             self.weight_sq[w] += o.weight_sq[w];
+        }
+        for m in 0..2 {
+            self.mode_exits[m] += o.mode_exits[m];
+            self.mode_return[m] += o.mode_return[m];
         }
         for (a, b) in self.categories.iter_mut().zip(&o.categories) {
             *a += b;

@@ -8,8 +8,8 @@ use super::lighting::Lighting;
 use super::options::RenderOptions;
 use super::pose::{picture_half, view_rotation};
 use super::raster::{Accumulator, Raster};
-use crate::beam::{ExitBeam, Frame, Stone, TraceOptions};
-use crate::geometry::canonical::{azimuth_turn, canonical};
+use crate::beam::{ExitBeam, Frame, Medium, Stone, TraceOptions};
+use crate::geometry::canonical::{azimuth_turn, canonical, canonical_axis};
 use crate::geometry::{outline_size, Polyhedron};
 use crate::optics::{color, Dispersion};
 use glam::{DVec2, DVec3};
@@ -46,6 +46,12 @@ fn mirrored(solid: &Polyhedron, frame: &Frame, light: Light) -> bool {
 /// [`picture_half`] around the centroid. Options should have passed
 /// [`RenderOptions::validate`]; out-of-range values never panic.
 pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
+    // A birefringent stone's optic axis, carried into the canonical placement with it.
+    let axis = opts
+        .material
+        .uniaxial
+        .as_ref()
+        .map_or(DVec3::Z, |u| canonical_axis(solid, u.axis.vector()));
     let turn = azimuth_turn(solid);
     let solid = canonical(solid);
     let stone = Stone::new(&solid);
@@ -58,6 +64,9 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     let trace_opts = opts.trace_options();
     let quadrant = mirrored(&solid, &frame, opts.light);
     let lighting = Lighting::new(opts.head_shadow(), &opts.spots);
+    // Absorption per girdle-diameter unit of the canonical solid: α per mm times the mm one
+    // unit of its width stands for.
+    let mm_per_unit = opts.width_mm / outline_size(solid.vertices()).1.max(1e-300);
     let mut stats = Stats {
         size,
         ..Stats::default()
@@ -70,10 +79,6 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     let channels = if opts.light == Light::Fire || coloured_grey {
         let fire = opts.light == Light::Fire;
         let body = opts.material.colour.as_ref();
-        // Absorption per girdle-diameter unit of the canonical solid: α per mm times the mm
-        // one unit of its width stands for.
-        let width = outline_size(solid.vertices()).1;
-        let mm_per_unit = opts.width_mm / width.max(1e-300);
         let absorption = |l: f64| body.map_or(0.0, |c| c.alpha(l) * mm_per_unit);
         // Faint bands (far out in the red) take a neighbour's trace, as in the scores.
         let bands = color::traced_bands(opts.bands.max(1), color::FAINT_BAND);
@@ -87,17 +92,20 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         // the light that went through it (the surface reflection left out, for its
         // extinction), and the absorbed power seen and seen from below the girdle plane.
         let n = if body.is_some() { 2 } else { 1 };
-        let traces: Vec<(f64, f64)> = if constant {
-            vec![(ri0, 0.0)]
+        let traces: Vec<(Medium, f64)> = if constant {
+            vec![(Medium::Isotropic(ri0), 0.0)]
         } else {
             centres
                 .iter()
-                .map(|&l| (opts.material.ri(l), absorption(l)))
+                .map(|&l| {
+                    let m = opts.material.medium(l, axis, mm_per_unit, body.is_some());
+                    (m, absorption(l))
+                })
                 .collect()
         };
         let traced: Vec<(Layer, f64, f64)> = traces
             .par_iter()
-            .map(|&(ri, alpha)| {
+            .map(|&(medium, alpha)| {
                 let o = TraceOptions {
                     absorption: alpha,
                     ..trace_opts
@@ -121,7 +129,7 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                     };
                     [v, if e.external { 0.0 } else { v }, 0.0, 0.0, 0.0]
                 };
-                let layer = Layer::trace(&stone, &frame, ri, &o, n, value, reach);
+                let layer = Layer::trace(&stone, &frame, &medium, &o, n, value, reach);
                 (layer, seen, under)
             })
             .collect();
@@ -207,10 +215,13 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     } else {
         let n = opts.light.channels();
         let (mut mean, mut bins) = (0.0, [0.0; 5]);
+        let medium = opts
+            .material
+            .medium(opts.wavelength_nm, axis, mm_per_unit, false);
         let layer = Layer::trace(
             &stone,
             &frame,
-            opts.material.ri(opts.wavelength_nm),
+            &medium,
             &trace_opts,
             n,
             |e| {
@@ -339,7 +350,7 @@ mod tests {
             let layer = Layer::trace(
                 &stone,
                 &frame,
-                2.417,
+                &Medium::Isotropic(2.417),
                 &opts.trace_options(),
                 n,
                 value,

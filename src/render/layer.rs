@@ -10,7 +10,7 @@
 //! whole [`BeamTree`](crate::beam::BeamTree).
 
 use super::raster::{Accumulator, Raster};
-use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions, TraceStats};
+use crate::beam::{ExitBeam, ExitSink, Frame, Medium, Stone, TraceOptions, TraceStats};
 use crate::geometry::clip2d;
 use glam::DVec2;
 use rayon::prelude::*;
@@ -179,7 +179,7 @@ impl Layer {
         self.stats = stats;
     }
 
-    /// Trace `stone` along `frame` at index `ri` and keep, for each exit (every copy),
+    /// Trace `stone` along `frame` through `medium` and keep, for each exit (every copy),
     /// `value(exit)`'s first `channels` values: the radiance the exit carries per unit of
     /// its power. `value` sees every exit for which `orbit` holds, so it may also sum what
     /// the caller measures; `orbit(exit)` false says that neither the exit nor its symmetric
@@ -188,7 +188,7 @@ impl Layer {
     pub(super) fn trace(
         stone: &Stone,
         frame: &Frame,
-        ri: f64,
+        medium: &Medium,
         opts: &TraceOptions,
         channels: usize,
         value: impl FnMut(&ExitBeam) -> [f64; 5],
@@ -205,7 +205,7 @@ impl Layer {
             footprints: true,
             ..*opts
         };
-        let (stats, _) = stone.trace_into(frame, ri, &opts, &mut sink, false);
+        let (stats, _) = stone.trace_medium_into(frame, medium, &opts, &mut sink, false);
         let mut layer = sink.layer;
         layer.exits += sink.skipped.get();
         layer.finish(stats);

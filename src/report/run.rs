@@ -34,7 +34,7 @@ pub fn run_page(config: &Config, outcome: &Outcome) -> Result<String> {
     let cuts = cands
         .par_iter()
         .map(|c| {
-            let cut = config.space.build(&c.label, &c.params)?;
+            let cut = config.build(&c.label, &c.params)?;
             // The run scored its start and winners in full with these settings already.
             let known = c.detail.as_deref().cloned();
             let mut r = measure_scored(&c.label, &cut, known, &o)?;

@@ -197,7 +197,11 @@ fn jittered_grid_reference_agrees_with_the_beam_tracer() {
                 polarization: pol,
                 ..TraceOptions::exact(0.0)
             };
-            let beam = crate::metrics::overhead_light_return_with(&stone, ri, &opts);
+            let beam = crate::metrics::overhead_light_return_with(
+                &stone,
+                &crate::beam::Medium::Isotropic(ri),
+                &opts,
+            );
             eprintln!(
                 "{name} pol {pol} depth {depth}: beam {beam:.6} grid {:.6} ± {:.1e}",
                 r.value, r.stderr
@@ -220,7 +224,11 @@ fn jittered_grid_reference_agrees_with_the_beam_tracer() {
                 polarization: pol,
                 ..Default::default()
             };
-            let beam = crate::metrics::overhead_light_return_with(&stone, ri, &opts);
+            let beam = crate::metrics::overhead_light_return_with(
+                &stone,
+                &crate::beam::Medium::Isotropic(ri),
+                &opts,
+            );
             eprintln!(
                 "{name} pol {pol} full: beam {beam:.6} grid {:.6} ± {:.1e}",
                 full.value, full.stderr

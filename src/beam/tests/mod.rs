@@ -13,6 +13,7 @@ use glam::DVec3;
 mod absorption;
 mod accounting;
 mod closed_form;
+mod crystal;
 mod grids;
 mod places;
 mod stone;

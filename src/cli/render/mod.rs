@@ -85,6 +85,8 @@ pub struct RenderArgs {
     pub material: super::flags::MaterialArgs,
     #[command(flatten)]
     pub colour: super::flags::ColourArgs,
+    #[command(flatten)]
+    pub crystal: super::flags::CrystalArgs,
     /// Track polarization (on) or use the unpolarized average (off).
     #[arg(long, default_value = "on", value_name = "on|off")]
     pub polarization: String,
@@ -497,6 +499,13 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     }
     let (colour_notes, widths) = a.colour.apply_traced(&cuts, &mut materials, true)?;
     for note in colour_notes {
+        eprintln!("{note}");
+    }
+    let density = a.colour.density()?;
+    for note in a
+        .crystal
+        .apply(&cuts, &mut materials, density, s.opts.wavelength_nm)?
+    {
         eprintln!("{note}");
     }
     let light = s.opts.light;

@@ -60,7 +60,7 @@ const state = {
   ground: 'none',
   slots: { a: null, b: null },
   // The stone's material, body colour and width (both slots): see stoneBody().
-  stone: { material: 'diamond', own: false, colour: '#7a3fa0', colourMm: 10, density: 1, width: 6.5 },
+  stone: { material: 'diamond', own: false, colour: '#7a3fa0', colourMm: 10, density: 1, width: 6.5, axis: null },
 };
 
 function newSlot(source) {
@@ -112,6 +112,7 @@ function stoneBody() {
   if (st.material !== 'diamond') b.material = st.material;
   if (st.own) b.colour = `${st.colour}@${st.colourMm}mm`;
   if (coloured() && st.density !== 1) b.colour_density = st.density;
+  if (st.axis !== null) b.optic_axis = st.axis;
   return b;
 }
 
@@ -1019,7 +1020,7 @@ async function setupRuns() {
 
 // ---- the stone: material, body colour, width ---------------------------------------------------
 
-const STONE_FIELDS = ['material', 'colour', 'colour_density', 'diameter_mm', 'size_mm'];
+const STONE_FIELDS = ['material', 'colour', 'colour_density', 'diameter_mm', 'size_mm', 'optic_axis', 'birefringence'];
 
 function setupStone() {
   const sel = $('#material');
@@ -1032,9 +1033,22 @@ function setupStone() {
   }
   sel.value = state.stone.material;
   const own = $('#own-colour'), colour = $('#colour'), mm = $('#colour-mm'), density = $('#density');
-  const changed = () => {
+  const axis = $('#optic-axis');
+  // A uniaxial material brings its default optic axis; the slider shows for those only.
+  const materialAxis = (name) => {
+    const m = state.meta.materials.find((x) => x.name === name);
+    return m && m.optic_axis !== null && m.optic_axis !== undefined ? m.optic_axis : null;
+  };
+  const changed = (ev) => {
     const st = state.stone;
+    if (ev && ev.target === sel) {
+      const d = materialAxis(sel.value);
+      if (d !== null) axis.value = d;
+    }
     st.material = sel.value;
+    st.axis = materialAxis(sel.value) === null ? null : Number(axis.value);
+    $('#axis-ctl').hidden = st.axis === null;
+    if (st.axis !== null) $('#optic-axis-val').textContent = `${st.axis}°`;
     st.own = own.checked;
     st.colour = colour.value;
     const t = Number(mm.value);
@@ -1050,6 +1064,7 @@ function setupStone() {
   for (const el of [sel, own, colour, mm, $('#stone-mm')]) el.addEventListener('change', changed);
   colour.addEventListener('input', changed);
   density.addEventListener('input', changed);
+  axis.addEventListener('input', changed);
 }
 
 // The swatch beside the width: A's face-up mean colour (CIELAB of its scores) in sRGB.

@@ -112,6 +112,9 @@ struct Body {
     view_az: Field<Number>,
     light_rotation: Field<Number>,
     ground: Field<String>,
+    optic_axis: Field<Number>,
+    birefringence: Field<bool>,
+    colour_e: Field<String>,
 }
 
 /// The keys of a photograph (`render` with a photographic light).
@@ -149,12 +152,15 @@ fn bounded(
 const COMMON: [&str; 5] = ["cut", "format", "encoding", "name", "set"];
 
 /// The keys of a stone's material, body colour and size (`score`, `render`, `cut`).
-pub const STONE: [&str; 5] = [
+pub const STONE: [&str; 8] = [
     "material",
     "colour",
     "colour_density",
     "diameter_mm",
     "size_mm",
+    "optic_axis",
+    "birefringence",
+    "colour_e",
 ];
 
 /// A JSON object from a request's body, or the error about `body` (too large, not JSON, not
@@ -535,6 +541,47 @@ fn stone(b: &Body) -> ApiResult<(Material, StoneSize)> {
         },
     )
     .map_err(invalid)?;
+    // A uniaxial stone's optic axis (degrees from the table's normal, toward azimuth 0),
+    // whether it is traced birefringent and its E ∥ c colour, through the chooser
+    // `--optic-axis`, `--birefringence` and `--colour-e` use.
+    let axis = match b.optic_axis.given() {
+        Ok(a) => a.map(|a| a.as_f64().unwrap_or(f64::NAN).to_string()),
+        Err(v) => {
+            return Err(ApiError::bad(
+                "optic_axis",
+                format!(
+                    "{} is not a number of degrees from the table's normal",
+                    short(&v.to_string())
+                ),
+            ))
+        }
+    };
+    let on = match b.birefringence.given() {
+        Ok(o) => o.copied(),
+        Err(_) => return Err(ApiError::bad("birefringence", "must be true or false")),
+    };
+    let colour_e = match b.colour_e.given() {
+        Ok(c) => c.map(|c| c.as_str()).filter(|c| !c.trim().is_empty()),
+        Err(_) => {
+            return Err(ApiError::bad(
+                "colour_e",
+                "must be a string such as \"#c08040@10mm\"",
+            ))
+        }
+    };
+    material
+        .choose_crystal(
+            on,
+            axis.as_deref(),
+            colour_e,
+            density,
+            facetlab::optics::CrystalFields {
+                birefringence: "birefringence",
+                optic_axis: "optic_axis",
+                colour_e: "colour_e",
+            },
+        )
+        .map_err(invalid)?;
     let size = match (b.diameter_mm.given(), b.size_mm.given()) {
         (Ok(Some(_)), Ok(Some(_))) => {
             return Err(ApiError::bad(

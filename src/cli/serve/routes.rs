@@ -128,18 +128,24 @@ fn presets_json() -> Value {
 
 /// The materials a stone can be (`facetlab materials`): the table's, then the coloured
 /// varieties, each with `colour`: its body colour seen through the default width as
-/// `#rrggbb` (`null` when colourless or no spectrum is published).
+/// `#rrggbb` (`null` when colourless or no spectrum is published), and `optic_axis`: a
+/// uniaxial stone's default optic axis, degrees from the table's normal (`null` for others).
 fn materials_json() -> Vec<Value> {
     let w = facetlab::optics::StoneSize::DEFAULT_WIDTH_MM;
-    let table = Material::table()
-        .into_iter()
-        .map(|m| json!({"name": m.name, "colour": m.colour.as_ref().map(|c| c.hex_through(w))}));
+    let table = Material::table().into_iter().map(|m| {
+        json!({
+            "name": m.name,
+            "colour": m.colour.as_ref().map(|c| c.hex_through(w)),
+            "optic_axis": m.uniaxial.as_ref().map(|u| u.axis.tilt_deg),
+        })
+    });
     let varieties = facetlab::optics::Variety::all().iter().map(|v| {
         let c = v.body_colour();
         json!({
             "name": v.name,
             "colour": c.as_ref().map(|c| c.hex_through(w)),
             "source": c.map(|c| c.source),
+            "optic_axis": v.material().uniaxial.as_ref().map(|u| u.axis.tilt_deg),
         })
     });
     table.chain(varieties).collect()

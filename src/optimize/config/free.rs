@@ -5,6 +5,10 @@ use crate::cut::{CutSpace, Unit};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
+/// The free parameter that is not the cut's: a uniaxial stone's optic axis, degrees from the
+/// table's normal toward the azimuth `[score] optic_axis` gives (0 by default).
+pub const OPTIC_AXIS: &str = "optic_axis";
+
 /// One free parameter.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FreeParam {
@@ -136,7 +140,27 @@ pub(super) fn validate(
             unit: def.unit,
         });
     }
-    if let Some(k) = raw.keys().find(|k| space.range(k).is_none()) {
+    if let Some(&[lo, hi]) = raw.get(OPTIC_AXIS) {
+        let field = at("free.optic_axis");
+        if !(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi && hi <= 90.0) {
+            return Err(Error::invalid(
+                field,
+                format!("bounds [{lo}, {hi}] are not allowed; give [min, max] within [0, 90] degrees from the table's normal, min < max"),
+            ));
+        }
+        free.push(FreeParam {
+            key: OPTIC_AXIS.to_string(),
+            lo,
+            hi,
+            // The material's own, set once the score section is read.
+            start: lo,
+            unit: Unit::Degrees,
+        });
+    }
+    if let Some(k) = raw
+        .keys()
+        .find(|k| k.as_str() != OPTIC_AXIS && space.range(k).is_none())
+    {
         return Err(Error::invalid(
             at(&format!("free.{k}")),
             format!(

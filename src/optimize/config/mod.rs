@@ -49,7 +49,7 @@ mod winners;
 
 pub use constraints::{Constraints, RawConstraints};
 pub use cut::RawCut;
-pub use free::{axis_label, FreeParam};
+pub use free::{axis_label, FreeParam, OPTIC_AXIS};
 pub use method::{Budget, Method, NelderMeadSettings, RawMethod, Sampling, SwarmSettings};
 pub use objective::{ParetoSpec, RawObjective, Weights, COLOUR_WEIGHTS, PARETO_SCORES};
 pub use score::{RawScore, ScoreSettings};
@@ -308,6 +308,35 @@ impl Config {
                 }
             }
         }
+        // The birefringence settings apply to the material chosen last (a design's own too).
+        let mut material = score.material.clone();
+        score.apply_crystal(&mut material, &at)?;
+        score.material = material;
+        // `[free] optic_axis`: the c-axis's angle from the table's normal, varied by the
+        // optimizer; it starts at the material's own.
+        let mut free = free;
+        if let Some(f) = free.iter_mut().find(|f| f.key == free::OPTIC_AXIS) {
+            let Some(u) = score.material.uniaxial.as_ref() else {
+                return Err(Error::invalid(
+                    at("free.optic_axis"),
+                    format!(
+                        "{} is not uniaxial: the optic axis orients uniaxial stones only (quartz, beryl, tourmaline, sapphire and ruby, zircon, moissanite and their varieties)",
+                        score.material.name
+                    ),
+                ));
+            };
+            let s = u.axis.tilt_deg;
+            if !(f.lo..=f.hi).contains(&s) {
+                return Err(Error::invalid(
+                    at("free.optic_axis"),
+                    format!(
+                        "the start value {s}° (the material's optic axis; set [score] optic_axis) lies outside the bounds [{}, {}]",
+                        f.lo, f.hi
+                    ),
+                ));
+            }
+            f.start = s;
+        }
         let colour_weights = raw.objective.clone().unwrap_or_default().colour();
         for (name, set) in objective::COLOUR_WEIGHTS.iter().zip(colour_weights) {
             if set.is_some() && score.material.colour.is_none() {
@@ -354,9 +383,24 @@ impl Config {
 
     /// The start cut.
     pub fn start_cut(&self) -> Result<Cut> {
-        self.space
-            .build(&self.name, &self.start)
+        self.build(&self.name, &self.start)
             .map_err(|e| e.context(&format!("{}: start cut", self.source)))
+    }
+
+    /// The cut of the config's space with parameters `params` (the free ones included): a
+    /// free `optic_axis` is not the space's, and rides along in the cut's
+    /// [`params`](Cut::params), where the evaluators read it.
+    pub fn build(&self, label: &str, params: &BTreeMap<String, f64>) -> Result<Cut> {
+        match params.get(free::OPTIC_AXIS) {
+            None => self.space.build(label, params),
+            Some(&axis) => {
+                let mut p = params.clone();
+                p.remove(free::OPTIC_AXIS);
+                let mut cut = self.space.build(label, &p)?;
+                cut.params.insert(free::OPTIC_AXIS.to_string(), axis);
+                Ok(cut)
+            }
+        }
     }
 
     /// The space's parameters with the free ones set to `x` (in [`Config::free`] order).
@@ -470,6 +514,14 @@ impl Config {
                 colour_density: self.score.colour_fields.1,
                 size_mm: self.score.colour_fields.2.clone(),
                 diameter_mm: self.score.colour_fields.3,
+                birefringence: self.score.material.uniaxial.as_ref().map(|u| u.traced),
+                optic_axis: self
+                    .score
+                    .material
+                    .uniaxial
+                    .as_ref()
+                    .map(|u| score::RawAxis::Text(u.axis.label())),
+                colour_e: self.score.crystal_fields.2.clone(),
             }),
         }
     }

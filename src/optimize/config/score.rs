@@ -49,6 +49,38 @@ pub struct RawScore {
     /// The stone's width W in mm for body colour (like `--diameter-mm`); default 6.5.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diameter_mm: Option<f64>,
+    /// Trace a uniaxial stone birefringent (like `--birefringence`); default true for those
+    /// stones.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub birefringence: Option<bool>,
+    /// A uniaxial stone's optic axis, `"DEG[@AZ]"` or a number of degrees from the table's
+    /// normal (like `--optic-axis`); default as cutters orient the material.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub optic_axis: Option<RawAxis>,
+    /// A uniaxial stone's E ∥ c colour (like `--colour-e`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub colour_e: Option<String>,
+}
+
+/// `score.optic_axis` as written: a number (the angle from the table's normal) or text
+/// (`"90@0"`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum RawAxis {
+    /// Degrees from the table's normal, toward azimuth 0.
+    Number(f64),
+    /// `DEG[@AZ]`.
+    Text(String),
+}
+
+impl RawAxis {
+    /// As `--optic-axis` takes it.
+    pub fn text(&self) -> String {
+        match self {
+            RawAxis::Number(x) => x.to_string(),
+            RawAxis::Text(t) => t.clone(),
+        }
+    }
 }
 
 /// `score.size_mm` as written: a number (the length) or text (`"10"`, `"10x5"`).
@@ -88,6 +120,32 @@ pub struct ScoreSettings {
     pub colour_fields: (Option<String>, Option<f64>, Option<RawSize>, Option<f64>),
     /// The stone's size for body colour.
     pub size: crate::optics::StoneSize,
+    /// `birefringence`, `optic_axis`, `colour_e` as given (applied to the material, also to
+    /// a design's own).
+    pub crystal_fields: (Option<bool>, Option<RawAxis>, Option<String>),
+}
+
+impl ScoreSettings {
+    /// Apply `birefringence`, `optic_axis` and `colour_e` to `material` (a design's own
+    /// material, or the config's); errors name the field under `at`.
+    pub fn apply_crystal(
+        &self,
+        material: &mut crate::optics::Material,
+        at: &dyn Fn(&str) -> String,
+    ) -> Result<()> {
+        let (on, axis, colour_e) = &self.crystal_fields;
+        material.choose_crystal(
+            *on,
+            axis.as_ref().map(RawAxis::text).as_deref(),
+            colour_e.as_deref(),
+            self.colour_fields.1,
+            crate::optics::CrystalFields {
+                birefringence: &at("score.birefringence"),
+                optic_axis: &at("score.optic_axis"),
+                colour_e: &at("score.colour_e"),
+            },
+        )
+    }
 }
 
 impl ScoreSettings {
@@ -173,7 +231,8 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
         (None, Some(w)) => crate::optics::StoneSize::width(w, &at("score.diameter_mm"))?,
         (None, None) => crate::optics::StoneSize::default(),
     };
-    let score = ScoreSettings {
+    let mut score = ScoreSettings {
+        crystal_fields: (rs.birefringence, rs.optic_axis.clone(), rs.colour_e.clone()),
         user_colour,
         colour_fields: (
             rs.colour.clone(),
@@ -211,6 +270,9 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
         )?,
         narrow_forks: rs.narrow_forks.unwrap_or(defaults.trace.narrow_forks),
     };
+    let mut material = score.material.clone();
+    score.apply_crystal(&mut material, at)?;
+    score.material = material;
     Ok(score)
 }
 

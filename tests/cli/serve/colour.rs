@@ -93,16 +93,7 @@ fn serve_colours_the_stone() {
     assert!((big / small - 8.0).abs() < 1e-9, "{big} / {small}");
 
     // Bad colour fields: 422 (or 400 for a wrong JSON type), one line naming the field.
-    let bad = |b: &str, field: &str, status: u16| {
-        let r = s.post("/api/score", b);
-        assert_eq!(
-            r.status,
-            status,
-            "{b}: {}",
-            String::from_utf8_lossy(&r.body)
-        );
-        assert_error(&r, field)
-    };
+    let bad = |b: &str, field: &str, status: u16| score_refused(&s, b, field, status);
     let e = bad(r#"{"cut": "tolkowsky", "colour": "blue"}"#, "colour", 422);
     assert!(e.contains('#'), "says what is allowed: {e}");
     bad(r#"{"cut": "tolkowsky", "colour": 3}"#, "colour", 400);

@@ -8,6 +8,7 @@ mod api;
 #[cfg(feature = "browser-tests")]
 mod browser;
 mod colour;
+mod crystal;
 mod fuzz;
 mod plan;
 
@@ -209,6 +210,18 @@ fn assert_error(r: &Resp, field: &str) -> String {
     assert_eq!(j["field"].as_str(), Some(field), "{e}");
     assert!(!e.contains('\n'), "{e}");
     e
+}
+
+/// `POST /api/score` with a bad `body`: answered `status`, one line naming `field`; the line.
+fn score_refused(s: &Server, body: &str, field: &str, status: u16) -> String {
+    let r = s.post("/api/score", body);
+    assert_eq!(
+        r.status,
+        status,
+        "{body}: {}",
+        String::from_utf8_lossy(&r.body)
+    );
+    assert_error(&r, field)
 }
 
 /// Standard base64 of `bytes` (as the page's `btoa` sends uploads).

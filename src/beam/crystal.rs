@@ -1,0 +1,575 @@
+//! Birefringent stones in the beam tracer ([`Medium::Uniaxial`]).
+//!
+//! At a plane facet every mode of a plane wave in a uniaxial crystal keeps one wave vector
+//! and one ray (Poynting) direction across the whole beam ([`crate::optics::crystal`]), so a
+//! parallel beam splits into parallel beams: at entry into an ordinary and an extraordinary
+//! beam, at every facet met from inside into a light leaving and a reflected beam of each
+//! mode. Each beam moves along its ray direction (walk-off), so its footprint is still a
+//! polygon cut by the facets projected along that direction, and its path length is still
+//! affine over its cross-section; with per-mode absorption the optical depth `Σ αᵢ Lᵢ` is
+//! affine too, and Beer–Lambert over a footprint stays exact.
+//!
+//! Inside the stone a beam is in one mode, so it carries a power, not a Stokes vector; the
+//! light leaving gets its Stokes vector from the transmitted field (and the external
+//! reflection from the reflected one). With polarization off these are given unpolarized;
+//! the split into modes is the physics and stays.
+//!
+//! Narrow beams (below the split threshold) are followed as rays from their area centroid as
+//! in the isotropic tracer, except that each crossing splits a ray into two reflected rays,
+//! one per mode: a ray's tree is followed down to its floor (the power threshold, or
+//! [`TraceOptions::ray_floor`] of the narrow beam's power), and what falls below is cut off
+//! and accounted. Forking discs ([`TraceOptions::narrow_forks`]) are not used here.
+//!
+//! A selected once per trace: the singly refractive trace ([`Stone::trace_into`]) is not
+//! touched by any of this.
+
+use super::attenuation::exp_mean_planar;
+use super::footprint::{Affine, PathLength};
+use super::sink::{ExitSink, TraceStats};
+use super::stone::{Stone, GRAZE};
+use super::symmetry::{clip_halfspace, SymSink};
+use super::work::{Ctx, Work};
+use super::{ExitBeam, Frame, TraceOptions};
+use crate::geometry::clip2d;
+use crate::optics::crystal::{Crystal, Wave};
+use glam::{DVec2, DVec3, DVec4};
+
+/// The stone's optics for one trace at one wavelength.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Medium {
+    /// Singly refractive (or birefringence off): one index; absorption is
+    /// [`TraceOptions::absorption`].
+    Isotropic(f64),
+    /// A uniaxial crystal, with the absorption of light polarized ⊥ and ∥ to its optic axis
+    /// per girdle diameter of path (pleochroism; [`TraceOptions::absorption`] is not used).
+    Uniaxial {
+        /// Indices and optic axis (stone coordinates).
+        crystal: Crystal,
+        /// Absorption for E ⊥ ĉ, per girdle diameter.
+        alpha_o: f64,
+        /// Absorption for E ∥ ĉ, per girdle diameter.
+        alpha_e: f64,
+    },
+}
+
+impl Medium {
+    /// The ordinary (or only) index.
+    pub fn ri(&self) -> f64 {
+        match self {
+            Medium::Isotropic(n) => *n,
+            Medium::Uniaxial { crystal, .. } => crystal.n_o,
+        }
+    }
+}
+
+/// A birefringent trace's settings beyond [`Ctx`].
+struct Optics {
+    crystal: Crystal,
+    /// [`TraceOptions::mode_floor`], cleaned.
+    mode_floor: f64,
+    alpha_o: f64,
+    alpha_e: f64,
+    absorbing: bool,
+}
+
+impl Optics {
+    /// Absorption per girdle diameter along `wave`'s ray.
+    #[inline]
+    fn alpha(&self, wave: &Wave) -> f64 {
+        if self.absorbing {
+            self.crystal.absorption(wave, self.alpha_o, self.alpha_e)
+        } else {
+            0.0
+        }
+    }
+}
+
+/// A beam in one mode waiting to be split; its polygon (on `facet`'s plane) is
+/// `pts[start..start + len]` of the point stack.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ModeBeam {
+    wave: Wave,
+    /// Power (before absorption).
+    power: f64,
+    /// Absorption per girdle diameter along this beam.
+    alpha: f64,
+    facet: u32,
+    entry: u32,
+    depth: u32,
+    node: u32,
+    start: u32,
+    len: u32,
+    map: Affine,
+    /// Optical depth `Σ αᵢ Lᵢ` from the entry facet over the polygon.
+    tau: PathLength,
+}
+
+/// A narrow beam's ray (or one of the rays it splits into) at `x` on `facet`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ModeRay {
+    x: DVec3,
+    wave: Wave,
+    power: f64,
+    alpha: f64,
+    tau: f64,
+    facet: u32,
+    depth: u32,
+    node: u32,
+}
+
+/// Two sibling beams (the two modes one beam splits into) that are both narrow beams: when
+/// the weaker carries less than [`TraceOptions::mode_floor`] of the pair's power, one ray in
+/// the stronger mode carries both (as a narrow beam's ray keeps its weaker mode's light from
+/// then on), and the pair costs one ray instead of two. `None` when they go on apart.
+#[inline]
+fn merged(pair: &[Option<(Wave, f64)>; 2], cx: &Ctx, optics: &Optics) -> Option<(Wave, f64)> {
+    match *pair {
+        [Some(a), Some(b)]
+            if a.1.max(b.1) < cx.split_threshold
+                && a.1.min(b.1) < optics.mode_floor * (a.1 + b.1) =>
+        {
+            Some((if a.1 >= b.1 { a.0 } else { b.0 }, a.1 + b.1))
+        }
+        _ => None,
+    }
+}
+
+impl Stone {
+    /// Trace one direction through a [`Medium`], handing every exit beam to `sink`: the
+    /// singly refractive trace ([`Stone::trace_into`]) for [`Medium::Isotropic`], the
+    /// birefringent one for [`Medium::Uniaxial`] (chosen here, once per trace).
+    pub(crate) fn trace_medium_into<S: ExitSink>(
+        &self,
+        frame: &Frame,
+        medium: &Medium,
+        opts: &TraceOptions,
+        sink: &mut S,
+        keep_nodes: bool,
+    ) -> (TraceStats, Vec<(u32, u32)>) {
+        match *medium {
+            Medium::Isotropic(ri) => self.trace_into(frame, ri, opts, sink, keep_nodes),
+            Medium::Uniaxial {
+                crystal,
+                alpha_o,
+                alpha_e,
+            } => {
+                let clean = |x: f64| if x.is_finite() { x.max(0.0) } else { 0.0 };
+                let (alpha_o, alpha_e) = (clean(alpha_o), clean(alpha_e));
+                let optics = Optics {
+                    crystal,
+                    mode_floor: clean(opts.mode_floor),
+                    alpha_o,
+                    alpha_e,
+                    absorbing: alpha_o > 0.0 || alpha_e > 0.0,
+                };
+                self.trace_crystal_into(frame, &optics, opts, sink, keep_nodes)
+            }
+        }
+    }
+
+    fn trace_crystal_into<S: ExitSink>(
+        &self,
+        frame: &Frame,
+        optics: &Optics,
+        opts: &TraceOptions,
+        sink: &mut S,
+        keep_nodes: bool,
+    ) -> (TraceStats, Vec<(u32, u32)>) {
+        let mut st = TraceStats::default();
+        let d0 = frame.dir;
+        let cr = &optics.crystal;
+        let valid = |n: f64| n.is_finite() && n > 0.0;
+        if !(valid(cr.n_o) && valid(cr.n_e) && cr.axis.is_finite() && d0.is_finite()) {
+            return (st, Vec::new());
+        }
+        let total: f64 = (0..self.facet_count())
+            .map(|f| {
+                let c = -self.normals[f].dot(d0);
+                if c > GRAZE {
+                    c * self.areas[f]
+                } else {
+                    0.0
+                }
+            })
+            .sum();
+        st.area = total;
+        if total.is_nan() || total <= 0.0 {
+            return (st, Vec::new());
+        }
+        let cx = Ctx::new(cr.n_o, opts, sink.wants_footprints(), keep_nodes);
+        let mut w = self.work();
+        let map0 = Affine {
+            a1: frame.u,
+            a2: frame.v,
+            b: DVec2::ZERO,
+        };
+        let (group, wedge) = if opts.symmetry {
+            self.symmetry.frame_symmetry_keeping(d0, cr.axis)
+        } else {
+            (vec![0], vec![])
+        };
+        let mut sym = SymSink::new(&self.symmetry, &group, frame, sink);
+        let mut piece: Vec<DVec3> = Vec::with_capacity(32);
+        for f in 0..self.facet_count() {
+            let n = self.normals[f];
+            let c = -n.dot(d0);
+            if c <= GRAZE {
+                continue;
+            }
+            w.cur.clear();
+            w.cur.extend(
+                self.facet_verts(f)
+                    .iter()
+                    .map(|&v| self.vertices[v as usize]),
+            );
+            let mut p = c * self.areas[f] / total;
+            if !wedge.is_empty() {
+                for h in &wedge {
+                    clip_halfspace(&w.cur, *h, &mut piece);
+                    std::mem::swap(&mut w.cur, &mut piece);
+                    if w.cur.is_empty() {
+                        break;
+                    }
+                }
+                if w.cur.is_empty() {
+                    continue;
+                }
+                let fp: Vec<DVec2> = w.cur.iter().map(|&x| map0.apply(x)).collect();
+                p = clip2d::area(&fp) / total;
+                if p <= 0.0 {
+                    continue;
+                }
+            }
+            st.power_in += p;
+            let node = w.node(&cx, u32::MAX, f);
+            let Some(entry) = cr.enter(d0, n, DVec4::new(1.0, 0.0, 0.0, 0.0), frame.u) else {
+                st.cut_off += p;
+                continue;
+            };
+            // Conserve power to rounding: the coefficients add up to 1 within ~1e-14.
+            let sum = entry.reflected.x + entry.transmitted[0].1 + entry.transmitted[1].1;
+            let scale = p / sum;
+            w.foot.clear();
+            if cx.want_fp {
+                w.foot.extend(w.cur.iter().map(|&x| map0.apply(x)));
+            }
+            let r = entry.reflected * scale;
+            let ext = ExitBeam {
+                direction: entry.reflected_dir,
+                power: r.x,
+                unabsorbed: r.x,
+                stokes: if cx.pol {
+                    r
+                } else {
+                    DVec4::new(r.x, 0.0, 0.0, 0.0)
+                },
+                axis: entry.axis,
+                entry_facet: f,
+                exit_facet: f,
+                reflections: 0,
+                external: true,
+                narrow: false,
+                late: false,
+                mode: None,
+                node,
+                sym: 0,
+            };
+            st.exits += 1;
+            sym.exit(&ext, &w.foot);
+            let transmitted = entry.transmitted.map(|(wave, t)| Some((wave, t * scale)));
+            let merge = merged(&transmitted, &cx, optics);
+            for (wave, t) in merge
+                .map_or(transmitted, |m| [Some(m), None])
+                .into_iter()
+                .flatten()
+            {
+                let beam = ModeBeam {
+                    wave,
+                    power: t,
+                    alpha: optics.alpha(&wave),
+                    facet: f as u32,
+                    entry: f as u32,
+                    depth: 0,
+                    node,
+                    start: 0,
+                    len: 0,
+                    map: map0,
+                    tau: PathLength::default(),
+                };
+                let narrow = merge.is_some();
+                self.continue_mode_beam(beam, narrow, &cx, optics, &mut w, &mut st, &mut sym);
+            }
+            while let Some(beam) = w.mode_stack.pop() {
+                self.split_mode_beam(beam, &cx, optics, &mut w, &mut st, &mut sym);
+            }
+        }
+        let g = group.len() as f64;
+        st.power_in *= g;
+        st.cut_off *= g;
+        st.ray_closed *= g;
+        st.absorbed *= g;
+        st.exits *= group.len();
+        let nodes = if keep_nodes {
+            std::mem::take(&mut w.nodes)
+        } else {
+            Vec::new()
+        };
+        (st, nodes)
+    }
+
+    /// The fate of a beam about to travel inside (its polygon in `w.cur`, its footprint in
+    /// `w.foot`): split exactly, followed as a narrow beam's ray (always when `narrow`: a
+    /// merged pair of narrow beams), or cut off.
+    #[allow(clippy::too_many_arguments)]
+    fn continue_mode_beam<S: ExitSink>(
+        &self,
+        beam: ModeBeam,
+        narrow: bool,
+        cx: &Ctx,
+        optics: &Optics,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) {
+        let p = beam.power;
+        if p.is_nan() || p <= 0.0 || p < cx.threshold || beam.depth > cx.max_depth {
+            st.cut_off += p.max(0.0);
+        } else if p >= cx.split_threshold && !narrow {
+            let start = w.pts.len() as u32;
+            w.pts.extend_from_slice(&w.cur);
+            w.mode_stack.push(ModeBeam {
+                start,
+                len: w.cur.len() as u32,
+                ..beam
+            });
+        } else {
+            let n = self.normals[beam.facet as usize];
+            let (c, _) = super::exact::area_centroid(&w.cur, n);
+            let ray = ModeRay {
+                x: c,
+                wave: beam.wave,
+                power: p,
+                alpha: beam.alpha,
+                tau: if optics.absorbing {
+                    beam.tau.at(c)
+                } else {
+                    0.0
+                },
+                facet: beam.facet,
+                depth: beam.depth,
+                node: beam.node,
+            };
+            self.follow_mode_ray(ray, beam.entry, cx, optics, w, st, sink);
+        }
+    }
+
+    /// Split one beam by the facets it reaches: at each, the light leaving is an exit beam
+    /// and the light reflected goes on in each mode.
+    fn split_mode_beam<S: ExitSink>(
+        &self,
+        beam: ModeBeam,
+        cx: &Ctx,
+        optics: &Optics,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) {
+        st.beams += 1;
+        let t = beam.wave.ray;
+        let Some((e1, e2, sum)) = self.tile(beam.start, beam.len, t, beam.facet, w, st) else {
+            st.cut_off += beam.power;
+            return;
+        };
+        let f = beam.facet as usize;
+        let (nf, of) = (self.normals[f], self.offsets[f]);
+        let map = beam.map.slide(t, nf, of);
+        let tau = if optics.absorbing {
+            beam.tau.slide_weighted(t, nf, of, beam.alpha)
+        } else {
+            beam.tau
+        };
+        for ci in 0..w.children.len() {
+            let ch = w.children[ci];
+            let g = ch.facet as usize;
+            let n = self.normals[g];
+            w.lift(ch, e1, e2, t, n, self.offsets[g], n.dot(t));
+            w.foot.clear();
+            if cx.want_fp {
+                w.foot.extend(w.cur.iter().map(|&x| map.apply(x)));
+            }
+            let node = w.node(cx, beam.node, g);
+            let keep = if optics.absorbing {
+                w.phi.clear();
+                w.phi.extend(w.cur.iter().map(|&x| -tau.at(x)));
+                exp_mean_planar(&w.cur, n, &w.phi)
+            } else {
+                1.0
+            };
+            let pc = beam.power * (ch.area / sum);
+            let reflected = self.cross_mode(
+                &beam.wave,
+                g,
+                pc,
+                keep,
+                (beam.entry, beam.depth, false, false, node),
+                cx,
+                optics,
+                w,
+                st,
+                sink,
+            );
+            let merge = merged(&reflected, cx, optics);
+            for (wave, pr) in merge
+                .map_or(reflected, |m| [Some(m), None])
+                .into_iter()
+                .flatten()
+            {
+                let next = ModeBeam {
+                    wave,
+                    power: pr,
+                    alpha: optics.alpha(&wave),
+                    facet: g as u32,
+                    entry: beam.entry,
+                    depth: beam.depth + 1,
+                    node,
+                    start: 0,
+                    len: 0,
+                    map,
+                    tau,
+                };
+                self.continue_mode_beam(next, merge.is_some(), cx, optics, w, st, sink);
+            }
+        }
+    }
+
+    /// Light of power `p` in `wave` crossing facet `g`: the light leaving (times `keep`, the
+    /// share left after absorption) handed to `sink` with footprint `w.foot`, and the
+    /// reflected light of each mode returned (`None` for a mode that is not reflected).
+    /// `origin` is (entry facet, reflections so far, narrow, late, node).
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn cross_mode<S: ExitSink>(
+        &self,
+        wave: &Wave,
+        g: usize,
+        p: f64,
+        keep: f64,
+        origin: (u32, u32, bool, bool, u32),
+        cx: &Ctx,
+        optics: &Optics,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) -> [Option<(Wave, f64)>; 2] {
+        let (entry, depth, narrow, late, node) = origin;
+        let Some(m) = optics.crystal.meet(wave, self.normals[g]) else {
+            st.cut_off += p;
+            return [None, None];
+        };
+        let scale = p / (m.reflected[0].1 + m.reflected[1].1 + m.exit_power);
+        if m.exit_power > 0.0 {
+            let unabsorbed = m.exit_power * scale;
+            let power = unabsorbed * keep;
+            st.absorbed += unabsorbed - power;
+            let stokes = if cx.pol {
+                m.exit * (scale * keep)
+            } else {
+                DVec4::new(power, 0.0, 0.0, 0.0)
+            };
+            let e = ExitBeam {
+                direction: m.exit_dir,
+                power,
+                unabsorbed,
+                stokes,
+                axis: m.axis,
+                entry_facet: entry as usize,
+                exit_facet: g,
+                reflections: depth,
+                external: false,
+                narrow,
+                late,
+                mode: Some(wave.mode),
+                node,
+                sym: 0,
+            };
+            st.exits += 1;
+            sink.exit(&e, &w.foot);
+        }
+        m.reflected
+            .map(|(wr, r)| (r > 0.0).then_some((wr, r * scale)))
+    }
+
+    /// Follow a narrow beam as rays from `ray.x`: at each facet the light leaving is an exit
+    /// beam with the narrow beam's footprint (`w.foot`), and each mode's reflected ray goes on
+    /// until its power falls below the floor (the threshold, or the ray floor of the narrow
+    /// beam's power) or past the depth limit, where it is cut off.
+    #[allow(clippy::too_many_arguments)]
+    fn follow_mode_ray<S: ExitSink>(
+        &self,
+        ray: ModeRay,
+        entry: u32,
+        cx: &Ctx,
+        optics: &Optics,
+        w: &mut Work,
+        st: &mut TraceStats,
+        sink: &mut S,
+    ) {
+        st.rays += 1;
+        let p0 = ray.power;
+        st.ray_power += p0;
+        let floor = cx.threshold.max(cx.ray_floor * p0);
+        w.mode_rays.clear();
+        w.mode_rays.push(ray);
+        while let Some(r) = w.mode_rays.pop() {
+            let t = r.wave.ray;
+            let Some((g, s)) = self.exit_facet(r.x, t, r.facet as usize) else {
+                st.cut_off += r.power;
+                continue;
+            };
+            let s = s.max(0.0);
+            let x = r.x + t * s;
+            let tau = r.tau + r.alpha * s;
+            st.ray_segments += 1;
+            let node = w.node(cx, r.node, g);
+            let keep = if optics.absorbing { (-tau).exp() } else { 1.0 };
+            let origin = (entry, r.depth, true, r.power <= 0.5 * p0, node);
+            let reflected =
+                self.cross_mode(&r.wave, g, r.power, keep, origin, cx, optics, w, st, sink);
+            let depth = r.depth + 1;
+            // A mode too weak to be followed on its own stays with the other mode's ray (its
+            // power added, its path that ray's): the ray's tree keeps at most 1/mode_floor
+            // branches.
+            let reflected = match reflected {
+                [Some(a), Some(b)] if a.1.min(b.1) < optics.mode_floor * p0 => {
+                    let (keep_a, sum) = (a.1 >= b.1, a.1 + b.1);
+                    if keep_a {
+                        [Some((a.0, sum)), None]
+                    } else {
+                        [None, Some((b.0, sum))]
+                    }
+                }
+                other => other,
+            };
+            // The extraordinary ray first on the stack: the ordinary one is followed first.
+            for (wave, pr) in reflected.into_iter().rev().flatten() {
+                if pr.is_nan() || pr < floor || depth > cx.max_depth {
+                    st.cut_off += pr.max(0.0);
+                    if pr >= cx.threshold && depth <= cx.max_depth {
+                        st.ray_closed += pr;
+                    }
+                    continue;
+                }
+                w.mode_rays.push(ModeRay {
+                    x,
+                    wave,
+                    power: pr,
+                    alpha: optics.alpha(&wave),
+                    tau,
+                    facet: g as u32,
+                    depth,
+                    node,
+                });
+            }
+        }
+    }
+}
