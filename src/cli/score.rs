@@ -456,7 +456,7 @@ mod tests {
             &cfg,
             &[("tolkowsky".into(), s.clone()), ("gia-reference".into(), s)],
         );
-        assert_eq!(t.lines().count(), 12);
+        assert_eq!(t.lines().count(), 13);
         assert!(t.lines().nth(1).unwrap().contains("gia-reference") && t.contains("0.2500"));
     }
 
