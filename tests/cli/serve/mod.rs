@@ -10,6 +10,7 @@ mod browser;
 mod colour;
 mod fuzz;
 mod plan;
+mod scores;
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
