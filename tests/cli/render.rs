@@ -119,6 +119,8 @@ fn fire_and_tilt_record_their_pose_and_value() {
     );
     let j = json(&p.join("f.json"));
     assert!(j["placement_fire"].as_f64().unwrap() > 0.0, "{j}");
+    // One placement of the lights is not the score's fire, and is not called so.
+    assert!(j.get("fire").is_none(), "{j}");
     assert_eq!(j["tilt_deg"], 10.0);
     assert_eq!(j["azimuth_deg"], 45.0);
     assert!(j.get("aset").is_none());
