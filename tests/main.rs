@@ -3,3 +3,4 @@
 
 mod cli;
 mod layout;
+mod readme;

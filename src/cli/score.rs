@@ -138,17 +138,18 @@ pub fn to_json(
 /// The table printed by `facetlab score`: one row per score, one column per cut.
 pub fn table(config: &ScoreConfig, results: &[(String, Scores)]) -> String {
     type Row = (&'static str, fn(&Scores) -> f64);
-    let rows: [Row; 10] = [
+    let rows: [Row; 11] = [
         ("overhead light return", |s| s.overhead_light_return),
         ("brilliance (ISO+COS)/2", |s| s.brilliance),
         ("  brilliance ISO", |s| s.brilliance_iso),
         ("  brilliance COS", |s| s.brilliance_cos),
         ("fire", |s| s.fire),
         ("scintillation", |s| s.scintillation),
-        ("ASET blue 75-90°", |s| s.aset.blue),
+        ("ASET blue 75-80°", |s| s.aset.blue),
         ("ASET red 45-75°", |s| s.aset.red),
         ("ASET green 0-45°", |s| s.aset.green),
         ("ASET leak <0°", |s| s.aset.leak),
+        ("ASET port 80-90°", |s| s.aset.port),
     ];
     let label_w = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
     let col_w = results
@@ -440,7 +441,7 @@ mod tests {
         ] {
             assert!(v[k].is_number(), "{k} in {one}");
         }
-        for k in ["blue", "red", "green", "leak"] {
+        for k in ["blue", "red", "green", "leak", "port"] {
             assert!(v["aset"][k].is_number(), "aset.{k}");
         }
         for k in ["tilt_deg", "azimuth_deg", "iso", "cos"] {
@@ -464,7 +465,7 @@ mod tests {
             &cfg,
             &[("tolkowsky".into(), s.clone()), ("gia-reference".into(), s)],
         );
-        assert_eq!(t.lines().count(), 12);
+        assert_eq!(t.lines().count(), 13);
         assert!(t.lines().nth(1).unwrap().contains("gia-reference") && t.contains("0.2500"));
     }
 

@@ -14,7 +14,7 @@
 //!
 //! **JSON** (`--json FILE`, written atomically). One cut without `--rotate`: a single object
 //! with the keys of a [`Tally`] (`photons_shot`, `photons_hit`,
-//! `face_categories.{lt45,45_90,90_135,gt135}`, `light_return`, `absorbed`, `depth_limited`,
+//! `face_categories.{lt45,45_90,90_135,gt135}`, `thesis_light_return`, `absorbed`, `depth_limited`,
 //! `exit_angle_cdf` (181 values), `photons_per_second`, their `*_stderr`, `exits_per_facet`,
 //! `cut`, `light`, `light_angle`, … — see [`Tally`]) plus `settings` (the
 //! run's flags as understood). Several cuts or `--rotate`: `{"settings": {...}, "results":
@@ -508,7 +508,7 @@ fn print_table(set: &Settings, results: &[Vec<Tally>]) {
             for (k, label) in CATEGORY_LABELS.iter().enumerate() {
                 row(&format!("exit faces {label}"), &|t| pct(t.category(k)));
             }
-            row("light return (upward)", &|t| pct(t.light_return()));
+            row("thesis light return (up)", &|t| pct(t.light_return()));
             row("absorbed", &|t| pct(t.absorbed()));
             row("depth-limited", &|t| pct(t.depth_limited()));
             row("median exit angle", &|t| {
@@ -536,7 +536,9 @@ fn print_table(set: &Settings, results: &[Vec<Tally>]) {
                     "exit faces < 45°",
                     &(|t: &Tally| pct(t.category(0))) as &dyn Fn(&Tally) -> String,
                 ),
-                ("light return (upward)", &|t: &Tally| pct(t.light_return())),
+                ("thesis light return (up)", &|t: &Tally| {
+                    pct(t.light_return())
+                }),
             ] {
                 println!("{}", header(title));
                 for (i, a) in photon::ROTATION_ANGLES.iter().enumerate() {
@@ -760,7 +762,7 @@ mod tests {
         }
         for k in [
             "photons_hit",
-            "light_return",
+            "thesis_light_return",
             "absorbed",
             "depth_limited",
             "photons_per_second",

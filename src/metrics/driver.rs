@@ -266,6 +266,7 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
             red: a[1] / at,
             green: a[2] / at,
             leak: a[3] / at,
+            port: a[4] / at,
         }
     } else {
         Aset::default()

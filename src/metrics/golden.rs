@@ -26,7 +26,7 @@ use crate::testkit::tolkowsky;
 const TOL: f64 = 1e-6;
 
 /// The scores in a fixed order, with their names.
-fn fields(s: &Scores) -> [(&'static str, f64); 10] {
+fn fields(s: &Scores) -> [(&'static str, f64); 11] {
     [
         ("brilliance", s.brilliance),
         ("brilliance_iso", s.brilliance_iso),
@@ -37,18 +37,19 @@ fn fields(s: &Scores) -> [(&'static str, f64); 10] {
         ("aset.red", s.aset.red),
         ("aset.green", s.aset.green),
         ("aset.leak", s.aset.leak),
+        ("aset.port", s.aset.port),
         ("overhead_light_return", s.overhead_light_return),
     ]
 }
 
 /// Score the preset under `cfg`; print the values when `FACETLAB_PRINT_GOLDEN` is set; assert
 /// each equals `pinned` within [`TOL`].
-fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 10]) {
+fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 11]) {
     let s = score(&tolkowsky(), cfg);
     super::tests::check_ranges(constant, &s);
     let got = fields(&s);
     if std::env::var_os("FACETLAB_PRINT_GOLDEN").is_some() {
-        let mut out = format!("const {constant}: [f64; 10] = [\n");
+        let mut out = format!("const {constant}: [f64; 11] = [\n");
         for (name, v) in &got {
             out += &format!("    {v:.12}, // {name}\n");
         }
@@ -68,30 +69,32 @@ fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 10]) {
 }
 
 /// Default [`ScoreConfig`]: diamond, polarization on, no head shadow.
-const TOLKOWSKY_DEFAULT: [f64; 10] = [
+const TOLKOWSKY_DEFAULT: [f64; 11] = [
     0.777931357457, // brilliance
     0.884305341885, // brilliance_iso
     0.671557373029, // brilliance_cos
     0.740731073265, // fire
     0.599534973043, // scintillation
-    0.227448515839, // aset.blue
+    0.102376132641, // aset.blue
     0.499176332909, // aset.red
     0.197588644352, // aset.green
     0.075786506899, // aset.leak
+    0.125072383199, // aset.port
     0.924634029256, // overhead_light_return
 ];
 
 /// Cubic zirconia, polarization off, a 15° head shadow; the rest default.
-const TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15: [f64; 10] = [
+const TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15: [f64; 11] = [
     0.623154840245, // brilliance
     0.709990902468, // brilliance_iso
     0.536318778023, // brilliance_cos
     1.129757106136, // fire
     0.512784591410, // scintillation
-    0.256105151810, // aset.blue
+    0.023905361445, // aset.blue
     0.554046132440, // aset.red
     0.153027602524, // aset.green
     0.036821113226, // aset.leak
+    0.232199790365, // aset.port
     0.963073970003, // overhead_light_return
 ];
 

@@ -3,10 +3,11 @@
 
 use serde::{Deserialize, Serialize};
 
-/// ASET-style shares of the face-up view; they add up to 1.
+/// ASET-style shares of the face-up view, as the ASET picture ([`crate::render::Light::Aset`])
+/// counts them with its default port ([`crate::render::PORT_DEG`], 10°); they add up to 1.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Aset {
-    /// Light from 75–90° elevation.
+    /// Light from 75–90° elevation, outside the viewer's port.
     pub blue: f64,
     /// Light from 45–75° elevation.
     pub red: f64,
@@ -14,6 +15,10 @@ pub struct Aset {
     pub green: f64,
     /// Light from below the horizon (seen through the stone).
     pub leak: f64,
+    /// The viewer's dark port: light from within [`crate::render::PORT_DEG`] of the zenith,
+    /// which a real ASET shows black (blue + port is all of 75–90°).
+    #[serde(default)]
+    pub port: f64,
 }
 
 /// Light return of one pose of the brilliance average: the mean of the pose's ISO and COS

@@ -7,9 +7,10 @@ use super::fire::{FireLattice, Reach};
 use super::symmetry::OrbitCoverage;
 use crate::beam::{ExitBeam, ExitSink, Frame, Medium, Stone, TraceOptions, TraceStats};
 use crate::geometry::{clip2d, Polyhedron};
-use crate::render::lighting::{aset_bins, Lighting};
+use crate::render::lighting::{aset_shares, Lighting};
 use crate::render::raster::{Coverage, Raster};
 use crate::render::Tilt;
+use crate::render::PORT_DEG;
 use glam::{DMat3, DVec2};
 
 /// One backward trace from the viewer at one pose and index, and what to measure on it.
@@ -65,7 +66,7 @@ pub(super) struct PoseResult {
     pub(super) up: f64,
     pub(super) iso: f64,
     pub(super) cos: f64,
-    pub(super) aset: [f64; 4],
+    pub(super) aset: [f64; 5],
     /// The same sums over the late exits of narrow beams' rays only ([`ExitBeam::late`];
     /// `traced` is their power), for the closure of the rays' stopped power.
     late: Sums,
@@ -80,7 +81,7 @@ struct Sums {
     up: f64,
     iso: f64,
     cos: f64,
-    aset: [f64; 4],
+    aset: [f64; 5],
 }
 
 impl PoseResult {
@@ -166,7 +167,7 @@ impl ExitSink for PoseSink<'_> {
             r.traced += p;
             let up = if w.z > 0.0 { p } else { 0.0 };
             r.up += up;
-            let b = aset_bins(w);
+            let b = aset_shares(w, PORT_DEG);
             for (acc, x) in r.aset.iter_mut().zip(b) {
                 *acc += p * x;
             }

@@ -68,6 +68,7 @@ impl BeamEvaluator {
             ("aset_red".into(), s.aset.red),
             ("aset_green".into(), s.aset.green),
             ("aset_leak".into(), s.aset.leak),
+            ("aset_port".into(), s.aset.port),
         ];
         if let Some(c) = s.colour {
             set.extra.extend([

@@ -161,7 +161,7 @@ pub struct PhotonPath {
 /// | `light` | the light's description; `light_angle`: rotation angle in degrees or null |
 /// | `photons_shot`, `photons_hit` | photons shot from the light, photons that hit the stone |
 /// | `face_categories.{lt45,45_90,90_135,gt135}` | share leaving through facets whose outward normal is < 45°, 45–90° (90° included), 90–135°, > 135° from up |
-/// | `light_return` | share leaving with an upward direction (z > 0) |
+/// | `thesis_light_return` | the thesis's light return: share of the photons that hit leaving with an upward direction (z > 0), under this light, absorption and depth (not `score`'s `overhead_light_return`) |
 /// | `absorbed`, `depth_limited` | share absorbed, share stopped by the depth limit |
 /// | `exited` | share that left the stone (= the sum of the four categories) |
 /// | `*_stderr` | the standard error of each share, sqrt(p(1 − p)/n) |
@@ -335,7 +335,7 @@ impl Serialize for Tally {
             &Cats([cats[0].1, cats[1].1, cats[2].1, cats[3].1]),
         )?;
         for (key, (v, e)) in [
-            ("light_return", self.light_return()),
+            ("thesis_light_return", self.light_return()),
             ("absorbed", self.absorbed()),
             ("depth_limited", self.depth_limited()),
             ("exited", self.exited()),

@@ -212,7 +212,7 @@ impl Figure for Rotation<'_> {
             chart.draw_series(top.iter().map(|p| Circle::new(*p, 5, c.filled())))?;
             chart
                 .draw_series(DashedLineSeries::new(ret.clone(), 10, 6, c.stroke_width(2)))?
-                .label(format!("{name}: light return (upward)"))
+                .label(format!("{name}: thesis light return (up)"))
                 .legend(line_key(c.stroke_width(2), 8));
             chart.draw_series(ret.iter().map(|p| TriangleMarker::new(*p, 6, c.filled())))?;
         }

@@ -103,7 +103,10 @@ pub struct Stats {
     pub mean: f64,
     /// ASET shares (ASET pictures only).
     pub aset: Option<AsetShares>,
-    /// Fire of the picture ([`fire_of`] over its band images; fire pictures only).
+    /// Fire of the picture ([`fire_of`] over its band images; fire pictures only): the fire
+    /// of this one placement of the lights, named `placement_fire` in files (the score's
+    /// `fire` averages the placements of [`crate::metrics::fire_placements`]).
+    #[serde(rename = "placement_fire", alias = "fire")]
     pub fire: Option<f64>,
     /// The colour of a coloured stone's picture (a body colour under a grey light).
     pub colour: Option<ColourStats>,

@@ -2,7 +2,7 @@
 //! palettes, and each one's channel values for light arriving from a direction, over the
 //! radiance functions of [`lighting`](super::lighting).
 
-use super::lighting::{self, aset_bins, soft_above, Lighting};
+use super::lighting::{self, aset_shares, soft_above, Lighting};
 use crate::error::{Error, Result};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -170,15 +170,7 @@ impl Light {
                 ([v, 0.0, 0.0, 0.0, 0.0], v)
             }
             Light::Aset => {
-                let b = aset_bins(w);
-                let head = light.head(w);
-                let s = [
-                    b[0] * head,
-                    b[1] * head,
-                    b[2] * head,
-                    b[3],
-                    (1.0 - head) * (1.0 - b[3]),
-                ];
+                let s = aset_shares(w, light.head_shadow_deg);
                 (s, s[0] + s[1] + s[2])
             }
             Light::IdealScope => {

@@ -224,6 +224,27 @@ pub fn aset_bins(w: DVec3) -> [f64; 4] {
     }
 }
 
+/// The ASET's five shares of one direction, as its picture and the scores both count them:
+/// [`aset_bins`] with the viewer's dark port (a cone of half-angle `port_deg` around the
+/// zenith, soft by ±[`EDGE_DEG`]) taken out of the sky's bins: blue, red, green, leak, port.
+/// They add up to 1; with no port (`port_deg` ≤ 0) blue is all of 75–90°.
+#[inline]
+pub fn aset_shares(w: DVec3, port_deg: f64) -> [f64; 5] {
+    let b = aset_bins(w);
+    let lit = if port_deg <= 0.0 {
+        1.0
+    } else {
+        soft_above(90.0 - elevation_deg(w), port_deg)
+    };
+    [
+        b[0] * lit,
+        b[1] * lit,
+        b[2] * lit,
+        b[3],
+        (1.0 - lit) * (1.0 - b[3]),
+    ]
+}
+
 #[inline]
 fn aset_bins_exact(w: DVec3) -> [f64; 4] {
     let e = elevation_deg(w);

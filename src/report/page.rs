@@ -132,17 +132,20 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
                 Light::Aset => {
                     let a = img.stats.aset.unwrap_or_default();
                     format!(
-                        "ASET: red {:.0} %, blue {:.0} %, green {:.0} %, leak {:.0} %",
-                        100.0 * a.red,
+                        "ASET: blue {:.1} %, red {:.1} %, green {:.1} %, leak {:.1} %, port {:.1} %",
                         100.0 * a.blue,
+                        100.0 * a.red,
                         100.0 * a.green,
-                        100.0 * a.leak
+                        100.0 * a.leak,
+                        100.0 * a.port
                     )
                 }
                 _ => format!(
-                    "Fire under spot lights (exposure ×{}): {:.2}",
+                    "One placement of the spot lights (exposure ×{}): placement fire {:.2} (fire, over {} placements: {:.2})",
                     exposure(*light),
-                    img.stats.fire.unwrap_or(0.0)
+                    img.stats.fire.unwrap_or(0.0),
+                    o.score.fire_placements,
+                    c.scores.fire
                 ),
             };
             let _ = write!(

@@ -55,7 +55,9 @@ fn one_cut_and_three_side_by_side_with_statistics() {
     for k in ["tilt_deg", "azimuth_deg", "elapsed_s", "cut_off", "exits"] {
         assert!(j[k].is_number(), "{k}: {j}");
     }
-    assert!(j.get("aset").is_none() && j.get("fire").is_none() && j.get("frames").is_none());
+    assert!(
+        j.get("aset").is_none() && j.get("placement_fire").is_none() && j.get("frames").is_none()
+    );
 
     // Three cuts under ASET: three panels wide, an array of records whose shares sum to 1.
     let out = ok(
@@ -116,7 +118,9 @@ fn fire_and_tilt_record_their_pose_and_value() {
         ],
     );
     let j = json(&p.join("f.json"));
-    assert!(j["fire"].as_f64().unwrap() > 0.0, "{j}");
+    assert!(j["placement_fire"].as_f64().unwrap() > 0.0, "{j}");
+    // One placement of the lights is not the score's fire, and is not called so.
+    assert!(j.get("fire").is_none(), "{j}");
     assert_eq!(j["tilt_deg"], 10.0);
     assert_eq!(j["azimuth_deg"], 45.0);
     assert!(j.get("aset").is_none());

@@ -20,13 +20,14 @@
 //! given), `light`, `size` (pixels per side), `mean` (the picture's mean over the stone's
 //! outline relative to a white diffuser: the pose's brilliance for iso and cos, the returned
 //! share for idealscope, luminance for fire), `aset.{blue,red,green,leak,port}` (ASET shares,
-//! summing to 1; aset only), `fire` (saturated light in percent; fire only), `tilt_deg`,
+//! summing to 1; aset only), `placement_fire` (saturated light in percent under this one
+//! placement of the lights, not `score`'s `fire`, which averages 17; fire only), `tilt_deg`,
 //! `azimuth_deg` (the pose), `head_shadow_deg` (in use), `material`, `ri` (null unless
 //! `--ri`), `polarization`, `exposure`, `cut_off` (share of light below the tracer's
 //! thresholds), `exits` (exit beams drawn), `elapsed_s` (rendering time of this cut, all
 //! frames), `output` (the PNG written). With `--rock`: `rock_deg` and `frames`, one object per
-//! frame with `frame`, `tilt_deg`, `azimuth_deg`, `mean`, `aset`, `fire`, `cut_off`, `exits`,
-//! `elapsed_s`; the top-level statistics are frame 0's (the centre of the rock).
+//! frame with `frame`, `tilt_deg`, `azimuth_deg`, `mean`, `aset`, `placement_fire`, `cut_off`,
+//! `exits`, `elapsed_s`; the top-level statistics are frame 0's (the centre of the rock).
 
 mod photo;
 
@@ -256,8 +257,9 @@ pub struct FrameJson {
     /// ASET shares (aset only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub aset: Option<render::AsetShares>,
-    /// Fire in percent (fire only).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// Fire of this one placement of the spot lights, in percent (fire only): `placement_fire`,
+    /// not the score's `fire`, which averages the lights' placements.
+    #[serde(rename = "placement_fire", skip_serializing_if = "Option::is_none")]
     pub fire: Option<f64>,
     /// Face-up colour of a coloured stone (L*, C*, h°, spread, extinction, windowing).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -303,8 +305,9 @@ pub struct CutJson {
     /// ASET shares (aset only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub aset: Option<render::AsetShares>,
-    /// Fire in percent (fire only).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// Fire of this one placement of the spot lights, in percent (fire only): `placement_fire`,
+    /// not the score's `fire`, which averages the lights' placements.
+    #[serde(rename = "placement_fire", skip_serializing_if = "Option::is_none")]
     pub fire: Option<f64>,
     /// Colour of a coloured stone's picture (a body colour under a grey light): `l`, `c`,
     /// `h_deg` (CIELAB L*, C*, h° of the mean colour), `l_spread` (standard deviation of the
@@ -376,7 +379,9 @@ fn stats_lines_of_light(light: Light, s: &Stats) -> Vec<String> {
             ),
             format!("leak {:.1}, port {:.1} %", 100.0 * a.leak, 100.0 * a.port),
         ],
-        (Light::Fire, _, Some(f)) => vec![format!("fire {f:.2}, mean {}", pct(s.mean))],
+        (Light::Fire, _, Some(f)) => {
+            vec![format!("placement fire {f:.2}, mean {}", pct(s.mean))]
+        }
         (Light::IdealScope, _, _) => vec![format!("returned {}", pct(s.mean))],
         (l, _, _) => vec![format!("{} mean {}", l.name(), pct(s.mean))],
     }
@@ -412,7 +417,7 @@ fn summary(light: Light, s: &Stats) -> String {
             pct(a.leak),
             pct(a.port)
         ),
-        (Light::Fire, _, Some(f)) => format!("fire {f:.3}, mean {}", pct(s.mean)),
+        (Light::Fire, _, Some(f)) => format!("placement fire {f:.3}, mean {}", pct(s.mean)),
         (Light::IdealScope, _, _) => format!("idealscope returned {}", pct(s.mean)),
         (l, _, _) => match s.colour {
             Some(c) => format!(
@@ -782,7 +787,7 @@ mod tests {
             fire: Some(0.75),
             ..s
         };
-        assert!(stats_lines(Light::Fire, &f)[0].starts_with("fire 0.75"));
+        assert!(stats_lines(Light::Fire, &f)[0].starts_with("placement fire 0.75"));
         let s = settings(&parse(&[
             "--light",
             "cos",

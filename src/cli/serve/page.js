@@ -11,10 +11,11 @@ const SCORE_ROWS = [
   ['brilliance_cos', 'COS', true, true],
   ['fire', 'Fire', true],
   ['scintillation', 'Scintillation', true],
-  ['aset.blue', 'ASET blue 75–90°', null],
+  ['aset.blue', 'ASET blue 75–80°', null],
   ['aset.red', 'ASET red 45–75°', null],
   ['aset.green', 'ASET green 0–45°', null],
   ['aset.leak', 'ASET leak <0°', false],
+  ['aset.port', 'ASET port 80–90°', null],
   // A coloured stone's face-up colour (shown when a slot has one).
   ['colour.l', 'Colour L*', null, false, true],
   ['colour.c', 'Colour C*', null, false, true],
@@ -573,8 +574,11 @@ function fillScores() {
     const va = a && a.scores ? get(a.scores, key) : undefined;
     const vb = b && b.scores ? get(b.scores, key) : undefined;
     const ea = $('#score-a-' + id), eb = $('#score-b-' + id), ed = $('#score-d-' + id);
-    ea.textContent = fmtScore(key, va);
-    eb.textContent = fmtScore(key, vb);
+    // Quick scores are coarse estimates of the same scores (fewer poses, bands, placements
+    // and pixels): marked ≈ so a quick 0.89 is not read as the score's fire.
+    const approx = (s, v) => (s && s.quick && typeof v === 'number' ? '≈ ' : '');
+    ea.textContent = approx(a, va) + fmtScore(key, va);
+    eb.textContent = approx(b, vb) + fmtScore(key, vb);
     ea.classList.remove('stale');
     eb.classList.remove('stale');
     ed.className = 'b-col';
@@ -592,7 +596,7 @@ function fillScores() {
   const kinds = ['a', 'b'].map((n) => state.slots[n]).filter((s) => s && s.scores).map((s) => s.quick);
   $('#score-kind').textContent = kinds.length === 0 ? '' : kinds.some((q) => q) ? 'quick' : 'full';
   if (!b) delete $('#scores').dataset.b;
-  $('#score-kind').title = 'quick: fewer poses, bands and pixels while you move a slider; full: the same settings as `facetlab score`';
+  $('#score-kind').title = 'quick (≈): estimates with fewer poses, bands, fire placements and pixels while you move a slider (brilliance within about 0.001, fire and scintillation within tens of percent); full: the scores of `facetlab score`';
 }
 
 function fmtProp(key, unit, v) {
@@ -649,7 +653,7 @@ function caption(name) {
   }
   const st = v.stats || {};
   if (st.colour) parts.push(`· L* ${st.colour.l.toFixed(1)} C* ${st.colour.c.toFixed(1)} h ${st.colour.h_deg.toFixed(0)}°`);
-  if (typeof st.fire === 'number') parts.push(`· face-up fire ${st.fire.toFixed(3)}`);
+  if (typeof st.placement_fire === 'number') parts.push(`· placement fire ${st.placement_fire.toFixed(3)}`);
   else if (!st.aset && typeof st.mean === 'number') parts.push(`· face-up mean ${st.mean.toFixed(3)}`);
   el.textContent = parts.join(' ');
   el.title = el.textContent;

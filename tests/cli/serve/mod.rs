@@ -11,6 +11,7 @@ mod colour;
 mod crystal;
 mod fuzz;
 mod plan;
+mod scores;
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
