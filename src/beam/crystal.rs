@@ -25,6 +25,7 @@
 
 use super::attenuation::exp_mean_planar;
 use super::footprint::{Affine, PathLength};
+use super::mode::{ModeBeam, ModeRay};
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
 use super::symmetry::{clip_halfspace, SymSink};
@@ -32,6 +33,8 @@ use super::work::{Ctx, Work};
 use super::{ExitBeam, Frame, TraceOptions};
 use crate::geometry::clip2d;
 use crate::optics::crystal::{Crystal, Wave};
+use crate::optics::BodyColour;
+use crate::optics::Material;
 use glam::{DVec2, DVec3, DVec4};
 
 /// The stone's optics for one trace at one wavelength.
@@ -62,6 +65,44 @@ impl Medium {
     }
 }
 
+impl Medium {
+    /// The medium a trace of `material` at `wavelength_nm` sees: a crystal with optic axis
+    /// `axis` (in the traced solid's coordinates) when the stone is traced birefringent, its
+    /// absorption per mode `mm_per_unit` times the body colour's α per mm (0 when `absorbing`
+    /// is false); else the ordinary index alone, whose absorption the caller gives in
+    /// [`TraceOptions::absorption`]. A uniaxial stone whose two indices and spectra coincide
+    /// at this wavelength is singly refractive there and is traced so.
+    pub fn of(
+        material: &Material,
+        wavelength_nm: f64,
+        axis: DVec3,
+        mm_per_unit: f64,
+        absorbing: bool,
+    ) -> Medium {
+        let n_o = material.ri(wavelength_nm);
+        if !material.birefringent() {
+            return Medium::Isotropic(n_o);
+        }
+        let n_e = material.ri_e(wavelength_nm);
+        let alpha = |c: Option<&BodyColour>| {
+            if absorbing {
+                c.map_or(0.0, |c| c.alpha(wavelength_nm) * mm_per_unit)
+            } else {
+                0.0
+            }
+        };
+        let (alpha_o, alpha_e) = (alpha(material.colour.as_ref()), alpha(material.colour_e()));
+        if n_e == n_o && alpha_o == alpha_e {
+            return Medium::Isotropic(n_o);
+        }
+        Medium::Uniaxial {
+            crystal: Crystal::new(n_o, n_e, axis),
+            alpha_o,
+            alpha_e,
+        }
+    }
+}
+
 /// A birefringent trace's settings beyond [`Ctx`].
 struct Optics {
     crystal: Crystal,
@@ -82,39 +123,6 @@ impl Optics {
             0.0
         }
     }
-}
-
-/// A beam in one mode waiting to be split; its polygon (on `facet`'s plane) is
-/// `pts[start..start + len]` of the point stack.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct ModeBeam {
-    wave: Wave,
-    /// Power (before absorption).
-    power: f64,
-    /// Absorption per girdle diameter along this beam.
-    alpha: f64,
-    facet: u32,
-    entry: u32,
-    depth: u32,
-    node: u32,
-    start: u32,
-    len: u32,
-    map: Affine,
-    /// Optical depth `Σ αᵢ Lᵢ` from the entry facet over the polygon.
-    tau: PathLength,
-}
-
-/// A narrow beam's ray (or one of the rays it splits into) at `x` on `facet`.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct ModeRay {
-    x: DVec3,
-    wave: Wave,
-    power: f64,
-    alpha: f64,
-    tau: f64,
-    facet: u32,
-    depth: u32,
-    node: u32,
 }
 
 /// Two sibling beams (the two modes one beam splits into) that are both narrow beams: when

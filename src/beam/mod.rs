@@ -35,6 +35,7 @@ mod disc;
 mod exact;
 mod footprint;
 mod interface;
+mod mode;
 mod narrow;
 pub mod reference;
 mod sink;

@@ -1,9 +1,9 @@
 //! The state of one trace: its cleaned settings ([`Ctx`]), a beam waiting to be split
 //! ([`Beam`]) and the working memory reused across beams ([`Work`]).
 
-use super::crystal::{ModeBeam, ModeRay};
 use super::disc::{Fork, Part};
 use super::footprint::{Affine, PathLength};
+use super::mode::{ModeBeam, ModeRay};
 use super::stone::Stone;
 use crate::optics::Stokes;
 use glam::{DVec2, DVec3};

@@ -54,7 +54,9 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
         let (width_mm, width) = stone_width(solid, cfg);
         width_mm / width.max(1e-300)
     };
-    let medium_at = |l: f64, absorbing: bool| cfg.material.medium(l, axis, mm_per_unit, absorbing);
+    let medium_at = |l: f64, absorbing: bool| {
+        crate::beam::Medium::of(&cfg.material, l, axis, mm_per_unit, absorbing)
+    };
     // Fire's bands: the faint ones (far out in the red) take a neighbour's trace.
     let bands = color::traced_bands(cfg.bands.max(1), faint);
     // Distinct traces, each shared by every score that needs it (same pose, same index).

@@ -277,43 +277,6 @@ impl Material {
             .and_then(|u| u.colour_e.as_ref())
             .or(self.colour.as_ref())
     }
-
-    /// The medium a trace at `wavelength_nm` sees: a crystal with optic axis `axis` (in the
-    /// traced solid's coordinates) when the stone is traced birefringent, its absorption
-    /// per mode `mm_per_unit` times the body colour's α per mm (0 when `absorbing` is false);
-    /// else the ordinary index alone, whose absorption the caller gives in
-    /// [`TraceOptions::absorption`](crate::beam::TraceOptions::absorption). A uniaxial stone
-    /// whose two indices and spectra coincide at this wavelength is singly refractive there
-    /// and is traced so.
-    pub fn medium(
-        &self,
-        wavelength_nm: f64,
-        axis: glam::DVec3,
-        mm_per_unit: f64,
-        absorbing: bool,
-    ) -> crate::beam::Medium {
-        let n_o = self.ri(wavelength_nm);
-        if !self.birefringent() {
-            return crate::beam::Medium::Isotropic(n_o);
-        }
-        let n_e = self.ri_e(wavelength_nm);
-        let alpha = |c: Option<&super::body_colour::BodyColour>| {
-            if absorbing {
-                c.map_or(0.0, |c| c.alpha(wavelength_nm) * mm_per_unit)
-            } else {
-                0.0
-            }
-        };
-        let (alpha_o, alpha_e) = (alpha(self.colour.as_ref()), alpha(self.colour_e()));
-        if n_e == n_o && alpha_o == alpha_e {
-            return crate::beam::Medium::Isotropic(n_o);
-        }
-        crate::beam::Medium::Uniaxial {
-            crystal: super::crystal::Crystal::new(n_o, n_e, axis),
-            alpha_o,
-            alpha_e,
-        }
-    }
 }
 
 /// The names under which a material choice reaches [`Material::choose`] (a flag pair such as

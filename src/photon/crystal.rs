@@ -6,39 +6,15 @@
 //! body colour it is absorbed at its mode's rate along that ray (pleochroism). It is chosen
 //! once per chunk: the singly refractive kernel is not touched.
 
+use super::crystal_setup::CrystalSetup;
 use super::kernel::{chunk_seed, two_uniforms, Tracer};
 use super::tally::{Counts, Fate, PhotonPath};
 use super::{Absorption, THESIS_ABSORPTION};
 use crate::geometry::DVec3;
 use crate::optics::crystal::{Crystal, Wave};
-use crate::optics::{Dispersion, Material, Stokes};
+use crate::optics::Stokes;
 use rand::rngs::SmallRng;
 use rand::SeedableRng;
-
-/// What a birefringent trace needs of the material: both indices' dispersion, the optic
-/// axis (in the traced solid's coordinates) and each polarization's absorption.
-pub(crate) struct CrystalSetup {
-    ordinary: Dispersion,
-    extraordinary: Dispersion,
-    axis: DVec3,
-    colour_o: Option<crate::optics::BodyColour>,
-    colour_e: Option<crate::optics::BodyColour>,
-}
-
-impl CrystalSetup {
-    /// The setup of a material traced birefringent (`None` otherwise, or when its two
-    /// indices are one).
-    pub(crate) fn of(m: &Material) -> Option<CrystalSetup> {
-        let u = m.uniaxial.as_ref().filter(|u| u.traced)?;
-        Some(CrystalSetup {
-            ordinary: m.dispersion.clone(),
-            extraordinary: u.extraordinary.clone(),
-            axis: u.axis.vector(),
-            colour_o: m.colour.clone(),
-            colour_e: m.colour_e().cloned(),
-        })
-    }
-}
 
 /// One lane of a birefringent chunk (see the singly refractive kernel's `Lane`).
 struct Lane {

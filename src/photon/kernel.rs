@@ -1,7 +1,7 @@
 //! The per-photon loop.
 
 use super::beam::Beam;
-use super::crystal::CrystalSetup;
+use super::crystal_setup::CrystalSetup;
 use super::reach::Reach;
 use super::solid::TraceSolid;
 use super::tally::{Counts, Fate, PhotonPath};

@@ -45,6 +45,7 @@
 mod absorption;
 mod beam;
 mod crystal;
+mod crystal_setup;
 mod kernel;
 mod reach;
 mod solid;

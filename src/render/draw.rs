@@ -98,7 +98,13 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
             centres
                 .iter()
                 .map(|&l| {
-                    let m = opts.material.medium(l, axis, mm_per_unit, body.is_some());
+                    let m = crate::beam::Medium::of(
+                        &opts.material,
+                        l,
+                        axis,
+                        mm_per_unit,
+                        body.is_some(),
+                    );
                     (m, absorption(l))
                 })
                 .collect()
@@ -215,9 +221,8 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     } else {
         let n = opts.light.channels();
         let (mut mean, mut bins) = (0.0, [0.0; 5]);
-        let medium = opts
-            .material
-            .medium(opts.wavelength_nm, axis, mm_per_unit, false);
+        let medium =
+            crate::beam::Medium::of(&opts.material, opts.wavelength_nm, axis, mm_per_unit, false);
         let layer = Layer::trace(
             &stone,
             &frame,

@@ -468,7 +468,7 @@ mod tests {
                 // Birefringent by default (ruby and sapphire, emerald): the crystal with
                 // its absorption per mode; the photons take the same material.
                 let axis = material.uniaxial.as_ref().unwrap().axis.vector();
-                let medium = material.medium(nm, axis, mm_per_unit, true);
+                let medium = crate::beam::Medium::of(&material, nm, axis, mm_per_unit, true);
                 let beam = overhead_light_return_with(&stone, &medium, &opts);
                 let t = photon::trace(
                     &solid,

@@ -270,7 +270,7 @@ fn beam_and_photon_tracers_agree_per_mode_and_band() {
         let axis = material.uniaxial.as_ref().unwrap().axis.vector();
         for nm in [450.0, 550.0, 650.0] {
             // Beam: straight down over the whole stone, split finely.
-            let medium = material.medium(nm, axis, width_mm, coloured);
+            let medium = crate::beam::Medium::of(&material, nm, axis, width_mm, coloured);
             let opts = TraceOptions {
                 split_threshold: 1e-6,
                 threshold: 1e-10,
@@ -336,7 +336,7 @@ fn beam_and_photon_tracers_agree_per_mode_and_band() {
                 one.uniaxial.as_mut().unwrap().colour_e = None;
                 let t1 = stone.trace_medium(
                     &Frame::overhead(),
-                    &one.medium(nm, axis, width_mm, true),
+                    &crate::beam::Medium::of(&one, nm, axis, width_mm, true),
                     nm,
                     &opts,
                 );
