@@ -74,6 +74,8 @@ struct RoughJson {
     hull_excess: f64,
     size_mm: f64,
     planes: usize,
+    hull_vertices: usize,
+    left_out_mm: f64,
 }
 
 #[derive(Serialize)]
@@ -304,6 +306,13 @@ fn print_summary(run: &Run<'_>) {
         None => String::new(),
     };
     println!("rough {}: {:.3} mm³{hull}", rough.name, rough.volume());
+    if rough.left_out > 0.0 {
+        println!(
+            "  planned in the hull of {} of its vertices, inside the full hull; the farthest vertex left out lies {:.1} µm outside it",
+            rough.hull_vertices,
+            1000.0 * rough.left_out
+        );
+    }
     for (fam, plans) in run.all {
         if let Some(p) = plans.first() {
             println!(
@@ -494,6 +503,8 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
             hull_excess: rough.hull_excess(),
             size_mm: rough.size(),
             planes: rough.solid.facets().len(),
+            hull_vertices: rough.hull_vertices,
+            left_out_mm: rough.left_out,
         },
         material: material.name.clone(),
         density: material.density,

@@ -13,7 +13,7 @@
 
 use super::ball::enclosing_ball;
 use super::config::{Bound, Objective, PlanConfig};
-use super::fit::largest_copy;
+use super::fit::Containment;
 use super::rough::Rough;
 use crate::cut::grade::{estimate, Grade};
 use crate::cut::{family, Cut, CutSpace};
@@ -106,8 +106,7 @@ impl Plan {
 /// The planner for one rough.
 pub struct Planner<'a> {
     rough: &'a Rough,
-    planes: Vec<Plane>,
-    inside: DVec3,
+    containment: Containment,
     frame: DQuat,
     /// The rough's centroid and symmetries about it (distinct plans).
     centre: DVec3,
@@ -275,8 +274,7 @@ impl<'a> Planner<'a> {
     pub fn new(rough: &'a Rough, config: &'a PlanConfig, density: f64) -> Planner<'a> {
         Planner {
             rough,
-            planes: rough.planes(),
-            inside: rough.solid.centroid(),
+            containment: Containment::new(&rough.solid),
             frame: principal_frame(rough.solid.vertices()),
             centre: rough.solid.centroid(),
             symmetries: rough.symmetries(),
@@ -305,7 +303,7 @@ impl<'a> Planner<'a> {
                     steps: 0,
                 }
             }
-            None => largest_copy(&self.planes, &verts, self.inside)?,
+            None => self.containment.largest_copy(&verts)?,
         };
         if fit.scale.is_nan() || fit.scale <= 0.0 {
             return None;

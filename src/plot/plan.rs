@@ -1,6 +1,9 @@
 //! Pictures of a plan: the rough seen from the top (x, y), the front (x, z) and the side
 //! (y, z), orthographic and at one scale, its silhouette grey with its edges, each planned cut
-//! drawn inside as a tinted silhouette with its edges in the cut's series colour.
+//! drawn inside as a tinted silhouette with its edges in the cut's series colour. A rough of
+//! more than [`EDGES_DRAWN`] facets (a scan) shows only its ridges, the edges where its
+//! surface turns by more than [`RIDGE_DEG`]: its thousands of small facets would grey the
+//! picture over and make its SVG megabytes long.
 
 use super::{font, DrawResult, Figure, SERIES};
 use crate::geometry::{DVec2, DVec3, Polyhedron};
@@ -18,6 +21,12 @@ pub struct ThreeViews<'a> {
 }
 
 const PANEL: u32 = 360;
+
+/// A rough with more facets than this is drawn with its ridges only.
+pub const EDGES_DRAWN: usize = 2000;
+
+/// The smallest turn between two facets that makes a ridge, in degrees.
+pub const RIDGE_DEG: f64 = 5.0;
 
 /// A view: its caption and the projection onto the picture plane (right, up).
 type View = (&'static str, fn(DVec3) -> DVec2);
@@ -94,7 +103,15 @@ impl Figure for ThreeViews<'_> {
                     .collect()
             };
             root.draw(&Polygon::new(shadow(self.rough), RGBColor(215, 215, 215)))?;
-            for e in self.rough.edges() {
+            let ridge = RIDGE_DEG.to_radians().cos();
+            let facets = self.rough.facets();
+            let every = facets.len() <= EDGES_DRAWN;
+            for e in self.rough.edges().iter().filter(|e| {
+                every || {
+                    let [f, g] = e.facets.map(|k| facets[k].plane.normal);
+                    f.dot(g) < ridge
+                }
+            }) {
                 let (a, b) = (self.rough.vertices()[e.a], self.rough.vertices()[e.b]);
                 root.draw(&PathElement::new(
                     vec![px(a), px(b)],
