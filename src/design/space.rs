@@ -27,7 +27,7 @@ use super::meets::Meet;
 use super::reangle::{adjacency, Reangled, TierModel};
 use super::tiers::{fixed, ANGLE_DECIMALS};
 use crate::cut::{Cut, CutSpace, ParamRange, Unit};
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use crate::geometry::Polyhedron;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
@@ -341,7 +341,7 @@ impl CutSpace for DesignSpace {
             if !(v.is_finite() && r.contains(v)) {
                 return Err(Error::invalid(
                     k.as_str(),
-                    format!("{v} is not an angle in (0, 90) degrees"),
+                    format!("{} is not an angle in (0, 90) degrees", shown(v)),
                 ));
             }
             out.insert(k.clone(), v);
@@ -385,7 +385,7 @@ impl CutSpace for DesignSpace {
                 return Err(Error::invalid(
                     key,
                     format!(
-                        "these angles open the meet {} by {:.2e} W; turn its tiers together, or allow open meets (`open_meets = \"allow\"`)",
+                        "these angles open the meet {} by {:.2e} W; turn its tiers together",
                         self.describe(m),
                         r.gaps[m]
                     ),

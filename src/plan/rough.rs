@@ -3,7 +3,7 @@
 
 use super::ball::Ball;
 use super::mesh::{read_triangles, TriMesh};
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use crate::geometry::{hull, DVec3, FacetPlane, HullOptions, Plane, Polyhedron};
 use glam::{DMat3, DQuat};
 use std::path::Path;
@@ -195,7 +195,7 @@ impl Rough {
                 if !(l.is_finite() && l > 0.0 && extent > 0.0) {
                     return Err(Error::invalid(
                         "--size-mm",
-                        format!("{l} is not a size; give the rough's largest extent in mm, > 0"),
+                        format!("{} is not a size; give the rough's largest extent in mm, > 0", shown(l)),
                     ));
                 }
                 // A mesh in other units: its position means nothing in mm either, so it is

@@ -109,4 +109,38 @@ mod tests {
         let excess = rough.hull_excess();
         assert!(excess > 1e-4 && excess < 0.05, "{excess}");
     }
+
+    /// A scan with more hull vertices than a rough keeps: the hull stops at the budget,
+    /// inside the mesh's, and what it leaves out is what a brute-force check finds.
+    #[test]
+    fn a_large_scan_is_planned_in_a_hull_that_says_what_it_leaves_out() {
+        let mesh = scanned_pebble(64, 1);
+        assert_eq!(mesh.triangles.len(), 8 * 64 * 64);
+        let rough = Rough::from_trimesh("p", "p", mesh.clone(), None).unwrap();
+        assert_eq!(rough.hull_vertices, crate::plan::rough::HULL_VERTICES);
+        assert!(
+            rough.left_out > 0.0 && rough.left_out < 0.01,
+            "{} mm",
+            rough.left_out
+        );
+        let planes = rough.planes();
+        let mut farthest = 0.0f64;
+        for p in mesh.vertices.iter().step_by(5) {
+            let out = planes.iter().map(|q| q.distance(*p)).fold(0.0, f64::max);
+            farthest = farthest.max(out);
+        }
+        assert!(
+            farthest <= rough.left_out * (1.0 + 1e-9),
+            "{farthest} vs {}",
+            rough.left_out
+        );
+        assert!(
+            farthest > 0.5 * rough.left_out,
+            "{farthest} vs {}",
+            rough.left_out
+        );
+        // Inside the mesh's hull, and short of the mesh's volume by about its area times that.
+        let short = 1.0 - rough.volume() / rough.mesh_volume.unwrap();
+        assert!(short > -1e-3 && short < 0.01, "{short}");
+    }
 }

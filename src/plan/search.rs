@@ -28,6 +28,7 @@ use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::collections::{BTreeMap, HashMap};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
 /// Grams per cubic millimetre per (g/cm³), times carats per gram.
@@ -113,6 +114,9 @@ pub struct Planner<'a> {
     symmetries: Vec<DMat3>,
     density: f64,
     config: &'a PlanConfig,
+    /// Raised to stop: the starts not begun are skipped and the rest end at once, and
+    /// [`Planner::plan_family`] returns no plans.
+    stop: Option<&'a AtomicBool>,
 }
 
 /// The rough's frame: vertices' centroid and principal axes (largest spread first), each
@@ -223,6 +227,9 @@ impl Problem<'_> {
     }
 
     fn cost_at(&self, x: &[f64]) -> Option<f64> {
+        if self.planner.stopped() {
+            return None;
+        }
         let rotation = self.rotation(x);
         let built;
         let (cut, grade) = match &self.built {
@@ -280,7 +287,20 @@ impl<'a> Planner<'a> {
             symmetries: rough.symmetries(),
             density,
             config,
+            stop: None,
         }
+    }
+
+    /// The planner, stopped when `stop` is raised (Ctrl-C): a family being planned then ends
+    /// within a few evaluations and gives no plans.
+    pub fn with_stop(mut self, stop: &'a AtomicBool) -> Self {
+        self.stop = Some(stop);
+        self
+    }
+
+    /// Whether the stop flag is raised.
+    pub fn stopped(&self) -> bool {
+        self.stop.is_some_and(|s| s.load(Ordering::SeqCst))
     }
 
     /// The largest copy of `cut` turned by `rotation`: the fit, its carats and objective, and
@@ -441,7 +461,11 @@ impl<'a> Planner<'a> {
         // symmetry of the rough, each round adding its best plan. Not in a ball, where a pose
         // is no choice.
         let apart = ALTERNATIVE_DEG.to_radians();
-        while !out.is_empty() && out.len() < self.config.top && self.rough.ball.is_none() {
+        while !out.is_empty()
+            && out.len() < self.config.top
+            && self.rough.ball.is_none()
+            && !self.stopped()
+        {
             problem.avoid = out
                 .iter()
                 .flat_map(|p| self.symmetries.iter().map(move |g| *g * p.up()))
@@ -469,6 +493,9 @@ impl<'a> Planner<'a> {
             let value = |p: &Plan| self.penalised(p.objective, p.grade);
             out.sort_by(|a, b| value(b).total_cmp(&value(a)));
         }
+        if self.stopped() {
+            return Ok(Vec::new());
+        }
         if out.is_empty() {
             return Err(Error::invalid(
                 "ROUGH",
@@ -487,6 +514,9 @@ impl<'a> Planner<'a> {
         let finals: Vec<Option<(f64, Vec<f64>)>> = starts
             .par_iter()
             .map(|x0| {
+                if self.stopped() {
+                    return None;
+                }
                 let r = self.run_start(problem, x0);
                 done();
                 r
@@ -530,6 +560,25 @@ impl<'a> Planner<'a> {
         let x = res.state.best_param.clone()?;
         Some((res.state.best_cost, x))
     }
+}
+
+/// What a finished plan should tell its user besides its plans: a family none of whose plans
+/// falls in a priced band of a value objective (every plan worth 0, so the search had nothing
+/// to climb and its plans are chance).
+pub fn plan_warnings(config: &PlanConfig, all: &[(String, Vec<Plan>)]) -> Vec<String> {
+    let Objective::Value(table) = &config.objective else {
+        return Vec::new();
+    };
+    all.iter()
+        .filter(|(_, plans)| !plans.is_empty() && plans.iter().all(|p| p.objective <= 0.0))
+        .map(|(fam, plans)| {
+            let heaviest = plans.iter().map(|p| p.carats).fold(0.0, f64::max);
+            format!(
+                "{fam}: no plan falls in a priced band (the heaviest weighs {heaviest:.3} ct; the price table's first priced band starts at {} ct), so every plan is worth 0 and the search had nothing to climb: its plans are chance",
+                crate::error::shown(table.first_priced())
+            )
+        })
+        .collect()
 }
 
 /// A seeded turn: a normalised quaternion of four uniform numbers in [−1, 1).

@@ -87,7 +87,7 @@ mod write;
 mod fixtures;
 
 pub use instructions::{cutting_instructions, CuttingInstructions, CuttingStep};
-pub use read::{parse, read, AscDesign, AscTier};
+pub use read::{parse, read, AscDesign, AscTier, MAX_GEAR, RI_ABOVE, RI_MAX};
 pub use write::write;
 
 /// The index gear used when a file has no `g` line, and by [`write()`] for a cut without a

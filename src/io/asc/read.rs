@@ -11,6 +11,15 @@ use crate::geometry::{facet_normal, FacetPlane, Polyhedron};
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::path::Path;
 
+/// A design's index (`I`) must be above this and at most [`RI_MAX`]: the rule of `--ri`
+/// (`optics::Material::RI_ABOVE` and `RI_MAX`, which the `io` floor cannot import; a test of
+/// the binary holds them equal).
+pub const RI_ABOVE: f64 = 1.0;
+/// The largest index a design may give (see [`RI_ABOVE`]).
+pub const RI_MAX: f64 = 10.0;
+/// The most teeth a gear may have.
+pub const MAX_GEAR: f64 = 1000.0;
+
 /// One `a` line (with its continuation lines) as written in the file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AscTier {
@@ -183,12 +192,14 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
             'g' => {
                 let mut it = rest.split_whitespace();
                 let g = it.next().unwrap_or("");
-                d.gear = number(g).filter(|v| *v != 0.0).ok_or_else(|| {
-                    Error::parse(
-                        at(line),
-                        format!("gear {g:?} is not allowed; write `g TEETH OFFSET` with a non-zero tooth count, e.g. `g 96 0.0`"),
-                    )
-                })?;
+                d.gear = number(g)
+                    .filter(|v| *v != 0.0 && v.fract() == 0.0 && v.abs() <= MAX_GEAR)
+                    .ok_or_else(|| {
+                        Error::parse(
+                            at(line),
+                            format!("gear {g:?} is not allowed; write `g TEETH OFFSET` with a whole, non-zero tooth count up to {MAX_GEAR} (negative: clockwise), e.g. `g 96 0.0`"),
+                        )
+                    })?;
                 if let Some(o) = it.next() {
                     d.gear_offset = number(o).ok_or_else(|| {
                         Error::parse(
@@ -219,12 +230,17 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
             }
             'I' => {
                 let v = rest.split_whitespace().next().unwrap_or("");
-                d.ri = Some(number(v).filter(|n| *n > 0.0).ok_or_else(|| {
-                    Error::parse(
-                        at(line),
-                        format!("refractive index {v:?} is not a positive number, e.g. `I 1.54`"),
-                    )
-                })?);
+                // The rule of `--ri`: an index in (1, 10].
+                d.ri = Some(
+                    number(v)
+                        .filter(|n| *n > RI_ABOVE && *n <= RI_MAX)
+                        .ok_or_else(|| {
+                            Error::parse(
+                                at(line),
+                                format!("refractive index {v:?} is not allowed; give an index in ({RI_ABOVE}, {RI_MAX}], as for --ri, e.g. `I 1.54`"),
+                            )
+                        })?,
+                );
             }
             'H' => d.title.push(rest.to_string()),
             'F' => d.footnotes.push(rest.to_string()),
@@ -233,6 +249,20 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
     }
     if let Some(o) = open.take() {
         d.tiers.push(parse_tier(&o, source)?);
+    }
+    // Indices lie on the gear: 0 (the same as the gear's count) to the count of teeth.
+    let teeth = d.gear.abs();
+    for t in &d.tiers {
+        if let Some((i, _)) = t.indices.iter().find(|(i, _)| !(0.0..=teeth).contains(i)) {
+            return Err(Error::parse(
+                at(t.line),
+                format!(
+                    "index {} is not on the gear; allowed 0 to {teeth} on gear {}",
+                    crate::error::shown(*i),
+                    d.gear
+                ),
+            ));
+        }
     }
     let (planes, instructions) = planes_of(&d);
     d.planes = planes;
