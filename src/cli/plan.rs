@@ -31,7 +31,7 @@ use facetlab::plan::config::check_families;
 use facetlab::plan::{
     load_rough, plan_warnings, Objective, Plan, PlanConfig, Planner, Rough, CRYSTALS,
 };
-use facetlab::plot::plan::ThreeViews;
+use facetlab::plot::plan::{Overview, Placed, ThreeViews};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -425,7 +425,7 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
     let mut score_cfg = ScoreConfig::fast();
     score_cfg.material = material.clone();
     let mut plans_json = Vec::new();
-    let mut best: Vec<(Polyhedron, String)> = Vec::new();
+    let mut best: Vec<(Polyhedron, String, glam::DQuat)> = Vec::new();
     let mut scene_solids: Vec<(String, Polyhedron)> = Vec::new();
     for (fam, plans) in all {
         for (k, p) in plans.iter().enumerate() {
@@ -448,7 +448,7 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
             write(
                 dir,
                 &format!("{stem}.asc"),
-                facetlab::io::asc::write(&design, 96).as_bytes(),
+                facetlab::io::asc::write_for(&design, 96, material.ri_d()).as_bytes(),
             )?;
             let label = format!(
                 "{stem}: {:.3} ct, yield {:.1} %",
@@ -457,7 +457,11 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
             );
             let views = ThreeViews {
                 rough: &rough.solid,
-                cuts: vec![(&placed, label.clone())],
+                cut: Placed {
+                    solid: &placed,
+                    label: label.clone(),
+                    frame: p.rotation.inverse(),
+                },
                 title: format!("{} in {}", stem, rough.name),
             };
             facetlab::plot::save_to(
@@ -466,7 +470,7 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
                 &dir.join(format!("{stem}-views.svg")),
             )?;
             if k == 0 {
-                best.push((placed.clone(), label));
+                best.push((placed.clone(), label, p.rotation.inverse()));
             }
             let s = score(&p.cut.solid, &score_cfg);
             let (lo, hi) = placed.bounding_box();
@@ -538,9 +542,16 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
         .collect::<Result<_>>()?;
     let page = facetlab::report::plan_page(rough, all, &views, &score_cfg)?;
     write(dir, "report.html", page.as_bytes())?;
-    let overview = ThreeViews {
+    let overview = Overview {
         rough: &rough.solid,
-        cuts: best.iter().map(|(s, l)| (s, l.clone())).collect(),
+        cuts: best
+            .iter()
+            .map(|(s, l, frame)| Placed {
+                solid: s,
+                label: l.clone(),
+                frame: *frame,
+            })
+            .collect(),
         title: format!("best plan of each family in {}", rough.name),
     };
     facetlab::plot::save_to(

@@ -390,14 +390,6 @@ pub fn settings_line(opts: &RenderOptions, exposure: f64) -> Option<String> {
     (!parts.is_empty()).then(|| parts.join(", "))
 }
 
-fn tilt_text(t: Tilt) -> String {
-    if t.tilt_deg == 0.0 {
-        "face-up".to_string()
-    } else {
-        format!("tilt {:.1}° toward {}°", t.tilt_deg, t.azimuth_deg)
-    }
-}
-
 /// The one-line summary printed per cut.
 fn summary(light: Light, s: &Stats) -> String {
     match (light, s.aset, s.fire) {
@@ -526,7 +518,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
                 lines.extend(stats_lines(light, &img.stats));
                 lines.extend(note.clone());
                 if show_tilt {
-                    lines.push(tilt_text(tilt));
+                    lines.push(render::pose::describe(light, tilt));
                 }
                 pictures.push((rgb, lines));
                 bar.inc(1);
@@ -605,10 +597,13 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             colour: r.colour,
             ..Stats::default()
         };
-        let pose = tilt_text(Tilt {
-            tilt_deg: r.tilt_deg,
-            azimuth_deg: r.azimuth_deg,
-        });
+        let pose = render::pose::describe(
+            light,
+            Tilt {
+                tilt_deg: r.tilt_deg,
+                azimuth_deg: r.azimuth_deg,
+            },
+        );
         let rock = match (&r.frames, s.rock) {
             (Some(fr), Some((deg, n))) => {
                 let lo = fr.iter().map(|f| f.mean).fold(f64::INFINITY, f64::min);

@@ -143,10 +143,10 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
     } else {
         r.best()
     };
-    let mut out = chosen.cut.clone();
-    let mut record = out.record.clone().unwrap_or_default();
-    record.ri = Some((r.to_ri * 1e4).round() / 1e4);
-    out.record = Some(record);
+    for w in r.warnings(chosen) {
+        eprintln!("warning: {w}");
+    }
+    let out = r.file_cut(chosen);
     let bytes: Vec<u8> = match ext.as_str() {
         "toml" => io::spec::write(&out).into_bytes(),
         "asc" => io::asc::write(&out, 0).into_bytes(),
@@ -156,9 +156,10 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
     };
     io::write_atomic(&a.output, &bytes)?;
     println!(
-        "wrote {} (the {} variant)",
+        "wrote {} (the {} variant)\n  its note: {}",
         a.output.display(),
-        chosen.label
+        chosen.label,
+        r.footnote(chosen)
     );
     Ok(())
 }

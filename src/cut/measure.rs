@@ -1,30 +1,39 @@
-//! Proportions measured on a solid, the way a cutter or a grading lab reads them.
+//! Proportions measured on a solid, the way a cutter or a grading lab reads them, and the
+//! ratios GemCad prints under a design.
 //!
 //! Lengths are in the solid's units: the width W of [`super::units`] (a round's girdle
 //! diameter) for generated and imported cuts.
-//! - table: the table's largest width over the outline's largest width (corner to corner for a
-//!   round brilliant);
-//! - girdle: the vertical extent of the girdle facets (normals within 1° of horizontal, see
-//!   [`super::units`]), or 0 for a knife-edge girdle, whose plane is then at the widest vertex;
-//! - crown height: table plane to the girdle top; pavilion depth: girdle bottom to the lowest
-//!   point; total depth: highest to lowest point;
-//! - crown angle: the angle of the crown facet that touches the table (or the top) and reaches
-//!   the girdle (a bezel), else of those reaching lowest (a step cut's top step), that faces
-//!   most squarely across the width (of a fancy shape, the bezel or step on its long side;
-//!   the largest of such); pavilion angle: the same among the pavilion facets that touch the
-//!   bottom (culet, point or keel) and reach the girdle (a main), else reach highest.
-//!   Facets are chosen by geometry alone, never by tier name, so a design measures the same
-//!   from a preset, a `.asc`, an `.obj` or an `.stl`. For free-form designs these are
-//!   heuristics: read the tier list.
+//! - table: GemCad's T/W, the table's extent across the width over W (corner to corner for a
+//!   round brilliant, whose corners lie on x; the `table` of every family). The table is the
+//!   facet holding the stone's top when it is within 2° of level, with the level facets
+//!   joined to it (a split or slightly tilted table); a cut whose top is a point or a steeper
+//!   tier has none (0);
+//! - girdle: the girdle facets' (normals within 1° of horizontal, see [`super::units`])
+//!   vertical extent at their thinnest point around the outline (where a lab measures a
+//!   round's girdle, between bezel and main: every family's `girdle`), or 0 for a knife-edge
+//!   girdle, whose plane is then at the widest vertex;
+//! - crown height: the top to the girdle's top, at that thinnest point; pavilion depth: the
+//!   girdle's bottom there to the lowest point; total depth: highest to lowest point (the
+//!   three add up to it);
+//! - crown angle: the angle of the crown facet that touches the table (or the top) and meets
+//!   the girdle (a bezel); else, with a table, of those touching it that reach lowest (a step
+//!   cut's table step); else, with no table, of those meeting the girdle that reach highest
+//!   (the tier under a pointed or checkered top) — among them the one facing most squarely
+//!   across the width (of a fancy shape, the bezel or step on its long side; the largest of
+//!   such); pavilion angle: the same among the pavilion facets that touch the bottom (culet,
+//!   point or keel) and meet the girdle (a main), else reach highest. Facets steeper than 80°
+//!   are not mains (they stand with the girdle). Facets are chosen by geometry alone, never
+//!   by tier name, so a design measures the same from a preset, a `.asc`, an `.obj` or an
+//!   `.stl`. For free-form designs these are heuristics: read the tier list.
 
-use super::units::{girdle_z, outline_size, outline_width, HORIZONTAL};
+use super::units::{is_girdle, outline_size, HORIZONTAL};
 use crate::geometry::{facet_angle_deg, Polyhedron};
 use serde::Serialize;
 
 /// Measured proportions.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Proportions {
-    /// Table width / outline width.
+    /// Table width across the width / the width W (GemCad's T/W).
     pub table: f64,
     /// Crown main angle, degrees.
     pub crown_angle: f64,
@@ -96,54 +105,137 @@ pub fn tiers(s: &Polyhedron) -> Vec<TierSummary> {
         .collect()
 }
 
+/// Facets within this angle of level that hold the stone's top form its table (a table cut
+/// in two or tilted a degree or two, as some designs do, is still the table).
+const TABLE_TILT_DEG: f64 = 2.0;
+
+/// Crown and pavilion facets steeper than this are not mains: they belong with the girdle's
+/// band (a design's nearly vertical facets beside its girdle).
+const MAIN_MAX_DEG: f64 = 80.0;
+
+/// How close two facets' vertices must come for the facets to touch, in W: a design read from
+/// a file leaves the corners where several of its rounded planes meet a little apart (~1e-8).
+const TOUCH: f64 = 1e-6;
+
+/// Whether facets `a` and `b` touch: a vertex of one within [`TOUCH`] of a vertex of the other.
+fn touch(s: &Polyhedron, a: usize, b: usize) -> bool {
+    let (fa, fb) = (&s.facets()[a], &s.facets()[b]);
+    fa.vertices.iter().any(|&u| {
+        fb.vertices
+            .iter()
+            .any(|&v| s.vertices()[u].distance(s.vertices()[v]) <= TOUCH)
+    })
+}
+
+/// Whether point `p` is within [`TOUCH`] of a corner of facet `f`.
+fn at_corner(s: &Polyhedron, f: usize, p: crate::geometry::DVec3) -> bool {
+    s.facets()[f]
+        .vertices
+        .iter()
+        .any(|&k| s.vertices()[k].distance(p) <= TOUCH)
+}
+
+/// The table: the facets within [`TABLE_TILT_DEG`] of level connected (by touching corners) to
+/// the one that holds the stone's highest vertex; empty when that facet is steeper (a cut
+/// with no table: a point or a ridge on top).
+fn table_facets(s: &Polyhedron) -> Vec<usize> {
+    let (_, hi) = s.bounding_box();
+    let level = |i: usize| facet_angle_deg(s.facets()[i].plane.normal) <= TABLE_TILT_DEG;
+    let touches_top = |i: usize| {
+        s.facets()[i]
+            .vertices
+            .iter()
+            .any(|&v| s.vertices()[v].z >= hi.z - 1e-9)
+    };
+    let mut table: Vec<usize> = (0..s.facets().len())
+        .filter(|&i| s.facets()[i].plane.normal.z > 0.0 && level(i) && touches_top(i))
+        .collect();
+    // Grow by shared vertices over level facets.
+    let mut k = 0;
+    while k < table.len() {
+        let t = table[k];
+        for j in 0..s.facets().len() {
+            if !table.contains(&j)
+                && s.facets()[j].plane.normal.z > 0.0
+                && level(j)
+                && touch(s, t, j)
+            {
+                table.push(j);
+            }
+        }
+        k += 1;
+    }
+    table
+}
+
+/// The vertical extent of the girdle facets `girdle` with a corner at `p` (within
+/// [`TOUCH`]), on the vertical line through it (each such facet's polygon cut by that line; a
+/// vertical edge counts whole), as (bottom, top).
+fn band_at(s: &Polyhedron, p: crate::geometry::DVec3, girdle: &[usize]) -> Option<(f64, f64)> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &j in girdle {
+        if !at_corner(s, j, p) {
+            continue;
+        }
+        let f = &s.facets()[j];
+        let n = f.plane.normal;
+        let t = crate::geometry::DVec2::new(-n.y, n.x).normalize_or_zero();
+        let at = t.dot(p.truncate());
+        let pts: Vec<(f64, f64)> = f
+            .vertices
+            .iter()
+            .map(|&k| (t.dot(s.vertices()[k].truncate()), s.vertices()[k].z))
+            .collect();
+        for k in 0..pts.len() {
+            let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
+            let (s0, s1) = (a.0.min(b.0), a.0.max(b.0));
+            if at < s0 - 1e-9 || at > s1 + 1e-9 {
+                continue;
+            }
+            let zs = if s1 - s0 < 1e-9 {
+                [a.1, b.1]
+            } else {
+                let z = a.1 + (b.1 - a.1) * (at - a.0) / (b.0 - a.0);
+                [z, z]
+            };
+            lo = lo.min(zs[0].min(zs[1]));
+            hi = hi.max(zs[0].max(zs[1]));
+        }
+    }
+    (hi >= lo).then_some((lo, hi))
+}
+
 /// Measure the proportions of a solid.
 pub fn proportions(s: &Polyhedron) -> Proportions {
     let (lo, hi) = s.bounding_box();
-    let outline = outline_width(s.vertices()).max(1e-300);
-    // Table: the up-facing horizontal facet highest up.
-    let table = s
-        .facets()
-        .iter()
-        .enumerate()
-        .filter(|(_, f)| f.plane.normal.z > 1.0 - 1e-9)
-        .max_by(|a, b| a.1.plane.offset.total_cmp(&b.1.plane.offset))
-        .map(|(i, _)| outline_width(&s.facet_polygon(i)) / outline)
-        .unwrap_or(0.0);
-    let table_z = s
-        .facets()
-        .iter()
-        .filter(|f| f.plane.normal.z > 1.0 - 1e-9)
-        .map(|f| f.plane.offset)
-        .fold(f64::NEG_INFINITY, f64::max);
-    let table_z = if table_z.is_finite() { table_z } else { hi.z };
-    // Girdle extent.
-    let girdle_z = girdle_z(s);
-    let (g_top, g_bot) = if girdle_z.is_empty() {
+    let table_set = table_facets(s);
+    let table = table_extent(s, &table_set);
+    // The table's height: its highest point (the stone's top; a level table's plane).
+    let table_z = hi.z;
+    // A knife-edge girdle's plane: at the widest vertices.
+    let knife = {
         let r = s.max_radius();
-        let z = s
+        let widest: Vec<f64> = s
             .vertices()
             .iter()
             .filter(|v| v.truncate().length() > r - 1e-9)
             .map(|v| v.z)
-            .fold(0.0, |a, b| a + b)
-            / s.vertices()
-                .iter()
-                .filter(|v| v.truncate().length() > r - 1e-9)
-                .count()
-                .max(1) as f64;
-        (z, z)
-    } else {
-        (
-            girdle_z.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            girdle_z.iter().copied().fold(f64::INFINITY, f64::min),
-        )
+            .collect();
+        widest.iter().sum::<f64>() / widest.len().max(1) as f64
     };
+    let girdle_set: Vec<usize> = (0..s.facets().len())
+        .filter(|&i| is_girdle(s.facets()[i].plane.normal))
+        .collect();
+    let shares = |i: usize, set: &[usize]| set.iter().any(|&j| touch(s, i, j));
     // Main facets, chosen facet by facet (never by tier name, so that a design read from a
-    // mesh, whose tiers are only grouped by angle, measures as its source): among the crown
-    // facets that touch the table (or the top) and reach the girdle, else those that reach
-    // lowest, the one facing most squarely across the width (a bezel; of a fancy shape, the
-    // one on its long side), the largest of those; the same for the pavilion facets that touch
-    // the bottom (culet, point or keel) and reach the girdle (a main), else reach highest.
+    // mesh, whose tiers are only grouped by angle, measures as its source). Crown: the facets
+    // that touch the table (or reach the top) and meet the girdle (a bezel); else, with a
+    // table, those touching it that reach lowest (a step cut's table step, the families'
+    // `crown_angle`); else, with no table, those meeting the girdle that reach highest (the
+    // tier under a pointed or checkered top). Pavilion: those touching the bottom (culet,
+    // point or keel) and meeting the girdle (a main), else those reaching highest. Among
+    // them, the one facing most squarely across the width (a fancy shape's bezel on its long
+    // side), the largest of those.
     let tol = 1e-7;
     let (ex, ey) = (hi.x - lo.x, hi.y - lo.y);
     let square = (ex - ey).abs() <= 1e-6 * ex.max(ey);
@@ -160,43 +252,95 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
             cy
         }
     };
-    // (spans to the girdle, reach, facing, area, angle)
-    type Cand = (bool, f64, f64, f64, f64);
+    // (touches the table or bottom, meets the girdle, reach, facing, area, angle, facet)
+    type Cand = (bool, bool, f64, f64, f64, f64, usize);
     let mut crown: Vec<Cand> = Vec::new();
     let mut pav: Vec<Cand> = Vec::new();
-    for f in s.facets() {
+    for (i, f) in s.facets().iter().enumerate() {
         let zs: Vec<f64> = f.vertices.iter().map(|&v| s.vertices()[v].z).collect();
         let zmax = zs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let zmin = zs.iter().copied().fold(f64::INFINITY, f64::min);
         let n = f.plane.normal;
-        let c = |spans: bool, reach: f64| (spans, reach, facing(n), f.area, facet_angle_deg(n));
+        let angle = facet_angle_deg(n);
+        if angle > MAIN_MAX_DEG || table_set.contains(&i) {
+            continue;
+        }
+        let meets = if girdle_set.is_empty() {
+            (zmin - knife).abs() <= tol || (zmax - knife).abs() <= tol
+        } else {
+            shares(i, &girdle_set)
+        };
         match side_of(n.z) {
-            "crown" if n.z < 1.0 - 1e-9 && zmax >= table_z - tol => {
-                crown.push(c(zmin <= g_top + tol, -zmin));
+            "crown" if n.z < 1.0 - 1e-9 => {
+                let top = if table_set.is_empty() {
+                    zmax >= hi.z - tol
+                } else {
+                    shares(i, &table_set)
+                };
+                crown.push((top, meets, zmin, facing(n), f.area, angle, i));
             }
-            "pavilion" if n.z > -1.0 + 1e-9 && zmin <= lo.z + tol => {
-                pav.push(c(zmax >= g_bot - tol, zmax));
+            "pavilion" if n.z > -1.0 + 1e-9 => {
+                pav.push((zmin <= lo.z + tol, meets, zmax, facing(n), f.area, angle, i));
             }
             _ => {}
         }
     }
-    // Spanning to the girdle, else reaching furthest; then facing the width most squarely
-    // (within 1e-6), then the largest.
-    let main = |c: &[Cand]| -> f64 {
-        let spans = c.iter().any(|x| x.0);
-        let reach = c.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
-        let pool: Vec<&Cand> = c
-            .iter()
-            .filter(|x| if spans { x.0 } else { x.1 >= reach - 1e-6 })
-            .collect();
-        let best = pool.iter().map(|x| x.2).fold(f64::NEG_INFINITY, f64::max);
+    // The pool: both ends; else the fallback of the doc comment above (`low`: the end
+    // touched, chosen by reaching lowest; else the girdle's, by reaching highest).
+    let main = |c: &[Cand], table: bool| -> Option<Cand> {
+        let both: Vec<&Cand> = c.iter().filter(|x| x.0 && x.1).collect();
+        let pool: Vec<&Cand> = if !both.is_empty() {
+            both
+        } else {
+            // Reach: crown candidates store their lowest z, pavilion ones their highest.
+            let (ends, lowest): (Vec<&Cand>, bool) = if table {
+                (c.iter().filter(|x| x.0).collect(), true)
+            } else {
+                (c.iter().filter(|x| x.1).collect(), false)
+            };
+            let key = |x: &&Cand| if lowest { -x.2 } else { x.2 };
+            let reach = ends.iter().map(key).fold(f64::NEG_INFINITY, f64::max);
+            ends.into_iter()
+                .filter(|x| key(x) >= reach - 1e-6)
+                .collect()
+        };
+        let best = pool.iter().map(|x| x.3).fold(f64::NEG_INFINITY, f64::max);
         pool.into_iter()
-            .filter(|x| x.2 >= best - 1e-6)
-            .max_by(|a, b| a.3.total_cmp(&b.3))
-            .map_or(0.0, |x| x.4)
+            .filter(|x| x.3 >= best - 1e-6)
+            .max_by(|a, b| a.4.total_cmp(&b.4))
+            .copied()
     };
-    let crown_angle = main(&crown);
-    let pavilion_angle = main(&pav);
+    // A step cut's crown falls back to its table step; a tableless crown to the girdle's tier.
+    let crown_main = main(&crown, !table_set.is_empty());
+    // The pavilion falls back to the facets touching the bottom that reach highest.
+    let pavilion_angle = {
+        let flipped: Vec<Cand> = pav
+            .iter()
+            .map(|x| (x.0, x.1, -x.2, x.3, x.4, x.5, x.6))
+            .collect();
+        main(&flipped, true).map_or(0.0, |x| x.5)
+    };
+    // The girdle where the crown meets it: at the lowest vertex the crown main shares with a
+    // girdle facet (a round's bezel–main point, where a lab measures its girdle and its crown
+    // height; every family's `girdle`), or, when the main does not reach the girdle (a step
+    // cut's table step), of the crown facet meeting it that a main would be chosen from; the
+    // girdle's extent on the vertical line there. A knife-edge girdle is a plane.
+    let meeting: Vec<Cand> = crown.iter().filter(|x| x.1).copied().collect();
+    let at = crown_main
+        .filter(|x| x.1)
+        .or_else(|| main(&meeting, false))
+        .and_then(|x| {
+            s.facets()[x.6]
+                .vertices
+                .iter()
+                .map(|&v| s.vertices()[v])
+                .filter(|p| girdle_set.iter().any(|&j| at_corner(s, j, *p)))
+                .min_by(|a, b| a.z.total_cmp(&b.z))
+        });
+    let (g_bot, g_top) = at
+        .and_then(|p| band_at(s, p, &girdle_set))
+        .unwrap_or((knife, knife));
+    let crown_angle = crown_main.map_or(0.0, |x| x.5);
     Proportions {
         table,
         crown_angle,
@@ -205,6 +349,27 @@ pub fn proportions(s: &Polyhedron) -> Proportions {
         pavilion_depth: g_bot - lo.z,
         total_depth: hi.z - lo.z,
         girdle: g_top - g_bot,
+    }
+}
+
+/// The table's extent across the width (the outline's narrower axis, x or y) over the width W:
+/// GemCad's T/W; 0 without a table.
+fn table_extent(s: &Polyhedron, table: &[usize]) -> f64 {
+    let (_, w) = outline_size(s.vertices());
+    let (lo, hi) = s.bounding_box();
+    let across_x = (hi.x - lo.x) <= (hi.y - lo.y);
+    let (a, b) = table
+        .iter()
+        .flat_map(|&i| s.facets()[i].vertices.iter())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            let p = s.vertices()[v];
+            let x = if across_x { p.x } else { p.y };
+            (a.min(x), b.max(x))
+        });
+    if b > a {
+        (b - a) / w.max(1e-300)
+    } else {
+        0.0
     }
 }
 
@@ -230,26 +395,8 @@ pub struct Ratios {
 pub fn ratios(s: &Polyhedron) -> Ratios {
     let (l, w) = outline_size(s.vertices());
     let w = w.max(1e-300);
-    let (lo, hi) = s.bounding_box();
-    let across_x = (hi.x - lo.x) <= (hi.y - lo.y);
-    let t = s
-        .facets()
-        .iter()
-        .enumerate()
-        .filter(|(_, f)| f.plane.normal.z > 1.0 - 1e-9)
-        .max_by(|a, b| a.1.plane.offset.total_cmp(&b.1.plane.offset))
-        .map(|(i, _)| {
-            let poly = s.facet_polygon(i);
-            let (a, b) = poly
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-                    let x = if across_x { v.x } else { v.y };
-                    (a.min(x), b.max(x))
-                });
-            (b - a).max(0.0)
-        })
-        .unwrap_or(0.0);
     let p = proportions(s);
+    let t = p.table * w;
     Ratios {
         l_w: l / w,
         t_w: t / w,

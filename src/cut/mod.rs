@@ -16,6 +16,7 @@ mod old_european;
 mod outline;
 mod oval;
 mod pear;
+pub mod plausible;
 mod princess;
 pub mod record;
 pub mod retarget;

@@ -3,11 +3,24 @@
 //! index, titles, notes, gear, symmetry and cutting instructions.
 //!
 //! Generated cuts have no GemCad record (`Cut::record` is `None`); a GemCad import always has
-//! one. Writers fall back to their defaults (gear 96, `y 1 n`, the cut's name as the title,
-//! no `I` line) for the fields a cut does not carry.
+//! one. A GemCad file of a generated cut gets the record [`GemcadRecord::for_file`] makes
+//! (the one place every GemCad writer asks, `.asc` and binary `.gem` alike): the design's own
+//! when it has one, else gear 96, the index of the material it is meant for, its name as the
+//! title, and its real symmetry about the axis (`y 8 y` for a round brilliant), which GemCad
+//! needs to cut a tier's facets together and to trace the stone in its material.
 
+use super::Cut;
+use crate::geometry::axial::axial_symmetry;
 use serde::Serialize;
 use std::collections::BTreeMap;
+
+/// The index a generated cut's GemCad file gives when no material is named: diamond's n_D at
+/// 589.3 nm (2.4173, from its Sellmeier formula; to three decimals, as designs for diamond
+/// give it), the material every command traces by default.
+pub const DIAMOND_RI: f64 = 2.417;
+
+/// The gear a generated cut is written on.
+pub const GENERATED_GEAR: u32 = 96;
 
 /// A GemCad design's own record, as its file gave it.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -47,6 +60,59 @@ impl Default for GemcadRecord {
             mirror: false,
             instructions: BTreeMap::new(),
             scale: 1.0,
+        }
+    }
+}
+
+impl GemcadRecord {
+    /// The record a GemCad file of `cut` written on a gear of `gear` teeth (0: the design's
+    /// own gear, else [`GENERATED_GEAR`]) carries: the cut's own record when it came from a
+    /// design file (as read: its index, titles, notes, gear, symmetry, instructions), else
+    /// [`GemcadRecord::generated`] for the index `ri` (the material the cut is meant for;
+    /// [`DIAMOND_RI`] when none is named).
+    pub fn for_file(cut: &Cut, gear: u32, ri: f64) -> GemcadRecord {
+        match &cut.record {
+            Some(r) => r.clone(),
+            None => GemcadRecord::generated(cut, gear, ri),
+        }
+    }
+
+    /// The record of a generated cut: gear `gear` (0: [`GENERATED_GEAR`]) with offset 0, the
+    /// index `ri` (rounded to 4 decimals), the cut's name as its one title line, no notes, and
+    /// its symmetry about the axis as GemCad writes it: the largest rotation order that both
+    /// the solid has and the gear can index (a divisor of the teeth), and a mirror when one of
+    /// the solid's mirror planes is GemCad's, the line through index 0 (azimuth ±90°, the
+    /// vertical of GemCad's top view). A round brilliant is `y 8 y`, a princess `y 4 y`, an
+    /// oval `y 2 y`, a pear `y 1 n` (its mirror is its long axis, along x).
+    ///
+    /// ```
+    /// use facetlab::cut::{Cut, GemcadRecord};
+    ///
+    /// let round = Cut::from_family("r", "round-brilliant", &Default::default()).unwrap();
+    /// let r = GemcadRecord::generated(&round, 0, 2.417);
+    /// assert_eq!((r.gear, r.symmetry, r.mirror, r.ri), (96.0, 8, true, Some(2.417)));
+    /// assert_eq!(r.title, vec!["r".to_string()]);
+    /// ```
+    pub fn generated(cut: &Cut, gear: u32, ri: f64) -> GemcadRecord {
+        let teeth = if gear == 0 { GENERATED_GEAR } else { gear };
+        let sym = axial_symmetry(&cut.solid, 1e-7);
+        let symmetry = (1..=sym.order)
+            .rev()
+            .find(|k| sym.order % k == 0 && teeth % k == 0)
+            .unwrap_or(1);
+        let title = cut.name.split_whitespace().collect::<Vec<_>>().join(" ");
+        GemcadRecord {
+            ri: Some((ri * 1e4).round() / 1e4),
+            title: if title.is_empty() {
+                Vec::new()
+            } else {
+                vec![title]
+            },
+            gear: f64::from(teeth),
+            gear_offset: 0.0,
+            symmetry,
+            mirror: sym.mirrors_at(std::f64::consts::FRAC_PI_2, 1e-6),
+            ..GemcadRecord::default()
         }
     }
 }

@@ -5,6 +5,7 @@
 //! lengths in girdle diameters (D = 1). A facet is the half-space `normal · x <= offset` with an
 //! outward unit normal.
 
+pub mod axial;
 pub mod canonical;
 pub mod clip2d;
 pub(crate) mod fast_hash;

@@ -7,8 +7,9 @@
 //! limit costs `penalty` (default 1, as much as a whole unit of score): the penalty is exact
 //! (linear), so winners sit on a binding constraint rather than slightly past it.
 //!
-//! A cut that cannot be built (the planes do not make a solid) or that the evaluator refuses
-//! gets the finite cost [`FAILED_COST`], never an error or NaN: argmin's Nelder–Mead unwraps its
+//! A cut that cannot be built (the planes do not make a solid), whose proportions no cutter
+//! would cut ([`crate::cut::plausible`]: deeper than wide or flatter than 0.3 W, a table over
+//! 85 % of the width), or that the evaluator refuses gets the finite cost [`FAILED_COST`], never an error or NaN: argmin's Nelder–Mead unwraps its
 //! first cost calls, and a NaN would poison the simplex ordering.
 //!
 //! Two argmin problems share this: [`BoxProblem`] (particle swarm; the point is the free
@@ -247,6 +248,10 @@ impl<'a> Objective<'a> {
             Ok(c) => c,
             Err(e) => return failed(e.to_string(), None),
         };
+        // Proportions no cutter would cut are refused like a cut that cannot be built.
+        if let Some(why) = crate::cut::plausible::implausible(&cut).first() {
+            return failed(format!("implausible proportions: {why}"), Some(cut));
+        }
         let scored = if full {
             self.evaluator.evaluate(&cut)
         } else {
@@ -538,6 +543,22 @@ mod tests {
         let nan = |_: &Cut| -> Result<ScoreSet> { Ok(ScoreSet::new(f64::NAN, 0.0, 0.0)) };
         let o = Objective::new(&c, &nan);
         assert_eq!(o.cost(&[0.57, 34.0]), FAILED_COST);
+        // A stone deeper than it is wide (a 59.9° pavilion: 103 % deep) is refused the same
+        // way, naming why; at 45° (a deep but cuttable 70 %) it is scored.
+        let text = "[cut]\nfamily = \"round-brilliant\"\n[free]\npavilion_angle = [40.0, 60.0]\n";
+        let deep = Config::from_str(text, "t.toml").unwrap();
+        let o = Objective::new(&deep, &crown);
+        let e = o.evaluate(&[59.9]);
+        assert_eq!(e.cost, FAILED_COST);
+        assert!(
+            e.error
+                .as_deref()
+                .unwrap()
+                .contains("implausible proportions: total depth"),
+            "{:?}",
+            e.error
+        );
+        assert!(o.evaluate(&[45.0]).error.is_none());
     }
 
     #[test]

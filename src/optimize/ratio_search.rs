@@ -4,7 +4,9 @@
 //! new index. The `facetlab retarget` command (in the binary) reads and writes the files.
 //!
 //! The search is a coordinate search (golden sections on the logarithm of each ratio, two
-//! passes, pavilion first) scored with quick settings; the tangent-ratio cut, the optimized
+//! passes, pavilion first) scored with quick settings, refusing proportions no cutter would
+//! cut ([`implausible`](crate::cut::plausible::implausible): deeper than wide, a table over
+//! 85 % of the width), as `optimize` refuses them; the tangent-ratio cut, the optimized
 //! one and the design itself are then scored with the full settings, and the optimized
 //! variant is the best of the three, so its brilliance at the new index is never below the
 //! unchanged design's there.
@@ -20,8 +22,9 @@
 //! ([`DesignSpace::unkeepable`]) are left at their start angle, each with the meet it would
 //! open.
 
+use crate::cut::plausible::implausible;
 use crate::cut::retarget::{pavilion_ratio_for, tangent_ratio};
-use crate::cut::{Cut, CutSpace};
+use crate::cut::{Cut, CutSpace, GemcadRecord};
 use crate::design::{DesignSpace, OpenMeets, MEET_TOL};
 use crate::error::Result;
 use crate::metrics::{score, ScoreConfig};
@@ -86,6 +89,47 @@ impl Retarget {
             }
         })
     }
+
+    /// The footnote a file of variant `v` carries: what was changed, from which index to
+    /// which, and how (`Retargeted by facetlab from n = 2.4170 to quartz (n = 1.5442), the
+    /// optimized variant: crown and pavilion tangents × 0.8476 and × 0.9622, crown 30.22°,
+    /// pavilion 39.66°; brilliance 0.7054 at the new index`).
+    pub fn footnote(&self, v: &Variant) -> String {
+        format!(
+            "Retargeted by facetlab from n = {:.4} to {} (n = {:.4}), the {} variant: crown and pavilion tangents × {:.4} and × {:.4}, crown {:.2}°, pavilion {:.2}°; brilliance {:.4} at the new index",
+            self.from_ri,
+            self.material,
+            self.to_ri,
+            v.label,
+            v.k_crown,
+            v.k_pavilion,
+            v.crown_angle,
+            v.pavilion_angle,
+            v.brilliance
+        )
+    }
+
+    /// Variant `v` as its files write it: its GemCad record ([`GemcadRecord::for_file`]: a
+    /// design's own, else a generated cut's with its symmetry) with the new index as its `I`
+    /// and [`Retarget::footnote`] added to its notes (after the note of the tiers a tier search
+    /// turned).
+    pub fn file_cut(&self, v: &Variant) -> Cut {
+        let mut cut = v.cut.clone();
+        let mut record = GemcadRecord::for_file(&cut, 0, self.to_ri);
+        record.ri = Some((self.to_ri * 1e4).round() / 1e4);
+        record.footnotes.push(self.footnote(v));
+        cut.record = Some(record);
+        cut
+    }
+
+    /// The proportions of variant `v` no cutter would cut ([`implausible`]), each as a
+    /// sentence naming the variant: what `facetlab retarget` warns of.
+    pub fn warnings(&self, v: &Variant) -> Vec<String> {
+        implausible(&v.cut)
+            .iter()
+            .map(|i| format!("the {} variant's {i}", v.label))
+            .collect()
+    }
 }
 
 /// What the tier search of a design did.
@@ -146,8 +190,9 @@ pub fn retarget(cut: &Cut, from_ri: f64, to: &Material, full: &ScoreConfig) -> R
     let mut eval = |lc: f64, lp: f64| -> f64 {
         evaluations += 1;
         match tangent_ratio(cut, lc.exp(), lp.exp()) {
-            Ok(c) => score(&c.solid, &quick).brilliance,
-            Err(_) => f64::NEG_INFINITY,
+            // Proportions no cutter would cut are refused, as `optimize` refuses them.
+            Ok(c) if implausible(&c).is_empty() => score(&c.solid, &quick).brilliance,
+            _ => f64::NEG_INFINITY,
         }
     };
     // Coordinate search in (ln k_crown, ln k_pavilion) from the tangent-ratio point.
@@ -230,8 +275,9 @@ pub const TIER_STEP_DEG: f64 = 1.0;
 /// Half the span, degrees, over which [`DesignSpace::unkeepable`] probes a tier turned alone.
 pub const TIER_PROBE_DEG: f64 = 1.0;
 
-/// The cost a tier search gives a point its design space refuses (brilliance is at least 0, so
-/// its cost −brilliance is at most 0).
+/// The cost a tier search gives a point its design space refuses, or whose proportions no
+/// cutter would cut ([`implausible`]) (brilliance is at least 0, so its cost −brilliance is at
+/// most 0).
 const REFUSED: f64 = 1.0;
 
 /// Search a design's tier angles for light return in `quick`'s material (see the module's
@@ -400,8 +446,8 @@ impl CostFunction for &TierProblem<'_> {
 
     fn cost(&self, x: &Vec<f64>) -> std::result::Result<f64, argmin::core::Error> {
         let c = match self.space.build("t", &(self.at)(x)) {
-            Ok(cut) => -score(&cut.solid, self.quick).brilliance,
-            Err(_) => REFUSED,
+            Ok(cut) if implausible(&cut).is_empty() => -score(&cut.solid, self.quick).brilliance,
+            _ => REFUSED,
         };
         if let Ok(mut s) = self.seen.lock() {
             s.push((x.clone(), c));
@@ -413,6 +459,46 @@ impl CostFunction for &TierProblem<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A deep quartz design (88 % of its width, as a coloured-stone design may be) made for
+    /// sapphire: the searched variants stay plausible (a search that deepened its pavilion
+    /// reached 111 %), and the file of the chosen one carries the new index, its symmetry and
+    /// a note of what changed.
+    #[test]
+    fn a_deep_design_retargeted_stays_plausible_and_says_what_changed() {
+        let mut v = std::collections::BTreeMap::new();
+        for (k, x) in [
+            ("table", 0.4),
+            ("crown_angle", 40.0),
+            ("pavilion_angle", 50.0),
+        ] {
+            v.insert(k.to_string(), x);
+        }
+        let cut = Cut::from_family("deep", "round-brilliant", &v).unwrap();
+        let deep = cut.ratios().h_w;
+        assert!(deep > 0.85 && deep < 1.0, "{deep}");
+        let sapphire = Material::by_name("sapphire").unwrap();
+        let r = retarget(&cut, 1.54, &sapphire, &ScoreConfig::fast()).unwrap();
+        let optimized = &r.variants[2];
+        assert!(implausible(&optimized.cut).is_empty(), "{optimized:?}");
+        assert!(r.warnings(optimized).is_empty());
+        let file = r.file_cut(optimized);
+        let rec = file.record.as_ref().unwrap();
+        assert_eq!(rec.ri, Some((sapphire.ri_d() * 1e4).round() / 1e4));
+        assert_eq!((rec.symmetry, rec.mirror), (8, true));
+        let note = rec.footnotes.last().unwrap();
+        assert!(
+            note.starts_with("Retargeted by facetlab from n = 1.5400 to sapphire")
+                && note.contains("the optimized variant"),
+            "{note}"
+        );
+        // A variant deeper than wide is named in a warning.
+        let mut too_deep = optimized.clone();
+        v.insert("pavilion_angle".to_string(), 60.0);
+        too_deep.cut = Cut::from_family("d", "round-brilliant", &v).unwrap();
+        let w = r.warnings(&too_deep);
+        assert!(w.len() == 1 && w[0].contains("total depth"), "{w:?}");
+    }
 
     /// A diamond design retargeted to quartz: the tangent rule steepens the pavilion, and the
     /// optimized variant returns at least as much light in quartz as the design unchanged and

@@ -269,7 +269,18 @@ pub fn write_folder(
         files.push("convergence.png".into());
         files.push("convergence.svg".into());
     }
-    if let Some(cut) = &outcome.best_cut {
+    if let Some(best) = &outcome.best_cut {
+        // A family's winner carries the GemCad record its files need (`I` the index it was
+        // scored in, its symmetry, its name as the title); a design's winner has its own.
+        let mut cut = best.clone();
+        if cut.record.is_none() {
+            cut.record = Some(crate::cut::GemcadRecord::generated(
+                &cut,
+                0,
+                config.score.material.ri_d(),
+            ));
+        }
+        let cut = &cut;
         let mut all: Vec<&dyn CutWriter> = vec![&TOML_WRITER];
         all.extend(writers.iter().filter(|w| w.extension() != "toml"));
         for w in all {

@@ -395,6 +395,34 @@ fn shipped_configs_are_valid() {
     }
 }
 
+/// The main job's design (`optim/round-brilliance.toml`): the grade is a constraint, not the
+/// box — every free parameter's box is wider than its Excellent range on both sides, so a
+/// winner held to the grade never sits on a bound of the box — brilliance and fire are both
+/// weighed (fire less), and the start cut is itself excellent.
+#[test]
+fn the_main_job_keeps_to_the_grade_inside_a_wider_box() {
+    use crate::cut::grade::{self, Grade};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("optim/round-brilliance.toml");
+    let c = Config::load(&path).unwrap();
+    assert_eq!(c.constraints.grade, Some(Grade::Excellent));
+    assert!(c.weights.brilliance > 0.0 && c.weights.fire > 0.0);
+    assert!(c.weights.fire < c.weights.brilliance);
+    for f in &c.free {
+        // Table and crown height are graded in percent, angles in degrees.
+        let scale = if f.key == "table" { 100.0 } else { 1.0 };
+        let r = grade::range(&f.key, Grade::Excellent).unwrap();
+        assert!(
+            f.lo * scale < r[0] && f.hi * scale > r[1],
+            "{}: box [{}, {}] against Excellent {r:?}",
+            f.key,
+            f.lo,
+            f.hi
+        );
+    }
+    let start = c.start_cut().unwrap();
+    assert_eq!(grade::estimate(&start).unwrap().estimate, Grade::Excellent);
+}
+
 #[test]
 fn evaluator_trait_objects_work() {
     let e: &dyn Evaluator = &bump;

@@ -611,7 +611,11 @@ impl Planner<'_> {
     /// agree within 1 % and a symmetry of the rough ([`Rough::symmetries`], the identity
     /// first) carries the one's placed vertices onto the other's within 2 % of the rough's
     /// size, compared as sets so that the cut's own symmetries count too (the identity alone
-    /// catches starts that stopped near one optimum). In a ball, where every turn and mirror
+    /// catches starts that stopped near one optimum), or carries the one onto the other turned
+    /// about its table axis: the same proportions and width, its girdle centre within 2 % of
+    /// the rough's size and its table axis within 1° (a turn by the cut's own symmetry, or by
+    /// one that its fit cannot tell apart: a round brilliant turned 22.5° keeps its girdle's
+    /// 16 points on the same circle, and its weight). In a ball, where every turn and mirror
     /// about the centre is a symmetry, the vertices' sorted distances from the centre are
     /// compared instead.
     pub fn same_plan(&self, a: &Plan, b: &Plan) -> bool {
@@ -630,9 +634,24 @@ impl Planner<'_> {
             return ra.len() == rb.len() && ra.iter().zip(&rb).all(|(x, y)| (x - y).abs() < tol);
         }
         let c = self.centre;
+        // The same proportions, width, place and table axis (after a symmetry of the rough):
+        // the one is the other turned about its table axis — by a turn of the cut's own
+        // symmetry, or one its outline cannot tell apart (a round brilliant turned 22.5°
+        // fits the same girdle circle at the same weight).
+        let same_cut = a.cut.params.len() == b.cut.params.len()
+            && a.cut.params.iter().all(|(k, v)| {
+                b.cut
+                    .params
+                    .get(k)
+                    .is_some_and(|w| (v - w).abs() <= 1e-3 * v.abs().max(1.0))
+            })
+            && (a.scale - b.scale).abs() < 0.01 * a.scale.max(b.scale);
         self.symmetries.iter().any(|g| {
             let moved: Vec<DVec3> = pa.iter().map(|x| c + *g * (*x - c)).collect();
-            hausdorff(&moved, &pb) < tol
+            let turned = same_cut
+                && (c + *g * (a.shift - c)).distance(b.shift) < tol
+                && (*g * a.up()).angle_between(b.up()) < 1f64.to_radians();
+            turned || hausdorff(&moved, &pb) < tol
         })
     }
 }

@@ -27,7 +27,9 @@
 //! * [`pareto`]: the trade-off front between two scores, with the reference cuts;
 //! * [`plan`]: a rough planned (`facetlab plan`): three views of the rough with the cuts inside
 //!   ([`plan::ThreeViews`]);
-//! * [`palette`]: every colour handed out here, the grounds of stone pictures included.
+//! * [`palette`]: every colour handed out here, the grounds of stone pictures included;
+//! * [`text`]: text set with its bearings, kerning and baseline ([`text::TextBackend`] wraps
+//!   every backend this floor draws on).
 
 pub mod contour;
 pub mod diagram;
@@ -37,6 +39,7 @@ pub mod pareto;
 pub mod paths;
 pub mod plan;
 pub mod render;
+pub mod text;
 pub mod trace;
 
 pub use palette::{SERIES, TAB10};
@@ -53,7 +56,7 @@ use plotters::style::FontStyle;
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
-const FONT: &[u8] = include_bytes!("DejaVuSans.ttf");
+pub(crate) const FONT: &[u8] = include_bytes!("DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
 /// Register the bundled DejaVu Sans as `sans-serif` (once per process), so text draws without
@@ -118,30 +121,22 @@ pub fn save(fig: &impl Figure, stem: &Path) -> Result<()> {
 /// renamed, so a failure leaves no half-written picture.
 pub fn save_to(fig: &impl Figure, png: &Path, svg: &Path) -> Result<()> {
     register_font();
-    let dir = png
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .map(Path::to_path_buf)
-        .unwrap_or_else(|| PathBuf::from("."));
-    let name = png
-        .file_name()
-        .map(|n| n.to_string_lossy().to_string())
-        .unwrap_or_else(|| "plot.png".into());
-    let tmp = dir.join(format!(".{name}.tmp-{}.png", std::process::id()));
-    let done = draw_on(
+    // Drawn in memory and encoded by the crate's own PNG writer (plotters' file encoder
+    // would bring the whole `image` crate into the build for it), written atomically.
+    let (w, h) = fig.size();
+    let mut rgb = vec![0u8; w as usize * h as usize * 3];
+    draw_on(
         fig,
-        BitMapBackend::new(&tmp, fig.size()).into_drawing_area(),
+        text::TextBackend::raster(BitMapBackend::with_buffer(&mut rgb, (w, h))).into_drawing_area(),
         png,
-    )
-    .and_then(|_| std::fs::rename(&tmp, png).map_err(|e| Error::io(png.display().to_string(), e)));
-    if done.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-        return done;
-    }
+    )?;
+    let bytes = crate::io::png::encode_rgb8(w, h, &[&rgb], 0)?;
+    crate::io::write_atomic(png, &bytes)?;
     let mut text = String::new();
     draw_on(
         fig,
-        SVGBackend::with_string(&mut text, fig.size()).into_drawing_area(),
+        text::TextBackend::vector(SVGBackend::with_string(&mut text, fig.size()))
+            .into_drawing_area(),
         svg,
     )?;
     crate::io::write_atomic(svg, text.as_bytes())

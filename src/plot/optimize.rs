@@ -403,6 +403,27 @@ fn tidy(v: f64, span: f64) -> String {
     }
 }
 
+/// The map's start marker: a white ring with a dark rim (visible on the map's colours and on
+/// the legend's white), at `$at`. A macro, so that the map and its legend draw the very same
+/// composite element (its type depends on the backend).
+macro_rules! start_marker {
+    ($at:expr) => {
+        EmptyElement::at($at)
+            + Circle::new((0, 0), 8, BLACK.mix(0.8).stroke_width(5))
+            + Circle::new((0, 0), 8, WHITE.stroke_width(3))
+    };
+}
+
+/// The map's end marker: a `$colour` triangle in a white rim (plotters fills every triangle:
+/// the rim is a larger white one beneath), at `$at`.
+macro_rules! end_marker {
+    ($at:expr, $colour:expr) => {
+        EmptyElement::at($at)
+            + TriangleMarker::new((0, 0), 12, WHITE.filled())
+            + TriangleMarker::new((0, 0), 9, $colour.filled())
+    };
+}
+
 fn level_label(v: f64) -> String {
     let s = format!("{v:.4}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
@@ -474,24 +495,16 @@ impl Figure for Map<'_> {
                 .label("optimizer: best point so far")
                 .legend(line_key(red.stroke_width(2), 22));
             chart.draw_series(path.iter().map(|p| Circle::new(*p, 2, red.filled())))?;
+            // The legend's keys are the very markers of the map.
             chart
-                .draw_series(std::iter::once(Circle::new(
-                    path[0],
-                    8,
-                    WHITE.stroke_width(3),
-                )))?
+                .draw_series(std::iter::once(start_marker!(path[0])))?
                 .label("start")
-                .legend(|(x, y)| Circle::new((x + 11, y), 6, BLACK.stroke_width(2)));
+                .legend(|(x, y)| start_marker!((x + 11, y)));
             let end = path[path.len() - 1];
             chart
-                .draw_series(std::iter::once(TriangleMarker::new(end, 10, red.filled())))?
+                .draw_series(std::iter::once(end_marker!(end, red)))?
                 .label("end (best)")
-                .legend(move |(x, y)| TriangleMarker::new((x + 11, y), 7, red.filled()));
-            chart.draw_series(std::iter::once(TriangleMarker::new(
-                end,
-                10,
-                WHITE.stroke_width(1),
-            )))?;
+                .legend(move |(x, y)| end_marker!((x + 11, y), red));
             legend(
                 &mut chart,
                 SeriesLabelPosition::UpperRight,

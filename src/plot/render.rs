@@ -122,19 +122,21 @@ fn srgb8(c: [f64; 3]) -> RGBColor {
     RGBColor(b(c[0]), b(c[1]), b(c[2]))
 }
 
-/// Legend rows: each a list of (x offset, entry index), wrapped to `width`.
+/// Side of a legend swatch: 1.3 times the label's capital height.
+fn swatch_side(lay: &Layout) -> i32 {
+    (super::text::metrics(lay.text as f64).cap * 1.3).round() as i32
+}
+
+/// Legend rows: each a list of (x offset, entry index), wrapped to `width` (every entry,
+/// swatch and label, inside the sheet's margins).
 fn legend_rows(entries: &[LegendEntry], lay: &Layout, width: u32) -> Vec<Vec<(u32, usize)>> {
-    let swatch = lay.text;
+    let swatch = swatch_side(lay) as u32;
     let gap = lay.text;
     let mut rows: Vec<Vec<(u32, usize)>> = Vec::new();
     let mut x = lay.pad;
     let mut row = Vec::new();
     for (i, e) in entries.iter().enumerate() {
-        let tw = font(lay.text)
-            .font
-            .box_size(&e.label)
-            .map(|(w, _)| w)
-            .unwrap_or(lay.text * e.label.chars().count() as u32 * 3 / 5);
+        let tw = super::text::width(&e.label, lay.text as f64).ceil() as u32;
         let w = swatch + lay.text / 3 + tw;
         if !row.is_empty() && x + w > width.saturating_sub(lay.pad) {
             rows.push(std::mem::take(&mut row));
@@ -200,7 +202,9 @@ pub fn compose(panels: &[Panel], size: u32, legend: &[LegendEntry]) -> Result<Sh
     let draw_err =
         |e: &dyn std::fmt::Display| Error::invalid("picture", format!("could not draw: {e}"));
     {
-        let root = BitMapBackend::with_buffer(&mut buf, (width, height)).into_drawing_area();
+        let root =
+            super::text::TextBackend::raster(BitMapBackend::with_buffer(&mut buf, (width, height)))
+                .into_drawing_area();
         let big = font(lay.text * 6 / 5);
         let small = font(lay.text).color(&RGBColor(40, 40, 40));
         for (k, p) in panels.iter().enumerate() {
@@ -213,23 +217,28 @@ pub fn compose(panels: &[Panel], size: u32, legend: &[LegendEntry]) -> Result<Sh
                 y += lay.line_height(i == 0) as i32;
             }
         }
-        let sw = lay.text as i32;
+        // A swatch is a square as tall as the label's capitals and a little more, centred on
+        // them: its middle at the capitals' middle, the text beside it.
+        let cap = super::text::metrics(lay.text as f64).cap;
+        let sw = swatch_side(&lay);
         for (r, row) in rows.iter().enumerate() {
             let y = (top + caption + r as u32 * lay.line_height(false)) as i32;
+            let mid = y as f32 + cap / 2.0;
+            let sy = (mid - sw as f32 / 2.0).round() as i32;
             for &(x, i) in row {
                 let e = &legend[i];
                 let x = x as i32;
                 root.draw(&Rectangle::new(
-                    [(x, y), (x + sw, y + sw)],
+                    [(x, sy), (x + sw, sy + sw)],
                     srgb8(e.colour).filled(),
                 ))
                 .map_err(|e| draw_err(&e))?;
                 root.draw(&Rectangle::new(
-                    [(x, y), (x + sw, y + sw)],
+                    [(x, sy), (x + sw, sy + sw)],
                     RGBColor(60, 60, 60).stroke_width(1),
                 ))
                 .map_err(|e| draw_err(&e))?;
-                root.draw_text(&e.label, &small, (x + sw + sw / 3, y))
+                root.draw_text(&e.label, &small, (x + sw + lay.text as i32 / 3, y))
                     .map_err(|e| draw_err(&e))?;
             }
         }

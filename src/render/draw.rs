@@ -9,7 +9,8 @@ use super::options::RenderOptions;
 use super::pose::{picture_half, view_rotation};
 use super::raster::{Accumulator, Raster};
 use crate::beam::{ExitBeam, Frame, Stone, TraceOptions};
-use crate::geometry::{canonical::canonical, outline_size, Polyhedron};
+use crate::geometry::canonical::{azimuth_turn, canonical};
+use crate::geometry::{outline_size, Polyhedron};
 use crate::optics::{color, Dispersion};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -36,14 +37,21 @@ fn mirrored(solid: &Polyhedron, frame: &Frame, light: Light) -> bool {
     })
 }
 
-/// Draw `solid` as `opts` says. The solid is first put in its canonical placement
-/// ([`canonical`]: centred, unit size; not turned), so a moved or rescaled copy gives the
-/// same picture; the picture spans [`picture_half`] around the centroid. Options should
-/// have passed [`RenderOptions::validate`]; out-of-range values never panic.
+/// Draw `solid` as `opts` says. The solid is traced in its canonical placement
+/// ([`canonical`]: centred, unit size, turned about its axis to the canonical azimuth, the
+/// very solid the scores trace), and seen turned back by that azimuth: a moved or rescaled
+/// copy gives the same picture, and the picture shows the stone as its file and its diagram
+/// draw it (a design's long axis where the design puts it, not where the canonical azimuth
+/// would), the lights and the viewer where the options put them. The picture spans
+/// [`picture_half`] around the centroid. Options should have passed
+/// [`RenderOptions::validate`]; out-of-range values never panic.
 pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
+    let turn = azimuth_turn(solid);
     let solid = canonical(solid);
     let stone = Stone::new(&solid);
-    let rot = view_rotation(opts.light, opts.tilt);
+    // The canonical solid is the stone turned by `turn` about z: posing it turned back first
+    // puts the stone itself in the pose the options ask for.
+    let rot = view_rotation(opts.light, opts.tilt) * glam::DMat3::from_rotation_z(-turn);
     let frame = Frame::viewer(rot);
     let size = opts.size.max(1);
     let half = picture_half(&solid);

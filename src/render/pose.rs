@@ -69,6 +69,31 @@ pub fn view_rotation(light: Light, tilt: Tilt) -> DMat3 {
     }
 }
 
+/// A pose as a picture's caption says it: `face-up`, or `face-down` under the hearts viewer
+/// (which turns the stone over, [`view_rotation`]); a tilted pose `tilt 10.0° toward 45°`,
+/// with `, face-down` for the hearts.
+///
+/// ```
+/// use facetlab::render::{pose::describe, Light, Tilt};
+/// assert_eq!(describe(Light::Iso, Tilt::FACE_UP), "face-up");
+/// assert_eq!(describe(Light::Hearts, Tilt::FACE_UP), "face-down");
+/// let t = Tilt { tilt_deg: 10.0, azimuth_deg: 45.0 };
+/// assert_eq!(describe(Light::Hearts, t), "tilt 10.0° toward 45°, face-down");
+/// ```
+pub fn describe(light: Light, tilt: Tilt) -> String {
+    let down = light == Light::Hearts;
+    if tilt.tilt_deg == 0.0 {
+        if down { "face-down" } else { "face-up" }.to_string()
+    } else {
+        format!(
+            "tilt {:.1}° toward {}°{}",
+            tilt.tilt_deg,
+            tilt.azimuth_deg,
+            if down { ", face-down" } else { "" }
+        )
+    }
+}
+
 /// Half the side of the square a picture of `solid` (in its canonical placement) spans: its
 /// largest distance from the centroid, plus 0.1 %. The same for every pose, so that the
 /// frames of a rocking stone share one pixel grid (scintillation compares them pixel by

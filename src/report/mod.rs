@@ -1,12 +1,14 @@
 //! One-page cut reports: a self-contained HTML page (pictures embedded, no network) per cut or
 //! comparing cuts side by side — what a cutter sends a client.
 //!
-//! For each cut: face-up pictures under ISO light, in ASET false colour and under the spot
+//! For each cut: face-up pictures under COS light with a 15° head shadow ([`BRIGHTNESS_LIGHT`];
+//! an even ISO sky shows a good stone nearly uniformly white, while the cosine sky and the
+//! viewer's head give the contrast a cutter looks at), in ASET false colour and under the spot
 //! lights for fire ([`crate::render`]), the facet diagram ([`crate::plot::diagram`]), the
 //! proportions with the grade estimate for round brilliants ([`crate::cut::grade`]), every
 //! score with one line on what it means ([`crate::metrics`]), and, when asked, the photon
 //! tracer's check of the beam tracer's numbers ([`crate::verify`]) and its tilt performance:
-//! ISO pictures of the stone tipped by a few angles, and a chart of its light return against
+//! the same brightness pictures of the stone tipped by a few angles, and a chart of its light return against
 //! the tilt, every cut of the page on one chart ([`ReportOptions::tilts`]).
 //!
 //! The rooms: `mod.rs` measures a cut for a report ([`measure`]: scores, pictures, checks);
@@ -47,7 +49,8 @@ pub struct ReportOptions {
     pub sigma: f64,
     /// Title of the page.
     pub title: String,
-    /// Tilts, degrees, of the stone's tilt performance: one ISO picture per tilt, the stone
+    /// Tilts, degrees, of the stone's tilt performance: one brightness picture
+    /// ([`BRIGHTNESS_LIGHT`]) per tilt, the stone
     /// tipped toward azimuth 0°, and a chart of their light return; empty = none.
     pub tilts: Vec<f64>,
     /// Sections placed above the cuts: a heading and its HTML (made by the caller: text in it
@@ -81,10 +84,25 @@ pub struct CutReport {
     pub scores: Scores,
     /// The photon tracer's checks (empty without a check).
     pub checks: Vec<Check>,
-    /// Its pictures: ISO, ASET, fire.
+    /// Its pictures: brightness ([`BRIGHTNESS_LIGHT`]), ASET, fire.
     pub pictures: Vec<(Light, Image)>,
-    /// Its ISO pictures at [`ReportOptions::tilts`], with their tilt in degrees.
+    /// Its brightness pictures at [`ReportOptions::tilts`], with their tilt in degrees.
     pub tilted: Vec<(f64, Image)>,
+}
+
+/// The light of a report's brightness pictures and its head shadow's half-angle in degrees:
+/// GemRay's cosine sky with the viewer's head shadowing 15° around the line of sight (as the
+/// gallery's COS pictures), which shows the contrast of the facets' reflections where the even
+/// ISO sky is nearly flat. Its captions say so ([`brightness_caption`]).
+pub const BRIGHTNESS_LIGHT: (Light, f64) = (Light::Cos, 15.0);
+
+/// What a brightness picture shows, for captions: "COS light, 15° head shadow".
+pub fn brightness_caption() -> String {
+    format!(
+        "{} light, {}° head shadow",
+        BRIGHTNESS_LIGHT.0.name().to_uppercase(),
+        BRIGHTNESS_LIGHT.1
+    )
 }
 
 /// Score, draw and (optionally) verify `cut` for a report.
@@ -102,6 +120,9 @@ pub fn measure_scored(
 ) -> Result<CutReport> {
     let picture = |light: Light, tilt_deg: f64| {
         let mut r = RenderOptions::new(light);
+        if light == BRIGHTNESS_LIGHT.0 {
+            r.head_shadow_deg = Some(BRIGHTNESS_LIGHT.1);
+        }
         r.size = o.size;
         r.material = o.score.material.clone();
         r.polarization = o.score.polarization;
@@ -111,11 +132,11 @@ pub fn measure_scored(
         };
         render(&cut.solid, &r)
     };
-    // The face-up pictures, then the ISO pictures of the non-zero tilts (face-up is the ISO
-    // picture already made). The score and the pictures are independent: they run side by
+    // The face-up pictures, then the brightness pictures of the non-zero tilts (face-up is the
+    // brightness picture already made). The score and the pictures are independent: they run side by
     // side, each picture whole (small pictures gain little from their own parallel rows), and
     // are kept in this order, so the report is the same on any thread count.
-    let faces = [Light::Iso, Light::Aset, Light::Fire];
+    let faces = [BRIGHTNESS_LIGHT.0, Light::Aset, Light::Fire];
     let jobs: Vec<(Light, f64)> = faces
         .iter()
         .map(|&l| (l, 0.0))
@@ -123,7 +144,7 @@ pub fn measure_scored(
             o.tilts
                 .iter()
                 .filter(|&&t| t != 0.0)
-                .map(|&t| (Light::Iso, t)),
+                .map(|&t| (BRIGHTNESS_LIGHT.0, t)),
         )
         .collect();
     let (scores, mut images) = rayon::join(

@@ -89,7 +89,8 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
     if cuts.iter().any(|c| !c.tilted.is_empty()) {
         let _ = writeln!(
             h,
-            "<section class=\"note\"><h2>Tilt performance</h2><p class=\"sub\">Light return under ISO light (% of a white diffuser) as the stone tips toward azimuth 0°; each cut's pictures are below its face-up ones.</p>{}</section>",
+            "<section class=\"note\"><h2>Tilt performance</h2><p class=\"sub\">Light returned under {} (% of a white diffuser) as the stone tips toward azimuth 0°; each cut's pictures are below its face-up ones.</p>{}</section>",
+            super::brightness_caption(),
             tilt::chart(cuts)
         );
     }
@@ -119,8 +120,13 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
             let rgb = img.to_srgb8(exposure(*light), PICTURE_GROUND);
             let png = crate::io::png::encode_rgb8(n, n, &[&rgb], 0)?;
             let caption = match light {
-                Light::Iso => format!(
-                    "ISO light: {:.1} % of a white diffuser",
+                Light::Iso | Light::Cos => format!(
+                    "{}: {:.1} % of a white diffuser",
+                    if *light == super::BRIGHTNESS_LIGHT.0 {
+                        super::brightness_caption()
+                    } else {
+                        format!("{} light", light.name().to_uppercase())
+                    },
                     100.0 * img.stats.mean
                 ),
                 Light::Aset => {
@@ -149,7 +155,7 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
         }
         h.push_str("</div>\n<p class=\"legend\"><span style=\"background:#1a4dff\"></span>75–90° <span style=\"background:#e61414\"></span>45–75° <span style=\"background:#1ab829\"></span>0–45° <span style=\"background:#000\"></span>leak or viewer's port (ASET)</p>\n");
         if !c.tilted.is_empty() {
-            h.push_str("<h3>Tilted (ISO light)</h3>");
+            let _ = write!(h, "<h3>Tilted ({})</h3>", super::brightness_caption());
             h.push_str(&tilt::row(c)?);
         }
         // The diagram, inline.

@@ -235,10 +235,13 @@ mod tests {
         assert!(page.contains("<h2>Tilt performance</h2>"));
         assert_eq!(page.matches("<polyline").count(), cuts);
         for t in TILTS {
-            let alt = format!("alt=\"ISO picture tilted {t}°\"");
+            let alt = format!(
+                "alt=\"{} picture tilted {t}°\"",
+                crate::report::brightness_caption()
+            );
             assert_eq!(page.matches(&alt).count(), cuts, "{alt}");
         }
-        // ISO, ASET, fire and four tilts per cut, each embedded.
+        // Brightness, ASET, fire and four tilts per cut, each embedded.
         assert_eq!(page.matches("data:image/png;base64,").count(), 7 * cuts);
         // The design section: the file, the meets, the tiers turned and the footnote.
         assert!(page.contains("<h2>Design</h2>"));

@@ -1,4 +1,5 @@
-//! A cut's tilt performance on the report's page: its ISO pictures tipped by the report's tilts
+//! A cut's tilt performance on the report's page: its brightness pictures
+//! ([`super::BRIGHTNESS_LIGHT`]) tipped by the report's tilts
 //! ([`row`]), and one chart of every cut's light return against the tilt ([`chart`]), an
 //! inline SVG (no script, nothing fetched).
 
@@ -7,7 +8,8 @@ use crate::error::Result;
 use crate::plot::palette::{PICTURE_GROUND, TAB10};
 use std::fmt::Write;
 
-/// The row of a cut's tilted ISO pictures, each captioned with its tilt and light return.
+/// The row of a cut's tilted brightness pictures, each captioned with its tilt and light
+/// return.
 pub fn row(c: &CutReport) -> Result<String> {
     let mut h = format!(
         "<div class=\"pics tilts\" style=\"grid-template-columns:repeat({},minmax(0,1fr))\">",
@@ -19,7 +21,8 @@ pub fn row(c: &CutReport) -> Result<String> {
         let png = crate::io::png::encode_rgb8(n, n, &[&rgb], 0)?;
         let _ = write!(
             h,
-            "<figure><img alt=\"ISO picture tilted {t}°\" width=\"{n}\" height=\"{n}\" src=\"data:image/png;base64,{}\"><figcaption>{t}°: {:.1} %</figcaption></figure>",
+            "<figure><img alt=\"{} picture tilted {t}°\" width=\"{n}\" height=\"{n}\" src=\"data:image/png;base64,{}\"><figcaption>{t}°: {:.1} %</figcaption></figure>",
+            super::brightness_caption(),
             base64(&png),
             100.0 * img.stats.mean
         );
@@ -37,7 +40,7 @@ const T: f64 = 12.0;
 const R: f64 = 380.0;
 const B: f64 = 186.0;
 
-/// Every cut's ISO light return (% of a white diffuser) against its tilt, one line per cut,
+/// Every cut's light return in its brightness pictures (% of a white diffuser) against its tilt, one line per cut,
 /// the cuts named on the right.
 pub fn chart(cuts: &[CutReport]) -> String {
     let points: Vec<Vec<(f64, f64)>> = cuts

@@ -68,7 +68,7 @@ pub struct CuttingInstructions {
 /// assert_eq!((bezel.angle, bezel.indices.len()), (34.5, 8));
 /// ```
 pub fn cutting_instructions(cut: &Cut, gear: u32) -> CuttingInstructions {
-    let (record, gear, lines) = gear_lines(cut, gear);
+    let (record, gear, lines) = gear_lines(cut, gear, crate::cut::record::DIAMOND_RI);
     let mut steps: Vec<CuttingStep> = Vec::new();
     for want in ["pavilion", "crown"] {
         for l in &lines {
@@ -105,8 +105,8 @@ pub fn cutting_instructions(cut: &Cut, gear: u32) -> CuttingInstructions {
             });
         }
     }
-    if cut.record.is_none() {
-        // A generated cut lists its table first; a cutter polishes the table and the culet
+    if cut.record.is_none() || cut.family.is_some() {
+        // A generated cut (a family's, even with a record for its files) lists its table first; a cutter polishes the table and the culet
         // last on their side.
         let flat = |s: &CuttingStep| s.angle == 0.0;
         steps.sort_by_key(|s| (s.side == "crown", flat(s)));

@@ -85,10 +85,12 @@ mod write;
 
 #[cfg(test)]
 mod fixtures;
+#[cfg(test)]
+mod measure_tests;
 
 pub use instructions::{cutting_instructions, CuttingInstructions, CuttingStep};
 pub use read::{parse, read, AscDesign, AscTier, MAX_GEAR, RI_ABOVE, RI_MAX};
-pub use write::write;
+pub use write::{write, write_for};
 
 /// The index gear used when a file has no `g` line, and by [`write()`] for a cut without a
 /// GemCad record.

@@ -476,12 +476,9 @@ mod tests {
             (p.crown_angle - 34.0).abs() < 1e-9 && (p.pavilion_angle - 41.0).abs() < 1e-9,
             "{p:?}"
         );
-        // Table edge midpoints at 0.56 of the girdle radius: 0.56 / cos 22.5° corner to corner.
-        assert!(
-            (p.table - 0.56 / 22.5f64.to_radians().cos()).abs() < 1e-5,
-            "table {}",
-            p.table
-        );
+        // Table edge midpoints at 0.56 of the girdle radius, on the x and y axes: GemCad's T/W,
+        // the table's extent across the width, is flat to flat, 0.56.
+        assert!((p.table - 0.56).abs() < 1e-5, "table {}", p.table);
         assert!(p.total_depth > 0.5 && p.total_depth < 0.8, "{p:?}");
     }
 

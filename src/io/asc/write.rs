@@ -3,6 +3,7 @@
 //! instructions).
 
 use super::read::generated_tier;
+use crate::cut::record::DIAMOND_RI;
 use crate::cut::{Cut, GemcadRecord};
 use crate::design::{fixed, tiers, token, Gear, Tier, ANGLE_DECIMALS, DEPTH_DECIMALS};
 use std::fmt::Write as _;
@@ -75,10 +76,11 @@ impl Line {
     }
 }
 
-/// The GemCad record to write with, the gear, and the `a` lines: the cut's tiers on the gear,
-/// distances in the record's file units.
-pub(super) fn gear_lines(cut: &Cut, gear: u32) -> (GemcadRecord, Gear, Vec<Line>) {
-    let record = cut.record.clone().unwrap_or_default();
+/// The GemCad record to write with ([`GemcadRecord::for_file`]: a generated cut's for the
+/// index `ri`), the gear, and the `a` lines: the cut's tiers on the gear, distances in the
+/// record's file units.
+pub(super) fn gear_lines(cut: &Cut, gear: u32, ri: f64) -> (GemcadRecord, Gear, Vec<Line>) {
+    let record = GemcadRecord::for_file(cut, gear, ri);
     let gear = Gear::for_record(&record, gear);
     let unit = if record.scale.is_finite() && record.scale > 0.0 {
         record.scale
@@ -90,13 +92,15 @@ pub(super) fn gear_lines(cut: &Cut, gear: u32) -> (GemcadRecord, Gear, Vec<Line>
 }
 
 /// Write `cut` as a GemCad `.asc` design on a gear of `gear` teeth; `0` means the design's
-/// own gear (and offset) when the cut came from a design file ([`Cut::record`]), else 96.
+/// own gear (and offset) when the cut came from a design file ([`Cut::record`]), else 96. A
+/// generated cut is written for diamond ([`write_for`] names another index).
 ///
 /// A design read from a file keeps its record: `I` (index), `H` (titles), `F` (footnotes),
 /// `y` (symmetry and mirror), `g` (gear and offset) and each line's `G` instructions, and its
-/// distances are written back in the file's own units ([`GemcadRecord::scale`]). A generated cut is
-/// written with `g 96 0.0`, `y 1 n`, its name as the title, no `I` line, distances in girdle
-/// widths (W = 1).
+/// distances are written back in the file's own units ([`GemcadRecord::scale`]). A generated
+/// cut is written with the record of [`GemcadRecord::generated`]: `g 96 0.0`, its real
+/// symmetry (`y 8 y` for a round brilliant), `I` its material's index, its name as the title,
+/// distances in girdle widths (W = 1).
 ///
 /// Facets are grouped into one `a` line per (tier, angle, distance) as written, in order of
 /// first appearance (the tiers of [`crate::design::tiers()`]); a tier's angle is written once,
@@ -122,7 +126,13 @@ pub(super) fn gear_lines(cut: &Cut, gear: u32) -> (GemcadRecord, Gear, Vec<Line>
 /// assert!((back.proportions().crown_angle - 34.0).abs() < 1e-6);
 /// ```
 pub fn write(cut: &Cut, gear: u32) -> String {
-    let (record, gear, lines) = gear_lines(cut, gear);
+    write_for(cut, gear, DIAMOND_RI)
+}
+
+/// [`write`], a generated cut written for the index `ri` (its material's n_D: its `I` line);
+/// a design keeps its own record.
+pub fn write_for(cut: &Cut, gear: u32, ri: f64) -> String {
+    let (record, gear, lines) = gear_lines(cut, gear, ri);
     let mut out = String::new();
     let _ = writeln!(out, "GemCad 5.0");
     let _ = writeln!(
@@ -140,15 +150,8 @@ pub fn write(cut: &Cut, gear: u32) -> String {
     if let Some(ri) = record.ri {
         let _ = writeln!(out, "I {}", fmt_short(ri, 2, 6, 1e-9));
     }
-    if cut.record.is_some() {
-        for t in &record.title {
-            let _ = writeln!(out, "H {t}");
-        }
-    } else {
-        let title = cut.name.split_whitespace().collect::<Vec<_>>().join(" ");
-        if !title.is_empty() {
-            let _ = writeln!(out, "H {title}");
-        }
+    for t in &record.title {
+        let _ = writeln!(out, "H {t}");
     }
     for l in &lines {
         let _ = write!(out, "a {} {}", l.angle, l.dist);

@@ -504,6 +504,18 @@ fn the_top_plans_in_a_cube_are_genuinely_different() {
             .fold(0.0, f64::max);
         assert!(identity_only > 0.02 * rough.size(), "{identity_only}");
     }
+    // The best plan turned about its own table axis: by the round brilliant's own symmetry
+    // (45°), and by 22.5°, a turn its girdle's 16 points fit alike (the example rough's round
+    // brilliants 1 and 2 of 0.5288 ct each were such a pair): the same plan. Its axis tipped
+    // 5°: another plan.
+    for (turn, same) in [(PI / 4.0, true), (PI / 8.0, true)] {
+        let mut q = p.clone();
+        q.rotation = p.rotation * DQuat::from_rotation_z(turn);
+        assert_eq!(planner.same_plan(p, &q), same, "{}", turn.to_degrees());
+    }
+    let mut q = p.clone();
+    q.rotation = DQuat::from_rotation_x(5f64.to_radians()) * p.rotation;
+    assert!(!planner.same_plan(p, &q));
     let ball = Rough::crystal("sphere", 5.0).unwrap();
     let in_ball = Planner::new(&ball, &config, 3.515)
         .plan_family("round-brilliant", &|| {})

@@ -11,6 +11,13 @@
 //!   instructions ([`crate::io::asc::cutting_instructions`]: each tier in cutting order,
 //!   pavilion first, with its angle at 0.01° and its indices on the design's gear).
 //!
+//! Above them the design's heading as its GemCad record gives it
+//! ([`GemcadRecord::for_file`](crate::cut::GemcadRecord::for_file)): its title, the further
+//! title lines (author, credits), and a line with its index (and the material of that index),
+//! gear, symmetry and facet count; below them its notes. The page is as wide as its text needs
+//! (text measured in DejaVu Sans, the page's first font), so every index of the cutting order
+//! is on the page.
+//!
 //! The SVG is written by hand (no drawing library) and every name is escaped, so the output is
 //! well-formed XML.
 //!
@@ -28,12 +35,88 @@ use crate::cut::Cut;
 use crate::geometry::DVec2;
 use side::side_annotations;
 use std::fmt::Write as _;
-use svg::{esc, text, View, DIM, INK};
+use svg::{esc, text, wrap, View, DIM, INK};
 use text_block::text_block;
 use views::facet_view;
 
+/// The page's least width; wider when the cutting order's indices need it.
 const WIDTH: f64 = 1000.0;
 const FONT: &str = "DejaVu Sans, Helvetica, Arial, sans-serif";
+
+/// The design's title: its GemCad record's first title line, else the cut's name.
+fn title_of(cut: &Cut) -> String {
+    cut.record
+        .as_ref()
+        .and_then(|r| r.title.iter().find(|t| !t.trim().is_empty()))
+        .map_or_else(|| cut.name.clone(), |t| t.trim().to_string())
+}
+
+/// The page's heading: the title, the further title lines (author, credits), and a line with
+/// the design's kind, facets, index, gear and symmetry; returns where the views start and the
+/// notes to print under them.
+fn heading(out: &mut String, cut: &Cut) -> (f64, Vec<String>) {
+    use crate::cut::record::DIAMOND_RI;
+    let record = crate::cut::GemcadRecord::for_file(cut, 0, DIAMOND_RI);
+    let title = title_of(cut);
+    let bold = r#" font-weight="bold""#;
+    let grey = r##" fill="#555""##;
+    let mut y = 38.0;
+    text(out, DVec2::new(30.0, y), 22.0, "start", bold, &title);
+    // Further title lines: every one but the first shown (a design's author, credits).
+    let mut shown_first = false;
+    for t in record
+        .title
+        .iter()
+        .map(|t| t.trim())
+        .filter(|t| !t.is_empty())
+    {
+        if !shown_first && t == title {
+            shown_first = true;
+            continue;
+        }
+        y += 19.0;
+        text(out, DVec2::new(30.0, y), 13.0, "start", "", t);
+    }
+    let kind = match (&cut.family, &cut.record) {
+        (Some(f), _) => f.clone(),
+        (None, Some(_)) => "GemCad design".to_string(),
+        (None, None) => "cut".to_string(),
+    };
+    let mut facts = vec![kind, format!("{} facets", cut.solid.facets().len())];
+    if let Some(ri) = record.ri {
+        let material = crate::optics::Material::for_index(ri)
+            .map(|m| m.name)
+            .filter(|n| !n.starts_with("ri:"))
+            .map_or(String::new(), |n| format!(" ({n})"));
+        facts.push(format!("index {ri}{material}"));
+    }
+    let gear = if record.gear.fract() == 0.0 {
+        format!("{:.0}", record.gear)
+    } else {
+        record.gear.to_string()
+    };
+    facts.push(if record.gear_offset == 0.0 {
+        format!("gear {gear}")
+    } else {
+        format!("gear {gear} (offset {})", record.gear_offset)
+    });
+    facts.push(match (record.symmetry.max(1), record.mirror) {
+        (1, false) => "no symmetry".to_string(),
+        (1, true) => "mirror symmetry".to_string(),
+        (k, m) => format!("{k}-fold symmetry{}", if m { " with mirror" } else { "" }),
+    });
+    facts.push("lengths in widths W".to_string());
+    y += 22.0;
+    text(
+        out,
+        DVec2::new(30.0, y),
+        13.0,
+        "start",
+        grey,
+        &facts.join(" · "),
+    );
+    (y + 18.0, record.footnotes.clone())
+}
 
 /// The facet diagram of a cut as a standalone SVG document.
 pub fn diagram(cut: &Cut) -> String {
@@ -54,9 +137,9 @@ pub fn diagram(cut: &Cut) -> String {
     );
     let scale = (250.0 / ex.max(ey)).min(440.0 / ex).min(230.0 / ez);
     let mid = 0.5 * (lo + hi);
-
-    // Layout.
-    let top = 78.0;
+    let mut body = String::new();
+    let out = &mut body;
+    let (top, notes) = heading(out, cut);
     let up = View {
         centre: DVec2::new(190.0, top + 170.0),
         origin: mid.truncate(),
@@ -74,35 +157,6 @@ pub fn diagram(cut: &Cut) -> String {
         scale,
     };
     let side_bottom = side_top + 78.0 + scale * ez;
-
-    let mut body = String::new();
-    let out = &mut body;
-
-    // Title.
-    text(
-        out,
-        DVec2::new(30.0, 38.0),
-        22.0,
-        "start",
-        r#" font-weight="bold""#,
-        &cut.name,
-    );
-    let mut sub = match &cut.family {
-        Some(f) => format!("{f} · "),
-        None => String::new(),
-    };
-    sub += &format!(
-        "{} facets · lengths in girdle diameters",
-        solid.facets().len()
-    );
-    text(
-        out,
-        DVec2::new(30.0, 60.0),
-        13.0,
-        "start",
-        r##" fill="#555""##,
-        &sub,
-    );
 
     // Face-up and face-down views.
     text(
@@ -176,17 +230,36 @@ pub fn diagram(cut: &Cut) -> String {
     );
     side_annotations(out, solid, &props, side, lo, hi);
 
-    // Text block.
-    let text_bottom = text_block(out, cut, &props, &summary, &tiers, top);
-    let height = (side_bottom.max(text_bottom) + 30.0).ceil();
+    // Text block, then the notes across the page.
+    let (text_bottom, text_right) = text_block(out, cut, &props, &summary, &tiers, top);
+    let width = WIDTH.max((text_right + 24.0).ceil());
+    let mut y = side_bottom.max(text_bottom) + 36.0;
+    if !notes.is_empty() {
+        text(
+            out,
+            DVec2::new(30.0, y),
+            13.0,
+            "start",
+            r#" font-weight="bold""#,
+            "Notes",
+        );
+        for n in &notes {
+            for l in wrap(n, 12.0, width - 60.0) {
+                y += 17.0;
+                text(out, DVec2::new(30.0, y), 12.0, "start", "", &l);
+            }
+        }
+        y += 10.0;
+    }
+    let height = (y - 6.0).ceil();
 
     let mut doc = String::new();
     let _ = writeln!(doc, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
         doc,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{height}" viewBox="0 0 {WIDTH} {height}" font-family="{FONT}" fill="{INK}">"#
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="{FONT}" fill="{INK}">"#
     );
-    let _ = writeln!(doc, "<title>{} facet diagram</title>", esc(&cut.name));
+    let _ = writeln!(doc, "<title>{} facet diagram</title>", esc(&title_of(cut)));
     let _ = writeln!(
         doc,
         r#"<defs><marker id="arrow" viewBox="0 0 10 10" refX="9" refY="5" markerWidth="7" markerHeight="7" orient="auto-start-reverse"><path d="M0,1 L10,5 L0,9 z" fill="{DIM}"/></marker></defs>"#
@@ -292,5 +365,72 @@ mod tests {
             assert!(svg.contains(&format!(">{}</text>", t.name)), "{}", t.name);
         }
         assert!(svg.contains("imported &quot;stone&quot;"));
+    }
+
+    /// The right edge of every text element: its x plus its measured width for a start
+    /// anchor (half of it centred, none at the end).
+    fn right_edges(svg: &str) -> Vec<(f64, String)> {
+        let mut out = Vec::new();
+        for part in svg.split("<text ").skip(1) {
+            let attr = |k: &str| -> Option<String> {
+                let i = part.find(&format!("{k}=\""))? + k.len() + 2;
+                Some(part[i..].split('"').next()?.to_string())
+            };
+            let x: f64 = attr("x").unwrap().parse().unwrap();
+            let size: f64 = attr("font-size").unwrap().parse().unwrap();
+            let body = part.split('>').nth(1).unwrap().split('<').next().unwrap();
+            let body = body
+                .replace("&amp;", "&")
+                .replace("&lt;", "<")
+                .replace("&gt;", ">");
+            let w = svg::text_width(&body, size);
+            let right = match attr("text-anchor").as_deref() {
+                Some("middle") => x + w / 2.0,
+                Some("end") => x,
+                _ => x + w,
+            };
+            out.push((right, body));
+        }
+        out
+    }
+
+    #[test]
+    fn a_design_diagram_shows_its_heading_notes_and_every_index() {
+        // A round brilliant written on a 120 gear (fractional indices, long lines) and read
+        // back as a design with two title lines, an index and a note.
+        let rb = Cut::from_family("rb", "round-brilliant", &Default::default()).unwrap();
+        let text = crate::io::asc::write(&rb, 120)
+            .replace("H rb\n", "H PC 99.001 A Test Brilliant\nH by A. Faceter\n")
+            .replace("I 2.417\n", "I 1.54\n")
+            + "F Polish the table last; cut the girdle to 3 %.\n";
+        let cut = crate::io::asc::parse(text.as_bytes(), "t.asc")
+            .unwrap()
+            .to_cut("t")
+            .unwrap();
+        let svg = diagram(&cut);
+        check_balanced(&svg).unwrap();
+        for want in [
+            ">PC 99.001 A Test Brilliant</text>",
+            ">by A. Faceter</text>",
+            "index 1.54 (quartz) · gear 120 · 8-fold symmetry with mirror",
+            ">Notes</text>",
+            ">Polish the table last; cut the girdle to 3 %.</text>",
+        ] {
+            assert!(svg.contains(want), "{want} missing");
+        }
+        // Every text, every index included, ends inside the page.
+        let width: f64 = svg
+            .split("<svg ")
+            .nth(1)
+            .and_then(|t| t.split("width=\"").nth(1))
+            .and_then(|t| t.split('"').next())
+            .unwrap()
+            .parse()
+            .unwrap();
+        let edges = right_edges(&svg);
+        assert!(edges.iter().any(|(_, t)| t.contains("-")), "indices shown");
+        for (right, t) in edges {
+            assert!(right <= width - 4.0, "`{t}` ends at {right:.0} of {width}");
+        }
     }
 }

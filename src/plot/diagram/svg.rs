@@ -77,6 +77,34 @@ pub(super) fn text(out: &mut String, p: DVec2, size: f64, anchor: &str, extra: &
     );
 }
 
+/// Width in pixels of `s` at font size `size` (DejaVu Sans, the page's first font).
+pub(super) fn text_width(s: &str, size: f64) -> f64 {
+    crate::plot::text::width_at_em(s, size)
+}
+
+/// `s` broken at spaces into lines at most `max` pixels wide at font size `size` (a word
+/// wider than that stands alone on its line).
+pub(super) fn wrap(s: &str, size: f64, max: f64) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut cur = String::new();
+    for w in s.split_whitespace() {
+        let next = if cur.is_empty() {
+            w.to_string()
+        } else {
+            format!("{cur} {w}")
+        };
+        if !cur.is_empty() && text_width(&next, size) > max {
+            lines.push(std::mem::replace(&mut cur, w.to_string()));
+        } else {
+            cur = next;
+        }
+    }
+    if !cur.is_empty() {
+        lines.push(cur);
+    }
+    lines
+}
+
 /// A label with a white halo, readable over facet lines.
 pub(super) fn label(out: &mut String, p: DVec2, size: f64, anchor: &str, s: &str) {
     text(

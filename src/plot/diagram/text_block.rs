@@ -1,12 +1,14 @@
 //! The diagram's text block: the proportions, each tier's angle and facet count, and the
 //! cutting instructions.
 
-use super::svg::{fixed, pct, text, INK};
+use super::svg::{fixed, pct, text, text_width, INK};
 use super::views::tint;
 use crate::cut::Cut;
 use crate::geometry::DVec2;
 use std::fmt::Write as _;
 
+/// The text block, from `top` at x = 720; returns its bottom and its right edge (the page
+/// is made as wide as that needs).
 pub(super) fn text_block(
     out: &mut String,
     cut: &Cut,
@@ -14,7 +16,7 @@ pub(super) fn text_block(
     summary: &[crate::cut::TierSummary],
     tiers: &[String],
     top: f64,
-) -> f64 {
+) -> (f64, f64) {
     let x = 720.0;
     let mut y = top + 12.0;
     let bold = r#" font-weight="bold""#;
@@ -120,6 +122,16 @@ pub(super) fn text_block(
         bold,
         &format!("Cutting order (gear {gear})"),
     );
+    // Columns: the step and tier, the angle right-aligned after the widest of them, the
+    // indices after it, eight to a line.
+    let name_w = c
+        .steps
+        .iter()
+        .map(|st| text_width(&format!("{}. {}", st.step, st.tier), 11.0))
+        .fold(0.0, f64::max);
+    let angle_x = x + (name_w + 48.0).max(150.0);
+    let idx_x = angle_x + 8.0;
+    let mut right = x + 250.0;
     let mut side = "";
     for st in &c.steps {
         if st.side != side {
@@ -145,7 +157,7 @@ pub(super) fn text_block(
         );
         text(
             out,
-            DVec2::new(x + 150.0, y),
+            DVec2::new(angle_x, y),
             11.0,
             "end",
             "",
@@ -157,17 +169,12 @@ pub(super) fn text_block(
             if k > 0 {
                 y += 13.0;
             }
-            text(
-                out,
-                DVec2::new(x + 158.0, y),
-                10.0,
-                "start",
-                grey,
-                &chunk.join("-"),
-            );
+            let line = chunk.join("-");
+            right = right.max(idx_x + text_width(&line, 10.0));
+            text(out, DVec2::new(idx_x, y), 10.0, "start", grey, &line);
         }
     }
-    y
+    (y, right)
 }
 
 /// A parameter as a person reads it: at most six decimals, trailing zeros dropped (`0.57`,

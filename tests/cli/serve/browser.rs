@@ -49,7 +49,7 @@ async fn js<T: serde::de::DeserializeOwned>(page: &chromiumoxide::Page, expr: &s
 fn serve_page_works_in_a_browser() {
     let chromium = std::path::Path::new("/usr/bin/chromium");
     if !chromium.exists() {
-        if std::env::var_os("CI").is_some() {
+        if in_ci() {
             panic!("CI is set but /usr/bin/chromium is missing (.ci/run installs it)");
         }
         eprintln!("SKIPPED serve_page_works_in_a_browser: /usr/bin/chromium is not installed (apt-get install -y chromium)");

@@ -1,9 +1,11 @@
 //! `facetlab serve`: the API as a client sees it (the built binary on a free port), a fuzz loop
-//! that must not kill the server, and the page in a real browser (Chromium, when present).
+//! that must not kill the server, and the page in a real browser (Chromium, with the cargo
+//! feature `browser-tests`, which `.ci/run` turns on).
 //! This file holds the harness (the server as a child process, a bare HTTP/1.1 client); the
 //! tests are in [`api`], [`fuzz`] and [`browser`].
 
 mod api;
+#[cfg(feature = "browser-tests")]
 mod browser;
 mod colour;
 mod fuzz;
@@ -267,4 +269,24 @@ fn hue(c: [f64; 3]) -> (f64, f64) {
         60.0 * ((r - g) / d + 4.0)
     };
     (h, d)
+}
+
+/// Whether this run is CI's: `CI` set to anything but empty, `false` or `0` (`.ci/run` and CI
+/// services set `CI=true`). A test that cannot run there fails instead of passing.
+fn in_ci() -> bool {
+    std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false" && v != "0")
+}
+
+/// Without the feature `browser-tests` the browser test is not built: a skip anywhere else, a
+/// failure under CI (`.ci/run` builds it with `cargo test --features browser-tests`).
+#[cfg(not(feature = "browser-tests"))]
+#[test]
+fn the_browser_test_is_not_skipped_in_ci() {
+    assert!(
+        !in_ci(),
+        "CI is set but the browser test of `facetlab serve` was not built: run `cargo test --features browser-tests`"
+    );
+    eprintln!(
+        "SKIPPED the browser test of `facetlab serve`: `cargo test --features browser-tests` runs it (needs /usr/bin/chromium)"
+    );
 }
