@@ -398,10 +398,13 @@ impl PlanConfig {
             Error::parse(format!("{source}{line}"), e.message())
         })?;
         let at = |f: &str| format!("{source}: {f}");
-        let mut c = PlanConfig::default();
-        c.name = match &raw.name {
+        let name = match &raw.name {
             Some(v) => string(at("name"), v, "\"rough-12\"")?.to_string(),
             None => stem.to_string(),
+        };
+        let mut c = PlanConfig {
+            name,
+            ..PlanConfig::default()
         };
         if let Some(v) = &raw.seed {
             c.seed = whole(at("seed"), v, 0, i64::MAX as u64, "a seed")?;
