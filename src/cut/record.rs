@@ -98,7 +98,7 @@ impl GemcadRecord {
         let sym = axial_symmetry(&cut.solid, 1e-7);
         let symmetry = (1..=sym.order)
             .rev()
-            .find(|k| sym.order % k == 0 && teeth % k == 0)
+            .find(|k| sym.order.is_multiple_of(*k) && teeth.is_multiple_of(*k))
             .unwrap_or(1);
         let title = cut.name.split_whitespace().collect::<Vec<_>>().join(" ");
         GemcadRecord {

@@ -129,7 +129,7 @@ pub fn write(cut: &Cut, gear: u32) -> String {
     write_for(cut, gear, DIAMOND_RI)
 }
 
-/// [`write`], a generated cut written for the index `ri` (its material's n_D: its `I` line);
+/// [`write()`], a generated cut written for the index `ri` (its material's n_D: its `I` line);
 /// a design keeps its own record.
 pub fn write_for(cut: &Cut, gear: u32, ri: f64) -> String {
     let (record, gear, lines) = gear_lines(cut, gear, ri);
