@@ -35,7 +35,7 @@ fn tetra(dir: &Path, name: &str, scale: f64, at: [f64; 3]) -> String {
 /// A quick plan config.
 const QUICK: &str = "seed = 5\ntop = 1\n[search]\nstarts = 1\nmax_iterations = 20\n";
 
-/// 1. `optimize cfg.toml --out FOLDER` never replaces the design its `[cut] file` names,
+/// Item 1: `optimize cfg.toml --out FOLDER` never replaces the design its `[cut] file` names,
 /// with or without `--force`; nor `sweep` the config's design.
 #[test]
 fn an_output_never_replaces_a_file_the_config_reads() {
@@ -64,7 +64,7 @@ fn an_output_never_replaces_a_file_the_config_reads() {
     assert_eq!(std::fs::read_to_string(od.join("best.asc")).unwrap(), OCTA);
 }
 
-/// 4. `plan --size-mm` takes a mesh in any units, anywhere: in micrometres, and far off the
+/// Item 4: `plan --size-mm` takes a mesh in any units, anywhere: in micrometres, and far off the
 /// origin.
 #[test]
 fn plan_size_mm_takes_meshes_in_other_units() {
@@ -98,7 +98,7 @@ fn plan_size_mm_takes_meshes_in_other_units() {
     }
 }
 
-/// 5. A price table of `inf`, 1e308 or all zeros is refused by its field; one priced only
+/// Item 5: A price table of `inf`, 1e308 or all zeros is refused by its field; one priced only
 /// above every plan's weight plans with a warning, on stderr and in the summary.
 #[test]
 fn price_tables_are_checked_and_warn_when_nothing_is_priced() {
@@ -171,7 +171,7 @@ fn price_tables_are_checked_and_warn_when_nothing_is_priced() {
     );
 }
 
-/// 6. A whole-number parameter is not a free range in a plan config (as in `optimize`), and a
+/// Item 6: A whole-number parameter is not a free range in a plan config (as in `optimize`), and a
 /// family named twice is refused (its files would be written over each other).
 #[test]
 fn plan_refuses_whole_number_ranges_and_families_named_twice() {
@@ -272,7 +272,7 @@ fn plan_refuses_whole_number_ranges_and_families_named_twice() {
     assert!(!p.join("run").exists());
 }
 
-/// 7. A design's index follows the rule of `--ri`; its gear is whole and its indices on it.
+/// Item 7: A design's index follows the rule of `--ri`; its gear is whole and its indices on it.
 #[test]
 fn impossible_designs_are_refused() {
     let dir = tempfile::tempdir().unwrap();
@@ -305,7 +305,7 @@ fn impossible_designs_are_refused() {
     ok(p, &["info", "ok.asc"]);
 }
 
-/// 8. SIGTERM stops `plan` with exit code 130, writing the families planned so far (and
+/// Item 8: SIGTERM stops `plan` with exit code 130, writing the families planned so far (and
 /// saying so), or nothing.
 #[test]
 fn plan_interrupted_exits_130() {
@@ -355,7 +355,7 @@ fn plan_interrupted_exits_130() {
     }
 }
 
-/// 9. Errors say what is allowed: no "2e7" where a small range is asked, big and tiny numbers
+/// Item 9: Errors say what is allowed: no "2e7" where a small range is asked, big and tiny numbers
 /// in a few digits, a material that is not one refused by the flag that gave it.
 #[test]
 fn errors_say_what_is_allowed() {

@@ -268,7 +268,7 @@ fn serve_never_opens_a_path_a_client_names() {
     assert_eq!(r.status, 422);
 }
 
-/// 10. The API traces an uploaded design in its own material (its `I` index) unless told
+/// Item 10: The API traces an uploaded design in its own material (its `I` index) unless told
 /// otherwise, as every command does; `material` still chooses.
 #[test]
 fn serve_scores_a_design_in_its_own_material() {
