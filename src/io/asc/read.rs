@@ -250,14 +250,19 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
     if let Some(o) = open.take() {
         d.tiers.push(parse_tier(&o, source)?);
     }
-    // Indices lie on the gear: 0 (the same as the gear's count) to the count of teeth.
+    // Indices lie on the gear: from minus the count of teeth (counted back, as GemCad
+    // tolerates) to the count.
     let teeth = d.gear.abs();
     for t in &d.tiers {
-        if let Some((i, _)) = t.indices.iter().find(|(i, _)| !(0.0..=teeth).contains(i)) {
+        if let Some((i, _)) = t
+            .indices
+            .iter()
+            .find(|(i, _)| !(-teeth..=teeth).contains(i))
+        {
             return Err(Error::parse(
                 at(t.line),
                 format!(
-                    "index {} is not on the gear; allowed 0 to {teeth} on gear {}",
+                    "index {} is not on the gear; allowed -{teeth} to {teeth} on gear {}",
                     crate::error::shown(*i),
                     d.gear
                 ),
