@@ -2,16 +2,95 @@
 //! (`cuts/rough-octahedron.obj`, 2,048 triangles; its hull's planes) for a round brilliant
 //! (target ≤ 1 ms), and whole plans over one family and over every default family with the
 //! default search (12 starts; targets ≤ 20 s and ≤ 60 s), and the top 3 in symmetric
-//! crystals (cube, octahedron) and the sphere. Run: `cargo bench --bench plan`.
+//! crystals (cube, octahedron) and the sphere; then a scanned pebble of 401,408 triangles
+//! (`facetlab::plan::sample::scanned_pebble`, made here): its full convex hull (target ≤ 1 s),
+//! the rough as the planner takes it (its hull stopped at `HULL_VERTICES`), and a plan of one
+//! family (target ≤ 10 s), beside the example rough's in the same run. Run:
+//! `cargo bench --bench plan` (`-- scan` for the scanned pebble alone, `-- hull` for its hull).
 
 use facetlab::cut::Cut;
-use facetlab::plan::sample::distorted_octahedron;
+use facetlab::geometry::{hull, HullOptions};
+use facetlab::plan::sample::{distorted_octahedron, scanned_pebble};
 use facetlab::plan::{largest_copy, PlanConfig, Planner, Rough};
 use glam::{DQuat, DVec3};
 use std::collections::BTreeMap;
 use std::time::Instant;
 
 fn main() {
+    let scan_only = std::env::args().any(|a| a == "scan" || a == "hull");
+    if !scan_only {
+        small();
+    }
+    scan();
+}
+
+/// The scanned pebble: its hull, the rough the planner takes, and one family planned.
+fn scan() {
+    let t = Instant::now();
+    let mesh = scanned_pebble(224, 1);
+    println!(
+        "scanned pebble: {} triangles, {} vertices, made in {:.2} s",
+        mesh.triangles.len(),
+        mesh.vertices.len(),
+        t.elapsed().as_secs_f64()
+    );
+    // Best of three: the machine is shared.
+    let mut full_s = f64::INFINITY;
+    let mut full = None;
+    for _ in 0..3 {
+        let t = Instant::now();
+        full = Some(hull(&mesh.vertices, HullOptions::default()).expect("hull"));
+        full_s = full_s.min(t.elapsed().as_secs_f64());
+    }
+    let full = full.expect("hull");
+    println!(
+        "full convex hull: {:.3} s (best of 3), {} vertices, {} planes (target ≤ 1 s)",
+        full_s,
+        full.vertices,
+        full.planes.len()
+    );
+    if std::env::args().any(|a| a == "hull") {
+        return;
+    }
+    let t = Instant::now();
+    let rough = Rough::from_trimesh("pebble", "bench", mesh, None).expect("rough");
+    println!(
+        "rough (closed check, volume, hull of {} vertices, solid of {} planes): {:.3} s; the farthest vertex left out {:.2} µm outside, the hull's volume {:+.4} % of the mesh's",
+        rough.hull_vertices,
+        rough.solid.facets().len(),
+        t.elapsed().as_secs_f64(),
+        1000.0 * rough.left_out,
+        100.0 * (rough.volume() / rough.mesh_volume.unwrap_or(f64::NAN) - 1.0)
+    );
+    let config = PlanConfig::default();
+    let planner = Planner::new(&rough, &config, 3.515);
+    let t = Instant::now();
+    let best = planner
+        .plan_family("round-brilliant", &|| {})
+        .expect("plans");
+    let scan_s = t.elapsed().as_secs_f64();
+    // The example rough's plan in the same minutes, for a ratio.
+    let example = Rough::from_trimesh("rough-octahedron", "bench", distorted_octahedron(16), None)
+        .expect("example rough");
+    let small_planner = Planner::new(&example, &config, 3.515);
+    let t = Instant::now();
+    small_planner
+        .plan_family("round-brilliant", &|| {})
+        .expect("plans");
+    let small_s = t.elapsed().as_secs_f64();
+    println!(
+        "plan round-brilliant in the pebble ({} starts): {:.2} s (target ≤ 10 s; {:.2}× the example rough's {:.2} s), best {:.4} ct, yield {:.2} %",
+        config.starts,
+        scan_s,
+        scan_s / small_s,
+        small_s,
+        best[0].carats,
+        100.0 * best[0].yield_fraction
+    );
+}
+
+/// The example rough: the containment program, one family, every family, the crystals.
+fn small() {
     let rough = Rough::from_trimesh("rough-octahedron", "bench", distorted_octahedron(16), None)
         .expect("example rough");
     let planes = rough.planes();

@@ -85,3 +85,26 @@ impl std::error::Error for Error {}
 
 /// Result with the crate's [`Error`].
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// A number as a message shows it: the shortest form that reads back to the same value, in
+/// exponent form when that is shorter than the digits (`1e308`, `1e-308`, `2.5e-9`), never
+/// the hundreds of digits `{}` prints for them.
+///
+/// ```
+/// use facetlab::error::shown;
+/// assert_eq!(shown(0.57), "0.57");
+/// assert_eq!(shown(40.0), "40");
+/// assert_eq!(shown(1e308), "1e308");
+/// assert_eq!(shown(-1e-308), "-1e-308");
+/// assert_eq!(shown(123456.0), "123456");
+/// assert_eq!(shown(f64::INFINITY), "inf");
+/// ```
+pub fn shown(v: f64) -> String {
+    let plain = format!("{v}");
+    let exp = format!("{v:e}");
+    if exp.len() < plain.len() {
+        exp
+    } else {
+        plain
+    }
+}

@@ -286,39 +286,22 @@ pub fn design_materials(
     let materials = cuts
         .iter()
         .map(|c| {
-            let own = (!chosen)
-                .then(|| c.design_ri())
-                .flatten()
-                .and_then(|n| Material::for_index(n).map(|m| (n, m)));
-            let base = match own {
-                Some((n, m)) => {
-                    notes.push(format!(
-                        "{}: {}; --material or --ri overrides",
-                        c.name,
-                        m.for_index_note(n)
-                    ));
-                    m
-                }
-                None => default.clone(),
-            };
+            if chosen {
+                return default.clone();
+            }
             let lines = c
                 .record
                 .iter()
                 .flat_map(|r| r.title.iter().chain(&r.footnotes));
-            match (chosen, Material::from_design_notes(lines, &base)) {
-                (false, Ok(Some(m))) => {
-                    notes.push(format!(
-                        "{}: traced as {} (the design's notes); --material or --ri overrides",
-                        c.name, m.name
-                    ));
-                    m
+            let (m, said) = Material::of_design(c.design_ri(), lines, default);
+            notes.extend(said.into_iter().map(|s| {
+                if s.ends_with("; ignored") {
+                    format!("{}: {s}", c.name)
+                } else {
+                    format!("{}: {s}; --material or --ri overrides", c.name)
                 }
-                (false, Err(e)) => {
-                    notes.push(format!("{}: {e}; ignored", c.name));
-                    base
-                }
-                _ => base,
-            }
+            }));
+            m
         })
         .collect();
     (materials, notes)
@@ -327,6 +310,12 @@ pub fn design_materials(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_designs_index_follows_the_rule_of_ri() {
+        use facetlab::io::asc::{RI_ABOVE, RI_MAX};
+        assert_eq!((RI_ABOVE, RI_MAX), (Material::RI_ABOVE, Material::RI_MAX));
+    }
 
     #[test]
     fn flags_parse_or_name_the_flag() {

@@ -4,6 +4,7 @@
 mod batch;
 mod cuts;
 mod flags;
+mod interrupt;
 pub mod materials;
 pub mod merge;
 pub mod optimize;
@@ -33,7 +34,7 @@ pub use outputs::Exit;
     about,
     long_about = None,
     propagate_version = true,
-    after_help = "Exit codes: 0 done; 1 done, but `score --verify` found a disagreement between the tracers; 2 bad input (one line on stderr); 130 interrupted (Ctrl-C or SIGTERM; `optimize` still writes what it found)."
+    after_help = "Exit codes: 0 done; 1 done, but `score --verify` found a disagreement between the tracers; 2 bad input (one line on stderr); 130 interrupted (Ctrl-C or SIGTERM; `optimize` and `plan` still write what they found)."
 )]
 pub struct Cli {
     /// What to do.
@@ -82,6 +83,7 @@ pub enum Command {
     /// mesh in mm, taken as its convex hull, or a crystal form with --size-mm), each placed by
     /// an exact containment program and searched over orientation and proportions; writes a
     /// run folder with the cuts in the rough's coordinates, pictures and summary.json.
+    /// Ctrl-C or SIGTERM stops it and writes the families planned so far (exit code 130).
     Plan(plan::PlanArgs),
     /// Join the shards of one sweep (`sweep --shard K/N`) into the CSV and map one unsharded
     /// run writes, after checking they cover the grid exactly once.
@@ -116,7 +118,7 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::Render(a) => done(render::run(&a)),
         Command::Report(a) => done(report::run(&a)),
         Command::Retarget(a) => done(retarget::run(&a)),
-        Command::Plan(a) => done(plan::run(&a)),
+        Command::Plan(a) => plan::run(&a),
         Command::Serve(a) => done(serve::run(&a)),
     }
 }

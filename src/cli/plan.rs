@@ -18,7 +18,8 @@
 //!   object each), `overview.png` (each family's best plan in the rough), `report.html` (the
 //!   rough, every plan in a table, each family's best in the rough and its pictures and scores).
 
-use super::outputs::refuse_overwrite;
+use super::interrupt;
+use super::outputs::{refuse_overwrite, Exit};
 use super::progress;
 use facetlab::cut::Cut;
 use facetlab::error::{Error, Result};
@@ -26,12 +27,16 @@ use facetlab::geometry::Polyhedron;
 use facetlab::io::gltf::{write_gltf, GltfObject};
 use facetlab::metrics::{score, ScoreConfig};
 use facetlab::optics::Material;
-use facetlab::plan::{load_rough, Objective, Plan, PlanConfig, Planner, Rough, CRYSTALS};
+use facetlab::plan::config::check_families;
+use facetlab::plan::{
+    load_rough, plan_warnings, Objective, Plan, PlanConfig, Planner, Rough, CRYSTALS,
+};
 use facetlab::plot::plan::{Overview, Placed, ThreeViews};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 /// Flags of `facetlab plan`.
@@ -74,6 +79,8 @@ struct RoughJson {
     hull_excess: f64,
     size_mm: f64,
     planes: usize,
+    hull_vertices: usize,
+    left_out_mm: f64,
 }
 
 #[derive(Serialize)]
@@ -122,6 +129,7 @@ struct SummaryJson {
     families: Vec<String>,
     elapsed_s: f64,
     plans: Vec<PlanJson>,
+    warnings: Vec<String>,
 }
 
 fn size_flag(s: &str) -> Result<f64> {
@@ -134,30 +142,31 @@ fn size_flag(s: &str) -> Result<f64> {
     )
 }
 
-/// Run `facetlab plan`.
-pub fn run(a: &PlanArgs) -> Result<()> {
+/// Run `facetlab plan`. Exits 130 when Ctrl-C or SIGTERM stopped it (after writing the
+/// families planned so far, if any).
+pub fn run(a: &PlanArgs) -> Result<Exit> {
     let started = Instant::now();
     let mut config = match &a.config {
         Some(p) => PlanConfig::load(p)?,
         None => PlanConfig::default(),
     };
     if !a.families.is_empty() {
-        for f in &a.families {
-            facetlab::cut::family(f).map_err(|e| Error::invalid("--family", e.to_string()))?;
-        }
-        config.families = a.families.clone();
+        config.families = check_families(&a.families).map_err(|m| Error::invalid("--family", m))?;
     }
     if let Some(t) = &a.top {
         config.top = facetlab::io::text::count("--top", t, 1, 50)? as usize;
     }
     if let Some(m) = &a.material {
+        Material::by_name(m)?;
         config.material = m.clone();
     }
     let material = Material::by_name(&config.material)?;
     let size = a.size_mm.as_deref().map(size_flag).transpose()?;
-    // Outputs: a new or empty folder that is none of the inputs.
+    // Outputs: a new or empty folder that is none of the inputs (the rough, the config, the
+    // price table it names).
     let mut inputs = vec![PathBuf::from(&a.rough)];
     inputs.extend(a.config.iter().cloned());
+    inputs.extend(config.inputs());
     refuse_overwrite(&[("--out", a.out.clone())], &inputs)?;
     if a.out.is_file()
         || (a.out.is_dir() && a.out.read_dir().map_or(true, |mut d| d.next().is_some()))
@@ -196,6 +205,7 @@ pub fn run(a: &PlanArgs) -> Result<()> {
         other => other,
     })?;
 
+    interrupt::install();
     let bar = progress::bar(
         (config.families.len() * config.starts) as u64,
         a.quiet,
@@ -206,8 +216,24 @@ pub fn run(a: &PlanArgs) -> Result<()> {
         bar.set_message(f.to_string());
         true
     };
-    let all = plan_families(&rough, &config, &material, &family, &tick)?;
+    let all = plan_families(
+        &rough,
+        &config,
+        &material,
+        &family,
+        &tick,
+        Some(&interrupt::STOP),
+    );
     bar.finish_and_clear();
+    let all = all?;
+    let interrupted = interrupt::stopped();
+    if interrupted && all.is_empty() {
+        eprintln!(
+            "facetlab: interrupted before any family was planned; nothing written (exit code 130)"
+        );
+        return Ok(Exit::Interrupted);
+    }
+    let warnings = plan_warnings(&config, &all);
     let run = Run {
         out: &a.out,
         input: &a.rough,
@@ -216,29 +242,56 @@ pub fn run(a: &PlanArgs) -> Result<()> {
         rough: &rough,
         all: &all,
         started,
+        warnings: &warnings,
     };
     write_folder(&run)?;
     print_summary(&run);
-    Ok(())
+    for w in &warnings {
+        eprintln!("facetlab: warning: {w}");
+    }
+    if interrupted {
+        let done: Vec<&str> = all.iter().map(|(f, _)| f.as_str()).collect();
+        let left: Vec<&str> = config
+            .families
+            .iter()
+            .map(String::as_str)
+            .filter(|f| !done.contains(f))
+            .collect();
+        eprintln!(
+            "facetlab: interrupted; wrote the families planned ({}), not {} (exit code 130)",
+            done.join(", "),
+            left.join(", ")
+        );
+        return Ok(Exit::Interrupted);
+    }
+    Ok(Exit::Ok)
 }
 
 /// Plan each family of `config` in `rough` in turn: `family(name)` is asked before each
-/// (false stops, keeping the families planned so far), `tick` runs after each start. Refuses
-/// a rough too small for any cut (the widest plan narrower than `min_width_mm`).
+/// (false stops, keeping the families planned so far), `tick` runs after each start; a raised
+/// `stop` ends the family being planned at once and drops it. Refuses a rough too small for
+/// any cut (the widest plan narrower than `min_width_mm`).
 pub fn plan_families(
     rough: &Rough,
     config: &PlanConfig,
     material: &Material,
     family: &dyn Fn(&str) -> bool,
     tick: &(dyn Fn() + Sync),
+    stop: Option<&AtomicBool>,
 ) -> Result<Vec<(String, Vec<Plan>)>> {
-    let planner = Planner::new(rough, config, material.density);
+    let mut planner = Planner::new(rough, config, material.density);
+    if let Some(s) = stop {
+        planner = planner.with_stop(s);
+    }
     let mut all: Vec<(String, Vec<Plan>)> = Vec::new();
     for f in &config.families {
-        if !family(f) {
+        if planner.stopped() || !family(f) {
             break;
         }
         let plans = planner.plan_family(f, tick)?;
+        if planner.stopped() {
+            break;
+        }
         all.push((f.clone(), plans));
     }
     // Too small: the best plan of every family is narrower than the config allows.
@@ -267,6 +320,8 @@ pub struct Run<'r> {
     pub rough: &'r Rough,
     pub all: &'r [(String, Vec<Plan>)],
     pub started: Instant,
+    /// What the run should tell its user (`summary.json`'s `warnings`).
+    pub warnings: &'r [String],
 }
 
 /// Write the run folder (into a temporary folder beside it, renamed at the end; `out` must
@@ -304,6 +359,13 @@ fn print_summary(run: &Run<'_>) {
         None => String::new(),
     };
     println!("rough {}: {:.3} mm³{hull}", rough.name, rough.volume());
+    if rough.left_out > 0.0 {
+        println!(
+            "  planned in the hull of {} of its vertices, inside the full hull; the farthest vertex left out lies {:.1} µm outside it",
+            rough.hull_vertices,
+            1000.0 * rough.left_out
+        );
+    }
     for (fam, plans) in run.all {
         if let Some(p) = plans.first() {
             println!(
@@ -346,6 +408,7 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
         rough,
         all,
         started,
+        warnings,
         out: _,
     } = *run;
     std::fs::create_dir(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
@@ -505,6 +568,8 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
             hull_excess: rough.hull_excess(),
             size_mm: rough.size(),
             planes: rough.solid.facets().len(),
+            hull_vertices: rough.hull_vertices,
+            left_out_mm: rough.left_out,
         },
         material: material.name.clone(),
         density: material.density,
@@ -523,6 +588,7 @@ fn write_into(dir: &Path, run: &Run<'_>) -> Result<()> {
         families: config.families.clone(),
         elapsed_s: started.elapsed().as_secs_f64(),
         plans: plans_json,
+        warnings: warnings.to_vec(),
     };
     let json = serde_json::to_string_pretty(&summary)
         .map_err(|e| Error::invalid("summary.json", e.to_string()))?;

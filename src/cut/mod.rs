@@ -31,7 +31,7 @@ pub use measure::{Proportions, Ratios, TierSummary};
 pub use record::GemcadRecord;
 pub use space::{CutSpace, ParamRange};
 
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use crate::geometry::{FacetPlane, Polyhedron};
 use std::collections::BTreeMap;
 
@@ -96,7 +96,11 @@ impl ParamDef {
         if !v.is_finite() {
             return Err(Error::invalid(
                 self.key,
-                format!("{v} is not a number; allowed {range} {}", self.unit.label()),
+                format!(
+                    "{} is not a number; allowed {range} {}",
+                    shown(v),
+                    self.unit.label()
+                ),
             ));
         }
         let inside = if self.open {
@@ -108,7 +112,8 @@ impl ParamDef {
             return Err(Error::invalid(
                 self.key,
                 format!(
-                    "{v} is out of range; allowed {range} {}{hint}",
+                    "{} is out of range; allowed {range} {}{hint}",
+                    shown(v),
                     self.unit.label()
                 ),
             ));

@@ -28,7 +28,7 @@ use super::reangle::{adjacency_over, Reangled, TierModel};
 use super::tie_key::{Tie, TieKind};
 use super::tiers::{fixed, ANGLE_DECIMALS};
 use crate::cut::{Cut, CutSpace, ParamRange, Unit};
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use crate::geometry::Polyhedron;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
@@ -455,10 +455,11 @@ impl CutSpace for DesignSpace {
             if !(v.is_finite() && r.contains(v)) {
                 let what = match kind {
                     Some(TieKind::Together) => format!(
-                        "{v} is not a change of angle that keeps every tier of the tie in (0, 90) degrees; allowed ({:.4}, {:.4})",
+                        "{} is not a change of angle that keeps every tier of the tie in (0, 90) degrees; allowed ({:.4}, {:.4})",
+                        shown(v),
                         r.min, r.max
                     ),
-                    _ => format!("{v} is not an angle in (0, 90) degrees"),
+                    _ => format!("{} is not an angle in (0, 90) degrees", shown(v)),
                 };
                 return Err(Error::invalid(k.as_str(), what));
             }
@@ -552,7 +553,7 @@ impl DesignSpace {
                 return Err(Error::invalid(
                     key,
                     format!(
-                        "these angles open the meet {} by {:.2e} W; {advice}, or allow open meets (`open_meets = \"allow\"`)",
+                        "these angles open the meet {} by {:.2e} W; {advice}",
                         self.describe(m),
                         r.gaps[m]
                     ),

@@ -8,11 +8,12 @@
 pub mod axial;
 pub mod canonical;
 pub mod clip2d;
+pub(crate) mod fast_hash;
 mod hull;
 mod polyhedron;
 
 pub use glam::{DVec2, DVec3};
-pub use hull::{convex_hull, convex_hull_with_tolerance, MERGE_TOL};
+pub use hull::{convex_hull, convex_hull_with_tolerance, hull, Hull, HullOptions, MERGE_TOL};
 pub use polyhedron::{Edge, Facet, Polyhedron};
 
 /// The outline's extents along x and y, as (length, width): the larger and the smaller.

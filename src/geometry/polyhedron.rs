@@ -6,6 +6,7 @@
 //! the two facets they separate. Problems are reported, never hidden: a plane that never touches
 //! the solid, duplicate planes, an unbounded or empty solid.
 
+use super::fast_hash::{fast_map, FastMap};
 use super::{DVec3, FacetPlane, Plane, EPS, WELD};
 use crate::error::{Error, Result};
 use serde::Serialize;
@@ -53,11 +54,30 @@ pub struct Polyhedron {
     edges: Vec<Edge>,
 }
 
-/// A face during construction: its plane index (`None` for the starting box) and polygon.
+/// A face during construction: its plane index (`None` for the starting box), its polygon,
+/// and a ball around the polygon (so that a plane far from it skips it at the cost of one dot
+/// product).
 struct Face {
     source: Option<usize>,
     normal: DVec3,
     poly: Vec<DVec3>,
+    centre: DVec3,
+    radius: f64,
+}
+
+impl Face {
+    fn new(source: Option<usize>, normal: DVec3, poly: Vec<DVec3>) -> Face {
+        let centre = poly.iter().copied().sum::<DVec3>() / poly.len().max(1) as f64;
+        let radius = poly.iter().map(|p| p.distance(centre)).fold(0.0, f64::max);
+        Face {
+            source,
+            normal,
+            poly,
+            // Rounding of the centre and the distances: a little room.
+            radius: radius * (1.0 + 1e-12) + 1e-15 * centre.length(),
+            centre,
+        }
+    }
 }
 
 fn box_faces() -> Vec<Face> {
@@ -122,11 +142,7 @@ fn box_faces() -> Vec<Face> {
     ];
     quads
         .iter()
-        .map(|(n, q)| Face {
-            source: None,
-            normal: *n,
-            poly: q.to_vec(),
-        })
+        .map(|(n, q)| Face::new(None, *n, q.to_vec()))
         .collect()
 }
 
@@ -197,33 +213,34 @@ fn polygon_centroid(poly: &[DVec3], n: DVec3) -> DVec3 {
     }
 }
 
-/// Cut the faces by one plane (index `k`). Returns whether the plane cut anything off.
-fn clip(faces: &mut Vec<Face>, plane: &Plane, k: usize) -> bool {
+/// Cut the faces by one plane (index `k`), in place and in order. Returns whether the plane
+/// cut anything off. `d` is a buffer for the distances.
+fn clip(faces: &mut Vec<Face>, plane: &Plane, k: usize, d: &mut Vec<f64>) -> bool {
     let mut cap: Vec<DVec3> = Vec::new();
     let mut cut = false;
-    let mut kept = Vec::with_capacity(faces.len() + 1);
-    for face in faces.drain(..) {
-        let d: Vec<f64> = face.poly.iter().map(|p| plane.distance(*p)).collect();
+    let mut dropped = false;
+    for face in faces.iter_mut() {
+        // Every corner more than EPS inside: kept whole, and nothing on the plane.
+        if plane.distance(face.centre) + face.radius < -EPS {
+            continue;
+        }
+        d.clear();
+        d.extend(face.poly.iter().map(|p| plane.distance(*p)));
         let max = d.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let min = d.iter().copied().fold(f64::INFINITY, f64::min);
         if max > EPS {
             cut = true;
         }
-        if max <= EPS {
-            for (p, &di) in face.poly.iter().zip(&d) {
+        if max <= EPS || min >= -EPS {
+            // Inside (kept), or entirely outside or lying in the plane (dropped).
+            for (p, &di) in face.poly.iter().zip(d.iter()) {
                 if di.abs() <= EPS {
                     cap.push(*p);
                 }
             }
-            kept.push(face);
-            continue;
-        }
-        if min >= -EPS {
-            // Entirely outside (or lying in the plane): dropped.
-            for (p, &di) in face.poly.iter().zip(&d) {
-                if di.abs() <= EPS {
-                    cap.push(*p);
-                }
+            if max > EPS {
+                face.poly.clear();
+                dropped = true;
             }
             continue;
         }
@@ -246,25 +263,53 @@ fn clip(faces: &mut Vec<Face>, plane: &Plane, k: usize) -> bool {
             }
         }
         if out.len() >= 3 {
-            kept.push(Face {
-                source: face.source,
-                normal: face.normal,
-                poly: out,
-            });
+            *face = Face::new(face.source, face.normal, out);
+        } else {
+            face.poly.clear();
+            dropped = true;
         }
+    }
+    if dropped {
+        faces.retain(|f| !f.poly.is_empty());
     }
     if cut {
         order_on_plane(plane.normal, &mut cap);
         if cap.len() >= 3 {
-            kept.push(Face {
-                source: Some(k),
-                normal: plane.normal,
-                poly: cap,
-            });
+            faces.push(Face::new(Some(k), plane.normal, cap));
         }
     }
-    *faces = kept;
     cut
+}
+
+/// The first pair of planes `(j, i)`, `j < i`, that are the same plane (normals within 1e-9
+/// and offsets within 1e-9), lowest `i` first: found among neighbours in the order of the
+/// normals' x components, so in O(n log n) for planes of distinct normals.
+fn first_duplicate(planes: &[FacetPlane]) -> Option<(usize, usize)> {
+    let mut order: Vec<usize> = (0..planes.len()).collect();
+    order.sort_by(|&a, &b| {
+        planes[a]
+            .plane
+            .normal
+            .x
+            .total_cmp(&planes[b].plane.normal.x)
+    });
+    let mut best: Option<(usize, usize)> = None;
+    for (k, &a) in order.iter().enumerate() {
+        let p = &planes[a].plane;
+        for &b in &order[k + 1..] {
+            let q = &planes[b].plane;
+            if q.normal.x - p.normal.x >= 1e-9 {
+                break;
+            }
+            if p.normal.distance(q.normal) < 1e-9 && (p.offset - q.offset).abs() < 1e-9 {
+                let pair = (a.min(b), a.max(b));
+                if best.is_none_or(|(j, i)| (pair.1, pair.0) < (i, j)) {
+                    best = Some(pair);
+                }
+            }
+        }
+    }
+    best
 }
 
 impl Polyhedron {
@@ -313,33 +358,37 @@ impl Polyhedron {
                 planes.len()
             )));
         }
-        for (i, fp) in planes.iter().enumerate() {
+        // The first bad plane, in the order given: one without a valid plane, or one that
+        // repeats an earlier plane (a plane is checked before it is compared).
+        let invalid = planes.iter().position(|fp| {
             let p = &fp.plane;
-            if !(p.normal.is_finite() && p.offset.is_finite())
+            !(p.normal.is_finite() && p.offset.is_finite())
                 || (p.normal.length() - 1.0).abs() > 1e-6
-            {
+        });
+        let valid = &planes[..invalid.unwrap_or(planes.len())];
+        match (invalid, first_duplicate(valid)) {
+            (_, Some((j, i))) => {
+                return Err(Error::Geometry(format!(
+                    "facets {} ({}) and {} ({}) are the same plane",
+                    j + 1,
+                    planes[j].name,
+                    i + 1,
+                    planes[i].name
+                )))
+            }
+            (Some(i), None) => {
                 return Err(Error::Geometry(format!(
                     "facet {} ({}) has no valid plane (normal must be finite and non-zero, offset finite)",
                     i + 1,
-                    fp.name
-                )));
+                    planes[i].name
+                )))
             }
-            for (j, other) in planes.iter().enumerate().take(i) {
-                let q = &other.plane;
-                if p.normal.distance(q.normal) < 1e-9 && (p.offset - q.offset).abs() < 1e-9 {
-                    return Err(Error::Geometry(format!(
-                        "facets {} ({}) and {} ({}) are the same plane",
-                        j + 1,
-                        other.name,
-                        i + 1,
-                        fp.name
-                    )));
-                }
-            }
+            (None, None) => {}
         }
         let mut faces = box_faces();
+        let mut buffer = Vec::new();
         for (k, fp) in planes.iter().enumerate() {
-            clip(&mut faces, &fp.plane, k);
+            clip(&mut faces, &fp.plane, k, &mut buffer);
             if faces.is_empty() {
                 return Err(Error::Geometry(format!(
                     "the solid is empty: facet {} ({}) cuts away everything left",
@@ -491,7 +540,9 @@ impl Polyhedron {
 
 /// Insert into each facet polygon the vertices that lie inside one of its edges. Clipping can
 /// leave a vertex (where several planes nearly meet) on one face's edge but not in the
-/// polygon of the face across that edge; after this every half-edge has its twin.
+/// polygon of the face across that edge; after this every half-edge has its twin. The
+/// candidates of an edge are the used vertices whose x lies within its x range (widened by
+/// `weld`), found by binary search in the vertices sorted by x.
 fn split_t_junctions(polys: &mut [Option<Vec<usize>>], vertices: &[DVec3], weld: f64) {
     let mut used = vec![false; vertices.len()];
     for idx in polys.iter().flatten() {
@@ -499,6 +550,9 @@ fn split_t_junctions(polys: &mut [Option<Vec<usize>>], vertices: &[DVec3], weld:
             used[i] = true;
         }
     }
+    let mut by_x: Vec<usize> = (0..vertices.len()).filter(|&v| used[v]).collect();
+    by_x.sort_by(|&a, &b| vertices[a].x.total_cmp(&vertices[b].x).then(a.cmp(&b)));
+    let xs: Vec<f64> = by_x.iter().map(|&v| vertices[v].x).collect();
     for idx in polys.iter_mut().flatten() {
         let mut out: Vec<usize> = Vec::with_capacity(idx.len());
         let n = idx.len();
@@ -511,20 +565,23 @@ fn split_t_junctions(polys: &mut [Option<Vec<usize>>], vertices: &[DVec3], weld:
             if len2 <= 0.0 {
                 continue;
             }
+            let lo = xs.partition_point(|&x| x < pa.x.min(pb.x) - weld);
+            let hi = xs.partition_point(|&x| x <= pa.x.max(pb.x) + weld);
             let mut inner: Vec<(f64, usize)> = Vec::new();
-            for (v, p) in vertices.iter().enumerate() {
-                if !used[v] || idx.contains(&v) {
+            for &v in &by_x[lo..hi] {
+                if idx.contains(&v) {
                     continue;
                 }
-                let t = (*p - pa).dot(ab) / len2;
+                let p = vertices[v];
+                let t = (p - pa).dot(ab) / len2;
                 if t <= 0.0 || t >= 1.0 {
                     continue;
                 }
-                if (pa + ab * t).distance(*p) <= weld {
+                if (pa + ab * t).distance(p) <= weld {
                     inner.push((t, v));
                 }
             }
-            inner.sort_by(|x, y| x.0.total_cmp(&y.0));
+            inner.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
             out.extend(inner.into_iter().map(|(_, v)| v));
         }
         *idx = out;
@@ -545,13 +602,32 @@ fn assemble(
     weld: f64,
 ) -> std::result::Result<Polyhedron, Assembly> {
     let mut vertices: Vec<DVec3> = Vec::new();
-    let index_of = |p: DVec3, vertices: &mut Vec<DVec3>| -> usize {
-        if let Some(i) = vertices.iter().position(|v| v.distance(p) <= weld) {
-            i
-        } else {
-            vertices.push(p);
-            vertices.len() - 1
+    // The first vertex within `weld` of a point, found among the points of the neighbouring
+    // cells of a grid of side `weld` (the same vertex a scan of all of them in order finds).
+    let mut grid: FastMap<[i64; 3], Vec<usize>> = fast_map(0);
+    let cell = |p: DVec3| (p / weld).floor().to_array().map(|c| c as i64);
+    let mut index_of = |p: DVec3, vertices: &mut Vec<DVec3>| -> usize {
+        let c = cell(p);
+        let mut first: Option<usize> = None;
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let Some(there) = grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) else {
+                        continue;
+                    };
+                    for &i in there {
+                        if first.is_none_or(|f| i < f) && vertices[i].distance(p) <= weld {
+                            first = Some(i);
+                        }
+                    }
+                }
+            }
         }
+        first.unwrap_or_else(|| {
+            vertices.push(p);
+            grid.entry(c).or_default().push(vertices.len() - 1);
+            vertices.len() - 1
+        })
     };
     let mut polys: Vec<Option<Vec<usize>>> = vec![None; planes.len()];
     for face in faces {
@@ -619,36 +695,33 @@ fn assemble(
 }
 
 fn build_edges(facets: &[Facet]) -> Result<Vec<Edge>> {
-    use std::collections::HashMap;
-    let mut half: HashMap<(usize, usize), usize> = HashMap::new();
+    let mut half: FastMap<(usize, usize), usize> = fast_map(0);
     for (fi, f) in facets.iter().enumerate() {
         let n = f.vertices.len();
         for i in 0..n {
             half.insert((f.vertices[i], f.vertices[(i + 1) % n]), fi);
         }
     }
+    // In facet order, so that an error names the same facet every time.
     let mut edges = Vec::new();
-    for (&(a, b), &f0) in &half {
-        if a < b {
-            let Some(&f1) = half.get(&(b, a)) else {
-                return Err(Error::Geometry(format!(
-                    "facet {} has an edge no other facet shares (numerically degenerate solid)",
-                    facets[f0].name
-                )));
-            };
-            edges.push(Edge {
-                a,
-                b,
-                facets: [f0, f1],
-            });
-        }
-    }
-    for (&(a, b), &f0) in &half {
-        if a > b && !half.contains_key(&(b, a)) {
-            return Err(Error::Geometry(format!(
-                "facet {} has an edge no other facet shares (numerically degenerate solid)",
-                facets[f0].name
-            )));
+    for (f0, f) in facets.iter().enumerate() {
+        let n = f.vertices.len();
+        for i in 0..n {
+            let (a, b) = (f.vertices[i], f.vertices[(i + 1) % n]);
+            match half.get(&(b, a)) {
+                Some(&f1) if a < b && half.get(&(a, b)) == Some(&f0) => edges.push(Edge {
+                    a,
+                    b,
+                    facets: [f0, f1],
+                }),
+                Some(_) => {}
+                None => {
+                    return Err(Error::Geometry(format!(
+                        "facet {} has an edge no other facet shares (numerically degenerate solid)",
+                        facets[f0].name
+                    )))
+                }
+            }
         }
     }
     edges.sort_by_key(|e| (e.a, e.b));

@@ -17,7 +17,7 @@ use super::color::{
     band_weights_d65, d65_white, delta_e2000, lab_to_xyz, linear_srgb_to_xyz, srgb_decode,
     xyz_to_lab, xyz_to_srgb8, LAMBDA_MAX, LAMBDA_MIN,
 };
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use glam::DVec3;
 use std::sync::OnceLock;
 
@@ -486,7 +486,7 @@ impl StoneSize {
         } else {
             Err(Error::invalid(
                 field,
-                format!("{w} is not allowed; give a width in (0, 1000) mm"),
+                format!("{} is not allowed; give a width in (0, 1000) mm", shown(w)),
             ))
         }
     }

@@ -5,7 +5,7 @@
 use super::material::{Dispersion, Material, MaterialFields, Optic};
 use super::table::{Entry, DIAMOND, TABLE};
 use super::varieties::Variety;
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 
 impl Material {
     /// A fixed refractive index (no dispersion), with diamond's density.
@@ -80,14 +80,14 @@ impl Material {
         };
         let n = num(parts[0], "N")?;
         if !(n > Material::RI_ABOVE && n <= Material::RI_MAX) {
-            return Err(bad(format!("N = {n} is out of range")));
+            return Err(bad(format!("N = {} is out of range", shown(n))));
         }
         let (bg, name) = match parts.get(1) {
             None => (Material::GENERIC_BG_PER_N1 * (n - 1.0), format!("ri:{n}")),
             Some(s) => {
                 let bg = num(s, "BG")?;
                 if !(0.0..=Material::BG_MAX).contains(&bg) {
-                    return Err(bad(format!("BG = {bg} is out of range")));
+                    return Err(bad(format!("BG = {} is out of range", shown(bg))));
                 }
                 (bg, format!("ri:{n}:{bg}"))
             }
@@ -112,7 +112,57 @@ impl Material {
                 "with that dispersion the index at 780 nm would be {red:.4}, not above 1"
             )));
         }
+        // The index at every traced wavelength must be one the tracers accept, as `--ri`.
+        let blue = m.ri(380.0);
+        if blue > Material::RI_MAX {
+            return Err(bad(format!(
+                "with that dispersion the index at 380 nm would be {blue:.4}, above {}",
+                Material::RI_MAX
+            )));
+        }
         Ok(m)
+    }
+
+    /// The material a design is traced in when nobody chose one: the material of its index
+    /// (GemCad's `I` line, [`Material::for_index`]), or `default`; then the material or colour
+    /// its notes name ([`Material::from_design_notes`]). With the lines saying so
+    /// (`traced as quartz (the design's index 1.54)`, `traced as ruby (the design's notes)`,
+    /// or a malformed note, ignored). The commands and the workbench both choose this way.
+    ///
+    /// ```
+    /// use facetlab::optics::Material;
+    /// let (m, notes) = Material::of_design(Some(1.54), [], &Material::diamond());
+    /// assert_eq!(m.name, "quartz");
+    /// assert_eq!(notes, ["traced as quartz (the design's index 1.54)"]);
+    /// let ruby = "Material: ruby".to_string();
+    /// let (m, _) = Material::of_design(None, [&ruby], &Material::diamond());
+    /// assert_eq!(m.name, "ruby");
+    /// assert_eq!(Material::of_design(None, [], &Material::diamond()).0.name, "diamond");
+    /// ```
+    pub fn of_design<'a>(
+        index: Option<f64>,
+        notes: impl IntoIterator<Item = &'a String>,
+        default: &Material,
+    ) -> (Material, Vec<String>) {
+        let mut said = Vec::new();
+        let base = match index.and_then(|n| Material::for_index(n).map(|m| (n, m))) {
+            Some((n, m)) => {
+                said.push(m.for_index_note(n));
+                m
+            }
+            None => default.clone(),
+        };
+        match Material::from_design_notes(notes, &base) {
+            Ok(Some(m)) => {
+                said.push(format!("traced as {} (the design's notes)", m.name));
+                (m, said)
+            }
+            Ok(None) => (base, said),
+            Err(e) => {
+                said.push(format!("{e}; ignored"));
+                (base, said)
+            }
+        }
     }
 
     /// The material a design's notes name, if any: a GemCad title or footnote line
@@ -204,7 +254,8 @@ impl Material {
                     Err(Error::invalid(
                         fields.ri,
                         format!(
-                            "{n} is out of range; allowed ({}, {}] (a refractive index)",
+                            "{} is out of range; allowed ({}, {}] (a refractive index)",
+                            shown(n),
                             Material::RI_ABOVE,
                             Material::RI_MAX
                         ),

@@ -57,7 +57,7 @@ pub use crate::optics::{Absorption, THESIS_ABSORPTION};
 pub use solid::{face_category, TraceSolid};
 pub use tally::{share, Counts, Fate, PhotonPath, Tally, CATEGORY_KEYS, CATEGORY_LABELS};
 
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use crate::geometry::{DVec3, Polyhedron};
 use crate::optics::color::{LAMBDA_MAX, LAMBDA_MIN};
 use crate::optics::Material;
@@ -320,7 +320,10 @@ impl TraceConfig {
             if !(n.is_finite() && n > 1.0 && n <= 10.0) {
                 return Err(Error::invalid(
                     "--ri",
-                    format!("refractive index {n} is out of range; allowed (1, 10]"),
+                    format!(
+                        "refractive index {} is out of range; allowed (1, 10]",
+                        shown(n)
+                    ),
                 ));
             }
         }

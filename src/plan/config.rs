@@ -24,8 +24,9 @@
 //! pavilion_angle = [40.6, 41.8]
 //! ```
 
-use crate::cut::{family, grade::Grade, CutSpace};
-use crate::error::{Error, Result};
+use crate::cut::{family, grade::Grade, CutSpace, Unit};
+use crate::error::{shown, Error, Result};
+use crate::optics::Material;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -59,6 +60,14 @@ pub enum Objective {
     Value(PriceTable),
 }
 
+/// The heaviest band limit a price table may give (carats).
+pub const MAX_CARATS: f64 = 1e4;
+/// The largest price per carat a price table may give: prices are finite, and a plan's value
+/// (carats × price × factor) stays far from overflowing.
+pub const MAX_PRICE: f64 = 1e12;
+/// The largest quality factor.
+pub const MAX_FACTOR: f64 = 100.0;
+
 /// A price table: price per carat by weight band and a quality factor by grade.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PriceTable {
@@ -80,6 +89,14 @@ impl PriceTable {
             .rev()
             .find(|(from, _)| carats >= *from)
             .map_or(0.0, |(_, p)| *p)
+    }
+
+    /// The lightest weight that has a price (the first band with a price above 0).
+    pub fn first_priced(&self) -> f64 {
+        self.bands
+            .iter()
+            .find(|(_, p)| *p > 0.0)
+            .map_or(f64::INFINITY, |(f, _)| *f)
     }
 
     /// The quality factor of a grade (or of an ungraded cut).
@@ -110,14 +127,46 @@ impl PriceTable {
             #[serde(default)]
             quality: BTreeMap<String, f64>,
         }
-        let raw: Raw = toml::from_str(text).map_err(|e| Error::parse(source, e.message()))?;
+        let raw: Raw = toml::from_str(text).map_err(|e| {
+            let line = e
+                .span()
+                .map(|s| format!(":{}", crate::io::line_of(text, s.start)))
+                .unwrap_or_default();
+            Error::parse(format!("{source}{line}"), e.message())
+        })?;
         let mut bands = Vec::new();
         for (i, b) in raw.band.iter().enumerate() {
-            let ok = b.from_carats.is_finite() && b.from_carats >= 0.0 && b.per_carat >= 0.0;
-            if !ok || bands.last().is_some_and(|(f, _)| *f >= b.from_carats) {
+            let field = |k: &str| format!("{source}: band {}: {k}", i + 1);
+            if !(b.from_carats.is_finite() && (0.0..=MAX_CARATS).contains(&b.from_carats)) {
                 return Err(Error::invalid(
-                    format!("{source}: band {}", i + 1),
-                    "from_carats must be ≥ 0 and rise from band to band, per_carat ≥ 0",
+                    field("from_carats"),
+                    format!(
+                        "{} is not allowed; give carats from 0 to {}",
+                        shown(b.from_carats),
+                        shown(MAX_CARATS)
+                    ),
+                ));
+            }
+            if let Some((f, _)) = bands.last() {
+                if *f >= b.from_carats {
+                    return Err(Error::invalid(
+                        field("from_carats"),
+                        format!(
+                            "{} does not rise above the band before ({}); list the bands from the lightest up",
+                            shown(b.from_carats),
+                            shown(*f)
+                        ),
+                    ));
+                }
+            }
+            if !(b.per_carat.is_finite() && (0.0..=MAX_PRICE).contains(&b.per_carat)) {
+                return Err(Error::invalid(
+                    field("per_carat"),
+                    format!(
+                        "{} is not allowed; give a price per carat from 0 to {}",
+                        shown(b.per_carat),
+                        shown(MAX_PRICE)
+                    ),
                 ));
             }
             bands.push((b.from_carats, b.per_carat));
@@ -128,13 +177,23 @@ impl PriceTable {
                 "give at least one [[band]] with from_carats and per_carat",
             ));
         }
+        if bands.iter().all(|(_, p)| *p == 0.0) {
+            return Err(Error::invalid(
+                format!("{source}: band"),
+                "every band's per_carat is 0: every plan would be worth nothing; give the prices",
+            ));
+        }
         let mut quality = BTreeMap::new();
         let mut ungraded = 1.0;
         for (k, v) in &raw.quality {
-            if !(v.is_finite() && *v >= 0.0) {
+            if !(v.is_finite() && (0.0..=MAX_FACTOR).contains(v)) {
                 return Err(Error::invalid(
                     format!("{source}: quality.{k}"),
-                    "a factor must be a number ≥ 0",
+                    format!(
+                        "{} is not allowed; a factor is a number from 0 to {}",
+                        shown(*v),
+                        shown(MAX_FACTOR)
+                    ),
                 ));
             }
             match (k.as_str(), Grade::parse(k)) {
@@ -187,6 +246,8 @@ pub struct PlanConfig {
     pub starts: usize,
     /// Iterations per start.
     pub max_iterations: u64,
+    /// The price file read for `value` (an input of the run, never to be overwritten).
+    pub price_file: Option<PathBuf>,
 }
 
 impl Default for PlanConfig {
@@ -204,119 +265,220 @@ impl Default for PlanConfig {
             params: BTreeMap::new(),
             starts: 12,
             max_iterations: 250,
+            price_file: None,
         }
     }
 }
 
-#[derive(Deserialize)]
-#[serde(untagged)]
-enum RawBound {
-    Fixed(f64),
-    Free([f64; 2]),
-}
-
+/// The config file as written: numbers and lists are read as TOML values and checked here, so
+/// that an error names the field and says what is allowed (not `expected usize`).
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 struct RawObjective {
-    kind: Option<String>,
-    grade: Option<String>,
-    min_brilliance: Option<f64>,
-    prices: Option<PathBuf>,
+    kind: Option<toml::Value>,
+    grade: Option<toml::Value>,
+    min_brilliance: Option<toml::Value>,
+    prices: Option<toml::Value>,
 }
 
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 struct RawSearch {
-    starts: Option<usize>,
-    max_iterations: Option<u64>,
+    starts: Option<toml::Value>,
+    max_iterations: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawConfig {
-    name: Option<String>,
-    seed: Option<u64>,
-    families: Option<Vec<String>>,
-    material: Option<String>,
-    top: Option<usize>,
-    min_width_mm: Option<f64>,
+    name: Option<toml::Value>,
+    seed: Option<toml::Value>,
+    families: Option<toml::Value>,
+    material: Option<toml::Value>,
+    top: Option<toml::Value>,
+    min_width_mm: Option<toml::Value>,
     #[serde(default)]
     objective: RawObjective,
     #[serde(default)]
     search: RawSearch,
     #[serde(default)]
-    free: BTreeMap<String, BTreeMap<String, RawBound>>,
+    free: BTreeMap<String, BTreeMap<String, toml::Value>>,
+}
+
+/// A value as a message quotes it: at most 40 characters of its TOML text, one line.
+fn quote(v: &toml::Value) -> String {
+    let t = match v {
+        toml::Value::Float(f) => shown(*f),
+        other => other.to_string(),
+    };
+    let mut out: String = t
+        .chars()
+        .take(40)
+        .map(|c| if c.is_control() { '?' } else { c })
+        .collect();
+    if t.chars().count() > 40 {
+        out.push('…');
+    }
+    out
+}
+
+/// A number (an integer or a float) from a TOML value.
+fn as_number(v: &toml::Value) -> Option<f64> {
+    match v {
+        toml::Value::Integer(i) => Some(*i as f64),
+        toml::Value::Float(f) => Some(*f),
+        _ => None,
+    }
+}
+
+/// A whole number in `lo..=hi` named `field`.
+fn whole(field: String, v: &toml::Value, lo: u64, hi: u64, what: &str) -> Result<u64> {
+    match v {
+        toml::Value::Integer(i) if *i >= 0 && (lo..=hi).contains(&(*i as u64)) => Ok(*i as u64),
+        _ => Err(Error::invalid(
+            field,
+            format!(
+                "{} is not allowed; give {what}, a whole number from {lo} to {hi}",
+                quote(v)
+            ),
+        )),
+    }
+}
+
+/// A number in `[lo, hi]` named `field`.
+fn ranged(field: String, v: &toml::Value, lo: f64, hi: f64, what: &str) -> Result<f64> {
+    match as_number(v) {
+        Some(x) if x.is_finite() && x >= lo && x <= hi => Ok(x),
+        _ => Err(Error::invalid(
+            field,
+            format!(
+                "{} is not allowed; give {what}, a number from {} to {}",
+                quote(v),
+                shown(lo),
+                shown(hi)
+            ),
+        )),
+    }
+}
+
+/// A string named `field`.
+fn string<'v>(field: String, v: &'v toml::Value, example: &str) -> Result<&'v str> {
+    v.as_str().ok_or_else(|| {
+        Error::invalid(
+            field,
+            format!("{} is not allowed; give a string, e.g. {example}", quote(v)),
+        )
+    })
 }
 
 impl PlanConfig {
     /// Read a config file; a price file it names is read relative to it.
     pub fn load(path: &Path) -> Result<PlanConfig> {
         let shown = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(&shown, e))?;
+        let bytes = crate::io::read_bytes(path)?;
+        let text = String::from_utf8(bytes)
+            .map_err(|_| Error::parse(&shown, "not UTF-8 text; a plan config is TOML"))?;
         let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("plan");
         let dir = path.parent().unwrap_or(Path::new("."));
         PlanConfig::parse(&text, &shown, stem, dir)
     }
 
+    /// The files this config reads besides itself (its price table), as found.
+    pub fn inputs(&self) -> Vec<PathBuf> {
+        self.price_file.iter().cloned().collect()
+    }
+
     /// Parse a config's text (`source` names it; `dir` is where a price file is looked up).
     pub fn parse(text: &str, source: &str, stem: &str, dir: &Path) -> Result<PlanConfig> {
-        let raw: RawConfig = toml::from_str(text).map_err(|e| Error::parse(source, e.message()))?;
+        let raw: RawConfig = toml::from_str(text).map_err(|e| {
+            let line = e
+                .span()
+                .map(|s| format!(":{}", crate::io::line_of(text, s.start)))
+                .unwrap_or_default();
+            Error::parse(format!("{source}{line}"), e.message())
+        })?;
         let at = |f: &str| format!("{source}: {f}");
+        let name = match &raw.name {
+            Some(v) => string(at("name"), v, "\"rough-12\"")?.to_string(),
+            None => stem.to_string(),
+        };
         let mut c = PlanConfig {
-            name: raw.name.unwrap_or_else(|| stem.to_string()),
+            name,
             ..PlanConfig::default()
         };
-        c.seed = raw.seed.unwrap_or(c.seed);
-        if let Some(f) = raw.families {
-            for name in &f {
-                family(name).map_err(|e| Error::invalid(at("families"), e.to_string()))?;
-            }
-            if f.is_empty() {
-                return Err(Error::invalid(at("families"), "name at least one family"));
-            }
-            c.families = f;
+        if let Some(v) = &raw.seed {
+            c.seed = whole(at("seed"), v, 0, i64::MAX as u64, "a seed")?;
         }
-        c.material = raw.material.unwrap_or(c.material);
-        c.top = raw.top.unwrap_or(c.top);
-        if !(1..=50).contains(&c.top) {
-            return Err(Error::invalid(at("top"), "allowed 1 to 50"));
+        if let Some(v) = &raw.families {
+            let names: Vec<String> = match v.as_array() {
+                Some(list) => list
+                    .iter()
+                    .map(|f| string(at("families"), f, "\"oval\"").map(str::to_string))
+                    .collect::<Result<_>>()?,
+                None => {
+                    return Err(Error::invalid(
+                        at("families"),
+                        format!(
+                            "{} is not allowed; give a list of families, e.g. [\"round-brilliant\", \"oval\"]",
+                            quote(v)
+                        ),
+                    ))
+                }
+            };
+            c.families = check_families(&names).map_err(|m| Error::invalid(at("families"), m))?;
         }
-        c.min_width_mm = raw.min_width_mm.unwrap_or(c.min_width_mm);
-        if !(c.min_width_mm.is_finite() && c.min_width_mm >= 0.0) {
-            return Err(Error::invalid(
-                at("min_width_mm"),
-                "allowed a number ≥ 0 (mm)",
-            ));
+        if let Some(v) = &raw.material {
+            let name = string(at("material"), v, "\"diamond\"")?;
+            Material::by_name(name).map_err(|e| match e {
+                Error::Invalid { message, .. } => Error::invalid(at("material"), message),
+                other => other,
+            })?;
+            c.material = name.to_string();
         }
-        c.starts = raw.search.starts.unwrap_or(c.starts);
-        if !(1..=1000).contains(&c.starts) {
-            return Err(Error::invalid(at("search.starts"), "allowed 1 to 1000"));
+        if let Some(v) = &raw.top {
+            c.top = whole(at("top"), v, 1, 50, "the plans kept per family")? as usize;
         }
-        c.max_iterations = raw.search.max_iterations.unwrap_or(c.max_iterations);
-        if !(1..=100_000).contains(&c.max_iterations) {
-            return Err(Error::invalid(
+        if let Some(v) = &raw.min_width_mm {
+            c.min_width_mm = ranged(at("min_width_mm"), v, 0.0, 1000.0, "a width in mm")?;
+        }
+        if let Some(v) = &raw.search.starts {
+            c.starts = whole(at("search.starts"), v, 1, 1000, "the starts per family")? as usize;
+        }
+        if let Some(v) = &raw.search.max_iterations {
+            c.max_iterations = whole(
                 at("search.max_iterations"),
-                "allowed 1 to 100000",
-            ));
+                v,
+                1,
+                100_000,
+                "the iterations per start",
+            )?;
         }
-        if let Some(g) = &raw.objective.grade {
+        if let Some(v) = &raw.objective.grade {
+            let g = string(at("objective.grade"), v, "\"excellent\"")?;
             c.grade = Some(Grade::parse(g).ok_or_else(|| {
                 Error::invalid(
                     at("objective.grade"),
-                    format!("unknown grade `{g}`; allowed: excellent, very-good, good, fair, poor"),
+                    format!(
+                        "unknown grade `{}`; allowed: excellent, very-good, good, fair, poor",
+                        quote(v)
+                    ),
                 )
             })?);
         }
-        if let Some(b) = raw.objective.min_brilliance {
-            if !(0.0..=1.0).contains(&b) {
-                return Err(Error::invalid(
-                    at("objective.min_brilliance"),
-                    format!("{b} is not a brilliance; allowed 0 to 1"),
-                ));
-            }
-            c.min_brilliance = Some(b);
+        if let Some(v) = &raw.objective.min_brilliance {
+            c.min_brilliance = Some(ranged(
+                at("objective.min_brilliance"),
+                v,
+                0.0,
+                1.0,
+                "a brilliance",
+            )?);
         }
-        c.objective = match raw.objective.kind.as_deref().unwrap_or("weight") {
+        let kind = match &raw.objective.kind {
+            Some(v) => string(at("objective.kind"), v, "\"weight\"")?,
+            None => "weight",
+        };
+        c.objective = match kind {
             "weight" => Objective::Weight,
             "value" => {
                 let Some(p) = &raw.objective.prices else {
@@ -325,9 +487,12 @@ impl PlanConfig {
                         "kind = \"value\" needs a price file: prices = \"prices.toml\"",
                     ));
                 };
+                let p = string(at("objective.prices"), p, "\"prices.toml\"")?;
                 let path = dir.join(p);
                 let shown = path.display().to_string();
-                let text = std::fs::read_to_string(&path).map_err(|e| Error::io(&shown, e))?;
+                let bytes = crate::io::read_bytes(&path)?;
+                let text = String::from_utf8_lossy(&bytes);
+                c.price_file = Some(path);
                 Objective::Value(PriceTable::parse(&text, &shown)?)
             }
             other => {
@@ -337,12 +502,12 @@ impl PlanConfig {
                 ))
             }
         };
-        for (fam, keys) in raw.free {
-            let space = family(&fam).map_err(|e| Error::invalid(at("free"), e.to_string()))?;
+        for (fam, keys) in &raw.free {
+            let space = family(fam).map_err(|e| Error::invalid(at("free"), e.to_string()))?;
             let mut out = BTreeMap::new();
             for (k, b) in keys {
                 let field = at(&format!("free.{fam}.{k}"));
-                let Some(r) = space.range(&k) else {
+                let Some(r) = space.range(k) else {
                     return Err(Error::invalid(
                         field,
                         format!(
@@ -351,29 +516,66 @@ impl PlanConfig {
                         ),
                     ));
                 };
-                let ok = |v: f64| r.contains(v);
-                let bound = match b {
-                    RawBound::Fixed(v) if ok(v) => Bound::Fixed(v),
-                    RawBound::Free([lo, hi]) if ok(lo) && ok(hi) && lo < hi => Bound::Free(lo, hi),
-                    _ => {
+                let (l, h) = if r.open { ("(", ")") } else { ("[", "]") };
+                let range = format!("{l}{}, {}{h}", shown(r.min), shown(r.max));
+                let count = r.unit == Unit::Count;
+                let pair = b
+                    .as_array()
+                    .filter(|a| a.len() == 2)
+                    .and_then(|a| Some((as_number(&a[0])?, as_number(&a[1])?)));
+                let bound = match (as_number(b), pair) {
+                    (Some(v), _) if r.contains(v) && (!count || v.fract() == 0.0) => {
+                        Bound::Fixed(v)
+                    }
+                    (_, Some(_)) if count => {
                         return Err(Error::invalid(
                             field,
                             format!(
-                                "give a value or [min, max] with min < max, each in {}{}, {}{}",
-                                if r.open { "(" } else { "[" },
-                                r.min,
-                                r.max,
-                                if r.open { ")" } else { "]" }
-                            ),
+                            "a whole-number parameter cannot be varied; fix it, e.g. `{k} = {}`",
+                            shown(r.default)
+                        ),
                         ))
                     }
+                    (_, Some((lo, hi))) if r.contains(lo) && r.contains(hi) && lo < hi => {
+                        Bound::Free(lo, hi)
+                    }
+                    _ => {
+                        let what = if count {
+                            format!("give a whole number in {range}")
+                        } else {
+                            format!("give a value or [min, max] with min < max, each in {range}")
+                        };
+                        return Err(Error::invalid(
+                            field,
+                            format!("{} is not allowed; {what}", quote(b)),
+                        ));
+                    }
                 };
-                out.insert(k, bound);
+                out.insert(k.clone(), bound);
             }
-            c.params.insert(fam, out);
+            c.params.insert(fam.clone(), out);
         }
         Ok(c)
     }
+}
+
+/// Families to plan, each a known family named once; the error says which is not.
+pub fn check_families(names: &[String]) -> std::result::Result<Vec<String>, String> {
+    if names.is_empty() {
+        return Err("name at least one family".into());
+    }
+    for (i, name) in names.iter().enumerate() {
+        family(name).map_err(|e| match e {
+            Error::Invalid { message, .. } => message,
+            other => other.to_string(),
+        })?;
+        if names[..i].contains(name) {
+            return Err(format!(
+                "`{name}` is named twice; name each family once (its plans would be written over each other)"
+            ));
+        }
+    }
+    Ok(names.to_vec())
 }
 
 #[cfg(test)]

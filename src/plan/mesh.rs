@@ -28,14 +28,18 @@ impl TriMesh {
         })
     }
 
-    /// The volume the mesh encloses (divergence theorem over its triangles, sign dropped so
-    /// either winding works).
+    /// The volume the mesh encloses (divergence theorem over its triangles about its first
+    /// vertex, so that a mesh far from the origin loses no digits; sign dropped so either
+    /// winding works).
     pub fn enclosed_volume(&self) -> f64 {
+        let Some(&o) = self.vertices.first() else {
+            return 0.0;
+        };
         let v: f64 = self
             .triangles
             .iter()
             .map(|t| {
-                let [a, b, c] = t.map(|i| self.vertices[i]);
+                let [a, b, c] = t.map(|i| self.vertices[i] - o);
                 a.dot(b.cross(c))
             })
             .sum();

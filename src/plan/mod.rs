@@ -41,4 +41,4 @@ pub use ball::{enclosing_ball, Ball};
 pub use config::{Bound, Objective, PlanConfig, PriceTable, DEFAULT_FAMILIES};
 pub use fit::{largest_copy, Fit};
 pub use rough::{load_rough, Rough, CRYSTALS};
-pub use search::{Plan, Planner};
+pub use search::{plan_warnings, Plan, Planner};

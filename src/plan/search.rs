@@ -13,7 +13,7 @@
 
 use super::ball::enclosing_ball;
 use super::config::{Bound, Objective, PlanConfig};
-use super::fit::largest_copy;
+use super::fit::Containment;
 use super::rough::Rough;
 use crate::cut::grade::{estimate, Grade};
 use crate::cut::{family, Cut, CutSpace};
@@ -28,6 +28,7 @@ use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::collections::{BTreeMap, HashMap};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
 /// Grams per cubic millimetre per (g/cm³), times carats per gram.
@@ -106,14 +107,16 @@ impl Plan {
 /// The planner for one rough.
 pub struct Planner<'a> {
     rough: &'a Rough,
-    planes: Vec<Plane>,
-    inside: DVec3,
+    containment: Containment,
     frame: DQuat,
     /// The rough's centroid and symmetries about it (distinct plans).
     centre: DVec3,
     symmetries: Vec<DMat3>,
     density: f64,
     config: &'a PlanConfig,
+    /// Raised to stop: the starts not begun are skipped and the rest end at once, and
+    /// [`Planner::plan_family`] returns no plans.
+    stop: Option<&'a AtomicBool>,
 }
 
 /// The rough's frame: vertices' centroid and principal axes (largest spread first), each
@@ -224,6 +227,9 @@ impl Problem<'_> {
     }
 
     fn cost_at(&self, x: &[f64]) -> Option<f64> {
+        if self.planner.stopped() {
+            return None;
+        }
         let rotation = self.rotation(x);
         let built;
         let (cut, grade) = match &self.built {
@@ -275,14 +281,26 @@ impl<'a> Planner<'a> {
     pub fn new(rough: &'a Rough, config: &'a PlanConfig, density: f64) -> Planner<'a> {
         Planner {
             rough,
-            planes: rough.planes(),
-            inside: rough.solid.centroid(),
+            containment: Containment::new(&rough.solid),
             frame: principal_frame(rough.solid.vertices()),
             centre: rough.solid.centroid(),
             symmetries: rough.symmetries(),
             density,
             config,
+            stop: None,
         }
+    }
+
+    /// The planner, stopped when `stop` is raised (Ctrl-C): a family being planned then ends
+    /// within a few evaluations and gives no plans.
+    pub fn with_stop(mut self, stop: &'a AtomicBool) -> Self {
+        self.stop = Some(stop);
+        self
+    }
+
+    /// Whether the stop flag is raised.
+    pub fn stopped(&self) -> bool {
+        self.stop.is_some_and(|s| s.load(Ordering::SeqCst))
     }
 
     /// The largest copy of `cut` turned by `rotation`: the fit, its carats and objective, and
@@ -305,7 +323,7 @@ impl<'a> Planner<'a> {
                     steps: 0,
                 }
             }
-            None => largest_copy(&self.planes, &verts, self.inside)?,
+            None => self.containment.largest_copy(&verts)?,
         };
         if fit.scale.is_nan() || fit.scale <= 0.0 {
             return None;
@@ -443,7 +461,11 @@ impl<'a> Planner<'a> {
         // symmetry of the rough, each round adding its best plan. Not in a ball, where a pose
         // is no choice.
         let apart = ALTERNATIVE_DEG.to_radians();
-        while !out.is_empty() && out.len() < self.config.top && self.rough.ball.is_none() {
+        while !out.is_empty()
+            && out.len() < self.config.top
+            && self.rough.ball.is_none()
+            && !self.stopped()
+        {
             problem.avoid = out
                 .iter()
                 .flat_map(|p| self.symmetries.iter().map(move |g| *g * p.up()))
@@ -471,6 +493,9 @@ impl<'a> Planner<'a> {
             let value = |p: &Plan| self.penalised(p.objective, p.grade);
             out.sort_by(|a, b| value(b).total_cmp(&value(a)));
         }
+        if self.stopped() {
+            return Ok(Vec::new());
+        }
         if out.is_empty() {
             return Err(Error::invalid(
                 "ROUGH",
@@ -489,6 +514,9 @@ impl<'a> Planner<'a> {
         let finals: Vec<Option<(f64, Vec<f64>)>> = starts
             .par_iter()
             .map(|x0| {
+                if self.stopped() {
+                    return None;
+                }
                 let r = self.run_start(problem, x0);
                 done();
                 r
@@ -532,6 +560,25 @@ impl<'a> Planner<'a> {
         let x = res.state.best_param.clone()?;
         Some((res.state.best_cost, x))
     }
+}
+
+/// What a finished plan should tell its user besides its plans: a family none of whose plans
+/// falls in a priced band of a value objective (every plan worth 0, so the search had nothing
+/// to climb and its plans are chance).
+pub fn plan_warnings(config: &PlanConfig, all: &[(String, Vec<Plan>)]) -> Vec<String> {
+    let Objective::Value(table) = &config.objective else {
+        return Vec::new();
+    };
+    all.iter()
+        .filter(|(_, plans)| !plans.is_empty() && plans.iter().all(|p| p.objective <= 0.0))
+        .map(|(fam, plans)| {
+            let heaviest = plans.iter().map(|p| p.carats).fold(0.0, f64::max);
+            format!(
+                "{fam}: no plan falls in a priced band (the heaviest weighs {heaviest:.3} ct; the price table's first priced band starts at {} ct), so every plan is worth 0 and the search had nothing to climb: its plans are chance",
+                crate::error::shown(table.first_priced())
+            )
+        })
+        .collect()
 }
 
 /// A seeded turn: a normalised quaternion of four uniform numbers in [−1, 1).

@@ -2,6 +2,7 @@
 
 mod designs;
 mod foundation;
+mod hostile;
 mod materials;
 mod optimize;
 mod photo;

@@ -21,8 +21,7 @@ use facetlab::optimize::{Config, Evaluator, Verifier};
 use facetlab::optimize::{CutWriter, FnWriter, GemWriter, Hooks, RunOptions};
 use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Once;
+use std::sync::atomic::Ordering;
 
 /// Flags of `facetlab optimize`.
 #[derive(Debug, Args)]
@@ -49,23 +48,11 @@ pub struct OptimizeArgs {
     pub quiet: bool,
 }
 
-/// Raised by Ctrl-C or SIGTERM (or SIGHUP) during `optimize`.
-static STOP: AtomicBool = AtomicBool::new(false);
-static HANDLER: Once = Once::new();
+pub(crate) use super::interrupt::STOP;
 
-/// Install the Ctrl-C handler (once; ctrlc's `termination` feature makes it catch SIGTERM and
-/// SIGHUP too): the first signal asks the search to stop after the current iteration and still
-/// write its results, then exit 130; a second one quits at once, writing nothing.
+/// Install the Ctrl-C handler ([`super::interrupt::install`]; it lowers the flag first).
 fn install_ctrl_c() {
-    HANDLER.call_once(|| {
-        let _ = ctrlc::set_handler(|| {
-            if STOP.swap(true, Ordering::SeqCst) {
-                eprintln!("\nfacetlab: interrupted again, quitting without writing");
-                std::process::exit(130);
-            }
-            eprintln!("\nfacetlab: stopping after the current iteration and writing what was found (Ctrl-C again to quit at once)");
-        });
-    });
+    super::interrupt::install();
 }
 
 struct Bar(ProgressBar);
@@ -138,12 +125,13 @@ pub fn optimize_exit(interrupted: bool) -> Exit {
     }
 }
 
-/// Refuse an `--out` folder that holds the config read, or any folder that is not empty
-/// unless `force`; check that it can be written (without making it).
-fn check_run_folder(out: &Path, config: &Path, force: bool) -> Result<()> {
+/// Refuse an `--out` folder whose files would replace an input (the config read, the design
+/// its `[cut] file` names), with or without `force`, or any folder that is not empty unless
+/// `force`; check that it can be written (without making it).
+fn check_run_folder(out: &Path, inputs: &[PathBuf], force: bool) -> Result<()> {
     let mut outputs = vec![("--out", out.to_path_buf())];
     outputs.extend(RUN_FILES.iter().map(|f| ("--out", out.join(f))));
-    refuse_overwrite(&outputs, &[config.to_path_buf()])?;
+    refuse_overwrite(&outputs, inputs)?;
     if out.is_dir() && !force {
         let busy = std::fs::read_dir(out)
             .map_err(|e| Error::io(out.display().to_string(), e))?
@@ -171,10 +159,12 @@ fn check_run_folder(out: &Path, config: &Path, force: bool) -> Result<()> {
 /// `facetlab optimize`: load the config, then make its scorers with `make`. Exits 130 when
 /// Ctrl-C or SIGTERM stopped the search (after writing the folder).
 pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Result<Exit> {
-    if let Some(out) = &a.out {
-        check_run_folder(out, &a.config, a.force)?;
-    }
     let mut config = Config::load(&a.config)?;
+    if let Some(out) = &a.out {
+        let mut inputs = vec![a.config.clone()];
+        inputs.extend(config.inputs());
+        check_run_folder(out, &inputs, a.force)?;
+    }
     if let Some(s) = a.seed {
         config.seed = s;
     }
@@ -182,9 +172,6 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     let evaluator = evaluator.as_ref();
     // Fail on a bad start cut before spending any time.
     config.start_cut()?;
-    // Lower the flag before the handler exists: a signal that arrives right after the
-    // handler is installed must not be forgotten.
-    STOP.store(false, Ordering::SeqCst);
     install_ctrl_c();
     let pb = bar(
         config.budget.max_evaluations,

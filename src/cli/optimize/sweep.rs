@@ -267,6 +267,7 @@ pub fn run_sweep_env(
     let out = a.out.clone().unwrap_or_else(default_out);
     let (csv, png, svg) = opt::sweep_output_paths(&out);
     let mut inputs = vec![a.config.clone()];
+    inputs.extend(config.inputs());
     if let Some(r) = &a.run {
         inputs.extend([r.clone(), r.join("history.csv"), r.join("config.toml")]);
     }
@@ -350,7 +351,7 @@ fn run_shard(
             ("--out", record_path.clone()),
             ("--out", rows_path.clone()),
         ],
-        std::slice::from_ref(&a.config),
+        &[vec![a.config.clone()], config.inputs()].concat(),
     )?;
     facetlab::io::check_writable(&dir)?;
     let config_bytes = facetlab::io::read_bytes(&a.config)?;
@@ -470,7 +471,6 @@ fn run_shard(
     let file = std::sync::Mutex::new(file);
     let failed: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
     let (evaluator, _) = make(config);
-    STOP.store(false, Ordering::SeqCst);
     install_ctrl_c();
     let pb = bar(
         todo.len() as u64,

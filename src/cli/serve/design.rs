@@ -144,11 +144,6 @@ impl Design {
                 }
             }
         };
-        // The workbench has no open-meets switch: the config's advice does not apply here.
-        let message = message
-            .strip_suffix(", or allow open meets (`open_meets = \"allow\"`)")
-            .map(str::to_string)
-            .unwrap_or(message);
         ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, field, message)
     }
 

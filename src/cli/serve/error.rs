@@ -25,6 +25,13 @@ impl ApiError {
     pub fn bad(field: impl Into<String>, message: impl Into<String>) -> Self {
         Self::new(StatusCode::BAD_REQUEST, field, message)
     }
+    /// The same error as a 422: the request was well formed, its content is refused.
+    pub fn unprocessable(self) -> Self {
+        Self {
+            status: StatusCode::UNPROCESSABLE_ENTITY,
+            ..self
+        }
+    }
     /// A library error about the cut or its parameters, named by the request's field.
     pub fn from_cut(e: Error) -> Self {
         match e {

@@ -59,6 +59,7 @@ pub struct PlanStatus {
     overview: Option<String>,
     error: Option<String>,
     report: bool,
+    warnings: Vec<String>,
 }
 
 /// A plan run in progress or finished: its status and, once done, its files in memory.
@@ -336,10 +337,11 @@ fn execute(run: &PlanRun, rough: &Rough, config: &PlanConfig, material: &Materia
         !run.stop.load(Ordering::SeqCst)
     };
     let dir = std::env::temp_dir().join(format!("facetlab-serve-{}-plan-{id}", std::process::id()));
-    let result = plan_families(rough, config, material, &family, &tick).and_then(|all| {
+    let result = plan_families(rough, config, material, &family, &tick, None).and_then(|all| {
         if all.is_empty() {
             return Ok(None);
         }
+        let warnings = facetlab::plan::plan_warnings(config, &all);
         let folder = Folder {
             out: &dir,
             input: &rough.name,
@@ -348,6 +350,7 @@ fn execute(run: &PlanRun, rough: &Rough, config: &PlanConfig, material: &Materia
             rough,
             all: &all,
             started: run.started,
+            warnings: &warnings,
         };
         write_folder(&folder)?;
         read_folder(&dir).map(Some)
@@ -365,6 +368,14 @@ fn execute(run: &PlanRun, rough: &Rough, config: &PlanConfig, material: &Materia
             if let Some((summary, files)) = found {
                 st.rough = summary.get("rough").cloned();
                 st.material = summary["material"].as_str().map(str::to_string);
+                st.warnings = summary["warnings"]
+                    .as_array()
+                    .map(|w| {
+                        w.iter()
+                            .filter_map(|x| x.as_str().map(str::to_string))
+                            .collect()
+                    })
+                    .unwrap_or_default();
                 st.plans = summary["plans"]
                     .as_array()
                     .cloned()

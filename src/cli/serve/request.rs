@@ -59,6 +59,9 @@ pub struct Req {
     pub light_rotation: f64,
     /// A photograph's ground (`ground`).
     pub ground: GroundKind,
+    /// No `material` was sent: a design is traced in its own (its index, its notes), as every
+    /// command does; `colour` and `colour_density` as sent, to colour it.
+    pub own: Option<(Option<String>, Option<f64>)>,
 }
 
 /// A field of a body as sent: absent, of the expected JSON type, or anything else (`null`
@@ -239,7 +242,7 @@ pub fn parse_req(
             ),
         )
     };
-    let (material, stone) = stone(&b)?;
+    let (material, stone, own) = stone(&b)?;
     // A photographic light (a rig or the bundled studio map; a map file is for the command
     // line: nothing a client sends becomes a path).
     let photo = match b.light.given() {
@@ -300,6 +303,7 @@ pub fn parse_req(
         ground,
         material,
         stone,
+        own,
         source: source(&b)?,
         set: set(&b)?,
         light: match b.light.given() {
@@ -494,7 +498,10 @@ fn invalid(e: facetlab::error::Error) -> ApiError {
 /// The material (with its body colour) and the stone's size, through the library's choosers
 /// that `score` and `render` use for `--material`, `--colour`, `--colour-density`,
 /// `--diameter-mm` and `--size-mm`; errors name the body's fields.
-fn stone(b: &Body) -> ApiResult<(Material, StoneSize)> {
+/// The material, the size, and when no material was sent the colour fields (see [`Req::own`]).
+type Stone = (Material, StoneSize, Option<(Option<String>, Option<f64>)>);
+
+fn stone(b: &Body) -> ApiResult<Stone> {
     let name = match b.material.given() {
         Ok(n) => n.map(String::as_str),
         Err(_) => {
@@ -607,7 +614,34 @@ fn stone(b: &Body) -> ApiResult<(Material, StoneSize)> {
         }
         (Ok(None), Ok(None)) => StoneSize::default(),
     };
-    Ok((material, size))
+    let own = name
+        .is_none()
+        .then(|| (colour.map(str::to_string), density));
+    Ok((material, size, own))
+}
+
+/// The material `cut` is traced in: the one sent, else the cut's own (a design's index or
+/// notes, [`Material::of_design`]; diamond for a family), coloured as sent.
+pub fn material_for(r: &Req, cut: &facetlab::cut::Cut) -> ApiResult<Material> {
+    let Some((colour, density)) = &r.own else {
+        return Ok(r.material.clone());
+    };
+    let notes = cut
+        .record
+        .iter()
+        .flat_map(|x| x.title.iter().chain(&x.footnotes));
+    let (mut m, _) = Material::of_design(cut.design_ri(), notes, &Material::diamond());
+    m.colour = BodyColour::choose(
+        m.colour.as_ref(),
+        colour.as_deref(),
+        *density,
+        ColourFields {
+            colour: "colour",
+            density: "colour_density",
+        },
+    )
+    .map_err(invalid)?;
+    Ok(m)
 }
 
 /// The stone's width in mm for `cut` (a length follows from its L/W).

@@ -4,7 +4,7 @@
 
 use super::error::{no_store, ApiError, ApiResult};
 use super::jobs::{build, build_design, heavy, jobs};
-use super::request::{parse_req, width_mm, Source, EXPORTS, FORMATS, PHOTO, STONE};
+use super::request::{material_for, parse_req, width_mm, Source, EXPORTS, FORMATS, PHOTO, STONE};
 use super::{page, plans, runs, AppState, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
 use crate::cli::cuts::info_json;
 use axum::body::Bytes;
@@ -162,7 +162,7 @@ async fn cut_info(
     let designs = st.designs.clone();
     let (v, probe) = heavy(&st, move || {
         let (cut, design) = build_design(&designs, &r, true)?;
-        let info = info_json(&cut, width_mm(&r, &cut)?, &r.material);
+        let info = info_json(&cut, width_mm(&r, &cut)?, &material_for(&r, &cut)?);
         let mut v = serde_json::to_value(&info)
             .map_err(|e| ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "cut", e.to_string()))?;
         let mut probe = None;
@@ -216,7 +216,7 @@ async fn score_cut(
         // Refuses a length × width that disagrees with the cut's L/W.
         width_mm(&r, &cut)?;
         let cfg = ScoreConfig {
-            material: r.material.clone(),
+            material: material_for(&r, &cut)?,
             size: r.stone,
             ..if r.quick {
                 ScoreConfig::fast()
@@ -276,7 +276,7 @@ async fn render_cut(
             azimuth_deg: 0.0,
         };
         o.width_mm = width_mm(&r, &cut)?;
-        o.material = r.material.clone();
+        o.material = material_for(&r, &cut)?;
         o.validate()
             .map_err(|e| ApiError::bad("render", e.to_string()))?;
         let img = render(&cut.solid, &o);

@@ -198,7 +198,12 @@ pub async fn configs() -> Response {
 struct StartBody {
     config: Field<String>,
     config_text: Field<String>,
+    design: Field<String>,
+    design_name: Field<String>,
 }
+
+/// The fields of `POST /api/optimize`.
+const START_FIELDS: [&str; 4] = ["config", "config_text", "design", "design_name"];
 
 /// `POST /api/optimize`: start a run.
 pub async fn start(
@@ -212,10 +217,10 @@ pub async fn start(
         return Err(ApiError::bad("body", "must be a JSON object"));
     };
     for k in m.keys() {
-        if k != "config" && k != "config_text" {
+        if !START_FIELDS.contains(&k.as_str()) {
             return Err(ApiError::bad(
-                k.clone(),
-                "unknown field; give config or config_text",
+                super::request::short(k),
+                "unknown field; give config or config_text (and design with design_name)",
             ));
         }
     }
@@ -246,16 +251,26 @@ pub async fn start(
             "give one of config (a bundled config's name) or config_text (a config file's text)",
         )),
     };
-    let config = Config::from_str(&text, &format!("{name}.toml")).map_err(|e| {
-        ApiError::bad(
-            if !matches!(b.config, Field::Absent) {
-                "config"
-            } else {
-                "config_text"
-            },
-            e.to_string(),
-        )
-    })?;
+    let design = uploaded_design(&b)?;
+    let designs = |file: &str| -> Option<facetlab::error::Result<facetlab::cut::Cut>> {
+        let (name, format, text) = design.as_ref()?;
+        (file == name)
+            .then(|| facetlab::io::parse_cut(format, text.as_bytes(), stem_of(name), "design"))
+    };
+    // No value a client sends becomes a file path: `[cut] file` names a preset or the design
+    // sent with the config, nothing else (and the error repeats nothing of what it named).
+    let config =
+        Config::from_str_without_files(&text, &format!("{name}.toml"), &designs).map_err(|e| {
+            ApiError::bad(
+                if !matches!(b.config, Field::Absent) {
+                    "config"
+                } else {
+                    "config_text"
+                },
+                e.to_string(),
+            )
+            .unprocessable()
+        })?;
     let (id, run) = st.runs.start(
         "config",
         "a run is going; stop it first (POST /api/optimize/stop)",
@@ -273,6 +288,56 @@ pub async fn start(
     )?;
     std::thread::spawn(move || execute(run, config, id));
     Ok(axum::Json(json!({ "id": id })).into_response())
+}
+
+/// The design sent with a config (`design`: a file's text, `design_name`: its name, whose
+/// extension is its format), as (name, format, text).
+fn uploaded_design(b: &StartBody) -> ApiResult<Option<(String, &'static str, String)>> {
+    let text = b
+        .design
+        .given()
+        .map_err(|_| ApiError::bad("design", "give the text of a .asc, .toml or .obj file"))?;
+    let name = b.design_name.given().map_err(|_| {
+        ApiError::bad(
+            "design_name",
+            "give the design's file name, e.g. \"mine.asc\"",
+        )
+    })?;
+    let (text, name) = match (text, name) {
+        (None, None) => return Ok(None),
+        (Some(t), Some(n)) => (t, n),
+        (Some(_), None) => {
+            return Err(ApiError::bad(
+                "design_name",
+                "missing; give the design's file name, e.g. \"mine.asc\", as the config's [cut] file names it",
+            ))
+        }
+        (None, Some(_)) => return Err(ApiError::bad("design", "missing; give the design file's text")),
+    };
+    if text.len() > MAX_CONFIG * 16 {
+        return Err(ApiError::bad("design", "longer than 1 MB"));
+    }
+    let ext = name
+        .rsplit_once('.')
+        .map(|(_, e)| e.to_ascii_lowercase())
+        .unwrap_or_default();
+    let format = match ext.as_str() {
+        "asc" => "asc",
+        "toml" => "toml",
+        "obj" => "obj",
+        _ => {
+            return Err(ApiError::bad(
+                "design_name",
+                "give a name ending in .asc, .toml or .obj (the design's format)",
+            ))
+        }
+    };
+    Ok(Some((name.clone(), format, text.clone())))
+}
+
+/// A design name's stem (its cut's name).
+fn stem_of(name: &str) -> &str {
+    name.rsplit_once('.').map_or(name, |(s, _)| s)
 }
 
 /// Run the search and the verification into a temporary folder; keep the report.

@@ -3,21 +3,34 @@
 //! from: a `.asc` line or a `.gem` trailer. Each reader names the place (`design.asc:4`,
 //! `design.gem: byte 1234`) and adds the problem these functions describe.
 
-/// Why `n` cannot be a design's refractive index (GemCad's `I`), or `None` when it can: a
-/// positive finite number.
+/// A design's index (`I`) must be above this and at most [`RI_MAX`]: the rule of `--ri`
+/// (`optics::Material::RI_ABOVE` and `RI_MAX`, which the `io` floor cannot import; a test of
+/// the binary holds them equal).
+pub const RI_ABOVE: f64 = 1.0;
+/// The largest index a design may give (see [`RI_ABOVE`]).
+pub const RI_MAX: f64 = 10.0;
+/// The most teeth a gear may have.
+pub const MAX_GEAR: f64 = 1000.0;
+
+/// Why `n` cannot be a design's refractive index (GemCad's `I`), or `None` when it can: the
+/// rule of `--ri`, an index in ([`RI_ABOVE`], [`RI_MAX`]].
 pub(in crate::io) fn ri_problem(n: f64) -> Option<String> {
-    (!(n.is_finite() && n > 0.0)).then(|| {
+    (!(n > RI_ABOVE && n <= RI_MAX)).then(|| {
         format!(
-            "refractive index {n} is not allowed; a design's index is a positive number, e.g. 1.54"
+            "refractive index {} is not allowed; give an index in ({RI_ABOVE}, {RI_MAX}], as for --ri, e.g. 1.54",
+            crate::error::shown(n)
         )
     })
 }
 
-/// Why `teeth` cannot be a design's index gear, or `None` when it can: a finite, non-zero
-/// tooth count (negative: the indices run clockwise).
+/// Why `teeth` cannot be a design's index gear, or `None` when it can: a whole, non-zero
+/// tooth count up to [`MAX_GEAR`] (negative: the indices run clockwise).
 pub(in crate::io) fn gear_problem(teeth: f64) -> Option<String> {
-    (!(teeth.is_finite() && teeth != 0.0)).then(|| {
-        format!("gear {teeth} is not allowed; a design's gear has a non-zero tooth count, e.g. 96")
+    (!(teeth != 0.0 && teeth.fract() == 0.0 && teeth.abs() <= MAX_GEAR)).then(|| {
+        format!(
+            "gear {} is not allowed; a design's gear is a whole, non-zero tooth count up to {MAX_GEAR} (negative: clockwise), e.g. 96",
+            crate::error::shown(teeth)
+        )
     })
 }
 
@@ -34,12 +47,15 @@ mod tests {
     #[test]
     fn design_values_have_one_rule() {
         assert!(ri_problem(1.54).is_none() && ri_problem(2.42).is_none());
-        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        for bad in [0.0, -1.0, 1.0, 100.0, f64::NAN, f64::INFINITY] {
             let e = ri_problem(bad).unwrap();
             assert!(
-                e.contains("refractive index") && e.contains("positive"),
+                e.contains("refractive index") && e.contains("(1, 10]"),
                 "{e}"
             );
+        }
+        for bad in [96.5, 2000.0, f64::NAN, f64::INFINITY] {
+            assert!(gear_problem(bad).is_some(), "{bad}");
         }
         assert!(gear_problem(96.0).is_none() && gear_problem(-64.0).is_none());
         assert!(gear_problem(0.0).unwrap().contains("non-zero"));

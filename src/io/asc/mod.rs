@@ -91,6 +91,7 @@ pub(in crate::io) mod fixtures;
 #[cfg(test)]
 mod measure_tests;
 
+pub use check::{MAX_GEAR, RI_ABOVE, RI_MAX};
 pub use instructions::{cutting_instructions, CuttingInstructions, CuttingStep};
 pub(in crate::io) use read::{assemble, generated_tier, read_design, RawFacet};
 pub use read::{parse, read, AscDesign, AscTier};

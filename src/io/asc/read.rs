@@ -2,7 +2,7 @@
 //! as [`AscTier`]s, its metadata and its facet planes), and the solid built from it, scaled to
 //! W = 1, with the design's [`GemcadRecord`] on the cut.
 
-use super::check;
+use super::check::{self, MAX_GEAR, RI_ABOVE, RI_MAX};
 use super::decode::{continues, decode, keyword, lines, number};
 use super::DEFAULT_GEAR;
 use crate::cut::units::outline_size;
@@ -194,12 +194,14 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
             'g' => {
                 let mut it = rest.split_whitespace();
                 let g = it.next().unwrap_or("");
-                d.gear = number(g).filter(|v| check::gear_problem(*v).is_none()).ok_or_else(|| {
-                    Error::parse(
-                        at(line),
-                        format!("gear {g:?} is not allowed; write `g TEETH OFFSET` with a non-zero tooth count, e.g. `g 96 0.0`"),
-                    )
-                })?;
+                d.gear = number(g)
+                    .filter(|v| *v != 0.0 && v.fract() == 0.0 && v.abs() <= MAX_GEAR)
+                    .ok_or_else(|| {
+                        Error::parse(
+                            at(line),
+                            format!("gear {g:?} is not allowed; write `g TEETH OFFSET` with a whole, non-zero tooth count up to {MAX_GEAR} (negative: clockwise), e.g. `g 96 0.0`"),
+                        )
+                    })?;
                 if let Some(o) = it.next() {
                     d.gear_offset = number(o)
                         .filter(|v| check::offset_problem(*v).is_none())
@@ -232,14 +234,15 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
             }
             'I' => {
                 let v = rest.split_whitespace().next().unwrap_or("");
+                // The rule of `--ri`: an index in (1, 10].
                 d.ri = Some(
                     number(v)
-                        .filter(|n| check::ri_problem(*n).is_none())
+                        .filter(|n| *n > RI_ABOVE && *n <= RI_MAX)
                         .ok_or_else(|| {
                             Error::parse(
-                        at(line),
-                        format!("refractive index {v:?} is not a positive number, e.g. `I 1.54`"),
-                    )
+                                at(line),
+                                format!("refractive index {v:?} is not allowed; give an index in ({RI_ABOVE}, {RI_MAX}], as for --ri, e.g. `I 1.54`"),
+                            )
                         })?,
                 );
             }
@@ -250,6 +253,25 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
     }
     if let Some(o) = open.take() {
         d.tiers.push(parse_tier(&o, source)?);
+    }
+    // Indices lie on the gear: from minus the count of teeth (counted back, as GemCad
+    // tolerates) to the count.
+    let teeth = d.gear.abs();
+    for t in &d.tiers {
+        if let Some((i, _)) = t
+            .indices
+            .iter()
+            .find(|(i, _)| !(-teeth..=teeth).contains(i))
+        {
+            return Err(Error::parse(
+                at(t.line),
+                format!(
+                    "index {} is not on the gear; allowed -{teeth} to {teeth} on gear {}",
+                    crate::error::shown(*i),
+                    d.gear
+                ),
+            ));
+        }
     }
     let (planes, instructions) = planes_of(&d);
     d.planes = planes;

@@ -12,6 +12,10 @@ use crate::geometry::{
 /// Largest merge tolerance used for coarse coordinates (fraction of the size).
 const MAX_MERGE_TOL: f64 = 1e-4;
 
+/// The most facets a mesh read as a cut may have: a scanned rough's hull has tens of
+/// thousands, and no cut is traced or measured usefully with them.
+pub const MAX_FACETS: usize = 5000;
+
 /// Hull, convexity check, normalisation and naming.
 pub(super) fn planes_from_points(
     points: &Points,
@@ -48,10 +52,30 @@ pub(super) fn planes_from_points(
     }
     let tol = (8.0 * points.rel_noise * largest / size).clamp(MERGE_TOL, MAX_MERGE_TOL);
     let hull = convex_hull_with_tolerance(pts, tol).map_err(|e| hull_error(e, source))?;
+    if hull.len() > MAX_FACETS {
+        return Err(Error::parse(
+            source,
+            format!(
+                "the mesh's convex hull has {} facets; a cut has at most {MAX_FACETS} (a scanned rough? plan cuts inside it with `facetlab plan`)",
+                hull.len()
+            ),
+        ));
+    }
 
-    // Convexity: the deepest vertex inside the hull.
+    // Convexity: the deepest vertex inside the hull, of those deeper than allowed (a vertex
+    // within the allowance of some plane passes at once; the planes are tried from the one
+    // that passed the vertex before, as neighbours in a file tend to share a facet).
+    let allowed = CONVEX_TOL * size;
     let mut deepest = (0.0, 0usize);
+    let mut last = 0;
     for (i, p) in pts.iter().enumerate() {
+        let near = (last..hull.len())
+            .chain(0..last)
+            .find(|&k| -hull[k].distance(*p) <= allowed);
+        if let Some(k) = near {
+            last = k;
+            continue;
+        }
         let depth = hull
             .iter()
             .map(|h| -h.distance(*p))
@@ -60,7 +84,7 @@ pub(super) fn planes_from_points(
             deepest = (depth, i);
         }
     }
-    if deepest.0 > CONVEX_TOL * size {
+    if deepest.0 > allowed {
         let (depth, i) = deepest;
         return Err(Error::parse(
             source,

@@ -2,7 +2,7 @@
 
 use super::{defaults, finite, At};
 use crate::cut::grade::Grade;
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// `[constraints]`.
@@ -74,7 +74,7 @@ pub(super) fn validate(rk: &RawConstraints, at: At) -> Result<Constraints> {
                     };
                     return Err(Error::invalid(
                         at(field),
-                        format!("{v} is out of range; allowed [0, {max}]{hint}"),
+                        format!("{} is out of range; allowed [0, {max}]{hint}", shown(v)),
                     ));
                 }
                 Ok(Some(v))
@@ -90,7 +90,11 @@ pub(super) fn validate(rk: &RawConstraints, at: At) -> Result<Constraints> {
             if lo > hi {
                 return Err(Error::invalid(
                     at(f),
-                    format!("range [{lo}, {hi}] is reversed; write [min, max]"),
+                    format!(
+                        "range [{}, {}] is reversed; write [min, max]",
+                        shown(lo),
+                        shown(hi)
+                    ),
                 ));
             }
             Some([lo, hi])

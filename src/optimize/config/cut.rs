@@ -3,7 +3,7 @@
 use super::At;
 use crate::cut::{family, Cut, CutSpace};
 use crate::design::{DesignSpace, OpenMeets, MEET_TOL};
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -50,9 +50,23 @@ pub(super) struct CutSection {
     pub skip_changes: bool,
 }
 
+/// Where a `[cut] file` may be read from.
+#[derive(Clone, Copy)]
+pub(super) enum Designs<'a> {
+    /// A file relative to the config's folder, or a preset's name.
+    Files,
+    /// No file: a preset's name, or a design the function gives (`None`: not one of them).
+    Only(&'a dyn Fn(&str) -> Option<Result<Cut>>),
+}
+
 /// Validate `[cut]`: the cut space and the start cut's full parameter set (defaults filled in).
 /// A `file` is found relative to the config's folder (`source` is the config's path).
-pub(super) fn validate(rc: &RawCut, source: &str, at: At) -> Result<CutSection> {
+pub(super) fn validate(
+    rc: &RawCut,
+    source: &str,
+    at: At,
+    designs: Designs<'_>,
+) -> Result<CutSection> {
     let (space, design, file): (Arc<dyn CutSpace>, _, _) = match (&rc.family, &rc.file) {
         (Some(_), Some(_)) => {
             return Err(Error::invalid(
@@ -100,10 +114,13 @@ pub(super) fn validate(rc: &RawCut, source: &str, at: At) -> Result<CutSection> 
             if !(tol.is_finite() && tol > 0.0 && tol <= 0.01) {
                 return Err(Error::invalid(
                     at("cut.meet_tol"),
-                    format!("{tol} is out of range; allowed (0, 0.01] of the width W"),
+                    format!("{} is out of range; allowed (0, 0.01] of the width W", shown(tol)),
                 ));
             }
-            let (cut, path) = load_design(file, source, at)?;
+            let (cut, path) = match designs {
+                Designs::Files => load_design(file, source, at)?,
+                Designs::Only(given) => (given_design(file, given, at)?, None),
+            };
             let d = DesignSpace::new(&cut, tol, open).map_err(|e| {
                 Error::invalid(at("cut.file"), format!("{file}: {e}"))
             })?;
@@ -160,6 +177,28 @@ pub(super) fn quoted(key: &str) -> String {
         key.to_string()
     } else {
         format!("\"{key}\"")
+    }
+}
+
+/// The design `file` names when no file may be read: a preset, or one `given` knows.
+fn given_design(file: &str, given: &dyn Fn(&str) -> Option<Result<Cut>>, at: At) -> Result<Cut> {
+    if let Some(cut) = crate::io::presets::load(file) {
+        return cut;
+    }
+    match given(file) {
+        Some(cut) => cut.map_err(|e| match e {
+            Error::Invalid { message, .. } | Error::Parse { message, .. } => {
+                Error::invalid(at("cut.file"), message)
+            }
+            other => other,
+        }),
+        None => Err(Error::invalid(
+            at("cut.file"),
+            format!(
+                "not allowed here: no file is read for a config sent to the server; name a preset ({}) or the design sent with it",
+                crate::io::presets::names().join(", ")
+            ),
+        )),
     }
 }
 

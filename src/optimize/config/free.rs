@@ -2,7 +2,7 @@
 
 use super::At;
 use crate::cut::{CutSpace, Unit};
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use std::collections::BTreeMap;
 
 /// The free parameter that is not the cut's: a uniaxial stone's optic axis, degrees from the
@@ -87,19 +87,31 @@ pub(super) fn validate(
         if !(lo.is_finite() && hi.is_finite()) {
             return Err(Error::invalid(
                 field,
-                format!("bounds [{lo}, {hi}] must be finite numbers"),
+                format!(
+                    "bounds [{}, {}] must be finite numbers",
+                    shown(lo),
+                    shown(hi)
+                ),
             ));
         }
         if lo > hi {
             return Err(Error::invalid(
                 field,
-                format!("bounds [{lo}, {hi}] are reversed; write [min, max]"),
+                format!(
+                    "bounds [{}, {}] are reversed; write [min, max]",
+                    shown(lo),
+                    shown(hi)
+                ),
             ));
         }
         if lo == hi {
             return Err(Error::invalid(
                 field,
-                format!("bounds [{lo}, {hi}] are empty; fix the value in [cut.params] instead"),
+                format!(
+                    "bounds [{}, {}] are empty; fix the value in [cut.params] instead",
+                    shown(lo),
+                    shown(hi)
+                ),
             ));
         }
         if def.unit == Unit::Count {
@@ -113,7 +125,9 @@ pub(super) fn validate(
             return Err(Error::invalid(
                 field,
                 format!(
-                    "bounds [{lo}, {hi}] leave the family's allowed range {l}{}, {}{r} {}",
+                    "bounds [{}, {}] leave the family's allowed range {l}{}, {}{r} {}",
+                    shown(lo),
+                    shown(hi),
                     def.min,
                     def.max,
                     def.unit.label()
@@ -129,7 +143,7 @@ pub(super) fn validate(
             };
             return Err(Error::invalid(
                 field,
-                format!("the start value {s} (from {from}) lies outside the bounds [{lo}, {hi}]; widen them or set `{key}` in [cut.params]"),
+                format!("the start value {} (from {from}) lies outside the bounds [{}, {}]; widen them or set `{key}` in [cut.params]", shown(s), shown(lo), shown(hi)),
             ));
         }
         free.push(FreeParam {

@@ -1,7 +1,7 @@
 //! `[method]`: the search method, its settings and the budgets.
 
 use super::{defaults, finite, At};
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// `[method]`.
@@ -205,7 +205,7 @@ pub(super) fn validate(rm: &RawMethod, n_free: usize, at: At) -> Result<(Method,
                 if !(0.0..=4.0).contains(&v) {
                     return Err(Error::invalid(
                         at(field),
-                        format!("{v} is out of range; allowed [0, 4]"),
+                        format!("{} is out of range; allowed [0, 4]", shown(v)),
                     ));
                 }
                 Ok(v)

@@ -57,7 +57,7 @@ pub use winners::{RawVerify, VerifySettings};
 
 use crate::cut::{Cut, CutSpace};
 use crate::design::{DesignSpace, OpenedMeet};
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use crate::io::{line_of, read_bytes};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -188,7 +188,10 @@ fn finite(field: &str, v: f64) -> Result<f64> {
     if v.is_finite() {
         Ok(v)
     } else {
-        Err(Error::invalid(field, format!("{v} is not a finite number")))
+        Err(Error::invalid(
+            field,
+            format!("{} is not a finite number", shown(v)),
+        ))
     }
 }
 
@@ -207,6 +210,15 @@ fn count(at: At, field: &str, v: u64, lo: u64, hi: u64) -> Result<u64> {
 type At<'a> = &'a dyn Fn(&str) -> String;
 
 impl Config {
+    /// The files this config reads besides itself (its `[cut] file` design), as found: an
+    /// output must never replace one of them.
+    pub fn inputs(&self) -> Vec<PathBuf> {
+        self.cut_file
+            .iter()
+            .filter_map(|(_, path)| path.clone())
+            .collect()
+    }
+
     /// Read and validate a config file.
     pub fn load(path: &Path) -> Result<Config> {
         let bytes = read_bytes(path)?;
@@ -217,6 +229,36 @@ impl Config {
             )
         })?;
         Config::from_str(&text, &path.display().to_string())
+    }
+
+    /// Parse and validate config text from a client that may name no file (the workbench's
+    /// `config_text`): its `[cut] file` may be a preset's name or a design `designs` gives
+    /// (an upload, read in memory); anything else is refused without opening, or even looking
+    /// for, a file, and the error repeats nothing of the name given.
+    ///
+    /// ```
+    /// use facetlab::optimize::Config;
+    /// let text = "[cut]\nfile = \"/etc/hostname.asc\"\n[free]\nC1 = [30, 40]\n";
+    /// let e = Config::from_str_without_files(text, "c.toml", &|_| None).unwrap_err();
+    /// assert!(!e.to_string().contains("hostname"), "{e}");
+    /// ```
+    pub fn from_str_without_files(
+        text: &str,
+        source: &str,
+        designs: &dyn Fn(&str) -> Option<Result<Cut>>,
+    ) -> Result<Config> {
+        let raw = Config::raw_of(text, source)?;
+        Config::from_raw_in(&raw, source, cut::Designs::Only(designs))
+    }
+
+    fn raw_of(text: &str, source: &str) -> Result<RawConfig> {
+        toml::from_str(text).map_err(|e| {
+            let line = e
+                .span()
+                .map(|s| format!(":{}", line_of(text, s.start)))
+                .unwrap_or_default();
+            Error::parse(format!("{source}{line}"), e.message().to_string())
+        })
     }
 
     /// Parse and validate config text; `source` (the file name) prefixes errors.
@@ -234,6 +276,10 @@ impl Config {
 
     /// Validate a parsed config; errors are `SOURCE: FIELD: message`.
     pub fn from_raw(raw: &RawConfig, source: &str) -> Result<Config> {
+        Config::from_raw_in(raw, source, cut::Designs::Files)
+    }
+
+    fn from_raw_in(raw: &RawConfig, source: &str, designs: cut::Designs<'_>) -> Result<Config> {
         let at = |field: &str| format!("{source}: {field}");
         let stem = Path::new(source)
             .file_stem()
@@ -253,7 +299,7 @@ impl Config {
         let seed = raw.seed.unwrap_or(defaults::SEED);
 
         let raw_cut = raw.cut.clone().unwrap_or_default();
-        let section = cut::validate(&raw_cut, source, &at)?;
+        let section = cut::validate(&raw_cut, source, &at, designs)?;
         let (space, mut start) = (section.space, section.start);
         let rc_params = raw_cut.params.clone();
         let free = free::validate(&raw.free, space.as_ref(), &start, &rc_params, &at)?;

@@ -1,7 +1,7 @@
 //! `[objective]`: the weights of the scores.
 
 use super::{finite, At};
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// `[objective]`.
@@ -144,7 +144,10 @@ pub(super) fn validate(ro: &RawObjective, at: At) -> Result<Weights> {
         if v < 0.0 {
             return Err(Error::invalid(
                 at(field),
-                format!("{v} is negative; weights are >= 0 (higher scores are better)"),
+                format!(
+                    "{} is negative; weights are >= 0 (higher scores are better)",
+                    shown(v)
+                ),
             ));
         }
         Ok(v)

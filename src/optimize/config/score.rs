@@ -1,7 +1,7 @@
 //! `[score]`: how the cuts are scored (material, lighting).
 
 use super::{finite, At};
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// `[score]`: the scoring settings of the beam tracer (and of the photon-tracer checks).
@@ -190,7 +190,7 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
         if !range.contains(&x) {
             return Err(Error::invalid(
                 at(field),
-                format!("{x} is out of range; allowed {allowed}"),
+                format!("{} is out of range; allowed {allowed}", shown(x)),
             ));
         }
         Ok(x)

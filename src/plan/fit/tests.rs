@@ -152,3 +152,62 @@ fn a_cube_in_a_cube_fills_it() {
         "{fit:?}"
     );
 }
+
+/// Constraint generation ([`Containment`]) gives the whole program's scale in roughs of many
+/// planes (a scanned pebble's hull, thousands of planes, and random roughs), and its copy lies
+/// inside every plane, in every orientation tried.
+#[test]
+fn containment_by_constraint_generation_is_the_whole_programs() {
+    let mut rng = SmallRng::seed_from_u64(36);
+    let cuts: Vec<Cut> = ["round-brilliant", "princess", "pear", "emerald", "marquise"]
+        .iter()
+        .map(|f| Cut::from_family(f, f, &BTreeMap::new()).unwrap())
+        .collect();
+    let pebble = crate::plan::Rough::from_trimesh(
+        "pebble",
+        "pebble",
+        crate::plan::sample::scanned_pebble(24, 3),
+        None,
+    )
+    .unwrap();
+    let mut roughs = vec![pebble.solid.clone()];
+    for _ in 0..4 {
+        let planes = random_rough(&mut rng, 300);
+        let fps: Vec<crate::geometry::FacetPlane> = planes
+            .iter()
+            .enumerate()
+            .map(|(i, p)| crate::geometry::FacetPlane {
+                plane: *p,
+                name: format!("r{i}"),
+                tier: "r".into(),
+            })
+            .collect();
+        roughs.push(crate::geometry::Polyhedron::from_planes(&fps).unwrap());
+    }
+    assert!(
+        roughs[0].facets().len() > 2000,
+        "{}",
+        roughs[0].facets().len()
+    );
+    for (r, rough) in roughs.iter().enumerate() {
+        let c = Containment::new(rough);
+        for case in 0..10 {
+            let turn = random_turn(&mut rng);
+            let cut = &cuts[case % cuts.len()];
+            let verts: Vec<DVec3> = cut.solid.vertices().iter().map(|v| turn * *v).collect();
+            let whole = largest_copy(c.planes(), &verts, rough.centroid()).unwrap();
+            let fast = c.largest_copy(&verts).unwrap();
+            assert!(
+                (fast.scale - whole.scale).abs() <= 1e-10 * whole.scale,
+                "rough {r} case {case}: {} vs {}",
+                fast.scale,
+                whole.scale
+            );
+            for p in c.planes() {
+                for v in &verts {
+                    assert!(p.distance(fast.scale * *v + fast.shift) <= 1e-9);
+                }
+            }
+        }
+    }
+}

@@ -20,6 +20,8 @@ fn rough_from_planes(name: &str, planes: &[(DVec3, f64)]) -> Rough {
         solid: Polyhedron::from_planes(&fps).unwrap(),
         mesh_volume: None,
         ball: None,
+        left_out: 0.0,
+        hull_vertices: 0,
     }
 }
 

@@ -10,6 +10,7 @@ mod browser;
 mod colour;
 mod crystal;
 mod fuzz;
+mod paths;
 mod plan;
 mod scores;
 
@@ -27,10 +28,23 @@ struct Server {
 impl Server {
     /// Start `facetlab serve --port 0` and wait until it answers.
     fn start() -> Server {
+        Server::start_at(None)
+    }
+
+    /// The same, with `dir` its working folder.
+    fn start_in(dir: &std::path::Path) -> Server {
+        Server::start_at(Some(dir))
+    }
+
+    fn start_at(dir: Option<&std::path::Path>) -> Server {
         // FACETLAB_SERVE_BIN runs another build (a release build, to measure latency).
         let bin = std::env::var("FACETLAB_SERVE_BIN")
             .unwrap_or_else(|_| env!("CARGO_BIN_EXE_facetlab").to_string());
-        let mut child = Command::new(bin)
+        let mut cmd = Command::new(bin);
+        if let Some(d) = dir {
+            cmd.current_dir(d);
+        }
+        let mut child = cmd
             .args(["serve", "--port", "0"])
             .stdout(Stdio::piped())
             .stderr(Stdio::inherit())
