@@ -21,6 +21,9 @@ pub struct GenerateArgs {
     /// Output file; the format follows the extension: .toml .asc .gem .obj .stl .svg.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: PathBuf,
+    /// Replace an existing output file (an input is never replaced, even with --force).
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// Flags of `facetlab info`.
@@ -99,6 +102,7 @@ pub fn generate(a: &GenerateArgs) -> Result<()> {
         &[("-o", a.output.clone())],
         &super::outputs::cut_files(std::slice::from_ref(&a.cut)),
     )?;
+    super::outputs::check_new_file("-o", &a.output, a.force)?;
     let cut = load_with_sets(&a.cut, &a.set)?;
     let ext = a
         .output

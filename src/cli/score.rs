@@ -78,6 +78,9 @@ pub struct ScoreArgs {
     /// Write the scores as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+    /// Replace an existing output file (an input is never replaced, even with --force).
+    #[arg(long)]
+    pub force: bool,
     /// Re-measure overhead light return and brilliance with this many photons of the photon
     /// tracer and print both with the difference in standard errors.
     #[arg(long, value_name = "PHOTONS", allow_hyphen_values = true)]
@@ -230,6 +233,7 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
     if let Some(path) = &a.json {
         // Never overwrite a cut with its scores.
         refuse_overwrite(&[("--json", path.clone())], &cut_files(&a.cuts))?;
+        super::outputs::check_new_file("--json", path, a.force)?;
     }
     let cuts = a
         .cuts

@@ -107,6 +107,9 @@ pub struct TraceArgs {
     /// Write the results as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+    /// Replace an existing output file (an input is never replaced, even with --force).
+    #[arg(long)]
+    pub force: bool,
     /// Write charts and pictures (PNG and SVG) to this folder (created if missing).
     #[arg(long, value_name = "DIR")]
     pub plots: Option<PathBuf>,
@@ -331,6 +334,9 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         outputs.push(("--plots", d.clone()));
     }
     super::outputs::refuse_overwrite(&outputs, &super::outputs::cut_files(&args.cuts))?;
+    if let Some(j) = &args.json {
+        super::outputs::check_new_file("--json", j, args.force)?;
+    }
     let cuts = args
         .cuts
         .iter()

@@ -46,7 +46,7 @@ fn an_output_never_replaces_a_file_the_config_reads() {
     std::fs::write(od.join("best.asc"), OCTA).unwrap();
     std::fs::write(
         od.join("cfg.toml"),
-        "[cut]\nfile = \"best.asc\"\n[free]\ncrown = [38, 44]\n[method]\nname = \"nelder-mead\"\nstarts = 1\nmax_evaluations = 3\n[verify]\nwinners = 0\n",
+        "[cut]\nfile = \"best.asc\"\nfacet_changes = \"skip\"\n[free]\ncrown = [38, 44]\n[method]\nname = \"nelder-mead\"\nstarts = 1\nmax_evaluations = 3\n[verify]\nwinners = 0\n",
     )
     .unwrap();
     for force in [true, false] {

@@ -68,6 +68,40 @@ fn an_output_equal_to_an_input_is_refused_before_any_work() {
     assert_eq!(files(p), ["c.csv", "c.toml", "sub", "t.toml"]);
 }
 
+/// One overwrite rule for every command that writes a file: an existing file is replaced only
+/// with --force (as render, report and retarget always did), and an input never, even with it.
+#[test]
+fn an_existing_output_is_replaced_only_with_force() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    ok(p, &["generate", "tolkowsky", "-o", "t.toml"]);
+    for (args, flag) in [
+        (vec!["generate", "princess", "-o", "o.asc"], "-o"),
+        (vec!["score", "princess", "--json", "o.json"], "--json"),
+        (
+            vec!["trace", "princess", "--photons", "1000", "--json", "o.json"],
+            "--json",
+        ),
+    ] {
+        let out = args[args.len() - 1];
+        std::fs::write(p.join(out), "mine").unwrap();
+        bad(p, &args, &[flag, out, "--force"]);
+        assert_eq!(std::fs::read_to_string(p.join(out)).unwrap(), "mine");
+        let forced: Vec<&str> = args.iter().copied().chain(["--force"]).collect();
+        ok(p, &forced);
+        assert_ne!(std::fs::read_to_string(p.join(out)).unwrap(), "mine");
+        std::fs::remove_file(p.join(out)).unwrap();
+    }
+    // An input stays an input with --force.
+    let cut = std::fs::read_to_string(p.join("t.toml")).unwrap();
+    bad(
+        p,
+        &["generate", "t.toml", "-o", "t.toml", "--force"],
+        &["-o", "overwrite"],
+    );
+    assert_eq!(std::fs::read_to_string(p.join("t.toml")).unwrap(), cut);
+}
+
 #[test]
 fn a_sweep_without_y_writes_a_profile_csv_and_chart() {
     let d = tempdir().unwrap();
