@@ -25,7 +25,7 @@ pub fn overhead_light_return(
         canonical::canonical_axis(solid, u.axis.vector())
     });
     let solid = canonical::canonical(solid);
-    let medium = crate::beam::Medium::of(&material, wavelength_nm, axis, 0.0, false);
+    let medium = crate::beam::Medium::of(material, wavelength_nm, axis, 0.0, false);
     overhead_light_return_with(&Stone::new(&solid), &medium, &opts)
 }
 
