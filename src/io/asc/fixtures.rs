@@ -22,7 +22,7 @@ F Footnote one
 
 /// The same design the hard way: BOM, CRLF and a lone CR, a Windows-1252 en dash in a
 /// title, glued `g96` and `a-41`, the girdle's index list wrapped over three lines, a
-/// fractional table index, negative and out-of-turn bezel indices, the culet as `a -0`,
+/// fractional table index, negative (counted back) and out-of-turn bezel indices, the culet as `a -0`,
 /// unknown lines and blank lines, a repeated facet.
 pub(in crate::io) fn messy() -> Vec<u8> {
     let mut b: Vec<u8> =
@@ -34,7 +34,7 @@ pub(in crate::io) fn messy() -> Vec<u8> {
     );
     b.extend_from_slice(b"a-41.0 0.691553 96 n P 12 24 36 48 60 72 84 G Cut to a point\r");
     b.extend_from_slice(b"a -0 0.9 96 n K\r\n");
-    b.extend_from_slice(b"a 34 0.595019 0 n B -84 120 36 48 60 72 -12\r\n");
+    b.extend_from_slice(b"a 34 0.595019 0 n B -84 24 36 48 60 72 -12\r\n");
     b.extend_from_slice(b"a -41.0 0.691553 12\r\n");
     b.extend_from_slice(b"a 0 0.332598 1.5 n T\r\n\r\nF Footnote one\r\n");
     b
