@@ -112,7 +112,7 @@ fn text(rows: &[Row]) -> String {
     }
     out += &format!(
         "\nnD at 589.3 nm; B–G = n(430.8 nm) − n(686.7 nm); SG is the handbook density (carat weights).\n\
-         Birefringent stones are traced with one index: uniaxial stones the ordinary ray ω, biaxial stones α.\n\
+         Uniaxial stones are traced birefringent, the ordinary ray ω and the extraordinary ray ε (--birefringence off: the ordinary ray alone); biaxial stones with one index, α.\n\
          --material ri:N: index N with the generic B–G = {} (N − 1); ri:N:BG: index N with B–G dispersion BG (both Cauchy curves).\n\
          --ri N: one fixed index, no dispersion and no fire.\n",
         Material::GENERIC_BG_PER_N1
@@ -165,7 +165,7 @@ mod tests {
             assert!(t.contains(n), "{n}");
         }
         assert!(
-            t.contains("ordinary ray (ω)") && t.contains("ri:N:BG"),
+            t.contains("the ordinary ray ω and the extraordinary ray ε") && t.contains("ri:N:BG"),
             "{t}"
         );
         // Every coloured variety is listed, with its spectrum's source or the reason it has
