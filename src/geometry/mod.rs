@@ -11,6 +11,7 @@ pub mod clip2d;
 pub(crate) mod fast_hash;
 mod hull;
 mod polyhedron;
+mod tjunction;
 
 pub use glam::{DVec2, DVec3};
 pub use hull::{convex_hull, convex_hull_with_tolerance, hull, Hull, HullOptions, MERGE_TOL};

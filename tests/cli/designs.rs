@@ -25,7 +25,7 @@ winners = 0
 fn brilliance(dir: &std::path::Path, cut: &str, set: &[&str]) -> f64 {
     let out = dir.join("scores.json");
     let out = out.to_str().unwrap();
-    let mut args = vec!["score", cut, "--json", out];
+    let mut args = vec!["score", cut, "--json", out, "--force"];
     args.extend_from_slice(set);
     ok(dir, &args);
     let j: serde_json::Value =
@@ -128,11 +128,12 @@ fn free_angles_that_open_a_meet_are_refused_naming_the_tier_and_the_meet() {
     let md = std::fs::read_to_string(p.join("run/report.md")).unwrap();
     assert!(md.contains("A·B at ("), "{md}");
     assert!(md.contains("opened by A"), "{md}");
-    // `--set` of A alone is refused the same way; an unknown tier names the design's tiers.
+    // `--set` of A alone is refused the same way, offering the tie (not a config key); an
+    // unknown tier names the design's tiers.
     bad(
         p,
         &["score", "pyramid.asc", "--set", "A=41"],
-        &["--set A", "A·B", "open_meets"],
+        &["--set A", "A·B", "A+B"],
     );
     bad(
         p,

@@ -34,6 +34,7 @@
 
 mod design;
 mod error;
+mod field;
 mod jobs;
 mod page;
 mod plans;

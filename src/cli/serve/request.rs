@@ -64,32 +64,7 @@ pub struct Req {
     pub own: Option<(Option<String>, Option<f64>)>,
 }
 
-/// A field of a body as sent: absent, of the expected JSON type, or anything else (`null`
-/// included), kept to quote it in the error.
-#[derive(Debug, Default, Deserialize)]
-#[serde(untagged)]
-pub enum Field<T> {
-    /// Of the expected type.
-    Given(T),
-    /// Of another type.
-    Other(Value),
-    /// Not in the body (never deserialized: the default).
-    #[default]
-    #[serde(skip)]
-    Absent,
-}
-
-impl<T> Field<T> {
-    /// `Ok(None)` when absent or `null`, `Ok(Some)` when of the expected type, else the value
-    /// sent.
-    pub fn given(&self) -> Result<Option<&T>, &Value> {
-        match self {
-            Field::Absent | Field::Other(Value::Null) => Ok(None),
-            Field::Given(t) => Ok(Some(t)),
-            Field::Other(v) => Err(v),
-        }
-    }
-}
+pub use super::field::Field;
 
 /// A body of the cut endpoints as sent; [`parse_req`] validates it into a [`Req`].
 #[derive(Debug, Default, Deserialize)]

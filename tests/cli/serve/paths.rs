@@ -243,7 +243,8 @@ fn serve_never_opens_a_path_a_client_names() {
         panic!("the run did not end");
     };
     let small = "[method]\nname = \"nelder-mead\"\nstarts = 1\nmax_evaluations = 4\n[verify]\nwinners = 1\nphotons = 2000\n";
-    let preset = format!("[cut]\nfile = \"tolkowsky\"\n[free]\npavilion-main = [40, 42]\n{small}");
+    let preset =
+        format!("[cut]\nfile = \"tolkowsky\"\n[free]\npavilion-main = [40, 41.4]\n{small}");
     let r = s.post(
         "/api/optimize",
         &json!({ "config_text": preset }).to_string(),
@@ -251,7 +252,9 @@ fn serve_never_opens_a_path_a_client_names() {
     assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
     let st = wait();
     assert_eq!(st["state"], "done", "{st}");
-    let uploaded = format!("[cut]\nfile = \"mine.asc\"\n[free]\ncrown = [38, 44]\n{small}");
+    let uploaded = format!(
+        "[cut]\nfile = \"mine.asc\"\nfacet_changes = \"skip\"\n[free]\ncrown = [38, 44]\n{small}"
+    );
     let r = s.post(
         "/api/optimize",
         &json!({ "config_text": uploaded, "design": OCTA, "design_name": "mine.asc" }).to_string(),
