@@ -29,7 +29,7 @@
 //! assert!(s.brilliance > 0.7 && s.aset.leak < 0.15, "{s:?}");
 //! assert!(s.fire > 0.0 && s.scintillation > 0.0);
 //! let a = s.aset;
-//! assert!((a.blue + a.red + a.green + a.leak - 1.0).abs() < 1e-12);
+//! assert!((a.blue + a.red + a.green + a.leak + a.port - 1.0).abs() < 1e-12);
 //! ```
 //!
 //! Solids come from half-spaces ([`geometry::Polyhedron::from_planes`]); GemCad designs are
