@@ -128,7 +128,8 @@ fn sig(x: f64) -> String {
     }
 }
 
-/// Which index of a stone the model traces. Birefringent stones are traced with one index.
+/// Which index (or indices) of a stone the model traces: one for singly refractive and biaxial
+/// stones, the ordinary and extraordinary rays for uniaxial ones.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Optic {
     /// Singly refractive (cubic crystal or glass).

@@ -9,19 +9,21 @@
 //! 4. energy: ASET shares, per-pixel sums against the outline's coverage, a stone of index 1;
 //! 5. the picture's mean equals `stats.mean`;
 //! 6. the hearts & arrows viewer shows eight even hearts face-down, uneven ones when a
-//!    pavilion main is steeper.
+//!    pavilion main is steeper;
+//! 7. a birefringent zircon's keel edge seen twice, offset by the closed-form walk-off.
 //!
 //! Nothing here calls the beam tracer or `optics::fresnel`: the brute-force tracer only shares
 //! the renderer's definitions of the view (pose rotation, frame, picture square) and the
 //! lights' radiance functions ([`Light::shade`]).
 //!
 //! The checks live by subject: [`brute`] (1), [`views`] (2 and 3), [`energy`] (4 and 5),
-//! [`hearts`] (6).
+//! [`hearts`] (6), [`doubling`] (7).
 
 use super::{Light, RenderOptions, Tilt};
 
 mod brute;
 mod colour;
+mod doubling;
 mod energy;
 mod hearts;
 mod views;
