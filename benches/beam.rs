@@ -10,6 +10,9 @@
 //! * `score`: the full default `score` of `tolkowsky` on the global rayon pool and on one thread,
 //!   without fire and scintillation (what the default optimize's search computes), and as a
 //!   coloured stone (blue sapphire against colourless sapphire, one thread, and their ratio);
+//! * `birefringence`: the full default score of birefringent stones (sapphire, zircon; the
+//!   optic axis up, in the table, tilted) against the same stones at their ordinary index
+//!   alone, one thread, as alternated ratios (issue 41's ≤ 3× target);
 //! * `topology`: how much of fire's band traces' exit power follows facet sequences that
 //!   every band's trace has (exact beams and narrow rays apart);
 //! * `instructions` (only when named): ten tilted traces with no timing loop, to run under
@@ -186,6 +189,59 @@ fn main() {
     // How far fire's band traces share their beam tree (the lever of tracing the bands as one
     // traversal): per band, the share of its exit power whose facet sequence every band's
     // trace also has, for the exact exits and the narrow rays' exits apart.
+    if run("birefringence") {
+        // Issue 41's speed: a birefringent score against the same stone traced at its
+        // ordinary index alone (`--birefringence off`), one thread, alternated (off, on, off,
+        // on, …) and the median ratio taken, so that a loaded machine moves both alike. The
+        // axis up keeps the stone's symmetry; tilted ones keep fewer turns (90@0: the mirror
+        // through the axis; 35@20: none), which costs the birefringent trace its wedge.
+        let stones = [
+            ("sapphire", "tolkowsky", "0"),
+            ("zircon", "princess", "0"),
+            ("zircon", "princess", "90@0"),
+            ("zircon", "princess", "35@20"),
+        ];
+        for (material, preset, axis) in stones {
+            let cut = facetlab::io::load_cut(preset).expect("preset");
+            let mut m = facetlab::optics::Material::by_name(material).expect("material");
+            let u = m.uniaxial.as_mut().expect("uniaxial");
+            u.axis = facetlab::optics::OpticAxis::parse(axis, "axis").expect("axis");
+            let mut ratios = Vec::new();
+            let mut times = [Vec::new(), Vec::new()];
+            for _ in 0..3 {
+                for (k, traced) in [false, true].into_iter().enumerate() {
+                    let mut mk = m.clone();
+                    mk.uniaxial.as_mut().expect("uniaxial").traced = traced;
+                    let cfg = ScoreConfig {
+                        material: mk,
+                        ..ScoreConfig::default()
+                    };
+                    let (dt, _) = time(
+                        || {
+                            one.install(|| std::hint::black_box(score(&cut.solid, &cfg)));
+                        },
+                        Duration::from_secs(2),
+                    );
+                    times[k].push(dt.as_secs_f64());
+                }
+                let n = times[0].len() - 1;
+                ratios.push(times[1][n] / times[0][n]);
+            }
+            ratios.sort_by(f64::total_cmp);
+            let med = |v: &mut Vec<f64>| {
+                v.sort_by(f64::total_cmp);
+                v[v.len() / 2] * 1e3
+            };
+            println!(
+                "score {preset} in {material}, optic axis {axis}, 1 thread: off {:.0} ms, on {:.0} ms \
+                 (median ratio of 3 alternated pairs {:.2}×; target ≤ 3×)",
+                med(&mut times[0]),
+                med(&mut times[1]),
+                ratios[1]
+            );
+        }
+    }
+
     if run("topology") {
         let cfg = ScoreConfig::default();
         let opts = TraceOptions {

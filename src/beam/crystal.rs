@@ -20,7 +20,7 @@
 //! [`TraceOptions::ray_floor`] of the narrow beam's power), and what falls below is cut off
 //! and accounted. Forking discs ([`TraceOptions::narrow_forks`]) are not used here.
 //!
-//! A selected once per trace: the singly refractive trace ([`Stone::trace_into`]) is not
+//! A selected once per trace: the singly refractive trace ([`Stone::trace_window_into`]) is not
 //! touched by any of this.
 
 use super::attenuation::exp_mean_planar;
@@ -28,7 +28,7 @@ use super::footprint::{Affine, PathLength};
 use super::mode::{ModeBeam, ModeRay};
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
-use super::symmetry::{clip_halfspace, SymSink};
+use super::symmetry::{clip_halfspace, clip_halfspace_at, SymSink};
 use super::work::{Ctx, Work};
 use super::{ExitBeam, Frame, TraceOptions};
 use crate::geometry::clip2d;
@@ -144,7 +144,7 @@ fn merged(pair: &[Option<(Wave, f64)>; 2], cx: &Ctx, optics: &Optics) -> Option<
 
 impl Stone {
     /// Trace one direction through a [`Medium`], handing every exit beam to `sink`: the
-    /// singly refractive trace ([`Stone::trace_into`]) for [`Medium::Isotropic`], the
+    /// singly refractive trace ([`Stone::trace_window_into`]) for [`Medium::Isotropic`], the
     /// birefringent one for [`Medium::Uniaxial`] (chosen here, once per trace).
     pub(crate) fn trace_medium_into<S: ExitSink>(
         &self,
@@ -154,8 +154,24 @@ impl Stone {
         sink: &mut S,
         keep_nodes: bool,
     ) -> (TraceStats, Vec<(u32, u32)>) {
+        self.trace_medium_window_into(frame, medium, opts, &[], sink, keep_nodes)
+    }
+
+    /// [`Stone::trace_medium_into`] for the part of the cross-section inside `window`, as
+    /// [`Stone::trace_window_into`] takes it (the photographs' perspective tiles).
+    pub(crate) fn trace_medium_window_into<S: ExitSink>(
+        &self,
+        frame: &Frame,
+        medium: &Medium,
+        opts: &TraceOptions,
+        window: &[DVec4],
+        sink: &mut S,
+        keep_nodes: bool,
+    ) -> (TraceStats, Vec<(u32, u32)>) {
         match *medium {
-            Medium::Isotropic(ri) => self.trace_into(frame, ri, opts, sink, keep_nodes),
+            Medium::Isotropic(ri) => {
+                self.trace_window_into(frame, ri, opts, window, sink, keep_nodes)
+            }
             Medium::Uniaxial {
                 crystal,
                 alpha_o,
@@ -170,7 +186,7 @@ impl Stone {
                     alpha_e,
                     absorbing: alpha_o > 0.0 || alpha_e > 0.0,
                 };
-                self.trace_crystal_into(frame, &optics, opts, sink, keep_nodes)
+                self.trace_crystal_into(frame, &optics, opts, window, sink, keep_nodes)
             }
         }
     }
@@ -180,6 +196,7 @@ impl Stone {
         frame: &Frame,
         optics: &Optics,
         opts: &TraceOptions,
+        window: &[DVec4],
         sink: &mut S,
         keep_nodes: bool,
     ) -> (TraceStats, Vec<(u32, u32)>) {
@@ -211,7 +228,7 @@ impl Stone {
             a2: frame.v,
             b: DVec2::ZERO,
         };
-        let (group, wedge) = if opts.symmetry {
+        let (group, wedge) = if opts.symmetry && window.is_empty() {
             self.symmetry.frame_symmetry_keeping(d0, cr.axis)
         } else {
             (vec![0], vec![])
@@ -231,13 +248,20 @@ impl Stone {
                     .map(|&v| self.vertices[v as usize]),
             );
             let mut p = c * self.areas[f] / total;
-            if !wedge.is_empty() {
+            if !wedge.is_empty() || !window.is_empty() {
                 for h in &wedge {
                     clip_halfspace(&w.cur, *h, &mut piece);
                     std::mem::swap(&mut w.cur, &mut piece);
                     if w.cur.is_empty() {
                         break;
                     }
+                }
+                for h in window {
+                    if w.cur.is_empty() {
+                        break;
+                    }
+                    clip_halfspace_at(&w.cur, h.truncate(), h.w, &mut piece);
+                    std::mem::swap(&mut w.cur, &mut piece);
                 }
                 if w.cur.is_empty() {
                     continue;

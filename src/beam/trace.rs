@@ -14,25 +14,14 @@ use crate::optics::{fresnel, reflect, refract, s_axis};
 use glam::{DVec2, DVec3, DVec4};
 
 impl Stone {
-    /// Trace one direction at refractive index `ri`, handing every exit beam to `sink`.
-    /// Returns the power accounting and, when `keep_nodes`, the facet-sequence tree (parent,
-    /// facet) that [`ExitBeam`]s index into.
-    pub(crate) fn trace_into<S: ExitSink>(
-        &self,
-        frame: &Frame,
-        ri: f64,
-        opts: &TraceOptions,
-        sink: &mut S,
-        keep_nodes: bool,
-    ) -> (TraceStats, Vec<(u32, u32)>) {
-        self.trace_window_into(frame, ri, opts, &[], sink, keep_nodes)
-    }
-
-    /// [`Stone::trace_into`] for the part of the cross-section inside `window`: the points
+    /// Trace one direction at refractive index `ri`, handing every exit beam to `sink`, for
+    /// the part of the cross-section inside `window`: the points
     /// `x` of the facets facing the light with `n · x <= c` for every `(n, c)` in it (a
     /// convex window; empty: the whole stone). Powers stay shares of the whole stone's
     /// incoming light (`power_in` is the window's share of it), and the stone's symmetry is
     /// not used (a window breaks it). Tiles of a picture traced this way add up to the whole.
+    /// Returns the power accounting and, when `keep_nodes`, the facet-sequence tree (parent,
+    /// facet) that [`ExitBeam`]s index into.
     pub(crate) fn trace_window_into<S: ExitSink>(
         &self,
         frame: &Frame,

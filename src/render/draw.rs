@@ -18,22 +18,30 @@ use rayon::prelude::*;
 /// Whether the picture of `solid` (canonical: centred on the picture) seen along `frame`
 /// under `light` is its own mirror image across both image axes: a light that depends on the
 /// elevation alone (every light but fire's spots) and a solid that each axis' mirror maps onto
-/// itself (every facet plane onto a facet plane, to 1e-9). Such a picture's exits come in
+/// itself (every facet plane onto a facet plane, to 1e-9), and a birefringent stone's optic
+/// axis `axis` (stone coordinates; `None` for a singly refractive stone) along or across each
+/// mirror (else the mirror image is another crystal). Such a picture's exits come in
 /// mirrored pairs, footprints and values both.
-fn mirrored(solid: &Polyhedron, frame: &Frame, light: Light) -> bool {
+fn mirrored(solid: &Polyhedron, frame: &Frame, light: Light, axis: Option<DVec3>) -> bool {
     if light == Light::Fire {
         return false;
     }
     let planes = solid.facet_planes();
     [frame.u, frame.v].iter().all(|&a| {
-        planes.iter().all(|p| {
-            let n = p.plane.normal;
-            let m = n - 2.0 * n.dot(a) * a;
-            planes.iter().any(|q| {
-                q.plane.normal.distance_squared(m) < 1e-18
-                    && (q.plane.offset - p.plane.offset).abs() < 1e-9
+        let kept = axis.is_none_or(|c| {
+            let d = c.normalize().dot(a).abs();
+            d < 1e-9 || d > 1.0 - 1e-9
+        });
+        kept && {
+            planes.iter().all(|p| {
+                let n = p.plane.normal;
+                let m = n - 2.0 * n.dot(a) * a;
+                planes.iter().any(|q| {
+                    q.plane.normal.distance_squared(m) < 1e-18
+                        && (q.plane.offset - p.plane.offset).abs() < 1e-9
+                })
             })
-        })
+        }
     })
 }
 
@@ -62,7 +70,12 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     let size = opts.size.max(1);
     let half = picture_half(&solid);
     let trace_opts = opts.trace_options();
-    let quadrant = mirrored(&solid, &frame, opts.light);
+    let quadrant = mirrored(
+        &solid,
+        &frame,
+        opts.light,
+        opts.material.birefringent().then_some(axis),
+    );
     let lighting = Lighting::new(opts.head_shadow(), &opts.spots);
     // Absorption per girdle-diameter unit of the canonical solid: α per mm times the mm one
     // unit of its width stands for.
@@ -339,7 +352,7 @@ mod tests {
         for (light, tilt, size, symmetric) in cases {
             let frame = Frame::viewer(view_rotation(light, tilt));
             assert_eq!(
-                mirrored(&round, &frame, light),
+                mirrored(&round, &frame, light, None),
                 symmetric,
                 "{light:?} {tilt:?}"
             );
@@ -376,6 +389,13 @@ mod tests {
             (planes[k].plane.normal + glam::DVec3::new(0.01, 0.02, 0.0)).normalize();
         let skew = Polyhedron::from_planes(&planes).unwrap();
         let frame = Frame::viewer(view_rotation(Light::Iso, Tilt::FACE_UP));
-        assert!(!mirrored(&skew, &frame, Light::Iso));
+        assert!(!mirrored(&skew, &frame, Light::Iso, None));
+        // A birefringent stone's optic axis: up, or in a mirror's plane along an image axis,
+        // keeps the mirrors; tilted toward any other azimuth it breaks them.
+        let frame = Frame::viewer(view_rotation(Light::Iso, Tilt::FACE_UP));
+        assert!(mirrored(&round, &frame, Light::Iso, Some(DVec3::Z)));
+        assert!(mirrored(&round, &frame, Light::Iso, Some(frame.u)));
+        let tilted = (DVec3::Z + 0.5 * frame.u + 0.2 * frame.v).normalize();
+        assert!(!mirrored(&round, &frame, Light::Iso, Some(tilted)));
     }
 }

@@ -9,8 +9,9 @@ use super::env::{luminance, Environment, Rgb};
 use super::ground::{land, GroundField, GroundKind, Lit, LitTrace};
 use super::options::PhotoOptions;
 use super::{Photo, PhotoStats};
-use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions};
-use crate::geometry::{canonical::canonical, clip2d, outline_size, Polyhedron};
+use crate::beam::{ExitBeam, ExitSink, Frame, Medium, Stone, TraceOptions};
+use crate::geometry::canonical::{azimuth_turn, canonical, canonical_axis};
+use crate::geometry::{clip2d, outline_size, Polyhedron};
 use crate::optics::color;
 use crate::optics::upsample::{rgb_at, rgb_weights};
 use crate::optics::Dispersion;
@@ -21,12 +22,14 @@ use glam::{DMat2, DMat3, DVec2, DVec3};
 use rayon::prelude::*;
 
 /// One band of the picture: its XYZ weight, its weights of linear sRGB's primaries
-/// ([`rgb_weights`]), and the index and absorption the stone has in it.
+/// ([`rgb_weights`]), the stone's optics in it (a birefringent stone's two indices, optic
+/// axis and absorption per mode) and its absorption per unit length (a birefringent stone's:
+/// the mean of its two modes', standing for both where a trace serves several bands).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Band {
     pub xyz: DVec3,
     pub rgb: [f64; 3],
-    pub ri: f64,
+    pub medium: Medium,
     pub alpha: f64,
 }
 
@@ -36,12 +39,32 @@ pub(super) struct Band {
 /// give them, so the two ways give the same colours); any other in fire's bands (faint ones
 /// merged into a neighbour, as fire pictures do). Under `grey` light (every radiance grey,
 /// and every ground is) the three pseudo-bands are one.
-pub(super) fn bands(opts: &PhotoOptions, mm_per_unit: f64, grey: bool) -> (Vec<Band>, bool) {
+pub(super) fn bands(
+    opts: &PhotoOptions,
+    axis: DVec3,
+    mm_per_unit: f64,
+    grey: bool,
+) -> (Vec<Band>, bool) {
     let m = &opts.material;
     let body = m.colour.as_ref();
-    let absorption = |l: f64| body.map_or(0.0, |c| c.alpha(l) * mm_per_unit);
+    // The medium of band `l`, and its absorption per unit length (per mode for a crystal,
+    // which the medium carries; their mean stands for both in a shared trace's exponents).
+    let optics = |l: f64| {
+        let medium = Medium::of(m, l, axis, mm_per_unit, body.is_some());
+        let alpha = match medium {
+            Medium::Isotropic(_) => body.map_or(0.0, |c| c.alpha(l) * mm_per_unit),
+            Medium::Uniaxial {
+                alpha_o, alpha_e, ..
+            } => 0.5 * (alpha_o + alpha_e),
+        };
+        (medium, alpha)
+    };
     let spectral_bands = color::traced_bands(opts.bands.max(1), color::FAINT_BAND);
-    let constant = matches!(m.dispersion, Dispersion::Constant(_)) && body.is_none();
+    let constant_e = m
+        .uniaxial
+        .as_ref()
+        .is_none_or(|u| !m.birefringent() || matches!(u.extraordinary, Dispersion::Constant(_)));
+    let constant = matches!(m.dispersion, Dispersion::Constant(_)) && constant_e && body.is_none();
     if constant {
         let mut cols = [DVec3::ZERO; 3];
         for (l, w) in &spectral_bands {
@@ -50,14 +73,14 @@ pub(super) fn bands(opts: &PhotoOptions, mm_per_unit: f64, grey: bool) -> (Vec<B
                 cols[c] += *w * b[c];
             }
         }
-        let ri = m.ri(589.3);
+        let medium = optics(589.3).0;
         if grey {
             // Grey light on a grey ground: one channel (red, equal to the others) with the
             // white's XYZ weight.
             let band = Band {
                 xyz: cols[0] + cols[1] + cols[2],
                 rgb: [1.0, 0.0, 0.0],
-                ri,
+                medium,
                 alpha: 0.0,
             };
             return (vec![band], false);
@@ -67,7 +90,7 @@ pub(super) fn bands(opts: &PhotoOptions, mm_per_unit: f64, grey: bool) -> (Vec<B
             .map(|c| Band {
                 xyz: cols[c],
                 rgb: unit[c],
-                ri,
+                medium,
                 alpha: 0.0,
             })
             .collect();
@@ -75,11 +98,14 @@ pub(super) fn bands(opts: &PhotoOptions, mm_per_unit: f64, grey: bool) -> (Vec<B
     } else {
         let v = spectral_bands
             .iter()
-            .map(|&(l, w)| Band {
-                xyz: w,
-                rgb: rgb_weights(l),
-                ri: m.ri(l),
-                alpha: absorption(l),
+            .map(|&(l, w)| {
+                let (medium, alpha) = optics(l);
+                Band {
+                    xyz: w,
+                    rgb: rgb_weights(l),
+                    medium,
+                    alpha,
+                }
             })
             .collect();
         (v, true)
@@ -305,13 +331,25 @@ fn coverage(solid: &Polyhedron, cam: &Camera, tiles: &[Tile]) -> Raster {
 }
 
 /// Take `opts` as a photograph of `solid`. The solid is first put in its canonical placement
-/// (centred, unit size; not turned), then posed by `opts.tilt` and set on the ground (its
+/// (centred, unit size, turned to its canonical azimuth and posed turned back, so that a
+/// moved or rescaled copy gives the same photograph and the stone faces the camera as its
+/// file draws it), then posed by `opts.tilt` and set on the ground (its
 /// lowest point `opts.ground.gap` above it). Options should have passed
 /// [`PhotoOptions::validate`]; out-of-range values never panic.
 pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
+    // A birefringent stone's optic axis, carried into the canonical placement with it.
+    let axis = opts
+        .material
+        .uniaxial
+        .as_ref()
+        .map_or(DVec3::Z, |u| canonical_axis(solid, u.axis.vector()));
+    // The canonical solid is the stone turned by `turn` about z (its canonical azimuth):
+    // posing it turned back first photographs the stone as its file and its diagram draw it,
+    // as `render` does (and its optic axis with it).
+    let turn = azimuth_turn(solid);
     let solid = canonical(solid);
     let stone = Stone::new(&solid);
-    let rot = opts.tilt.rotation();
+    let rot = opts.tilt.rotation() * DMat3::from_rotation_z(-turn);
     let size = opts.size.max(1);
     let half = picture_half(&solid) * opts.margin;
     let width = outline_size(solid.vertices()).1;
@@ -342,7 +380,7 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
         view.world_azimuth_deg(),
         opts.light_rotation_deg - opts.turn_deg,
     );
-    let (bands, spectral) = bands(opts, mm_per_unit, env.is_grey());
+    let (bands, spectral) = bands(opts, axis, mm_per_unit, env.is_grey());
     let nb = bands.len();
     let luminance_of = |v: &[f64]| -> f64 { v.iter().zip(&bands).map(|(x, b)| x * b.xyz.y).sum() };
 
@@ -365,6 +403,29 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
         // by their exponents).
         let alpha_max = bands.iter().map(|b| b.alpha).fold(0.0, f64::max);
         let mid = &bands[nb / 2];
+        // The shared trace absorbs as the most absorbing band does, each band scaled from it
+        // by its exponent: a crystal's per-mode absorption taken from that band too (exact
+        // when its two modes' absorptions keep their ratio across the bands).
+        let mid_medium = match (
+            mid.medium,
+            bands.iter().max_by(|a, b| a.alpha.total_cmp(&b.alpha)),
+        ) {
+            (
+                Medium::Uniaxial { crystal, .. },
+                Some(Band {
+                    medium:
+                        Medium::Uniaxial {
+                            alpha_o, alpha_e, ..
+                        },
+                    ..
+                }),
+            ) => Medium::Uniaxial {
+                crystal,
+                alpha_o: *alpha_o,
+                alpha_e: *alpha_e,
+            },
+            (m, _) => m,
+        };
         let lights: Vec<Lit> = samples
             .iter()
             .map(|s| {
@@ -374,14 +435,14 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
                         .iter()
                         .enumerate()
                         .map(|(i, b)| LitTrace {
-                            ri: b.ri,
+                            medium: b.medium,
                             alpha: b.alpha,
                             bands: vec![(i, e(b), 1.0)],
                         })
                         .collect()
                 } else {
                     vec![LitTrace {
-                        ri: mid.ri,
+                        medium: mid_medium,
                         alpha: alpha_max,
                         bands: bands
                             .iter()
@@ -453,7 +514,8 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
         };
         let frame: Frame = tile.map_or(frame0, |t| t.frame);
         let window = tile.map_or(&[][..], |t| &t.window[..]);
-        let (st, _) = stone.trace_window_into(&frame, b0.ri, &o, window, &mut sink, false);
+        let (st, _) =
+            stone.trace_medium_window_into(&frame, &b0.medium, &o, window, &mut sink, false);
         let mut layer = sink.layer;
         layer.finish(st);
         layer

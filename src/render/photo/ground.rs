@@ -22,7 +22,7 @@
 //! ground's radiance is `ρ / π · E` (a Lambertian plane of albedo `ρ`).
 
 use super::env::{LightSample, Rgb};
-use crate::beam::{ExitBeam, ExitSink, Frame, Stone, TraceOptions, TraceStats};
+use crate::beam::{ExitBeam, ExitSink, Frame, Medium, Stone, TraceOptions, TraceStats};
 use crate::geometry::clip2d;
 use crate::render::raster::Accumulator;
 use glam::{DMat3, DVec2, DVec3};
@@ -119,15 +119,15 @@ pub struct Lit {
     pub traces: Vec<LitTrace>,
 }
 
-/// One trace of a light's direction: at index `ri` with absorption `alpha` (per unit
-/// length), standing for the bands `(band, irradiance, exponent)`: a band's light is the
+/// One trace of a light's direction: through `medium` with absorption `alpha` (per unit
+/// length; a crystal medium carries its own per mode), standing for the bands `(band, irradiance, exponent)`: a band's light is the
 /// trace's light before absorption times `T^exponent`, `T` being what the trace's
 /// absorption left of it (exponent 1: the band traced itself; `α_b / alpha` for a band of
 /// absorption `α_b` that shares the trace: exact for a beam of one path length).
 #[derive(Clone, Debug)]
 pub struct LitTrace {
-    /// Refractive index.
-    pub ri: f64,
+    /// The stone's optics in this trace (one index, or a birefringent crystal).
+    pub medium: Medium,
     /// Absorption per unit length.
     pub alpha: f64,
     /// `(band, horizontal irradiance, exponent)`.
@@ -316,7 +316,8 @@ impl GroundField {
                             footprints: false,
                             ..*opts
                         };
-                        let (ts, _) = stone.trace_into(&frame, lt.ri, &o, &mut sink, false);
+                        let (ts, _) =
+                            stone.trace_medium_into(&frame, &lt.medium, &o, &mut sink, false);
                         // Normal irradiance of the parallel beam times its cross-section.
                         let bands = lt
                             .bands

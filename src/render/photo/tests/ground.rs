@@ -33,7 +33,7 @@ fn field(
             point: true,
         },
         traces: vec![LitTrace {
-            ri,
+            medium: crate::beam::Medium::Isotropic(ri),
             alpha: 0.0,
             bands: vec![(0, 1.0, 1.0)],
         }],
