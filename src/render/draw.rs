@@ -9,7 +9,7 @@ use super::options::RenderOptions;
 use super::pose::{picture_half, view_rotation};
 use super::raster::{Accumulator, Raster};
 use crate::beam::{ExitBeam, Frame, Medium, Stone, TraceOptions};
-use crate::geometry::canonical::{azimuth_turn, canonical, canonical_axis};
+use crate::geometry::canonical::{azimuth_turn, canonical};
 use crate::geometry::{outline_size, Polyhedron};
 use crate::optics::{color, Dispersion};
 use glam::{DVec2, DVec3};
@@ -55,11 +55,7 @@ fn mirrored(solid: &Polyhedron, frame: &Frame, light: Light, axis: Option<DVec3>
 /// [`RenderOptions::validate`]; out-of-range values never panic.
 pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     // A birefringent stone's optic axis, carried into the canonical placement with it.
-    let axis = opts
-        .material
-        .uniaxial
-        .as_ref()
-        .map_or(DVec3::Z, |u| canonical_axis(solid, u.axis.vector()));
+    let axis = crate::render::pose::canonical_optic_axis(solid, &opts.material);
     let turn = azimuth_turn(solid);
     let solid = canonical(solid);
     let stone = Stone::new(&solid);

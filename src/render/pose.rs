@@ -167,3 +167,14 @@ pub fn rocked(base: Tilt, (deg, frames): (f64, usize), k: usize) -> Tilt {
         azimuth_deg: base.azimuth_deg,
     }
 }
+
+/// A birefringent stone's optic axis carried into the canonical placement of `solid` (see
+/// [`crate::geometry::canonical::canonical_axis`]); `+z` for any other stone (unused).
+pub(crate) fn canonical_optic_axis(
+    solid: &Polyhedron,
+    material: &crate::optics::Material,
+) -> glam::DVec3 {
+    material.uniaxial.as_ref().map_or(glam::DVec3::Z, |u| {
+        crate::geometry::canonical::canonical_axis(solid, u.axis.vector())
+    })
+}

@@ -10,7 +10,7 @@ use super::ground::{land, GroundField, GroundKind, Lit, LitTrace};
 use super::options::PhotoOptions;
 use super::{Photo, PhotoStats};
 use crate::beam::{ExitBeam, ExitSink, Frame, Medium, Stone, TraceOptions};
-use crate::geometry::canonical::{azimuth_turn, canonical, canonical_axis};
+use crate::geometry::canonical::{azimuth_turn, canonical};
 use crate::geometry::{clip2d, outline_size, Polyhedron};
 use crate::optics::color;
 use crate::optics::upsample::{rgb_at, rgb_weights};
@@ -338,11 +338,7 @@ fn coverage(solid: &Polyhedron, cam: &Camera, tiles: &[Tile]) -> Raster {
 /// [`PhotoOptions::validate`]; out-of-range values never panic.
 pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
     // A birefringent stone's optic axis, carried into the canonical placement with it.
-    let axis = opts
-        .material
-        .uniaxial
-        .as_ref()
-        .map_or(DVec3::Z, |u| canonical_axis(solid, u.axis.vector()));
+    let axis = crate::render::pose::canonical_optic_axis(solid, &opts.material);
     // The canonical solid is the stone turned by `turn` about z (its canonical azimuth):
     // posing it turned back first photographs the stone as its file and its diagram draw it,
     // as `render` does (and its optic axis with it).

@@ -68,6 +68,18 @@ fn two_steps(profile: &[f64]) -> [f64; 2] {
     [a.min(b), a.max(b)]
 }
 
+/// The mean over `rows` of each column's pixel (its channels summed).
+fn column_profile(image: &crate::render::Image, rows: &[usize]) -> Vec<f64> {
+    (0..image.size())
+        .map(|i| {
+            rows.iter()
+                .map(|&j| image.pixel(i, j).iter().sum::<f64>())
+                .sum::<f64>()
+                / rows.len() as f64
+        })
+        .collect()
+}
+
 #[test]
 fn a_zircons_keel_edge_is_seen_twice_offset_by_the_walk_off() {
     let (t, a) = (1.0, 0.3);
@@ -99,14 +111,7 @@ fn a_zircons_keel_edge_is_seen_twice_offset_by_the_walk_off() {
 
     // Rows through the middle of the block, away from its north and south walls.
     let rows: Vec<usize> = (size / 2 - 40..size / 2 + 40).collect();
-    let profile: Vec<f64> = (0..size)
-        .map(|i| {
-            rows.iter()
-                .map(|&j| image.pixel(i, j).iter().sum::<f64>())
-                .sum::<f64>()
-                / rows.len() as f64
-        })
-        .collect();
+    let profile = column_profile(&image, &rows);
     let [s0, s1] = two_steps(&profile);
     let measured = (s1 - s0) * pixel;
 
@@ -141,14 +146,7 @@ fn a_zircons_keel_edge_is_seen_twice_offset_by_the_walk_off() {
     // Birefringence off: one step (the ordinary ray's), where the ordinary ray put it.
     o.material.uniaxial.as_mut().unwrap().traced = false;
     let single = super::super::render(&solid, &o);
-    let profile_off: Vec<f64> = (0..size)
-        .map(|i| {
-            rows.iter()
-                .map(|&j| single.pixel(i, j).iter().sum::<f64>())
-                .sum::<f64>()
-                / rows.len() as f64
-        })
-        .collect();
+    let profile_off = column_profile(&single, &rows);
     let rises: Vec<f64> = profile_off
         .windows(2)
         .map(|w| (w[1] - w[0]).max(0.0))

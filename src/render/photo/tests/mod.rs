@@ -19,6 +19,23 @@ fn small(env: Environment, size: usize, view: View) -> PhotoOptions {
     }
 }
 
+/// The face-up render of `solid` in `material` under `light`, `size` pixels a side.
+fn face_up(
+    solid: &crate::geometry::Polyhedron,
+    material: &Material,
+    size: usize,
+    light: Light,
+) -> crate::render::Image {
+    render(
+        solid,
+        &RenderOptions {
+            size,
+            material: material.clone(),
+            ..RenderOptions::new(light)
+        },
+    )
+}
+
 /// The largest |pixel − 1| of the stone's light over its outline (per unit of coverage).
 fn furnace_error(p: &Photo) -> f64 {
     let mut worst: f64 = 0.0;
@@ -128,14 +145,7 @@ fn environment_gives_the_iso_and_cos_pictures() {
             o.material = material.clone();
             o.margin = 1.0;
             let p = photo(&solid, &o);
-            let r = render(
-                &solid,
-                &RenderOptions {
-                    size,
-                    material: material.clone(),
-                    ..RenderOptions::new(light)
-                },
-            );
+            let r = face_up(&solid, &material, size, light);
             let mut worst: f64 = 0.0;
             for (a, b) in p.stone.data.iter().zip(&r.channels[0].data) {
                 worst = worst.max((a - b).abs());
@@ -280,14 +290,7 @@ fn a_birefringent_stone_is_photographed_through_both_rays() {
     o.material = crystal.clone();
     o.margin = 1.0;
     let p = photo(&solid, &o);
-    let r = render(
-        &solid,
-        &RenderOptions {
-            size,
-            material: crystal.clone(),
-            ..RenderOptions::new(Light::Cos)
-        },
-    );
+    let r = face_up(&solid, &crystal, size, Light::Cos);
     let worst = p
         .stone
         .data
