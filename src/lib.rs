@@ -53,6 +53,11 @@ pub mod render;
 pub mod report;
 pub mod verify;
 
+// The Python package's native module (feature `python`; see pyproject.toml): a face on top of
+// the library like the binary's `cli`, imported by nothing in the library.
+#[cfg(feature = "python")]
+mod python;
+
 #[cfg(test)]
 pub(crate) mod testkit;
 

@@ -13,6 +13,10 @@ const MAX_LINES: usize = 700;
 /// The binary's module under `src/` (above every floor; not a row of the table).
 const BINARY: &str = "cli";
 
+/// The Python package's native module (feature `python`): a face on top like [`BINARY`], which
+/// may import every floor and which no floor may import.
+const PYTHON: &str = "python";
+
 type ModPath = Vec<String>;
 
 struct Source {
@@ -406,7 +410,7 @@ fn each_floor_imports_only_what_the_readme_layout_allows() {
         .iter()
         .filter(|s| !s.test_only)
         .filter_map(|s| s.module.first().cloned())
-        .filter(|m| m != BINARY)
+        .filter(|m| m != BINARY && m != PYTHON)
         .collect();
     let undocumented: Vec<&String> = top.iter().filter(|m| !floors.contains_key(*m)).collect();
     assert!(
@@ -420,7 +424,13 @@ fn each_floor_imports_only_what_the_readme_layout_allows() {
         let (Some(fa), Some(fb)) = (a.first(), b.first()) else {
             continue;
         };
-        if fa != fb && fa != BINARY && !floors[fa].contains(fb) {
+        if fb == PYTHON && fa != PYTHON {
+            wrong.push(format!(
+                "{} → {} (the Python face)",
+                a.join("::"),
+                b.join("::")
+            ));
+        } else if fa != fb && fa != BINARY && fa != PYTHON && !floors[fa].contains(fb) {
             wrong.push(format!("{} → {}", a.join("::"), b.join("::")));
         }
     }
@@ -434,6 +444,24 @@ fn each_floor_imports_only_what_the_readme_layout_allows() {
         cycles(&g).is_empty(),
         "the Layout's floors import in a circle: {:?}",
         cycles(&g)
+    );
+}
+
+#[test]
+fn only_the_python_face_names_pyo3_and_the_library_builds_without_it() {
+    // PyO3 and numpy's crate are the `python` feature's; a floor that named them would not
+    // build without Python.
+    let named: Vec<String> = load_sources()
+        .iter()
+        .filter(|s| s.module.first().map(String::as_str) != Some(PYTHON))
+        .filter(|s| s.code.contains("pyo3") || s.code.contains("numpy::"))
+        .map(|s| format!("src/{}", s.path.display()))
+        .collect();
+    assert!(named.is_empty(), "outside src/python: {named:?}");
+    let lib = std::fs::read_to_string(root().join("src/lib.rs")).unwrap();
+    assert!(
+        lib.contains("#[cfg(feature = \"python\")]\nmod python;"),
+        "src/lib.rs compiles the python module only with the feature"
     );
 }
 
