@@ -26,11 +26,11 @@
 
 use super::flags;
 use super::outputs::{cut_files, refuse_overwrite, Exit};
+use facetlab::document::score::score_json;
 use facetlab::error::{Error, Result};
 use facetlab::metrics::{score, ScoreConfig, Scores};
 use facetlab::optics::Dispersion;
 use facetlab::render;
-use facetlab::verify::json::score_json;
 use facetlab::verify::{verify_scores, Check, SIGMA};
 use std::path::PathBuf;
 
@@ -126,7 +126,7 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
 }
 
 /// The JSON document for these results (see the module documentation and
-/// [`facetlab::verify::json`]). `verify` holds, per cut, the photon-tracer checks of
+/// [`facetlab::document::score`]). `verify` holds, per cut, the photon-tracer checks of
 /// `--verify` (empty when not asked), made with `photons` photons per figure.
 pub fn to_json(
     config: &ScoreConfig,

@@ -1,10 +1,12 @@
-//! The JSON shape of scores, as `facetlab score --json` writes it: one cut's [`Scores`] under
+//! The score document, as `facetlab score --json` writes it: one cut's [`Scores`] under
 //! its name with the [`ScoreConfig`] as understood (`settings`), or several cuts' under one
-//! `settings`, each optionally with a `verify` record (the photon tracer's checks, which
-//! [`crate::verify::json`] fills in).
+//! `settings`, each optionally with a `verify` record (the photon tracer's [`Check`]s,
+//! `facetlab score --verify`): [`score_json`]. [`scores_json`] is the shape with any `verify`
+//! record; [`SettingsJson`] the `settings` object.
 
-use super::{ScoreConfig, Scores, Tilt};
+use crate::metrics::{ScoreConfig, Scores, Tilt};
 use crate::optics::{Dispersion, StoneSize};
+use crate::verify::Check;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -134,4 +136,43 @@ pub fn scores_json<'a, V: Serialize>(
                 .collect(),
         })
     }
+}
+
+/// One [`Check`] as written: the beam tracer's value, the photon tracer's estimate and its
+/// standard error, (beam − photon)/stderr, and the photons per figure and pose.
+#[derive(Serialize)]
+struct CheckJson {
+    beam: f64,
+    photon: f64,
+    stderr: f64,
+    z: f64,
+    photons: u64,
+}
+
+/// The scores document ([`scores_json`]) with, per cut, its checks (`checks[i]` for cut `i`;
+/// none when `checks` is empty) made with `photons` photons per figure.
+pub fn score_json(
+    config: &ScoreConfig,
+    results: &[(String, Scores)],
+    checks: &[Vec<Check>],
+    photons: u64,
+) -> serde_json::Result<String> {
+    scores_json(config, results, |i| {
+        checks.get(i).map(|cs| {
+            cs.iter()
+                .map(|c| {
+                    (
+                        c.name.as_str(),
+                        CheckJson {
+                            beam: c.beam,
+                            photon: c.photon,
+                            stderr: c.stderr,
+                            z: c.z,
+                            photons,
+                        },
+                    )
+                })
+                .collect()
+        })
+    })
 }
