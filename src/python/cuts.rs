@@ -145,6 +145,52 @@ impl PyCut {
         })
     }
 
+    /// The `facetlab info --json` document as a dict: proportions, tiers, ratios, size and
+    /// weight (a width of `diameter_mm` in `material`, default the design's own, else
+    /// diamond), checks and grade; with `instructions=True` the cutting instructions, with
+    /// `meets=True` the design's meets within `meet_tol` of W.
+    #[pyo3(signature = (*, diameter_mm=6.5, material=None, instructions=false, meets=false,
+        meet_tol=crate::design::MEET_TOL))]
+    fn info<'py>(
+        &self,
+        py: Python<'py>,
+        diameter_mm: f64,
+        material: Option<String>,
+        instructions: bool,
+        meets: bool,
+        meet_tol: f64,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let cut = &self.cut;
+        let text = run(py, || {
+            if !(diameter_mm.is_finite() && diameter_mm > 0.0 && diameter_mm < 1000.0) {
+                return Err(Error::invalid(
+                    "diameter_mm",
+                    format!("{diameter_mm} is not allowed; give a diameter in (0, 1000) mm"),
+                ));
+            }
+            if !(meet_tol.is_finite() && meet_tol > 0.0 && meet_tol <= 0.01) {
+                return Err(Error::invalid(
+                    "meet_tol",
+                    format!("{meet_tol} is not allowed; give a tolerance in (0, 0.01] of W"),
+                ));
+            }
+            let stone = super::stone::StoneArgs {
+                material,
+                ..Default::default()
+            };
+            let (m, _) = stone.material_for(cut)?;
+            let mut j = crate::document::info::info_json(cut, diameter_mm, &m);
+            if instructions {
+                j.instructions = Some(io::asc::cutting_instructions(cut, 0));
+            }
+            if meets {
+                j.meets = Some(crate::document::info::meets_json(cut, meet_tol)?);
+            }
+            serde_json::to_string(&j).map_err(|e| Error::invalid("info", e.to_string()))
+        })?;
+        super::from_json(py, &text)
+    }
+
     fn __repr__(&self) -> String {
         match &self.cut.family {
             Some(f) => format!("<Cut {} ({f}, {} facets)>", self.cut.name, self.facets()),

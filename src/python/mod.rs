@@ -9,6 +9,7 @@
 //! the Dask layer `dask.py`) re-exports and documents these functions.
 
 mod cuts;
+mod picture;
 mod score;
 mod stone;
 
@@ -70,5 +71,6 @@ fn _facetlab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     cuts::register(m)?;
     score::register(m)?;
+    picture::register(m)?;
     Ok(())
 }

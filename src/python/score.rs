@@ -6,8 +6,9 @@ use super::cuts::cut_of;
 use super::stone::{size_text, StoneArgs};
 use super::{from_json, run};
 use crate::cut::Cut;
+use crate::document::score::scores_json;
 use crate::error::{Error, Result};
-use crate::metrics::{json::scores_json, score as score_solid, ScoreConfig, Scores};
+use crate::metrics::{score as score_solid, ScoreConfig, Scores};
 use pyo3::prelude::*;
 use pyo3::types::PyList;
 use rayon::prelude::*;
@@ -96,6 +97,14 @@ pub(crate) struct ScoreArgs {
 impl ScoreArgs {
     /// The configuration `cut` is scored with.
     pub fn config(&self, cut: &Cut) -> Result<ScoreConfig> {
+        // Checked as `--head-shadow` is, so the message is the command line's.
+        crate::io::text::number(
+            "head_shadow",
+            &format!("{}", self.head_shadow),
+            0.0,
+            60.0,
+            "a half-angle in degrees (0 = none)",
+        )?;
         let (material, _width) = self.stone.material_for(cut)?;
         let config = ScoreConfig {
             material,
