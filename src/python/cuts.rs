@@ -29,6 +29,15 @@ pub(crate) fn cut_of(obj: &Bound<'_, PyAny>) -> PyResult<Cut> {
     run(obj.py(), || io::load_cut(&text))
 }
 
+/// How a cut argument is named in documents (the command line's CUT as given): the text or
+/// path given, or a `Cut`'s name.
+pub(crate) fn input_of(obj: &Bound<'_, PyAny>) -> PyResult<String> {
+    if let Ok(c) = obj.cast::<PyCut>() {
+        return Ok(c.get().cut.name.clone());
+    }
+    spec_of(obj)
+}
+
 /// A preset name or a path as text (`os.fspath` for path objects).
 fn spec_of(obj: &Bound<'_, PyAny>) -> PyResult<String> {
     if let Ok(s) = obj.cast::<PyString>() {

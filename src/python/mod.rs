@@ -10,8 +10,10 @@
 
 mod cuts;
 mod picture;
+mod runs;
 mod score;
 mod stone;
+mod tally;
 
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -37,7 +39,7 @@ pub(crate) fn error(e: crate::error::Error) -> PyErr {
 }
 
 /// A caught panic's payload as `facetlab.InternalError`.
-fn panicked(payload: Box<dyn std::any::Any + Send>) -> PyErr {
+pub(crate) fn panicked(payload: Box<dyn std::any::Any + Send>) -> PyErr {
     let what = payload
         .downcast_ref::<&str>()
         .map(|s| s.to_string())
@@ -72,5 +74,7 @@ fn _facetlab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     cuts::register(m)?;
     score::register(m)?;
     picture::register(m)?;
+    tally::register(m)?;
+    runs::register(m)?;
     Ok(())
 }

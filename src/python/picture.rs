@@ -238,10 +238,7 @@ fn render_cut(
             colour_e,
         },
     };
-    let input = match cut.extract::<String>() {
-        Ok(s) => s,
-        Err(_) => cut.str()?.to_string(),
-    };
+    let input = super::cuts::input_of(cut)?;
     let c = cut_of(cut)?;
     let (image, stats) = run(py, || draw(&c, &input, &args))?;
     Ok(PyRender {

@@ -19,6 +19,7 @@ message; ``facetlab.dask`` spreads sweeps and batches of scores over a Dask clus
 from ._facetlab import (
     Cut,
     Error,
+    Grid,
     InternalError,
     Render,
     Scores,
@@ -26,15 +27,18 @@ from ._facetlab import (
     cut,
     families,
     family,
+    optimize,
     presets,
     render,
     score,
     score_many,
+    trace,
 )
 
 __all__ = [
     "Cut",
     "Error",
+    "Grid",
     "InternalError",
     "Render",
     "Scores",
@@ -42,8 +46,10 @@ __all__ = [
     "cut",
     "families",
     "family",
+    "optimize",
     "presets",
     "render",
     "score",
     "score_many",
+    "trace",
 ]
