@@ -10,6 +10,7 @@
 
 mod cuts;
 mod picture;
+mod rough;
 mod runs;
 mod score;
 mod stone;
@@ -76,5 +77,6 @@ fn _facetlab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     picture::register(m)?;
     tally::register(m)?;
     runs::register(m)?;
+    rough::register(m)?;
     Ok(())
 }

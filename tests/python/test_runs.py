@@ -119,3 +119,24 @@ def test_ctrl_c_stops_a_run_within_a_second_with_its_folder_written(tmp_path: Pa
     assert (folder / "report.json").is_file() and (folder / "best.toml").is_file()
     report = json.loads((folder / "report.json").read_text())
     assert report["search"]["evaluations"] < 100000
+
+
+def test_plan_finds_the_command_lines_plans(cli: Cli, tmp_path: Path) -> None:
+    (tmp_path / "plan.toml").write_text("seed = 3\n[search]\nstarts = 2\nmax_iterations = 60\n")
+    p = cli(
+        tmp_path, "plan", "octahedron", "--size-mm", "6", "--family", "round-brilliant",
+        "--family", "oval", "--top", "2", "--config", "plan.toml", "--quiet", "-o", "run",
+    )
+    assert p.returncode == 0, p.stderr
+    want = json.loads((tmp_path / "run" / "summary.json").read_text())["plans"]
+    got = facetlab.plan(
+        "octahedron", config=tmp_path / "plan.toml", families=["round-brilliant", "oval"],
+        size_mm=6, top=2,
+    )
+    assert [(g["family"], g["rank"]) for g in got] == [(w["family"], w["rank"]) for w in want]
+    for g, w in zip(got, want):
+        assert g["carats"] == w["carats"] and g["width_mm"] == w["width_mm"]
+        assert g["yield_fraction"] == w["yield"] and g["grade"] == w["grade"]
+        assert g["cut"].params == w["params"]
+    with pytest.raises(facetlab.Error, match="^families: "):
+        facetlab.plan("octahedron", families=["trillion-ish"])
