@@ -7,6 +7,7 @@
 //!   grade, instructions and meets), and the text `facetlab info` prints;
 //! * [`render`]: `facetlab render --json` (a picture's or a photograph's statistics, per frame
 //!   of an animation);
+//! * [`materials`]: `facetlab materials --json` (the table of stones and coloured varieties);
 //! * [`trace`]: `facetlab trace --json` (the photon tallies and the run's settings).
 //!
 //! Each takes the library's own results and settings (a [`Cut`](crate::cut::Cut), a
@@ -16,6 +17,7 @@
 //! [`crate::optimize`], a rough plan's `summary.json` in [`crate::plan`].
 
 pub mod info;
+pub mod materials;
 pub mod render;
 pub mod score;
 pub mod trace;

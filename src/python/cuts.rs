@@ -13,6 +13,10 @@ use std::collections::BTreeMap;
 
 /// A cut: a solid with its name, its family and parameters (a family's cut) or its GemCad
 /// record (a design).
+///
+/// >>> c = facetlab.cut("tolkowsky")
+/// >>> c.name, c.family, c.facets
+/// ('Tolkowsky', 'round-brilliant', 73)
 #[pyclass(name = "Cut", module = "facetlab", frozen)]
 #[derive(Clone)]
 pub struct PyCut {
@@ -97,6 +101,9 @@ impl PyCut {
     /// The cut with parameters changed, as `--set KEY=VALUE` changes them: a family's
     /// (`crown_angle=34.5`) or a design's tier angle (`P1=41.2`, its depths solved so its
     /// meets are kept). A tie such as `C1=C2` goes in the mapping: `with_set({"C1=C2": 35})`.
+    ///
+    /// >>> facetlab.cut("tolkowsky").with_set(crown_angle=34.5).params["crown_angle"]
+    /// 34.5
     #[pyo3(signature = (changes=None, **kwargs))]
     fn with_set(
         &self,
@@ -122,6 +129,12 @@ impl PyCut {
     /// Write the cut to `path` in the format its extension names (`.toml .asc .gem .obj
     /// .stl`, or `.svg` for the facet diagram), atomically; an existing file is replaced only
     /// with `overwrite=True`.
+    ///
+    /// >>> import os, tempfile
+    /// >>> path = os.path.join(tempfile.mkdtemp(), "t.asc")
+    /// >>> facetlab.cut("tolkowsky").write(path)
+    /// >>> facetlab.cut(path).facets
+    /// 73
     #[pyo3(signature = (path, overwrite=false))]
     fn write(&self, py: Python<'_>, path: &Bound<'_, PyAny>, overwrite: bool) -> PyResult<()> {
         let path = std::path::PathBuf::from(spec_of(path)?);
@@ -158,6 +171,10 @@ impl PyCut {
     /// weight (a width of `diameter_mm` in `material`, default the design's own, else
     /// diamond), checks and grade; with `instructions=True` the cutting instructions, with
     /// `meets=True` the design's meets within `meet_tol` of W.
+    ///
+    /// >>> info = facetlab.cut("tolkowsky").info()
+    /// >>> info["family"], round(info["carats"], 2)
+    /// ('round-brilliant', 0.99)
     #[pyo3(signature = (*, diameter_mm=6.5, material=None, instructions=false, meets=false,
         meet_tol=crate::design::MEET_TOL))]
     fn info<'py>(
@@ -209,6 +226,9 @@ impl PyCut {
 }
 
 /// A cut from anything the command line's CUT takes: a preset name or a path.
+///
+/// >>> facetlab.cut("gia-reference").name
+/// 'GIA reference'
 #[pyfunction]
 fn cut(obj: &Bound<'_, PyAny>) -> PyResult<PyCut> {
     Ok(PyCut { cut: cut_of(obj)? })
@@ -216,6 +236,9 @@ fn cut(obj: &Bound<'_, PyAny>) -> PyResult<PyCut> {
 
 /// A family's cut with parameters (`family("round-brilliant", table=0.56)`); the others
 /// take the family's defaults. `name` names the cut (default: the family's name).
+///
+/// >>> facetlab.family("round-brilliant", table=0.56).params["table"]
+/// 0.56
 #[pyfunction]
 #[pyo3(signature = (family, name=None, **params))]
 fn family(
@@ -231,6 +254,9 @@ fn family(
 }
 
 /// The preset names, as `facetlab list --names` prints them.
+///
+/// >>> "tolkowsky" in facetlab.presets()
+/// True
 #[pyfunction]
 fn presets() -> Vec<&'static str> {
     io::presets::names()
@@ -238,6 +264,9 @@ fn presets() -> Vec<&'static str> {
 
 /// The families: `{name: {"doc": …, "params": {key: {"default", "min", "max", "unit",
 /// "doc"}}}}`.
+///
+/// >>> facetlab.families()["round-brilliant"]["params"]["table"]["unit"]
+/// 'fraction of girdle diameter'
 #[pyfunction]
 fn families(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let out = PyDict::new(py);
@@ -261,6 +290,20 @@ fn families(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     Ok(out)
 }
 
+/// The materials and coloured varieties with their data, as `facetlab materials --json`
+/// lists them (dicts: `name`, `nd`, `dispersion`, `formula`, `source`, `optic`, `density`,
+/// `aliases`; a variety also `variety_of`, `chromophores`, `colour`).
+///
+/// >>> diamond = next(m for m in facetlab.materials() if m["name"] == "diamond")
+/// >>> round(diamond["nd"], 4)
+/// 2.4173
+#[pyfunction]
+fn materials(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    let text = serde_json::to_string(&crate::document::materials::rows())
+        .map_err(|e| super::Error::new_err(format!("materials: {e}")))?;
+    super::from_json(py, &text)
+}
+
 /// Add the cut functions and class to the module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyCut>()?;
@@ -268,5 +311,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(family, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(families, m)?)?;
+    m.add_function(wrap_pyfunction!(materials, m)?)?;
     Ok(())
 }

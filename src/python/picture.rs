@@ -15,6 +15,10 @@ use pyo3::prelude::*;
 use std::time::Instant;
 
 /// A rendered picture.
+///
+/// >>> r = facetlab.render("tolkowsky", light="aset", size=32)
+/// >>> r.srgb.shape, r.linear.dtype.name, sorted(r.stats["aset"])
+/// ((32, 32, 3), 'float32', ['blue', 'green', 'leak', 'port', 'red'])
 #[pyclass(name = "Render", module = "facetlab", frozen)]
 pub struct PyRender {
     image: Image,
@@ -79,6 +83,12 @@ impl PyRender {
 
     /// Write the picture as a PNG (the `--bare` picture), atomically; an existing file is
     /// replaced only with `overwrite=True`.
+    ///
+    /// >>> import os, tempfile
+    /// >>> path = os.path.join(tempfile.mkdtemp(), "t.png")
+    /// >>> facetlab.render("tolkowsky", size=16).write_png(path)
+    /// >>> open(path, "rb").read(4)
+    /// b'\x89PNG'
     #[pyo3(signature = (path, overwrite=false))]
     fn write_png(&self, py: Python<'_>, path: std::path::PathBuf, overwrite: bool) -> PyResult<()> {
         let n = self.image.size() as u32;
@@ -193,6 +203,10 @@ fn draw(cut: &crate::cut::Cut, input: &str, a: &RenderArgs) -> Result<(Image, St
 
 /// Render a cut (a `Cut`, a preset name or a path) under `light` (iso, cos, aset, fire,
 /// hearts, arrows, idealscope) at `size` pixels, tilted `tilt` ("DEG" or "DEG@AZ").
+///
+/// >>> r = facetlab.render("tolkowsky", size=32, tilt="10@45")
+/// >>> r.stats["tilt_deg"], r.stats["light"]
+/// (10.0, 'iso')
 #[pyfunction]
 #[pyo3(name = "render", signature = (cut, *, light="iso", size=256, tilt=None, head_shadow=None, exposure=1.0,
     polarization=true, material=None, ri=None, colour=None, colour_density=None, size_mm=None,

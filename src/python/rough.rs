@@ -51,6 +51,10 @@ fn plan_all(
 /// `material` and `top` override it. Returns the plans, best first within each family, as
 /// dicts: `family`, `rank`, `cut` (a `Cut`, width 1), `width_mm`, `carats`, `volume_mm3`,
 /// `yield_fraction`, `objective`, `grade`. Ctrl-C stops it and raises `KeyboardInterrupt`.
+///
+/// >>> plans = facetlab.plan("octahedron", size_mm=6, families=["round-brilliant"], top=1)
+/// >>> plans[0]["family"], plans[0]["carats"] > 0.2
+/// ('round-brilliant', True)
 #[pyfunction]
 #[pyo3(signature = (rough, *, config=None, families=None, size_mm=None, material=None, top=None))]
 fn plan<'py>(

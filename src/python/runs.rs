@@ -124,6 +124,15 @@ fn cut_writers(config: &Config) -> Vec<&'static dyn CutWriter> {
 /// called about every 50 ms with `{"iterations", "evaluations", "budget", "best_cost",
 /// "elapsed"}`; Ctrl-C stops the search after the current iteration, writes the folder with
 /// what was found, and raises `KeyboardInterrupt`.
+///
+/// >>> import os, tempfile
+/// >>> config = {"cut": {"family": "round-brilliant"}, "free": {"crown_angle": [32, 36]},
+/// ...           "score": {"ri": 1.54, "polarization": False},
+/// ...           "method": {"starts": 1, "max_evaluations": 4}, "verify": {"winners": 0}}
+/// >>> out = os.path.join(tempfile.mkdtemp(), "run")
+/// >>> report = facetlab.optimize(config, out=out)
+/// >>> report["folder"] == out, os.path.isfile(os.path.join(out, "best.asc"))
+/// (True, True)
 #[pyfunction]
 #[pyo3(signature = (config, *, out=None, seed=None, verify=true, progress=None, overwrite=false))]
 fn optimize<'py>(
@@ -202,6 +211,14 @@ fn optimize<'py>(
 }
 
 /// The points of a sweep over a config's parameters (`facetlab sweep CONFIG --axis …`).
+///
+/// >>> config = {"cut": {"family": "round-brilliant"}, "free": {"crown_angle": [30, 38]},
+/// ...           "score": {"ri": 1.54, "polarization": False}}
+/// >>> g = facetlab.Grid(config, ["crown_angle:33:34:1"])
+/// >>> len(g), [r["crown_angle"] for r in g.rows()]
+/// (2, [33.0, 34.0])
+/// >>> g.csv(g.rows()).splitlines()[0]
+/// 'crown_angle,brilliance,fire,scintillation,objective,...'
 #[pyclass(name = "Grid", module = "facetlab", frozen)]
 pub struct PyGrid {
     config: Config,
@@ -311,6 +328,11 @@ impl PyGrid {
     /// order given: dicts with `index`, each axis's value, `brilliance`, `fire`,
     /// `scintillation`, `objective`, `ok` (False where the cut could not be made) and the
     /// extra scores. Ctrl-C stops it and raises `KeyboardInterrupt`.
+    ///
+    /// >>> g = facetlab.Grid({"cut": {"family": "round-brilliant"}, "free": {"table": [0.5, 0.6]},
+    /// ...                    "score": {"ri": 1.54, "polarization": False}}, ["table:0.55:0.57:0.01"])
+    /// >>> [(r["index"], r["table"], r["ok"]) for r in g.rows([2, 0])]
+    /// [(2, 0.57, True), (0, 0.55, True)]
     #[pyo3(signature = (indices=None))]
     fn rows<'py>(
         &self,
@@ -350,6 +372,11 @@ impl PyGrid {
 
     /// The sweep's CSV (`facetlab sweep`'s `sweep.csv`, byte for byte) of `rows` covering
     /// the grid once each, in any order (merged by `index`).
+    ///
+    /// >>> g = facetlab.Grid({"cut": {"family": "round-brilliant"}, "free": {"table": [0.5, 0.6]},
+    /// ...                    "score": {"ri": 1.54, "polarization": False}}, ["table:0.55:0.57:0.01"])
+    /// >>> g.csv(g.rows([2]) + g.rows([0, 1])) == g.csv(g.rows())
+    /// True
     fn csv(&self, rows: Vec<Bound<'_, PyDict>>) -> PyResult<String> {
         // The rows as a shard's rows.csv, read back as the merge of shards reads it.
         let mut text = opt::rows_header(&self.grid);

@@ -115,6 +115,10 @@ fn trace_cut(cut: &crate::cut::Cut, input: &str, a: &TraceArgs) -> Result<String
 /// `rotate=True` the sweep's `{"settings", "results"}`. `depth` is the bounce limit (`None`:
 /// unlimited); `absorption` is none, thesis, beer:K or colour[:W]; `spectrum` uniform, d65
 /// or a wavelength in nm.
+///
+/// >>> t = facetlab.trace("tolkowsky", photons=2000, seed=1)
+/// >>> t["photons_shot"], t["settings"]["seed"]
+/// (2000, 1)
 #[pyfunction]
 #[pyo3(signature = (cut, *, light="overhead", angle=None, rotate=false, photons=1_000_000,
     depth=Some(6), absorption="thesis", polarization=true, spectrum="uniform", seed=1,

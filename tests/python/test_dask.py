@@ -16,6 +16,7 @@ import pytest
 from conftest import Cli
 
 distributed = pytest.importorskip("distributed")
+from distributed import Client, LocalCluster  # noqa: E402
 
 CONFIG = """
 name = "tiny"
@@ -35,11 +36,11 @@ AXES = ["crown_angle:32:34:1", "pavilion_angle:40:41:0.5", "table:0.55:0.56:0.01
 
 
 @pytest.fixture(scope="module")
-def client() -> Iterator["distributed.Client"]:
-    cluster = distributed.LocalCluster(
+def client() -> Iterator[Client]:
+    cluster = LocalCluster(
         n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
     )
-    c = distributed.Client(cluster)
+    c = Client(cluster)
     yield c
     c.close()
     cluster.close()
@@ -55,7 +56,7 @@ def want(cli: Cli, tmp_path: Path) -> str:
 
 
 def test_a_sweep_on_two_workers_is_the_command_lines_csv(
-    client: "distributed.Client", want: str, tmp_path: Path
+    client: Client, want: str, tmp_path: Path
 ) -> None:
     got = facetlab.dask.sweep_csv(client, str(tmp_path / "tiny.toml"), AXES, chunk=2)
     assert got == want
@@ -64,7 +65,7 @@ def test_a_sweep_on_two_workers_is_the_command_lines_csv(
 
 
 def test_a_worker_killed_mid_run_still_gives_the_same_rows(
-    client: "distributed.Client", want: str, tmp_path: Path
+    client: Client, want: str, tmp_path: Path
 ) -> None:
     killed = []
 
@@ -89,7 +90,7 @@ def test_a_worker_killed_mid_run_still_gives_the_same_rows(
     assert got == want
 
 
-def test_score_many_on_the_cluster_is_the_local_one(client: "distributed.Client") -> None:
+def test_score_many_on_the_cluster_is_the_local_one(client: Client) -> None:
     cuts = ["tolkowsky", "gia-reference", "tolkowsky"]
     got = facetlab.dask.score_many(client, cuts, chunk=1, polarization=False)
     assert got == [s.to_dict() for s in facetlab.score_many(cuts, polarization=False)]

@@ -4,6 +4,7 @@ in order, and errors as the command line's one-line messages."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any, Dict, List, Union
 
 import facetlab
 import pytest
@@ -56,7 +57,11 @@ def test_an_obj_mesh(cli: Cli, tmp_path: Path) -> None:
 
 
 def test_score_many_keeps_the_order_and_the_numbers() -> None:
-    cuts = ["tolkowsky", facetlab.family("round-brilliant", table=0.6), "gia-reference"]
+    cuts: List[Union[str, facetlab.Cut]] = [
+        "tolkowsky",
+        facetlab.family("round-brilliant", table=0.6),
+        "gia-reference",
+    ]
     many = facetlab.score_many(cuts, polarization=False)
     assert [s.cut for s in many] == ["Tolkowsky", "round-brilliant", "GIA reference"]
     for c, s in zip(cuts, many):
@@ -74,7 +79,7 @@ def test_score_many_keeps_the_order_and_the_numbers() -> None:
     ],
 )
 def test_bad_input_is_the_command_lines_one_line_error(
-    cli: Cli, tmp_path: Path, kwargs: dict, flag: list
+    cli: Cli, tmp_path: Path, kwargs: Dict[str, Any], flag: List[str]
 ) -> None:
     p = cli(tmp_path, "score", "tolkowsky", *flag)
     assert p.returncode == 2
@@ -105,3 +110,15 @@ def test_info_is_the_info_document(cli: Cli, tmp_path: Path) -> None:
     import json
 
     assert_close(facetlab.cut("tolkowsky").info(meets=True), json.loads(p.stdout))
+
+
+def test_materials_are_the_materials_document(cli: Cli, tmp_path: Path) -> None:
+    import json
+
+    p = cli(tmp_path, "materials", "--json")
+    assert p.returncode == 0, p.stderr
+    got = facetlab.materials()
+    assert got == json.loads(p.stdout)
+    ruby = next(m for m in got if m["name"] == "ruby")
+    assert ruby["variety_of"] == "sapphire" and ruby["colour"]["hex"].startswith("#")
+    assert "round-brilliant" in facetlab.families() and "tolkowsky" in facetlab.presets()

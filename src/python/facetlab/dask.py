@@ -63,6 +63,15 @@ def sweep(
 ) -> List[Row]:
     """The rows of a sweep (``facetlab.Grid(config, axes).rows()``) computed on ``client``'s
     workers, ``chunk`` points per task (default: about four tasks per worker), in grid order.
+
+    >>> from distributed import Client
+    >>> client = Client(processes=False, n_workers=1, dashboard_address=None)
+    >>> config = {"cut": {"family": "round-brilliant"}, "free": {"table": [0.5, 0.6]},
+    ...           "score": {"ri": 1.54, "polarization": False}}
+    >>> rows = sweep(client, config, ["table:0.55:0.58:0.01"], chunk=1)
+    >>> rows == facetlab.Grid(config, ["table:0.55:0.58:0.01"]).rows()
+    True
+    >>> client.close()
     """
     grid = facetlab.Grid(config, list(axes))  # checks the config and axes here, at once
     n = len(grid)
@@ -93,7 +102,16 @@ def sweep_csv(
     retries: int = 2,
 ) -> str:
     """The sweep's CSV, byte for byte ``facetlab sweep``'s ``sweep.csv``, computed on
-    ``client``'s workers (see :func:`sweep`)."""
+    ``client``'s workers (see :func:`sweep`).
+
+    >>> from distributed import Client
+    >>> client = Client(processes=False, n_workers=1, dashboard_address=None)
+    >>> config = {"cut": {"family": "round-brilliant"}, "free": {"table": [0.5, 0.6]},
+    ...           "score": {"ri": 1.54, "polarization": False}}
+    >>> sweep_csv(client, config, ["table:0.55:0.56:0.01"]).splitlines()[1].split(",")[0]
+    '0.55'
+    >>> client.close()
+    """
     rows = sweep(client, config, axes, chunk=chunk, retries=retries)
     return facetlab.Grid(config, list(axes)).csv(rows)
 
@@ -108,7 +126,14 @@ def score_many(
 ) -> List[Dict[str, Any]]:
     """``facetlab.score_many(cuts, **kwargs)``'s documents (``Scores.to_dict()``), ``chunk``
     cuts per task on ``client``'s workers, in the order given. Cuts are preset names or
-    paths the workers can read."""
+    paths the workers can read.
+
+    >>> from distributed import Client
+    >>> client = Client(processes=False, n_workers=1, dashboard_address=None)
+    >>> [d["cut"] for d in score_many(client, ["tolkowsky", "gia-reference"], chunk=1)]
+    ['Tolkowsky', 'GIA reference']
+    >>> client.close()
+    """
     names = [os.fspath(c) for c in cuts]
     parts = [names[i : i + chunk] for i in range(0, len(names), chunk)]
     futures = client.map(
