@@ -255,10 +255,38 @@ fn score_many<'py>(
     )
 }
 
+/// For the binding-overhead bench (benches/python_overhead.py): seconds of each of `repeats`
+/// library calls `metrics::score(solid, config)` on `cut`, timed in Rust with the defaults
+/// `facetlab.score(cut)` uses, so Python's own cost is what `facetlab.score` adds.
+#[pyfunction]
+fn _library_score_seconds(
+    py: Python<'_>,
+    cut: &Bound<'_, PyAny>,
+    repeats: usize,
+) -> PyResult<Vec<f64>> {
+    let cut = cut_of(cut)?;
+    let args = ScoreArgs {
+        stone: StoneArgs::default(),
+        polarization: true,
+        head_shadow: 0.0,
+    };
+    run(py, || {
+        let config = args.config(&cut)?;
+        Ok((0..repeats)
+            .map(|_| {
+                let t0 = std::time::Instant::now();
+                std::hint::black_box(score_solid(&cut.solid, &config));
+                t0.elapsed().as_secs_f64()
+            })
+            .collect())
+    })
+}
+
 /// Add the score functions and class to the module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScores>()?;
     m.add_function(wrap_pyfunction!(score, m)?)?;
     m.add_function(wrap_pyfunction!(score_many, m)?)?;
+    m.add_function(wrap_pyfunction!(_library_score_seconds, m)?)?;
     Ok(())
 }
