@@ -105,7 +105,7 @@ pub use config::{
     Sampling, ScoreSettings, SwarmSettings, VerifySettings, Weights, PARETO_SCORES,
 };
 // The scorers of a config: the beam tracer's evaluator and the photon tracer's verifier.
-pub use engines::{BeamEvaluator, PhotonVerifier};
+pub use engines::{real_scorers, BeamEvaluator, PhotonVerifier, Scorers};
 // Progress reports and why a search stopped.
 pub use guard::{Progress, Status, Stop};
 // Searches and run folders: `search` then `verify`, or both and the folder: `run`.

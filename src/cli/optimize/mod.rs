@@ -16,9 +16,10 @@ use super::progress::bar;
 use clap::Args;
 use facetlab::error::{Error, Result};
 use facetlab::optimize as opt;
-use facetlab::optimize::{BeamEvaluator, PhotonVerifier, Progress, Status};
-use facetlab::optimize::{Config, Evaluator, Verifier};
+use facetlab::optimize::Config;
+pub use facetlab::optimize::{real_scorers, Scorers};
 use facetlab::optimize::{CutWriter, FnWriter, GemWriter, Hooks, RunOptions};
+use facetlab::optimize::{Progress, Status};
 use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
@@ -86,18 +87,6 @@ fn cut_writers(config: &Config) -> Vec<&'static dyn CutWriter> {
         all.push(&GEM);
     }
     all
-}
-
-/// The objective's scorer and the winners' verifier for a loaded config.
-pub type Scorers = (Box<dyn Evaluator>, Option<Box<dyn Verifier>>);
-
-/// The real scorers: the beam tracer and the photon tracer, both with the config's `[score]`
-/// settings. They can only be made from a loaded config, so no command scores with defaults.
-pub fn real_scorers(config: &Config) -> Scorers {
-    (
-        Box::new(BeamEvaluator::new(config)),
-        Some(Box::new(PhotonVerifier::new(config))),
-    )
 }
 
 /// The exit status of a finished `optimize`: 130 when a signal stopped it (its folder is
