@@ -2,7 +2,9 @@
 //! its name with the [`ScoreConfig`] as understood (`settings`), or several cuts' under one
 //! `settings`, each optionally with a `verify` record (the photon tracer's [`Check`]s,
 //! `facetlab score --verify`): [`score_json`]. [`scores_json`] is the shape with any `verify`
-//! record; [`SettingsJson`] the `settings` object.
+//! record; [`SettingsJson`] the `settings` object; [`score_table`] the same scores as the
+//! table `facetlab score` prints; [`batch_line`] and [`batch_error_line`] the lines of
+//! `facetlab score --batch`'s JSON Lines.
 
 use crate::metrics::{ScoreConfig, Scores, Tilt};
 use crate::optics::{Dispersion, StoneSize};
@@ -174,5 +176,131 @@ pub fn score_json(
                 })
                 .collect()
         })
+    })
+}
+
+/// The table printed by `facetlab score`: one row per score, one column per cut.
+pub fn score_table(config: &ScoreConfig, results: &[(String, Scores)]) -> String {
+    type Row = (&'static str, fn(&Scores) -> f64);
+    let rows: [Row; 11] = [
+        ("overhead light return", |s| s.overhead_light_return),
+        ("brilliance (ISO+COS)/2", |s| s.brilliance),
+        ("  brilliance ISO", |s| s.brilliance_iso),
+        ("  brilliance COS", |s| s.brilliance_cos),
+        ("fire", |s| s.fire),
+        ("scintillation", |s| s.scintillation),
+        ("ASET blue 75-80°", |s| s.aset.blue),
+        ("ASET red 45-75°", |s| s.aset.red),
+        ("ASET green 0-45°", |s| s.aset.green),
+        ("ASET leak <0°", |s| s.aset.leak),
+        ("ASET port 80-90°", |s| s.aset.port),
+    ];
+    let label_w = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
+    let col_w = results
+        .iter()
+        .map(|(n, _)| n.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(8);
+    let c = config;
+    let mut out = format!(
+        "{}, {}, polarization {}, head shadow {}°, {} poses, {} bands\n",
+        c.material.name,
+        match c.material.dispersion {
+            Dispersion::Constant(n) => format!("n = {n}"),
+            _ => format!(
+                "n = {:.4} at {} nm",
+                c.material.ri(c.wavelength_nm),
+                c.wavelength_nm
+            ),
+        },
+        if c.polarization { "on" } else { "off" },
+        c.head_shadow_deg,
+        c.tilts.len(),
+        c.bands
+    );
+    out.push_str(&format!("{:label_w$}", ""));
+    for (n, _) in results {
+        out.push_str(&format!("  {n:>col_w$}"));
+    }
+    out.push('\n');
+    for (label, f) in rows {
+        let pad = label_w - label.chars().count();
+        out.push_str(label);
+        out.push_str(&" ".repeat(pad));
+        for (_, s) in results {
+            out.push_str(&format!("  {:>col_w$.4}", f(s)));
+        }
+        out.push('\n');
+    }
+    if results.iter().any(|(_, s)| s.colour.is_some()) {
+        type ColourRow = (&'static str, fn(&crate::render::ColourStats) -> f64);
+        let colour_rows: [ColourRow; 6] = [
+            ("colour L*", |c| c.l),
+            ("colour C*", |c| c.c),
+            ("colour h°", |c| c.h_deg),
+            ("  L* spread", |c| c.l_spread),
+            ("extinction (L* < 20)", |c| c.extinction),
+            ("windowing", |c| c.windowing),
+        ];
+        for (label, f) in colour_rows {
+            out.push_str(&format!("{label:label_w$}"));
+            for (_, s) in results {
+                match &s.colour {
+                    Some(c) => out.push_str(&format!("  {:>col_w$.4}", f(c))),
+                    None => out.push_str(&format!("  {:>col_w$}", "-")),
+                }
+            }
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// A scored cut as a line of `facetlab score --batch`'s JSON Lines (without its newline):
+/// `line` (its number in the batch file), `input` (the line), `cut` (its name) and the keys of
+/// its [`Scores`], as in the score document's per-cut object.
+pub fn batch_line(
+    line: usize,
+    input: &str,
+    cut: &str,
+    scores: &Scores,
+) -> serde_json::Result<String> {
+    #[derive(Serialize)]
+    struct Scored<'a> {
+        line: usize,
+        input: &'a str,
+        cut: &'a str,
+        #[serde(flatten)]
+        scores: &'a Scores,
+    }
+    serde_json::to_string(&Scored {
+        line,
+        input,
+        cut,
+        scores,
+    })
+}
+
+/// A cut that could not be loaded or scored, as a line of `facetlab score --batch`'s JSON
+/// Lines: `line`, `input`, `cut` (the line's first word) and `error`.
+pub fn batch_error_line(
+    line: usize,
+    input: &str,
+    cut: &str,
+    error: &str,
+) -> serde_json::Result<String> {
+    #[derive(Serialize)]
+    struct Failed<'a> {
+        line: usize,
+        input: &'a str,
+        cut: &'a str,
+        error: &'a str,
+    }
+    serde_json::to_string(&Failed {
+        line,
+        input,
+        cut,
+        error,
     })
 }

@@ -225,8 +225,8 @@ async fn score_cut(
             }
         };
         let s = score(&cut.solid, &cfg);
-        let text =
-            crate::cli::score::to_json(&cfg, &[(cut.name.clone(), s)], &[], 0).map_err(|e| {
+        let text = facetlab::document::score::score_json(&cfg, &[(cut.name.clone(), s)], &[], 0)
+            .map_err(|e| {
                 ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "score", e.to_string())
             })?;
         // The same document with `quick` said, so a client can tell the two apart.
