@@ -168,22 +168,7 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
     let absorption = Absorption::parse("--absorption", &a.absorption)?;
     let polarization = flags::on_off("--polarization", &a.polarization)?;
     let material = a.material.material()?;
-    let wavelengths = match a.spectrum.trim().to_ascii_lowercase().as_str() {
-        "uniform" => WavelengthSampling::Uniform,
-        "d65" => WavelengthSampling::D65,
-        s => match s.trim_end_matches("nm").parse::<f64>() {
-            Ok(l) if (380.0..=780.0).contains(&l) => WavelengthSampling::Fixed(l),
-            _ => {
-                return Err(Error::invalid(
-                    "--spectrum",
-                    format!(
-                        "`{}` is not allowed; use uniform, d65, or a wavelength in 380–780 nm",
-                        a.spectrum
-                    ),
-                ))
-            }
-        },
-    };
+    let wavelengths = WavelengthSampling::parse("--spectrum", &a.spectrum)?;
     let seed = flags::count("--seed", &a.seed, 0, u64::MAX)?;
     let record_paths = flags::count("--paths", &a.paths, 0, 100_000)? as usize;
     let camera = parse_camera(&a.camera)?;

@@ -253,6 +253,32 @@ pub enum WavelengthSampling {
     Fixed(f64),
 }
 
+impl WavelengthSampling {
+    /// `uniform`, `d65` or a wavelength in 380–780 nm (`550`, `550nm`); an error names
+    /// `field`.
+    ///
+    /// ```
+    /// use facetlab::photon::WavelengthSampling;
+    /// assert_eq!(WavelengthSampling::parse("spectrum", "550nm").unwrap(), WavelengthSampling::Fixed(550.0));
+    /// assert!(WavelengthSampling::parse("spectrum", "900").is_err());
+    /// ```
+    pub fn parse(field: &str, text: &str) -> crate::error::Result<WavelengthSampling> {
+        match text.trim().to_ascii_lowercase().as_str() {
+            "uniform" => Ok(WavelengthSampling::Uniform),
+            "d65" => Ok(WavelengthSampling::D65),
+            s => match s.trim_end_matches("nm").parse::<f64>() {
+                Ok(l) if (380.0..=780.0).contains(&l) => Ok(WavelengthSampling::Fixed(l)),
+                _ => Err(crate::error::Error::invalid(
+                    field,
+                    format!(
+                        "`{text}` is not allowed; use uniform, d65, or a wavelength in 380–780 nm"
+                    ),
+                )),
+            },
+        }
+    }
+}
+
 /// What to trace and how.
 #[derive(Clone, Debug)]
 pub struct TraceConfig {

@@ -140,15 +140,7 @@ impl PyCut {
         let path = std::path::PathBuf::from(spec_of(path)?);
         let cut = &self.cut;
         run(py, || {
-            if path.exists() && !overwrite {
-                return Err(Error::invalid(
-                    "path",
-                    format!(
-                        "{} exists; pass overwrite=True to replace it",
-                        path.display()
-                    ),
-                ));
-            }
+            super::stone::refuse_existing(&path, overwrite)?;
             let ext = path
                 .extension()
                 .map(|e| e.to_string_lossy().to_ascii_lowercase())

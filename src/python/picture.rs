@@ -240,17 +240,17 @@ fn render_cut(
         head_shadow,
         exposure,
         polarization,
-        stone: StoneArgs {
+        stone: StoneArgs::new(
             material,
             ri,
             colour,
             colour_density,
-            size_mm: size_text(size_mm)?,
+            size_mm,
             diameter_mm,
             birefringence,
             optic_axis,
             colour_e,
-        },
+        )?,
     };
     let input = super::cuts::input_of(cut)?;
     let c = cut_of(cut)?;

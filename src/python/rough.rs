@@ -1,50 +1,18 @@
 //! `facetlab.plan`: the largest, best cuts inside a rough stone (`facetlab plan ROUGH`),
-//! returned as plans (the run folder `facetlab plan -o DIR` writes stays the command line's
-//! until the library writes it).
+//! returned as plans ([`crate::plan::run::plan_families`], as the command line plans them;
+//! the run folder it writes with its drawings is not written from Python yet).
 
 use super::cuts::PyCut;
 use super::run;
 use super::runs::watched;
-use crate::error::{Error, Result};
+use crate::error::Error;
 use crate::optics::Material;
 use crate::plan::config::check_families;
-use crate::plan::{load_rough, Plan, PlanConfig, Planner};
+use crate::plan::{load_rough, PlanConfig};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
-
-/// Plan every family of `config` in `rough` in turn (stopping at `stop`).
-fn plan_all(
-    rough: &crate::plan::Rough,
-    config: &PlanConfig,
-    material: &Material,
-    stop: &AtomicBool,
-) -> Result<Vec<(String, Vec<Plan>)>> {
-    let planner = Planner::new(rough, config, material.density).with_stop(stop);
-    let mut all = Vec::new();
-    for f in &config.families {
-        let plans = planner.plan_family(f, &|| {})?;
-        if planner.stopped() {
-            break;
-        }
-        all.push((f.clone(), plans));
-    }
-    let widest = all
-        .iter()
-        .flat_map(|(_, p)| p.iter().map(|p| p.scale))
-        .fold(0.0, f64::max);
-    if !all.is_empty() && widest < config.min_width_mm {
-        return Err(Error::invalid(
-            "rough",
-            format!(
-                "the rough is too small: the widest cut that fits is {widest:.3} mm across; allowed ≥ {} mm (min_width_mm in the config)",
-                config.min_width_mm
-            ),
-        ));
-    }
-    Ok(all)
-}
 
 /// Plan cuts in a rough: an `.obj`/`.stl` mesh in mm (its convex hull) or a crystal form's
 /// name, `size_mm` its largest extent. `config` is a plan config's TOML path; `families`,
@@ -104,7 +72,7 @@ fn plan<'py>(
     let all = watched(
         py,
         &stop,
-        || plan_all(&rough, &cfg, &material, &stop),
+        || crate::plan::run::plan_families(&rough, &cfg, &material, &|_| true, &|| {}, Some(&stop)),
         |_| Ok(()),
     )?;
     let out = PyList::empty(py);

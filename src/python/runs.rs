@@ -10,8 +10,7 @@
 use super::run;
 use crate::error::{Error, Result};
 use crate::optimize::{
-    self as opt, BeamEvaluator, Config, CutWriter, FnWriter, GemWriter, Grid, Hooks,
-    PhotonVerifier, Progress, RunOptions, Status,
+    self as opt, BeamEvaluator, Config, Grid, Hooks, PhotonVerifier, Progress, RunOptions, Status,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -101,24 +100,6 @@ pub(crate) fn watched<T: Send>(
     result.map_err(super::error)
 }
 
-/// The writers of the best cut besides `best.toml`, as `facetlab optimize` writes them.
-fn cut_writers(config: &Config) -> Vec<&'static dyn CutWriter> {
-    static ASC: FnWriter = FnWriter::new("asc", |c| Ok(crate::io::asc::write(c, 0)));
-    static OBJ: FnWriter = FnWriter::new("obj", |c| Ok(crate::io::mesh::write_obj(c)));
-    static SVG: FnWriter = FnWriter::new("svg", |c| Ok(crate::plot::diagram::diagram(c)));
-    static GEM: GemWriter = GemWriter;
-    let mut all: Vec<&'static dyn CutWriter> = vec![&ASC, &OBJ, &SVG];
-    let gem = config.cut_file.as_ref().is_some_and(|(file, _)| {
-        std::path::Path::new(file)
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("gem"))
-    });
-    if gem {
-        all.push(&GEM);
-    }
-    all
-}
-
 /// Run an optimization as `facetlab optimize CONFIG --out OUT` does and return its
 /// `report.json` as a dict with `folder` (the run folder written). `progress(status)` is
 /// called about every 50 ms with `{"iterations", "evaluations", "budget", "best_cost",
@@ -177,7 +158,7 @@ fn optimize<'py>(
         || {
             let opts = RunOptions {
                 out,
-                writers: cut_writers(&config),
+                writers: crate::plot::optimize::run_writers(&config),
                 convergence: Some(crate::plot::optimize::convergence),
                 hooks: Hooks {
                     stop: Some(&stop),

@@ -3,7 +3,7 @@
 //! `score --json` document (the library's [`crate::metrics::json`]).
 
 use super::cuts::cut_of;
-use super::stone::{size_text, StoneArgs};
+use super::stone::StoneArgs;
 use super::{from_json, run};
 use crate::cut::Cut;
 use crate::document::score::scores_json;
@@ -137,26 +137,38 @@ fn score_cut(cut: &Cut, args: &ScoreArgs) -> Result<PyScores> {
     Ok(PyScores { name, scores, json })
 }
 
-macro_rules! score_args {
-    ($material:ident, $ri:ident, $colour:ident, $colour_density:ident, $size_mm:ident,
-     $diameter_mm:ident, $birefringence:ident, $optic_axis:ident, $colour_e:ident,
-     $polarization:ident, $head_shadow:ident) => {
-        ScoreArgs {
-            stone: StoneArgs {
-                material: $material,
-                ri: $ri,
-                colour: $colour,
-                colour_density: $colour_density,
-                size_mm: size_text($size_mm)?,
-                diameter_mm: $diameter_mm,
-                birefringence: $birefringence,
-                optic_axis: $optic_axis,
-                colour_e: $colour_e,
-            },
-            polarization: $polarization,
-            head_shadow: $head_shadow,
-        }
-    };
+impl ScoreArgs {
+    /// The keyword arguments as given to `score` and `score_many`.
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        material: Option<String>,
+        ri: Option<f64>,
+        colour: Option<String>,
+        colour_density: Option<f64>,
+        size_mm: Option<&Bound<'_, PyAny>>,
+        diameter_mm: Option<f64>,
+        birefringence: Option<bool>,
+        optic_axis: Option<String>,
+        colour_e: Option<String>,
+        polarization: bool,
+        head_shadow: f64,
+    ) -> PyResult<ScoreArgs> {
+        Ok(ScoreArgs {
+            stone: StoneArgs::new(
+                material,
+                ri,
+                colour,
+                colour_density,
+                size_mm,
+                diameter_mm,
+                birefringence,
+                optic_axis,
+                colour_e,
+            )?,
+            polarization,
+            head_shadow,
+        })
+    }
 }
 
 /// Score a cut (a `Cut`, a preset name or a path) with the beam tracer, as `facetlab score`.
@@ -183,7 +195,7 @@ fn score(
     polarization: bool,
     head_shadow: f64,
 ) -> PyResult<PyScores> {
-    let args = score_args!(
+    let args = ScoreArgs::new(
         material,
         ri,
         colour,
@@ -194,8 +206,8 @@ fn score(
         optic_axis,
         colour_e,
         polarization,
-        head_shadow
-    );
+        head_shadow,
+    )?;
     let cut = cut_of(cut)?;
     run(py, || score_cut(&cut, &args))
 }
@@ -224,7 +236,7 @@ fn score_many<'py>(
     polarization: bool,
     head_shadow: f64,
 ) -> PyResult<Bound<'py, PyList>> {
-    let args = score_args!(
+    let args = ScoreArgs::new(
         material,
         ri,
         colour,
@@ -235,8 +247,8 @@ fn score_many<'py>(
         optic_axis,
         colour_e,
         polarization,
-        head_shadow
-    );
+        head_shadow,
+    )?;
     let cuts: Vec<Cut> = cuts
         .try_iter()?
         .map(|c| cut_of(&c?))

@@ -36,6 +36,48 @@ pub(crate) fn size_text(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Strin
     })
 }
 
+impl StoneArgs {
+    /// The keyword arguments as given to `score`, `render` and `trace`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        material: Option<String>,
+        ri: Option<f64>,
+        colour: Option<String>,
+        colour_density: Option<f64>,
+        size_mm: Option<&Bound<'_, PyAny>>,
+        diameter_mm: Option<f64>,
+        birefringence: Option<bool>,
+        optic_axis: Option<String>,
+        colour_e: Option<String>,
+    ) -> PyResult<StoneArgs> {
+        Ok(StoneArgs {
+            material,
+            ri,
+            colour,
+            colour_density,
+            size_mm: size_text(size_mm)?,
+            diameter_mm,
+            birefringence,
+            optic_axis,
+            colour_e,
+        })
+    }
+}
+
+/// Refuse to replace an existing `path` unless `overwrite` (the package's `--force`).
+pub(crate) fn refuse_existing(path: &std::path::Path, overwrite: bool) -> Result<()> {
+    if path.exists() && !overwrite {
+        return Err(Error::invalid(
+            "path",
+            format!(
+                "{} exists; pass overwrite=True to replace it",
+                path.display()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 const COLOUR: ColourFields<'static> = ColourFields {
     colour: "colour",
     density: "colour_density",

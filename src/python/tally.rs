@@ -75,22 +75,7 @@ fn light_choice(a: &TraceArgs) -> Result<LightChoice> {
 fn trace_cut(cut: &crate::cut::Cut, input: &str, a: &TraceArgs) -> Result<String> {
     photon::check_photons(a.photons)?;
     let light = light_choice(a)?;
-    let wavelengths = match a.spectrum.trim().to_ascii_lowercase().as_str() {
-        "uniform" => WavelengthSampling::Uniform,
-        "d65" => WavelengthSampling::D65,
-        s => match s.trim_end_matches("nm").parse::<f64>() {
-            Ok(l) if (380.0..=780.0).contains(&l) => WavelengthSampling::Fixed(l),
-            _ => {
-                return Err(Error::invalid(
-                    "spectrum",
-                    format!(
-                        "`{}` is not allowed; use uniform, d65, or a wavelength in 380–780 nm",
-                        a.spectrum
-                    ),
-                ))
-            }
-        },
-    };
+    let wavelengths = WavelengthSampling::parse("spectrum", &a.spectrum)?;
     let (material, _) = a.stone.material_for(cut)?;
     let config = TraceConfig {
         photons: a.photons,

@@ -21,6 +21,23 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 
 
+# A cheap sweep config: a fixed index (no spectral bands) without polarization.
+TINY = """
+name = "tiny"
+[cut]
+family = "round-brilliant"
+[cut.params]
+table = 0.57
+crown_angle = 34.0
+pavilion_angle = 41.0
+[free]
+crown_angle = [30.0, 38.0]
+[score]
+ri = 1.54
+polarization = false
+"""
+
+
 def binary() -> Path:
     env = os.environ.get("FACETLAB_BIN")
     if env:

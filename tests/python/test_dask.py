@@ -13,25 +13,11 @@ import facetlab
 import facetlab.dask
 import pytest
 
-from conftest import Cli
+from conftest import TINY, Cli
 
 distributed = pytest.importorskip("distributed")
 from distributed import Client, LocalCluster  # noqa: E402
 
-CONFIG = """
-name = "tiny"
-[cut]
-family = "round-brilliant"
-[cut.params]
-table = 0.57
-crown_angle = 34.0
-pavilion_angle = 41.0
-[free]
-crown_angle = [30.0, 38.0]
-[score]
-ri = 1.54
-polarization = false
-"""
 AXES = ["crown_angle:32:34:1", "pavilion_angle:40:41:0.5", "table:0.55:0.56:0.01"]
 
 
@@ -48,7 +34,7 @@ def client() -> Iterator[Client]:
 
 @pytest.fixture()
 def want(cli: Cli, tmp_path: Path) -> str:
-    (tmp_path / "tiny.toml").write_text(CONFIG)
+    (tmp_path / "tiny.toml").write_text(TINY)
     args = ["--x", AXES[0], "--y", AXES[1], "--axis", AXES[2]]
     p = cli(tmp_path, "sweep", "tiny.toml", *args, "--out", "one", "--quiet")
     assert p.returncode == 0, p.stderr

@@ -16,23 +16,8 @@ from typing import Any, Dict, List
 import facetlab
 import pytest
 
-from conftest import Cli
+from conftest import TINY, Cli
 
-# A cheap objective: a fixed index (no spectral bands) without polarization.
-SWEEP = """
-name = "tiny"
-[cut]
-family = "round-brilliant"
-[cut.params]
-table = 0.57
-crown_angle = 34.0
-pavilion_angle = 41.0
-[free]
-crown_angle = [30.0, 38.0]
-[score]
-ri = 1.54
-polarization = false
-"""
 AXES = ["crown_angle:33:34:1", "pavilion_angle:40:41:1", "table:0.55:0.56:0.01"]
 
 RUN = """
@@ -60,7 +45,7 @@ def toml_dict(text: str) -> Dict[str, Any]:
 
 
 def test_a_grids_rows_make_the_sweeps_csv(cli: Cli, tmp_path: Path) -> None:
-    (tmp_path / "tiny.toml").write_text(SWEEP)
+    (tmp_path / "tiny.toml").write_text(TINY)
     args = ["--x", AXES[0], "--y", AXES[1], "--axis", AXES[2]]
     p = cli(tmp_path, "sweep", "tiny.toml", *args, "--out", "one", "--quiet")
     assert p.returncode == 0, p.stderr
@@ -77,7 +62,7 @@ def test_a_grids_rows_make_the_sweeps_csv(cli: Cli, tmp_path: Path) -> None:
     for r, t in zip(rows, table):
         assert r["ok"] and repr(r["brilliance"]) == t["brilliance"]
     # A dict of the TOML's shape is the same config.
-    assert facetlab.Grid(toml_dict(SWEEP), AXES).csv(rows) == want
+    assert facetlab.Grid(toml_dict(TINY), AXES).csv(rows) == want
     with pytest.raises(facetlab.Error, match="give each of the grid's 8 points once"):
         grid.csv(rows[:7])
 

@@ -18,7 +18,7 @@ use facetlab::error::{Error, Result};
 use facetlab::optimize as opt;
 use facetlab::optimize::Config;
 pub use facetlab::optimize::{real_scorers, Scorers};
-use facetlab::optimize::{CutWriter, FnWriter, GemWriter, Hooks, RunOptions};
+use facetlab::optimize::{Hooks, RunOptions};
 use facetlab::optimize::{Progress, Status};
 use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
@@ -70,25 +70,6 @@ impl Progress for Bar {
     }
 }
 
-/// The writers of the best cut besides `best.toml`: GemCad, OBJ and the SVG diagram; and
-/// GemCad's binary `.gem` when the design came as one.
-fn cut_writers(config: &Config) -> Vec<&'static dyn CutWriter> {
-    static ASC: FnWriter = FnWriter::new("asc", |c| Ok(facetlab::io::asc::write(c, 0)));
-    static OBJ: FnWriter = FnWriter::new("obj", |c| Ok(facetlab::io::mesh::write_obj(c)));
-    static SVG: FnWriter = FnWriter::new("svg", |c| Ok(facetlab::plot::diagram::diagram(c)));
-    static GEM: GemWriter = GemWriter;
-    let mut all: Vec<&'static dyn CutWriter> = vec![&ASC, &OBJ, &SVG];
-    let gem = config.cut_file.as_ref().is_some_and(|(file, _)| {
-        std::path::Path::new(file)
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("gem"))
-    });
-    if gem {
-        all.push(&GEM);
-    }
-    all
-}
-
 /// The exit status of a finished `optimize`: 130 when a signal stopped it (its folder is
 /// written all the same), else 0.
 pub fn optimize_exit(interrupted: bool) -> Exit {
@@ -103,7 +84,7 @@ pub fn optimize_exit(interrupted: bool) -> Exit {
 fn run_options(config: &Config, out: Option<PathBuf>) -> RunOptions<'static> {
     RunOptions {
         out,
-        writers: cut_writers(config),
+        writers: facetlab::plot::optimize::run_writers(config),
         convergence: Some(facetlab::plot::optimize::convergence),
         html_report: Some(facetlab::report::run_page),
         ..RunOptions::default()
