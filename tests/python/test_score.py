@@ -122,3 +122,21 @@ def test_materials_are_the_materials_document(cli: Cli, tmp_path: Path) -> None:
     ruby = next(m for m in got if m["name"] == "ruby")
     assert ruby["variety_of"] == "sapphire" and ruby["colour"]["hex"].startswith("#")
     assert "round-brilliant" in facetlab.families() and "tolkowsky" in facetlab.presets()
+
+
+def test_the_gil_is_released_while_tracing() -> None:
+    import threading
+
+    ticks = 0
+    done = threading.Event()
+
+    def work() -> None:
+        facetlab.score_many(["tolkowsky"] * 3)
+        done.set()
+
+    t = threading.Thread(target=work)
+    t.start()
+    while not done.is_set():  # pure Python: runs only while the tracer does not hold the GIL
+        ticks += 1
+    t.join()
+    assert ticks > 1000, ticks
