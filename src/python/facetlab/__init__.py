@@ -37,6 +37,26 @@ from ._facetlab import (
     trace,
 )
 
+from typing import Any, Dict, List, Optional, Sequence
+
+
+def sweep(
+    config: Any, axes: Sequence[str], indices: Optional[Sequence[int]] = None
+) -> List[Dict[str, Any]]:
+    """The rows of ``facetlab sweep CONFIG`` over ``axes`` ("KEY:MIN:MAX:STEP" each): one
+    dict per point in grid order (or in the order of ``indices``), with the axes' values,
+    ``brilliance``, ``fire``, ``scintillation``, ``objective``, ``ok`` and the extra scores.
+    ``Grid(config, axes).csv(rows)`` makes ``sweep.csv`` of them; ``facetlab.dask.sweep``
+    spreads them over a cluster.
+
+    >>> config = {"cut": {"family": "round-brilliant"}, "free": {"table": [0.5, 0.6]},
+    ...           "score": {"ri": 1.54, "polarization": False}}
+    >>> [r["table"] for r in facetlab.sweep(config, ["table:0.55:0.57:0.01"])]
+    [0.55, 0.56, 0.57]
+    """
+    return Grid(config, list(axes)).rows(None if indices is None else list(indices))
+
+
 __all__ = [
     "Cut",
     "Error",
@@ -55,5 +75,6 @@ __all__ = [
     "render",
     "score",
     "score_many",
+    "sweep",
     "trace",
 ]
