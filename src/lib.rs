@@ -39,6 +39,7 @@
 pub mod beam;
 pub mod cut;
 pub mod design;
+pub mod document;
 pub mod error;
 pub mod geometry;
 pub mod io;
@@ -52,6 +53,11 @@ pub mod plot;
 pub mod render;
 pub mod report;
 pub mod verify;
+
+// The Python package's native module (feature `python`; see pyproject.toml): a face on top of
+// the library like the binary's `cli`, imported by nothing in the library.
+#[cfg(feature = "python")]
+mod python;
 
 #[cfg(test)]
 pub(crate) mod testkit;

@@ -13,6 +13,10 @@ const MAX_LINES: usize = 700;
 /// The binary's module under `src/` (above every floor; not a row of the table).
 const BINARY: &str = "cli";
 
+/// The Python package's native module (feature `python`): a face on top like [`BINARY`], which
+/// may import every floor and which no floor may import.
+const PYTHON: &str = "python";
+
 type ModPath = Vec<String>;
 
 struct Source {
@@ -406,7 +410,7 @@ fn each_floor_imports_only_what_the_readme_layout_allows() {
         .iter()
         .filter(|s| !s.test_only)
         .filter_map(|s| s.module.first().cloned())
-        .filter(|m| m != BINARY)
+        .filter(|m| m != BINARY && m != PYTHON)
         .collect();
     let undocumented: Vec<&String> = top.iter().filter(|m| !floors.contains_key(*m)).collect();
     assert!(
@@ -420,7 +424,13 @@ fn each_floor_imports_only_what_the_readme_layout_allows() {
         let (Some(fa), Some(fb)) = (a.first(), b.first()) else {
             continue;
         };
-        if fa != fb && fa != BINARY && !floors[fa].contains(fb) {
+        if fb == PYTHON && fa != PYTHON {
+            wrong.push(format!(
+                "{} → {} (the Python face)",
+                a.join("::"),
+                b.join("::")
+            ));
+        } else if fa != fb && fa != BINARY && fa != PYTHON && !floors[fa].contains(fb) {
             wrong.push(format!("{} → {}", a.join("::"), b.join("::")));
         }
     }
@@ -434,6 +444,71 @@ fn each_floor_imports_only_what_the_readme_layout_allows() {
         cycles(&g).is_empty(),
         "the Layout's floors import in a circle: {:?}",
         cycles(&g)
+    );
+}
+
+/// The binary's modules every command may share; each other child of `cli` is a command's.
+const SHARED: [&str; 4] = ["flags", "outputs", "progress", "interrupt"];
+
+#[test]
+fn serve_imports_no_other_commands_module() {
+    // The web page calls the library, as the commands do; it borrows no command's code (what
+    // both need belongs in the library, where the Python package gets it too).
+    let wrong: Vec<String> = arrows(&load_sources())
+        .into_iter()
+        .filter(|(a, b)| {
+            a.len() >= 2
+                && a[..2] == [BINARY, "serve"]
+                && b.len() >= 2
+                && b[0] == BINARY
+                && b[1] != "serve"
+                && !SHARED.contains(&b[1].as_str())
+        })
+        .map(|(a, b)| format!("{} → {}", a.join("::"), b.join("::")))
+        .collect();
+    assert!(wrong.is_empty(), "serve imports commands: {wrong:#?}");
+}
+
+/// The most the binary's commands (`src/cli/`) may hold of `src/`'s lines, in percent:
+/// it parses, calls the library, prints.
+const MAX_BINARY_SHARE: f64 = 12.0;
+
+#[test]
+fn the_binary_is_at_most_12_percent_of_the_source() {
+    let mut files = Vec::new();
+    rs_files(&root().join("src"), &mut files);
+    let lines = |p: &Path| std::fs::read_to_string(p).unwrap().lines().count();
+    let total: usize = files.iter().map(|p| lines(p)).sum();
+    let binary: usize = files
+        .iter()
+        .filter(|p| {
+            let rel = p.strip_prefix(root().join("src")).unwrap();
+            rel.starts_with(BINARY)
+        })
+        .map(|p| lines(p))
+        .sum();
+    let share = 100.0 * binary as f64 / total as f64;
+    assert!(
+        share <= MAX_BINARY_SHARE,
+        "the binary holds {binary} of {total} lines of src/ ({share:.1} %); allowed {MAX_BINARY_SHARE} %: move the work into the library"
+    );
+}
+
+#[test]
+fn only_the_python_face_names_pyo3_and_the_library_builds_without_it() {
+    // PyO3 and numpy's crate are the `python` feature's; a floor that named them would not
+    // build without Python.
+    let named: Vec<String> = load_sources()
+        .iter()
+        .filter(|s| s.module.first().map(String::as_str) != Some(PYTHON))
+        .filter(|s| s.code.contains("pyo3") || s.code.contains("numpy::"))
+        .map(|s| format!("src/{}", s.path.display()))
+        .collect();
+    assert!(named.is_empty(), "outside src/python: {named:?}");
+    let lib = std::fs::read_to_string(root().join("src/lib.rs")).unwrap();
+    assert!(
+        lib.contains("#[cfg(feature = \"python\")]\nmod python;"),
+        "src/lib.rs compiles the python module only with the feature"
     );
 }
 

@@ -1,9 +1,11 @@
 //! `facetlab materials`: the table of stones with their dispersion formulas and sources.
 
 use clap::Args;
+use facetlab::document::materials::{rows, Row, SEEN_MM};
 use facetlab::error::{Error, Result};
-use facetlab::optics::{Material, Variety};
-use serde::Serialize;
+use facetlab::optics::Material;
+#[cfg(test)]
+use facetlab::optics::Variety;
 
 /// Flags of `facetlab materials`.
 #[derive(Debug, Args)]
@@ -14,78 +16,6 @@ pub struct MaterialsArgs {
     /// no_spectrum saying why).
     #[arg(long)]
     pub json: bool,
-}
-
-/// One material as listed; `dispersion` is the B–G dispersion n(430.8 nm) − n(686.7 nm).
-#[derive(Debug, Serialize)]
-struct Row {
-    name: String,
-    nd: f64,
-    dispersion: f64,
-    ordinary_ray: bool,
-    optic: &'static str,
-    density: f64,
-    aliases: &'static [&'static str],
-    formula: String,
-    source: String,
-    #[serde(flatten, skip_serializing_if = "Option::is_none")]
-    variety: Option<VarietyRow>,
-}
-
-/// What a coloured variety adds to its host's row.
-#[derive(Debug, Serialize)]
-struct VarietyRow {
-    variety_of: &'static str,
-    chromophores: &'static str,
-    colour: Option<ColourRow>,
-    #[serde(skip_serializing_if = "str::is_empty")]
-    no_spectrum: &'static str,
-}
-
-/// A published body colour: its source and the colour seen through [`SEEN_MM`].
-#[derive(Debug, Serialize)]
-struct ColourRow {
-    source: String,
-    seen_through_mm: f64,
-    hex: String,
-    lab: [f64; 3],
-}
-
-/// The path the listing shows each variety's colour through, mm.
-const SEEN_MM: f64 = 5.0;
-
-fn rows() -> Vec<Row> {
-    let varieties = Variety::all().iter().map(|v| (v.material(), Some(v)));
-    Material::table()
-        .into_iter()
-        .map(|m| (m, None))
-        .chain(varieties)
-        .map(|(m, v): (Material, Option<&Variety>)| Row {
-            variety: v.map(|v| VarietyRow {
-                variety_of: v.host,
-                chromophores: v.chromophores,
-                colour: m.colour.as_ref().map(|c| {
-                    let lab = c.lab_through(SEEN_MM);
-                    ColourRow {
-                        source: c.source.clone(),
-                        seen_through_mm: SEEN_MM,
-                        hex: c.hex_through(SEEN_MM),
-                        lab: [lab.x, lab.y, lab.z].map(|x| (x * 100.0).round() / 100.0),
-                    }
-                }),
-                no_spectrum: v.missing,
-            }),
-            nd: m.ri_d(),
-            dispersion: m.bg_dispersion(),
-            ordinary_ray: m.optic.ordinary_ray(),
-            optic: m.optic.label(),
-            density: m.density,
-            aliases: m.aliases(),
-            formula: m.formula(),
-            source: m.source.clone(),
-            name: m.name,
-        })
-        .collect()
 }
 
 fn text(rows: &[Row]) -> String {

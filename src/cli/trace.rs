@@ -25,11 +25,12 @@
 //! `paths_<cut>_wavelength`, `paths_<cut>_no_first_segment`, `facets_<cut>`.
 
 use super::flags;
+use facetlab::document::trace::{trace_json, trace_table};
 use facetlab::error::{Error, Result};
 use facetlab::photon::{
-    self, Absorption, Light, LightKind, Tally, TraceConfig, WavelengthSampling, CATEGORY_LABELS,
+    self, Absorption, Light, LightChoice, LightKind, Tally, TraceConfig, WavelengthSampling,
 };
-use facetlab::plot::{self, Camera, PathColor, PathStyle};
+use facetlab::plot::{self, Camera};
 use std::path::{Path, PathBuf};
 
 /// Flags of `facetlab trace`.
@@ -134,15 +135,6 @@ pub struct TraceArgs {
     pub quiet: bool,
 }
 
-/// Which light the flags chose.
-#[derive(Clone, Debug, PartialEq)]
-pub enum LightChoice {
-    /// One light.
-    Single(Light),
-    /// The rotation sweep with this kind of light.
-    Rotate(LightKind),
-}
-
 /// The flags, validated.
 #[derive(Clone, Debug)]
 pub struct Settings {
@@ -176,22 +168,7 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
     let absorption = Absorption::parse("--absorption", &a.absorption)?;
     let polarization = flags::on_off("--polarization", &a.polarization)?;
     let material = a.material.material()?;
-    let wavelengths = match a.spectrum.trim().to_ascii_lowercase().as_str() {
-        "uniform" => WavelengthSampling::Uniform,
-        "d65" => WavelengthSampling::D65,
-        s => match s.trim_end_matches("nm").parse::<f64>() {
-            Ok(l) if (380.0..=780.0).contains(&l) => WavelengthSampling::Fixed(l),
-            _ => {
-                return Err(Error::invalid(
-                    "--spectrum",
-                    format!(
-                        "`{}` is not allowed; use uniform, d65, or a wavelength in 380–780 nm",
-                        a.spectrum
-                    ),
-                ))
-            }
-        },
-    };
+    let wavelengths = WavelengthSampling::parse("--spectrum", &a.spectrum)?;
     let seed = flags::count("--seed", &a.seed, 0, u64::MAX)?;
     let record_paths = flags::count("--paths", &a.paths, 0, 100_000)? as usize;
     let camera = parse_camera(&a.camera)?;
@@ -278,49 +255,6 @@ fn parse_camera(s: &str) -> Result<Camera> {
         azimuth_deg: az,
         elevation_deg: el,
     })
-}
-
-fn settings_json(s: &Settings, cuts: &[String]) -> serde_json::Value {
-    let c = &s.config;
-    serde_json::json!({
-        "cuts": cuts,
-        "light": match &s.light { LightChoice::Single(l) => l.label.clone(), LightChoice::Rotate(k) => format!("rotation sweep, {}", kind_name(*k)) },
-        "rotate": matches!(s.light, LightChoice::Rotate(_)),
-        "photons": c.photons,
-        "photons_counted": if matches!(s.light, LightChoice::Rotate(_)) { "hit per angle" } else { "shot" },
-        "depth": c.depth,
-        "absorption": c.absorption,
-        "polarization": c.polarization,
-        "material": c.material.name,
-        "spectrum": c.wavelengths,
-        "seed": c.seed,
-    })
-}
-
-fn kind_name(k: LightKind) -> &'static str {
-    match k {
-        LightKind::Directed => "directed",
-        LightKind::Undirected => "undirected",
-    }
-}
-
-/// A file-name-safe form of a cut name.
-fn slug(name: &str) -> String {
-    let s: String = name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if s.is_empty() {
-        "cut".into()
-    } else {
-        s
-    }
 }
 
 /// Run `facetlab trace`.
@@ -411,32 +345,15 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     // results[cut] = one tally, or one per rotation angle.
     let mut results: Vec<Vec<Tally>> = Vec::with_capacity(cuts.len());
     for (cut, config) in cuts.iter().zip(&configs) {
-        let r = match &set.light {
-            LightChoice::Single(l) => vec![photon::trace_cut(
-                &cut.solid, &cut.name, l, config, progress,
-            )?],
-            LightChoice::Rotate(k) => {
-                photon::rotation_sweep(&cut.solid, &cut.name, *k, config, progress)?
-            }
-        };
-        results.push(r);
+        results.push(photon::trace_choice(
+            &cut.solid, &cut.name, &set.light, config, progress,
+        )?);
     }
     bar.finish_and_clear();
-    print_table(&set, &results);
+    print!("{}", trace_table(&set.light, &set.config, &results));
     if let Some(j) = &args.json {
-        let flat: Vec<&Tally> = results.iter().flatten().collect();
-        let settings = settings_json(&set, &args.cuts);
-        let value = if flat.len() == 1 {
-            let mut v =
-                serde_json::to_value(flat[0]).map_err(|e| Error::io(j.display().to_string(), e))?;
-            if let Some(m) = v.as_object_mut() {
-                m.insert("settings".into(), settings);
-            }
-            v
-        } else {
-            serde_json::json!({ "settings": settings, "results": flat })
-        };
-        let text = serde_json::to_string_pretty(&value)
+        let text = trace_json(&set.light, &set.config, &args.cuts, &results)
+            .and_then(|doc| serde_json::to_string_pretty(&doc))
             .map_err(|e| Error::io(j.display().to_string(), e))?;
         facetlab::io::write_atomic(j, text.as_bytes())?;
     }
@@ -444,7 +361,7 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         println!("results → {}", j.display());
     }
     if let Some(dir) = &args.plots {
-        for stem in write_plots(dir, &set, &cuts, &results)? {
+        for stem in plot::trace::trace_plots(dir, &set.light, set.camera, &cuts, &results)? {
             println!(
                 "plot → {} (and .svg)",
                 plot::with_ext(&stem, "png").display()
@@ -452,207 +369,6 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         }
     }
     Ok(())
-}
-
-fn pct(v: (f64, f64)) -> String {
-    format!("{:6.2}% ±{:.2}", 100.0 * v.0, 100.0 * v.1)
-}
-
-fn print_table(set: &Settings, results: &[Vec<Tally>]) {
-    let c = &set.config;
-    let depth = c
-        .depth
-        .map(|d| d.to_string())
-        .unwrap_or_else(|| "unlimited".into());
-    let absorption = match c.absorption {
-        Absorption::None => "none".to_string(),
-        Absorption::Thesis => "thesis (0.1 per bounce)".to_string(),
-        Absorption::Beer(k) => format!("Beer–Lambert {k}/D"),
-        Absorption::Body { width_mm } => format!("body colour, width {width_mm} mm"),
-    };
-    let spectrum = match c.wavelengths {
-        WavelengthSampling::Uniform => "uniform 380–780 nm".to_string(),
-        WavelengthSampling::D65 => "D65".to_string(),
-        WavelengthSampling::Fixed(l) => format!("{l} nm"),
-    };
-    println!(
-        "material {}, depth {depth}, absorption {absorption}, polarization {}, spectrum {spectrum}, seed {}",
-        c.material.name,
-        if c.polarization { "on" } else { "off" },
-        c.seed
-    );
-    let w = results
-        .iter()
-        .map(|r| r[0].cut.chars().count())
-        .max()
-        .unwrap_or(0)
-        .max(16)
-        + 2;
-    let header = |label: &str| {
-        let mut s = format!("{label:<24}");
-        for r in results {
-            s += &format!("{:>w$}", r[0].cut);
-        }
-        s
-    };
-    match &set.light {
-        LightChoice::Single(l) => {
-            println!(
-                "light: {}; shares of photons that hit the stone ± standard error",
-                l.label
-            );
-            println!("{}", header(""));
-            let row = |label: &str, f: &dyn Fn(&Tally) -> String| {
-                let mut s = format!("{label:<24}");
-                for r in results {
-                    s += &format!("{:>w$}", f(&r[0]));
-                }
-                println!("{s}");
-            };
-            row("photons shot", &|t| t.counts.shot.to_string());
-            row("photons hit", &|t| t.counts.hit.to_string());
-            for (k, label) in CATEGORY_LABELS.iter().enumerate() {
-                row(&format!("exit faces {label}"), &|t| pct(t.category(k)));
-            }
-            row("thesis light return (up)", &|t| pct(t.light_return()));
-            row("absorbed", &|t| pct(t.absorbed()));
-            row("depth-limited", &|t| pct(t.depth_limited()));
-            row("median exit angle", &|t| {
-                let (cdf, _) = t.exit_angle_cdf();
-                cdf.iter()
-                    .position(|&v| v >= 0.5)
-                    .map(|k| format!("{k}°"))
-                    .unwrap_or_else(|| "–".into())
-            });
-            row("interactions per photon", &|t| {
-                format!("{:.2}", t.mean_interactions())
-            });
-            row("photons per second", &|t| {
-                format!("{:.3e}", t.photons_per_second())
-            });
-        }
-        LightChoice::Rotate(k) => {
-            println!(
-                "rotation sweep, {} light; {} photons hit per angle; shares ± standard error",
-                kind_name(*k),
-                c.photons
-            );
-            for (title, f) in [
-                (
-                    "exit faces < 45°",
-                    &(|t: &Tally| pct(t.category(0))) as &dyn Fn(&Tally) -> String,
-                ),
-                ("thesis light return (up)", &|t: &Tally| {
-                    pct(t.light_return())
-                }),
-            ] {
-                println!("{}", header(title));
-                for (i, a) in photon::ROTATION_ANGLES.iter().enumerate() {
-                    let mut s = format!("{:<24}", format!("  {a}°"));
-                    for r in results {
-                        s += &format!("{:>w$}", f(&r[i]));
-                    }
-                    println!("{s}");
-                }
-            }
-        }
-    }
-}
-
-/// Write the charts and pictures; returns their stems (each written as STEM.png and STEM.svg).
-fn write_plots(
-    dir: &Path,
-    set: &Settings,
-    cuts: &[facetlab::cut::Cut],
-    results: &[Vec<Tally>],
-) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
-    let firsts: Vec<&Tally> = results.iter().map(|r| &r[0]).collect();
-    let light = match &set.light {
-        LightChoice::Single(l) => l.label.clone(),
-        LightChoice::Rotate(k) => format!("{} light from above (0°)", kind_name(*k)),
-    };
-    let mut stems = Vec::new();
-    let stem = dir.join("face_categories");
-    plot::face_categories(&firsts, &light, &stem)?;
-    stems.push(stem);
-    let stem = dir.join("exit_angle_cdf");
-    plot::exit_angle_cdf(&firsts, &light, &stem)?;
-    stems.push(stem);
-    if let LightChoice::Rotate(k) = set.light {
-        let sweeps: Vec<(&str, &[Tally])> = results
-            .iter()
-            .map(|r| (r[0].cut.as_str(), r.as_slice()))
-            .collect();
-        let stem = dir.join("rotation");
-        plot::rotation(&sweeps, kind_name(k), &stem)?;
-        stems.push(stem);
-    }
-    for (cut, r) in cuts.iter().zip(results) {
-        let s = slug(&cut.name);
-        let t = &r[0];
-        let stem = dir.join(format!("facets_{s}"));
-        plot::facet_categories(
-            &cut.solid,
-            set.camera,
-            &format!("{}: facets by normal category", cut.name),
-            &stem,
-        )?;
-        stems.push(stem);
-        if t.paths.is_empty() {
-            continue;
-        }
-        let style = |color, first_segment, alpha, n: usize, what: &str| PathStyle {
-            camera: set.camera,
-            color,
-            first_segment,
-            alpha,
-            max_paths: n,
-            title: format!("{}: {what} ({})", cut.name, t.light),
-        };
-        let variants = [
-            (
-                "one",
-                style(PathColor::Bounces, true, 1.0, 1, "one photon path"),
-            ),
-            (
-                "bounces",
-                style(
-                    PathColor::Bounces,
-                    true,
-                    0.25,
-                    usize::MAX,
-                    "photon paths by bounce count",
-                ),
-            ),
-            (
-                "wavelength",
-                style(
-                    PathColor::Wavelength,
-                    true,
-                    0.25,
-                    usize::MAX,
-                    "photon paths by wavelength",
-                ),
-            ),
-            (
-                "no_first_segment",
-                style(
-                    PathColor::Bounces,
-                    false,
-                    0.25,
-                    usize::MAX,
-                    "paths inside and out, light segment hidden",
-                ),
-            ),
-        ];
-        for (name, st) in variants {
-            let stem = dir.join(format!("paths_{s}_{name}"));
-            plot::photon_paths(&cut.solid, &t.paths, &st, &stem)?;
-            stems.push(stem);
-        }
-    }
-    Ok(stems)
 }
 
 #[cfg(test)]

@@ -101,6 +101,26 @@ pub enum LightKind {
     Undirected,
 }
 
+impl LightKind {
+    /// `directed` or `undirected`.
+    pub fn name(self) -> &'static str {
+        match self {
+            LightKind::Directed => "directed",
+            LightKind::Undirected => "undirected",
+        }
+    }
+}
+
+/// What `facetlab trace` shines on a stone: one light, or the thesis's rotation sweep
+/// ([`rotation_sweep`]) of a kind of light.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LightChoice {
+    /// One light.
+    Single(Light),
+    /// The rotation sweep with this kind of light.
+    Rotate(LightKind),
+}
+
 /// Size of the square light.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -231,6 +251,32 @@ pub enum WavelengthSampling {
     D65,
     /// Every photon at this wavelength, nm.
     Fixed(f64),
+}
+
+impl WavelengthSampling {
+    /// `uniform`, `d65` or a wavelength in 380–780 nm (`550`, `550nm`); an error names
+    /// `field`.
+    ///
+    /// ```
+    /// use facetlab::photon::WavelengthSampling;
+    /// assert_eq!(WavelengthSampling::parse("spectrum", "550nm").unwrap(), WavelengthSampling::Fixed(550.0));
+    /// assert!(WavelengthSampling::parse("spectrum", "900").is_err());
+    /// ```
+    pub fn parse(field: &str, text: &str) -> crate::error::Result<WavelengthSampling> {
+        match text.trim().to_ascii_lowercase().as_str() {
+            "uniform" => Ok(WavelengthSampling::Uniform),
+            "d65" => Ok(WavelengthSampling::D65),
+            s => match s.trim_end_matches("nm").parse::<f64>() {
+                Ok(l) if (380.0..=780.0).contains(&l) => Ok(WavelengthSampling::Fixed(l)),
+                _ => Err(crate::error::Error::invalid(
+                    field,
+                    format!(
+                        "`{text}` is not allowed; use uniform, d65, or a wavelength in 380–780 nm"
+                    ),
+                )),
+            },
+        }
+    }
 }
 
 /// What to trace and how.
@@ -502,6 +548,21 @@ pub fn rotation_sweep(
         .iter()
         .map(|&a| trace_cut(solid, name, &Light::rotated(kind, a), &cfg, progress))
         .collect()
+}
+
+/// A named stone under `light`: one tally for one light ([`trace_cut`]), one per angle of
+/// the rotation sweep ([`rotation_sweep`]).
+pub fn trace_choice(
+    solid: &Polyhedron,
+    name: &str,
+    light: &LightChoice,
+    cfg: &TraceConfig,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<Vec<Tally>> {
+    match light {
+        LightChoice::Single(l) => Ok(vec![trace_cut(solid, name, l, cfg, progress)?]),
+        LightChoice::Rotate(k) => rotation_sweep(solid, name, *k, cfg, progress),
+    }
 }
 
 fn run_shot(

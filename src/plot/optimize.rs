@@ -8,11 +8,33 @@
 use super::contour::{nice_levels, segments};
 use super::{box_key, font, legend, line_key, save_to, DrawResult, Figure, LegendStyle, TAB10};
 use crate::error::Result;
-use crate::optimize::{Heatmap, History, ProfileLines, Track, FAILED_COST};
+use crate::optimize::{
+    CutWriter, FnWriter, GemWriter, Heatmap, History, ProfileLines, Track, FAILED_COST,
+};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
 use std::path::Path;
+
+/// The files of a run's best cut besides `best.toml` (written by [`crate::optimize::run`]):
+/// GemCad's `.asc`, an OBJ mesh and the SVG facet diagram; and GemCad's binary `.gem` when
+/// the config's design came as one. The command line and the Python package write these.
+pub fn run_writers(config: &crate::optimize::Config) -> Vec<&'static dyn CutWriter> {
+    static ASC: FnWriter = FnWriter::new("asc", |c| Ok(crate::io::asc::write(c, 0)));
+    static OBJ: FnWriter = FnWriter::new("obj", |c| Ok(crate::io::mesh::write_obj(c)));
+    static SVG: FnWriter = FnWriter::new("svg", |c| Ok(super::diagram::diagram(c)));
+    static GEM: GemWriter = GemWriter;
+    let mut all: Vec<&'static dyn CutWriter> = vec![&ASC, &OBJ, &SVG];
+    let gem = config.cut_file.as_ref().is_some_and(|(file, _)| {
+        Path::new(file)
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("gem"))
+    });
+    if gem {
+        all.push(&GEM);
+    }
+    all
+}
 
 /// Draw a run's convergence chart under `title` as the PNG `png` and the SVG `svg`: one pair of
 /// lines (best so far, thick; each evaluation, thin) per Nelder–Mead start, or the swarm's best

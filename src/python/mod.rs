@@ -1,0 +1,82 @@
+//! The Python package's native module `facetlab._facetlab` (cargo feature `python`, built by
+//! maturin from `pyproject.toml`): a face on top of the library, like the binary's `cli`.
+//! Nothing in the library imports it; it calls the library only, never the binary.
+//!
+//! Every call runs the library with the GIL released ([`run`]): a library error becomes
+//! `facetlab.Error` (a `ValueError`) carrying the command line's one-line message, and a panic
+//! (a bug) is caught and becomes `facetlab.InternalError`, so no panic crosses into Python.
+//! The pure-Python side (`src/python/facetlab/`: `__init__.py`, the stubs `_facetlab.pyi`,
+//! the Dask layer `dask.py`) re-exports and documents these functions.
+
+mod cuts;
+mod picture;
+mod rough;
+mod runs;
+mod score;
+mod stone;
+mod tally;
+
+use pyo3::create_exception;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+create_exception!(
+    _facetlab,
+    Error,
+    PyValueError,
+    "Bad input: the message is the command line's one-line error naming the field and what is allowed."
+);
+create_exception!(
+    _facetlab,
+    InternalError,
+    PyRuntimeError,
+    "A bug in facetlab (a caught panic); please report it with the call that raised it."
+);
+
+/// A library error as `facetlab.Error`.
+pub(crate) fn error(e: crate::error::Error) -> PyErr {
+    Error::new_err(e.to_string())
+}
+
+/// A caught panic's payload as `facetlab.InternalError`.
+pub(crate) fn panicked(payload: Box<dyn std::any::Any + Send>) -> PyErr {
+    let what = payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "a panic".to_string());
+    InternalError::new_err(format!("internal error (a bug in facetlab): {what}"))
+}
+
+/// Run library work `f` with the GIL released; its error becomes `facetlab.Error`, a panic
+/// `facetlab.InternalError`.
+pub(crate) fn run<T: Send>(
+    py: Python<'_>,
+    f: impl FnOnce() -> crate::error::Result<T> + Send,
+) -> PyResult<T> {
+    py.detach(|| catch_unwind(AssertUnwindSafe(f)))
+        .map_err(panicked)?
+        .map_err(error)
+}
+
+/// `json.loads(text)`: the library's JSON documents handed to Python as dicts and lists.
+pub(crate) fn from_json<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// The native module.
+#[pymodule]
+fn _facetlab(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("Error", py.get_type::<Error>())?;
+    m.add("InternalError", py.get_type::<InternalError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    cuts::register(m)?;
+    score::register(m)?;
+    picture::register(m)?;
+    tally::register(m)?;
+    runs::register(m)?;
+    rough::register(m)?;
+    Ok(())
+}

@@ -1,0 +1,154 @@
+//! The stone a Python call traces: its material, body colour, size and crystal settings from
+//! keyword arguments, chosen as the command line chooses them from `--material`, `--ri`,
+//! `--colour`, `--colour-density`, `--diameter-mm`/`--size-mm`, `--birefringence`,
+//! `--optic-axis` and `--colour-e` (a design read from a file is traced in its own material
+//! unless one is given). Errors name the keyword argument.
+
+use crate::cut::Cut;
+use crate::error::{Error, Result};
+use crate::optics::{BodyColour, ColourFields, CrystalFields, Material, MaterialFields, StoneSize};
+use pyo3::prelude::*;
+
+/// The keyword arguments that choose the stone.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct StoneArgs {
+    pub material: Option<String>,
+    pub ri: Option<f64>,
+    pub colour: Option<String>,
+    pub colour_density: Option<f64>,
+    pub size_mm: Option<String>,
+    pub diameter_mm: Option<f64>,
+    pub birefringence: Option<bool>,
+    pub optic_axis: Option<String>,
+    pub colour_e: Option<String>,
+}
+
+/// `size_mm` as the command line's `--size-mm` text: a length (a number) or `"LxW"`.
+pub(crate) fn size_text(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Option<String>> {
+    let Some(obj) = obj else { return Ok(None) };
+    if let Ok(x) = obj.extract::<f64>() {
+        return Ok(Some(format!("{x}")));
+    }
+    obj.extract::<String>().map(Some).map_err(|_| {
+        super::Error::new_err(format!(
+            "size_mm: `{obj}` is not allowed; give a length in mm or \"LxW\""
+        ))
+    })
+}
+
+impl StoneArgs {
+    /// The keyword arguments as given to `score`, `render` and `trace`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        material: Option<String>,
+        ri: Option<f64>,
+        colour: Option<String>,
+        colour_density: Option<f64>,
+        size_mm: Option<&Bound<'_, PyAny>>,
+        diameter_mm: Option<f64>,
+        birefringence: Option<bool>,
+        optic_axis: Option<String>,
+        colour_e: Option<String>,
+    ) -> PyResult<StoneArgs> {
+        Ok(StoneArgs {
+            material,
+            ri,
+            colour,
+            colour_density,
+            size_mm: size_text(size_mm)?,
+            diameter_mm,
+            birefringence,
+            optic_axis,
+            colour_e,
+        })
+    }
+}
+
+/// Refuse to replace an existing `path` unless `overwrite` (the package's `--force`).
+pub(crate) fn refuse_existing(path: &std::path::Path, overwrite: bool) -> Result<()> {
+    if path.exists() && !overwrite {
+        return Err(Error::invalid(
+            "path",
+            format!(
+                "{} exists; pass overwrite=True to replace it",
+                path.display()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+const COLOUR: ColourFields<'static> = ColourFields {
+    colour: "colour",
+    density: "colour_density",
+};
+
+impl StoneArgs {
+    /// Whether the caller chose a material (else a design is traced in its own).
+    fn chosen(&self) -> bool {
+        self.material.is_some() || self.ri.is_some()
+    }
+
+    /// The stone's size (default a width of 6.5 mm).
+    pub fn size(&self) -> Result<StoneSize> {
+        match (&self.diameter_mm, &self.size_mm) {
+            (Some(_), Some(_)) => Err(Error::invalid(
+                "size_mm",
+                "give diameter_mm or size_mm, not both",
+            )),
+            (Some(w), None) => StoneSize::width(*w, "diameter_mm"),
+            (None, Some(l)) => StoneSize::parse_length(l, "size_mm"),
+            (None, None) => Ok(StoneSize::default()),
+        }
+    }
+
+    /// The material `cut` is traced in, with its body colour and crystal settings, and its
+    /// width in mm.
+    pub fn material_for(&self, cut: &Cut) -> Result<(Material, f64)> {
+        let mut default = Material::choose(
+            self.material.as_deref(),
+            self.ri,
+            MaterialFields {
+                material: "material",
+                ri: "ri",
+            },
+        )?;
+        default.colour = BodyColour::choose(
+            default.colour.as_ref(),
+            self.colour.as_deref(),
+            self.colour_density,
+            COLOUR,
+        )?;
+        let mut m = if self.chosen() {
+            default
+        } else {
+            let lines = cut
+                .record
+                .iter()
+                .flat_map(|r| r.title.iter().chain(&r.footnotes));
+            Material::of_design(cut.design_ri(), lines, &default).0
+        };
+        if m.colour.is_none() {
+            m.colour =
+                BodyColour::choose(None, self.colour.as_deref(), self.colour_density, COLOUR)?;
+        }
+        let field = if self.size_mm.is_some() {
+            "size_mm"
+        } else {
+            "diameter_mm"
+        };
+        let width = self.size()?.width_mm(cut.ratios().l_w, field)?;
+        m.choose_crystal(
+            self.birefringence,
+            self.optic_axis.as_deref(),
+            self.colour_e.as_deref(),
+            self.colour_density,
+            CrystalFields {
+                birefringence: "birefringence",
+                optic_axis: "optic_axis",
+                colour_e: "colour_e",
+            },
+        )?;
+        Ok((m, width))
+    }
+}
