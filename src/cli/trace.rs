@@ -673,7 +673,7 @@ mod tests {
     }
 
     fn err(extra: &[&str]) -> String {
-        let e = settings(&parse(extra)).unwrap_err().to_string();
+        let e = crate::cli::flags::to_flags(settings(&parse(extra)).unwrap_err()).to_string();
         assert!(!e.contains('\n'), "one line: {e}");
         e
     }

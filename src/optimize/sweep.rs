@@ -218,7 +218,7 @@ impl SweepScore {
             other => match COLOUR_SCORES.iter().find(|k| **k == other) {
                 Some(k) => Ok(SweepScore::Colour(k)),
                 None => Err(Error::invalid(
-                    "--score",
+                    "sweep score",
                     format!(
                         "unknown score `{other}`; allowed: brilliance, fire, scintillation, objective, {} (coloured stones)",
                         COLOUR_SCORES.join(", ")
@@ -307,7 +307,7 @@ pub fn sweep(
 ) -> Result<Sweep> {
     if x.key == y.key {
         return Err(Error::invalid(
-            "--y",
+            "sweep y axis",
             format!(
                 "sweeps `{}` on both axes; give two different parameters",
                 x.key
@@ -318,7 +318,7 @@ pub fn sweep(
     let n = nx * y.values.len();
     if n > MAX_POINTS {
         return Err(Error::invalid(
-            "--x/--y",
+            "sweep grid",
             format!("{n} grid points; at most {MAX_POINTS}: use larger steps"),
         ));
     }
@@ -442,7 +442,7 @@ pub fn run_path(run_dir: &Path, x: &str, y: &str) -> Result<Vec<(f64, f64)>> {
         let cfg = Config::load(&cfg_path)?;
         cfg.start.get(k).copied().ok_or_else(|| {
             Error::invalid(
-                "--run",
+                "run folder",
                 format!(
                     "{}: the run's family {} has no parameter `{k}`",
                     run_dir.display(),
@@ -675,47 +675,50 @@ mod tests {
     #[test]
     fn axes_parse_and_refuse() {
         let c = cfg();
-        let a = Axis::parse("--x", "crown_angle:25:40:0.5", &c).unwrap();
+        let a = Axis::parse("x axis", "crown_angle:25:40:0.5", &c).unwrap();
         assert_eq!(a.values.len(), 31);
         assert_eq!(a.values[3], 26.5);
         assert_eq!(*a.values.last().unwrap(), 40.0);
-        let b = Axis::parse("--y", "pavilion_angle:38:43:0.1", &c).unwrap();
+        let b = Axis::parse("y axis", "pavilion_angle:38:43:0.1", &c).unwrap();
         assert_eq!(b.values.len(), 51);
         assert_eq!(b.values[7], 38.7, "rounded to the step's decimals");
         for (spec, want) in [
             (
                 "crown_angle:25:40",
-                "--x: `crown_angle:25:40` is not KEY:MIN:MAX:STEP",
+                "x axis: `crown_angle:25:40` is not KEY:MIN:MAX:STEP",
             ),
             (
                 "crown:25:40:1",
-                "--x: `crown` is not a parameter of round-brilliant",
+                "x axis: `crown` is not a parameter of round-brilliant",
             ),
-            ("crown_angle:40:25:1", "--x: MAX 25 must be above MIN 40"),
-            ("crown_angle:25:40:0", "--x: STEP 0 must be positive"),
+            ("crown_angle:40:25:1", "x axis: MAX 25 must be above MIN 40"),
+            ("crown_angle:25:40:0", "x axis: STEP 0 must be positive"),
             (
                 "crown_angle:25:40:x",
-                "--x: STEP `x` is not a finite number",
+                "x axis: STEP `x` is not a finite number",
             ),
-            ("crown_angle:1:40:1", "--x crown_angle: 1 is out of range"),
+            (
+                "crown_angle:1:40:1",
+                "x axis crown_angle: 1 is out of range",
+            ),
             ("girdle_facets:0:32:16", "whole-number"),
             ("crown_angle:25:26:5", "single value"),
             ("crown_angle:25:40:1e-300", "at most 5000 per axis"),
         ] {
-            let e = Axis::parse("--x", spec, &c).unwrap_err().to_string();
+            let e = Axis::parse("x axis", spec, &c).unwrap_err().to_string();
             assert!(e.contains(want), "{spec}: {e}");
         }
         assert!(SweepScore::parse("fyre")
             .unwrap_err()
             .to_string()
-            .starts_with("--score: unknown score `fyre`"));
+            .starts_with("sweep score: unknown score `fyre`"));
     }
 
     #[test]
     fn sweep_is_in_grid_order_and_writes_files() {
         let c = cfg();
-        let x = Axis::parse("--x", "crown_angle:30:36:1", &c).unwrap();
-        let y = Axis::parse("--y", "pavilion_angle:39:42:0.5", &c).unwrap();
+        let x = Axis::parse("x axis", "crown_angle:30:36:1", &c).unwrap();
+        let y = Axis::parse("y axis", "pavilion_angle:39:42:0.5", &c).unwrap();
         let bump = |cut: &Cut| -> Result<ScoreSet> {
             let (a, b) = (cut.params["crown_angle"], cut.params["pavilion_angle"]);
             Ok(ScoreSet::new(
@@ -767,7 +770,7 @@ mod tests {
     #[test]
     fn a_profile_is_in_order_and_writes_one_row_per_x() {
         let c = cfg();
-        let x = Axis::parse("--x", "crown_angle:30:36:1", &c).unwrap();
+        let x = Axis::parse("x axis", "crown_angle:30:36:1", &c).unwrap();
         let bump = |cut: &Cut| -> Result<ScoreSet> {
             let a = cut.params["crown_angle"];
             if a == 35.0 {

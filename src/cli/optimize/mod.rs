@@ -596,9 +596,9 @@ mod tests {
                 "--shard: `0/2` is not K/N",
             ),
         ] {
-            let e = run_sweep_env(&change, &bumps, &no_env)
-                .unwrap_err()
-                .to_string();
+            let e =
+                crate::cli::flags::to_flags(run_sweep_env(&change, &bumps, &no_env).unwrap_err())
+                    .to_string();
             assert!(e.contains(want), "{e}");
         }
     }

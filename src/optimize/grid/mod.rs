@@ -49,14 +49,14 @@ impl Grid {
     pub fn new(axes: Vec<Axis>) -> Result<Grid> {
         if axes.is_empty() {
             return Err(Error::invalid(
-                "--x",
+                "first axis",
                 "give at least one axis: --x KEY:MIN:MAX:STEP (or --axis)",
             ));
         }
         for (i, a) in axes.iter().enumerate() {
             if axes[..i].iter().any(|b| b.key == a.key) {
                 return Err(Error::invalid(
-                    "--axis",
+                    "grid axes",
                     format!("sweeps `{}` on two axes; give different parameters", a.key),
                 ));
             }
@@ -67,7 +67,7 @@ impl Grid {
         }
         if n > MAX_POINTS {
             return Err(Error::invalid(
-                "--axis",
+                "grid axes",
                 format!("{n} grid points; at most {MAX_POINTS}: use larger steps or fewer axes"),
             ));
         }
@@ -255,9 +255,9 @@ mod tests {
     #[test]
     fn order_shards_rows_and_merge_agree_with_the_two_axis_sweep() {
         let c = cfg();
-        let x = Axis::parse("--x", "crown_angle:33:36:1", &c).unwrap();
-        let y = Axis::parse("--y", "pavilion_angle:40:41:0.5", &c).unwrap();
-        let t = Axis::parse("--axis", "table:0.55:0.57:0.01", &c).unwrap();
+        let x = Axis::parse("x axis", "crown_angle:33:36:1", &c).unwrap();
+        let y = Axis::parse("y axis", "pavilion_angle:40:41:0.5", &c).unwrap();
+        let t = Axis::parse("axis", "table:0.55:0.57:0.01", &c).unwrap();
         let two = Grid::new(vec![x.clone(), y.clone()]).unwrap();
         assert_eq!(two.point(5), vec![34.0, 40.5], "first axis fastest");
         let all: Vec<usize> = (0..two.len()).collect();
@@ -332,15 +332,12 @@ mod tests {
 
     #[test]
     fn shards_parse_and_come_from_job_arrays() {
-        assert_eq!(
-            Shard::parse("--shard", "2/3").unwrap(),
-            Shard { k: 2, n: 3 }
-        );
+        assert_eq!(Shard::parse("shard", "2/3").unwrap(), Shard { k: 2, n: 3 });
         for bad in ["0/3", "4/3", "3", "a/b", "1/0"] {
-            assert!(Shard::parse("--shard", bad)
+            assert!(Shard::parse("shard", bad)
                 .unwrap_err()
                 .to_string()
-                .starts_with("--shard:"));
+                .starts_with("shard:"));
         }
         let env = |pairs: &'static [(&'static str, &'static str)]| {
             move |k: &str| {
