@@ -214,7 +214,7 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
         println!("wrote {}/", dir.display());
         println!(
             "trade-off {}: {} searches, {} evaluations in {:.1} s; {} non-dominated cuts",
-            front.scores.join(" / "),
+            facetlab::metrics::score_name::joined(&front.scores, " / "),
             front.searches,
             front.evaluations,
             front.seconds,
@@ -556,7 +556,7 @@ mod tests {
             file: "small.toml".into(),
         };
         assert_eq!(
-            map_title(&names, &grid, &SweepScore::Fire, &spec),
+            map_title(&names, &grid, &SweepScore::FIRE, &spec),
             "fire of round-brilliant over table and crown_angle at pavilion_angle = 41 (others as in small.toml)"
         );
         for (change, want) in [

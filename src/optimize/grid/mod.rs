@@ -31,7 +31,7 @@ pub use shard::{
 pub use slice::{fixed_at, heatmap, map_axes, parse_at, profile_lines};
 
 use super::sweep::{score_point, Axis, SweepScore, MAX_POINTS, SCORES};
-use super::{Config, Evaluator, ScoreSet};
+use super::{Config, Evaluator, ScoreName, ScoreSet};
 use crate::error::{Error, Result};
 use rayon::prelude::*;
 use std::fmt::Write;
@@ -190,10 +190,10 @@ pub fn evaluate(
 
 /// The sweep's CSV (see the module documentation) of all the grid's `cells`, in grid order.
 pub fn to_csv(grid: &Grid, cells: &[GridCell]) -> String {
-    let extras: Vec<String> = cells
+    let extras: Vec<ScoreName> = cells
         .iter()
         .find_map(|c| c.scores.as_ref())
-        .map(|s| s.extra.iter().map(|(k, _)| k.clone()).collect())
+        .map(|s| s.extra.iter().map(|(k, _)| *k).collect())
         .unwrap_or_default();
     let keys: Vec<&str> = grid.axes.iter().map(|a| a.key.as_str()).collect();
     let mut o = format!("{},brilliance,fire,scintillation,objective", keys.join(","));
@@ -208,7 +208,7 @@ pub fn to_csv(grid: &Grid, cells: &[GridCell]) -> String {
             let _ = write!(o, ",{}", num(c.value(score)));
         }
         for e in &extras {
-            let v = c.scores.as_ref().and_then(|sc| sc.get(e));
+            let v = c.scores.as_ref().and_then(|sc| sc.get(*e));
             let _ = write!(o, ",{}", num(v.unwrap_or(f64::NAN)));
         }
         o.push('\n');
@@ -248,7 +248,7 @@ mod tests {
             cut.params["table"] / 3.0,
             0.1,
         );
-        s.extra.push(("aset_red".into(), a / 7.0));
+        s.extra.push((crate::metrics::ScoreName::AsetRed, a / 7.0));
         Ok(s)
     }
 
@@ -314,7 +314,7 @@ mod tests {
             &three,
             &cells,
             &labels,
-            &SweepScore::Fire,
+            &SweepScore::FIRE,
             (1, 2),
             &fixed,
             "t".into(),
