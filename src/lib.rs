@@ -39,6 +39,7 @@
 pub mod beam;
 pub mod cut;
 pub mod design;
+pub mod document;
 pub mod error;
 pub mod geometry;
 pub mod io;

@@ -485,6 +485,53 @@ fn each_floor_imports_only_what_the_readme_layout_allows() {
     );
 }
 
+/// The binary's modules every command may share; each other child of `cli` is a command's.
+const SHARED: [&str; 4] = ["flags", "outputs", "progress", "interrupt"];
+
+#[test]
+fn serve_imports_no_other_commands_module() {
+    // The web page calls the library, as the commands do; it borrows no command's code (what
+    // both need belongs in the library, where the Python package gets it too).
+    let wrong: Vec<String> = arrows(&load_sources())
+        .into_iter()
+        .filter(|(a, b)| {
+            a.len() >= 2
+                && a[..2] == [BINARY, "serve"]
+                && b.len() >= 2
+                && b[0] == BINARY
+                && b[1] != "serve"
+                && !SHARED.contains(&b[1].as_str())
+        })
+        .map(|(a, b)| format!("{} → {}", a.join("::"), b.join("::")))
+        .collect();
+    assert!(wrong.is_empty(), "serve imports commands: {wrong:#?}");
+}
+
+/// The most the binary's commands (`src/cli/`) may hold of `src/`'s lines, in percent:
+/// it parses, calls the library, prints.
+const MAX_BINARY_SHARE: f64 = 12.0;
+
+#[test]
+fn the_binary_is_at_most_12_percent_of_the_source() {
+    let mut files = Vec::new();
+    rs_files(&root().join("src"), &mut files);
+    let lines = |p: &Path| std::fs::read_to_string(p).unwrap().lines().count();
+    let total: usize = files.iter().map(|p| lines(p)).sum();
+    let binary: usize = files
+        .iter()
+        .filter(|p| {
+            let rel = p.strip_prefix(root().join("src")).unwrap();
+            rel.starts_with(BINARY)
+        })
+        .map(|p| lines(p))
+        .sum();
+    let share = 100.0 * binary as f64 / total as f64;
+    assert!(
+        share <= MAX_BINARY_SHARE,
+        "the binary holds {binary} of {total} lines of src/ ({share:.1} %); allowed {MAX_BINARY_SHARE} %: move the work into the library"
+    );
+}
+
 #[test]
 fn the_checker_sees_use_trees_and_circles() {
     // The parser and the circle finder on a made-up module: if they missed these, the tests

@@ -26,11 +26,9 @@
 
 use super::flags;
 use super::outputs::{cut_files, refuse_overwrite, Exit};
+use facetlab::document::score::{score_json, score_table};
 use facetlab::error::{Error, Result};
 use facetlab::metrics::{score, ScoreConfig, Scores};
-use facetlab::optics::Dispersion;
-use facetlab::render;
-use facetlab::verify::json::score_json;
 use facetlab::verify::{verify_scores, Check, SIGMA};
 use std::path::PathBuf;
 
@@ -126,7 +124,7 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
 }
 
 /// The JSON document for these results (see the module documentation and
-/// [`facetlab::verify::json`]). `verify` holds, per cut, the photon-tracer checks of
+/// [`facetlab::document::score`]). `verify` holds, per cut, the photon-tracer checks of
 /// `--verify` (empty when not asked), made with `photons` photons per figure.
 pub fn to_json(
     config: &ScoreConfig,
@@ -136,84 +134,6 @@ pub fn to_json(
 ) -> Result<String> {
     score_json(config, results, verify, photons)
         .map_err(|e| Error::invalid("--json", e.to_string()))
-}
-
-/// The table printed by `facetlab score`: one row per score, one column per cut.
-pub fn table(config: &ScoreConfig, results: &[(String, Scores)]) -> String {
-    type Row = (&'static str, fn(&Scores) -> f64);
-    let rows: [Row; 11] = [
-        ("overhead light return", |s| s.overhead_light_return),
-        ("brilliance (ISO+COS)/2", |s| s.brilliance),
-        ("  brilliance ISO", |s| s.brilliance_iso),
-        ("  brilliance COS", |s| s.brilliance_cos),
-        ("fire", |s| s.fire),
-        ("scintillation", |s| s.scintillation),
-        ("ASET blue 75-80°", |s| s.aset.blue),
-        ("ASET red 45-75°", |s| s.aset.red),
-        ("ASET green 0-45°", |s| s.aset.green),
-        ("ASET leak <0°", |s| s.aset.leak),
-        ("ASET port 80-90°", |s| s.aset.port),
-    ];
-    let label_w = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
-    let col_w = results
-        .iter()
-        .map(|(n, _)| n.chars().count())
-        .max()
-        .unwrap_or(0)
-        .max(8);
-    let c = config;
-    let mut out = format!(
-        "{}, {}, polarization {}, head shadow {}°, {} poses, {} bands\n",
-        c.material.name,
-        match c.material.dispersion {
-            Dispersion::Constant(n) => format!("n = {n}"),
-            _ => format!(
-                "n = {:.4} at {} nm",
-                c.material.ri(c.wavelength_nm),
-                c.wavelength_nm
-            ),
-        },
-        if c.polarization { "on" } else { "off" },
-        c.head_shadow_deg,
-        c.tilts.len(),
-        c.bands
-    );
-    out.push_str(&format!("{:label_w$}", ""));
-    for (n, _) in results {
-        out.push_str(&format!("  {n:>col_w$}"));
-    }
-    out.push('\n');
-    for (label, f) in rows {
-        let pad = label_w - label.chars().count();
-        out.push_str(label);
-        out.push_str(&" ".repeat(pad));
-        for (_, s) in results {
-            out.push_str(&format!("  {:>col_w$.4}", f(s)));
-        }
-        out.push('\n');
-    }
-    if results.iter().any(|(_, s)| s.colour.is_some()) {
-        type ColourRow = (&'static str, fn(&render::ColourStats) -> f64);
-        let colour_rows: [ColourRow; 6] = [
-            ("colour L*", |c| c.l),
-            ("colour C*", |c| c.c),
-            ("colour h°", |c| c.h_deg),
-            ("  L* spread", |c| c.l_spread),
-            ("extinction (L* < 20)", |c| c.extinction),
-            ("windowing", |c| c.windowing),
-        ];
-        for (label, f) in colour_rows {
-            out.push_str(&format!("{label:label_w$}"));
-            for (_, s) in results {
-                match &s.colour {
-                    Some(c) => out.push_str(&format!("  {:>col_w$.4}", f(c))),
-                    None => out.push_str(&format!("  {:>col_w$}", "-")),
-                }
-            }
-            out.push('\n');
-        }
-    }
-    out
 }
 
 /// The exit status of `score`: a disagreement when any `--verify` check lies beyond
@@ -294,7 +214,7 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
         .zip(&configs)
         .map(|(c, cfg)| (c.name.clone(), score(&c.solid, cfg)))
         .collect();
-    print!("{}", table(&s.config, &results));
+    print!("{}", score_table(&s.config, &results));
     let mut checks: Vec<Vec<Check>> = Vec::new();
     let photons = s.verify.unwrap_or(0);
     if let Some(photons) = s.verify {
@@ -465,7 +385,7 @@ mod tests {
         assert_eq!(v["results"][1]["cut"], "b");
         assert_eq!(v["results"][0]["fire"], 0.25);
         assert!(v["results"][0].get("settings").is_none() && v["settings"].is_object());
-        let t = table(
+        let t = score_table(
             &cfg,
             &[("tolkowsky".into(), s.clone()), ("gia-reference".into(), s)],
         );

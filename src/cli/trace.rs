@@ -25,9 +25,11 @@
 //! `paths_<cut>_wavelength`, `paths_<cut>_no_first_segment`, `facets_<cut>`.
 
 use super::flags;
+use facetlab::document::trace::trace_json;
 use facetlab::error::{Error, Result};
 use facetlab::photon::{
-    self, Absorption, Light, LightKind, Tally, TraceConfig, WavelengthSampling, CATEGORY_LABELS,
+    self, Absorption, Light, LightChoice, LightKind, Tally, TraceConfig, WavelengthSampling,
+    CATEGORY_LABELS,
 };
 use facetlab::plot::{self, Camera, PathColor, PathStyle};
 use std::path::{Path, PathBuf};
@@ -132,15 +134,6 @@ pub struct TraceArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
-}
-
-/// Which light the flags chose.
-#[derive(Clone, Debug, PartialEq)]
-pub enum LightChoice {
-    /// One light.
-    Single(Light),
-    /// The rotation sweep with this kind of light.
-    Rotate(LightKind),
 }
 
 /// The flags, validated.
@@ -280,30 +273,6 @@ fn parse_camera(s: &str) -> Result<Camera> {
     })
 }
 
-fn settings_json(s: &Settings, cuts: &[String]) -> serde_json::Value {
-    let c = &s.config;
-    serde_json::json!({
-        "cuts": cuts,
-        "light": match &s.light { LightChoice::Single(l) => l.label.clone(), LightChoice::Rotate(k) => format!("rotation sweep, {}", kind_name(*k)) },
-        "rotate": matches!(s.light, LightChoice::Rotate(_)),
-        "photons": c.photons,
-        "photons_counted": if matches!(s.light, LightChoice::Rotate(_)) { "hit per angle" } else { "shot" },
-        "depth": c.depth,
-        "absorption": c.absorption,
-        "polarization": c.polarization,
-        "material": c.material.name,
-        "spectrum": c.wavelengths,
-        "seed": c.seed,
-    })
-}
-
-fn kind_name(k: LightKind) -> &'static str {
-    match k {
-        LightKind::Directed => "directed",
-        LightKind::Undirected => "undirected",
-    }
-}
-
 /// A file-name-safe form of a cut name.
 fn slug(name: &str) -> String {
     let s: String = name
@@ -411,32 +380,15 @@ pub fn run(args: &TraceArgs) -> Result<()> {
     // results[cut] = one tally, or one per rotation angle.
     let mut results: Vec<Vec<Tally>> = Vec::with_capacity(cuts.len());
     for (cut, config) in cuts.iter().zip(&configs) {
-        let r = match &set.light {
-            LightChoice::Single(l) => vec![photon::trace_cut(
-                &cut.solid, &cut.name, l, config, progress,
-            )?],
-            LightChoice::Rotate(k) => {
-                photon::rotation_sweep(&cut.solid, &cut.name, *k, config, progress)?
-            }
-        };
-        results.push(r);
+        results.push(photon::trace_choice(
+            &cut.solid, &cut.name, &set.light, config, progress,
+        )?);
     }
     bar.finish_and_clear();
     print_table(&set, &results);
     if let Some(j) = &args.json {
-        let flat: Vec<&Tally> = results.iter().flatten().collect();
-        let settings = settings_json(&set, &args.cuts);
-        let value = if flat.len() == 1 {
-            let mut v =
-                serde_json::to_value(flat[0]).map_err(|e| Error::io(j.display().to_string(), e))?;
-            if let Some(m) = v.as_object_mut() {
-                m.insert("settings".into(), settings);
-            }
-            v
-        } else {
-            serde_json::json!({ "settings": settings, "results": flat })
-        };
-        let text = serde_json::to_string_pretty(&value)
+        let text = trace_json(&set.light, &set.config, &args.cuts, &results)
+            .and_then(|doc| serde_json::to_string_pretty(&doc))
             .map_err(|e| Error::io(j.display().to_string(), e))?;
         facetlab::io::write_atomic(j, text.as_bytes())?;
     }
@@ -534,7 +486,7 @@ fn print_table(set: &Settings, results: &[Vec<Tally>]) {
         LightChoice::Rotate(k) => {
             println!(
                 "rotation sweep, {} light; {} photons hit per angle; shares ± standard error",
-                kind_name(*k),
+                k.name(),
                 c.photons
             );
             for (title, f) in [
@@ -570,7 +522,7 @@ fn write_plots(
     let firsts: Vec<&Tally> = results.iter().map(|r| &r[0]).collect();
     let light = match &set.light {
         LightChoice::Single(l) => l.label.clone(),
-        LightChoice::Rotate(k) => format!("{} light from above (0°)", kind_name(*k)),
+        LightChoice::Rotate(k) => format!("{} light from above (0°)", k.name()),
     };
     let mut stems = Vec::new();
     let stem = dir.join("face_categories");
@@ -585,7 +537,7 @@ fn write_plots(
             .map(|r| (r[0].cut.as_str(), r.as_slice()))
             .collect();
         let stem = dir.join("rotation");
-        plot::rotation(&sweeps, kind_name(k), &stem)?;
+        plot::rotation(&sweeps, k.name(), &stem)?;
         stems.push(stem);
     }
     for (cut, r) in cuts.iter().zip(results) {

@@ -181,7 +181,6 @@ pub use crate::render::{fire_of, lighting, raster, Tilt};
 mod config;
 mod driver;
 mod fire;
-pub mod json;
 mod overhead;
 mod scintillation;
 pub mod score_name;

@@ -157,3 +157,16 @@ impl Verifier for PhotonVerifier {
         )
     }
 }
+
+/// The objective's scorer and the winners' verifier for a loaded config.
+pub type Scorers = (Box<dyn Evaluator>, Option<Box<dyn Verifier>>);
+
+/// The real scorers: the beam tracer ([`BeamEvaluator`]) and the photon tracer
+/// ([`PhotonVerifier`]), both with the config's `[score]` settings. They can only be made from
+/// a loaded config, so no command scores with defaults.
+pub fn real_scorers(config: &Config) -> Scorers {
+    (
+        Box::new(BeamEvaluator::new(config)),
+        Some(Box::new(PhotonVerifier::new(config))),
+    )
+}

@@ -105,13 +105,13 @@ pub use config::{
     Sampling, ScoreSettings, SwarmSettings, VerifySettings, Weights,
 };
 // The scorers of a config: the beam tracer's evaluator and the photon tracer's verifier.
-pub use engines::{BeamEvaluator, PhotonVerifier};
+pub use engines::{real_scorers, BeamEvaluator, PhotonVerifier, Scorers};
 // Progress reports and why a search stopped.
 pub use guard::{Progress, Status, Stop};
 // Searches and run folders: `search` then `verify`, or both and the folder: `run`.
 pub use run::{
-    design_json, new_run_dir, run, ConvergenceChart, CutWriter, FnWriter, GemWriter, RunOptions,
-    RunPage, RunSummary, TOML_WRITER,
+    design_json, new_run_dir, run, run_files, ConvergenceChart, CutWriter, FnWriter, GemWriter,
+    RunOptions, RunPage, RunSummary, TOML_WRITER,
 };
 pub use search::{search, verify, Hooks, Outcome};
 // The trade-off between scores (`[objective] pareto`).
@@ -134,7 +134,8 @@ pub use sweep::{
 pub use grid::{
     assemble as assemble_shards, best as grid_best, evaluate as evaluate_grid, fixed_at,
     hash as config_hash, heatmap as grid_heatmap, map_axes, parse_at, profile_lines, read_rows,
-    rows_header, shard_row, to_csv as grid_csv, AxisRecord, Grid, GridCell, Shard, ShardRecord,
+    rows_header, shard_folder, shard_row, to_csv as grid_csv, AxisRecord, Grid, GridCell, Shard,
+    ShardRecord, ShardRun,
 };
 // The photon-tracer check of the winners (all of it `crate::verify`'s).
 pub use crate::verify::{Verification, Verifier, VerifyReport, VerifyRow};

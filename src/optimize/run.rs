@@ -119,6 +119,46 @@ impl Default for RunOptions<'_> {
     }
 }
 
+impl RunOptions<'_> {
+    /// Every file [`write_folder`] may write into a run folder with these options ([`run_files`]).
+    pub fn files(&self) -> Vec<String> {
+        run_files(
+            &self.writers,
+            self.convergence.is_some(),
+            self.html_report.is_some(),
+        )
+    }
+}
+
+/// The writers of `best.*`: the TOML spec first, then `writers` but a second `.toml`.
+fn best_writers<'a>(writers: &[&'a dyn CutWriter]) -> Vec<&'a dyn CutWriter> {
+    let mut all: Vec<&dyn CutWriter> = vec![&TOML_WRITER];
+    all.extend(writers.iter().filter(|w| w.extension() != "toml"));
+    all
+}
+
+/// Every file [`write_folder`] may write, in the order it writes them, with `writers` for the
+/// best cut, a convergence chart (`chart`) and a page (`page`): `config.toml`, `history.csv`,
+/// `convergence.png` and `.svg`, `best.toml` and `best.EXT` per writer (when a best cut is
+/// found), `report.html`, `report.json`, `report.md`. What a caller must not let replace an
+/// input.
+pub fn run_files(writers: &[&dyn CutWriter], chart: bool, page: bool) -> Vec<String> {
+    let mut files = vec!["config.toml".to_string(), "history.csv".into()];
+    if chart {
+        files.extend(["convergence.png".into(), "convergence.svg".into()]);
+    }
+    files.extend(
+        best_writers(writers)
+            .iter()
+            .map(|w| format!("best.{}", w.extension())),
+    );
+    if page {
+        files.push("report.html".into());
+    }
+    files.extend(["report.json".into(), "report.md".into()]);
+    files
+}
+
 /// A finished run.
 pub struct RunSummary {
     /// The run folder.
@@ -332,9 +372,7 @@ pub fn write_folder(
             r.footnotes.push(format!("Optic axis: {a}"));
         }
         let cut = &cut;
-        let mut all: Vec<&dyn CutWriter> = vec![&TOML_WRITER];
-        all.extend(writers.iter().filter(|w| w.extension() != "toml"));
-        for w in all {
+        for w in best_writers(writers) {
             let name = format!("best.{}", w.extension());
             let mut bytes = w.render(cut)?;
             if let (Some(a), "toml") = (&axis, w.extension()) {

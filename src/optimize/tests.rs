@@ -227,6 +227,16 @@ fn a_run_improves_on_its_start_and_writes_every_file() {
         );
         assert!(s.report.files.contains(&f.to_string()), "{f} listed");
     }
+    // What the folder holds is what `RunOptions::files` says a run writes (the list the binary
+    // keeps from replacing an input).
+    let mut written: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .collect();
+    written.sort();
+    let mut listed = opts.files();
+    listed.sort();
+    assert_eq!(written, listed);
     // The chart hook received the run's history.
     assert_eq!(
         std::fs::read_to_string(out.join("convergence.png")).unwrap(),

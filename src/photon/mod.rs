@@ -101,6 +101,26 @@ pub enum LightKind {
     Undirected,
 }
 
+impl LightKind {
+    /// `directed` or `undirected`.
+    pub fn name(self) -> &'static str {
+        match self {
+            LightKind::Directed => "directed",
+            LightKind::Undirected => "undirected",
+        }
+    }
+}
+
+/// What `facetlab trace` shines on a stone: one light, or the thesis's rotation sweep
+/// ([`rotation_sweep`]) of a kind of light.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LightChoice {
+    /// One light.
+    Single(Light),
+    /// The rotation sweep with this kind of light.
+    Rotate(LightKind),
+}
+
 /// Size of the square light.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -503,6 +523,21 @@ pub fn rotation_sweep(
         .iter()
         .map(|&a| trace_cut(solid, name, &Light::rotated(kind, a), &cfg, progress))
         .collect()
+}
+
+/// A named stone under `light`: one tally for one light ([`trace_cut`]), one per angle of
+/// the rotation sweep ([`rotation_sweep`]).
+pub fn trace_choice(
+    solid: &Polyhedron,
+    name: &str,
+    light: &LightChoice,
+    cfg: &TraceConfig,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<Vec<Tally>> {
+    match light {
+        LightChoice::Single(l) => Ok(vec![trace_cut(solid, name, l, cfg, progress)?]),
+        LightChoice::Rotate(k) => rotation_sweep(solid, name, *k, cfg, progress),
+    }
 }
 
 fn run_shot(

@@ -13,11 +13,12 @@
 //!   objective of a plan config ([`PlanConfig`]: weight, weight under a grade or a minimum
 //!   brilliance, or value from a price table, [`PriceTable`]);
 //! - the plans as data ([`Plan`]): the family's cut, its pose and scale, the placed cut in the
-//!   rough's coordinates, carats, yield, grade and objective, for the binary to write as a run
-//!   folder (with scores) and for the plot floor to draw.
-//!
-//! Not yet here: the workbench's upload of a rough (the binary writes the glTF scene with
-//! `crate::io::gltf`).
+//!   rough's coordinates, carats, yield, grade and objective, for the run folder and for the
+//!   plot floor to draw;
+//! - the run ([`run`]): the families planned in turn ([`plan_families`]) and the run folder
+//!   written from them with scores ([`write_folder`]: OBJ, TOML, GemCad, glTF, the
+//!   `summary.json` document of [`summary`], and the pictures and page that a [`Drawings`]
+//!   from the floors above draws).
 //!
 //! What it may import: [`crate::optimize`] and every floor below it (`verify`, `metrics`,
 //! `render`, the tracers, `optics`, `io`, `cut`, `geometry`, `error`). Never `plot`, `report`
@@ -27,18 +28,22 @@
 //! Files: `mesh.rs` reads a rough's triangles, `rough.rs` makes the rough (hull or crystal
 //! form), `fit.rs` is the containment program, `search.rs` the search over orientation and
 //! proportions, `config.rs` the plan config (objective, bounds, price table), `sample.rs` the
-//! example rough (a distorted octahedron mesh).
+//! example rough (a distorted octahedron mesh), `run.rs` the run and its folder, `summary.rs`
+//! the folder's `summary.json`.
 
 pub mod ball;
 pub mod config;
 pub mod fit;
 pub mod mesh;
 pub mod rough;
+pub mod run;
 pub mod sample;
 pub mod search;
+pub mod summary;
 
 pub use ball::{enclosing_ball, Ball};
 pub use config::{Bound, Objective, PlanConfig, PriceTable, DEFAULT_FAMILIES};
 pub use fit::{largest_copy, Fit};
 pub use rough::{load_rough, Rough, CRYSTALS};
+pub use run::{plan_families, write_folder, Drawings, PlacedPlan, Run};
 pub use search::{plan_warnings, Plan, Planner};

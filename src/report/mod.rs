@@ -15,7 +15,8 @@
 //! `page.rs` writes the page ([`html`]); `tilt.rs` its tilt performance (the pictures' row and the
 //! chart, an inline SVG); `run.rs` makes an optimizer run's `report.html` from
 //! what the run returned ([`run_page`], the [`RunPage`](crate::optimize::RunPage) the binary
-//! hands to a run); `plan.rs` a rough plan's page ([`plan_page`]). The report sits on top of the library: it may import every floor below it
+//! hands to a run); `plan.rs` a rough plan's page ([`plan_page`]) and the pictures of its run folder
+//! ([`PlanDrawings`]). The report sits on top of the library: it may import every floor below it
 //! (the optimizer, the plots and everything under them); nothing in the library imports it.
 
 mod page;
@@ -24,7 +25,7 @@ mod run;
 mod tilt;
 
 pub use page::{base64, escape, html, SCORE_LINES};
-pub use plan::plan_page;
+pub use plan::{plan_page, PlanDrawings};
 pub use run::run_page;
 
 use crate::cut::Cut;

@@ -5,8 +5,65 @@
 use super::{base64, escape, html, measure, ReportOptions};
 use crate::error::Result;
 use crate::metrics::ScoreConfig;
-use crate::plan::{Plan, Rough};
+use crate::plan::{Drawings, PlacedPlan, Plan, Rough};
+use crate::plot::plan::{Overview, Placed, ThreeViews};
 use std::fmt::Write;
+use std::path::Path;
+
+/// The pictures and page of a plan's run folder ([`crate::plan::write_folder`]): the three
+/// views and the overview of [`crate::plot::plan`], the page of [`plan_page`].
+pub struct PlanDrawings;
+
+fn placed<'a>(p: &PlacedPlan<'a>) -> Placed<'a> {
+    Placed {
+        solid: p.solid,
+        label: p.label.to_string(),
+        frame: p.frame,
+    }
+}
+
+impl Drawings for PlanDrawings {
+    fn views(
+        &self,
+        rough: &Rough,
+        stem: &str,
+        plan: &PlacedPlan<'_>,
+        png: &Path,
+        svg: &Path,
+    ) -> Result<()> {
+        let views = ThreeViews {
+            rough: &rough.solid,
+            cut: placed(plan),
+            title: format!("{} in {}", stem, rough.name),
+        };
+        crate::plot::save_to(&views, png, svg)
+    }
+
+    fn overview(
+        &self,
+        rough: &Rough,
+        best: &[PlacedPlan<'_>],
+        png: &Path,
+        svg: &Path,
+    ) -> Result<()> {
+        let overview = Overview {
+            rough: &rough.solid,
+            cuts: best.iter().map(placed).collect(),
+            title: format!("best plan of each family in {}", rough.name),
+        };
+        crate::plot::save_to(&overview, png, svg)
+    }
+
+    fn page(
+        &self,
+        rough: &Rough,
+        all: &[(String, Vec<Plan>)],
+        views: &[Vec<u8>],
+        score: &ScoreConfig,
+    ) -> Result<String> {
+        plan_page(rough, all, views, score)
+    }
+}
 
 /// The page: `plans` per family (best first), `views` the PNG of each family's best plan in
 /// the rough (same order), `score` the settings the cuts are scored with.

@@ -32,8 +32,6 @@ mod verifier;
 
 pub use verifier::{Verification, Verifier};
 
-pub mod json;
-
 use crate::cut::Cut;
 use crate::error::Result;
 use crate::geometry::{FacetPlane, Polyhedron};

@@ -16,9 +16,10 @@ use super::progress::bar;
 use clap::Args;
 use facetlab::error::{Error, Result};
 use facetlab::optimize as opt;
-use facetlab::optimize::{BeamEvaluator, PhotonVerifier, Progress, Status};
-use facetlab::optimize::{Config, Evaluator, Verifier};
+use facetlab::optimize::Config;
+pub use facetlab::optimize::{real_scorers, Scorers};
 use facetlab::optimize::{CutWriter, FnWriter, GemWriter, Hooks, RunOptions};
+use facetlab::optimize::{Progress, Status};
 use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
@@ -88,33 +89,6 @@ fn cut_writers(config: &Config) -> Vec<&'static dyn CutWriter> {
     all
 }
 
-/// The objective's scorer and the winners' verifier for a loaded config.
-pub type Scorers = (Box<dyn Evaluator>, Option<Box<dyn Verifier>>);
-
-/// The real scorers: the beam tracer and the photon tracer, both with the config's `[score]`
-/// settings. They can only be made from a loaded config, so no command scores with defaults.
-pub fn real_scorers(config: &Config) -> Scorers {
-    (
-        Box::new(BeamEvaluator::new(config)),
-        Some(Box::new(PhotonVerifier::new(config))),
-    )
-}
-
-/// The files a run folder may hold (see `write_folder` in src/optimize/run.rs).
-const RUN_FILES: [&str; 11] = [
-    "config.toml",
-    "history.csv",
-    "convergence.png",
-    "convergence.svg",
-    "best.toml",
-    "best.asc",
-    "best.gem",
-    "best.obj",
-    "best.svg",
-    "report.json",
-    "report.md",
-];
-
 /// The exit status of a finished `optimize`: 130 when a signal stopped it (its folder is
 /// written all the same), else 0.
 pub fn optimize_exit(interrupted: bool) -> Exit {
@@ -125,12 +99,24 @@ pub fn optimize_exit(interrupted: bool) -> Exit {
     }
 }
 
-/// Refuse an `--out` folder whose files would replace an input (the config read, the design
-/// its `[cut] file` names), with or without `force`, or any folder that is not empty unless
-/// `force`; check that it can be written (without making it).
-fn check_run_folder(out: &Path, inputs: &[PathBuf], force: bool) -> Result<()> {
+/// The options of `optimize`'s run (writers, chart, page), without its hooks.
+fn run_options(config: &Config, out: Option<PathBuf>) -> RunOptions<'static> {
+    RunOptions {
+        out,
+        writers: cut_writers(config),
+        convergence: Some(facetlab::plot::optimize::convergence),
+        html_report: Some(facetlab::report::run_page),
+        ..RunOptions::default()
+    }
+}
+
+/// Refuse an `--out` folder whose files (`files`, what the run writes:
+/// [`RunOptions::files`]) would replace an input (the config read, the design its `[cut] file`
+/// names), with or without `force`, or any folder that is not empty unless `force`; check
+/// that it can be written (without making it).
+fn check_run_folder(out: &Path, files: &[String], inputs: &[PathBuf], force: bool) -> Result<()> {
     let mut outputs = vec![("--out", out.to_path_buf())];
-    outputs.extend(RUN_FILES.iter().map(|f| ("--out", out.join(f))));
+    outputs.extend(files.iter().map(|f| ("--out", out.join(f))));
     refuse_overwrite(&outputs, inputs)?;
     if out.is_dir() && !force {
         let busy = std::fs::read_dir(out)
@@ -163,7 +149,8 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     if let Some(out) = &a.out {
         let mut inputs = vec![a.config.clone()];
         inputs.extend(config.inputs());
-        check_run_folder(out, &inputs, a.force)?;
+        let files = run_options(&config, None).files();
+        check_run_folder(out, &files, &inputs, a.force)?;
     }
     if let Some(s) = a.seed {
         config.seed = s;
@@ -180,15 +167,11 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     );
     let progress = Bar(pb.clone());
     let opts = RunOptions {
-        out: a.out.clone(),
-        writers: cut_writers(&config),
-        convergence: Some(facetlab::plot::optimize::convergence),
         hooks: Hooks {
             stop: Some(&STOP),
             progress: Some(&progress),
         },
-        html_report: Some(facetlab::report::run_page),
-        ..RunOptions::default()
+        ..run_options(&config, a.out.clone())
     };
     let verifier = if a.no_verify {
         None

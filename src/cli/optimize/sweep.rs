@@ -8,11 +8,8 @@ use super::{bar, install_ctrl_c, Scorers, STOP};
 use crate::cli::outputs::{refuse_overwrite, Exit};
 use clap::Args;
 use facetlab::error::{Error, Result};
-use facetlab::optimize::{
-    self as opt, Axis, AxisRecord, Config, Grid, GridCell, Shard, ShardRecord, SweepScore,
-};
+use facetlab::optimize::{self as opt, Axis, Config, Grid, GridCell, Shard, ShardRun, SweepScore};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::Ordering;
 
 /// Flags of `facetlab sweep`.
 #[derive(Clone, Debug, Args)]
@@ -315,12 +312,8 @@ pub fn run_sweep_env(
     Ok(Exit::Ok)
 }
 
-/// The name of shard `s`'s folder inside a sweep's `--out` folder.
-pub fn shard_folder(s: Shard) -> String {
-    format!("shard-{}-of-{}", s.k, s.n)
-}
-
-/// Evaluate one shard into `out/shard-K-of-N/`, resuming from its `rows.csv`.
+/// Evaluate one shard into `out/shard-K-of-N/`, resuming from its `rows.csv`
+/// ([`opt::ShardRun`]).
 fn run_shard(
     a: &SweepArgs,
     config: &Config,
@@ -330,175 +323,35 @@ fn run_shard(
     out: &Path,
     make: &dyn Fn(&Config) -> Scorers,
 ) -> Result<Exit> {
-    let ext = out
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    if matches!(ext.as_deref(), Some("csv" | "png" | "svg")) {
-        return Err(Error::invalid(
-            "--out",
-            format!(
-                "{} is a file name; a sharded sweep writes a folder (its shard in OUT/{})",
-                out.display(),
-                shard_folder(shard)
-            ),
-        ));
+    if !matches!(
+        out.extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .as_deref(),
+        Some("csv" | "png" | "svg")
+    ) {
+        let outputs = ShardRun::paths(out, shard).map(|p| ("--out", p));
+        refuse_overwrite(
+            &outputs,
+            &[vec![a.config.clone()], config.inputs()].concat(),
+        )?;
     }
-    let dir = out.join(shard_folder(shard));
-    let (record_path, rows_path) = (dir.join("shard.json"), dir.join("rows.csv"));
-    refuse_overwrite(
-        &[
-            ("--out", dir.clone()),
-            ("--out", record_path.clone()),
-            ("--out", rows_path.clone()),
-        ],
-        &[vec![a.config.clone()], config.inputs()].concat(),
-    )?;
-    facetlab::io::check_writable(&dir)?;
-    let config_bytes = facetlab::io::read_bytes(&a.config)?;
-    let mine = shard.indices(grid.len());
-    let mut record = ShardRecord {
-        format: 1,
-        config: a.config.display().to_string(),
-        name: config.name.clone(),
-        family: config.space.name().to_string(),
-        config_hash: opt::config_hash(&config_bytes),
-        axes: grid
-            .axes
-            .iter()
-            .map(|x| AxisRecord {
-                key: x.key.clone(),
-                label: x.label(),
-                values: x.values.clone(),
-            })
-            .collect(),
-        grid_size: grid.len(),
-        n: shard.n,
-        k: shard.k,
-        rule: format!("index mod {} == {}", shard.n, shard.k - 1),
-        points: mine.len(),
-        done: 0,
-        complete: false,
-        resumed: 0,
-        computed: 0,
-        indices_done: Vec::new(),
-    };
-    let shown = dir.display();
-    // What an earlier run of this shard left: it must be the same sweep and shard.
-    let mut done = std::collections::BTreeSet::new();
-    if record_path.exists() {
-        let old: ShardRecord = serde_json::from_slice(&facetlab::io::read_bytes(&record_path)?)
-            .map_err(|e| Error::invalid("--out", format!("{}: {e}", record_path.display())))?;
-        if !old.same_sweep(&record) || old.k != record.k {
-            return Err(Error::invalid(
-                "--out",
-                format!("{shown} holds shard {}/{} of another sweep (config hash {}, axes or shard count differ); choose another folder", old.k, old.n, old.config_hash),
-            ));
-        }
-        if rows_path.exists() {
-            let text = String::from_utf8_lossy(&facetlab::io::read_bytes(&rows_path)?).to_string();
-            let (cells, good) = opt::read_rows(&text, grid)
-                .map_err(|e| Error::invalid("--out", format!("{}: {e}", rows_path.display())))?;
-            for c in cells {
-                if !shard.owns(c.index) || !done.insert(c.index) {
-                    return Err(Error::invalid(
-                        "--out",
-                        format!(
-                            "{}: grid point {} is not shard {}/{}'s or is there twice",
-                            rows_path.display(),
-                            c.index,
-                            shard.k,
-                            shard.n
-                        ),
-                    ));
-                }
-            }
-            if good < text.len() {
-                // A line cut short by an interruption: drop it before appending.
-                let f = std::fs::OpenOptions::new()
-                    .write(true)
-                    .open(&rows_path)
-                    .map_err(|e| Error::io(rows_path.display().to_string(), e))?;
-                f.set_len(good as u64)
-                    .map_err(|e| Error::io(rows_path.display().to_string(), e))?;
-            }
-        }
-    } else if rows_path.exists() {
-        return Err(Error::invalid(
-            "--out",
-            format!(
-                "{} exists without shard.json; choose another folder",
-                rows_path.display()
-            ),
-        ));
-    }
-    std::fs::create_dir_all(&dir).map_err(|e| Error::io(shown.to_string(), e))?;
-    record.resumed = done.len();
-    record.done = done.len();
-    record.indices_done = done.iter().copied().collect();
-    record.complete = record.done == record.points;
-    let write_record = |r: &ShardRecord| -> Result<()> {
-        let text =
-            serde_json::to_string_pretty(r).map_err(|e| Error::invalid("--out", e.to_string()))?;
-        facetlab::io::write_atomic(&record_path, (text + "\n").as_bytes())
-    };
-    write_record(&record)?;
+    let run = ShardRun::open(&a.config, config, grid, shard, out)?;
+    let r = &run.record;
     println!(
         "shard {}/{} (from {from}): {} of {} grid points ({}); resumed: {} of {} done",
-        shard.k,
-        shard.n,
-        mine.len(),
-        grid.len(),
-        record.rule,
-        record.resumed,
-        record.points
+        shard.k, shard.n, r.points, r.grid_size, r.rule, r.resumed, r.points
     );
-    let todo: Vec<usize> = mine.into_iter().filter(|i| !done.contains(i)).collect();
-    let mut file = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(&rows_path)
-        .map_err(|e| Error::io(rows_path.display().to_string(), e))?;
-    if file
-        .metadata()
-        .map_err(|e| Error::io(rows_path.display().to_string(), e))?
-        .len()
-        == 0
-    {
-        use std::io::Write;
-        file.write_all(opt::rows_header(grid).as_bytes())
-            .map_err(|e| Error::io(rows_path.display().to_string(), e))?;
-    }
-    let file = std::sync::Mutex::new(file);
-    let failed: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
     let (evaluator, _) = make(config);
     install_ctrl_c();
     let pb = bar(
-        todo.len() as u64,
+        run.todo().len() as u64,
         a.quiet,
         "{spinner} {elapsed_precise} [{bar:20}] {pos}/{len} cuts  {per_sec}  eta {eta}",
     );
-    let cells = opt::evaluate_grid(config, evaluator.as_ref(), grid, &todo, Some(&STOP), &|c| {
-        use std::io::Write;
-        // One write per row: a row is in the file whole or (after a hard kill) cut short
-        // at the end, where a resume drops it.
-        let row = opt::shard_row(c);
-        let mut f = file.lock().unwrap_or_else(|p| p.into_inner());
-        if let Err(e) = f.write_all(row.as_bytes()) {
-            *failed.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
-            STOP.store(true, Ordering::SeqCst);
-        }
-        pb.inc(1);
-    });
+    let dir = run.dir.clone();
+    let record = run.evaluate(config, evaluator.as_ref(), grid, &STOP, &|| pb.inc(1));
     pb.finish_and_clear();
-    if let Some(e) = failed.into_inner().unwrap_or_else(|p| p.into_inner()) {
-        return Err(Error::io(rows_path.display().to_string(), e));
-    }
-    done.extend(cells.iter().map(|c| c.index));
-    record.computed = cells.len();
-    record.done = done.len();
-    record.indices_done = done.iter().copied().collect();
-    record.complete = record.done == record.points;
-    write_record(&record)?;
+    let record = record?;
     println!(
         "computed {}; {} of {} done; wrote {}/ (shard.json, rows.csv)",
         record.computed,

@@ -33,6 +33,7 @@ mod photo;
 
 use super::flags;
 use super::outputs::{cut_files, refuse_overwrite};
+use facetlab::document::render::{CutJson, FrameJson};
 use facetlab::error::{Error, Result};
 use facetlab::optics::Dispersion;
 use facetlab::plot::palette::PICTURE_GROUND;
@@ -40,7 +41,6 @@ use facetlab::plot::render::{bare, compose, legend_for, Panel, Sheet};
 use facetlab::render::pose::{parse_rock, parse_tilt, rocked};
 use facetlab::render::{self, Light, RenderOptions, Stats, Tilt};
 use rayon::prelude::*;
-use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -241,111 +241,6 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
         rock,
         exposure,
     })
-}
-
-/// Statistics of one frame.
-#[derive(Clone, Debug, Serialize)]
-pub struct FrameJson {
-    /// Frame number, from 0.
-    pub frame: usize,
-    /// Tilt of this frame, degrees.
-    pub tilt_deg: f64,
-    /// Azimuth the stone tips toward, degrees.
-    pub azimuth_deg: f64,
-    /// Mean of the picture over the outline (relative to a white diffuser).
-    pub mean: f64,
-    /// ASET shares (aset only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub aset: Option<render::AsetShares>,
-    /// Fire of this one placement of the spot lights, in percent (fire only): `placement_fire`,
-    /// not the score's `fire`, which averages the lights' placements.
-    #[serde(rename = "placement_fire", skip_serializing_if = "Option::is_none")]
-    pub fire: Option<f64>,
-    /// Face-up colour of a coloured stone (L*, C*, h°, spread, extinction, windowing).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub colour: Option<render::ColourStats>,
-    /// Share of light below the tracer's thresholds.
-    pub cut_off: f64,
-    /// Exit beams drawn.
-    pub exits: usize,
-    /// Rendering time, seconds.
-    pub elapsed_s: f64,
-}
-
-impl FrameJson {
-    fn new(frame: usize, tilt: Tilt, s: &Stats, elapsed_s: f64) -> FrameJson {
-        FrameJson {
-            frame,
-            tilt_deg: tilt.tilt_deg,
-            azimuth_deg: tilt.azimuth_deg,
-            mean: s.mean,
-            aset: s.aset,
-            fire: s.fire,
-            colour: s.colour,
-            cut_off: s.cut_off,
-            exits: s.exits,
-            elapsed_s,
-        }
-    }
-}
-
-/// Statistics of one cut (see the module documentation for the keys).
-#[derive(Clone, Debug, Serialize)]
-pub struct CutJson {
-    /// The cut's name.
-    pub name: String,
-    /// CUT as given.
-    pub input: String,
-    /// Light name.
-    pub light: &'static str,
-    /// Pixels per side.
-    pub size: usize,
-    /// Mean of the picture over the outline (frame 0 with --rock).
-    pub mean: f64,
-    /// ASET shares (aset only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub aset: Option<render::AsetShares>,
-    /// Fire of this one placement of the spot lights, in percent (fire only): `placement_fire`,
-    /// not the score's `fire`, which averages the lights' placements.
-    #[serde(rename = "placement_fire", skip_serializing_if = "Option::is_none")]
-    pub fire: Option<f64>,
-    /// Colour of a coloured stone's picture (a body colour under a grey light): `l`, `c`,
-    /// `h_deg` (CIELAB L*, C*, h° of the mean colour), `l_spread` (standard deviation of the
-    /// pixels' L*), `extinction` (share of the outline whose light through the stone is darker than L* 20), `windowing`
-    /// (share of the light seen that comes from below the girdle plane).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub colour: Option<render::ColourStats>,
-    /// The stone's width in mm (with a body colour).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub width_mm: Option<f64>,
-    /// Tilt, degrees.
-    pub tilt_deg: f64,
-    /// Azimuth of the tilt, degrees.
-    pub azimuth_deg: f64,
-    /// Head shadow / port / head half-angle in use, degrees.
-    pub head_shadow_deg: f64,
-    /// Material name.
-    pub material: String,
-    /// The fixed index of `--ri`, else null.
-    pub ri: Option<f64>,
-    /// Polarization tracked.
-    pub polarization: bool,
-    /// `--exposure`.
-    pub exposure: f64,
-    /// Share of light below the tracer's thresholds.
-    pub cut_off: f64,
-    /// Exit beams drawn.
-    pub exits: usize,
-    /// Rendering time of this cut, all frames, seconds.
-    pub elapsed_s: f64,
-    /// The PNG written.
-    pub output: String,
-    /// `--rock` amplitude, degrees.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub rock_deg: Option<f64>,
-    /// Per-frame statistics (with --rock).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub frames: Option<Vec<FrameJson>>,
 }
 
 fn pct(v: f64) -> String {

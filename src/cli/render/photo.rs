@@ -7,11 +7,11 @@
 use super::RenderArgs;
 use crate::cli::flags;
 use crate::cli::outputs::{cut_files, refuse_overwrite};
+use facetlab::document::render::{PhotoFrame, PhotoRecord};
 use facetlab::error::{Error, Result};
 use facetlab::plot::render::{bare, compose, Panel, Sheet};
 use facetlab::render::photo::{
-    self, caption, parse_view, turntable, Ground, GroundKind, PhotoFrame, PhotoLight, PhotoOptions,
-    PhotoRecord, Tone,
+    self, caption, parse_view, turntable, Ground, GroundKind, PhotoLight, PhotoOptions, Tone,
 };
 use facetlab::render::pose::{parse_rock, parse_tilt, rocked};
 use rayon::prelude::*;

@@ -9,14 +9,13 @@
 //! as in `summary.json`, each with `views`: its three-view picture's address, `overview`,
 //! `report`); `POST /api/plan/stop` stops it after the family being planned (the families
 //! planned are kept); `GET /api/plan/report` is its `report.html`, `GET /api/plan/picture/NAME`
-//! one of its pictures. The run folder ([`crate::cli::plan::write_folder`]) goes to a
+//! one of its pictures. The run folder ([`facetlab::plan::write_folder`]) goes to a
 //! temporary folder that is removed once its pictures and report are read in.
 
 use super::error::{ApiError, ApiResult};
 use super::request::{decode_base64, json_object, short, Field};
 use super::runs::{lock_err, Going, Slot};
 use super::AppState;
-use crate::cli::plan::{plan_families, write_folder, Run as Folder};
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
 use axum::extract::{Path, State};
@@ -25,7 +24,9 @@ use axum::response::{IntoResponse, Response};
 use facetlab::error::Error;
 use facetlab::optics::Material;
 use facetlab::plan::mesh::read_triangles;
+use facetlab::plan::{plan_families, write_folder, Run as Folder};
 use facetlab::plan::{PlanConfig, Rough, CRYSTALS};
+use facetlab::report::PlanDrawings;
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Number, Value};
 use std::collections::BTreeMap;
@@ -352,7 +353,7 @@ fn execute(run: &PlanRun, rough: &Rough, config: &PlanConfig, material: &Materia
             started: run.started,
             warnings: &warnings,
         };
-        write_folder(&folder)?;
+        write_folder(&folder, &PlanDrawings)?;
         read_folder(&dir).map(Some)
     });
     let _ = std::fs::remove_dir_all(&dir);

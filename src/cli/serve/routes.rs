@@ -6,7 +6,6 @@ use super::error::{no_store, ApiError, ApiResult};
 use super::jobs::{build, build_design, heavy, jobs};
 use super::request::{material_for, parse_req, width_mm, Source, EXPORTS, FORMATS, PHOTO, STONE};
 use super::{page, plans, runs, AppState, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
-use crate::cli::cuts::info_json;
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
 use axum::extract::{DefaultBodyLimit, State};
@@ -15,6 +14,7 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::Router;
 use facetlab::cut::{families, Unit};
+use facetlab::document::info::info_json;
 use facetlab::io;
 use facetlab::metrics::{score, ScoreConfig};
 use facetlab::optics::Material;
@@ -225,8 +225,8 @@ async fn score_cut(
             }
         };
         let s = score(&cut.solid, &cfg);
-        let text =
-            crate::cli::score::to_json(&cfg, &[(cut.name.clone(), s)], &[], 0).map_err(|e| {
+        let text = facetlab::document::score::score_json(&cfg, &[(cut.name.clone(), s)], &[], 0)
+            .map_err(|e| {
                 ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "score", e.to_string())
             })?;
         // The same document with `quick` said, so a client can tell the two apart.

@@ -344,7 +344,7 @@ fn stem_of(name: &str) -> &str {
 fn execute(run: Arc<Run>, config: Config, id: u64) {
     let dir = std::env::temp_dir().join(format!("facetlab-serve-{}-run-{id}", std::process::id()));
     let watch = Watch(run.clone());
-    let (evaluator, verifier) = super::super::optimize::real_scorers(&config);
+    let (evaluator, verifier) = opt::real_scorers(&config);
     let result = if config.pareto.is_some() {
         opt::run_pareto(
             &config,

@@ -46,7 +46,7 @@ mod stl;
 #[cfg(test)]
 mod tests;
 
-pub use obj::{read_obj, write_obj};
+pub use obj::{read_obj, write_obj, write_obj_objects};
 pub use stl::{read_stl, write_stl, write_stl_ascii};
 
 use crate::cut::Cut;

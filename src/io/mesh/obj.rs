@@ -4,7 +4,7 @@ use super::normalise::planes_from_points;
 use super::{at, number, quote, text_noise, token, Loc, Points};
 use crate::cut::Cut;
 use crate::error::{Error, Result};
-use crate::geometry::{DVec3, FacetPlane};
+use crate::geometry::{DVec3, FacetPlane, Polyhedron};
 use std::collections::HashSet;
 use std::fmt::Write as _;
 
@@ -125,6 +125,30 @@ pub(super) fn read_obj_noted(
         }
     }
     planes_from_points(&points, source)
+}
+
+/// Solids as named OBJ objects in one file, without a header: for each, `o NAME`, its
+/// vertices (`v x y z`, as they are) and one polygon per facet (`f …`), the vertex numbers
+/// running on from the objects before it.
+pub fn write_obj_objects(objects: &[(&str, &Polyhedron)]) -> String {
+    let mut out = String::new();
+    let mut base = 0;
+    for (name, s) in objects {
+        let _ = writeln!(out, "o {name}");
+        for v in s.vertices() {
+            let _ = writeln!(out, "v {} {} {}", v.x, v.y, v.z);
+        }
+        for f in s.facets() {
+            let idx: Vec<String> = f
+                .vertices
+                .iter()
+                .map(|i| (i + 1 + base).to_string())
+                .collect();
+            let _ = writeln!(out, "f {}", idx.join(" "));
+        }
+        base += s.vertices().len();
+    }
+    out
 }
 
 /// The cut as a Wavefront OBJ text: a comment header, the solid's vertices and one polygon face

@@ -19,12 +19,15 @@
 //!
 //! The rooms: `mod.rs` holds the grid, its evaluation and its CSV; `shard.rs` a shard's
 //! share, its row file, its record (`shard.json`) and the merge's check that the shards cover
-//! the grid once; `slice.rs` the views of an N-axis grid (the axes mapped, the others held at
+//! the grid once; `resume.rs` a shard run into its folder, resumably ([`ShardRun`]);
+//! `slice.rs` the views of an N-axis grid (the axes mapped, the others held at
 //! `--at` values): heatmaps and profiles.
 
+mod resume;
 mod shard;
 mod slice;
 
+pub use resume::{shard_folder, ShardRun};
 pub use shard::{
     assemble, hash, read_rows, rows_header, shard_row, AxisRecord, Shard, ShardRecord,
 };

@@ -1,10 +1,13 @@
-//! The JSON shape of scores, as `facetlab score --json` writes it: one cut's [`Scores`] under
+//! The score document, as `facetlab score --json` writes it: one cut's [`Scores`] under
 //! its name with the [`ScoreConfig`] as understood (`settings`), or several cuts' under one
-//! `settings`, each optionally with a `verify` record (the photon tracer's checks, which
-//! [`crate::verify::json`] fills in).
+//! `settings`, each optionally with a `verify` record (the photon tracer's [`Check`]s,
+//! `facetlab score --verify`): [`score_json`]. [`scores_json`] is the shape with any `verify`
+//! record; [`SettingsJson`] the `settings` object; [`score_table`] the same scores as the
+//! table `facetlab score` prints.
 
-use super::{ScoreConfig, Scores, Tilt};
+use crate::metrics::{ScoreConfig, Scores, Tilt};
 use crate::optics::{Dispersion, StoneSize};
+use crate::verify::Check;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -134,4 +137,121 @@ pub fn scores_json<'a, V: Serialize>(
                 .collect(),
         })
     }
+}
+
+/// One [`Check`] as written: the beam tracer's value, the photon tracer's estimate and its
+/// standard error, (beam − photon)/stderr, and the photons per figure and pose.
+#[derive(Serialize)]
+struct CheckJson {
+    beam: f64,
+    photon: f64,
+    stderr: f64,
+    z: f64,
+    photons: u64,
+}
+
+/// The scores document ([`scores_json`]) with, per cut, its checks (`checks[i]` for cut `i`;
+/// none when `checks` is empty) made with `photons` photons per figure.
+pub fn score_json(
+    config: &ScoreConfig,
+    results: &[(String, Scores)],
+    checks: &[Vec<Check>],
+    photons: u64,
+) -> serde_json::Result<String> {
+    scores_json(config, results, |i| {
+        checks.get(i).map(|cs| {
+            cs.iter()
+                .map(|c| {
+                    (
+                        c.name.as_str(),
+                        CheckJson {
+                            beam: c.beam,
+                            photon: c.photon,
+                            stderr: c.stderr,
+                            z: c.z,
+                            photons,
+                        },
+                    )
+                })
+                .collect()
+        })
+    })
+}
+
+/// The table printed by `facetlab score`: one row per score, one column per cut.
+pub fn score_table(config: &ScoreConfig, results: &[(String, Scores)]) -> String {
+    type Row = (&'static str, fn(&Scores) -> f64);
+    let rows: [Row; 11] = [
+        ("overhead light return", |s| s.overhead_light_return),
+        ("brilliance (ISO+COS)/2", |s| s.brilliance),
+        ("  brilliance ISO", |s| s.brilliance_iso),
+        ("  brilliance COS", |s| s.brilliance_cos),
+        ("fire", |s| s.fire),
+        ("scintillation", |s| s.scintillation),
+        ("ASET blue 75-80°", |s| s.aset.blue),
+        ("ASET red 45-75°", |s| s.aset.red),
+        ("ASET green 0-45°", |s| s.aset.green),
+        ("ASET leak <0°", |s| s.aset.leak),
+        ("ASET port 80-90°", |s| s.aset.port),
+    ];
+    let label_w = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
+    let col_w = results
+        .iter()
+        .map(|(n, _)| n.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(8);
+    let c = config;
+    let mut out = format!(
+        "{}, {}, polarization {}, head shadow {}°, {} poses, {} bands\n",
+        c.material.name,
+        match c.material.dispersion {
+            Dispersion::Constant(n) => format!("n = {n}"),
+            _ => format!(
+                "n = {:.4} at {} nm",
+                c.material.ri(c.wavelength_nm),
+                c.wavelength_nm
+            ),
+        },
+        if c.polarization { "on" } else { "off" },
+        c.head_shadow_deg,
+        c.tilts.len(),
+        c.bands
+    );
+    out.push_str(&format!("{:label_w$}", ""));
+    for (n, _) in results {
+        out.push_str(&format!("  {n:>col_w$}"));
+    }
+    out.push('\n');
+    for (label, f) in rows {
+        let pad = label_w - label.chars().count();
+        out.push_str(label);
+        out.push_str(&" ".repeat(pad));
+        for (_, s) in results {
+            out.push_str(&format!("  {:>col_w$.4}", f(s)));
+        }
+        out.push('\n');
+    }
+    if results.iter().any(|(_, s)| s.colour.is_some()) {
+        type ColourRow = (&'static str, fn(&crate::render::ColourStats) -> f64);
+        let colour_rows: [ColourRow; 6] = [
+            ("colour L*", |c| c.l),
+            ("colour C*", |c| c.c),
+            ("colour h°", |c| c.h_deg),
+            ("  L* spread", |c| c.l_spread),
+            ("extinction (L* < 20)", |c| c.extinction),
+            ("windowing", |c| c.windowing),
+        ];
+        for (label, f) in colour_rows {
+            out.push_str(&format!("{label:label_w$}"));
+            for (_, s) in results {
+                match &s.colour {
+                    Some(c) => out.push_str(&format!("  {:>col_w$.4}", f(c))),
+                    None => out.push_str(&format!("  {:>col_w$}", "-")),
+                }
+            }
+            out.push('\n');
+        }
+    }
+    out
 }

@@ -1,0 +1,21 @@
+//! The JSON documents the commands write about cuts, each shaped here and nowhere else, so that
+//! the binary, the web page and the Python package write the same bytes:
+//!
+//! * [`score`]: `facetlab score --json` (the scores, the settings as understood, and the photon
+//!   tracer's checks of `--verify`);
+//! * [`info`]: `facetlab info --json` (proportions, tiers, ratios, size and weight, checks,
+//!   grade, instructions and meets), and the text `facetlab info` prints;
+//! * [`render`]: `facetlab render --json` (a picture's or a photograph's statistics, per frame
+//!   of an animation);
+//! * [`trace`]: `facetlab trace --json` (the photon tallies and the run's settings).
+//!
+//! Each takes the library's own results and settings (a [`Cut`](crate::cut::Cut), a
+//! [`ScoreConfig`](crate::metrics::ScoreConfig), [`Scores`](crate::metrics::Scores), a
+//! [`Tally`](crate::photon::Tally), …), never a command-line type. The folders of runs write
+//! their own documents where they are written: an optimization's `report.json` in
+//! [`crate::optimize`], a rough plan's `summary.json` in [`crate::plan`].
+
+pub mod info;
+pub mod render;
+pub mod score;
+pub mod trace;

@@ -1,0 +1,273 @@
+//! The render document, as `facetlab render --json` writes it (keys in the README): per cut,
+//! a picture's statistics ([`CutJson`], with [`FrameJson`] per frame of a rocking animation)
+//! or a photograph's ([`PhotoRecord`], with [`PhotoFrame`] per frame of a turntable or rock).
+//! One cut is written as its object, several as an array of them in the order given.
+
+use crate::optics::Dispersion;
+use crate::render::photo::{GroundStats, PhotoOptions, PhotoStats, View};
+use crate::render::{Stats, Tilt};
+use serde::Serialize;
+
+/// Statistics of one frame.
+#[derive(Clone, Debug, Serialize)]
+pub struct FrameJson {
+    /// Frame number, from 0.
+    pub frame: usize,
+    /// Tilt of this frame, degrees.
+    pub tilt_deg: f64,
+    /// Azimuth the stone tips toward, degrees.
+    pub azimuth_deg: f64,
+    /// Mean of the picture over the outline (relative to a white diffuser).
+    pub mean: f64,
+    /// ASET shares (aset only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aset: Option<crate::render::AsetShares>,
+    /// Fire of this one placement of the spot lights, in percent (fire only): `placement_fire`,
+    /// not the score's `fire`, which averages the lights' placements.
+    #[serde(rename = "placement_fire", skip_serializing_if = "Option::is_none")]
+    pub fire: Option<f64>,
+    /// Face-up colour of a coloured stone (L*, C*, h°, spread, extinction, windowing).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub colour: Option<crate::render::ColourStats>,
+    /// Share of light below the tracer's thresholds.
+    pub cut_off: f64,
+    /// Exit beams drawn.
+    pub exits: usize,
+    /// Rendering time, seconds.
+    pub elapsed_s: f64,
+}
+
+impl FrameJson {
+    /// Frame `frame` drawn at `tilt` with statistics `s` in `elapsed_s` seconds.
+    pub fn new(frame: usize, tilt: Tilt, s: &Stats, elapsed_s: f64) -> FrameJson {
+        FrameJson {
+            frame,
+            tilt_deg: tilt.tilt_deg,
+            azimuth_deg: tilt.azimuth_deg,
+            mean: s.mean,
+            aset: s.aset,
+            fire: s.fire,
+            colour: s.colour,
+            cut_off: s.cut_off,
+            exits: s.exits,
+            elapsed_s,
+        }
+    }
+}
+
+/// Statistics of one cut (see the module documentation for the keys).
+#[derive(Clone, Debug, Serialize)]
+pub struct CutJson {
+    /// The cut's name.
+    pub name: String,
+    /// CUT as given.
+    pub input: String,
+    /// Light name.
+    pub light: &'static str,
+    /// Pixels per side.
+    pub size: usize,
+    /// Mean of the picture over the outline (frame 0 with --rock).
+    pub mean: f64,
+    /// ASET shares (aset only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aset: Option<crate::render::AsetShares>,
+    /// Fire of this one placement of the spot lights, in percent (fire only): `placement_fire`,
+    /// not the score's `fire`, which averages the lights' placements.
+    #[serde(rename = "placement_fire", skip_serializing_if = "Option::is_none")]
+    pub fire: Option<f64>,
+    /// Colour of a coloured stone's picture (a body colour under a grey light): `l`, `c`,
+    /// `h_deg` (CIELAB L*, C*, h° of the mean colour), `l_spread` (standard deviation of the
+    /// pixels' L*), `extinction` (share of the outline whose light through the stone is darker than L* 20), `windowing`
+    /// (share of the light seen that comes from below the girdle plane).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub colour: Option<crate::render::ColourStats>,
+    /// The stone's width in mm (with a body colour).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub width_mm: Option<f64>,
+    /// Tilt, degrees.
+    pub tilt_deg: f64,
+    /// Azimuth of the tilt, degrees.
+    pub azimuth_deg: f64,
+    /// Head shadow / port / head half-angle in use, degrees.
+    pub head_shadow_deg: f64,
+    /// Material name.
+    pub material: String,
+    /// The fixed index of `--ri`, else null.
+    pub ri: Option<f64>,
+    /// Polarization tracked.
+    pub polarization: bool,
+    /// `--exposure`.
+    pub exposure: f64,
+    /// Share of light below the tracer's thresholds.
+    pub cut_off: f64,
+    /// Exit beams drawn.
+    pub exits: usize,
+    /// Rendering time of this cut, all frames, seconds.
+    pub elapsed_s: f64,
+    /// The PNG written.
+    pub output: String,
+    /// `--rock` amplitude, degrees.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rock_deg: Option<f64>,
+    /// Per-frame statistics (with --rock).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frames: Option<Vec<FrameJson>>,
+}
+
+/// Statistics of one frame of an animation.
+#[derive(Clone, Debug, Serialize)]
+pub struct PhotoFrame {
+    /// Frame number, from 0.
+    pub frame: usize,
+    /// The turntable's angle, degrees.
+    pub turn_deg: f64,
+    /// The stone's tilt in this frame, degrees.
+    pub tilt_deg: f64,
+    /// Mean luminance of the stone's light over its outline.
+    pub mean: f64,
+    /// Share of the light cut off.
+    pub cut_off: f64,
+    /// Exit beams drawn.
+    pub exits: usize,
+    /// Seconds.
+    pub elapsed_s: f64,
+}
+
+impl PhotoFrame {
+    /// Frame `frame` taken with `opts`, with its statistics and time.
+    pub fn new(frame: usize, opts: &PhotoOptions, stats: &PhotoStats, elapsed_s: f64) -> Self {
+        PhotoFrame {
+            frame,
+            turn_deg: opts.turn_deg,
+            tilt_deg: opts.tilt.tilt_deg,
+            mean: stats.mean,
+            cut_off: stats.cut_off,
+            exits: stats.exits,
+            elapsed_s,
+        }
+    }
+}
+
+/// One photographed cut as `render --json` writes it (keys in the README).
+#[derive(Clone, Debug, Serialize)]
+pub struct PhotoRecord {
+    /// The cut's name.
+    pub name: String,
+    /// CUT as given.
+    pub input: String,
+    /// The light's name (a rig, `studio` or `env:FILE`).
+    pub light: String,
+    /// Its turn about the vertical, degrees.
+    pub light_rotation_deg: f64,
+    /// Pixels per side.
+    pub size: usize,
+    /// Where the camera looks from.
+    pub view: View,
+    /// Camera distance (perspective), mm; null for orthographic.
+    pub distance_mm: Option<f64>,
+    /// Tile side of a perspective picture, pixels.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tile: Option<usize>,
+    /// The ground: none, white or black.
+    pub ground: &'static str,
+    /// Height of the stone's lowest point above the ground, girdle diameters.
+    pub ground_gap: f64,
+    /// The stone's tilt, degrees, and its azimuth.
+    pub tilt_deg: f64,
+    /// Azimuth of the tilt, degrees.
+    pub azimuth_deg: f64,
+    /// Tone curve.
+    pub tone: &'static str,
+    /// Exposure factor.
+    pub exposure: f64,
+    /// Material name.
+    pub material: String,
+    /// A fixed index, else null.
+    pub ri: Option<f64>,
+    /// Polarization tracked.
+    pub polarization: bool,
+    /// Wavelength bands traced (0: a stone without dispersion or colour, traced once in
+    /// red, green and blue).
+    pub bands: usize,
+    /// The stone's width, mm.
+    pub width_mm: f64,
+    /// Mean luminance of the stone's light over its outline, relative to a white diffuser
+    /// under the ISO sky (frame 0 of an animation).
+    pub mean: f64,
+    /// Share of the light cut off by the tracer's thresholds.
+    pub cut_off: f64,
+    /// Exit beams drawn.
+    pub exits: usize,
+    /// Traces of the picture (bands × tiles).
+    pub traces: usize,
+    /// The light on the ground (with a ground): directions traced, power intercepted by the
+    /// stone, landing as caustics inside and beyond the raster, escaping, absorbed, cut off,
+    /// their balance, the shadow's area and the unshadowed irradiance (luminance).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ground_light: Option<GroundStats>,
+    /// Seconds (all frames).
+    pub elapsed_s: f64,
+    /// The picture written.
+    pub output: String,
+    /// The linear picture written (`--hdr-out`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hdr_output: Option<String>,
+    /// Frames of a turntable (`--turn`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub turn_frames: Option<usize>,
+    /// Per frame, with an animation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frames: Option<Vec<PhotoFrame>>,
+}
+
+impl PhotoRecord {
+    /// The record of cut `name` (given as `input`) taken with `opts` (frame 0's), its
+    /// statistics, exposure and outputs.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        name: &str,
+        input: &str,
+        opts: &PhotoOptions,
+        stats: &PhotoStats,
+        exposure: f64,
+        output: &str,
+        hdr_output: Option<&str>,
+        frames: Vec<PhotoFrame>,
+        turn_frames: Option<usize>,
+    ) -> PhotoRecord {
+        PhotoRecord {
+            name: name.to_string(),
+            input: input.to_string(),
+            light: opts.light.name(),
+            light_rotation_deg: opts.light_rotation_deg,
+            size: opts.size,
+            view: opts.view,
+            distance_mm: opts.distance_mm,
+            tile: opts.distance_mm.map(|_| opts.tile),
+            ground: opts.ground.kind.name(),
+            ground_gap: opts.ground.gap,
+            tilt_deg: opts.tilt.tilt_deg,
+            azimuth_deg: opts.tilt.azimuth_deg,
+            tone: opts.tone.name(),
+            exposure,
+            material: opts.material.name.clone(),
+            ri: match opts.material.dispersion {
+                Dispersion::Constant(n) => Some(n),
+                _ => None,
+            },
+            polarization: opts.polarization,
+            bands: stats.bands,
+            width_mm: opts.width_mm,
+            mean: stats.mean,
+            cut_off: stats.cut_off,
+            exits: stats.exits,
+            traces: stats.traces,
+            ground_light: stats.ground,
+            elapsed_s: frames.iter().map(|f| f.elapsed_s).sum(),
+            output: output.to_string(),
+            hdr_output: hdr_output.map(str::to_string),
+            turn_frames,
+            frames: (frames.len() > 1).then_some(frames),
+        }
+    }
+}

@@ -1,0 +1,181 @@
+//! The plan document: a rough plan's `summary.json` (keys in README, section
+//! "`facetlab plan`"): the rough, the material and the objective as understood, and every plan
+//! with its weight, yield, grade, pose and scores ([`PlanJson`], made as the folder is
+//! written by [`crate::plan::run`]).
+
+use super::{Objective, Plan, PlanConfig, Rough};
+use crate::error::{Error, Result};
+use crate::metrics::Scores;
+use crate::optics::Material;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+#[derive(Serialize)]
+struct RoughJson {
+    name: String,
+    input: String,
+    volume_mm3: f64,
+    mesh_volume_mm3: Option<f64>,
+    hull_excess: f64,
+    size_mm: f64,
+    planes: usize,
+    hull_vertices: usize,
+    left_out_mm: f64,
+}
+
+#[derive(Serialize)]
+struct ScoresJson {
+    brilliance: f64,
+    fire: f64,
+    scintillation: f64,
+}
+
+/// One plan as `summary.json`'s `plans[]` lists it.
+#[derive(Serialize)]
+pub struct PlanJson {
+    family: String,
+    rank: usize,
+    stem: String,
+    carats: f64,
+    volume_mm3: f64,
+    #[serde(rename = "yield")]
+    yield_fraction: f64,
+    objective: f64,
+    grade: Option<String>,
+    meets_grade: bool,
+    meets_brilliance: bool,
+    width_mm: f64,
+    size_mm: [f64; 3],
+    params: BTreeMap<String, f64>,
+    total_depth: f64,
+    crown_height: f64,
+    pavilion_depth: f64,
+    rotation: [f64; 4],
+    table_normal: [f64; 3],
+    shift_mm: [f64; 3],
+    scores: ScoresJson,
+}
+
+impl PlanJson {
+    /// Plan `p`, ranked `rank` (from 1) in `family` and written as `stem`, with the extent
+    /// `size_mm` of its placed cut and its scores `s`, judged against `config`'s grade and
+    /// minimum brilliance.
+    pub fn new(
+        family: &str,
+        rank: usize,
+        stem: &str,
+        p: &Plan,
+        size_mm: [f64; 3],
+        s: &Scores,
+        config: &PlanConfig,
+    ) -> PlanJson {
+        let pr = p.cut.proportions();
+        PlanJson {
+            family: family.to_string(),
+            rank,
+            stem: stem.to_string(),
+            carats: p.carats,
+            volume_mm3: p.volume_mm3,
+            yield_fraction: p.yield_fraction,
+            objective: p.objective,
+            grade: p.grade.map(|g| g.name().to_string()),
+            meets_grade: match (config.grade, p.grade) {
+                (Some(w), Some(g)) => g <= w,
+                _ => true,
+            },
+            meets_brilliance: config.min_brilliance.is_none_or(|m| s.brilliance >= m),
+            width_mm: p.scale,
+            size_mm,
+            params: p.cut.params.clone(),
+            total_depth: pr.total_depth,
+            crown_height: pr.crown_height,
+            pavilion_depth: pr.pavilion_depth,
+            rotation: p.rotation.to_array(),
+            table_normal: p.up().to_array(),
+            shift_mm: p.shift.to_array(),
+            scores: ScoresJson {
+                brilliance: s.brilliance,
+                fire: s.fire,
+                scintillation: s.scintillation,
+            },
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct SummaryJson {
+    rough: RoughJson,
+    material: String,
+    density: f64,
+    objective: String,
+    currency: Option<String>,
+    grade: Option<String>,
+    min_brilliance: Option<f64>,
+    seed: u64,
+    starts: usize,
+    families: Vec<String>,
+    elapsed_s: f64,
+    plans: Vec<PlanJson>,
+    warnings: Vec<String>,
+}
+
+/// What `summary.json` is made of besides the plans.
+pub struct SummaryOf<'a> {
+    /// The rough as given (a path or a crystal form's name).
+    pub input: &'a str,
+    /// The rough.
+    pub rough: &'a Rough,
+    /// The plan config as understood.
+    pub config: &'a PlanConfig,
+    /// The material of the weights and scores.
+    pub material: &'a Material,
+    /// Seconds the run took.
+    pub elapsed_s: f64,
+    /// What the run should tell its user.
+    pub warnings: &'a [String],
+}
+
+/// `summary.json`, pretty-printed: the run `of` with its `plans` in order.
+pub fn summary_json(of: &SummaryOf<'_>, plans: Vec<PlanJson>) -> Result<String> {
+    let SummaryOf {
+        input,
+        rough,
+        config,
+        material,
+        elapsed_s,
+        warnings,
+    } = *of;
+    let summary = SummaryJson {
+        rough: RoughJson {
+            name: rough.name.clone(),
+            input: input.to_string(),
+            volume_mm3: rough.volume(),
+            mesh_volume_mm3: rough.mesh_volume,
+            hull_excess: rough.hull_excess(),
+            size_mm: rough.size(),
+            planes: rough.solid.facets().len(),
+            hull_vertices: rough.hull_vertices,
+            left_out_mm: rough.left_out,
+        },
+        material: material.name.clone(),
+        density: material.density,
+        objective: match &config.objective {
+            Objective::Weight => "weight".into(),
+            Objective::Value(_) => "value".into(),
+        },
+        currency: match &config.objective {
+            Objective::Value(t) => Some(t.currency.clone()),
+            Objective::Weight => None,
+        },
+        grade: config.grade.map(|g| g.name().to_string()),
+        min_brilliance: config.min_brilliance,
+        seed: config.seed,
+        starts: config.starts,
+        families: config.families.clone(),
+        elapsed_s,
+        plans,
+        warnings: warnings.to_vec(),
+    };
+    serde_json::to_string_pretty(&summary)
+        .map_err(|e| Error::invalid("summary.json", e.to_string()))
+}
