@@ -28,6 +28,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("grid axes", "--axis"),
     ("slice point", "--at"),
     ("map axes", "--map"),
+    ("shard folder", "--out"),
 ];
 
 /// The flag that sets the library's setting `name` ([`FLAGS`]).

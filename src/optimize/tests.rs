@@ -6,10 +6,9 @@ use super::guard::{Progress, Status, Stop};
 use super::history::History;
 use super::run::{self, FnWriter, RunOptions};
 use super::search::{self, Hooks};
-use super::{Evaluator, ScoreSet};
+use super::{Evaluator, ScoreName, ScoreName::Brilliance, ScoreSet};
 use crate::cut::Cut;
 use crate::error::Result;
-use crate::metrics::ScoreName;
 use crate::verify::{VerifyReport, VerifyRow};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Mutex;
@@ -553,11 +552,7 @@ fn pareto_front_of_the_bump() {
         .iter()
         .find(|p| p.roles.iter().any(|r| r == "corner:brilliance"))
         .unwrap();
-    assert!(
-        top.scores[&ScoreName::Brilliance] > 0.95,
-        "{:?}",
-        top.scores
-    );
+    assert!(top.scores[&Brilliance] > 0.95, "{:?}", top.scores);
     let steep = o
         .front
         .iter()
