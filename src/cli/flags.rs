@@ -5,6 +5,7 @@ use facetlab::error::{Error, Result};
 use facetlab::optics::{
     BodyColour, ColourFields, Material, MaterialFields, StoneSize, DENSITY_MAX,
 };
+use facetlab::optimize::SweepScore;
 
 pub use facetlab::io::text::{count, number};
 
@@ -77,6 +78,32 @@ pub fn on_off(flag: &str, s: &str) -> Result<bool> {
             format!("`{s}` is not allowed; use on or off"),
         )),
     }
+}
+
+/// The value parser of an on/off flag: [`on_off`]'s words, its error line naming `flag`.
+pub fn on_off_parser(
+    flag: &'static str,
+) -> impl Fn(&str) -> Result<bool> + Clone + Send + Sync + 'static {
+    move |s| on_off(flag, s)
+}
+
+/// The value parser of `--score` (`sweep`, `merge`): [`SweepScore::parse`], its error named
+/// by the flag.
+pub fn sweep_score(s: &str) -> Result<SweepScore> {
+    SweepScore::parse(s).map_err(to_flags)
+}
+
+/// The error line of a flag a value parser refused ([`on_off_parser`], …): the library's
+/// error as it is printed after parsing, so a typed flag refuses with the line its hand check
+/// gave. `None` for clap's own errors.
+pub fn refused_value(e: &clap::Error) -> Option<String> {
+    use std::error::Error as _;
+    if e.kind() != clap::error::ErrorKind::ValueValidation {
+        return None;
+    }
+    e.source()
+        .and_then(|s| s.downcast_ref::<Error>())
+        .map(|inner| to_flags(inner.clone()).to_string())
 }
 
 /// `--material` and `--ri`, shared by the commands that trace (`score`, `render`, `report`,

@@ -3,7 +3,7 @@
 
 mod batch;
 mod cuts;
-mod flags;
+pub mod flags;
 mod interrupt;
 pub mod materials;
 pub mod merge;

@@ -63,8 +63,8 @@ pub struct ScoreArgs {
     pub crystal: super::flags::CrystalArgs,
     /// Track polarization with Stokes vectors and Mueller matrices (on) or use the
     /// unpolarized average (off).
-    #[arg(long, default_value = "on", value_name = "on|off")]
-    pub polarization: String,
+    #[arg(long, default_value = "on", value_name = "on|off", action = clap::ArgAction::Set, value_parser = super::flags::on_off_parser("--polarization"))]
+    pub polarization: bool,
     /// Half-angle in degrees of the viewer's head shadow around the zenith (0 = none).
     #[arg(
         long,
@@ -99,7 +99,7 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
     let mut material = a.material.material()?;
     material.colour = a.colour.colour_for(&material)?;
     let size = a.colour.size()?;
-    let polarization = flags::on_off("--polarization", &a.polarization)?;
+    let polarization = a.polarization;
     let head = flags::number(
         "--head-shadow",
         &a.head_shadow,
@@ -280,7 +280,17 @@ mod tests {
         assert!(e(&["t", "--ri", "NaN"]).starts_with("--ri:"));
         assert!(e(&["t", "--ri", "2", "--material", "cz"]).contains("not both"));
         assert!(e(&["t", "--material", "unobtainium"]).starts_with("--material:"));
-        assert!(e(&["t", "--polarization", "maybe"]).contains("on or off"));
+        let refused = |x: &[&str]| {
+            use clap::Parser;
+            #[derive(Parser)]
+            struct W {
+                #[command(flatten)]
+                a: ScoreArgs,
+            }
+            let e = W::try_parse_from([&["score"], x].concat()).err().unwrap();
+            crate::cli::flags::refused_value(&e).unwrap()
+        };
+        assert!(refused(&["t", "--polarization", "maybe"]).contains("on or off"));
         assert!(e(&["t", "--head-shadow", "-3"]).starts_with("--head-shadow:"));
         assert!(e(&["t", "--head-shadow", "90"]).contains("[0, 60]"));
         assert!(e(&["t", "--verify", "lots"]).starts_with("--verify:"));

@@ -83,8 +83,8 @@ pub struct TraceArgs {
     pub absorption: String,
     /// Track polarization with Stokes vectors and Mueller matrices (on) or use the
     /// unpolarized average (off, the thesis).
-    #[arg(long, default_value = "on", value_name = "on|off")]
-    pub polarization: String,
+    #[arg(long, default_value = "on", value_name = "on|off", action = clap::ArgAction::Set, value_parser = super::flags::on_off_parser("--polarization"))]
+    pub polarization: bool,
     #[command(flatten)]
     pub material: super::flags::MaterialArgs,
     #[command(flatten)]
@@ -167,7 +167,7 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
         ),
     };
     let absorption = Absorption::parse("--absorption", &a.absorption)?;
-    let polarization = flags::on_off("--polarization", &a.polarization)?;
+    let polarization = a.polarization;
     let material = a.material.material()?;
     let wavelengths = match a.spectrum.trim().to_ascii_lowercase().as_str() {
         "uniform" => WavelengthSampling::Uniform,
@@ -625,7 +625,13 @@ mod tests {
     }
 
     fn err(extra: &[&str]) -> String {
-        let e = crate::cli::flags::to_flags(settings(&parse(extra)).unwrap_err()).to_string();
+        let mut v = vec!["trace", "tolkowsky"];
+        v.extend_from_slice(extra);
+        // A typed flag's refusal, else the settings' error, as the user sees either.
+        let e = match Cli::try_parse_from(v) {
+            Err(e) => crate::cli::flags::refused_value(&e).unwrap(),
+            Ok(c) => crate::cli::flags::to_flags(settings(&c.args).unwrap_err()).to_string(),
+        };
         assert!(!e.contains('\n'), "one line: {e}");
         e
     }

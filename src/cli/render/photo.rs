@@ -134,7 +134,7 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<Settings> {
     o.material = a.material.material()?;
     o.material.colour = a.colour.colour_for(&o.material)?;
     a.colour.size()?;
-    o.polarization = flags::on_off("--polarization", &a.polarization)?;
+    o.polarization = a.polarization;
     if let Some(g) = &p.ground {
         let kind = GroundKind::ALL
             .into_iter()
