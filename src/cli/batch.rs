@@ -20,29 +20,12 @@ use super::cuts::load_with_sets;
 use super::optimize::choose_shard;
 use super::outputs::{refuse_overwrite, Exit};
 use super::score::{settings, ScoreArgs};
+use facetlab::document::score::{batch_error_line, batch_line};
 use facetlab::error::{Error, Result};
-use facetlab::metrics::{score, Scores};
-use serde::Serialize;
+use facetlab::metrics::score;
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
-
-#[derive(Serialize)]
-struct Scored<'a> {
-    line: usize,
-    input: &'a str,
-    cut: &'a str,
-    #[serde(flatten)]
-    scores: &'a Scores,
-}
-
-#[derive(Serialize)]
-struct Failed<'a> {
-    line: usize,
-    input: &'a str,
-    cut: &'a str,
-    error: String,
-}
 
 /// The cut lines of a batch file: `(line number, text)`.
 pub fn cut_lines(text: &str) -> Vec<(usize, String)> {
@@ -229,22 +212,12 @@ pub fn run_env(a: &ScoreArgs, env: &dyn Fn(&str) -> Option<String>) -> Result<Ex
             Ok(cut) => {
                 let sc = score(&cut.solid, &s.config);
                 scored += 1;
-                serde_json::to_string(&Scored {
-                    line: *n,
-                    input,
-                    cut: &cut.name,
-                    scores: &sc,
-                })
+                batch_line(*n, input, &cut.name, &sc)
             }
             Err(e) => {
                 failed += 1;
                 eprintln!("facetlab: {} line {n}: {e}", batch.display());
-                serde_json::to_string(&Failed {
-                    line: *n,
-                    input,
-                    cut: &name,
-                    error: e.to_string(),
-                })
+                batch_error_line(*n, input, &name, &e.to_string())
             }
         }
         .map_err(|e| Error::invalid("--jsonl", e.to_string()))?;

@@ -25,11 +25,10 @@
 //! `paths_<cut>_wavelength`, `paths_<cut>_no_first_segment`, `facets_<cut>`.
 
 use super::flags;
-use facetlab::document::trace::trace_json;
+use facetlab::document::trace::{trace_json, trace_table};
 use facetlab::error::{Error, Result};
 use facetlab::photon::{
     self, Absorption, Light, LightChoice, LightKind, Tally, TraceConfig, WavelengthSampling,
-    CATEGORY_LABELS,
 };
 use facetlab::plot::{self, Camera, PathColor, PathStyle};
 use std::path::{Path, PathBuf};
@@ -385,7 +384,7 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         )?);
     }
     bar.finish_and_clear();
-    print_table(&set, &results);
+    print!("{}", trace_table(&set.light, &set.config, &results));
     if let Some(j) = &args.json {
         let text = trace_json(&set.light, &set.config, &args.cuts, &results)
             .and_then(|doc| serde_json::to_string_pretty(&doc))
@@ -404,111 +403,6 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         }
     }
     Ok(())
-}
-
-fn pct(v: (f64, f64)) -> String {
-    format!("{:6.2}% ±{:.2}", 100.0 * v.0, 100.0 * v.1)
-}
-
-fn print_table(set: &Settings, results: &[Vec<Tally>]) {
-    let c = &set.config;
-    let depth = c
-        .depth
-        .map(|d| d.to_string())
-        .unwrap_or_else(|| "unlimited".into());
-    let absorption = match c.absorption {
-        Absorption::None => "none".to_string(),
-        Absorption::Thesis => "thesis (0.1 per bounce)".to_string(),
-        Absorption::Beer(k) => format!("Beer–Lambert {k}/D"),
-        Absorption::Body { width_mm } => format!("body colour, width {width_mm} mm"),
-    };
-    let spectrum = match c.wavelengths {
-        WavelengthSampling::Uniform => "uniform 380–780 nm".to_string(),
-        WavelengthSampling::D65 => "D65".to_string(),
-        WavelengthSampling::Fixed(l) => format!("{l} nm"),
-    };
-    println!(
-        "material {}, depth {depth}, absorption {absorption}, polarization {}, spectrum {spectrum}, seed {}",
-        c.material.name,
-        if c.polarization { "on" } else { "off" },
-        c.seed
-    );
-    let w = results
-        .iter()
-        .map(|r| r[0].cut.chars().count())
-        .max()
-        .unwrap_or(0)
-        .max(16)
-        + 2;
-    let header = |label: &str| {
-        let mut s = format!("{label:<24}");
-        for r in results {
-            s += &format!("{:>w$}", r[0].cut);
-        }
-        s
-    };
-    match &set.light {
-        LightChoice::Single(l) => {
-            println!(
-                "light: {}; shares of photons that hit the stone ± standard error",
-                l.label
-            );
-            println!("{}", header(""));
-            let row = |label: &str, f: &dyn Fn(&Tally) -> String| {
-                let mut s = format!("{label:<24}");
-                for r in results {
-                    s += &format!("{:>w$}", f(&r[0]));
-                }
-                println!("{s}");
-            };
-            row("photons shot", &|t| t.counts.shot.to_string());
-            row("photons hit", &|t| t.counts.hit.to_string());
-            for (k, label) in CATEGORY_LABELS.iter().enumerate() {
-                row(&format!("exit faces {label}"), &|t| pct(t.category(k)));
-            }
-            row("thesis light return (up)", &|t| pct(t.light_return()));
-            row("absorbed", &|t| pct(t.absorbed()));
-            row("depth-limited", &|t| pct(t.depth_limited()));
-            row("median exit angle", &|t| {
-                let (cdf, _) = t.exit_angle_cdf();
-                cdf.iter()
-                    .position(|&v| v >= 0.5)
-                    .map(|k| format!("{k}°"))
-                    .unwrap_or_else(|| "–".into())
-            });
-            row("interactions per photon", &|t| {
-                format!("{:.2}", t.mean_interactions())
-            });
-            row("photons per second", &|t| {
-                format!("{:.3e}", t.photons_per_second())
-            });
-        }
-        LightChoice::Rotate(k) => {
-            println!(
-                "rotation sweep, {} light; {} photons hit per angle; shares ± standard error",
-                k.name(),
-                c.photons
-            );
-            for (title, f) in [
-                (
-                    "exit faces < 45°",
-                    &(|t: &Tally| pct(t.category(0))) as &dyn Fn(&Tally) -> String,
-                ),
-                ("thesis light return (up)", &|t: &Tally| {
-                    pct(t.light_return())
-                }),
-            ] {
-                println!("{}", header(title));
-                for (i, a) in photon::ROTATION_ANGLES.iter().enumerate() {
-                    let mut s = format!("{:<24}", format!("  {a}°"));
-                    for r in results {
-                        s += &format!("{:>w$}", f(&r[i]));
-                    }
-                    println!("{s}");
-                }
-            }
-        }
-    }
 }
 
 /// Write the charts and pictures; returns their stems (each written as STEM.png and STEM.svg).

@@ -2,7 +2,7 @@
 //! the binary, the web page and the Python package write the same bytes:
 //!
 //! * [`score`]: `facetlab score --json` (the scores, the settings as understood, and the photon
-//!   tracer's checks of `--verify`);
+//!   tracer's checks of `--verify`; the table it prints; the JSON Lines of `--batch`);
 //! * [`info`]: `facetlab info --json` (proportions, tiers, ratios, size and weight, checks,
 //!   grade, instructions and meets), and the text `facetlab info` prints;
 //! * [`render`]: `facetlab render --json` (a picture's or a photograph's statistics, per frame

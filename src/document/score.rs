@@ -3,7 +3,8 @@
 //! `settings`, each optionally with a `verify` record (the photon tracer's [`Check`]s,
 //! `facetlab score --verify`): [`score_json`]. [`scores_json`] is the shape with any `verify`
 //! record; [`SettingsJson`] the `settings` object; [`score_table`] the same scores as the
-//! table `facetlab score` prints.
+//! table `facetlab score` prints; [`batch_line`] and [`batch_error_line`] the lines of
+//! `facetlab score --batch`'s JSON Lines.
 
 use crate::metrics::{ScoreConfig, Scores, Tilt};
 use crate::optics::{Dispersion, StoneSize};
@@ -254,4 +255,52 @@ pub fn score_table(config: &ScoreConfig, results: &[(String, Scores)]) -> String
         }
     }
     out
+}
+
+/// A scored cut as a line of `facetlab score --batch`'s JSON Lines (without its newline):
+/// `line` (its number in the batch file), `input` (the line), `cut` (its name) and the keys of
+/// its [`Scores`], as in the score document's per-cut object.
+pub fn batch_line(
+    line: usize,
+    input: &str,
+    cut: &str,
+    scores: &Scores,
+) -> serde_json::Result<String> {
+    #[derive(Serialize)]
+    struct Scored<'a> {
+        line: usize,
+        input: &'a str,
+        cut: &'a str,
+        #[serde(flatten)]
+        scores: &'a Scores,
+    }
+    serde_json::to_string(&Scored {
+        line,
+        input,
+        cut,
+        scores,
+    })
+}
+
+/// A cut that could not be loaded or scored, as a line of `facetlab score --batch`'s JSON
+/// Lines: `line`, `input`, `cut` (the line's first word) and `error`.
+pub fn batch_error_line(
+    line: usize,
+    input: &str,
+    cut: &str,
+    error: &str,
+) -> serde_json::Result<String> {
+    #[derive(Serialize)]
+    struct Failed<'a> {
+        line: usize,
+        input: &'a str,
+        cut: &'a str,
+        error: &'a str,
+    }
+    serde_json::to_string(&Failed {
+        line,
+        input,
+        cut,
+        error,
+    })
 }
