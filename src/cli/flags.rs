@@ -87,6 +87,20 @@ pub fn on_off_parser(
     move |s| on_off(flag, s)
 }
 
+/// The value parser of a flag read by a library parser that names its field (`parse_tilt`,
+/// `Tone::parse`, …): its error line names `flag`, as the hand check's did.
+pub fn parsed<T: 'static>(
+    flag: &'static str,
+    parse: fn(&str, &str) -> Result<T>,
+) -> impl Fn(&str) -> Result<T> + Clone + Send + Sync + 'static {
+    move |s| parse(flag, s)
+}
+
+/// The value parser of `trace --seed`: any whole number from 0.
+pub fn seed(s: &str) -> Result<u64> {
+    count("--seed", s, 0, u64::MAX)
+}
+
 /// The value parser of `--score` (`sweep`, `merge`): [`SweepScore::parse`], its error named
 /// by the flag.
 pub fn sweep_score(s: &str) -> Result<SweepScore> {

@@ -77,9 +77,10 @@ pub struct TraceArgs {
         long,
         default_value = "thesis",
         value_name = "none|thesis|beer:K",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::parsed("--absorption", Absorption::parse)
     )]
-    pub absorption: String,
+    pub absorption: Absorption,
     /// Track polarization with Stokes vectors and Mueller matrices (on) or use the
     /// unpolarized average (off, the thesis).
     #[arg(long, default_value = "on", value_name = "on|off", action = clap::ArgAction::Set, value_parser = super::flags::on_off_parser("--polarization"))]
@@ -102,9 +103,10 @@ pub struct TraceArgs {
         long,
         default_value = "1",
         value_name = "N",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::seed
     )]
-    pub seed: String,
+    pub seed: u64,
     /// Write the results as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -165,7 +167,7 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
             })? as u32,
         ),
     };
-    let absorption = Absorption::parse("--absorption", &a.absorption)?;
+    let absorption = a.absorption;
     let polarization = a.polarization;
     let material = a.material.material()?;
     let wavelengths = match a.spectrum.trim().to_ascii_lowercase().as_str() {
@@ -184,7 +186,7 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
             }
         },
     };
-    let seed = flags::count("--seed", &a.seed, 0, u64::MAX)?;
+    let seed = a.seed;
     let record_paths = flags::count("--paths", &a.paths, 0, 100_000)? as usize;
     let camera = parse_camera(&a.camera)?;
     let angle = a

@@ -75,8 +75,8 @@ pub struct RenderArgs {
     pub size: String,
     /// Tilt the stone DEG degrees (−90 to 90) toward azimuth AZ (degrees from +x, default 0):
     /// `--tilt 10@45`.
-    #[arg(long, value_name = "DEG[@AZ]", allow_hyphen_values = true)]
-    pub tilt: Option<String>,
+    #[arg(long, value_name = "DEG[@AZ]", allow_hyphen_values = true, value_parser = flags::parsed("--tilt", parse_tilt))]
+    pub tilt: Option<Tilt>,
     /// Half-angle of the viewer's head shadow, the ASET port, the IdealScope head or the hearts
     /// & arrows viewer's dark tube, degrees (0–60; default 10 for aset and idealscope, 20 for
     /// arrows, 6 for hearts, 0 otherwise).
@@ -97,8 +97,8 @@ pub struct RenderArgs {
     pub set: Vec<String>,
     /// Animated PNG of the stone rocking: frame k tilted DEG·sin(2πk/FRAMES) more toward the
     /// --tilt azimuth; DEG in (0, 60], FRAMES in 2–240; loops forever.
-    #[arg(long, value_name = "DEG:FRAMES", allow_hyphen_values = true)]
-    pub rock: Option<String>,
+    #[arg(long, value_name = "DEG:FRAMES", allow_hyphen_values = true, value_parser = flags::parsed("--rock", parse_rock))]
+    pub rock: Option<(f64, usize)>,
     /// Brightness factor of the iso, cos, hearts, arrows and fire pictures (0.01–100).
     #[arg(
         long,
@@ -171,8 +171,8 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
     })?;
     let mut opts = RenderOptions::new(light);
     opts.size = flags::count("--size", &a.size, 8, 8192)? as usize;
-    if let Some(t) = &a.tilt {
-        opts.tilt = parse_tilt("--tilt", t)?;
+    if let Some(t) = a.tilt {
+        opts.tilt = t;
     }
     opts.head_shadow_deg = a
         .head_shadow
@@ -191,11 +191,7 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
     opts.material.colour = a.colour.colour_for(&opts.material)?;
     a.colour.size()?;
     opts.polarization = a.polarization;
-    let rock = a
-        .rock
-        .as_deref()
-        .map(|r| parse_rock("--rock", r))
-        .transpose()?;
+    let rock = a.rock;
     if let Some((deg, _)) = rock {
         if opts.tilt.tilt_deg.abs() + deg > 90.0 {
             return Err(Error::invalid(
