@@ -101,6 +101,26 @@ pub fn seed(s: &str) -> Result<u64> {
     count("--seed", s, 0, u64::MAX)
 }
 
+/// The value parser of a whole-number flag in `lo..=hi` ([`count`]'s words and error line).
+pub fn whole(
+    flag: &'static str,
+    lo: u64,
+    hi: u64,
+) -> impl Fn(&str) -> Result<u64> + Clone + Send + Sync + 'static {
+    move |s| count(flag, s, lo, hi)
+}
+
+/// The value parser of a number flag in `[lo, hi]`, `what` it is ([`number`]'s words and
+/// error line).
+pub fn real(
+    flag: &'static str,
+    lo: f64,
+    hi: f64,
+    what: &'static str,
+) -> impl Fn(&str) -> Result<f64> + Clone + Send + Sync + 'static {
+    move |s| number(flag, s, lo, hi, what)
+}
+
 /// The value parser of `--score` (`sweep`, `merge`): [`SweepScore::parse`], its error named
 /// by the flag.
 pub fn sweep_score(s: &str) -> Result<SweepScore> {

@@ -70,9 +70,10 @@ pub struct ScoreArgs {
         long,
         default_value = "0",
         value_name = "DEG",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = super::flags::real("--head-shadow", 0.0, 60.0, "a half-angle in degrees (0 = none)")
     )]
-    pub head_shadow: String,
+    pub head_shadow: f64,
     /// Write the scores as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -100,13 +101,7 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
     material.colour = a.colour.colour_for(&material)?;
     let size = a.colour.size()?;
     let polarization = a.polarization;
-    let head = flags::number(
-        "--head-shadow",
-        &a.head_shadow,
-        0.0,
-        60.0,
-        "a half-angle in degrees (0 = none)",
-    )?;
+    let head = a.head_shadow;
     let verify = a
         .verify
         .as_deref()
@@ -274,23 +269,25 @@ mod tests {
 
     #[test]
     fn flags_are_validated_into_one_line_errors() {
-        let e = |x: &[&str]| settings(&args(x)).unwrap_err().to_string();
-        assert!(e(&["t", "--ri", "abc"]).starts_with("--ri:"));
-        assert!(e(&["t", "--ri", "0.5"]).contains("allowed (1, 10]"));
-        assert!(e(&["t", "--ri", "NaN"]).starts_with("--ri:"));
-        assert!(e(&["t", "--ri", "2", "--material", "cz"]).contains("not both"));
-        assert!(e(&["t", "--material", "unobtainium"]).starts_with("--material:"));
-        let refused = |x: &[&str]| {
+        // The line a user sees: a typed flag's refusal, else the settings' error.
+        let e = |x: &[&str]| {
             use clap::Parser;
             #[derive(Parser)]
             struct W {
                 #[command(flatten)]
                 a: ScoreArgs,
             }
-            let e = W::try_parse_from([&["score"], x].concat()).err().unwrap();
-            crate::cli::flags::refused_value(&e).unwrap()
+            match W::try_parse_from([&["score"], x].concat()) {
+                Err(e) => crate::cli::flags::refused_value(&e).unwrap(),
+                Ok(w) => settings(&w.a).unwrap_err().to_string(),
+            }
         };
-        assert!(refused(&["t", "--polarization", "maybe"]).contains("on or off"));
+        assert!(e(&["t", "--ri", "abc"]).starts_with("--ri:"));
+        assert!(e(&["t", "--ri", "0.5"]).contains("allowed (1, 10]"));
+        assert!(e(&["t", "--ri", "NaN"]).starts_with("--ri:"));
+        assert!(e(&["t", "--ri", "2", "--material", "cz"]).contains("not both"));
+        assert!(e(&["t", "--material", "unobtainium"]).starts_with("--material:"));
+        assert!(e(&["t", "--polarization", "maybe"]).contains("on or off"));
         assert!(e(&["t", "--head-shadow", "-3"]).starts_with("--head-shadow:"));
         assert!(e(&["t", "--head-shadow", "90"]).contains("[0, 60]"));
         assert!(e(&["t", "--verify", "lots"]).starts_with("--verify:"));
@@ -480,7 +477,19 @@ mod tests {
         let s = settings(&args(&["t"])).unwrap();
         assert!(s.config.material.colour.is_none());
         assert_eq!(s.config.size, facetlab::optics::StoneSize::default());
-        let e = |x: &[&str]| settings(&args(x)).unwrap_err().to_string();
+        // The line a user sees: a typed flag's refusal, else the settings' error.
+        let e = |x: &[&str]| {
+            use clap::Parser;
+            #[derive(Parser)]
+            struct W {
+                #[command(flatten)]
+                a: ScoreArgs,
+            }
+            match W::try_parse_from([&["score"], x].concat()) {
+                Err(e) => crate::cli::flags::refused_value(&e).unwrap(),
+                Ok(w) => settings(&w.a).unwrap_err().to_string(),
+            }
+        };
         assert!(e(&["t", "--colour", "blue"]).starts_with("--colour: `blue` is not a colour"));
         assert!(
             e(&["t", "--colour-density", "2"]).starts_with("--colour-density: there is no colour")

@@ -61,9 +61,10 @@ pub struct TraceArgs {
         long,
         default_value = "1000000",
         value_name = "N",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::whole("--photons", 1, u64::MAX)
     )]
-    pub photons: String,
+    pub photons: u64,
     /// Surface interactions per photon (the entry counts), or `unlimited`.
     #[arg(
         long,
@@ -150,7 +151,7 @@ pub struct Settings {
 
 /// Validate the flags into the library's types.
 pub fn settings(a: &TraceArgs) -> Result<Settings> {
-    let photons = flags::count("--photons", &a.photons, 1, u64::MAX)?;
+    let photons = a.photons;
     photon::check_photons(photons)?;
     let depth = match a.depth.trim().to_ascii_lowercase().as_str() {
         "unlimited" | "none" | "inf" => None,

@@ -70,9 +70,10 @@ pub struct RenderArgs {
         long,
         default_value = "512",
         value_name = "PX",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::whole("--size", 8, 8192)
     )]
-    pub size: String,
+    pub size: u64,
     /// Tilt the stone DEG degrees (−90 to 90) toward azimuth AZ (degrees from +x, default 0):
     /// `--tilt 10@45`.
     #[arg(long, value_name = "DEG[@AZ]", allow_hyphen_values = true, value_parser = flags::parsed("--tilt", parse_tilt))]
@@ -104,9 +105,10 @@ pub struct RenderArgs {
         long,
         default_value = "1",
         value_name = "X",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::real("--exposure", 0.01, 100.0, "a factor")
     )]
-    pub exposure: String,
+    pub exposure: f64,
     /// Write the statistics as JSON to this file (keys in the README).
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -170,7 +172,7 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
         )
     })?;
     let mut opts = RenderOptions::new(light);
-    opts.size = flags::count("--size", &a.size, 8, 8192)? as usize;
+    opts.size = a.size as usize;
     if let Some(t) = a.tilt {
         opts.tilt = t;
     }
@@ -219,7 +221,7 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
             ));
         }
     }
-    let exposure = flags::number("--exposure", &a.exposure, 0.01, 100.0, "a factor")?;
+    let exposure = a.exposure;
     // The library names its fields; on the command line they are flags.
     let material_flag = a.material.flag();
     opts.validate().map_err(|e| match e {

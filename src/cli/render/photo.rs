@@ -118,7 +118,7 @@ const MAX_ANIMATION_PIXELS: f64 = 400e6;
 pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<Settings> {
     let p = &a.photo;
     let mut o = PhotoOptions::new(light);
-    o.size = flags::count("--size", &a.size, 8, 8192)? as usize;
+    o.size = a.size as usize;
     if let Some(v) = p.view {
         o.view = v;
     }
@@ -199,7 +199,7 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<Settings> {
             ),
         ));
     }
-    let exposure = flags::number("--exposure", &a.exposure, 0.01, 100.0, "a factor")?;
+    let exposure = a.exposure;
     // The width the stone is seen at (for a perspective camera and absorption).
     if let facetlab::optics::StoneSize::Width(w) = a.colour.size()? {
         o.width_mm = w;
