@@ -255,33 +255,31 @@ pub const VERIFY_SEED: u64 = 1;
 mod tests {
     use super::*;
 
-    fn args(extra: &[&str]) -> ScoreArgs {
+    fn parsed(extra: &[&str]) -> std::result::Result<ScoreArgs, clap::Error> {
         use clap::Parser;
         #[derive(Parser)]
         struct W {
             #[command(flatten)]
             a: ScoreArgs,
         }
-        let mut v = vec!["score"];
-        v.extend_from_slice(extra);
-        W::try_parse_from(v).unwrap().a
+        W::try_parse_from([&["score"], extra].concat()).map(|w| w.a)
+    }
+
+    fn args(extra: &[&str]) -> ScoreArgs {
+        parsed(extra).unwrap()
+    }
+
+    /// The line a user sees: a typed flag's refusal, else the settings' error.
+    fn line(extra: &[&str]) -> String {
+        match parsed(extra) {
+            Err(e) => crate::cli::flags::refused_value(&e).unwrap(),
+            Ok(a) => settings(&a).unwrap_err().to_string(),
+        }
     }
 
     #[test]
     fn flags_are_validated_into_one_line_errors() {
-        // The line a user sees: a typed flag's refusal, else the settings' error.
-        let e = |x: &[&str]| {
-            use clap::Parser;
-            #[derive(Parser)]
-            struct W {
-                #[command(flatten)]
-                a: ScoreArgs,
-            }
-            match W::try_parse_from([&["score"], x].concat()) {
-                Err(e) => crate::cli::flags::refused_value(&e).unwrap(),
-                Ok(w) => settings(&w.a).unwrap_err().to_string(),
-            }
-        };
+        let e = line;
         assert!(e(&["t", "--ri", "abc"]).starts_with("--ri:"));
         assert!(e(&["t", "--ri", "0.5"]).contains("allowed (1, 10]"));
         assert!(e(&["t", "--ri", "NaN"]).starts_with("--ri:"));
@@ -477,19 +475,7 @@ mod tests {
         let s = settings(&args(&["t"])).unwrap();
         assert!(s.config.material.colour.is_none());
         assert_eq!(s.config.size, facetlab::optics::StoneSize::default());
-        // The line a user sees: a typed flag's refusal, else the settings' error.
-        let e = |x: &[&str]| {
-            use clap::Parser;
-            #[derive(Parser)]
-            struct W {
-                #[command(flatten)]
-                a: ScoreArgs,
-            }
-            match W::try_parse_from([&["score"], x].concat()) {
-                Err(e) => crate::cli::flags::refused_value(&e).unwrap(),
-                Ok(w) => settings(&w.a).unwrap_err().to_string(),
-            }
-        };
+        let e = line;
         assert!(e(&["t", "--colour", "blue"]).starts_with("--colour: `blue` is not a colour"));
         assert!(
             e(&["t", "--colour-density", "2"]).starts_with("--colour-density: there is no colour")
