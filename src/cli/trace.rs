@@ -30,7 +30,7 @@ use facetlab::error::{Error, Result};
 use facetlab::photon::{
     self, Absorption, Light, LightChoice, LightKind, Tally, TraceConfig, WavelengthSampling,
 };
-use facetlab::plot::{self, Camera, PathColor, PathStyle};
+use facetlab::plot::{self, Camera};
 use std::path::{Path, PathBuf};
 
 /// Flags of `facetlab trace`.
@@ -275,25 +275,6 @@ fn parse_camera(s: &str) -> Result<Camera> {
     })
 }
 
-/// A file-name-safe form of a cut name.
-fn slug(name: &str) -> String {
-    let s: String = name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if s.is_empty() {
-        "cut".into()
-    } else {
-        s
-    }
-}
-
 /// Run `facetlab trace`.
 pub fn run(args: &TraceArgs) -> Result<()> {
     let mut set = settings(args)?;
@@ -398,7 +379,7 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         println!("results → {}", j.display());
     }
     if let Some(dir) = &args.plots {
-        for stem in write_plots(dir, &set, &cuts, &results)? {
+        for stem in plot::trace::trace_plots(dir, &set.light, set.camera, &cuts, &results)? {
             println!(
                 "plot → {} (and .svg)",
                 plot::with_ext(&stem, "png").display()
@@ -406,102 +387,6 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// Write the charts and pictures; returns their stems (each written as STEM.png and STEM.svg).
-fn write_plots(
-    dir: &Path,
-    set: &Settings,
-    cuts: &[facetlab::cut::Cut],
-    results: &[Vec<Tally>],
-) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
-    let firsts: Vec<&Tally> = results.iter().map(|r| &r[0]).collect();
-    let light = match &set.light {
-        LightChoice::Single(l) => l.label.clone(),
-        LightChoice::Rotate(k) => format!("{} light from above (0°)", k.name()),
-    };
-    let mut stems = Vec::new();
-    let stem = dir.join("face_categories");
-    plot::face_categories(&firsts, &light, &stem)?;
-    stems.push(stem);
-    let stem = dir.join("exit_angle_cdf");
-    plot::exit_angle_cdf(&firsts, &light, &stem)?;
-    stems.push(stem);
-    if let LightChoice::Rotate(k) = set.light {
-        let sweeps: Vec<(&str, &[Tally])> = results
-            .iter()
-            .map(|r| (r[0].cut.as_str(), r.as_slice()))
-            .collect();
-        let stem = dir.join("rotation");
-        plot::rotation(&sweeps, k.name(), &stem)?;
-        stems.push(stem);
-    }
-    for (cut, r) in cuts.iter().zip(results) {
-        let s = slug(&cut.name);
-        let t = &r[0];
-        let stem = dir.join(format!("facets_{s}"));
-        plot::facet_categories(
-            &cut.solid,
-            set.camera,
-            &format!("{}: facets by normal category", cut.name),
-            &stem,
-        )?;
-        stems.push(stem);
-        if t.paths.is_empty() {
-            continue;
-        }
-        let style = |color, first_segment, alpha, n: usize, what: &str| PathStyle {
-            camera: set.camera,
-            color,
-            first_segment,
-            alpha,
-            max_paths: n,
-            title: format!("{}: {what} ({})", cut.name, t.light),
-        };
-        let variants = [
-            (
-                "one",
-                style(PathColor::Bounces, true, 1.0, 1, "one photon path"),
-            ),
-            (
-                "bounces",
-                style(
-                    PathColor::Bounces,
-                    true,
-                    0.25,
-                    usize::MAX,
-                    "photon paths by bounce count",
-                ),
-            ),
-            (
-                "wavelength",
-                style(
-                    PathColor::Wavelength,
-                    true,
-                    0.25,
-                    usize::MAX,
-                    "photon paths by wavelength",
-                ),
-            ),
-            (
-                "no_first_segment",
-                style(
-                    PathColor::Bounces,
-                    false,
-                    0.25,
-                    usize::MAX,
-                    "paths inside and out, light segment hidden",
-                ),
-            ),
-        ];
-        for (name, st) in variants {
-            let stem = dir.join(format!("paths_{s}_{name}"));
-            plot::photon_paths(&cut.solid, &t.paths, &st, &stem)?;
-            stems.push(stem);
-        }
-    }
-    Ok(stems)
 }
 
 #[cfg(test)]

@@ -120,7 +120,7 @@ impl Default for RunOptions<'_> {
 }
 
 impl RunOptions<'_> {
-    /// Every file [`write_folder`] may write into a run folder with these options ([`run_files`]).
+    /// Every file a [`run`] may write into its folder with these options ([`run_files`]).
     pub fn files(&self) -> Vec<String> {
         run_files(
             &self.writers,
@@ -137,11 +137,11 @@ fn best_writers<'a>(writers: &[&'a dyn CutWriter]) -> Vec<&'a dyn CutWriter> {
     all
 }
 
-/// Every file [`write_folder`] may write, in the order it writes them, with `writers` for the
-/// best cut, a convergence chart (`chart`) and a page (`page`): `config.toml`, `history.csv`,
-/// `convergence.png` and `.svg`, `best.toml` and `best.EXT` per writer (when a best cut is
-/// found), `report.html`, `report.json`, `report.md`. What a caller must not let replace an
-/// input.
+/// Every file a [`run`] may write into its folder, in the order it writes them, with
+/// `writers` for the best cut, a convergence chart (`chart`) and a page (`page`):
+/// `config.toml`, `history.csv`, `convergence.png` and `.svg`, `best.toml` and `best.EXT` per
+/// writer (when a best cut is found), `report.html`, `report.json`, `report.md`. What a caller
+/// must not let replace an input.
 pub fn run_files(writers: &[&dyn CutWriter], chart: bool, page: bool) -> Vec<String> {
     let mut files = vec!["config.toml".to_string(), "history.csv".into()];
     if chart {

@@ -1,14 +1,16 @@
 //! The photon tracer's charts: where the light leaves (face categories), the cumulative exit
-//! angle, and the rotation sweep.
+//! angle, and the rotation sweep; and every chart and picture of a trace ([`trace_plots`]).
 
 use super::{
     box_key, every_30, font, legend, line_key, save, DrawResult, Figure, LegendStyle, SERIES,
 };
+use super::{Camera, PathColor, PathStyle};
+use crate::cut::Cut;
 use crate::error::Result;
-use crate::photon::{Tally, CATEGORY_LABELS};
+use crate::photon::{LightChoice, Tally, CATEGORY_LABELS};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 // ---------------------------------------------------------------------------------------------
 // Face categories
@@ -228,4 +230,126 @@ impl Figure for Rotation<'_> {
 /// triangles) against the light's angle, per cut.
 pub fn rotation(sweeps: &[(&str, &[Tally])], kind: &str, stem: &Path) -> Result<()> {
     save(&Rotation { sweeps, kind }, stem)
+}
+
+/// A file-name-safe form of a cut name.
+fn slug(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() {
+        "cut".into()
+    } else {
+        s
+    }
+}
+
+/// Every chart and picture of `facetlab trace --plots DIR` into `dir` (made if missing) for
+/// `cuts` traced under `light` (`results[cut]`: one tally, or one per angle of the sweep), the
+/// pictures seen through `camera`: `face_categories`, `exit_angle_cdf`, `rotation` (the sweep),
+/// and per cut `facets_<cut>` and, with recorded paths, `paths_<cut>_one`, `_bounces`,
+/// `_wavelength` and `_no_first_segment`. Returns their stems (each written as STEM.png and
+/// STEM.svg).
+pub fn trace_plots(
+    dir: &Path,
+    light: &LightChoice,
+    camera: Camera,
+    cuts: &[Cut],
+    results: &[Vec<Tally>],
+) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| crate::error::Error::io(dir.display().to_string(), e))?;
+    let firsts: Vec<&Tally> = results.iter().map(|r| &r[0]).collect();
+    let label = match light {
+        LightChoice::Single(l) => l.label.clone(),
+        LightChoice::Rotate(k) => format!("{} light from above (0°)", k.name()),
+    };
+    let mut stems = Vec::new();
+    let stem = dir.join("face_categories");
+    face_categories(&firsts, &label, &stem)?;
+    stems.push(stem);
+    let stem = dir.join("exit_angle_cdf");
+    exit_angle_cdf(&firsts, &label, &stem)?;
+    stems.push(stem);
+    if let LightChoice::Rotate(k) = *light {
+        let sweeps: Vec<(&str, &[Tally])> = results
+            .iter()
+            .map(|r| (r[0].cut.as_str(), r.as_slice()))
+            .collect();
+        let stem = dir.join("rotation");
+        rotation(&sweeps, k.name(), &stem)?;
+        stems.push(stem);
+    }
+    for (cut, r) in cuts.iter().zip(results) {
+        let s = slug(&cut.name);
+        let t = &r[0];
+        let stem = dir.join(format!("facets_{s}"));
+        super::facet_categories(
+            &cut.solid,
+            camera,
+            &format!("{}: facets by normal category", cut.name),
+            &stem,
+        )?;
+        stems.push(stem);
+        if t.paths.is_empty() {
+            continue;
+        }
+        let style = |color, first_segment, alpha, n: usize, what: &str| PathStyle {
+            camera,
+            color,
+            first_segment,
+            alpha,
+            max_paths: n,
+            title: format!("{}: {what} ({})", cut.name, t.light),
+        };
+        let variants = [
+            (
+                "one",
+                style(PathColor::Bounces, true, 1.0, 1, "one photon path"),
+            ),
+            (
+                "bounces",
+                style(
+                    PathColor::Bounces,
+                    true,
+                    0.25,
+                    usize::MAX,
+                    "photon paths by bounce count",
+                ),
+            ),
+            (
+                "wavelength",
+                style(
+                    PathColor::Wavelength,
+                    true,
+                    0.25,
+                    usize::MAX,
+                    "photon paths by wavelength",
+                ),
+            ),
+            (
+                "no_first_segment",
+                style(
+                    PathColor::Bounces,
+                    false,
+                    0.25,
+                    usize::MAX,
+                    "paths inside and out, light segment hidden",
+                ),
+            ),
+        ];
+        for (name, st) in variants {
+            let stem = dir.join(format!("paths_{s}_{name}"));
+            super::photon_paths(&cut.solid, &t.paths, &st, &stem)?;
+            stems.push(stem);
+        }
+    }
+    Ok(stems)
 }
