@@ -26,6 +26,14 @@ fn parse() -> cli::Cli {
             ErrorKind::DisplayHelp
             | ErrorKind::DisplayVersion
             | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
+            _ if cli::flags::refused_value(&e).is_some() => {
+                // A typed flag's parser refused the value: its line, as a hand check gave it.
+                eprintln!(
+                    "facetlab: {}",
+                    cli::flags::refused_value(&e).unwrap_or_default()
+                );
+                std::process::exit(2);
+            }
             _ => {
                 let text = e.render().to_string();
                 // The message is the first paragraph (a list of missing arguments continues

@@ -2,7 +2,8 @@
 //! [`MAX_LINES`] lines of code before its tests, no import circle between the files of one
 //! module, and every floor of the library importing only the floors that README.md's Layout
 //! table says it may. The table is read from the README itself, so the README cannot drift
-//! from the code without this test failing.
+//! from the code without this test failing. The library names no command-line flag: its
+//! errors name settings and fields, and `src/cli` alone turns them into flags.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -368,6 +369,53 @@ fn every_source_file_is_at_most_700_lines_before_its_tests() {
         })
         .collect();
     assert!(long.is_empty(), "over {MAX_LINES} lines: {long:?}");
+}
+
+/// Where a quoted flag (`"--` and a letter) stands in `text`, as `line: text` items.
+fn flag_literals(text: &str) -> Vec<String> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| {
+            l.match_indices("\"--")
+                .any(|(i, _)| l[i + 3..].starts_with(|c: char| c.is_ascii_alphabetic()))
+        })
+        .map(|(i, l)| format!("{}: {}", i + 1, l.trim()))
+        .collect()
+}
+
+/// The rule: no `"--` followed by a letter anywhere in a `.rs` file of `src/` outside
+/// `src/cli` and `src/main.rs`: not in code, not in its tests, not in doc comments or their
+/// examples. The library's errors name the setting (`trace depth`, `material`, `config field
+/// optimize.method.starts`) and the binary's one table (`FLAGS` in `src/cli/flags.rs`) names
+/// the flag; a library test passes a setting's name where a caller would pass a flag. A doc
+/// comment may show a command line, written in backticks (`facetlab render --tilt 10@45`),
+/// never as a quoted literal; a flag named in the prose of a message (`give --size-mm L`) is
+/// not a quoted literal either, and is left to review.
+#[test]
+fn the_library_quotes_no_command_line_flag() {
+    let src = root().join("src");
+    let mut files = Vec::new();
+    rs_files(&src, &mut files);
+    let found: Vec<String> = files
+        .iter()
+        .filter(|p| {
+            let rel = p.strip_prefix(&src).unwrap();
+            !rel.starts_with(BINARY) && rel != Path::new("main.rs")
+        })
+        .flat_map(|p| {
+            let rel = p.strip_prefix(root()).unwrap().display().to_string();
+            flag_literals(&std::fs::read_to_string(p).unwrap())
+                .into_iter()
+                .map(move |l| format!("{rel}:{l}"))
+        })
+        .collect();
+    assert!(
+        found.is_empty(),
+        "flag literals in the library (name the setting; src/cli/flags.rs maps it): {found:#?}"
+    );
+    // The checker sees them, and not a Markdown rule or a `--` alone.
+    assert_eq!(flag_literals("x\n  f(\"--depth\", 1);").len(), 1);
+    assert!(flag_literals("write!(o, \"---:|\"); \"-- \"").is_empty());
 }
 
 #[test]

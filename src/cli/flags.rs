@@ -5,8 +5,68 @@ use facetlab::error::{Error, Result};
 use facetlab::optics::{
     BodyColour, ColourFields, Material, MaterialFields, StoneSize, DENSITY_MAX,
 };
+use facetlab::optimize::SweepScore;
 
 pub use facetlab::io::text::{count, number};
+
+/// The one table from the library's names of settings (the field its errors name) to the
+/// flag a user types for each: the library speaks of a `trace depth`, the command line of
+/// `--depth`. Every error leaving a command passes through [`to_flags`].
+pub const FLAGS: &[(&str, &str)] = &[
+    ("light angle", "--angle"),
+    ("photon count", "--photons"),
+    ("trace depth", "--depth"),
+    ("absorption model", "--absorption"),
+    ("fixed wavelength", "--spectrum"),
+    ("refractive index", "--ri"),
+    ("material", "--material"),
+    ("rough size", "--size-mm"),
+    ("sweep score", "--score"),
+    ("sweep y axis", "--y"),
+    ("sweep grid", "--x/--y"),
+    ("run folder", "--run"),
+    ("first axis", "--x"),
+    ("grid axes", "--axis"),
+    ("slice point", "--at"),
+    ("map axes", "--map"),
+    ("shard folder", "--out"),
+];
+
+/// The flag that sets the library's setting `name` ([`FLAGS`]).
+pub fn flag_of(name: &str) -> Option<&'static str> {
+    FLAGS.iter().find(|(n, _)| *n == name).map(|(_, f)| *f)
+}
+
+/// `e` as the command line says it: a field the library names by its setting ([`FLAGS`])
+/// named by its flag instead, also behind a context the library put in front (`stone: trace
+/// depth`) when the name is one of the library's phrases (several words: a config key, one
+/// word, is never taken for a setting).
+pub fn to_flags(e: Error) -> Error {
+    let flagged = |field: String| -> String {
+        if let Some(f) = flag_of(&field) {
+            return f.to_string();
+        }
+        if let Some((ctx, name)) = field.rsplit_once(": ") {
+            if name.contains(' ') {
+                if let Some(f) = flag_of(name) {
+                    return format!("{ctx}: {f}");
+                }
+            }
+        }
+        field
+    };
+    match e {
+        Error::Invalid { field, message } => Error::Invalid {
+            field: flagged(field),
+            message,
+        },
+        Error::Parse { source, message } => Error::Parse {
+            source: flagged(source),
+            message,
+        },
+        other => other,
+    }
+}
 
 /// `on`/`off` (also `true`/`false`, `yes`/`no`).
 pub fn on_off(flag: &str, s: &str) -> Result<bool> {
@@ -18,6 +78,66 @@ pub fn on_off(flag: &str, s: &str) -> Result<bool> {
             format!("`{s}` is not allowed; use on or off"),
         )),
     }
+}
+
+/// The value parser of an on/off flag: [`on_off`]'s words, its error line naming `flag`.
+pub fn on_off_parser(
+    flag: &'static str,
+) -> impl Fn(&str) -> Result<bool> + Clone + Send + Sync + 'static {
+    move |s| on_off(flag, s)
+}
+
+/// The value parser of a flag read by a library parser that names its field (`parse_tilt`,
+/// `Tone::parse`, …): its error line names `flag`, as the hand check's did.
+pub fn parsed<T: 'static>(
+    flag: &'static str,
+    parse: fn(&str, &str) -> Result<T>,
+) -> impl Fn(&str) -> Result<T> + Clone + Send + Sync + 'static {
+    move |s| parse(flag, s)
+}
+
+/// The value parser of `trace --seed`: any whole number from 0.
+pub fn seed(s: &str) -> Result<u64> {
+    count("--seed", s, 0, u64::MAX)
+}
+
+/// The value parser of a whole-number flag in `lo..=hi` ([`count`]'s words and error line).
+pub fn whole(
+    flag: &'static str,
+    lo: u64,
+    hi: u64,
+) -> impl Fn(&str) -> Result<u64> + Clone + Send + Sync + 'static {
+    move |s| count(flag, s, lo, hi)
+}
+
+/// The value parser of a number flag in `[lo, hi]`, `what` it is ([`number`]'s words and
+/// error line).
+pub fn real(
+    flag: &'static str,
+    lo: f64,
+    hi: f64,
+    what: &'static str,
+) -> impl Fn(&str) -> Result<f64> + Clone + Send + Sync + 'static {
+    move |s| number(flag, s, lo, hi, what)
+}
+
+/// The value parser of `--score` (`sweep`, `merge`): [`SweepScore::parse`], its error named
+/// by the flag.
+pub fn sweep_score(s: &str) -> Result<SweepScore> {
+    SweepScore::parse(s).map_err(to_flags)
+}
+
+/// The error line of a flag a value parser refused ([`on_off_parser`], …): the library's
+/// error as it is printed after parsing, so a typed flag refuses with the line its hand check
+/// gave. `None` for clap's own errors.
+pub fn refused_value(e: &clap::Error) -> Option<String> {
+    use std::error::Error as _;
+    if e.kind() != clap::error::ErrorKind::ValueValidation {
+        return None;
+    }
+    e.source()
+        .and_then(|s| s.downcast_ref::<Error>())
+        .map(|inner| to_flags(inner.clone()).to_string())
 }
 
 /// `--material` and `--ri`, shared by the commands that trace (`score`, `render`, `report`,
@@ -310,6 +430,40 @@ pub fn design_materials(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn each_setting_names_one_flag_the_command_line_has() {
+        use clap::CommandFactory;
+        let cmd = crate::cli::Cli::command();
+        let longs: std::collections::BTreeSet<String> = cmd
+            .get_subcommands()
+            .flat_map(|s| s.get_arguments().filter_map(|a| a.get_long()))
+            .map(|l| format!("--{l}"))
+            .collect();
+        for (i, (name, flag)) in FLAGS.iter().enumerate() {
+            assert!(FLAGS[..i].iter().all(|(n, _)| n != name), "{name} twice");
+            for f in flag.split('/') {
+                assert!(longs.contains(f), "{name}: {f} is no flag of any command");
+            }
+        }
+    }
+
+    #[test]
+    fn errors_leave_the_binary_named_by_flags() {
+        let shown = |field: &str| to_flags(Error::invalid(field, "m")).to_string();
+        assert_eq!(shown("trace depth"), "--depth: m");
+        assert_eq!(shown("sweep grid"), "--x/--y: m");
+        assert_eq!(shown("material"), "--material: m");
+        // Behind a context the library puts in front (a stone's name).
+        assert_eq!(shown("round: absorption model"), "round: --absorption: m");
+        // A config's key is one word: never taken for a setting.
+        assert_eq!(shown("plan.toml: material"), "plan.toml: material: m");
+        assert_eq!(shown("--tilt"), "--tilt: m");
+        assert_eq!(
+            to_flags(Error::parse("photon count", "m")).to_string(),
+            "--photons: m"
+        );
+    }
 
     #[test]
     fn a_designs_index_follows_the_rule_of_ri() {

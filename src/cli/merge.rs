@@ -24,8 +24,8 @@ pub struct MergeArgs {
     #[arg(short = 'o', long = "out", value_name = "FILE|DIR")]
     pub out: PathBuf,
     /// The score drawn on the map and summarised (as for `sweep`).
-    #[arg(long, default_value = "brilliance")]
-    pub score: String,
+    #[arg(long, default_value = "brilliance", value_parser = super::flags::sweep_score)]
+    pub score: SweepScore,
     /// The two axes the map shows (as for `sweep`).
     #[arg(long, value_name = "KEY1,KEY2")]
     pub map: Option<String>,
@@ -80,7 +80,7 @@ fn shard_dirs(args: &[PathBuf]) -> Result<Vec<PathBuf>> {
 
 /// Run `facetlab merge`.
 pub fn run(a: &MergeArgs) -> Result<Exit> {
-    let score = SweepScore::parse(&a.score)?;
+    let score = a.score.clone();
     let dirs = shard_dirs(&a.shards)?;
     let records = dirs
         .iter()

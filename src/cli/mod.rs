@@ -3,7 +3,7 @@
 
 mod batch;
 mod cuts;
-mod flags;
+pub mod flags;
 mod interrupt;
 pub mod materials;
 pub mod merge;
@@ -104,7 +104,7 @@ pub enum Command {
 /// exit code 2).
 pub fn run(cli: Cli) -> Result<Exit> {
     let done = |r: Result<()>| r.map(|()| Exit::Ok);
-    match cli.command {
+    let result = match cli.command {
         Command::Generate(a) => done(cuts::generate(&a)),
         Command::Info(a) => done(cuts::info(&a)),
         Command::List(a) => done(cuts::list(&a)),
@@ -120,5 +120,6 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::Retarget(a) => done(retarget::run(&a)),
         Command::Plan(a) => plan::run(&a),
         Command::Serve(a) => done(serve::run(&a)),
-    }
+    };
+    result.map_err(flags::to_flags)
 }

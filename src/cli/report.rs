@@ -36,9 +36,10 @@ pub struct ReportArgs {
         long,
         default_value = "320",
         value_name = "PX",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = super::flags::whole("--size", 64, 1024)
     )]
-    pub size: String,
+    pub size: u64,
     /// Title of the page.
     #[arg(long, value_name = "TEXT")]
     pub title: Option<String>,
@@ -52,7 +53,7 @@ pub struct ReportArgs {
 
 /// Run `facetlab report`.
 pub fn run(a: &ReportArgs) -> Result<()> {
-    let size = flags::count("--size", &a.size, 64, 1024)? as usize;
+    let size = a.size as usize;
     let photons = flags::count("--verify", &a.verify, 0, 1_000_000_000)?;
     let material = a.material.material()?;
     refuse_overwrite(&[("-o", a.output.clone())], &cut_files(&a.cuts))?;

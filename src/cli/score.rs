@@ -63,16 +63,17 @@ pub struct ScoreArgs {
     pub crystal: super::flags::CrystalArgs,
     /// Track polarization with Stokes vectors and Mueller matrices (on) or use the
     /// unpolarized average (off).
-    #[arg(long, default_value = "on", value_name = "on|off")]
-    pub polarization: String,
+    #[arg(long, default_value = "on", value_name = "on|off", action = clap::ArgAction::Set, value_parser = super::flags::on_off_parser("--polarization"))]
+    pub polarization: bool,
     /// Half-angle in degrees of the viewer's head shadow around the zenith (0 = none).
     #[arg(
         long,
         default_value = "0",
         value_name = "DEG",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = super::flags::real("--head-shadow", 0.0, 60.0, "a half-angle in degrees (0 = none)")
     )]
-    pub head_shadow: String,
+    pub head_shadow: f64,
     /// Write the scores as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -99,14 +100,8 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
     let mut material = a.material.material()?;
     material.colour = a.colour.colour_for(&material)?;
     let size = a.colour.size()?;
-    let polarization = flags::on_off("--polarization", &a.polarization)?;
-    let head = flags::number(
-        "--head-shadow",
-        &a.head_shadow,
-        0.0,
-        60.0,
-        "a half-angle in degrees (0 = none)",
-    )?;
+    let polarization = a.polarization;
+    let head = a.head_shadow;
     let verify = a
         .verify
         .as_deref()
@@ -260,21 +255,31 @@ pub const VERIFY_SEED: u64 = 1;
 mod tests {
     use super::*;
 
-    fn args(extra: &[&str]) -> ScoreArgs {
+    fn parsed(extra: &[&str]) -> std::result::Result<ScoreArgs, clap::Error> {
         use clap::Parser;
         #[derive(Parser)]
         struct W {
             #[command(flatten)]
             a: ScoreArgs,
         }
-        let mut v = vec!["score"];
-        v.extend_from_slice(extra);
-        W::try_parse_from(v).unwrap().a
+        W::try_parse_from([&["score"], extra].concat()).map(|w| w.a)
+    }
+
+    fn args(extra: &[&str]) -> ScoreArgs {
+        parsed(extra).unwrap()
+    }
+
+    /// The line a user sees: a typed flag's refusal, else the settings' error.
+    fn line(extra: &[&str]) -> String {
+        match parsed(extra) {
+            Err(e) => crate::cli::flags::refused_value(&e).unwrap(),
+            Ok(a) => settings(&a).unwrap_err().to_string(),
+        }
     }
 
     #[test]
     fn flags_are_validated_into_one_line_errors() {
-        let e = |x: &[&str]| settings(&args(x)).unwrap_err().to_string();
+        let e = line;
         assert!(e(&["t", "--ri", "abc"]).starts_with("--ri:"));
         assert!(e(&["t", "--ri", "0.5"]).contains("allowed (1, 10]"));
         assert!(e(&["t", "--ri", "NaN"]).starts_with("--ri:"));
@@ -470,7 +475,7 @@ mod tests {
         let s = settings(&args(&["t"])).unwrap();
         assert!(s.config.material.colour.is_none());
         assert_eq!(s.config.size, facetlab::optics::StoneSize::default());
-        let e = |x: &[&str]| settings(&args(x)).unwrap_err().to_string();
+        let e = line;
         assert!(e(&["t", "--colour", "blue"]).starts_with("--colour: `blue` is not a colour"));
         assert!(
             e(&["t", "--colour-density", "2"]).starts_with("--colour-density: there is no colour")

@@ -61,9 +61,10 @@ pub struct TraceArgs {
         long,
         default_value = "1000000",
         value_name = "N",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::whole("--photons", 1, u64::MAX)
     )]
-    pub photons: String,
+    pub photons: u64,
     /// Surface interactions per photon (the entry counts), or `unlimited`.
     #[arg(
         long,
@@ -77,13 +78,14 @@ pub struct TraceArgs {
         long,
         default_value = "thesis",
         value_name = "none|thesis|beer:K",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::parsed("--absorption", Absorption::parse)
     )]
-    pub absorption: String,
+    pub absorption: Absorption,
     /// Track polarization with Stokes vectors and Mueller matrices (on) or use the
     /// unpolarized average (off, the thesis).
-    #[arg(long, default_value = "on", value_name = "on|off")]
-    pub polarization: String,
+    #[arg(long, default_value = "on", value_name = "on|off", action = clap::ArgAction::Set, value_parser = super::flags::on_off_parser("--polarization"))]
+    pub polarization: bool,
     #[command(flatten)]
     pub material: super::flags::MaterialArgs,
     #[command(flatten)]
@@ -102,9 +104,10 @@ pub struct TraceArgs {
         long,
         default_value = "1",
         value_name = "N",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::seed
     )]
-    pub seed: String,
+    pub seed: u64,
     /// Write the results as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -148,7 +151,7 @@ pub struct Settings {
 
 /// Validate the flags into the library's types.
 pub fn settings(a: &TraceArgs) -> Result<Settings> {
-    let photons = flags::count("--photons", &a.photons, 1, u64::MAX)?;
+    let photons = a.photons;
     photon::check_photons(photons)?;
     let depth = match a.depth.trim().to_ascii_lowercase().as_str() {
         "unlimited" | "none" | "inf" => None,
@@ -165,11 +168,11 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
             })? as u32,
         ),
     };
-    let absorption = Absorption::parse("--absorption", &a.absorption)?;
-    let polarization = flags::on_off("--polarization", &a.polarization)?;
+    let absorption = a.absorption;
+    let polarization = a.polarization;
     let material = a.material.material()?;
     let wavelengths = WavelengthSampling::parse("--spectrum", &a.spectrum)?;
-    let seed = flags::count("--seed", &a.seed, 0, u64::MAX)?;
+    let seed = a.seed;
     let record_paths = flags::count("--paths", &a.paths, 0, 100_000)? as usize;
     let camera = parse_camera(&a.camera)?;
     let angle = a
@@ -389,7 +392,13 @@ mod tests {
     }
 
     fn err(extra: &[&str]) -> String {
-        let e = settings(&parse(extra)).unwrap_err().to_string();
+        let mut v = vec!["trace", "tolkowsky"];
+        v.extend_from_slice(extra);
+        // A typed flag's refusal, else the settings' error, as the user sees either.
+        let e = match Cli::try_parse_from(v) {
+            Err(e) => crate::cli::flags::refused_value(&e).unwrap(),
+            Ok(c) => crate::cli::flags::to_flags(settings(&c.args).unwrap_err()).to_string(),
+        };
         assert!(!e.contains('\n'), "one line: {e}");
         e
     }

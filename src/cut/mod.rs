@@ -226,7 +226,7 @@ impl Cut {
         })
     }
 
-    /// The same family cut with one more parameter changed (`--set key=value`). Cuts that are
+    /// The same family cut with one more parameter changed (the command line's `--set key=value`). Cuts that are
     /// not from a family (imported files) have no parameters to set.
     pub fn with_params(&self, changes: &BTreeMap<String, f64>) -> Result<Cut> {
         if changes.is_empty() {
@@ -235,7 +235,7 @@ impl Cut {
         let Some(fam) = &self.family else {
             let key = changes.keys().next().cloned().unwrap_or_default();
             return Err(Error::invalid(
-                format!("--set {key}"),
+                key,
                 format!("{} is an explicit facet design, not a parametric family; it has no parameters to set", self.name),
             ));
         };

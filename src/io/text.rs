@@ -8,9 +8,9 @@ use crate::error::{Error, Result};
 ///
 /// ```
 /// use facetlab::io::text::number;
-/// assert_eq!(number("--angle", " 30 ", 0.0, 180.0, "an angle").unwrap(), 30.0);
-/// let e = number("--angle", "200", 0.0, 180.0, "an angle").unwrap_err().to_string();
-/// assert_eq!(e, "--angle: `200` is not allowed; give an angle in [0, 180]");
+/// assert_eq!(number("angle", " 30 ", 0.0, 180.0, "an angle").unwrap(), 30.0);
+/// let e = number("angle", "200", 0.0, 180.0, "an angle").unwrap_err().to_string();
+/// assert_eq!(e, "angle: `200` is not allowed; give an angle in [0, 180]");
 /// ```
 pub fn number(field: &str, s: &str, lo: f64, hi: f64, what: &str) -> Result<f64> {
     match s.trim().parse::<f64>() {
@@ -26,9 +26,9 @@ pub fn number(field: &str, s: &str, lo: f64, hi: f64, what: &str) -> Result<f64>
 ///
 /// ```
 /// use facetlab::io::text::count;
-/// assert_eq!(count("--photons", "2e7", 1, u64::MAX).unwrap(), 20_000_000);
-/// let e = count("--top", "0", 1, 50).unwrap_err().to_string();
-/// assert_eq!(e, "--top: `0` is not allowed; give a whole number from 1 to 50");
+/// assert_eq!(count("photons", "2e7", 1, u64::MAX).unwrap(), 20_000_000);
+/// let e = count("top", "0", 1, 50).unwrap_err().to_string();
+/// assert_eq!(e, "top: `0` is not allowed; give a whole number from 1 to 50");
 /// ```
 pub fn count(field: &str, s: &str, min: u64, max: u64) -> Result<u64> {
     let t = s.trim().replace('_', "");

@@ -181,9 +181,9 @@ mod tests {
     use super::*;
 
     const F: CrystalFields = CrystalFields {
-        birefringence: "--birefringence",
-        optic_axis: "--optic-axis",
-        colour_e: "--colour-e",
+        birefringence: "birefringence",
+        optic_axis: "optic axis",
+        colour_e: "extraordinary colour",
     };
 
     #[test]
@@ -215,7 +215,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.starts_with("--optic-axis: `95` is not an optic axis"),
+            e.starts_with("optic axis: `95` is not an optic axis"),
             "{e}"
         );
         let mut d = Material::diamond();
@@ -226,7 +226,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.starts_with("--optic-axis: diamond is singly refractive"),
+            e.starts_with("optic axis: diamond is singly refractive"),
             "{e}"
         );
         let mut t = Material::by_name("topaz").unwrap();
@@ -234,7 +234,7 @@ mod tests {
             .choose_crystal(Some(true), None, None, None, F)
             .unwrap_err()
             .to_string();
-        assert!(e.starts_with("--birefringence: topaz is biaxial"), "{e}");
+        assert!(e.starts_with("birefringence: topaz is biaxial"), "{e}");
         assert!(t.choose_crystal(Some(false), None, None, None, F).is_ok());
         assert!(t
             .birefringence_note(589.3)

@@ -569,8 +569,8 @@ mod tests {
             "lab(85,-5,20)@6.5mm",
             "lab(25,40,20)@10mm",
         ] {
-            let u = UserColour::parse(text, "--colour").unwrap();
-            let c = BodyColour::from_colour(&u, "--colour").unwrap();
+            let u = UserColour::parse(text, "colour").unwrap();
+            let c = BodyColour::from_colour(&u, "colour").unwrap();
             let got = c.lab_through(u.path_mm);
             let de = delta_e2000(got, u.lab);
             assert!(de <= FIT_TOLERANCE, "{text}: {got} vs {} (ΔE {de})", u.lab);
@@ -581,8 +581,8 @@ mod tests {
             }
         }
         // White is a clear stone.
-        let u = UserColour::parse("#fff", "--colour").unwrap();
-        assert!(BodyColour::from_colour(&u, "--colour")
+        let u = UserColour::parse("#fff", "colour").unwrap();
+        assert!(BodyColour::from_colour(&u, "colour")
             .unwrap()
             .alpha_per_mm
             .iter()
@@ -592,14 +592,11 @@ mod tests {
     #[test]
     fn impossible_and_malformed_colours_are_one_line_errors() {
         // Light and saturated: no filter passes that much light of one hue.
-        let u = UserColour::parse("lab(95,80,80)", "--colour").unwrap();
-        let e = BodyColour::from_colour(&u, "--colour")
+        let u = UserColour::parse("lab(95,80,80)", "colour").unwrap();
+        let e = BodyColour::from_colour(&u, "colour")
             .unwrap_err()
             .to_string();
-        assert!(
-            e.starts_with("--colour: ") && e.contains("cannot be"),
-            "{e}"
-        );
+        assert!(e.starts_with("colour: ") && e.contains("cannot be"), "{e}");
         for bad in [
             "",
             "#12345",
@@ -621,11 +618,11 @@ mod tests {
                 "{bad}: {e}"
             );
         }
-        let u = UserColour::parse(" #7A3FA0 @ 12.5 mm ", "--colour").unwrap();
+        let u = UserColour::parse(" #7A3FA0 @ 12.5 mm ", "colour").unwrap();
         assert_eq!(u.path_mm, 12.5);
         assert_eq!(
-            UserColour::parse("#abc", "--colour").unwrap().lab,
-            UserColour::parse("#aabbcc", "--colour").unwrap().lab
+            UserColour::parse("#abc", "colour").unwrap().lab,
+            UserColour::parse("#aabbcc", "colour").unwrap().lab
         );
     }
 
@@ -646,22 +643,22 @@ mod tests {
                 .unwrap(),
             5.0
         );
-        let e = StoneSize::parse_length("10x8", "--size-mm")
+        let e = StoneSize::parse_length("10x8", "size")
             .unwrap()
-            .width_mm(2.0, "--size-mm");
+            .width_mm(2.0, "size");
         assert!(e
             .unwrap_err()
             .to_string()
-            .starts_with("--size-mm: `10x8` has L/W"));
-        assert!(StoneSize::parse_length("ten", "--size-mm").is_err());
-        assert!(StoneSize::width(0.0, "--diameter-mm").is_err());
+            .starts_with("size: `10x8` has L/W"));
+        assert!(StoneSize::parse_length("ten", "size").is_err());
+        assert!(StoneSize::width(0.0, "diameter").is_err());
     }
 
     #[test]
     fn one_chooser_for_colour_and_density() {
         let f = ColourFields {
-            colour: "--colour",
-            density: "--colour-density",
+            colour: "colour",
+            density: "colour density",
         };
         let own = flat(0.2);
         assert_eq!(BodyColour::choose(None, None, None, f).unwrap(), None);
@@ -688,7 +685,7 @@ mod tests {
                 .unwrap_err()
                 .to_string();
             assert!(
-                e.starts_with("--colour-density: ") && e.contains(needle),
+                e.starts_with("colour density: ") && e.contains(needle),
                 "{e}"
             );
         }

@@ -33,7 +33,7 @@ impl Material {
     /// material with the variety's published body colour, or colourless where none was
     /// found), a table name ([`Material::NAMES`]) or alias (`cz`, `bk7`, …), or `ri:N` (index N at the D line with the generic dispersion
     /// B–G = [`GENERIC_BG_PER_N1`](Material::GENERIC_BG_PER_N1)·(N − 1)) or `ri:N:BG` (index N
-    /// with B–G dispersion BG), both as a Cauchy curve. Errors name `--material`.
+    /// with B–G dispersion BG), both as a Cauchy curve. Errors name the `material`.
     pub fn by_name(name: &str) -> Result<Material> {
         let key = name.trim().to_ascii_lowercase();
         if let Some(spec) = key.strip_prefix("ri:") {
@@ -49,7 +49,7 @@ impl Material {
             .ok_or_else(|| {
                 let varieties: Vec<&str> = Variety::all().iter().map(|v| v.name).collect();
                 Error::invalid(
-                    "--material",
+                    "material",
                     format!(
                         "unknown material `{name}`; known: {}; coloured varieties: {}; or ri:N[:BG] (an index N with generic or given B–G dispersion)",
                         Material::NAMES.join(", "),
@@ -68,7 +68,7 @@ impl Material {
             Material::BG_MAX
         );
         let bad =
-            |what: String| Error::invalid("--material", format!("`{whole}`: {what}; {allowed}"));
+            |what: String| Error::invalid("material", format!("`{whole}`: {what}; {allowed}"));
         let parts: Vec<&str> = spec.split(':').collect();
         if parts.len() > 2 {
             return Err(bad("too many fields".into()));
@@ -112,7 +112,7 @@ impl Material {
                 "with that dispersion the index at 780 nm would be {red:.4}, not above 1"
             )));
         }
-        // The index at every traced wavelength must be one the tracers accept, as `--ri`.
+        // The index at every traced wavelength must be one the tracers accept, as a fixed index.
         let blue = m.ri(380.0);
         if blue > Material::RI_MAX {
             return Err(bad(format!(
@@ -310,8 +310,8 @@ mod tests {
     #[test]
     fn one_chooser_for_name_index_or_default() {
         let f = MaterialFields {
-            material: "--material",
-            ri: "--ri",
+            material: "material",
+            ri: "refractive index",
         };
         assert_eq!(Material::choose(None, None, f).unwrap().name, "diamond");
         assert_eq!(
@@ -327,18 +327,21 @@ mod tests {
                 .unwrap_err()
                 .to_string();
             assert!(
-                e.starts_with("--ri: ") && e.contains("allowed (1, 10]"),
+                e.starts_with("refractive index: ") && e.contains("allowed (1, 10]"),
                 "{e}"
             );
         }
         let e = Material::choose(Some("cz"), Some(2.0), f)
             .unwrap_err()
             .to_string();
-        assert!(e.starts_with("--ri: give either --material or --ri"), "{e}");
+        assert!(
+            e.starts_with("refractive index: give either material or refractive index"),
+            "{e}"
+        );
         let e = Material::choose(Some("kryptonite"), None, f)
             .unwrap_err()
             .to_string();
-        assert!(e.starts_with("--material: unknown material"), "{e}");
+        assert!(e.starts_with("material: unknown material"), "{e}");
     }
 
     #[test]

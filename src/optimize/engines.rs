@@ -4,7 +4,7 @@
 use super::{Config, Evaluator, ScoreSet, Verifier};
 use crate::cut::Cut;
 use crate::error::Result;
-use crate::metrics::{score, Parts, ScoreConfig, Scores};
+use crate::metrics::{score, Parts, ScoreConfig, ScoreName, Scores};
 use crate::verify::VerifyReport;
 use std::collections::BTreeMap;
 
@@ -27,17 +27,17 @@ impl BeamEvaluator {
     /// (or trades them off in `pareto`).
     pub fn new(config: &Config) -> Self {
         let full = config.score.score_config();
-        let needs = |name: &str, weight: f64| {
+        let needs = |name: ScoreName, weight: f64| {
             weight != 0.0
                 || config
                     .pareto
                     .as_ref()
-                    .is_some_and(|p| p.scores.iter().any(|s| s == name))
+                    .is_some_and(|p| p.scores.contains(&name))
         };
         let search = ScoreConfig {
             parts: Parts {
-                fire: needs("fire", config.weights.fire),
-                scintillation: needs("scintillation", config.weights.scintillation),
+                fire: needs(ScoreName::Fire, config.weights.fire),
+                scintillation: needs(ScoreName::Scintillation, config.weights.scintillation),
             },
             ..full.clone()
         };
@@ -60,24 +60,13 @@ impl BeamEvaluator {
     /// The scores as the optimizer reports them.
     pub fn score_set(s: &Scores) -> ScoreSet {
         let mut set = ScoreSet::new(s.brilliance, s.fire, s.scintillation);
-        set.extra = vec![
-            ("brilliance_iso".into(), s.brilliance_iso),
-            ("brilliance_cos".into(), s.brilliance_cos),
-            ("overhead_light_return".into(), s.overhead_light_return),
-            ("aset_blue".into(), s.aset.blue),
-            ("aset_red".into(), s.aset.red),
-            ("aset_green".into(), s.aset.green),
-            ("aset_leak".into(), s.aset.leak),
-            ("aset_port".into(), s.aset.port),
-        ];
-        if let Some(c) = s.colour {
-            set.extra.extend([
-                ("colour_l".into(), c.l),
-                ("colour_c".into(), c.c),
-                ("extinction".into(), c.extinction),
-                ("windowing".into(), c.windowing),
-            ]);
-        }
+        // Every further score in the table's order; a colourless stone has no colour scores.
+        set.extra = crate::metrics::SCORES
+            .iter()
+            .map(|i| i.name)
+            .filter(|n| !ScoreName::OBJECTIVE.contains(n))
+            .filter_map(|n| Some((n, n.of(s)?)))
+            .collect();
         set
     }
 }
@@ -151,10 +140,14 @@ impl Verifier for PhotonVerifier {
         cut: &Cut,
         photons: u64,
         seed: u64,
-        scores: Option<&BTreeMap<String, f64>>,
+        scores: Option<&BTreeMap<ScoreName, f64>>,
     ) -> Result<VerifyReport> {
-        let beam =
-            scores.and_then(|s| Some((*s.get("overhead_light_return")?, *s.get("brilliance")?)));
+        let beam = scores.and_then(|s| {
+            Some((
+                *s.get(&ScoreName::OverheadLightReturn)?,
+                *s.get(&ScoreName::Brilliance)?,
+            ))
+        });
         crate::verify::photon_report_given(
             cut,
             &with_cut_axis(&self.config, cut),

@@ -102,7 +102,7 @@ mod sweep;
 pub use config::{
     axis_label, defaults, Budget, Config, Constraints, FreeParam, Method, NelderMeadSettings,
     ParetoSpec, RawConfig, RawConstraints, RawCut, RawMethod, RawObjective, RawScore, RawVerify,
-    Sampling, ScoreSettings, SwarmSettings, VerifySettings, Weights, PARETO_SCORES,
+    Sampling, ScoreSettings, SwarmSettings, VerifySettings, Weights,
 };
 // The scorers of a config: the beam tracer's evaluator and the photon tracer's verifier.
 pub use engines::{real_scorers, BeamEvaluator, PhotonVerifier, Scorers};
@@ -142,6 +142,7 @@ pub use crate::verify::{Verification, Verifier, VerifyReport, VerifyRow};
 
 use crate::cut::Cut;
 use crate::error::Result;
+pub use crate::metrics::ScoreName;
 use serde::Serialize;
 
 /// The scores of one cut, as the optimizer sees them.
@@ -159,7 +160,7 @@ pub struct ScoreSet {
     pub scintillation: f64,
     /// Further named scores, shown in reports in this order.
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub extra: Vec<(String, f64)>,
+    pub extra: Vec<(ScoreName, f64)>,
     /// The beam tracer's whole scores behind these, when the evaluator keeps them
     /// ([`BeamEvaluator`]'s full evaluations do): a run's report draws its table and tilt chart
     /// from them instead of scoring the cut again. Not serialised.
@@ -179,22 +180,22 @@ impl ScoreSet {
         }
     }
 
-    /// The score called `name` (`brilliance`, `fire`, `scintillation` or an extra).
-    pub fn get(&self, name: &str) -> Option<f64> {
+    /// The score `name` (`brilliance`, `fire`, `scintillation` or an extra), if this set has it.
+    pub fn get(&self, name: ScoreName) -> Option<f64> {
         match name {
-            "brilliance" => Some(self.brilliance),
-            "fire" => Some(self.fire),
-            "scintillation" => Some(self.scintillation),
-            _ => self.extra.iter().find(|(k, _)| k == name).map(|(_, v)| *v),
+            ScoreName::Brilliance => Some(self.brilliance),
+            ScoreName::Fire => Some(self.fire),
+            ScoreName::Scintillation => Some(self.scintillation),
+            _ => self.extra.iter().find(|(k, _)| *k == name).map(|(_, v)| *v),
         }
     }
 
     /// Every score, name and value, the three objective scores first.
-    pub fn all(&self) -> Vec<(String, f64)> {
+    pub fn all(&self) -> Vec<(ScoreName, f64)> {
         let mut out = vec![
-            ("brilliance".to_string(), self.brilliance),
-            ("fire".to_string(), self.fire),
-            ("scintillation".to_string(), self.scintillation),
+            (ScoreName::Brilliance, self.brilliance),
+            (ScoreName::Fire, self.fire),
+            (ScoreName::Scintillation, self.scintillation),
         ];
         out.extend(self.extra.iter().cloned());
         out

@@ -17,7 +17,7 @@
 
 use super::config::{Config, ParetoSpec};
 use super::search::{search, Hooks};
-use super::Evaluator;
+use super::{Evaluator, ScoreName};
 use crate::error::Result;
 use crate::io::write_atomic;
 use crate::verify::{Verification, Verifier};
@@ -81,7 +81,7 @@ pub struct FrontPoint {
     /// Every family parameter.
     pub params: BTreeMap<String, f64>,
     /// Scores by name.
-    pub scores: BTreeMap<String, f64>,
+    pub scores: BTreeMap<ScoreName, f64>,
     /// `corner:SCORE` (best in that score), `knee`, or empty.
     pub roles: Vec<String>,
     /// The photon tracer's check (corners and knee, when a verifier ran).
@@ -92,11 +92,11 @@ pub struct FrontPoint {
 #[derive(Clone, Debug, Serialize)]
 pub struct ParetoOutcome {
     /// The traded scores.
-    pub scores: Vec<String>,
+    pub scores: Vec<ScoreName>,
     /// The front, sorted by the first score (best last).
     pub front: Vec<FrontPoint>,
     /// The bundled presets of the family, scored the same way: (name, scores).
-    pub references: Vec<(String, BTreeMap<String, f64>)>,
+    pub references: Vec<(String, BTreeMap<ScoreName, f64>)>,
     /// Searches run.
     pub searches: usize,
     /// Cuts evaluated in all.
@@ -110,7 +110,7 @@ impl ParetoOutcome {
     /// parameters, the scores.
     pub fn to_csv(&self) -> String {
         let mut keys: Vec<String> = Vec::new();
-        let mut names: Vec<String> = Vec::new();
+        let mut names: Vec<ScoreName> = Vec::new();
         for p in &self.front {
             for k in p.free.keys() {
                 if !keys.contains(k) {
@@ -119,14 +119,14 @@ impl ParetoOutcome {
             }
             for k in p.scores.keys() {
                 if !names.contains(k) {
-                    names.push(k.clone());
+                    names.push(*k);
                 }
             }
         }
         let mut head = vec!["label".to_string(), "roles".to_string()];
         head.extend(self.scores.iter().map(|s| format!("weight_{s}")));
         head.extend(keys.iter().cloned());
-        head.extend(names.iter().cloned());
+        head.extend(names.iter().map(ScoreName::to_string));
         let mut out = head.join(",") + "\n";
         for p in &self.front {
             let mut row = vec![p.label.clone(), p.roles.join(" ")];
@@ -152,9 +152,9 @@ fn config_with_weights(config: &Config, spec: &ParetoSpec, w: &[f64]) -> Config 
     c.weights.fire = 0.0;
     c.weights.scintillation = 0.0;
     for (name, &x) in spec.scores.iter().zip(w) {
-        match name.as_str() {
-            "brilliance" => c.weights.brilliance = x,
-            "fire" => c.weights.fire = x,
+        match name {
+            ScoreName::Brilliance => c.weights.brilliance = x,
+            ScoreName::Fire => c.weights.fire = x,
             _ => c.weights.scintillation = x,
         }
     }
@@ -172,7 +172,7 @@ pub fn run_pareto(
     hooks: &Hooks<'_>,
 ) -> Result<ParetoOutcome> {
     let spec = config.pareto.clone().unwrap_or(ParetoSpec {
-        scores: vec!["brilliance".into(), "fire".into()],
+        scores: vec![ScoreName::Brilliance, ScoreName::Fire],
         points: 7,
     });
     let weights = weight_grid(spec.scores.len(), spec.points);

@@ -16,11 +16,12 @@
 //! parameters themselves, kept in the box by the solver) and [`SigmoidProblem`] (Nelder–Mead;
 //! the point `u` is unbounded and mapped to `x = lo + (hi − lo)·sigmoid(u)`).
 
-use super::config::{Config, Constraints, Weights, COLOUR_WEIGHTS};
+use super::config::{Config, Constraints, Weights};
 use super::guard::Tracker;
 use super::{Evaluator, ScoreSet};
 use crate::cut::Cut;
 use crate::error::Result;
+use crate::metrics::ScoreName;
 use argmin::core::{CostFunction, Error as ArgminError};
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -131,15 +132,15 @@ pub fn check_constraints(cut: &Cut, c: &Constraints) -> Vec<ConstraintCheck> {
 /// `max_windowing`) on its `scores`; a score the evaluator did not give counts as 0.
 pub fn check_score_constraints(scores: &ScoreSet, c: &Constraints) -> Vec<ConstraintCheck> {
     [
-        ("extinction", c.max_extinction),
-        ("windowing", c.max_windowing),
+        (ScoreName::Extinction, c.max_extinction),
+        (ScoreName::Windowing, c.max_windowing),
     ]
     .into_iter()
     .filter_map(|(name, hi)| {
         let hi = hi?;
         let v = scores.get(name).filter(|v| v.is_finite()).unwrap_or(0.0);
         Some(ConstraintCheck {
-            name: name.into(),
+            name: name.to_string(),
             value: v,
             limit: format!("<= {hi}"),
             violation: (v - hi).max(0.0),
@@ -167,8 +168,8 @@ pub fn weighted(s: &ScoreSet, w: &Weights) -> f64 {
     .filter(|(w, _)| *w != 0.0)
     .map(|(w, x)| w * x)
     .sum();
-    let colour: f64 = COLOUR_WEIGHTS
-        .iter()
+    let colour: f64 = ScoreName::COLOUR
+        .into_iter()
         .zip(w.colour)
         .filter(|(_, w)| *w != 0.0)
         .map(|(name, w)| w * s.get(name).filter(|v| v.is_finite()).unwrap_or(0.0))
@@ -458,7 +459,10 @@ mod tests {
         );
         let dark = |cut: &Cut| -> Result<ScoreSet> {
             let mut s = crown(cut)?;
-            s.extra = vec![("extinction".into(), 0.35), ("windowing".into(), 0.05)];
+            s.extra = vec![
+                (crate::metrics::ScoreName::Extinction, 0.35),
+                (crate::metrics::ScoreName::Windowing, 0.05),
+            ];
             Ok(s)
         };
         let o = Objective::new(&c, &dark);
@@ -484,10 +488,10 @@ mod tests {
         let coloured = |cut: &Cut| -> Result<ScoreSet> {
             let mut s = crown(cut)?;
             s.extra = vec![
-                ("colour_l".into(), 41.0),
-                ("colour_c".into(), 23.5),
-                ("extinction".into(), 0.35),
-                ("windowing".into(), 0.05),
+                (crate::metrics::ScoreName::ColourL, 41.0),
+                (crate::metrics::ScoreName::ColourC, 23.5),
+                (crate::metrics::ScoreName::Extinction, 0.35),
+                (crate::metrics::ScoreName::Windowing, 0.05),
             ];
             Ok(s)
         };

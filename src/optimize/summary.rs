@@ -22,6 +22,7 @@ use super::guard::Stop;
 use super::problem::{weight_retention, ConstraintCheck, Evaluation};
 use crate::cut::grade::GradeEstimate;
 use crate::cut::Proportions;
+use crate::metrics::ScoreName;
 use crate::verify::Verification;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -52,7 +53,7 @@ pub struct Candidate {
     /// Volume over the containing upright cylinder.
     pub weight_retention: Option<f64>,
     /// Scores by name (absent when the cut failed).
-    pub scores: Option<BTreeMap<String, f64>>,
+    pub scores: Option<BTreeMap<ScoreName, f64>>,
     /// Σ weight · score.
     pub weighted_score: f64,
     /// Constraint penalty.
@@ -74,7 +75,7 @@ pub struct Candidate {
     pub at_bounds: Vec<AtBound>,
     /// Score names in display order (not serialised; JSON maps are sorted).
     #[serde(skip)]
-    pub score_order: Vec<String>,
+    pub score_order: Vec<ScoreName>,
     /// The evaluator's whole scores of this cut ([`ScoreSet::detail`](super::ScoreSet::detail)),
     /// when it kept them. Not serialised.
     #[serde(skip)]
@@ -439,16 +440,16 @@ impl Report {
             });
         }
         section(&mut o, "scores");
-        let mut names: Vec<String> = Vec::new();
+        let mut names: Vec<ScoreName> = Vec::new();
         for c in &cands {
             for n in &c.score_order {
                 if !names.contains(n) {
-                    names.push(n.clone());
+                    names.push(*n);
                 }
             }
         }
         for n in &names {
-            row(&mut o, n, &|c| {
+            row(&mut o, n.as_str(), &|c| {
                 c.scores
                     .as_ref()
                     .and_then(|s| s.get(n))

@@ -22,6 +22,8 @@ use super::{Evaluator, ScoreSet};
 use crate::cut::Unit;
 use crate::error::{Error, Result};
 use crate::io::{read_bytes, write_atomic};
+use crate::metrics::score_name::list as score_list;
+use crate::metrics::ScoreName;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -177,65 +179,69 @@ fn strip_field(e: Error) -> String {
 /// Which score a heatmap shows.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum SweepScore {
-    /// Brilliance.
-    Brilliance,
-    /// Fire.
-    Fire,
-    /// Scintillation.
-    Scintillation,
+    /// One of the scores a sweep maps: brilliance, fire, scintillation, or a coloured
+    /// stone's face-up colour score (`colour_l`, `colour_c`, `extinction` or `windowing`;
+    /// NaN for a colourless stone); see [`SweepScore::SCORES`].
+    Score(ScoreName),
     /// Σ weight · score − penalties.
     Objective,
-    /// A coloured stone's face-up colour score: `colour_l`, `colour_c`, `extinction` or
-    /// `windowing` (NaN for a colourless stone).
-    Colour(&'static str),
 }
 
-/// The colour scores a sweep can map ([`SweepScore::Colour`]).
-pub const COLOUR_SCORES: [&str; 4] = ["colour_l", "colour_c", "extinction", "windowing"];
-
 impl SweepScore {
+    /// The scores a sweep can map: the objective's three and a coloured stone's four.
+    pub const SCORES: [ScoreName; 7] = [
+        ScoreName::Brilliance,
+        ScoreName::Fire,
+        ScoreName::Scintillation,
+        ScoreName::ColourL,
+        ScoreName::ColourC,
+        ScoreName::Extinction,
+        ScoreName::Windowing,
+    ];
+
+    /// Brilliance.
+    pub const BRILLIANCE: SweepScore = SweepScore::Score(ScoreName::Brilliance);
+    /// Fire.
+    pub const FIRE: SweepScore = SweepScore::Score(ScoreName::Fire);
+    /// Scintillation.
+    pub const SCINTILLATION: SweepScore = SweepScore::Score(ScoreName::Scintillation);
+
     /// This score of a grid point with `scores` (None when the cut failed: NaN) and
     /// `objective`.
     pub fn of(&self, scores: Option<&ScoreSet>, objective: f64) -> f64 {
         match (self, scores) {
             (SweepScore::Objective, _) => objective,
             (_, None) => f64::NAN,
-            (SweepScore::Brilliance, Some(s)) => s.brilliance,
-            (SweepScore::Fire, Some(s)) => s.fire,
-            (SweepScore::Scintillation, Some(s)) => s.scintillation,
-            (SweepScore::Colour(k), Some(s)) => s.get(k).unwrap_or(f64::NAN),
+            (SweepScore::Score(k), Some(s)) => s.get(*k).unwrap_or(f64::NAN),
         }
     }
 
     /// Parse `brilliance`, `fire`, `scintillation`, `objective` or a colour score
-    /// (`colour_l`, `colour_c`, `extinction`, `windowing`).
+    /// (`colour_l`, `colour_c`, `extinction`, `windowing`); the error names the `sweep score`.
     pub fn parse(s: &str) -> Result<SweepScore> {
-        match s {
-            "brilliance" => Ok(SweepScore::Brilliance),
-            "fire" => Ok(SweepScore::Fire),
-            "scintillation" => Ok(SweepScore::Scintillation),
-            "objective" => Ok(SweepScore::Objective),
-            other => match COLOUR_SCORES.iter().find(|k| **k == other) {
-                Some(k) => Ok(SweepScore::Colour(k)),
-                None => Err(Error::invalid(
-                    "--score",
-                    format!(
-                        "unknown score `{other}`; allowed: brilliance, fire, scintillation, objective, {} (coloured stones)",
-                        COLOUR_SCORES.join(", ")
-                    ),
-                )),
-            },
+        if s == "objective" {
+            return Ok(SweepScore::Objective);
         }
+        ScoreName::from_key(s)
+            .filter(|n| SweepScore::SCORES.contains(n))
+            .map(SweepScore::Score)
+            .ok_or_else(|| {
+                Error::invalid(
+                    "sweep score",
+                    format!(
+                        "unknown score `{s}`; allowed: {}, objective, {} (coloured stones)",
+                        score_list(&ScoreName::OBJECTIVE),
+                        score_list(&ScoreName::COLOUR)
+                    ),
+                )
+            })
     }
 
     /// Name.
     pub fn name(&self) -> &'static str {
         match self {
-            SweepScore::Brilliance => "brilliance",
-            SweepScore::Fire => "fire",
-            SweepScore::Scintillation => "scintillation",
             SweepScore::Objective => "objective",
-            SweepScore::Colour(k) => k,
+            SweepScore::Score(k) => k.as_str(),
         }
     }
 }
@@ -307,7 +313,7 @@ pub fn sweep(
 ) -> Result<Sweep> {
     if x.key == y.key {
         return Err(Error::invalid(
-            "--y",
+            "sweep y axis",
             format!(
                 "sweeps `{}` on both axes; give two different parameters",
                 x.key
@@ -318,7 +324,7 @@ pub fn sweep(
     let n = nx * y.values.len();
     if n > MAX_POINTS {
         return Err(Error::invalid(
-            "--x/--y",
+            "sweep grid",
             format!("{n} grid points; at most {MAX_POINTS}: use larger steps"),
         ));
     }
@@ -347,11 +353,11 @@ pub fn sweep(
 
 impl Sweep {
     /// Names of the extra scores (from the first scored cell).
-    fn extras(&self) -> Vec<String> {
+    fn extras(&self) -> Vec<ScoreName> {
         self.cells
             .iter()
             .find_map(|c| c.scores.as_ref())
-            .map(|s| s.extra.iter().map(|(k, _)| k.clone()).collect())
+            .map(|s| s.extra.iter().map(|(k, _)| *k).collect())
             .unwrap_or_default()
     }
 
@@ -379,16 +385,16 @@ impl Sweep {
                 "{},{},{},{},{},{}",
                 c.x,
                 c.y,
-                s(c.value(&SweepScore::Brilliance)),
-                s(c.value(&SweepScore::Fire)),
-                s(c.value(&SweepScore::Scintillation)),
+                s(c.value(&SweepScore::BRILLIANCE)),
+                s(c.value(&SweepScore::FIRE)),
+                s(c.value(&SweepScore::SCINTILLATION)),
                 s(c.objective)
             );
             for e in &extras {
                 let v = c
                     .scores
                     .as_ref()
-                    .and_then(|sc| sc.get(e))
+                    .and_then(|sc| sc.get(*e))
                     .unwrap_or(f64::NAN);
                 let _ = write!(o, ",{}", s(v));
             }
@@ -442,7 +448,7 @@ pub fn run_path(run_dir: &Path, x: &str, y: &str) -> Result<Vec<(f64, f64)>> {
         let cfg = Config::load(&cfg_path)?;
         cfg.start.get(k).copied().ok_or_else(|| {
             Error::invalid(
-                "--run",
+                "run folder",
                 format!(
                     "{}: the run's family {} has no parameter `{k}`",
                     run_dir.display(),
@@ -519,9 +525,9 @@ pub struct Profile {
 
 /// The scores drawn and written for every point, in order.
 pub(crate) const SCORES: [SweepScore; 4] = [
-    SweepScore::Brilliance,
-    SweepScore::Fire,
-    SweepScore::Scintillation,
+    SweepScore::BRILLIANCE,
+    SweepScore::FIRE,
+    SweepScore::SCINTILLATION,
     SweepScore::Objective,
 ];
 
@@ -558,11 +564,11 @@ impl Profile {
     /// The CSV text: `<x key>,brilliance,fire,scintillation,objective` (+ any extra scores),
     /// one row per x.
     pub fn to_csv(&self) -> String {
-        let extras: Vec<String> = self
+        let extras: Vec<ScoreName> = self
             .points
             .iter()
             .find_map(|p| p.scores.as_ref())
-            .map(|s| s.extra.iter().map(|(k, _)| k.clone()).collect())
+            .map(|s| s.extra.iter().map(|(k, _)| *k).collect())
             .unwrap_or_default();
         let s = |v: f64| {
             if v.is_finite() {
@@ -582,7 +588,7 @@ impl Profile {
                 let _ = write!(o, ",{}", s(p.value(score)));
             }
             for e in &extras {
-                let v = p.scores.as_ref().and_then(|sc| sc.get(e));
+                let v = p.scores.as_ref().and_then(|sc| sc.get(*e));
                 let _ = write!(o, ",{}", s(v.unwrap_or(f64::NAN)));
             }
             o.push('\n');
@@ -675,47 +681,50 @@ mod tests {
     #[test]
     fn axes_parse_and_refuse() {
         let c = cfg();
-        let a = Axis::parse("--x", "crown_angle:25:40:0.5", &c).unwrap();
+        let a = Axis::parse("x axis", "crown_angle:25:40:0.5", &c).unwrap();
         assert_eq!(a.values.len(), 31);
         assert_eq!(a.values[3], 26.5);
         assert_eq!(*a.values.last().unwrap(), 40.0);
-        let b = Axis::parse("--y", "pavilion_angle:38:43:0.1", &c).unwrap();
+        let b = Axis::parse("y axis", "pavilion_angle:38:43:0.1", &c).unwrap();
         assert_eq!(b.values.len(), 51);
         assert_eq!(b.values[7], 38.7, "rounded to the step's decimals");
         for (spec, want) in [
             (
                 "crown_angle:25:40",
-                "--x: `crown_angle:25:40` is not KEY:MIN:MAX:STEP",
+                "x axis: `crown_angle:25:40` is not KEY:MIN:MAX:STEP",
             ),
             (
                 "crown:25:40:1",
-                "--x: `crown` is not a parameter of round-brilliant",
+                "x axis: `crown` is not a parameter of round-brilliant",
             ),
-            ("crown_angle:40:25:1", "--x: MAX 25 must be above MIN 40"),
-            ("crown_angle:25:40:0", "--x: STEP 0 must be positive"),
+            ("crown_angle:40:25:1", "x axis: MAX 25 must be above MIN 40"),
+            ("crown_angle:25:40:0", "x axis: STEP 0 must be positive"),
             (
                 "crown_angle:25:40:x",
-                "--x: STEP `x` is not a finite number",
+                "x axis: STEP `x` is not a finite number",
             ),
-            ("crown_angle:1:40:1", "--x crown_angle: 1 is out of range"),
+            (
+                "crown_angle:1:40:1",
+                "x axis crown_angle: 1 is out of range",
+            ),
             ("girdle_facets:0:32:16", "whole-number"),
             ("crown_angle:25:26:5", "single value"),
             ("crown_angle:25:40:1e-300", "at most 5000 per axis"),
         ] {
-            let e = Axis::parse("--x", spec, &c).unwrap_err().to_string();
+            let e = Axis::parse("x axis", spec, &c).unwrap_err().to_string();
             assert!(e.contains(want), "{spec}: {e}");
         }
         assert!(SweepScore::parse("fyre")
             .unwrap_err()
             .to_string()
-            .starts_with("--score: unknown score `fyre`"));
+            .starts_with("sweep score: unknown score `fyre`"));
     }
 
     #[test]
     fn sweep_is_in_grid_order_and_writes_files() {
         let c = cfg();
-        let x = Axis::parse("--x", "crown_angle:30:36:1", &c).unwrap();
-        let y = Axis::parse("--y", "pavilion_angle:39:42:0.5", &c).unwrap();
+        let x = Axis::parse("x axis", "crown_angle:30:36:1", &c).unwrap();
+        let y = Axis::parse("y axis", "pavilion_angle:39:42:0.5", &c).unwrap();
         let bump = |cut: &Cut| -> Result<ScoreSet> {
             let (a, b) = (cut.params["crown_angle"], cut.params["pavilion_angle"]);
             Ok(ScoreSet::new(
@@ -727,7 +736,7 @@ mod tests {
         let s = sweep(&c, &bump, &x, &y, None).unwrap();
         assert_eq!(s.cells.len(), 7 * 7);
         assert_eq!((s.cells[8].x, s.cells[8].y), (31.0, 39.5));
-        let g = s.grid(&SweepScore::Brilliance);
+        let g = s.grid(&SweepScore::BRILLIANCE);
         assert!((g[3][4] - 1.0).abs() < 1e-12, "peak at (34, 40.5)");
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(1)
@@ -744,7 +753,7 @@ mod tests {
         };
         let (csv, png, svg) = write(
             &s,
-            &SweepScore::Brilliance,
+            &SweepScore::BRILLIANCE,
             "t".into(),
             Some(vec![(31.0, 39.5), (34.0, 40.5)]),
             &dir.path().join("map.png"),
@@ -767,14 +776,14 @@ mod tests {
     #[test]
     fn a_profile_is_in_order_and_writes_one_row_per_x() {
         let c = cfg();
-        let x = Axis::parse("--x", "crown_angle:30:36:1", &c).unwrap();
+        let x = Axis::parse("x axis", "crown_angle:30:36:1", &c).unwrap();
         let bump = |cut: &Cut| -> Result<ScoreSet> {
             let a = cut.params["crown_angle"];
             if a == 35.0 {
                 return Err(Error::Geometry("refused".into()));
             }
             let mut s = ScoreSet::new((-((a - 34.0) / 2.0).powi(2)).exp(), a / 100.0, 0.25);
-            s.extra.push(("aset_red".into(), 0.5));
+            s.extra.push((crate::metrics::ScoreName::AsetRed, 0.5));
             Ok(s)
         };
         let p = profile(&c, &bump, &x, None).unwrap();

@@ -6,7 +6,7 @@ use super::guard::{Progress, Status, Stop};
 use super::history::History;
 use super::run::{self, FnWriter, RunOptions};
 use super::search::{self, Hooks};
-use super::{Evaluator, ScoreSet};
+use super::{Evaluator, ScoreName, ScoreName::Brilliance, ScoreSet};
 use crate::cut::Cut;
 use crate::error::Result;
 use crate::verify::{VerifyReport, VerifyRow};
@@ -26,7 +26,7 @@ fn bump_value(cut: &Cut) -> f64 {
 /// brilliance = a smooth bump with its top at [`TOP`]; fire grows with the crown angle.
 fn bump(cut: &Cut) -> Result<ScoreSet> {
     let mut s = ScoreSet::new(bump_value(cut), cut.params["crown_angle"] / 100.0, 0.0);
-    s.extra.push(("aset_red".into(), 0.5));
+    s.extra.push((ScoreName::AsetRed, 0.5));
     Ok(s)
 }
 
@@ -543,7 +543,7 @@ fn pareto_front_of_the_bump() {
     let pts: Vec<Vec<f64>> = o
         .front
         .iter()
-        .map(|p| vec![p.scores["brilliance"], p.scores["fire"]])
+        .map(|p| vec![p.scores[&ScoreName::Brilliance], p.scores[&ScoreName::Fire]])
         .collect();
     assert_eq!(super::non_dominated(&pts).len(), pts.len());
     // One corner is near the bump's top, the other at the steepest crown allowed (40°).
@@ -552,7 +552,7 @@ fn pareto_front_of_the_bump() {
         .iter()
         .find(|p| p.roles.iter().any(|r| r == "corner:brilliance"))
         .unwrap();
-    assert!(top.scores["brilliance"] > 0.95, "{:?}", top.scores);
+    assert!(top.scores[&Brilliance] > 0.95, "{:?}", top.scores);
     let steep = o
         .front
         .iter()
@@ -617,7 +617,7 @@ fn scores_left_out_of_the_search_are_reported_for_the_winners() {
     {
         let (sa, sb) = (a.scores.as_ref().unwrap(), b.scores.as_ref().unwrap());
         assert_eq!(sa, sb);
-        assert!(sa["fire"].is_finite() && sa["fire"] > 0.0);
+        assert!(sa[&ScoreName::Fire].is_finite() && sa[&ScoreName::Fire] > 0.0);
     }
     // A weighed score is never left out: the beam evaluator's search settings.
     let weighs_fire = config(NM, "[objective]\nbrilliance = 1.0\nfire = 0.2");
@@ -639,7 +639,7 @@ fn bump_with_axis(cut: &Cut) -> Result<ScoreSet> {
         0.0,
         0.0,
     );
-    s.extra.push(("aset_red".into(), 0.5));
+    s.extra.push((ScoreName::AsetRed, 0.5));
     Ok(s)
 }
 

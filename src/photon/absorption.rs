@@ -12,10 +12,10 @@ impl Absorption {
     ///
     /// ```
     /// use facetlab::photon::Absorption;
-    /// assert_eq!(Absorption::parse("--absorption", "Beer:0.5").unwrap(), Absorption::Beer(0.5));
-    /// assert!(Absorption::parse("--absorption", "some").is_err());
+    /// assert_eq!(Absorption::parse("absorption", "Beer:0.5").unwrap(), Absorption::Beer(0.5));
+    /// assert!(Absorption::parse("absorption", "some").is_err());
     /// assert_eq!(
-    ///     Absorption::parse("--absorption", "colour:8").unwrap(),
+    ///     Absorption::parse("absorption", "colour:8").unwrap(),
     ///     Absorption::Body { width_mm: 8.0 }
     /// );
     /// ```

@@ -234,7 +234,7 @@ impl Light {
         }
         if let Some(a) = self.angle {
             if !a.is_finite() {
-                return Err(Error::invalid("--angle", "must be a number of degrees"));
+                return Err(Error::invalid("light angle", "must be a number of degrees"));
             }
         }
         Ok(())
@@ -320,13 +320,14 @@ impl TraceConfig {
         }
     }
 
-    /// Check every number; errors name the flag a user would set.
+    /// Check every number; errors name the setting (`photon count`, `trace depth`, …; the
+    /// binary says which flag sets it).
     pub fn validate(&self) -> Result<()> {
         check_photons(self.photons)?;
         if let Some(d) = self.depth {
             if d == 0 || d > UNLIMITED_CAP {
                 return Err(Error::invalid(
-                    "--depth",
+                    "trace depth",
                     format!("{d} is out of range; allowed 1..={UNLIMITED_CAP} or `unlimited`"),
                 ));
             }
@@ -334,13 +335,13 @@ impl TraceConfig {
         if let Absorption::Body { width_mm } = self.absorption {
             if !(width_mm.is_finite() && width_mm > 0.0) {
                 return Err(Error::invalid(
-                    "--absorption",
+                    "absorption model",
                     format!("colour:{width_mm}: the stone's width must be a number of mm > 0"),
                 ));
             }
             if self.material.colour.is_none() {
                 return Err(Error::invalid(
-                    "--absorption",
+                    "absorption model",
                     format!(
                         "colour: {} has no body colour; choose a coloured material (--material ruby, …) or give --colour",
                         self.material.name
@@ -350,13 +351,13 @@ impl TraceConfig {
         }
         if let Absorption::Beer(k) = self.absorption {
             if !(k.is_finite() && k >= 0.0) {
-                return Err(Error::invalid("--absorption", format!("beer:{k}: the coefficient must be a finite number >= 0 (per girdle diameter)")));
+                return Err(Error::invalid("absorption model", format!("beer:{k}: the coefficient must be a finite number >= 0 (per girdle diameter)")));
             }
         }
         if let WavelengthSampling::Fixed(l) = self.wavelengths {
             if !(LAMBDA_MIN..=LAMBDA_MAX).contains(&l) {
                 return Err(Error::invalid(
-                    "--wavelength",
+                    "fixed wavelength",
                     format!("{l} nm is out of range; allowed 380–780 nm"),
                 ));
             }
@@ -365,7 +366,7 @@ impl TraceConfig {
             let n = self.material.ri(l);
             if !(n.is_finite() && n > 1.0 && n <= 10.0) {
                 return Err(Error::invalid(
-                    "--ri",
+                    "refractive index",
                     format!(
                         "refractive index {} is out of range; allowed (1, 10]",
                         shown(n)
@@ -377,15 +378,15 @@ impl TraceConfig {
     }
 }
 
-/// Check a photon count: at least 1, at most [`MAX_PHOTONS`]; the error names `--photons` and
-/// says why.
+/// Check a photon count: at least 1, at most [`MAX_PHOTONS`]; the error names the `photon
+/// count` and says why.
 pub fn check_photons(photons: u64) -> Result<()> {
     if photons == 0 {
-        return Err(Error::invalid("--photons", "must be at least 1"));
+        return Err(Error::invalid("photon count", "must be at least 1"));
     }
     if photons > MAX_PHOTONS {
         return Err(Error::invalid(
-            "--photons",
+            "photon count",
             format!(
                 "{photons} is too many; allowed at most {MAX_PHOTONS} (1e11): at a few million photons per second that is already hours, and shares are then known to ±2e-6"
             ),

@@ -391,27 +391,27 @@ fn bad_configs_are_rejected() {
             .unwrap_err()
             .to_string()
     };
-    assert!(e(cfg(0)).contains("--photons"));
+    assert!(e(cfg(0)).contains("photon count"));
     assert!(e(TraceConfig {
         depth: Some(0),
         ..cfg(10)
     })
-    .contains("--depth"));
+    .contains("trace depth"));
     assert!(e(TraceConfig {
         absorption: Absorption::Beer(f64::NAN),
         ..cfg(10)
     })
-    .contains("--absorption"));
+    .contains("absorption model"));
     assert!(e(TraceConfig {
         wavelengths: WavelengthSampling::Fixed(200.0),
         ..cfg(10)
     })
-    .contains("--wavelength"));
+    .contains("fixed wavelength"));
     assert!(e(TraceConfig {
         material: Material::constant(0.5),
         ..cfg(10)
     })
-    .contains("--ri"));
+    .contains("refractive index"));
     // A light facing away never hits: an error, not an endless loop.
     let away = Light {
         axis: DVec3::Z,
@@ -587,7 +587,10 @@ fn recorded_paths_replay_the_runs_photons() {
 fn photon_counts_beyond_the_limit_are_refused() {
     assert!(check_photons(MAX_PHOTONS).is_ok());
     let e = check_photons(MAX_PHOTONS + 1).unwrap_err().to_string();
-    assert!(e.contains("--photons") && e.contains("100000000000"), "{e}");
+    assert!(
+        e.contains("photon count") && e.contains("100000000000"),
+        "{e}"
+    );
     assert!(!e.contains('\n'), "{e}");
     let e = trace(&tolkowsky(), &Light::overhead(), &cfg(u64::MAX), None)
         .unwrap_err()
@@ -662,7 +665,7 @@ fn a_coloured_slab_transmits_its_closed_form_in_every_band() {
     };
     let e = c.validate().unwrap_err().to_string();
     assert!(
-        e.starts_with("--absorption: colour: ") && e.contains("no body colour"),
+        e.starts_with("absorption model: colour: ") && e.contains("no body colour"),
         "{e}"
     );
 }

@@ -194,7 +194,7 @@ impl Rough {
             Some(l) => {
                 if !(l.is_finite() && l > 0.0 && extent > 0.0) {
                     return Err(Error::invalid(
-                        "--size-mm",
+                        "rough size",
                         format!("{} is not a size; give the rough's largest extent in mm, > 0", shown(l)),
                     ));
                 }
@@ -240,7 +240,7 @@ impl Rough {
     pub fn crystal(form: &str, size_mm: f64) -> Result<Rough> {
         if !(size_mm.is_finite() && size_mm > 0.0 && size_mm <= REACH_MM) {
             return Err(Error::invalid(
-                "--size-mm",
+                "rough size",
                 format!("{size_mm} is not a crystal size; allowed (0, {REACH_MM}] mm"),
             ));
         }
@@ -445,7 +445,7 @@ pub fn load_rough(arg: &str, size_mm: Option<f64>) -> Result<Rough> {
     if CRYSTALS.contains(&arg) {
         let Some(l) = size_mm else {
             return Err(Error::invalid(
-                "--size-mm",
+                "rough size",
                 format!("the crystal form `{arg}` needs --size-mm L (its largest extent in mm)"),
             ));
         };

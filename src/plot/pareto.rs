@@ -3,6 +3,7 @@
 
 use super::{font, save_to, DrawResult, Figure, SERIES};
 use crate::error::Result;
+use crate::metrics::ScoreName;
 use crate::optimize::ParetoOutcome;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -22,20 +23,23 @@ impl Figure for ParetoFigure<'_> {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
         let o = self.0;
+        let (xn, yn) = (o.scores.first().copied(), o.scores.get(1).copied());
         let (xs, ys) = (
-            o.scores.first().cloned().unwrap_or_default(),
-            o.scores.get(1).cloned().unwrap_or_default(),
+            xn.map_or("", ScoreName::as_str),
+            yn.map_or("", ScoreName::as_str),
         );
-        let get = |m: &std::collections::BTreeMap<String, f64>, k: &str| m.get(k).copied();
+        let get = |m: &std::collections::BTreeMap<ScoreName, f64>, k: Option<ScoreName>| {
+            m.get(&k?).copied()
+        };
         let front: Vec<(f64, f64)> = o
             .front
             .iter()
-            .filter_map(|p| Some((get(&p.scores, &xs)?, get(&p.scores, &ys)?)))
+            .filter_map(|p| Some((get(&p.scores, xn)?, get(&p.scores, yn)?)))
             .collect();
         let refs: Vec<(&str, f64, f64)> = o
             .references
             .iter()
-            .filter_map(|(n, s)| Some((n.as_str(), get(s, &xs)?, get(s, &ys)?)))
+            .filter_map(|(n, s)| Some((n.as_str(), get(s, xn)?, get(s, yn)?)))
             .collect();
         let all: Vec<(f64, f64)> = front
             .iter()
@@ -57,7 +61,7 @@ impl Figure for ParetoFigure<'_> {
         let title = if o.scores.len() > 2 {
             format!(
                 "Trade-off {} (front of three scores, drawn in the first two)",
-                o.scores.join(" – ")
+                crate::metrics::score_name::joined(&o.scores, " – ")
             )
         } else {
             format!("Trade-off: {ys} against {xs}")
@@ -72,8 +76,8 @@ impl Figure for ParetoFigure<'_> {
             .configure_mesh()
             .light_line_style(BLACK.mix(0.06))
             .bold_line_style(BLACK.mix(0.12))
-            .x_desc(xs.as_str())
-            .y_desc(ys.as_str())
+            .x_desc(xs)
+            .y_desc(ys)
             .label_style(font(14))
             .axis_desc_style(font(16))
             .draw()?;

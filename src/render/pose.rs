@@ -112,9 +112,9 @@ pub fn picture_half(solid: &Polyhedron) -> f64 {
 ///
 /// ```
 /// use facetlab::render::pose::parse_tilt;
-/// let t = parse_tilt("--tilt", "10@45").unwrap();
+/// let t = parse_tilt("tilt", "10@45").unwrap();
 /// assert_eq!((t.tilt_deg, t.azimuth_deg), (10.0, 45.0));
-/// assert!(parse_tilt("--tilt", "91").is_err());
+/// assert!(parse_tilt("tilt", "91").is_err());
 /// ```
 pub fn parse_tilt(field: &str, s: &str) -> Result<Tilt> {
     let bad = || {
@@ -140,8 +140,8 @@ pub fn parse_tilt(field: &str, s: &str) -> Result<Tilt> {
 ///
 /// ```
 /// use facetlab::render::pose::parse_rock;
-/// assert_eq!(parse_rock("--rock", "15:24").unwrap(), (15.0, 24));
-/// assert!(parse_rock("--rock", "0:24").is_err());
+/// assert_eq!(parse_rock("rock", "15:24").unwrap(), (15.0, 24));
+/// assert!(parse_rock("rock", "0:24").is_err());
 /// ```
 pub fn parse_rock(field: &str, s: &str) -> Result<(f64, usize)> {
     let bad = || {

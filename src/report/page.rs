@@ -7,7 +7,7 @@ use super::tilt;
 use super::{CutReport, ReportOptions};
 use crate::cut::grade::{self, Grade};
 use crate::error::Result;
-use crate::metrics::Scores;
+use crate::metrics::ScoreName;
 use crate::plot::diagram::diagram;
 use crate::plot::palette::PICTURE_GROUND;
 use crate::render::Light;
@@ -36,26 +36,16 @@ pub fn escape(text: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// One line on what each score means, in the order shown.
-pub const SCORE_LINES: [(&str, &str); 6] = [
-    ("brilliance", "light returned to a viewer under even ISO and COS skies, averaged over face-up and tilted poses; 1 = a white diffuser"),
-    ("brilliance_iso", "the same under an evenly bright sky"),
-    ("brilliance_cos", "the same under a sky brightest overhead"),
-    ("fire", "coloured light per unit of face-up area under small spot lights (about 0.7 for an ideal diamond)"),
-    ("scintillation", "how much the pattern of flashes changes as the stone rocks by 3°: 0 none, 1 all"),
-    ("overhead_light_return", "share of light from straight above that leaves upward"),
+/// The scores a cut's table shows, in this order, each with its meaning from
+/// [`crate::metrics::SCORES`].
+pub const SCORE_LINES: [ScoreName; 6] = [
+    ScoreName::Brilliance,
+    ScoreName::BrillianceIso,
+    ScoreName::BrillianceCos,
+    ScoreName::Fire,
+    ScoreName::Scintillation,
+    ScoreName::OverheadLightReturn,
 ];
-
-fn score_value(s: &Scores, name: &str) -> f64 {
-    match name {
-        "brilliance" => s.brilliance,
-        "brilliance_iso" => s.brilliance_iso,
-        "brilliance_cos" => s.brilliance_cos,
-        "fire" => s.fire,
-        "scintillation" => s.scintillation,
-        _ => s.overhead_light_return,
-    }
-}
 
 /// The page for `cuts` (side by side when several).
 pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
@@ -207,12 +197,12 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
         }
         // Scores.
         h.push_str("<h3>Scores</h3><table>");
-        for (name, line) in SCORE_LINES {
+        for name in SCORE_LINES {
             let _ = write!(
                 h,
                 "<tr><th>{name}</th><td class=\"num\">{:.4}</td><td class=\"what\">{}</td></tr>",
-                score_value(&c.scores, name),
-                escape(line)
+                name.of(&c.scores).unwrap_or(f64::NAN),
+                escape(name.info().meaning)
             );
         }
         h.push_str("</table>\n");
@@ -293,7 +283,7 @@ mod tests {
         assert_eq!(page.matches("data:image/png;base64,").count(), 6);
         assert_eq!(page.matches("<svg").count(), 2);
         assert!(page.contains("Grade estimate: <b>excellent</b>"));
-        for (name, _) in SCORE_LINES {
+        for name in SCORE_LINES {
             assert_eq!(
                 page.matches(&format!("<th>{name}</th>")).count(),
                 2,

@@ -286,9 +286,15 @@ mod tests {
         for c in std::iter::once(&outcome.start).chain(&outcome.winners) {
             let kept = c.detail.as_ref().expect("the run kept its full scores");
             let reported = c.scores.as_ref().expect("scores");
-            assert_eq!(kept.brilliance, reported["brilliance"]);
-            assert_eq!(kept.fire, reported["fire"]);
-            assert_eq!(kept.scintillation, reported["scintillation"]);
+            assert_eq!(
+                kept.brilliance,
+                reported[&crate::metrics::ScoreName::Brilliance]
+            );
+            assert_eq!(kept.fire, reported[&crate::metrics::ScoreName::Fire]);
+            assert_eq!(
+                kept.scintillation,
+                reported[&crate::metrics::ScoreName::Scintillation]
+            );
         }
         let kept = run_page(&config, &outcome).unwrap();
         for c in std::iter::once(&mut outcome.start).chain(&mut outcome.winners) {

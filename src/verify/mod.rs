@@ -36,7 +36,7 @@ use crate::cut::Cut;
 use crate::error::Result;
 use crate::geometry::{FacetPlane, Polyhedron};
 use crate::metrics::lighting::Lighting;
-use crate::metrics::{score, ScoreConfig, Scores};
+use crate::metrics::{score, ScoreConfig, ScoreName, Scores};
 use crate::photon::{
     self, Absorption, Light, LightKind, Tally, TraceConfig, WavelengthSampling, ROTATION_ANGLES,
 };
@@ -206,18 +206,21 @@ pub fn verify_scores(
 ) -> Result<Vec<Check>> {
     let olr = overhead_light_return_mc(solid, cfg, photons, seed)?;
     let b = brilliance_mc(solid, cfg, photons, seed.wrapping_add(1))?;
-    let row = |name: &str, beam: f64, e: Estimate| Check {
-        name: name.to_string(),
-        beam,
-        photon: e.value,
-        stderr: e.stderr,
-        z: e.z(beam),
+    let row = |name: ScoreName, e: Estimate| {
+        let beam = name.of(scores).unwrap_or(f64::NAN);
+        Check {
+            name: name.to_string(),
+            beam,
+            photon: e.value,
+            stderr: e.stderr,
+            z: e.z(beam),
+        }
     };
     Ok(vec![
-        row("overhead_light_return", scores.overhead_light_return, olr),
-        row("brilliance", scores.brilliance, b.brilliance),
-        row("brilliance_iso", scores.brilliance_iso, b.brilliance_iso),
-        row("brilliance_cos", scores.brilliance_cos, b.brilliance_cos),
+        row(ScoreName::OverheadLightReturn, olr),
+        row(ScoreName::Brilliance, b.brilliance),
+        row(ScoreName::BrillianceIso, b.brilliance_iso),
+        row(ScoreName::BrillianceCos, b.brilliance_cos),
     ])
 }
 

@@ -12,6 +12,7 @@
 use super::VerifyReport;
 use crate::cut::Cut;
 use crate::error::Result;
+use crate::metrics::ScoreName;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -29,7 +30,7 @@ pub trait Verifier: Sync {
         cut: &Cut,
         photons: u64,
         seed: u64,
-        scores: Option<&BTreeMap<String, f64>>,
+        scores: Option<&BTreeMap<ScoreName, f64>>,
     ) -> Result<VerifyReport> {
         let _ = scores;
         self.verify(cut, photons, seed)
@@ -75,7 +76,7 @@ impl Verification {
         photons: u64,
         seed: u64,
         sigma: f64,
-        scores: Option<&BTreeMap<String, f64>>,
+        scores: Option<&BTreeMap<ScoreName, f64>>,
     ) -> Self {
         let t = std::time::Instant::now();
         let (report, error) = match verifier.verify_scored(cut, photons, seed, scores) {

@@ -178,7 +178,7 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
         println!("wrote {}/", dir.display());
         println!(
             "trade-off {}: {} searches, {} evaluations in {:.1} s; {} non-dominated cuts",
-            front.scores.join(" / "),
+            facetlab::metrics::score_name::joined(&front.scores, " / "),
             front.searches,
             front.evaluations,
             front.seconds,
@@ -339,7 +339,7 @@ mod tests {
             map: None,
             at: vec![],
             shard: None,
-            score: "objective".into(),
+            score: SweepScore::Objective,
             run: Some(out.clone()),
             out: Some(dir.path().join("map.png")),
             quiet: true,
@@ -430,7 +430,7 @@ mod tests {
             map: None,
             at: vec![],
             shard: None,
-            score: "brilliance".into(),
+            score: SweepScore::BRILLIANCE,
             run: None,
             out: Some(dir.path().join("prof")),
             quiet: true,
@@ -482,7 +482,7 @@ mod tests {
             map: Some("table,crown_angle".into()),
             at: vec!["pavilion_angle=40.9".into()],
             shard: None,
-            score: "brilliance".into(),
+            score: SweepScore::BRILLIANCE,
             run: None,
             out: Some(dir.path().join("three")),
             quiet: true,
@@ -520,7 +520,7 @@ mod tests {
             file: "small.toml".into(),
         };
         assert_eq!(
-            map_title(&names, &grid, &SweepScore::Fire, &spec),
+            map_title(&names, &grid, &SweepScore::FIRE, &spec),
             "fire of round-brilliant over table and crown_angle at pavilion_angle = 41 (others as in small.toml)"
         );
         for (change, want) in [
@@ -560,9 +560,9 @@ mod tests {
                 "--shard: `0/2` is not K/N",
             ),
         ] {
-            let e = run_sweep_env(&change, &bumps, &no_env)
-                .unwrap_err()
-                .to_string();
+            let e =
+                crate::cli::flags::to_flags(run_sweep_env(&change, &bumps, &no_env).unwrap_err())
+                    .to_string();
             assert!(e.contains(want), "{e}");
         }
     }

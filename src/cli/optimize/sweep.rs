@@ -46,8 +46,8 @@ pub struct SweepArgs {
     /// objective (the config's weighted score minus penalties), or for a coloured stone
     /// (`[score] colour` or a coloured material) colour_l, colour_c, extinction or windowing.
     /// The CSV has all of them.
-    #[arg(long, default_value = "brilliance")]
-    pub score: String,
+    #[arg(long, default_value = "brilliance", value_parser = crate::cli::flags::sweep_score)]
+    pub score: SweepScore,
     /// A run folder of `facetlab optimize`: draw its path (best point so far) on the map
     /// (2-D maps only).
     #[arg(long, value_name = "DIR")]
@@ -230,7 +230,7 @@ pub fn run_sweep_env(
 ) -> Result<Exit> {
     let config = Config::load(&a.config)?;
     let grid = Grid::new(sweep_axes(a, &config)?)?;
-    let score = SweepScore::parse(&a.score)?;
+    let score = a.score.clone();
     let spec = map_spec(&grid, a.map.as_deref(), &a.at)?;
     if spec.axes.len() < 2 && a.run.is_some() {
         return Err(Error::invalid(

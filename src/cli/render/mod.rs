@@ -70,13 +70,14 @@ pub struct RenderArgs {
         long,
         default_value = "512",
         value_name = "PX",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::whole("--size", 8, 8192)
     )]
-    pub size: String,
+    pub size: u64,
     /// Tilt the stone DEG degrees (−90 to 90) toward azimuth AZ (degrees from +x, default 0):
     /// `--tilt 10@45`.
-    #[arg(long, value_name = "DEG[@AZ]", allow_hyphen_values = true)]
-    pub tilt: Option<String>,
+    #[arg(long, value_name = "DEG[@AZ]", allow_hyphen_values = true, value_parser = flags::parsed("--tilt", parse_tilt))]
+    pub tilt: Option<Tilt>,
     /// Half-angle of the viewer's head shadow, the ASET port, the IdealScope head or the hearts
     /// & arrows viewer's dark tube, degrees (0–60; default 10 for aset and idealscope, 20 for
     /// arrows, 6 for hearts, 0 otherwise).
@@ -89,24 +90,25 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub crystal: super::flags::CrystalArgs,
     /// Track polarization (on) or use the unpolarized average (off).
-    #[arg(long, default_value = "on", value_name = "on|off")]
-    pub polarization: String,
+    #[arg(long, default_value = "on", value_name = "on|off", action = clap::ArgAction::Set, value_parser = crate::cli::flags::on_off_parser("--polarization"))]
+    pub polarization: bool,
     /// Change a parameter: a family's (`--set crown_angle=34.5`) or a design's tier angle
     /// (`--set P1=41.2`). Repeatable; applied to every CUT.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Animated PNG of the stone rocking: frame k tilted DEG·sin(2πk/FRAMES) more toward the
     /// --tilt azimuth; DEG in (0, 60], FRAMES in 2–240; loops forever.
-    #[arg(long, value_name = "DEG:FRAMES", allow_hyphen_values = true)]
-    pub rock: Option<String>,
+    #[arg(long, value_name = "DEG:FRAMES", allow_hyphen_values = true, value_parser = flags::parsed("--rock", parse_rock))]
+    pub rock: Option<(f64, usize)>,
     /// Brightness factor of the iso, cos, hearts, arrows and fire pictures (0.01–100).
     #[arg(
         long,
         default_value = "1",
         value_name = "X",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::real("--exposure", 0.01, 100.0, "a factor")
     )]
-    pub exposure: String,
+    pub exposure: f64,
     /// Write the statistics as JSON to this file (keys in the README).
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -170,9 +172,9 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
         )
     })?;
     let mut opts = RenderOptions::new(light);
-    opts.size = flags::count("--size", &a.size, 8, 8192)? as usize;
-    if let Some(t) = &a.tilt {
-        opts.tilt = parse_tilt("--tilt", t)?;
+    opts.size = a.size as usize;
+    if let Some(t) = a.tilt {
+        opts.tilt = t;
     }
     opts.head_shadow_deg = a
         .head_shadow
@@ -190,12 +192,8 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
     opts.material = a.material.material()?;
     opts.material.colour = a.colour.colour_for(&opts.material)?;
     a.colour.size()?;
-    opts.polarization = flags::on_off("--polarization", &a.polarization)?;
-    let rock = a
-        .rock
-        .as_deref()
-        .map(|r| parse_rock("--rock", r))
-        .transpose()?;
+    opts.polarization = a.polarization;
+    let rock = a.rock;
     if let Some((deg, _)) = rock {
         if opts.tilt.tilt_deg.abs() + deg > 90.0 {
             return Err(Error::invalid(
@@ -223,7 +221,7 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
             ));
         }
     }
-    let exposure = flags::number("--exposure", &a.exposure, 0.01, 100.0, "a factor")?;
+    let exposure = a.exposure;
     // The library names its fields; on the command line they are flags.
     let material_flag = a.material.flag();
     opts.validate().map_err(|e| match e {
@@ -584,6 +582,16 @@ mod tests {
         Cli::try_parse_from(v).unwrap().args
     }
 
+    /// The line a user sees for `extra`: a typed flag's refusal, else the settings' error.
+    fn first_error(extra: &[&str]) -> String {
+        let mut v = vec!["render", "tolkowsky", "-o", "x.png"];
+        v.extend_from_slice(extra);
+        match Cli::try_parse_from(v) {
+            Err(e) => crate::cli::flags::refused_value(&e).unwrap(),
+            Ok(c) => settings(&c.args).unwrap_err().to_string(),
+        }
+    }
+
     #[test]
     fn defaults_and_flags_become_render_options() {
         let s = settings(&parse(&[])).unwrap();
@@ -653,7 +661,7 @@ mod tests {
             (&["--colour-density", "2"], "--colour-density"),
             (&["--size-mm", "0"], "--size-mm"),
         ] {
-            let e = settings(&parse(extra)).unwrap_err().to_string();
+            let e = first_error(extra);
             assert!(e.starts_with(flag), "{extra:?}: {e}");
             assert!(!e.contains('\n'), "{e}");
         }

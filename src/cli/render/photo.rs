@@ -11,9 +11,9 @@ use facetlab::document::render::{PhotoFrame, PhotoRecord};
 use facetlab::error::{Error, Result};
 use facetlab::plot::render::{bare, compose, Panel, Sheet};
 use facetlab::render::photo::{
-    self, caption, parse_view, turntable, Ground, GroundKind, PhotoLight, PhotoOptions, Tone,
+    self, caption, parse_view, turntable, Ground, GroundKind, PhotoLight, PhotoOptions, Tone, View,
 };
-use facetlab::render::pose::{parse_rock, parse_tilt, rocked};
+use facetlab::render::pose::rocked;
 use rayon::prelude::*;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -24,8 +24,8 @@ pub struct PhotoArgs {
     /// Photographs: where the camera looks from, ELEV degrees above the horizon (90 =
     /// straight above, 0 = a side view, negative = from below) and azimuth AZ (degrees
     /// counter-clockwise from the front); default 30@0.
-    #[arg(long, value_name = "ELEV[@AZ]", allow_hyphen_values = true)]
-    pub view: Option<String>,
+    #[arg(long, value_name = "ELEV[@AZ]", allow_hyphen_values = true, value_parser = flags::parsed("--view", parse_view))]
+    pub view: Option<View>,
     /// Photographs: a perspective camera this many mm from the stone's centre (the stone's
     /// width from --diameter-mm, default 6.5 mm); default: orthographic.
     #[arg(long, value_name = "MM", allow_hyphen_values = true)]
@@ -48,8 +48,8 @@ pub struct PhotoArgs {
     pub turn: Option<String>,
     /// Photographs: the tone curve from linear radiance to the picture: filmic (default) or
     /// clip.
-    #[arg(long, value_name = "filmic|clip")]
-    pub tone: Option<String>,
+    #[arg(long, value_name = "filmic|clip", value_parser = flags::parsed("--tone", Tone::parse))]
+    pub tone: Option<Tone>,
     /// Photographs: also write the linear picture (before exposure and tone) as OpenEXR
     /// (.exr) or Radiance HDR (.hdr); frame 0 of an animation, the first cut.
     #[arg(long, value_name = "FILE.exr")]
@@ -118,12 +118,12 @@ const MAX_ANIMATION_PIXELS: f64 = 400e6;
 pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<Settings> {
     let p = &a.photo;
     let mut o = PhotoOptions::new(light);
-    o.size = flags::count("--size", &a.size, 8, 8192)? as usize;
-    if let Some(v) = &p.view {
-        o.view = parse_view("--view", v)?;
+    o.size = a.size as usize;
+    if let Some(v) = p.view {
+        o.view = v;
     }
-    if let Some(t) = &a.tilt {
-        o.tilt = parse_tilt("--tilt", t)?;
+    if let Some(t) = a.tilt {
+        o.tilt = t;
     }
     if a.head_shadow.is_some() {
         return Err(Error::invalid(
@@ -134,7 +134,7 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<Settings> {
     o.material = a.material.material()?;
     o.material.colour = a.colour.colour_for(&o.material)?;
     a.colour.size()?;
-    o.polarization = flags::on_off("--polarization", &a.polarization)?;
+    o.polarization = a.polarization;
     if let Some(g) = &p.ground {
         let kind = GroundKind::ALL
             .into_iter()
@@ -153,8 +153,8 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<Settings> {
     if let Some(r) = &p.light_rotation {
         o.light_rotation_deg = flags::number("--light-rotation", r, -360.0, 360.0, "degrees")?;
     }
-    if let Some(t) = &p.tone {
-        o.tone = Tone::parse("--tone", t)?;
+    if let Some(t) = p.tone {
+        o.tone = t;
     }
     if let Some(b) = &p.bands {
         o.bands = flags::count("--bands", b, 3, 64)? as usize;
@@ -167,11 +167,7 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<Settings> {
         .as_deref()
         .map(|t| flags::count("--turn", t, 2, 360).map(|n| n as usize))
         .transpose()?;
-    let rock = a
-        .rock
-        .as_deref()
-        .map(|r| parse_rock("--rock", r))
-        .transpose()?;
+    let rock = a.rock;
     if turn.is_some() && rock.is_some() {
         return Err(Error::invalid(
             "--turn",
@@ -203,7 +199,7 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<Settings> {
             ),
         ));
     }
-    let exposure = flags::number("--exposure", &a.exposure, 0.01, 100.0, "a factor")?;
+    let exposure = a.exposure;
     // The width the stone is seen at (for a perspective camera and absorption).
     if let facetlab::optics::StoneSize::Width(w) = a.colour.size()? {
         o.width_mm = w;

@@ -151,7 +151,7 @@ fn rough(b: &Body) -> ApiResult<Rough> {
         Err(_) => return Err(ApiError::bad("size_mm", "must be a number of millimetres")),
     };
     let lib = |e: Error| match e {
-        Error::Invalid { field, message } if field == "--size-mm" => {
+        Error::Invalid { field, message } if field == "rough size" => {
             unprocessable("size_mm", message)
         }
         Error::Invalid { message, .. } => unprocessable("rough", message),

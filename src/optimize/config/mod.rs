@@ -51,7 +51,7 @@ pub use constraints::{Constraints, RawConstraints};
 pub use cut::RawCut;
 pub use free::{axis_label, FreeParam, OPTIC_AXIS};
 pub use method::{Budget, Method, NelderMeadSettings, RawMethod, Sampling, SwarmSettings};
-pub use objective::{ParetoSpec, RawObjective, Weights, COLOUR_WEIGHTS, PARETO_SCORES};
+pub use objective::{ParetoSpec, RawObjective, Weights};
 pub use score::{RawScore, ScoreSettings};
 pub use winners::{RawVerify, VerifySettings};
 
@@ -59,6 +59,7 @@ use crate::cut::{Cut, CutSpace};
 use crate::design::{DesignSpace, OpenedMeet};
 use crate::error::{shown, Error, Result};
 use crate::io::{line_of, read_bytes};
+use crate::metrics::ScoreName;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -384,7 +385,7 @@ impl Config {
             f.start = s;
         }
         let colour_weights = raw.objective.clone().unwrap_or_default().colour();
-        for (name, set) in objective::COLOUR_WEIGHTS.iter().zip(colour_weights) {
+        for (name, set) in ScoreName::COLOUR.iter().zip(colour_weights) {
             if set.is_some() && score.material.colour.is_none() {
                 return Err(Error::invalid(
                     at(&format!("objective.{name}")),
@@ -510,7 +511,10 @@ impl Config {
                 colour_c: colour_weight(self.weights.colour[1]),
                 extinction: colour_weight(self.weights.colour[2]),
                 windowing: colour_weight(self.weights.colour[3]),
-                pareto: self.pareto.as_ref().map(|p| p.scores.clone()),
+                pareto: self
+                    .pareto
+                    .as_ref()
+                    .map(|p| p.scores.iter().map(ScoreName::to_string).collect()),
                 pareto_points: self.pareto.as_ref().map(|p| p.points as u64),
             }),
             constraints: Some(RawConstraints {

@@ -2,6 +2,8 @@
 
 use super::{finite, At};
 use crate::error::{shown, Error, Result};
+use crate::metrics::score_name::list;
+use crate::metrics::ScoreName;
 use serde::{Deserialize, Serialize};
 
 /// `[objective]`.
@@ -38,14 +40,11 @@ pub struct RawObjective {
     pub pareto_points: Option<u64>,
 }
 
-/// The scores a trade-off may name.
-pub const PARETO_SCORES: [&str; 3] = ["brilliance", "fire", "scintillation"];
-
 /// A validated `[objective] pareto`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ParetoSpec {
-    /// The scores traded off (2 or 3 of [`PARETO_SCORES`]).
-    pub scores: Vec<String>,
+    /// The scores traded off (2 or 3 of [`ScoreName::OBJECTIVE`]).
+    pub scores: Vec<ScoreName>,
     /// Weight steps per edge (≥ 2).
     pub points: usize,
 }
@@ -60,21 +59,28 @@ pub(super) fn validate_pareto(ro: &RawObjective, at: At) -> Result<Option<Pareto
         return Err(Error::invalid(
             at(f),
             format!(
-                "{} scores given; trade off two or three of brilliance, fire, scintillation",
-                names.len()
+                "{} scores given; trade off two or three of {}",
+                names.len(),
+                list(&ScoreName::OBJECTIVE)
             ),
         ));
     }
+    let mut scores = Vec::new();
     for (i, n) in names.iter().enumerate() {
-        if !PARETO_SCORES.contains(&n.as_str()) {
+        let Some(score) = ScoreName::from_key(n).filter(|s| ScoreName::OBJECTIVE.contains(s))
+        else {
             return Err(Error::invalid(
                 at(f),
-                format!("{n:?} is not a score; allowed brilliance, fire, scintillation"),
+                format!(
+                    "{n:?} is not a score; allowed {}",
+                    list(&ScoreName::OBJECTIVE)
+                ),
             ));
-        }
+        };
         if names[..i].contains(n) {
             return Err(Error::invalid(at(f), format!("{n:?} is named twice")));
         }
+        scores.push(score);
     }
     let points = ro.pareto_points.unwrap_or(7);
     if !(2..=50).contains(&points) {
@@ -84,14 +90,10 @@ pub(super) fn validate_pareto(ro: &RawObjective, at: At) -> Result<Option<Pareto
         ));
     }
     Ok(Some(ParetoSpec {
-        scores: names.clone(),
+        scores,
         points: points as usize,
     }))
 }
-
-/// The colour scores `[objective]` may weigh, as the optimizer's score sets name them
-/// (`Scores::colour` of a coloured stone).
-pub const COLOUR_WEIGHTS: [&str; 4] = ["colour_l", "colour_c", "extinction", "windowing"];
 
 /// Objective weights: score = Σ weight · score.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -102,7 +104,7 @@ pub struct Weights {
     pub fire: f64,
     /// Weight of scintillation.
     pub scintillation: f64,
-    /// Weights of a coloured stone's colour scores, in the order of `COLOUR_WEIGHTS`
+    /// Weights of a coloured stone's colour scores, in the order of [`ScoreName::COLOUR`]
     /// (any sign: a negative weight on extinction or windowing avoids them); all 0 for a
     /// colourless stone. Left out of the JSON when all 0.
     #[serde(skip_serializing_if = "all_zero")]
@@ -121,7 +123,7 @@ impl Weights {
 }
 
 impl RawObjective {
-    /// The colour weights given, in the order of `COLOUR_WEIGHTS`.
+    /// The colour weights given, in the order of [`ScoreName::COLOUR`].
     pub fn colour(&self) -> [Option<f64>; 4] {
         [
             self.colour_l,
@@ -162,7 +164,7 @@ pub(super) fn validate(ro: &RawObjective, at: At) -> Result<Weights> {
         scintillation: w("objective.scintillation", ro.scintillation, 0.0)?,
         colour: [0.0; 4],
     };
-    for (k, (name, v)) in COLOUR_WEIGHTS.iter().zip(colour_given).enumerate() {
+    for (k, (name, v)) in ScoreName::COLOUR.iter().zip(colour_given).enumerate() {
         weights.colour[k] = finite(&at(&format!("objective.{name}")), v.unwrap_or(0.0))?;
     }
     if weights.brilliance + weights.fire + weights.scintillation <= 0.0 && !weights.weighs_colour()

@@ -34,7 +34,7 @@ pub use shard::{
 pub use slice::{fixed_at, heatmap, map_axes, parse_at, profile_lines};
 
 use super::sweep::{score_point, Axis, SweepScore, MAX_POINTS, SCORES};
-use super::{Config, Evaluator, ScoreSet};
+use super::{Config, Evaluator, ScoreName, ScoreSet};
 use crate::error::{Error, Result};
 use rayon::prelude::*;
 use std::fmt::Write;
@@ -52,14 +52,14 @@ impl Grid {
     pub fn new(axes: Vec<Axis>) -> Result<Grid> {
         if axes.is_empty() {
             return Err(Error::invalid(
-                "--x",
+                "first axis",
                 "give at least one axis: --x KEY:MIN:MAX:STEP (or --axis)",
             ));
         }
         for (i, a) in axes.iter().enumerate() {
             if axes[..i].iter().any(|b| b.key == a.key) {
                 return Err(Error::invalid(
-                    "--axis",
+                    "grid axes",
                     format!("sweeps `{}` on two axes; give different parameters", a.key),
                 ));
             }
@@ -70,7 +70,7 @@ impl Grid {
         }
         if n > MAX_POINTS {
             return Err(Error::invalid(
-                "--axis",
+                "grid axes",
                 format!("{n} grid points; at most {MAX_POINTS}: use larger steps or fewer axes"),
             ));
         }
@@ -193,10 +193,10 @@ pub fn evaluate(
 
 /// The sweep's CSV (see the module documentation) of all the grid's `cells`, in grid order.
 pub fn to_csv(grid: &Grid, cells: &[GridCell]) -> String {
-    let extras: Vec<String> = cells
+    let extras: Vec<ScoreName> = cells
         .iter()
         .find_map(|c| c.scores.as_ref())
-        .map(|s| s.extra.iter().map(|(k, _)| k.clone()).collect())
+        .map(|s| s.extra.iter().map(|(k, _)| *k).collect())
         .unwrap_or_default();
     let keys: Vec<&str> = grid.axes.iter().map(|a| a.key.as_str()).collect();
     let mut o = format!("{},brilliance,fire,scintillation,objective", keys.join(","));
@@ -211,7 +211,7 @@ pub fn to_csv(grid: &Grid, cells: &[GridCell]) -> String {
             let _ = write!(o, ",{}", num(c.value(score)));
         }
         for e in &extras {
-            let v = c.scores.as_ref().and_then(|sc| sc.get(e));
+            let v = c.scores.as_ref().and_then(|sc| sc.get(*e));
             let _ = write!(o, ",{}", num(v.unwrap_or(f64::NAN)));
         }
         o.push('\n');
@@ -251,16 +251,16 @@ mod tests {
             cut.params["table"] / 3.0,
             0.1,
         );
-        s.extra.push(("aset_red".into(), a / 7.0));
+        s.extra.push((crate::metrics::ScoreName::AsetRed, a / 7.0));
         Ok(s)
     }
 
     #[test]
     fn order_shards_rows_and_merge_agree_with_the_two_axis_sweep() {
         let c = cfg();
-        let x = Axis::parse("--x", "crown_angle:33:36:1", &c).unwrap();
-        let y = Axis::parse("--y", "pavilion_angle:40:41:0.5", &c).unwrap();
-        let t = Axis::parse("--axis", "table:0.55:0.57:0.01", &c).unwrap();
+        let x = Axis::parse("x axis", "crown_angle:33:36:1", &c).unwrap();
+        let y = Axis::parse("y axis", "pavilion_angle:40:41:0.5", &c).unwrap();
+        let t = Axis::parse("axis", "table:0.55:0.57:0.01", &c).unwrap();
         let two = Grid::new(vec![x.clone(), y.clone()]).unwrap();
         assert_eq!(two.point(5), vec![34.0, 40.5], "first axis fastest");
         let all: Vec<usize> = (0..two.len()).collect();
@@ -317,7 +317,7 @@ mod tests {
             &three,
             &cells,
             &labels,
-            &SweepScore::Fire,
+            &SweepScore::FIRE,
             (1, 2),
             &fixed,
             "t".into(),
@@ -335,15 +335,12 @@ mod tests {
 
     #[test]
     fn shards_parse_and_come_from_job_arrays() {
-        assert_eq!(
-            Shard::parse("--shard", "2/3").unwrap(),
-            Shard { k: 2, n: 3 }
-        );
+        assert_eq!(Shard::parse("shard", "2/3").unwrap(), Shard { k: 2, n: 3 });
         for bad in ["0/3", "4/3", "3", "a/b", "1/0"] {
-            assert!(Shard::parse("--shard", bad)
+            assert!(Shard::parse("shard", bad)
                 .unwrap_err()
                 .to_string()
-                .starts_with("--shard:"));
+                .starts_with("shard:"));
         }
         let env = |pairs: &'static [(&'static str, &'static str)]| {
             move |k: &str| {

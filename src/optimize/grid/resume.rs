@@ -54,7 +54,7 @@ impl ShardRun {
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
         if matches!(ext.as_deref(), Some("csv" | "png" | "svg")) {
             return Err(Error::invalid(
-                "--out",
+                "shard folder",
                 format!(
                     "{} is a file name; a sharded sweep writes a folder (its shard in OUT/{})",
                     out.display(),
@@ -97,22 +97,24 @@ impl ShardRun {
         let mut done = BTreeSet::new();
         if record_path.exists() {
             let old: ShardRecord = serde_json::from_slice(&crate::io::read_bytes(&record_path)?)
-                .map_err(|e| Error::invalid("--out", format!("{}: {e}", record_path.display())))?;
+                .map_err(|e| {
+                    Error::invalid("shard folder", format!("{}: {e}", record_path.display()))
+                })?;
             if !old.same_sweep(&record) || old.k != record.k {
                 return Err(Error::invalid(
-                    "--out",
+                    "shard folder",
                     format!("{shown} holds shard {}/{} of another sweep (config hash {}, axes or shard count differ); choose another folder", old.k, old.n, old.config_hash),
                 ));
             }
             if rows_path.exists() {
                 let text = String::from_utf8_lossy(&crate::io::read_bytes(&rows_path)?).to_string();
                 let (cells, good) = read_rows(&text, grid).map_err(|e| {
-                    Error::invalid("--out", format!("{}: {e}", rows_path.display()))
+                    Error::invalid("shard folder", format!("{}: {e}", rows_path.display()))
                 })?;
                 for c in cells {
                     if !shard.owns(c.index) || !done.insert(c.index) {
                         return Err(Error::invalid(
-                            "--out",
+                            "shard folder",
                             format!(
                                 "{}: grid point {} is not shard {}/{}'s or is there twice",
                                 rows_path.display(),
@@ -135,7 +137,7 @@ impl ShardRun {
             }
         } else if rows_path.exists() {
             return Err(Error::invalid(
-                "--out",
+                "shard folder",
                 format!(
                     "{} exists without shard.json; choose another folder",
                     rows_path.display()
@@ -167,7 +169,7 @@ impl ShardRun {
 
     fn write_record(&self) -> Result<()> {
         let text = serde_json::to_string_pretty(&self.record)
-            .map_err(|e| Error::invalid("--out", e.to_string()))?;
+            .map_err(|e| Error::invalid("shard folder", e.to_string()))?;
         crate::io::write_atomic(&self.record_path, (text + "\n").as_bytes())
     }
 

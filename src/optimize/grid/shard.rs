@@ -5,7 +5,7 @@
 use super::{num, Grid, GridCell};
 use crate::error::{Error, Result};
 use crate::optimize::sweep::{Axis, SCORES};
-use crate::optimize::ScoreSet;
+use crate::optimize::{ScoreName, ScoreSet};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 
@@ -59,7 +59,7 @@ pub fn parse_shard_row(line: &str, naxes: usize) -> Option<GridCell> {
             let mut s = ScoreSet::new(sc[0], sc[1], sc[2]);
             for p in pairs.split(';').filter(|p| !p.is_empty()) {
                 let (k, v) = p.split_once('=')?;
-                s.extra.push((k.to_string(), v.parse().ok()?));
+                s.extra.push((ScoreName::from_key(k)?, v.parse().ok()?));
             }
             Some(s)
         }

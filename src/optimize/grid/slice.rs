@@ -23,7 +23,7 @@ pub fn fixed_at(grid: &Grid, at: &[(String, f64)]) -> Result<Vec<usize>> {
         let Some(ai) = grid.axis(k) else {
             let keys: Vec<&str> = grid.axes.iter().map(|a| a.key.as_str()).collect();
             return Err(Error::invalid(
-                "--at",
+                "slice point",
                 format!(
                     "`{k}` is not an axis of this sweep; axes: {}",
                     keys.join(", ")
@@ -35,7 +35,7 @@ pub fn fixed_at(grid: &Grid, at: &[(String, f64)]) -> Result<Vec<usize>> {
         let step = a.values.get(1).map_or(0.0, |s| s - lo);
         if !v.is_finite() || *v < lo - step / 2.0 || *v > hi + step / 2.0 {
             return Err(Error::invalid(
-                "--at",
+                "slice point",
                 format!("{k} = {v} is outside the axis ({lo} to {hi})"),
             ));
         }
@@ -61,11 +61,10 @@ pub fn parse_at(specs: &[String]) -> Result<Vec<(String, f64)>> {
         .map(|s| {
             let (k, v) = s
                 .split_once('=')
-                .ok_or_else(|| Error::invalid("--at", format!("`{s}` is not KEY=VALUE")))?;
-            let v: f64 = v
-                .trim()
-                .parse()
-                .map_err(|_| Error::invalid("--at", format!("`{v}` in `{s}` is not a number")))?;
+                .ok_or_else(|| Error::invalid("slice point", format!("`{s}` is not KEY=VALUE")))?;
+            let v: f64 = v.trim().parse().map_err(|_| {
+                Error::invalid("slice point", format!("`{v}` in `{s}` is not a number"))
+            })?;
             Ok((k.trim().to_string(), v))
         })
         .collect()
@@ -153,7 +152,7 @@ pub fn map_axes(grid: &Grid, map: Option<&str>) -> Result<Vec<usize>> {
     let keys: Vec<&str> = m.split(',').map(str::trim).collect();
     if keys.is_empty() || keys.len() > 2 {
         return Err(Error::invalid(
-            "--map",
+            "map axes",
             format!("`{m}` is not KEY1,KEY2 (or one KEY for a profile)"),
         ));
     }
@@ -162,7 +161,7 @@ pub fn map_axes(grid: &Grid, map: Option<&str>) -> Result<Vec<usize>> {
         let Some(i) = grid.axis(k) else {
             let all: Vec<&str> = grid.axes.iter().map(|a| a.key.as_str()).collect();
             return Err(Error::invalid(
-                "--map",
+                "map axes",
                 format!(
                     "`{k}` is not an axis of this sweep; axes: {}",
                     all.join(", ")
@@ -171,7 +170,7 @@ pub fn map_axes(grid: &Grid, map: Option<&str>) -> Result<Vec<usize>> {
         };
         if out.contains(&i) {
             return Err(Error::invalid(
-                "--map",
+                "map axes",
                 format!("`{k}` twice; give two different axes"),
             ));
         }

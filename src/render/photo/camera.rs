@@ -62,9 +62,9 @@ impl View {
 ///
 /// ```
 /// use facetlab::render::photo::parse_view;
-/// let v = parse_view("--view", "30@45").unwrap();
+/// let v = parse_view("view", "30@45").unwrap();
 /// assert_eq!((v.elevation_deg, v.azimuth_deg), (30.0, 45.0));
-/// assert!(parse_view("--view", "95").is_err());
+/// assert!(parse_view("view", "95").is_err());
 /// ```
 pub fn parse_view(field: &str, s: &str) -> Result<View> {
     let bad = || {

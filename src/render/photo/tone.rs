@@ -130,7 +130,7 @@ mod tests {
         assert!((Tone::Filmic.curve(1.0) - 0.8037).abs() < 1e-3);
         assert_eq!(Tone::Clip.curve(0.5), 0.5);
         assert_eq!(Tone::Clip.curve(3.0), 1.0);
-        assert_eq!(Tone::parse("--tone", "FILMIC").unwrap(), Tone::Filmic);
-        assert!(Tone::parse("--tone", "hdr").is_err());
+        assert_eq!(Tone::parse("tone", "FILMIC").unwrap(), Tone::Filmic);
+        assert!(Tone::parse("tone", "hdr").is_err());
     }
 }
