@@ -30,7 +30,7 @@ fn mirrored(solid: &Polyhedron, frame: &Frame, light: Light, axis: Option<DVec3>
     [frame.u, frame.v].iter().all(|&a| {
         let kept = axis.is_none_or(|c| {
             let d = c.normalize().dot(a).abs();
-            d < 1e-9 || d > 1.0 - 1e-9
+            !(1e-9..=1.0 - 1e-9).contains(&d)
         });
         kept && {
             planes.iter().all(|p| {
