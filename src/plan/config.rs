@@ -15,6 +15,11 @@
 //! min_brilliance = 0.75         # every family: brilliance (fast scores) at least this
 //! prices = "prices.toml"        # for "value", relative to this file
 //!
+//! [rough]
+//! c_axis = [0.0, 0.0, 1.0]      # a uniaxial stone's c-axis in the rough's coordinates:
+//!                               # each plan is scored with its optic axis where the rough
+//!                               # puts it (default: the material's, as cutters orient it)
+//!
 //! [search]
 //! starts = 12                   # Nelder–Mead starts per family (start 0: table up)
 //! max_iterations = 250          # per start
@@ -248,6 +253,12 @@ pub struct PlanConfig {
     pub max_iterations: u64,
     /// The price file read for `value` (an input of the run, never to be overwritten).
     pub price_file: Option<PathBuf>,
+    /// A uniaxial stone's c-axis in the rough's coordinates (unit), `[rough] c_axis`: each
+    /// plan is scored with its optic axis where the rough puts it ([`Plan::optic_axis`]).
+    /// `None`: the material's default axis, relative to each plan's table.
+    ///
+    /// [`Plan::optic_axis`]: super::Plan::optic_axis
+    pub c_axis: Option<glam::DVec3>,
 }
 
 impl Default for PlanConfig {
@@ -266,6 +277,7 @@ impl Default for PlanConfig {
             starts: 12,
             max_iterations: 250,
             price_file: None,
+            c_axis: None,
         }
     }
 }
@@ -279,6 +291,12 @@ struct RawObjective {
     grade: Option<toml::Value>,
     min_brilliance: Option<toml::Value>,
     prices: Option<toml::Value>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawRough {
+    c_axis: Option<toml::Value>,
 }
 
 #[derive(Deserialize, Default)]
@@ -299,6 +317,8 @@ struct RawConfig {
     min_width_mm: Option<toml::Value>,
     #[serde(default)]
     objective: RawObjective,
+    #[serde(default)]
+    rough: RawRough,
     #[serde(default)]
     search: RawSearch,
     #[serde(default)]
@@ -359,6 +379,36 @@ fn ranged(field: String, v: &toml::Value, lo: f64, hi: f64, what: &str) -> Resul
             ),
         )),
     }
+}
+
+/// `[rough] c_axis` named `field`: three numbers, not all 0, for a uniaxial `material`.
+fn c_axis(field: String, v: &toml::Value, material: &str) -> Result<glam::DVec3> {
+    let xyz: Option<Vec<f64>> = v
+        .as_array()
+        .filter(|a| a.len() == 3)
+        .and_then(|a| a.iter().map(as_number).collect());
+    let axis = xyz
+        .map(|x| glam::DVec3::new(x[0], x[1], x[2]))
+        .filter(|a| a.is_finite() && a.length() > 1e-9)
+        .ok_or_else(|| {
+            Error::invalid(
+                field.clone(),
+                format!(
+                    "{} is not allowed; give the c-axis's direction in the rough's coordinates, three numbers not all 0, e.g. [0, 0, 1]",
+                    quote(v)
+                ),
+            )
+        })?;
+    let uniaxial = Material::by_name(material).is_ok_and(|m| m.uniaxial.is_some());
+    if !uniaxial {
+        return Err(Error::invalid(
+            field,
+            format!(
+                "{material} has no optic axis to place; a c-axis is for the uniaxial stones (quartz, beryl, tourmaline, sapphire and ruby, zircon, moissanite and their varieties)"
+            ),
+        ));
+    }
+    Ok(axis.normalize())
 }
 
 /// A string named `field`.
@@ -555,6 +605,9 @@ impl PlanConfig {
             }
             c.params.insert(fam.clone(), out);
         }
+        if let Some(v) = &raw.rough.c_axis {
+            c.c_axis = Some(c_axis(at("rough.c_axis"), v, &c.material)?);
+        }
         Ok(c)
     }
 }
@@ -619,5 +672,29 @@ mod tests {
             "{bad_bound}"
         );
         assert!(e("[free.round-brilliant]\nhue = 3.0").contains("not a parameter"));
+        // [rough] c_axis: three numbers not all 0, for a uniaxial stone.
+        for bad in ["[0, 0, 0]", "[1, 2]", "\"up\"", "[1, \"a\", 0]"] {
+            let m = e(&format!("material = \"sapphire\"\n[rough]\nc_axis = {bad}"));
+            assert!(m.contains("p.toml: rough.c_axis"), "{m}");
+        }
+        let m = e("[rough]\nc_axis = [0, 0, 1]");
+        assert!(m.contains("rough.c_axis") && m.contains("diamond"), "{m}");
+    }
+
+    #[test]
+    fn a_c_axis_is_read_as_a_unit_direction() {
+        let c = PlanConfig::parse(
+            "material = \"ruby\"\n[rough]\nc_axis = [0, 3, 4]",
+            "p.toml",
+            "p",
+            Path::new("."),
+        )
+        .unwrap();
+        let a = c.c_axis.unwrap();
+        assert!(
+            (a - glam::DVec3::new(0.0, 0.6, 0.8)).length() < 1e-15,
+            "{a}"
+        );
+        assert_eq!(PlanConfig::default().c_axis, None);
     }
 }

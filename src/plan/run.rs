@@ -202,6 +202,33 @@ fn write_into(dir: &Path, run: &Run<'_>, drawings: &dyn Drawings) -> Result<()> 
             )?;
             let mut design = p.cut.clone();
             design.name = stem.clone();
+            // A uniaxial stone's optic axis where the rough's c-axis puts it in this plan:
+            // scored so, and noted in the design with its material, as `score` reads them.
+            let axis = config.c_axis.map(|c| p.optic_axis(c));
+            let plan_cfg = match axis {
+                Some(a) => {
+                    let mut m = material.clone();
+                    if let Some(u) = m.uniaxial.as_mut() {
+                        u.axis = a;
+                    }
+                    if design.record.is_none() {
+                        design.record = Some(crate::cut::GemcadRecord::generated(
+                            &design,
+                            0,
+                            material.ri_d(),
+                        ));
+                    }
+                    if let Some(r) = design.record.as_mut() {
+                        r.footnotes.push(format!("Material: {}", material.name));
+                        r.footnotes.push(format!("Optic axis: {}", a.label()));
+                    }
+                    ScoreConfig {
+                        material: m,
+                        ..score_cfg.clone()
+                    }
+                }
+                None => score_cfg.clone(),
+            };
             write(
                 dir,
                 &format!("{stem}.asc"),
@@ -227,7 +254,7 @@ fn write_into(dir: &Path, run: &Run<'_>, drawings: &dyn Drawings) -> Result<()> 
             if k == 0 {
                 best.push((placed.clone(), label.clone(), p.rotation.inverse()));
             }
-            let s = score(&p.cut.solid, &score_cfg);
+            let s = score(&p.cut.solid, &plan_cfg);
             let (lo, hi) = placed.bounding_box();
             plans_json.push(PlanJson::new(
                 fam,

@@ -102,6 +102,30 @@ impl Plan {
     pub fn up(&self) -> DVec3 {
         self.rotation * DVec3::Z
     }
+
+    /// The optic axis of the cut, for a stone whose c-axis lies along `c_axis` in the rough:
+    /// its angle from the table's normal (0–90°) toward an azimuth in the cut's own frame
+    /// (degrees from +x, in [−180, 180]; 0 when the axis is the table's normal), both to
+    /// 0.01°.
+    pub fn optic_axis(&self, c_axis: DVec3) -> crate::optics::OpticAxis {
+        let mut c = (self.rotation.inverse() * c_axis).normalize();
+        if c.z < 0.0 {
+            c = -c;
+        }
+        // Rounded to 0.01°, so that the note written in the plan's design gives its scores
+        // again.
+        let round = |x: f64| (x * 100.0).round() / 100.0 + 0.0;
+        let tilt_deg = round(c.z.clamp(-1.0, 1.0).acos().to_degrees());
+        let azimuth_deg = if tilt_deg == 0.0 {
+            0.0
+        } else {
+            round(c.y.atan2(c.x).to_degrees())
+        };
+        crate::optics::OpticAxis {
+            tilt_deg,
+            azimuth_deg,
+        }
+    }
 }
 
 /// The planner for one rough.

@@ -53,6 +53,9 @@ pub struct PlanJson {
     rotation: [f64; 4],
     table_normal: [f64; 3],
     shift_mm: [f64; 3],
+    /// The optic axis where `[rough] c_axis` puts it (`DEG@AZ`), when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    optic_axis: Option<String>,
     scores: ScoresJson,
 }
 
@@ -93,6 +96,7 @@ impl PlanJson {
             rotation: p.rotation.to_array(),
             table_normal: p.up().to_array(),
             shift_mm: p.shift.to_array(),
+            optic_axis: config.c_axis.map(|c| p.optic_axis(c).label()),
             scores: ScoresJson {
                 brilliance: s.brilliance,
                 fire: s.fire,

@@ -90,6 +90,56 @@ fn a_crystal_plan_writes_its_folder() {
     assert_eq!(files(p), vec!["plan.toml", "run"]);
 }
 
+/// `[rough] c_axis` places a uniaxial stone's optic axis: each plan's summary names its
+/// optic axis in the cut's frame, its design carries the notes `F Material: sapphire` and
+/// `F Optic axis: …` that `score` reads, and scoring that design says it is traced with
+/// that axis.
+#[test]
+fn a_rough_with_its_c_axis_plans_each_cut_in_its_true_orientation() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let cfg = "seed = 3\nmaterial = \"sapphire\"\n[rough]\nc_axis = [0.3, -0.2, 0.9]\n\
+               [search]\nstarts = 2\nmax_iterations = 40\n";
+    std::fs::write(p.join("plan.toml"), cfg).unwrap();
+    ok(
+        p,
+        &[
+            "plan",
+            "octahedron",
+            "--size-mm",
+            "6",
+            "--family",
+            "oval",
+            "--top",
+            "1",
+            "--config",
+            "plan.toml",
+            "--quiet",
+            "-o",
+            "run",
+        ],
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(p.join("run/summary.json")).unwrap())
+            .unwrap();
+    let axis = json["plans"][0]["optic_axis"].as_str().unwrap().to_string();
+    let asc = std::fs::read_to_string(p.join("run/oval-1.asc")).unwrap();
+    assert!(
+        asc.lines().any(|l| l == format!("F Optic axis: {axis}")),
+        "{axis}: {asc}"
+    );
+    let tilt: f64 = axis.split('@').next().unwrap().parse().unwrap();
+    assert!((0.0..=90.0).contains(&tilt), "{axis}");
+    assert!(asc.lines().any(|l| l == "F Material: sapphire"), "{asc}");
+    let scored = super::run_in(p, &["score", "run/oval-1.asc"]);
+    assert!(scored.status.success());
+    let note = String::from_utf8_lossy(&scored.stderr);
+    assert!(
+        note.contains("sapphire: birefringent") && note.contains(&format!("({axis})")),
+        "{axis}: {note}"
+    );
+}
+
 #[test]
 fn bad_roughs_are_one_line_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();

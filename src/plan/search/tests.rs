@@ -227,6 +227,47 @@ fn a_grade_constraint_is_met_and_costs_weight() {
     assert!(strict.carats <= loose.carats + 1e-9);
 }
 
+/// `[rough] c_axis`: a plan's optic axis is the rough's c-axis seen from the plan's table.
+/// Its angle from the table's normal is the angle between the c-axis and the plan's `up()`
+/// (to the 0.01° it is written to), and the axis turned back into the rough by the plan's
+/// rotation is the c-axis again (as a line); a c-axis along the table's normal is 0, one
+/// across it 90.
+#[test]
+fn a_plans_optic_axis_is_the_roughs_c_axis_seen_from_its_table() {
+    let rough = Rough::crystal("octahedron", 6.0).unwrap();
+    let config = PlanConfig {
+        starts: 3,
+        max_iterations: 60,
+        top: 2,
+        ..weight_config()
+    };
+    let plans = Planner::new(&rough, &config, 3.99)
+        .plan_family("oval", &|| {})
+        .unwrap();
+    assert!(!plans.is_empty());
+    for c in [
+        DVec3::new(0.3, -0.2, 0.9).normalize(),
+        DVec3::new(-0.8, 0.5, 0.1).normalize(),
+    ] {
+        for p in &plans {
+            let a = p.optic_axis(c);
+            let between = p.up().dot(c).abs().min(1.0).acos().to_degrees();
+            assert!(
+                (a.tilt_deg - between).abs() <= 0.005 + 1e-9,
+                "{a:?} {between}"
+            );
+            assert!((0.0..=90.0).contains(&a.tilt_deg), "{a:?}");
+            let back = p.rotation * a.vector();
+            let off = back.dot(c).abs().min(1.0).acos().to_degrees();
+            assert!(off < 0.015, "{a:?}: {off}° from the c-axis");
+        }
+    }
+    let p = &plans[0];
+    assert_eq!(p.optic_axis(p.up()).tilt_deg, 0.0);
+    assert_eq!(p.optic_axis(-p.up()).tilt_deg, 0.0);
+    assert_eq!(p.optic_axis(p.up().any_orthonormal_vector()).tilt_deg, 90.0);
+}
+
 /// The same plans, bit for bit, on one thread and on three.
 #[test]
 fn one_thread_or_three_give_the_same_plans() {
