@@ -3,7 +3,8 @@
 
 use super::sink::ExitSink;
 use super::{ExitBeam, Frame};
-use glam::{DMat3, DVec2, DVec3};
+use crate::geometry::clip2d;
+use glam::{DMat3, DVec2, DVec3, DVec4};
 
 /// A symmetry of the solid: an orthogonal map about the z axis and the facet permutation it
 /// induces.
@@ -141,6 +142,44 @@ fn facet_permutation(normals: &[DVec3], offsets: &[f64], m: &DMat3) -> Option<Ve
         perm.push(j as u32);
     }
     Some(perm)
+}
+/// The part of a root facet's polygon `cur` inside the symmetry's `wedge` (half-spaces
+/// through the origin) and a convex `window` (`n · x <= c` for each `(n, c)`), clipped in
+/// place (`piece` is scratch), and its share of the light: its footprint's area (`map` takes
+/// a point to the traced frame's plane) over `total`. `full` (the whole facet's share) when
+/// there is neither wedge nor window; `None` when nothing of the facet is left.
+pub(super) fn clipped_share(
+    cur: &mut Vec<DVec3>,
+    wedge: &[DVec3],
+    window: &[DVec4],
+    piece: &mut Vec<DVec3>,
+    map: impl Fn(DVec3) -> DVec2,
+    total: f64,
+    full: f64,
+) -> Option<f64> {
+    if wedge.is_empty() && window.is_empty() {
+        return Some(full);
+    }
+    for h in wedge {
+        clip_halfspace(cur, *h, piece);
+        std::mem::swap(cur, piece);
+        if cur.is_empty() {
+            break;
+        }
+    }
+    for h in window {
+        if cur.is_empty() {
+            break;
+        }
+        clip_halfspace_at(cur, h.truncate(), h.w, piece);
+        std::mem::swap(cur, piece);
+    }
+    if cur.is_empty() {
+        return None;
+    }
+    let fp: Vec<DVec2> = cur.iter().map(|&x| map(x)).collect();
+    let p = clip2d::area(&fp) / total;
+    (p > 0.0).then_some(p)
 }
 
 /// Clip a convex planar polygon by the half-space `n · x <= 0`.

@@ -6,10 +6,9 @@ use super::footprint::{Affine, PathLength};
 use super::interface::split;
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
-use super::symmetry::{clip_halfspace, clip_halfspace_at, SymSink};
+use super::symmetry::{clipped_share, SymSink};
 use super::work::{Beam, Ctx};
 use super::{ExitBeam, Frame, TraceOptions};
-use crate::geometry::clip2d;
 use crate::optics::{fresnel, reflect, refract, s_axis};
 use glam::{DVec2, DVec3, DVec4};
 
@@ -77,31 +76,12 @@ impl Stone {
             w.cur.clear();
             w.cur
                 .extend(verts.iter().map(|&v| self.vertices[v as usize]));
-            let mut p = c * self.areas[f] / total;
-            if !wedge.is_empty() || !window.is_empty() {
-                for h in &wedge {
-                    clip_halfspace(&w.cur, *h, &mut piece);
-                    std::mem::swap(&mut w.cur, &mut piece);
-                    if w.cur.is_empty() {
-                        break;
-                    }
-                }
-                for h in window {
-                    if w.cur.is_empty() {
-                        break;
-                    }
-                    clip_halfspace_at(&w.cur, h.truncate(), h.w, &mut piece);
-                    std::mem::swap(&mut w.cur, &mut piece);
-                }
-                if w.cur.is_empty() {
-                    continue;
-                }
-                let fp: Vec<DVec2> = w.cur.iter().map(|&x| map0.apply(x)).collect();
-                p = clip2d::area(&fp) / total;
-                if p <= 0.0 {
-                    continue;
-                }
-            }
+            let full = c * self.areas[f] / total;
+            let map = |x: DVec3| map0.apply(x);
+            let Some(p) = clipped_share(&mut w.cur, &wedge, window, &mut piece, map, total, full)
+            else {
+                continue;
+            };
             st.power_in += p;
             let node = w.node(&cx, u32::MAX, f);
             let fr = fresnel(c, 1.0, ri);

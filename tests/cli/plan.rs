@@ -29,12 +29,8 @@ fn tetra(dir: &Path, name: &str, scale: f64, open: bool) -> String {
     name.to_string()
 }
 
-#[test]
-fn a_crystal_plan_writes_its_folder() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = dir.path();
-    let cfg = "seed = 3\n[search]\nstarts = 2\nmax_iterations = 60\n";
-    std::fs::write(p.join("plan.toml"), cfg).unwrap();
+/// `plan octahedron` (6 mm) in `p` with `p/plan.toml`, one plan of `family`, into `p/run`.
+fn plan_octahedron(p: &Path, family: &str) {
     ok(
         p,
         &[
@@ -43,7 +39,7 @@ fn a_crystal_plan_writes_its_folder() {
             "--size-mm",
             "6",
             "--family",
-            "round-brilliant",
+            family,
             "--top",
             "1",
             "--config",
@@ -53,6 +49,15 @@ fn a_crystal_plan_writes_its_folder() {
             "run",
         ],
     );
+}
+
+#[test]
+fn a_crystal_plan_writes_its_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let cfg = "seed = 3\n[search]\nstarts = 2\nmax_iterations = 60\n";
+    std::fs::write(p.join("plan.toml"), cfg).unwrap();
+    plan_octahedron(p, "round-brilliant");
     let got = files(&p.join("run"));
     for f in [
         "summary.json",
@@ -101,24 +106,7 @@ fn a_rough_with_its_c_axis_plans_each_cut_in_its_true_orientation() {
     let cfg = "seed = 3\nmaterial = \"sapphire\"\n[rough]\nc_axis = [0.3, -0.2, 0.9]\n\
                [search]\nstarts = 2\nmax_iterations = 40\n";
     std::fs::write(p.join("plan.toml"), cfg).unwrap();
-    ok(
-        p,
-        &[
-            "plan",
-            "octahedron",
-            "--size-mm",
-            "6",
-            "--family",
-            "oval",
-            "--top",
-            "1",
-            "--config",
-            "plan.toml",
-            "--quiet",
-            "-o",
-            "run",
-        ],
-    );
+    plan_octahedron(p, "oval");
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(p.join("run/summary.json")).unwrap())
             .unwrap();
