@@ -104,7 +104,9 @@ pub(crate) fn watched<T: Send>(
 /// `report.json` as a dict with `folder` (the run folder written). `progress(status)` is
 /// called about every 50 ms with `{"iterations", "evaluations", "budget", "best_cost",
 /// "elapsed"}`; Ctrl-C stops the search after the current iteration, writes the folder with
-/// what was found, and raises `KeyboardInterrupt`.
+/// what was found, and raises `KeyboardInterrupt`. A trade-off config (`[objective]
+/// pareto`) writes the folder `facetlab optimize` writes for it and returns its
+/// `pareto.json` (the front, its corners and knee, `scores`, `searches`, …) with `folder`.
 ///
 /// >>> import os, tempfile
 /// >>> config = {"cut": {"family": "round-brilliant"}, "free": {"crown_angle": [32, 36]},
@@ -142,16 +144,56 @@ fn optimize<'py>(
         }
     }
     run(py, || config.start_cut().map(|_| ()))?;
-    if config.pareto.is_some() {
-        return Err(super::Error::new_err(
-            "config: [objective] pareto runs are not in the Python package yet; run `facetlab optimize`",
-        ));
-    }
     let stop = AtomicBool::new(false);
     let latest = Latest::default();
     let evaluator = BeamEvaluator::new(&config);
     let verifier = PhotonVerifier::new(&config);
     let verifier: Option<&dyn opt::Verifier> = if verify { Some(&verifier) } else { None };
+    let report_progress = |py: Python<'_>| -> PyResult<()> {
+        let Some(cb) = &progress else { return Ok(()) };
+        let s = latest.0.lock().ok().and_then(|mut l| l.take());
+        if let Some(s) = s {
+            let d = PyDict::new(py);
+            d.set_item("iterations", s.iterations)?;
+            d.set_item("evaluations", s.evaluations)?;
+            d.set_item("budget", s.budget)?;
+            d.set_item("best_cost", s.best_cost)?;
+            d.set_item("elapsed", s.elapsed)?;
+            cb.call1((d,))?;
+        }
+        Ok(())
+    };
+    if config.pareto.is_some() {
+        // A trade-off (`[objective] pareto`): its folder as `facetlab optimize` writes it
+        // (pareto.csv, pareto.json, the chart, config.toml), and pareto.json as the answer.
+        let dir = out
+            .unwrap_or_else(|| opt::new_run_dir(&RunOptions::default().results_root, &config.name));
+        run(py, || crate::io::check_writable(&dir))?;
+        watched(
+            py,
+            &stop,
+            || {
+                let hooks = Hooks {
+                    stop: Some(&stop),
+                    progress: Some(&latest),
+                };
+                opt::run_pareto(
+                    &config,
+                    &evaluator,
+                    verifier,
+                    &dir,
+                    Some(crate::plot::pareto::pareto),
+                    &hooks,
+                )
+            },
+            report_progress,
+        )?;
+        let text = std::fs::read_to_string(dir.join("pareto.json"))
+            .map_err(|e| super::Error::new_err(format!("{}: {e}", dir.display())))?;
+        let front = super::from_json(py, &text)?;
+        front.set_item("folder", dir.display().to_string())?;
+        return Ok(front);
+    }
     let summary = watched(
         py,
         &stop,
@@ -169,20 +211,7 @@ fn optimize<'py>(
             };
             opt::run(&config, &evaluator, verifier, &opts)
         },
-        |py| {
-            let Some(cb) = &progress else { return Ok(()) };
-            let s = latest.0.lock().ok().and_then(|mut l| l.take());
-            if let Some(s) = s {
-                let d = PyDict::new(py);
-                d.set_item("iterations", s.iterations)?;
-                d.set_item("evaluations", s.evaluations)?;
-                d.set_item("budget", s.budget)?;
-                d.set_item("best_cost", s.best_cost)?;
-                d.set_item("elapsed", s.elapsed)?;
-                cb.call1((d,))?;
-            }
-            Ok(())
-        },
+        report_progress,
     )?;
     let text = serde_json::to_string(&summary.report)
         .map_err(|e| super::Error::new_err(format!("report: {e}")))?;

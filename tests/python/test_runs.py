@@ -88,6 +88,30 @@ def test_an_optimize_run_from_a_dict_equals_the_command_lines(
         facetlab.optimize(toml_dict(RUN), out=tmp_path / "py")
 
 
+def test_a_pareto_run_from_a_dict_equals_the_command_lines(cli: Cli, tmp_path: Path) -> None:
+    text = RUN.replace("[method]", "[objective]\npareto = [\"brilliance\", \"fire\"]\npareto_points = 2\n[method]")
+    (tmp_path / "tradeoff.toml").write_text(text)
+    p = cli(tmp_path, "optimize", "tradeoff.toml", "--out", "cli", "--quiet")
+    assert p.returncode == 0, p.stderr
+    front = facetlab.optimize(toml_dict(text), out=tmp_path / "py")
+    assert front["folder"] == str(tmp_path / "py")
+    want = json.loads((tmp_path / "cli" / "pareto.json").read_text())
+
+    def timeless(v: Any) -> Any:
+        # Wall-clock seconds (the run's and each verification's) are not numbers to repeat.
+        if isinstance(v, dict):
+            return {k: timeless(x) for k, x in v.items() if k != "seconds"}
+        if isinstance(v, list):
+            return [timeless(x) for x in v]
+        return v
+
+    for k in ("front", "scores", "searches", "evaluations"):
+        assert timeless(front[k]) == timeless(want[k]), k
+    assert (tmp_path / "py" / "pareto.csv").read_text() == (
+        tmp_path / "cli" / "pareto.csv"
+    ).read_text()
+
+
 def test_ctrl_c_stops_a_run_within_a_second_with_its_folder_written(tmp_path: Path) -> None:
     long = RUN.replace("max_evaluations = 10", "max_evaluations = 100000\ntolerance = 0")
     timer = threading.Timer(1.5, _thread.interrupt_main)
