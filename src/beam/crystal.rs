@@ -206,16 +206,7 @@ impl Stone {
         if !(valid(cr.n_o) && valid(cr.n_e) && cr.axis.is_finite() && d0.is_finite()) {
             return (st, Vec::new());
         }
-        let total: f64 = (0..self.facet_count())
-            .map(|f| {
-                let c = -self.normals[f].dot(d0);
-                if c > GRAZE {
-                    c * self.areas[f]
-                } else {
-                    0.0
-                }
-            })
-            .sum();
+        let total = self.cross_section(d0);
         st.area = total;
         if total.is_nan() || total <= 0.0 {
             return (st, Vec::new());

@@ -358,6 +358,21 @@ impl Stone {
         (g != usize::MAX).then_some((g, best))
     }
 
+    /// The stone's cross-section seen along `d` (unit): the facets facing the light
+    /// (`−n · d > GRAZE`), each weighted by its cosine. A trace's powers are shares of it.
+    pub(super) fn cross_section(&self, d: DVec3) -> f64 {
+        (0..self.facet_count())
+            .map(|f| {
+                let c = -self.normals[f].dot(d);
+                if c > GRAZE {
+                    c * self.areas[f]
+                } else {
+                    0.0
+                }
+            })
+            .sum()
+    }
+
     #[inline]
     pub(super) fn facet_verts(&self, f: usize) -> &[u32] {
         let (a, b) = self.facet_range[f];
