@@ -390,13 +390,9 @@ pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
     )
 }
 
-/// The material each cut is traced in, and a line (for stderr) per cut traced in its design's
-/// material. When the user chose a material (`chosen`), every cut gets `default`; otherwise a
-/// design read from a file with an index (GemCad's `I` line) is traced in the material of that
-/// index ([`Material::for_index`]: the listed stone within ±0.005, else `ri:N`), a design whose
-/// notes name a material or colour (`F Material: ruby`, `F Colour: #7a3fa0@10mm`:
-/// [`Material::from_design_notes`]) in that one (a malformed note is reported and ignored),
-/// and any other cut in `default`.
+/// The material each cut is traced in ([`facetlab::metrics::material_of`]: `default` when the
+/// user chose it, else a design's own), and a line (for stderr) per cut traced in its design's
+/// material (a malformed note is reported and ignored).
 pub fn design_materials(
     cuts: &[facetlab::cut::Cut],
     default: &Material,
@@ -406,14 +402,7 @@ pub fn design_materials(
     let materials = cuts
         .iter()
         .map(|c| {
-            if chosen {
-                return default.clone();
-            }
-            let lines = c
-                .record
-                .iter()
-                .flat_map(|r| r.title.iter().chain(&r.footnotes));
-            let (m, said) = Material::of_design(c.design_ri(), lines, default);
+            let (m, said) = facetlab::metrics::material_of(c, default, chosen);
             notes.extend(said.into_iter().map(|s| {
                 if s.ends_with("; ignored") {
                     format!("{}: {s}", c.name)

@@ -11,13 +11,13 @@
 //! reads the flags, runs them with a progress bar and prints what was written.
 
 use super::interrupt;
-use super::outputs::{refuse_overwrite, Exit};
+use super::outputs::Exit;
 use super::progress;
 use facetlab::error::{Error, Result};
 use facetlab::optics::Material;
 use facetlab::plan::config::check_families;
 use facetlab::plan::{
-    load_rough, plan_families, plan_warnings, write_folder, PlanConfig, Run, CRYSTALS,
+    check_out, load_rough, plan_families, plan_warnings, write_folder, PlanConfig, Run, CRYSTALS,
 };
 use facetlab::report::PlanDrawings;
 use std::path::{Path, PathBuf};
@@ -86,33 +86,7 @@ pub fn run(a: &PlanArgs) -> Result<Exit> {
     let size = a.size_mm.as_deref().map(size_flag).transpose()?;
     // Outputs: a new or empty folder that is none of the inputs (the rough, the config, the
     // price table it names).
-    let mut inputs = vec![PathBuf::from(&a.rough)];
-    inputs.extend(a.config.iter().cloned());
-    inputs.extend(config.inputs());
-    refuse_overwrite(&[("--out", a.out.clone())], &inputs)?;
-    if a.out.is_file()
-        || (a.out.is_dir() && a.out.read_dir().map_or(true, |mut d| d.next().is_some()))
-    {
-        return Err(Error::invalid(
-            "--out",
-            format!(
-                "{} exists and is not an empty folder; choose a new folder",
-                a.out.display()
-            ),
-        ));
-    }
-    let parent = a
-        .out
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    if !parent.is_dir() {
-        return Err(Error::io(
-            a.out.display().to_string(),
-            format!("folder {} does not exist", parent.display()),
-        ));
-    }
-    facetlab::io::check_writable(parent)?;
+    check_out("--out", &a.out, &a.rough, a.config.as_deref(), &config)?;
     let rough = load_rough(&a.rough, size).map_err(|e| match e {
         Error::Invalid { field, message }
             if field == "ROUGH"

@@ -6,6 +6,8 @@
 //! the two facets they separate. Problems are reported, never hidden: a plane that never touches
 //! the solid, duplicate planes, an unbounded or empty solid.
 
+mod parts;
+
 use super::fast_hash::{fast_map, FastMap};
 use super::tjunction::split_t_junctions;
 use super::{DVec3, FacetPlane, Plane, EPS, WELD};

@@ -2,9 +2,11 @@
 //! meshes (OBJ/STL, glTF scenes), and safe (atomic) writing of outputs.
 
 pub mod asc;
+pub mod exact;
 pub mod gem;
 pub mod gif;
 pub mod gltf;
+pub mod guard;
 pub mod hdr;
 pub mod mesh;
 pub mod png;

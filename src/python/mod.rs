@@ -9,6 +9,7 @@
 //! the Dask layer `dask.py`) re-exports and documents these functions.
 
 mod cuts;
+mod keywords;
 mod picture;
 mod rough;
 mod runs;
@@ -73,6 +74,7 @@ fn _facetlab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("InternalError", py.get_type::<InternalError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     cuts::register(m)?;
+    keywords::register(m)?;
     score::register(m)?;
     picture::register(m)?;
     tally::register(m)?;

@@ -3,8 +3,9 @@
 //! `render --json` document's keys, from [`crate::document::render`]).
 
 use super::cuts::cut_of;
+use super::keywords::{self, Keywords};
 use super::run;
-use super::stone::{size_text, StoneArgs};
+use super::stone::StoneArgs;
 use crate::document::render::CutJson;
 use crate::error::{Error, Result};
 use crate::optics::Dispersion;
@@ -12,6 +13,7 @@ use crate::plot::palette::PICTURE_GROUND;
 use crate::render::{self, pose::parse_tilt, Image, Light, RenderOptions, Tilt};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 use std::time::Instant;
 
 /// A rendered picture.
@@ -203,55 +205,33 @@ fn draw(cut: &crate::cut::Cut, input: &str, a: &RenderArgs) -> Result<(Image, St
 
 /// Render a cut (a `Cut`, a preset name or a path) under `light` (iso, cos, aset, fire,
 /// hearts, arrows, idealscope) at `size` pixels, tilted `tilt` ("DEG" or "DEG@AZ").
+/// Keyword arguments: `light` (default "iso"), `size` (256), `tilt`, `head_shadow`,
+/// `exposure` (1.0), `polarization` (True), the stone's as `score` takes them, and `float64`
+/// (False: `.linear` is float32).
 ///
 /// >>> r = facetlab.render("tolkowsky", size=32, tilt="10@45")
 /// >>> r.stats["tilt_deg"], r.stats["light"]
 /// (10.0, 'iso')
 #[pyfunction]
-#[pyo3(name = "render", signature = (cut, *, light="iso", size=256, tilt=None, head_shadow=None, exposure=1.0,
-    polarization=true, material=None, ri=None, colour=None, colour_density=None, size_mm=None,
-    diameter_mm=None, birefringence=None, optic_axis=None, colour_e=None, float64=false))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(name = "render", signature = (cut, **kwargs))]
 fn render_cut(
     py: Python<'_>,
     cut: &Bound<'_, PyAny>,
-    light: &str,
-    size: usize,
-    tilt: Option<&Bound<'_, PyAny>>,
-    head_shadow: Option<f64>,
-    exposure: f64,
-    polarization: bool,
-    material: Option<String>,
-    ri: Option<f64>,
-    colour: Option<String>,
-    colour_density: Option<f64>,
-    size_mm: Option<&Bound<'_, PyAny>>,
-    diameter_mm: Option<f64>,
-    birefringence: Option<bool>,
-    optic_axis: Option<String>,
-    colour_e: Option<String>,
-    float64: bool,
+    kwargs: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyRender> {
+    let kw = Keywords::parse("render", &keywords::RENDER, kwargs)?;
+    let exposure = kw.f64("exposure")?;
     let args = RenderArgs {
-        light: light.to_string(),
-        size,
+        light: kw.str("light")?,
+        size: kw.usize("size")?,
         // A number of degrees, or the command line's DEG@AZ text.
-        tilt: size_text(tilt)?,
-        head_shadow,
+        tilt: kw.size_text("tilt")?,
+        head_shadow: kw.opt_f64("head_shadow")?,
         exposure,
-        polarization,
-        stone: StoneArgs::new(
-            material,
-            ri,
-            colour,
-            colour_density,
-            size_mm,
-            diameter_mm,
-            birefringence,
-            optic_axis,
-            colour_e,
-        )?,
+        polarization: kw.bool("polarization")?,
+        stone: StoneArgs::from_keywords(&kw)?,
     };
+    let float64 = kw.bool("float64")?;
     let input = super::cuts::input_of(cut)?;
     let c = cut_of(cut)?;
     let (image, stats) = run(py, || draw(&c, &input, &args))?;

@@ -63,8 +63,23 @@ pub(crate) fn watched<T: Send>(
     py: Python<'_>,
     stop: &AtomicBool,
     work: impl FnOnce() -> Result<T> + Send,
-    mut tick: impl FnMut(Python<'_>) -> PyResult<()>,
+    tick: impl FnMut(Python<'_>) -> PyResult<()>,
 ) -> PyResult<T> {
+    let (result, pending) = watch(py, stop, work, tick)?;
+    if let Some(e) = pending {
+        return Err(e);
+    }
+    result.map_err(super::error)
+}
+
+/// [`watched`], handing back both what the work returned and the exception that stopped it
+/// (a `KeyboardInterrupt`), so the caller can write what was found before raising it.
+pub(crate) fn watch<T: Send>(
+    py: Python<'_>,
+    stop: &AtomicBool,
+    work: impl FnOnce() -> Result<T> + Send,
+    mut tick: impl FnMut(Python<'_>) -> PyResult<()>,
+) -> PyResult<(Result<T>, Option<PyErr>)> {
     let mut pending: Option<PyErr> = None;
     let out = std::thread::scope(|s| {
         let h = s.spawn(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)));
@@ -90,14 +105,10 @@ pub(crate) fn watched<T: Send>(
         }
         py.detach(|| h.join())
     });
-    let result = match out {
-        Ok(Ok(r)) => r,
-        Ok(Err(p)) | Err(p) => return Err(super::panicked(p)),
-    };
-    if let Some(e) = pending {
-        return Err(e);
+    match out {
+        Ok(Ok(r)) => Ok((r, pending)),
+        Ok(Err(p)) | Err(p) => Err(super::panicked(p)),
     }
-    result.map_err(super::error)
 }
 
 /// Run an optimization as `facetlab optimize CONFIG --out OUT` does and return its

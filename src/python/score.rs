@@ -3,6 +3,7 @@
 //! `score --json` document (the library's [`crate::metrics::json`]).
 
 use super::cuts::cut_of;
+use super::keywords::{self, Keywords};
 use super::stone::StoneArgs;
 use super::{from_json, run};
 use crate::cut::Cut;
@@ -10,7 +11,7 @@ use crate::document::score::scores_json;
 use crate::error::{Error, Result};
 use crate::metrics::{score as score_solid, ScoreConfig, Scores};
 use pyo3::prelude::*;
-use pyo3::types::PyList;
+use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
@@ -138,117 +139,50 @@ fn score_cut(cut: &Cut, args: &ScoreArgs) -> Result<PyScores> {
 }
 
 impl ScoreArgs {
-    /// The keyword arguments as given to `score` and `score_many`.
-    #[allow(clippy::too_many_arguments)]
-    fn new(
-        material: Option<String>,
-        ri: Option<f64>,
-        colour: Option<String>,
-        colour_density: Option<f64>,
-        size_mm: Option<&Bound<'_, PyAny>>,
-        diameter_mm: Option<f64>,
-        birefringence: Option<bool>,
-        optic_axis: Option<String>,
-        colour_e: Option<String>,
-        polarization: bool,
-        head_shadow: f64,
-    ) -> PyResult<ScoreArgs> {
+    /// The keyword arguments of `score` and `score_many` ([`keywords::SCORE`]).
+    fn from_keywords(kw: &Keywords<'_>) -> PyResult<ScoreArgs> {
         Ok(ScoreArgs {
-            stone: StoneArgs::new(
-                material,
-                ri,
-                colour,
-                colour_density,
-                size_mm,
-                diameter_mm,
-                birefringence,
-                optic_axis,
-                colour_e,
-            )?,
-            polarization,
-            head_shadow,
+            stone: StoneArgs::from_keywords(kw)?,
+            polarization: kw.bool("polarization")?,
+            head_shadow: kw.f64("head_shadow")?,
         })
     }
 }
 
 /// Score a cut (a `Cut`, a preset name or a path) with the beam tracer, as `facetlab score`.
+/// Keyword arguments (the command line's flags): `material`, `ri`, `colour`,
+/// `colour_density`, `size_mm` (a length or "LxW"), `diameter_mm`, `birefringence`,
+/// `optic_axis`, `colour_e`, `polarization` (default True), `head_shadow` (degrees, default 0).
 ///
 /// >>> round(facetlab.score("tolkowsky", material="cubic-zirconia").brilliance, 2)
 /// 0.81
 #[pyfunction]
-#[pyo3(signature = (cut, *, material=None, ri=None, colour=None, colour_density=None,
-    size_mm=None, diameter_mm=None, birefringence=None, optic_axis=None, colour_e=None,
-    polarization=true, head_shadow=0.0))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (cut, **kwargs))]
 fn score(
     py: Python<'_>,
     cut: &Bound<'_, PyAny>,
-    material: Option<String>,
-    ri: Option<f64>,
-    colour: Option<String>,
-    colour_density: Option<f64>,
-    size_mm: Option<&Bound<'_, PyAny>>,
-    diameter_mm: Option<f64>,
-    birefringence: Option<bool>,
-    optic_axis: Option<String>,
-    colour_e: Option<String>,
-    polarization: bool,
-    head_shadow: f64,
+    kwargs: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyScores> {
-    let args = ScoreArgs::new(
-        material,
-        ri,
-        colour,
-        colour_density,
-        size_mm,
-        diameter_mm,
-        birefringence,
-        optic_axis,
-        colour_e,
-        polarization,
-        head_shadow,
-    )?;
+    let kw = Keywords::parse("score", &keywords::SCORE, kwargs)?;
+    let args = ScoreArgs::from_keywords(&kw)?;
     let cut = cut_of(cut)?;
     run(py, || score_cut(&cut, &args))
 }
 
-/// Score many cuts in parallel (one task per cut over all cores), results in the order given.
+/// Score many cuts in parallel (one task per cut over all cores), results in the order given;
+/// the keyword arguments are `score`'s.
 ///
 /// >>> [s.cut for s in facetlab.score_many(["tolkowsky", "gia-reference"])]
 /// ['Tolkowsky', 'GIA reference']
 #[pyfunction]
-#[pyo3(signature = (cuts, *, material=None, ri=None, colour=None, colour_density=None,
-    size_mm=None, diameter_mm=None, birefringence=None, optic_axis=None, colour_e=None,
-    polarization=true, head_shadow=0.0))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (cuts, **kwargs))]
 fn score_many<'py>(
     py: Python<'py>,
     cuts: &Bound<'py, PyAny>,
-    material: Option<String>,
-    ri: Option<f64>,
-    colour: Option<String>,
-    colour_density: Option<f64>,
-    size_mm: Option<&Bound<'py, PyAny>>,
-    diameter_mm: Option<f64>,
-    birefringence: Option<bool>,
-    optic_axis: Option<String>,
-    colour_e: Option<String>,
-    polarization: bool,
-    head_shadow: f64,
+    kwargs: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyList>> {
-    let args = ScoreArgs::new(
-        material,
-        ri,
-        colour,
-        colour_density,
-        size_mm,
-        diameter_mm,
-        birefringence,
-        optic_axis,
-        colour_e,
-        polarization,
-        head_shadow,
-    )?;
+    let kw = Keywords::parse("score_many", &keywords::SCORE, kwargs)?;
+    let args = ScoreArgs::from_keywords(&kw)?;
     let cuts: Vec<Cut> = cuts
         .try_iter()?
         .map(|c| cut_of(&c?))

@@ -4,6 +4,7 @@
 //! `--optic-axis` and `--colour-e` (a design read from a file is traced in its own material
 //! unless one is given). Errors name the keyword argument.
 
+use super::keywords::Keywords;
 use crate::cut::Cut;
 use crate::error::{Error, Result};
 use crate::optics::{BodyColour, ColourFields, CrystalFields, Material, MaterialFields, StoneSize};
@@ -23,43 +24,20 @@ pub(crate) struct StoneArgs {
     pub colour_e: Option<String>,
 }
 
-/// `size_mm` as the command line's `--size-mm` text: a length (a number) or `"LxW"`.
-pub(crate) fn size_text(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Option<String>> {
-    let Some(obj) = obj else { return Ok(None) };
-    if let Ok(x) = obj.extract::<f64>() {
-        return Ok(Some(format!("{x}")));
-    }
-    obj.extract::<String>().map(Some).map_err(|_| {
-        super::Error::new_err(format!(
-            "size_mm: `{obj}` is not allowed; give a length in mm or \"LxW\""
-        ))
-    })
-}
-
 impl StoneArgs {
-    /// The keyword arguments as given to `score`, `render` and `trace`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        material: Option<String>,
-        ri: Option<f64>,
-        colour: Option<String>,
-        colour_density: Option<f64>,
-        size_mm: Option<&Bound<'_, PyAny>>,
-        diameter_mm: Option<f64>,
-        birefringence: Option<bool>,
-        optic_axis: Option<String>,
-        colour_e: Option<String>,
-    ) -> PyResult<StoneArgs> {
+    /// The stone's keyword arguments ([`super::keywords::STONE`]) as given to `score`,
+    /// `score_many` and `render`.
+    pub fn from_keywords(kw: &Keywords<'_>) -> PyResult<StoneArgs> {
         Ok(StoneArgs {
-            material,
-            ri,
-            colour,
-            colour_density,
-            size_mm: size_text(size_mm)?,
-            diameter_mm,
-            birefringence,
-            optic_axis,
-            colour_e,
+            material: kw.opt_str("material")?,
+            ri: kw.opt_f64("ri")?,
+            colour: kw.opt_str("colour")?,
+            colour_density: kw.opt_f64("colour_density")?,
+            size_mm: kw.size_text("size_mm")?,
+            diameter_mm: kw.opt_f64("diameter_mm")?,
+            birefringence: kw.opt_bool("birefringence")?,
+            optic_axis: kw.opt_str("optic_axis")?,
+            colour_e: kw.opt_str("colour_e")?,
         })
     }
 }
@@ -119,15 +97,7 @@ impl StoneArgs {
             self.colour_density,
             COLOUR,
         )?;
-        let mut m = if self.chosen() {
-            default
-        } else {
-            let lines = cut
-                .record
-                .iter()
-                .flat_map(|r| r.title.iter().chain(&r.footnotes));
-            Material::of_design(cut.design_ri(), lines, &default).0
-        };
+        let (mut m, _) = crate::metrics::material_of(cut, &default, self.chosen());
         if m.colour.is_none() {
             m.colour =
                 BodyColour::choose(None, self.colour.as_deref(), self.colour_density, COLOUR)?;

@@ -80,3 +80,17 @@ def test_score_many_on_the_cluster_is_the_local_one(client: Client) -> None:
     cuts = ["tolkowsky", "gia-reference", "tolkowsky"]
     got = facetlab.dask.score_many(client, cuts, chunk=1, polarization=False)
     assert got == [s.to_dict() for s in facetlab.score_many(cuts, polarization=False)]
+
+
+def test_score_many_ships_cut_objects_the_workers_cannot_read(
+    client: Client, tmp_path: Path
+) -> None:
+    # A design read from a file and re-angled, a family with parameters, a preset name: the
+    # file is gone before the cluster scores, so the workers score the pickled cuts.
+    facetlab.cut("tolkowsky").write(tmp_path / "t.asc")
+    design = facetlab.cut(tmp_path / "t.asc").with_set({"pavilion-main": 41.2})
+    (tmp_path / "t.asc").unlink()
+    cuts = [design, facetlab.family("round-brilliant", table=0.6), "gia-reference"]
+    got = facetlab.dask.score_many(client, cuts, chunk=1, polarization=False)
+    assert got == [s.to_dict() for s in facetlab.score_many(cuts, polarization=False)]
+    assert [d["cut"] for d in got] == ["t", "round-brilliant", "GIA reference"]

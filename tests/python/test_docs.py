@@ -23,6 +23,9 @@ ATTRIBUTES = {
     "Grid": {"keys"},
 }
 
+# Private names with examples all the same: how a Cut pickles.
+PICKLING = {"__reduce__", "_from_state"}
+
 
 def documented() -> Iterator[Tuple[str, Any]]:
     for name in facetlab.__all__:
@@ -32,7 +35,7 @@ def documented() -> Iterator[Tuple[str, Any]]:
         yield name, obj
         if inspect.isclass(obj):
             for m, member in vars(obj).items():
-                if m.startswith("_") or m in ATTRIBUTES.get(name, set()):
+                if (m.startswith("_") and m not in PICKLING) or m in ATTRIBUTES.get(name, set()):
                     continue
                 yield f"{name}.{m}", member
     for name in facetlab.dask.__all__:

@@ -130,17 +130,26 @@ def test_ctrl_c_stops_a_run_within_a_second_with_its_folder_written(tmp_path: Pa
     assert report["search"]["evaluations"] < 100000
 
 
-def test_plan_finds_the_command_lines_plans(cli: Cli, tmp_path: Path) -> None:
+# A small plan: two families, two plans each, a short search.
+FAMILIES = ["round-brilliant", "oval"]
+
+
+def cli_plan(cli: Cli, tmp_path: Path, out: str) -> Path:
+    """``facetlab plan`` of :data:`FAMILIES` with the config ``plan.toml`` (written here) into
+    ``out``."""
     (tmp_path / "plan.toml").write_text("seed = 3\n[search]\nstarts = 2\nmax_iterations = 60\n")
     p = cli(
         tmp_path, "plan", "octahedron", "--size-mm", "6", "--family", "round-brilliant",
-        "--family", "oval", "--top", "2", "--config", "plan.toml", "--quiet", "-o", "run",
+        "--family", "oval", "--top", "2", "--config", "plan.toml", "--quiet", "-o", out,
     )
     assert p.returncode == 0, p.stderr
-    want = json.loads((tmp_path / "run" / "summary.json").read_text())["plans"]
+    return tmp_path / out
+
+
+def test_plan_finds_the_command_lines_plans(cli: Cli, tmp_path: Path) -> None:
+    want = json.loads((cli_plan(cli, tmp_path, "run") / "summary.json").read_text())["plans"]
     got = facetlab.plan(
-        "octahedron", config=tmp_path / "plan.toml", families=["round-brilliant", "oval"],
-        size_mm=6, top=2,
+        "octahedron", config=tmp_path / "plan.toml", families=FAMILIES, size_mm=6, top=2
     )
     assert [(g["family"], g["rank"]) for g in got] == [(w["family"], w["rank"]) for w in want]
     for g, w in zip(got, want):
@@ -149,3 +158,33 @@ def test_plan_finds_the_command_lines_plans(cli: Cli, tmp_path: Path) -> None:
         assert g["cut"].params == w["params"]
     with pytest.raises(facetlab.Error, match="^families: "):
         facetlab.plan("octahedron", families=["trillion-ish"])
+
+
+def test_plan_writes_the_command_lines_folder(cli: Cli, tmp_path: Path) -> None:
+    cli_plan(cli, tmp_path, "cli")
+    got = facetlab.plan(
+        "octahedron", config=tmp_path / "plan.toml", families=FAMILIES, size_mm=6, top=2,
+        out=tmp_path / "py",
+    )
+    assert got["folder"] == str(tmp_path / "py")
+    assert [g["family"] for g in got["plans"]] == ["round-brilliant"] * 2 + ["oval"] * 2
+    cli_files = sorted(f.name for f in (tmp_path / "cli").iterdir())
+    assert sorted(f.name for f in (tmp_path / "py").iterdir()) == cli_files
+    assert {"summary.json", "report.html", "overview.png", "oval-1.asc"} <= set(cli_files)
+    for name in cli_files:
+        a, b = (tmp_path / "py" / name).read_bytes(), (tmp_path / "cli" / name).read_bytes()
+        if name == "summary.json":
+            # The run's wall-clock seconds are the one number not to repeat.
+            x, y = json.loads(a), json.loads(b)
+            assert x.pop("elapsed_s") >= 0 and y.pop("elapsed_s") >= 0
+            assert x == y
+        else:
+            assert a == b, name
+    # Refused as the command line refuses: a folder holding files, an input.
+    with pytest.raises(facetlab.Error, match="^out: .* exists and is not an empty folder"):
+        facetlab.plan("octahedron", size_mm=6, out=tmp_path / "py")
+    with pytest.raises(facetlab.Error, match="^out: .* would overwrite the input"):
+        facetlab.plan("octahedron", size_mm=6, config=tmp_path / "plan.toml",
+                      out=tmp_path / "plan.toml")
+    p = cli(tmp_path, "plan", "octahedron", "--size-mm", "6", "-o", "py")
+    assert p.returncode == 2 and "--out: " in p.stderr and "not an empty folder" in p.stderr

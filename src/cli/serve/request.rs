@@ -596,16 +596,12 @@ fn stone(b: &Body) -> ApiResult<Stone> {
 }
 
 /// The material `cut` is traced in: the one sent, else the cut's own (a design's index or
-/// notes, [`Material::of_design`]; diamond for a family), coloured as sent.
+/// notes, [`facetlab::metrics::material_of`]; diamond for a family), coloured as sent.
 pub fn material_for(r: &Req, cut: &facetlab::cut::Cut) -> ApiResult<Material> {
     let Some((colour, density)) = &r.own else {
         return Ok(r.material.clone());
     };
-    let notes = cut
-        .record
-        .iter()
-        .flat_map(|x| x.title.iter().chain(&x.footnotes));
-    let (mut m, _) = Material::of_design(cut.design_ri(), notes, &Material::diamond());
+    let (mut m, _) = facetlab::metrics::material_of(cut, &Material::diamond(), false);
     m.colour = BodyColour::choose(
         m.colour.as_ref(),
         colour.as_deref(),

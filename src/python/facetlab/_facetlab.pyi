@@ -1,7 +1,7 @@
 """Type stubs of facetlab's native module (src/python/*.rs, built by maturin)."""
 
 import os
-from typing import Any, Callable, Dict, List, Optional, Sequence, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -32,6 +32,9 @@ class Cut:
         self, changes: Optional[Dict[str, float]] = None, **kwargs: float
     ) -> "Cut": ...
     def write(self, path: PathLike, overwrite: bool = False) -> None: ...
+    def __reduce__(self) -> Tuple[Callable[[bytes], "Cut"], Tuple[bytes]]: ...
+    @classmethod
+    def _from_state(cls, state: bytes) -> "Cut": ...
     def info(
         self,
         *,
@@ -162,6 +165,7 @@ def optimize(
     progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
     overwrite: bool = False,
 ) -> Dict[str, Any]: ...
+@overload
 def plan(
     rough: PathLike,
     *,
@@ -170,4 +174,17 @@ def plan(
     size_mm: Optional[float] = None,
     material: Optional[str] = None,
     top: Optional[int] = None,
+    out: None = None,
 ) -> List[Dict[str, Any]]: ...
+@overload
+def plan(
+    rough: PathLike,
+    *,
+    config: Optional[PathLike] = None,
+    families: Optional[Sequence[str]] = None,
+    size_mm: Optional[float] = None,
+    material: Optional[str] = None,
+    top: Optional[int] = None,
+    out: PathLike,
+) -> Dict[str, Any]: ...
+def _keywords() -> Dict[str, List[Tuple[str, str, str]]]: ...

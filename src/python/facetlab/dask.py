@@ -9,8 +9,9 @@ being deterministic, gives the same rows.
 
 Any ``distributed.Client`` works: a ``LocalCluster`` on one machine, ``dask_jobqueue``'s
 ``SLURMCluster`` on a Slurm cluster, or ``dask_kubernetes``' ``KubeCluster`` on
-Kubernetes. A config or cut given as a path must be readable at that path on the workers
-(a shared file system); a dict config travels with the task.
+Kubernetes. A config given as a path must be readable at that path on the workers (a shared
+file system); a dict config travels with the task, and so do cuts (pickled ``Cut`` objects,
+their exact bytes: :func:`score_many` reads names and paths on the client).
 
 >>> from distributed import Client, LocalCluster               # doctest: +SKIP
 >>> client = Client(LocalCluster(n_workers=2, processes=True)) # doctest: +SKIP
@@ -118,24 +119,27 @@ def sweep_csv(
 
 def score_many(
     client: "Client",
-    cuts: Sequence[Union[str, "os.PathLike[str]"]],
+    cuts: Sequence[Union["facetlab.Cut", str, "os.PathLike[str]"]],
     *,
     chunk: int = 8,
     retries: int = 2,
     **kwargs: Any,
 ) -> List[Dict[str, Any]]:
     """``facetlab.score_many(cuts, **kwargs)``'s documents (``Scores.to_dict()``), ``chunk``
-    cuts per task on ``client``'s workers, in the order given. Cuts are preset names or
-    paths the workers can read.
+    cuts per task on ``client``'s workers, in the order given. A cut is a :class:`Cut` or
+    anything :func:`facetlab.cut` takes; names and paths are read here, on the client, and
+    every cut travels to the workers as a pickled ``Cut`` (its exact bytes), so the workers
+    need no files and score the very solids given.
 
     >>> from distributed import Client
     >>> client = Client(processes=False, n_workers=1, dashboard_address=None)
-    >>> [d["cut"] for d in score_many(client, ["tolkowsky", "gia-reference"], chunk=1)]
-    ['Tolkowsky', 'GIA reference']
+    >>> cuts = ["tolkowsky", facetlab.family("round-brilliant", table=0.6)]
+    >>> [d["cut"] for d in score_many(client, cuts, chunk=1)]
+    ['Tolkowsky', 'round-brilliant']
     >>> client.close()
     """
-    names = [os.fspath(c) for c in cuts]
-    parts = [names[i : i + chunk] for i in range(0, len(names), chunk)]
+    loaded = [c if isinstance(c, facetlab.Cut) else facetlab.cut(c) for c in cuts]
+    parts = [[loaded[i] for i in idx] for idx in chunks(len(loaded), chunk)]
     futures = client.map(
         _scores, parts, [kwargs] * len(parts), pure=False, retries=retries
     )
