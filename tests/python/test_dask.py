@@ -7,7 +7,7 @@ import os
 import threading
 import time
 from pathlib import Path
-from typing import Iterator
+from typing import Iterator, List, Union
 
 import facetlab
 import facetlab.dask
@@ -90,7 +90,9 @@ def test_score_many_ships_cut_objects_the_workers_cannot_read(
     facetlab.cut("tolkowsky").write(tmp_path / "t.asc")
     design = facetlab.cut(tmp_path / "t.asc").with_set({"pavilion-main": 41.2})
     (tmp_path / "t.asc").unlink()
-    cuts = [design, facetlab.family("round-brilliant", table=0.6), "gia-reference"]
+    cuts: List[Union[facetlab.Cut, str]] = [
+        design, facetlab.family("round-brilliant", table=0.6), "gia-reference"
+    ]
     got = facetlab.dask.score_many(client, cuts, chunk=1, polarization=False)
     assert got == [s.to_dict() for s in facetlab.score_many(cuts, polarization=False)]
     assert [d["cut"] for d in got] == ["t", "round-brilliant", "GIA reference"]
