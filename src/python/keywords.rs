@@ -1,8 +1,8 @@
 //! The keyword arguments of `score`, `score_many` and `render`, listed once ([`SCORE`],
 //! [`RENDER`]: each keyword's name, type and default) and parsed from `**kwargs` into
 //! [`Keywords`], from which [`super::stone::StoneArgs`], the score and the render settings
-//! are read. The stubs (`_facetlab.pyi`) spell the same signatures for type checkers;
-//! `_keywords()` hands these lists to the test that checks the stubs against them.
+//! are read. The stubs (`_facetlab.pyi`) spell the same lists as `TypedDict`s for type
+//! checkers; `_keywords()` hands these lists to the test that checks the stubs against them.
 
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -207,9 +207,9 @@ fn find(lists: &[&[Keyword]], name: &str) -> Option<Keyword> {
         .copied()
 }
 
-/// A keyword as the stubs spell it: `(name, annotation, default)`, e.g. `("ri",
-/// "Optional[float]", "None")`.
-fn stub(k: &Keyword) -> (&'static str, String, String) {
+/// A keyword for the test of the stubs: `(name, type, default)`, e.g. `("ri", "float",
+/// "None")` (the stubs' `TypedDict`s annotate each `Optional[type]`: None is "not given").
+fn stub(k: &Keyword) -> (&'static str, &'static str, String) {
     let kind = match k.kind {
         Kind::Str => "str",
         Kind::Float => "float",
@@ -217,17 +217,18 @@ fn stub(k: &Keyword) -> (&'static str, String, String) {
         Kind::Int => "int",
         Kind::Size => "Size",
     };
-    match k.default {
-        Value::None => (k.name, format!("Optional[{kind}]"), "None".into()),
-        Value::Bool(b) => (k.name, kind.into(), if b { "True" } else { "False" }.into()),
-        Value::Float(x) => (k.name, kind.into(), format!("{x:?}")),
-        Value::Int(i) => (k.name, kind.into(), i.to_string()),
-        Value::Str(s) => (k.name, kind.into(), format!("'{s}'")),
-    }
+    let default = match k.default {
+        Value::None => "None".into(),
+        Value::Bool(b) => if b { "True" } else { "False" }.into(),
+        Value::Float(x) => format!("{x:?}"),
+        Value::Int(i) => i.to_string(),
+        Value::Str(s) => format!("'{s}'"),
+    };
+    (k.name, kind, default)
 }
 
-/// For the test of the stubs: each function's keyword arguments as the stubs must spell
-/// them, `{function: [(name, annotation, default), …]}`.
+/// For the test of the stubs: each function's keyword arguments, `{function: [(name, type,
+/// default), …]}`.
 #[pyfunction]
 fn _keywords(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let out = PyDict::new(py);

@@ -3,6 +3,8 @@
 import os
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union, overload
 
+from typing_extensions import TypedDict, Unpack
+
 import numpy as np
 import numpy.typing as npt
 
@@ -88,56 +90,37 @@ def family(family: str, name: Optional[str] = None, **params: float) -> Cut: ...
 def presets() -> List[str]: ...
 def families() -> Dict[str, Dict[str, Any]]: ...
 def materials() -> List[Dict[str, Any]]: ...
-def score(
-    cut: CutLike,
-    *,
-    material: Optional[str] = None,
-    ri: Optional[float] = None,
-    colour: Optional[str] = None,
-    colour_density: Optional[float] = None,
-    size_mm: Optional[Size] = None,
-    diameter_mm: Optional[float] = None,
-    birefringence: Optional[bool] = None,
-    optic_axis: Optional[str] = None,
-    colour_e: Optional[str] = None,
-    polarization: bool = True,
-    head_shadow: float = 0.0,
-) -> Scores: ...
-def score_many(
-    cuts: Sequence[CutLike],
-    *,
-    material: Optional[str] = None,
-    ri: Optional[float] = None,
-    colour: Optional[str] = None,
-    colour_density: Optional[float] = None,
-    size_mm: Optional[Size] = None,
-    diameter_mm: Optional[float] = None,
-    birefringence: Optional[bool] = None,
-    optic_axis: Optional[str] = None,
-    colour_e: Optional[str] = None,
-    polarization: bool = True,
-    head_shadow: float = 0.0,
-) -> List[Scores]: ...
-def render(
-    cut: CutLike,
-    *,
-    light: str = "iso",
-    size: int = 256,
-    tilt: Optional[Size] = None,
-    head_shadow: Optional[float] = None,
-    exposure: float = 1.0,
-    polarization: bool = True,
-    material: Optional[str] = None,
-    ri: Optional[float] = None,
-    colour: Optional[str] = None,
-    colour_density: Optional[float] = None,
-    size_mm: Optional[Size] = None,
-    diameter_mm: Optional[float] = None,
-    birefringence: Optional[bool] = None,
-    optic_axis: Optional[str] = None,
-    colour_e: Optional[str] = None,
-    float64: bool = False,
-) -> Render: ...
+# The keyword arguments of score, score_many and render, as the native module lists them once
+# (src/python/keywords.rs: STONE, SCORE, RENDER; tests/python/test_keywords.py checks these
+# against that list). Every one may be left out or given as None (not given); the defaults
+# are in the functions' docstrings.
+class StoneKeywords(TypedDict, total=False):
+    material: Optional[str]
+    ri: Optional[float]
+    colour: Optional[str]
+    colour_density: Optional[float]
+    size_mm: Optional[Size]
+    diameter_mm: Optional[float]
+    birefringence: Optional[bool]
+    optic_axis: Optional[str]
+    colour_e: Optional[str]
+
+class ScoreKeywords(StoneKeywords, total=False):
+    polarization: Optional[bool]
+    head_shadow: Optional[float]
+
+class RenderKeywords(StoneKeywords, total=False):
+    light: Optional[str]
+    size: Optional[int]
+    tilt: Optional[Size]
+    head_shadow: Optional[float]
+    exposure: Optional[float]
+    polarization: Optional[bool]
+    float64: Optional[bool]
+
+def score(cut: CutLike, **kwargs: Unpack[ScoreKeywords]) -> Scores: ...
+def score_many(cuts: Sequence[CutLike], **kwargs: Unpack[ScoreKeywords]) -> List[Scores]: ...
+def render(cut: CutLike, **kwargs: Unpack[RenderKeywords]) -> Render: ...
 def trace(
     cut: CutLike,
     *,
