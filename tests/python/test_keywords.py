@@ -37,7 +37,8 @@ def stub_keywords() -> Dict[str, Dict[str, str]]:
     for node in tree.body:
         if isinstance(node, ast.FunctionDef) and node.args.kwarg is not None:
             ann = node.args.kwarg.annotation  # family(**params: float) is no list
-            if isinstance(ann, ast.Subscript) and ast.unparse(ann.value) == "Unpack":
+            listed = node.name in ("score", "score_many", "render")  # plan's are its own
+            if listed and isinstance(ann, ast.Subscript) and ast.unparse(ann.value) == "Unpack":
                 out[node.name] = fields(ast.unparse(ann.slice))
     return out
 

@@ -148,26 +148,17 @@ def optimize(
     progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
     overwrite: bool = False,
 ) -> Dict[str, Any]: ...
+class PlanKeywords(TypedDict, total=False):
+    config: Optional[PathLike]
+    families: Optional[Sequence[str]]
+    size_mm: Optional[float]
+    material: Optional[str]
+    top: Optional[int]
+
 @overload
 def plan(
-    rough: PathLike,
-    *,
-    config: Optional[PathLike] = None,
-    families: Optional[Sequence[str]] = None,
-    size_mm: Optional[float] = None,
-    material: Optional[str] = None,
-    top: Optional[int] = None,
-    out: None = None,
+    rough: PathLike, *, out: None = None, **kwargs: Unpack[PlanKeywords]
 ) -> List[Dict[str, Any]]: ...
 @overload
-def plan(
-    rough: PathLike,
-    *,
-    config: Optional[PathLike] = None,
-    families: Optional[Sequence[str]] = None,
-    size_mm: Optional[float] = None,
-    material: Optional[str] = None,
-    top: Optional[int] = None,
-    out: PathLike,
-) -> Dict[str, Any]: ...
+def plan(rough: PathLike, *, out: PathLike, **kwargs: Unpack[PlanKeywords]) -> Dict[str, Any]: ...
 def _keywords() -> Dict[str, List[Tuple[str, str, str]]]: ...
