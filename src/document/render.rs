@@ -129,8 +129,13 @@ pub struct PhotoFrame {
     pub cut_off: f64,
     /// Exit beams drawn.
     pub exits: usize,
-    /// Seconds.
+    /// Seconds (0 for a frame that repeats another).
     pub elapsed_s: f64,
+    /// The frame whose picture this one repeats (a turntable of a symmetric stone: the
+    /// stone turned by one of its own symmetries, see
+    /// [`turntable_period`](crate::render::photo::turntable_period)); absent when traced.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub same_as: Option<usize>,
 }
 
 impl PhotoFrame {
@@ -144,6 +149,7 @@ impl PhotoFrame {
             cut_off: stats.cut_off,
             exits: stats.exits,
             elapsed_s,
+            same_as: None,
         }
     }
 }
