@@ -183,8 +183,11 @@ fn print_summary(run: &Run<'_>) {
     }
     for (fam, plans) in run.all {
         if let Some(p) = plans.first() {
+            let colour = p.colour.map_or(String::new(), |c| {
+                format!(", colour C* {:.1} (L* {:.1})", c.c, c.l)
+            });
             println!(
-                "{fam:<16} {:.4} ct, yield {:.2} %, W {:.3} mm",
+                "{fam:<16} {:.4} ct, yield {:.2} %, W {:.3} mm{colour}",
                 p.carats,
                 100.0 * p.yield_fraction,
                 p.scale

@@ -26,7 +26,8 @@ pub struct FrameJson {
     /// not the score's `fire`, which averages the lights' placements.
     #[serde(rename = "placement_fire", skip_serializing_if = "Option::is_none")]
     pub fire: Option<f64>,
-    /// Face-up colour of a coloured stone (L*, C*, h°, spread, extinction, windowing).
+    /// Colour of a coloured stone's picture (L*, C*, h°, spread, extinction face-up under ISO
+    /// light or else `dark_share`, windowing).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub colour: Option<crate::render::ColourStats>,
     /// Share of light below the tracer's thresholds.
@@ -77,8 +78,11 @@ pub struct CutJson {
     pub fire: Option<f64>,
     /// Colour of a coloured stone's picture (a body colour under a grey light): `l`, `c`,
     /// `h_deg` (CIELAB L*, C*, h° of the mean colour), `l_spread` (standard deviation of the
-    /// pixels' L*), `extinction` (share of the outline whose light through the stone is darker than L* 20), `windowing`
-    /// (share of the light seen that comes from below the girdle plane).
+    /// pixels' L*), `extinction` (share of the outline whose light through the stone is
+    /// darker than L* 20: the score's, in a face-up ISO picture only) or else `dark_share`
+    /// (the same share of this picture, under its own name), `windowing` (share of the light
+    /// seen that comes from below the girdle plane); all on the colour grid
+    /// ([`crate::render::COLOUR_GRID`]), whatever the picture's size.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub colour: Option<crate::render::ColourStats>,
     /// The stone's width in mm (with a body colour).
@@ -129,8 +133,13 @@ pub struct PhotoFrame {
     pub cut_off: f64,
     /// Exit beams drawn.
     pub exits: usize,
-    /// Seconds.
+    /// Seconds (0 for a frame that repeats another).
     pub elapsed_s: f64,
+    /// The frame whose picture this one repeats (a turntable of a symmetric stone: the
+    /// stone turned by one of its own symmetries, see
+    /// [`turntable_period`](crate::render::photo::turntable_period)); absent when traced.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub same_as: Option<usize>,
 }
 
 impl PhotoFrame {
@@ -144,6 +153,7 @@ impl PhotoFrame {
             cut_off: stats.cut_off,
             exits: stats.exits,
             elapsed_s,
+            same_as: None,
         }
     }
 }

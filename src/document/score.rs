@@ -240,7 +240,7 @@ pub fn score_table(config: &ScoreConfig, results: &[(String, Scores)]) -> String
             ("colour C*", |c| c.c),
             ("colour h°", |c| c.h_deg),
             ("  L* spread", |c| c.l_spread),
-            ("extinction (L* < 20)", |c| c.extinction),
+            ("extinction (L* < 20)", |c| c.dark()),
             ("windowing", |c| c.windowing),
         ];
         for (label, f) in colour_rows {

@@ -41,7 +41,7 @@ fn all(s: &Scores) -> Vec<f64> {
         s.aset.leak,
     ];
     if let Some(c) = s.colour {
-        v.extend([c.l, c.c, c.h_deg, c.l_spread, c.extinction, c.windowing]);
+        v.extend([c.l, c.c, c.h_deg, c.l_spread, c.dark(), c.windowing]);
     }
     v
 }

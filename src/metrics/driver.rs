@@ -8,7 +8,7 @@ use super::scintillation::{scintillation_of, scintillation_turns};
 use super::scores::{Aset, PoseScore, Scores};
 use super::sink::{run_job, ColourImages, Job, PoseResult};
 use super::symmetry::{symmetric_pose, symmetric_pose_map};
-use crate::beam::{Frame, Stone};
+use crate::beam::{Frame, Stone, TraceOptions};
 use crate::geometry::{canonical, Polyhedron};
 use crate::optics::{color, Dispersion};
 use crate::render::lighting::Lighting;
@@ -32,6 +32,8 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
     let axis = cfg.material.uniaxial.as_ref().map_or(DVec3::Z, |u| {
         canonical::canonical_axis(solid, u.axis.vector())
     });
+    // The stone as given: its colour is drawn as `render` draws it ([`colour_of`]).
+    let given = solid;
     let solid = &canonical::canonical(solid);
     let stone = Stone::new(solid);
     let light = Lighting::new(cfg.head_shadow_deg, &cfg.spots);
@@ -317,17 +319,18 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
                     .iter()
                     .filter_map(|&k| results[k].colour.as_ref())
                     .collect();
-                Some(colour_from_bands(solid, &images, &weights, cfg, half))
+                Some(colour_from_bands(solid, &images, &weights, half))
             }
-            None => colour_of(solid, cfg),
+            None => colour_of(given, cfg),
         },
     }
 }
 
 /// Per fire band, the body colour's absorption per unit of the canonical `solid`, when the
 /// colour can be drawn on fire's band traces: a coloured material whose index changes with
-/// the wavelength (so that every band has its own trace), fire scored, and the scores'
-/// resolution at least the 64 pixels [`colour_of`] draws at.
+/// the wavelength (so that every band has its own trace) and fire scored (fire's band traces
+/// are then traced as [`colour_of`]'s picture). The colour is drawn on its own grid
+/// ([`COLOUR_GRID`](crate::render::COLOUR_GRID)) either way.
 fn shared_colour(
     solid: &Polyhedron,
     cfg: &ScoreConfig,
@@ -337,7 +340,19 @@ fn shared_colour(
 ) -> Option<Vec<f64>> {
     let body = cfg.material.colour.as_ref()?;
     let distinct = fire.iter().enumerate().all(|(i, k)| !fire[..i].contains(k));
-    if constant || !cfg.parts.fire || cfg.resolution < 64 || !distinct || fire.is_empty() {
+    if constant || !cfg.parts.fire || !distinct || fire.is_empty() {
+        return None;
+    }
+    // Fire's band traces trace as the colour's picture does (checked: a coloured picture's
+    // untilted bands are traced with fire's split and ray floor).
+    let picture = colour_options(solid, cfg).colour_trace_options();
+    let fires = TraceOptions {
+        polarization: cfg.polarization,
+        footprints: true,
+        split_threshold: cfg.fire_split_threshold,
+        ..cfg.trace
+    };
+    if fires != picture {
         return None;
     }
     let (width_mm, width) = stone_width(solid, cfg);
@@ -369,10 +384,10 @@ fn colour_from_bands(
     solid: &Polyhedron,
     images: &[&ColourImages],
     weights: &[DVec3],
-    cfg: &ScoreConfig,
     half: f64,
 ) -> crate::render::ColourStats {
-    let n = cfg.resolution * cfg.resolution;
+    let grid = crate::render::COLOUR_GRID;
+    let n = grid * grid;
     let xyz_of = |through: bool| -> Vec<DVec3> {
         (0..n)
             .map(|p| {
@@ -402,35 +417,42 @@ fn colour_from_bands(
     let coverage = crate::render::outline_coverage(
         solid,
         &Frame::viewer(Tilt::FACE_UP.rotation()),
-        cfg.resolution,
+        grid,
         half,
     );
     crate::render::ColourStats::of(&xyz_of(false), &xyz_of(true), &coverage, window)
 }
 
-/// The face-up colour of a coloured stone: its ISO picture drawn in colour (fire's bands,
-/// each with its exact absorption) at the scores' resolution (at least 64 pixels, the
-/// extinction share being a share of pixels) and fire's split threshold (its bands are
-/// fire's); `None` when the material is colourless.
-pub(super) fn colour_of(
-    solid: &Polyhedron,
-    cfg: &ScoreConfig,
-) -> Option<crate::render::ColourStats> {
+/// The face-up colour of a coloured stone: its ISO picture drawn in colour, exactly as
+/// `render --light iso` draws it (fire's bands, each with its exact absorption, traced as
+/// fire's: fire's split threshold and the scores' ray floor), its statistics on the colour
+/// grid ([`COLOUR_GRID`](crate::render::COLOUR_GRID), whatever the scores'
+/// resolution); `None` when the material is colourless. With the default settings this is
+/// `render --light iso`'s `colour` for the same stone, material, size, head shadow and bands,
+/// bit for bit: one extinction wherever it is shown.
+pub fn colour_of(solid: &Polyhedron, cfg: &ScoreConfig) -> Option<crate::render::ColourStats> {
     cfg.material.colour.as_ref()?;
-    let width_mm = stone_width(solid, cfg).0;
-    let opts = crate::render::RenderOptions {
-        size: cfg.resolution.max(64),
+    crate::render::render(solid, &colour_options(solid, cfg))
+        .stats
+        .colour
+}
+
+/// The options of the coloured ISO picture the face-up colour is measured on
+/// ([`colour_of`]).
+fn colour_options(solid: &Polyhedron, cfg: &ScoreConfig) -> crate::render::RenderOptions {
+    crate::render::RenderOptions {
+        size: crate::render::COLOUR_GRID,
         head_shadow_deg: Some(cfg.head_shadow_deg),
         material: cfg.material.clone(),
         polarization: cfg.polarization,
         bands: cfg.bands,
         trace: cfg.trace,
-        // Fire's face-up split: the colour is traced in fire's bands too.
-        face_up_split_threshold: cfg.fire_split_threshold,
-        width_mm,
+        // Traced as fire's bands are: the colour rides on their traces when fire is scored.
+        colour_split_threshold: cfg.fire_split_threshold,
+        colour_ray_floor: cfg.trace.ray_floor,
+        width_mm: stone_width(solid, cfg).0,
         ..crate::render::RenderOptions::new(crate::render::Light::Iso)
-    };
-    crate::render::render(solid, &opts).stats.colour
+    }
 }
 
 /// `f(k)` for every `k` of `order` (a permutation of `0..n`), started in that order on the

@@ -199,7 +199,7 @@ mod invariance;
 mod tests;
 
 pub use config::{Parts, ScoreConfig, REFERENCE_WAVELENGTH_NM};
-pub use driver::score;
+pub use driver::{colour_of, score};
 pub use fire::{fire_placements, Placement, FIRE_LIFT_DEG};
 pub use material::material_of;
 pub use overhead::{overhead_light_return, overhead_light_return_with};

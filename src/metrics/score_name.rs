@@ -221,7 +221,7 @@ impl ScoreName {
             ScoreName::AsetPort => s.aset.port,
             ScoreName::ColourL => colour?.l,
             ScoreName::ColourC => colour?.c,
-            ScoreName::Extinction => colour?.extinction,
+            ScoreName::Extinction => colour?.extinction?,
             ScoreName::Windowing => colour?.windowing,
         })
     }

@@ -66,9 +66,9 @@ pub struct Scores {
     #[serde(default)]
     pub poses: Vec<PoseScore>,
     /// A coloured stone's face-up colour (its material has a body colour): L*, C*, h°, the
-    /// L* spread, extinction and windowing of its face-up ISO picture drawn in colour at
-    /// the scores' resolution and fire's split threshold ([`crate::render::ColourStats`]); absent
-    /// when colourless.
+    /// L* spread, extinction and windowing of its face-up ISO picture drawn in colour on the
+    /// colour grid ([`crate::render::COLOUR_GRID`], whatever the resolution) at fire's split
+    /// threshold ([`crate::render::ColourStats`]); absent when colourless.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub colour: Option<crate::render::ColourStats>,
 }

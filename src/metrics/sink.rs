@@ -46,8 +46,9 @@ pub(super) struct Job {
     pub(super) colour: bool,
 }
 
-/// A coloured stone's face-up ISO picture in one wavelength band (radiance times covered
-/// share per pixel, absorbed), the same for the light through the stone alone (its surface
+/// A coloured stone's face-up ISO picture in one wavelength band on the colour grid
+/// ([`COLOUR_GRID`](crate::render::COLOUR_GRID); radiance times covered share per pixel,
+/// absorbed), the same for the light through the stone alone (its surface
 /// reflection left out, for extinction), and the absorbed power seen and its part from below
 /// the girdle plane (windowing).
 #[derive(Clone, Debug)]
@@ -130,6 +131,10 @@ pub(super) struct PoseSink<'a> {
     /// of maps that differ by a symmetry of the pixel grid, the first copy's coverage; the
     /// other copies in its class move its pixels instead of clipping again.
     pub(super) orbit: OrbitCoverage,
+    /// The same for the colour pictures, drawn on their own grid
+    /// ([`COLOUR_GRID`](crate::render::COLOUR_GRID)), and the current exit's coverage there.
+    corbit: OrbitCoverage,
+    ccov: Coverage,
     /// Fire's placement lookup for the current orbit's elevation (shared by its copies).
     reach: Reach,
 }
@@ -154,10 +159,12 @@ impl ExitSink for PoseSink<'_> {
     }
     fn symmetries(&mut self, maps: &[(u16, [f64; 4])]) {
         self.orbit = OrbitCoverage::new(maps);
+        self.corbit = OrbitCoverage::new(maps);
     }
     fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
         if e.sym == 0 {
             self.orbit.start();
+            self.corbit.start();
         }
         let w = self.rot * e.direction;
         // Everything but the colour sees the colourless stone.
@@ -229,14 +236,13 @@ impl ExitSink for PoseSink<'_> {
                 a = clip2d::area(fp);
             }
             if l > 0.0 && a > 0.0 && e.power > 0.0 {
-                if !covered {
-                    orbit.cover(&c.all, e.sym, fp, cov);
-                    covered = true;
-                }
+                // On the colour grid: its own coverage.
+                let ccov = &mut self.ccov;
+                self.corbit.cover(&c.all, e.sym, fp, ccov);
                 let v = l * e.power * self.area / a;
-                c.all.add_coverage(cov, v);
+                c.all.add_coverage(ccov, v);
                 if !e.external {
-                    c.through.add_coverage(cov, v);
+                    c.through.add_coverage(ccov, v);
                 }
             }
         }
@@ -354,8 +360,8 @@ pub(super) fn job_sink<'a>(
                 .map(|_| Raster::new(cfg.resolution, half))
                 .collect(),
             colour: job.colour.then(|| ColourImages {
-                all: Raster::new(cfg.resolution, half),
-                through: Raster::new(cfg.resolution, half),
+                all: Raster::new(crate::render::COLOUR_GRID, half),
+                through: Raster::new(crate::render::COLOUR_GRID, half),
                 seen: 0.0,
                 below: 0.0,
             }),
@@ -367,6 +373,8 @@ pub(super) fn job_sink<'a>(
         vcov: Coverage::default(),
         cov: Coverage::default(),
         orbit: OrbitCoverage::default(),
+        corbit: OrbitCoverage::default(),
+        ccov: Coverage::default(),
         reach: Reach::default(),
     };
     (frame, opts, sink)

@@ -637,9 +637,9 @@ fn colour_adds_the_face_up_colour_and_nothing_else() {
     }
 }
 
-/// The colour drawn on fire's band traces (the scores' way at resolution ≥ 64) against the
-/// coloured ISO picture `render` draws at the same split (an independent path: its own
-/// traces, layers and rasters).
+/// The colour drawn on fire's band traces (the scores' way) against the coloured ISO picture
+/// `render` draws (an independent path: its own traces, layers and rasters), traced as
+/// fire's bands are; and `render`'s defaults for a coloured picture are the scores'.
 #[test]
 fn colour_on_fires_traces_matches_the_drawn_picture() {
     let solid = crate::geometry::canonical::canonical(&crate::testkit::tolkowsky());
@@ -662,7 +662,14 @@ fn colour_on_fires_traces_matches_the_drawn_picture() {
         assert!(close(shared.c, drawn.c), "{variety}");
         assert!(close(shared.h_deg, drawn.h_deg), "{variety}");
         assert!(close(shared.l_spread, drawn.l_spread), "{variety}");
-        assert!(close(shared.extinction, drawn.extinction), "{variety}");
+        assert!(close(shared.dark(), drawn.dark()), "{variety}");
+        assert!(shared.extinction.is_some() && drawn.extinction.is_some());
         assert!(close(shared.windowing, drawn.windowing), "{variety}");
     }
+    let (r, d) = (
+        crate::render::RenderOptions::new(crate::render::Light::Iso),
+        ScoreConfig::default(),
+    );
+    assert_eq!(r.colour_split_threshold, d.fire_split_threshold);
+    assert_eq!(r.colour_ray_floor, d.trace.ray_floor);
 }

@@ -10,7 +10,10 @@
 //! min_width_mm = 1.0            # a rough whose widest plan is narrower is refused
 //!
 //! [objective]
-//! kind = "weight"               # "weight" (carats) or "value" (price table × quality)
+//! kind = "weight"               # "weight" (carats), "value" (price table × quality) or
+//!                               # "colour": a coloured rough's kept plans (found by weight)
+//!                               # ranked by their face-up colour's chroma C*, each scored
+//!                               # at its own size and optic axis (src/plan/colour.rs)
 //! grade = "excellent"           # round brilliants only: the grade estimate must reach it
 //! min_brilliance = 0.75         # every family: brilliance (fast scores) at least this
 //! prices = "prices.toml"        # for "value", relative to this file
@@ -63,6 +66,9 @@ pub enum Objective {
     Weight,
     /// Price from a table × a quality factor.
     Value(PriceTable),
+    /// Face-up colour (a coloured material): the weight search finds each family's plans,
+    /// which are then ranked by the chroma C* of their face-up colour ([`super::colour`]).
+    Colour,
 }
 
 /// The heaviest band limit a price table may give (carats).
@@ -530,6 +536,7 @@ impl PlanConfig {
         };
         c.objective = match kind {
             "weight" => Objective::Weight,
+            "colour" | "color" => Objective::Colour,
             "value" => {
                 let Some(p) = &raw.objective.prices else {
                     return Err(Error::invalid(
@@ -548,7 +555,7 @@ impl PlanConfig {
             other => {
                 return Err(Error::invalid(
                     at("objective.kind"),
-                    format!("unknown objective `{other}`; allowed: weight, value"),
+                    format!("unknown objective `{other}`; allowed: weight, value, colour"),
                 ))
             }
         };

@@ -11,7 +11,8 @@
 //!   principal frame) and the free parameters of a family within the config's bounds, by
 //!   seeded multi-start Nelder–Mead (argmin), deterministic on any thread count, maximising the
 //!   objective of a plan config ([`PlanConfig`]: weight, weight under a grade or a minimum
-//!   brilliance, or value from a price table, [`PriceTable`]);
+//!   brilliance, or value from a price table, [`PriceTable`]); a coloured rough's plans can
+//!   then be ranked by their face-up colour ([`colour`]);
 //! - the plans as data ([`Plan`]): the family's cut, its pose and scale, the placed cut in the
 //!   rough's coordinates, carats, yield, grade and objective, for the run folder and for the
 //!   plot floor to draw;
@@ -29,9 +30,10 @@
 //! form), `fit.rs` is the containment program, `search.rs` the search over orientation and
 //! proportions, `config.rs` the plan config (objective, bounds, price table), `sample.rs` the
 //! example rough (a distorted octahedron mesh), `run.rs` the run and its folder, `summary.rs`
-//! the folder's `summary.json`.
+//! the folder's `summary.json`, `colour.rs` the face-up colour objective.
 
 pub mod ball;
+pub mod colour;
 pub mod config;
 pub mod fit;
 pub mod mesh;

@@ -30,8 +30,10 @@ use std::time::Instant;
 
 /// Plan each family of `config` in `rough` in turn: `family(name)` is asked before each
 /// (false stops, keeping the families planned so far), `tick` runs after each start; a raised
-/// `stop` ends the family being planned at once and drops it. Refuses a rough too small for
-/// any cut (the widest plan narrower than `min_width_mm`).
+/// `stop` ends the family being planned at once and drops it. With `[objective] kind =
+/// "colour"` each family's plans are ranked by their face-up colour ([`super::colour`]).
+/// Refuses a rough too small for any cut (the widest plan narrower than `min_width_mm`), and
+/// the colour objective for a colourless material.
 pub fn plan_families(
     rough: &Rough,
     config: &PlanConfig,
@@ -40,6 +42,7 @@ pub fn plan_families(
     tick: &(dyn Fn() + Sync),
     stop: Option<&AtomicBool>,
 ) -> Result<Vec<(String, Vec<Plan>)>> {
+    super::colour::check(config, material)?;
     let mut planner = Planner::new(rough, config, material.density);
     if let Some(s) = stop {
         planner = planner.with_stop(s);
@@ -49,9 +52,12 @@ pub fn plan_families(
         if planner.stopped() || !family(f) {
             break;
         }
-        let plans = planner.plan_family(f, tick)?;
+        let mut plans = planner.plan_family(f, tick)?;
         if planner.stopped() {
             break;
+        }
+        if config.objective == super::Objective::Colour {
+            super::colour::rank_by_colour(&mut plans, config, material, |p| planner.meets_grade(p));
         }
         all.push((f.clone(), plans));
     }

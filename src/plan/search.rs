@@ -61,8 +61,11 @@ pub struct Plan {
     pub yield_fraction: f64,
     /// Grade estimate (round brilliants).
     pub grade: Option<Grade>,
-    /// The objective's value (carats, or the price).
+    /// The objective's value (carats, the price, or the face-up colour's chroma C*).
     pub objective: f64,
+    /// The face-up colour of a coloured stone, when the objective ranks by it
+    /// ([`super::colour`]).
+    pub colour: Option<crate::render::ColourStats>,
 }
 
 impl Plan {
@@ -355,7 +358,8 @@ impl<'a> Planner<'a> {
         let carats =
             cut.solid.volume() * fit.scale.powi(3) * self.density * CARATS_PER_MM3_PER_DENSITY;
         let objective = match &self.config.objective {
-            Objective::Weight => carats,
+            // The colour ranks the plans the weight search finds (super::colour).
+            Objective::Weight | Objective::Colour => carats,
             Objective::Value(t) => t.value(carats, grade),
         };
         Some((fit, carats, objective, grade))
@@ -377,6 +381,7 @@ impl<'a> Planner<'a> {
             yield_fraction: volume_mm3 / self.rough.volume(),
             grade,
             objective,
+            colour: None,
         })
     }
 

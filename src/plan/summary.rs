@@ -57,6 +57,9 @@ pub struct PlanJson {
     #[serde(skip_serializing_if = "Option::is_none")]
     optic_axis: Option<String>,
     scores: ScoresJson,
+    /// The face-up colour the plan was ranked by (`[objective] kind = "colour"`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    colour: Option<crate::render::ColourStats>,
 }
 
 impl PlanJson {
@@ -102,6 +105,7 @@ impl PlanJson {
                 fire: s.fire,
                 scintillation: s.scintillation,
             },
+            colour: p.colour,
         }
     }
 }
@@ -166,10 +170,11 @@ pub fn summary_json(of: &SummaryOf<'_>, plans: Vec<PlanJson>) -> Result<String> 
         objective: match &config.objective {
             Objective::Weight => "weight".into(),
             Objective::Value(_) => "value".into(),
+            Objective::Colour => "colour".into(),
         },
         currency: match &config.objective {
             Objective::Value(t) => Some(t.currency.clone()),
-            Objective::Weight => None,
+            Objective::Weight | Objective::Colour => None,
         },
         grade: config.grade.map(|g| g.name().to_string()),
         min_brilliance: config.min_brilliance,

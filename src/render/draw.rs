@@ -1,7 +1,9 @@
 //! The footprint → pixel path: trace the viewer backwards, weight each exit beam by the light
 //! it sees, and add its footprint's exact coverage to the pixels ([`render`]).
 
-use super::image::{fire_from_sum, pixel_xyz, saturated_y, AsetShares, ColourStats, Image, Stats};
+use super::image::{
+    fire_from_sum, pixel_xyz, saturated_y, AsetShares, ColourStats, Image, Stats, COLOUR_GRID,
+};
 use super::layer::{Layer, BAND_ROWS};
 use super::light::Light;
 use super::lighting::Lighting;
@@ -121,9 +123,14 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
         let traced: Vec<(Layer, f64, f64)> = traces
             .par_iter()
             .map(|&(medium, alpha)| {
+                // A coloured stone's bands as the scores trace fire's.
                 let o = TraceOptions {
                     absorption: alpha,
-                    ..trace_opts
+                    ..if body.is_some() {
+                        opts.colour_trace_options()
+                    } else {
+                        trace_opts
+                    }
                 };
                 let (mut seen, mut under) = (0.0, 0.0);
                 // A colourless fire picture sums nothing else: an exit whose elevation no
@@ -212,13 +219,25 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
                 den += w.y;
             }
             let window = if den > 0.0 { num / den } else { 0.0 };
+            // The colour statistics on their own grid, whatever the picture's size.
+            let grid = COLOUR_GRID;
+            let regrid: Vec<Vec<Raster>>;
+            let on_grid = if size == grid {
+                &band_rasters
+            } else {
+                regrid = band_layers
+                    .par_iter()
+                    .map(|l| Layer::fill(&[l], l.channels, grid, half, quadrant))
+                    .collect();
+                &regrid
+            };
             let xyz_of = |channel: usize| -> Vec<DVec3> {
-                (0..size * size)
+                (0..grid * grid)
                     .map(|p| {
                         (0..bands.len())
                             .zip(&weights)
                             .map(|(b, w)| {
-                                *w * band_rasters[if constant { 0 } else { b }][channel].data[p]
+                                *w * on_grid[if constant { 0 } else { b }][channel].data[p]
                             })
                             .sum()
                     })
@@ -267,7 +286,14 @@ pub fn render(solid: &Polyhedron, opts: &RenderOptions) -> Image {
     };
     let coverage = outline_coverage(&solid, &frame, size, half);
     if let Some((xyz, through, window)) = colour_input {
-        stats.colour = Some(ColourStats::of(&xyz, &through, &coverage, window));
+        let grid = if size == COLOUR_GRID {
+            coverage.clone()
+        } else {
+            outline_coverage(&solid, &frame, COLOUR_GRID, half)
+        };
+        // The scores' view: face-up under ISO light (their colour is this picture's).
+        let scores = opts.light == Light::Iso && opts.tilt.tilt_deg == 0.0;
+        stats.colour = Some(ColourStats::of(&xyz, &through, &grid, window).seen(scores));
     }
     Image {
         light: opts.light,

@@ -43,7 +43,7 @@ mod tests;
 
 pub(crate) use draw::outline_coverage;
 pub use draw::render;
-pub use image::{fire_of, AsetShares, ColourStats, Image, Stats, EXTINCTION_L};
+pub use image::{fire_of, AsetShares, ColourStats, Image, Stats, COLOUR_GRID, EXTINCTION_L};
 pub use light::{
     Light, ASET_COLOURS, HEARTS_APERTURE_DEG, IDEALSCOPE_COLOURS, PORT_DEG, SCOPE_TUBE_DEG,
     SCOPE_WALL_DEG,

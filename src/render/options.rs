@@ -40,6 +40,14 @@ pub struct RenderOptions {
     /// [`RenderOptions::FACE_UP_SPLIT_THRESHOLD`], the scores' face-up one, so that a face-up
     /// picture's mean and the scores' face-up figures are the very same trace.
     pub face_up_split_threshold: f64,
+    /// Split threshold and ray floor of a coloured stone's untilted picture (its bands,
+    /// absorbed): the scores' fire bands are traced so, and the scores draw their face-up
+    /// colour on those traces, so that `render --light iso` shows the scores' colour and
+    /// extinction. Default [`RenderOptions::COLOUR_SPLIT_THRESHOLD`] and
+    /// [`RenderOptions::COLOUR_RAY_FLOOR`].
+    pub colour_split_threshold: f64,
+    /// See [`RenderOptions::colour_split_threshold`].
+    pub colour_ray_floor: f64,
     /// The stone's width in mm (a round's diameter), for its body colour's absorption
     /// (absorption depends on the physical size). Default
     /// [`StoneSize::DEFAULT_WIDTH_MM`](crate::optics::StoneSize::DEFAULT_WIDTH_MM).
@@ -59,6 +67,14 @@ impl RenderOptions {
     /// traces one symmetry wedge, so this fine trace is cheap.
     pub const FACE_UP_SPLIT_THRESHOLD: f64 = 1e-6;
 
+    /// Default split threshold of a coloured stone's untilted picture: the scores' fire
+    /// bands' (`ScoreConfig::default().fire_split_threshold`).
+    pub const COLOUR_SPLIT_THRESHOLD: f64 = 3e-6;
+
+    /// Default ray floor of a coloured stone's untilted picture: the scores'
+    /// (`ScoreConfig::RAY_FLOOR`; the light it stops is not drawn, a few 1e-4 of it).
+    pub const COLOUR_RAY_FLOOR: f64 = 0.05;
+
     /// Default options for `light`: 512 pixels, face-up, diamond at 589.3 nm, 8 bands.
     pub fn new(light: Light) -> RenderOptions {
         RenderOptions {
@@ -76,6 +92,8 @@ impl RenderOptions {
                 ..TraceOptions::default()
             },
             face_up_split_threshold: Self::FACE_UP_SPLIT_THRESHOLD,
+            colour_split_threshold: Self::COLOUR_SPLIT_THRESHOLD,
+            colour_ray_floor: Self::COLOUR_RAY_FLOOR,
             width_mm: crate::optics::StoneSize::DEFAULT_WIDTH_MM,
         }
     }
@@ -93,6 +111,23 @@ impl RenderOptions {
             polarization: self.polarization,
             footprints: true,
             split_threshold: split,
+            ..self.trace
+        }
+    }
+
+    /// The tracer settings of a coloured stone's band traces: for an untilted picture,
+    /// [`RenderOptions::trace`] split down to [`RenderOptions::colour_split_threshold`] with
+    /// the ray floor [`RenderOptions::colour_ray_floor`] (as the scores trace fire's bands);
+    /// a tilted picture's are [`RenderOptions::trace_options`].
+    pub fn colour_trace_options(&self) -> TraceOptions {
+        if self.tilt.tilt_deg != 0.0 {
+            return self.trace_options();
+        }
+        TraceOptions {
+            polarization: self.polarization,
+            footprints: true,
+            split_threshold: self.colour_split_threshold,
+            ray_floor: self.colour_ray_floor,
             ..self.trace
         }
     }

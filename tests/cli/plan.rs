@@ -128,6 +128,50 @@ fn a_rough_with_its_c_axis_plans_each_cut_in_its_true_orientation() {
     );
 }
 
+/// `[objective] kind = "colour"` (issue 41): a ruby rough with its c-axis plans by weight and
+/// ranks by face-up colour, `summary.json` saying so and giving each plan's colour (its
+/// objective is the colour's C*); a colourless rough refuses it in one line naming
+/// `objective.kind`, writing nothing.
+#[test]
+fn a_coloured_rough_ranks_its_plans_by_face_up_colour() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let cfg = "seed = 3\nmaterial = \"ruby\"\n[objective]\nkind = \"colour\"\n\
+               [rough]\nc_axis = [0.3, -0.2, 0.9]\n[search]\nstarts = 2\nmax_iterations = 40\n";
+    std::fs::write(p.join("plan.toml"), cfg).unwrap();
+    plan_octahedron(p, "oval");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(p.join("run/summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(json["objective"], "colour");
+    let plan = &json["plans"][0];
+    let c = plan["colour"]["c"].as_f64().expect("the plan's colour");
+    assert!(c > 5.0, "a ruby's colour: {plan}");
+    assert_eq!(plan["objective"].as_f64(), Some(c));
+    assert!(plan["colour"]["extinction"].as_f64().is_some(), "{plan}");
+
+    let cfg = "material = \"sapphire\"\n[objective]\nkind = \"colour\"\n";
+    std::fs::write(p.join("clear.toml"), cfg).unwrap();
+    bad(
+        p,
+        &[
+            "plan",
+            "octahedron",
+            "--size-mm",
+            "6",
+            "--family",
+            "oval",
+            "--config",
+            "clear.toml",
+            "--quiet",
+            "-o",
+            "clear",
+        ],
+        &["objective.kind", "sapphire"],
+    );
+    assert!(!p.join("clear").exists());
+}
+
 #[test]
 fn bad_roughs_are_one_line_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();

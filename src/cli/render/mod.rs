@@ -245,16 +245,25 @@ fn pct(v: f64) -> String {
     format!("{:.1} %", 100.0 * v)
 }
 
+/// The share darker than L* 20 under its name: the extinction in the scores' face-up ISO
+/// view, the dark share of any other picture.
+fn dark_text(c: &facetlab::render::ColourStats, extinction: &str, dark: &str) -> String {
+    match c.extinction {
+        Some(e) => format!("{extinction} {}", pct(e)),
+        None => format!("{dark} {}", pct(c.dark())),
+    }
+}
+
 /// The statistics as caption lines (after the name).
 pub fn stats_lines(light: Light, s: &Stats) -> Vec<String> {
     let mut lines = stats_lines_of_light(light, s);
     if let Some(c) = s.colour {
         lines.push(format!(
-            "L* {:.0} C* {:.0} h {:.0}°, extinct {}, window {}",
+            "L* {:.0} C* {:.0} h {:.0}°, {}, window {}",
             c.l,
             c.c,
             c.h_deg,
-            pct(c.extinction),
+            dark_text(&c, "extinct", "dark"),
             pct(c.windowing)
         ));
     }
@@ -314,13 +323,13 @@ fn summary(light: Light, s: &Stats) -> String {
         (Light::IdealScope, _, _) => format!("idealscope returned {}", pct(s.mean)),
         (l, _, _) => match s.colour {
             Some(c) => format!(
-                "{} mean {}, colour L* {:.1} C* {:.1} h {:.0}°, extinction {}, windowing {}",
+                "{} mean {}, colour L* {:.1} C* {:.1} h {:.0}°, {}, windowing {}",
                 l.name(),
                 pct(s.mean),
                 c.l,
                 c.c,
                 c.h_deg,
-                pct(c.extinction),
+                dark_text(&c, "extinction", "dark share"),
                 pct(c.windowing)
             ),
             None => format!("{} mean {}", l.name(), pct(s.mean)),

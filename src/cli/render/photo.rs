@@ -273,6 +273,16 @@ fn check_outputs(a: &RenderArgs) -> Result<()> {
 }
 
 /// Frame delay: a turn takes about 4.8 s, a rock 2.4 s.
+fn lcm(a: usize, b: usize) -> usize {
+    let gcd = |mut a: usize, mut b: usize| {
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        a
+    };
+    a / gcd(a, b) * b
+}
+
 fn delay_ms(frames: usize, turn: bool) -> u16 {
     let whole = if turn { 4800 } else { 2400 };
     (whole / frames.max(1)).clamp(20, 1000) as u16
@@ -301,17 +311,33 @@ pub fn run(a: &RenderArgs, light: PhotoLight) -> Result<()> {
     }
     let size = s.opts.size;
     let nframes = s.frames();
-    let bar = crate::cli::progress::bar(
-        (nframes * cuts.len()) as u64,
-        a.quiet,
-        "{spinner} photographing [{bar:30}] {pos}/{len} pictures, eta {eta}",
-    );
     type Drawn = (
         Sheet,
         Vec<(PhotoFrame, photo::PhotoStats)>,
         Option<facetlab::io::hdr::HdrImage>,
     );
-    let drawn: Vec<Drawn> = (0..nframes)
+    // A turntable of symmetric stones repeats itself: trace the frames up to its period
+    // (every cut's period divides it), then show them again.
+    let period = match s.turn {
+        Some(n) => cuts
+            .iter()
+            .zip(&materials)
+            .map(|(cut, m)| {
+                let opts = PhotoOptions {
+                    material: m.clone(),
+                    ..s.opts.clone()
+                };
+                photo::turntable_period(&cut.solid, &opts, n)
+            })
+            .fold(1, lcm),
+        None => nframes,
+    };
+    let bar = crate::cli::progress::bar(
+        (period * cuts.len()) as u64,
+        a.quiet,
+        "{spinner} photographing [{bar:30}] {pos}/{len} pictures, eta {eta}",
+    );
+    let mut drawn: Vec<Drawn> = (0..period)
         .into_par_iter()
         .map(|k| {
             let mut pictures = Vec::with_capacity(cuts.len());
@@ -356,6 +382,25 @@ pub fn run(a: &RenderArgs, light: PhotoLight) -> Result<()> {
             Ok((sheet, stats, hdr))
         })
         .collect::<Result<Vec<_>>>()?;
+    for k in period..nframes {
+        let (sheet, stats, _) = &drawn[k % period];
+        let stats = stats
+            .iter()
+            .map(|(f, st)| {
+                let turn = s.frame(k);
+                let frame = PhotoFrame {
+                    frame: k,
+                    turn_deg: turn.turn_deg,
+                    tilt_deg: turn.tilt.tilt_deg,
+                    elapsed_s: 0.0,
+                    same_as: Some(f.frame),
+                    ..f.clone()
+                };
+                (frame, st.clone())
+            })
+            .collect();
+        drawn.push((sheet.clone(), stats, None));
+    }
     bar.finish_and_clear();
     let mut per_cut: Vec<Vec<(PhotoFrame, photo::PhotoStats)>> = vec![Vec::new(); cuts.len()];
     let mut sheets = Vec::with_capacity(nframes);
@@ -413,7 +458,10 @@ pub fn run(a: &RenderArgs, light: PhotoLight) -> Result<()> {
         .collect();
     for r in &records {
         let anim = match (&r.frames, s.turn, s.rock) {
-            (Some(f), Some(n), _) => format!(", turntable of {n} frames ({} traced)", f.len()),
+            (Some(f), Some(n), _) => format!(
+                ", turntable of {n} frames ({} traced)",
+                f.iter().filter(|f| f.same_as.is_none()).count()
+            ),
             (Some(_), None, Some((deg, n))) => format!(", rocking ±{deg}° in {n} frames"),
             _ => String::new(),
         };

@@ -42,7 +42,7 @@ pub use env::{Disc, Environment, LightSample, Part};
 pub use envmap::EnvMap;
 pub use ground::{Ground, GroundKind, GroundStats};
 pub use options::{PhotoLight, PhotoOptions, STUDIO};
-pub use record::{caption, turntable};
+pub use record::{caption, turntable, turntable_period};
 pub use rigs::Rig;
 pub use tone::Tone;
 

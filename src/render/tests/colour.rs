@@ -65,7 +65,8 @@ fn a_coloured_pictures_luminance_is_its_band_traces_light() {
         for (l, w) in color::traced_bands(o.bands, color::FAINT_BAND) {
             let t = TraceOptions {
                 absorption: o.material.colour.as_ref().unwrap().alpha(l) * mm_per_unit,
-                ..o.trace_options()
+                // A coloured picture's bands are traced as the scores trace fire's.
+                ..o.colour_trace_options()
             };
             let tree = stone.trace(&frame, o.material.ri(l), l, &t);
             let seen: f64 = tree
@@ -149,10 +150,10 @@ fn darker_colour_darkens_and_goes_extinct() {
             &coloured(Light::Cos, 40, Tilt::FACE_UP, yellow(k), 6.5),
         );
         let c = img.stats.colour.unwrap();
-        assert!(c.l < last_l && c.extinction >= last_ext, "k {k}: {c:?}");
-        assert!((0.0..=1.0).contains(&c.extinction) && (0.0..=1.0).contains(&c.windowing));
+        assert!(c.l < last_l && c.dark() >= last_ext, "k {k}: {c:?}");
+        assert!((0.0..=1.0).contains(&c.dark()) && (0.0..=1.0).contains(&c.windowing));
         last_l = c.l;
-        last_ext = c.extinction;
+        last_ext = c.dark();
     }
     // Extinction counts the light through the stone: the sky's surface reflection, which
     // keeps most pixels of even a dark stone above L* 20, is left out (with it counted this

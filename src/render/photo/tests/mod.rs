@@ -6,6 +6,7 @@ use crate::geometry::canonical::canonical;
 
 mod ground;
 mod perspective;
+mod turntable;
 use crate::optics::Material;
 use crate::render::{render, Light, RenderOptions, Tilt};
 use crate::testkit::{princess, tolkowsky};
