@@ -24,13 +24,15 @@
 //! touched by any of this.
 
 use super::attenuation::exp_mean_planar;
+use super::exit::ExitBeam;
 use super::footprint::{Affine, PathLength};
+use super::frame::Frame;
 use super::mode::{ModeBeam, ModeRay};
+use super::options::TraceOptions;
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
 use super::symmetry::{clipped_share, SymSink};
 use super::work::{Ctx, Work};
-use super::{ExitBeam, Frame, TraceOptions};
 use crate::optics::crystal::{Crystal, Wave};
 use crate::optics::BodyColour;
 use crate::optics::Material;

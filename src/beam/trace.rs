@@ -2,13 +2,15 @@
 //! reflection and refraction at entry, the symmetry's wedge), then the depth-first loop over
 //! the beams waiting to be split.
 
+use super::exit::ExitBeam;
 use super::footprint::{Affine, PathLength};
+use super::frame::Frame;
 use super::interface::split;
+use super::options::TraceOptions;
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
 use super::symmetry::{clipped_share, SymSink};
 use super::work::{Beam, Ctx};
-use super::{ExitBeam, Frame, TraceOptions};
 use crate::optics::{fresnel, reflect, refract, s_axis};
 use glam::{DVec2, DVec3, DVec4};
 

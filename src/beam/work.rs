@@ -55,7 +55,12 @@ pub(super) struct Ctx {
 impl Ctx {
     /// The settings of a trace at index `ri` under `opts` (negative and non-finite powers
     /// read as 0).
-    pub(super) fn new(ri: f64, opts: &super::TraceOptions, want_fp: bool, keep_nodes: bool) -> Ctx {
+    pub(super) fn new(
+        ri: f64,
+        opts: &super::options::TraceOptions,
+        want_fp: bool,
+        keep_nodes: bool,
+    ) -> Ctx {
         let clean = |x: f64| if x.is_finite() { x.max(0.0) } else { 0.0 };
         Ctx {
             ri,

@@ -30,6 +30,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("slice point", "--at"),
     ("map axes", "--map"),
     ("shard folder", "--out"),
+    ("batch output", "--jsonl"),
 ];
 
 /// The flag that sets the library's setting `name` ([`FLAGS`]).

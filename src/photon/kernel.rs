@@ -1,7 +1,7 @@
 //! The per-photon loop.
 
-use super::beam::Beam;
 use super::crystal_setup::CrystalSetup;
+use super::entry_grid::EntryGrid;
 use super::reach::Reach;
 use super::solid::TraceSolid;
 use super::tally::{Counts, Fate, PhotonPath};
@@ -36,7 +36,7 @@ pub(crate) struct Tracer<'a> {
     wavelengths: WavelengthSampling,
     pub(super) fixed_n: Option<f64>,
     pub(super) seed: u64,
-    beam: Option<Beam>,
+    entry_grid: Option<EntryGrid>,
     /// Undirected lights: which photons surely miss, from their start and polar angle.
     reach: Option<Reach>,
     /// cos(k°) for k = 0..=180.
@@ -219,8 +219,8 @@ impl<'a> Tracer<'a> {
                 cos_deg[1..180].partition_point(|&t| z <= t) as u8
             })),
             cos_deg,
-            beam: (light.kind == LightKind::Directed)
-                .then(|| Beam::new(s, centre, axis, u, v, half)),
+            entry_grid: (light.kind == LightKind::Directed)
+                .then(|| EntryGrid::new(s, centre, axis, u, v, half)),
             exit_weight: None,
             crystal: CrystalSetup::of(&cfg.material),
         })
@@ -369,7 +369,7 @@ impl<'a> Tracer<'a> {
     #[inline(always)]
     fn angle_bin(&self, z: f64) -> usize {
         let u = (1.0 - z).max(0.0).sqrt() * ANGLE_CELLS_PER_U;
-        let mut bin = self.angle_start[super::grid_cell(u, ANGLE_CELLS)] as usize;
+        let mut bin = self.angle_start[super::entry_grid::grid_cell(u, ANGLE_CELLS)] as usize;
         while bin < 179 && z <= self.cos_deg[bin + 1] {
             bin += 1;
         }
@@ -520,9 +520,9 @@ impl<'a> Tracer<'a> {
                 self.axis * c + self.u * (s * cp) + self.v * (s * sp)
             }
         };
-        let (t, f) = match &self.beam {
-            Some(beam) => {
-                let f = beam.entry(a, b)?;
+        let (t, f) = match &self.entry_grid {
+            Some(grid) => {
+                let f = grid.entry(a, b)?;
                 let n = self.s.normals[f];
                 let t = (self.s.off[f] - n.dot(o)) / n.dot(d);
                 if t < 0.0 {
@@ -750,14 +750,14 @@ mod tests {
         ] {
             let cfg = TraceConfig::thesis();
             let tr = Tracer::new(&s, &light, &cfg).unwrap();
-            let beam = tr.beam.as_ref().unwrap();
+            let grid = tr.entry_grid.as_ref().unwrap();
             let mut rng = SmallRng::seed_from_u64(5);
             let (mut hits, mut differ) = (0, 0);
             for _ in 0..20_000 {
                 let a = (2.0 * rng.random::<f64>() - 1.0) * tr.half;
                 let b = (2.0 * rng.random::<f64>() - 1.0) * tr.half;
                 let o = tr.centre + tr.u * a + tr.v * b;
-                let fast = beam.entry(a, b);
+                let fast = grid.entry(a, b);
                 let general = s.entry(o, tr.axis).map(|(_, f)| f);
                 hits += general.is_some() as u32;
                 differ += (fast != general) as u32;

@@ -1,6 +1,9 @@
 //! Physics and bookkeeping tests of the photon tracer (small photon counts).
 
+use super::run::{run_shot_waves, WAVE};
 use super::*;
+use crate::geometry::{DVec3, Polyhedron};
+use crate::optics::Material;
 use crate::optics::{fresnel, reflect, refract};
 use crate::testkit::{cube, slab, tolkowsky};
 

@@ -35,8 +35,9 @@
 //! (section "The config file").
 //!
 //! Each section has its own file with its raw form, its validated form and its validator
-//! (`cut.rs`, `free.rs`, `objective.rs`, `constraints.rs`, `method.rs`, `winners.rs` for
-//! `[verify]`, `score.rs`); [`Config::from_raw`] runs them in the file's order.
+//! (`cut.rs`, `free.rs`, `objective.rs`, `constraints.rs`, `method.rs`, `verify.rs`,
+//! `score.rs`); [`Config::from_raw`] runs them in the file's order. `search_box.rs` is the box
+//! a validated config's search moves in ([`Config::search_box`]).
 
 mod constraints;
 mod cut;
@@ -45,7 +46,8 @@ mod meets;
 mod method;
 mod objective;
 mod score;
-mod winners;
+mod search_box;
+mod verify;
 
 pub use constraints::{Constraints, RawConstraints};
 pub use cut::RawCut;
@@ -53,7 +55,8 @@ pub use free::{axis_label, FreeParam, OPTIC_AXIS};
 pub use method::{Budget, Method, NelderMeadSettings, RawMethod, Sampling, SwarmSettings};
 pub use objective::{ParetoSpec, RawObjective, Weights};
 pub use score::{RawScore, ScoreSettings};
-pub use winners::{RawVerify, VerifySettings};
+pub use search_box::SearchBox;
+pub use verify::{RawVerify, VerifySettings};
 
 use crate::cut::{Cut, CutSpace};
 use crate::design::{DesignSpace, OpenedMeet};
@@ -326,7 +329,7 @@ impl Config {
         }
         let (method, budget) =
             method::validate(&raw.method.clone().unwrap_or_default(), free.len(), &at)?;
-        let verify = winners::validate(&raw.verify.clone().unwrap_or_default(), &at)?;
+        let verify = verify::validate(&raw.verify.clone().unwrap_or_default(), &at)?;
         let raw_score = raw.score.clone().unwrap_or_default();
         let mut score = score::validate(&raw_score, &at)?;
         // A design is scored in its own material (its file's index) unless the config says.
@@ -434,34 +437,29 @@ impl Config {
             .map_err(|e| e.context(&format!("{}: start cut", self.source)))
     }
 
-    /// The cut of the config's space with parameters `params` (the free ones included): a
-    /// free `optic_axis` is not the space's, and rides along in the cut's
-    /// [`params`](Cut::params), where the evaluators read it.
-    pub fn build(&self, label: &str, params: &BTreeMap<String, f64>) -> Result<Cut> {
-        match params.get(free::OPTIC_AXIS) {
-            None => self.space.build(label, params),
-            Some(&axis) => {
-                let mut p = params.clone();
-                p.remove(free::OPTIC_AXIS);
-                let mut cut = self.space.build(label, &p)?;
-                cut.params.insert(free::OPTIC_AXIS.to_string(), axis);
-                Ok(cut)
-            }
+    /// The box the search moves in: the free parameters and the space that builds their cuts.
+    pub fn search_box(&self) -> SearchBox<'_> {
+        SearchBox {
+            name: &self.name,
+            space: &*self.space,
+            start: &self.start,
+            free: &self.free,
         }
+    }
+
+    /// The cut of the config's space with parameters `params` (see [`SearchBox::build`]).
+    pub fn build(&self, label: &str, params: &BTreeMap<String, f64>) -> Result<Cut> {
+        self.search_box().build(label, params)
     }
 
     /// The space's parameters with the free ones set to `x` (in [`Config::free`] order).
     pub fn params_at(&self, x: &[f64]) -> BTreeMap<String, f64> {
-        let mut p = self.start.clone();
-        for (f, v) in self.free.iter().zip(x) {
-            p.insert(f.key.clone(), *v);
-        }
-        p
+        self.search_box().params_at(x)
     }
 
     /// The free parameters' start values.
     pub fn start_x(&self) -> Vec<f64> {
-        self.free.iter().map(|f| f.start).collect()
+        self.search_box().start_x()
     }
 
     /// The config as used: every default written out, TOML.

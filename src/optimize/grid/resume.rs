@@ -5,8 +5,8 @@
 //! appending each finished row to `rows.csv` at once, so a run stopped at any moment resumes
 //! where it stopped.
 
+use super::points::{evaluate, Grid};
 use super::shard::{hash, read_rows, rows_header, shard_row, AxisRecord, Shard, ShardRecord};
-use super::{evaluate, Grid};
 use crate::error::{Error, Result};
 use crate::optimize::{Config, Evaluator};
 use std::collections::BTreeSet;
