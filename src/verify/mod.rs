@@ -8,13 +8,17 @@
 //!   absorption, unlimited depth, the scores' wavelength and polarization: the share of photons
 //!   that hit the stone and leave upward. The beam tracer's `overhead_light_return` measures
 //!   the same thing exactly.
-//! * [`brilliance_mc`]: for each pose of [`ScoreConfig::tilts`] the stone is turned into the
+//! * [`brilliance_mc`]: for each pose of
+//!   [`ScoreConfig::tilts`](crate::metrics::ScoreConfig::tilts) the stone is turned into the
 //!   world, photons come straight down from the viewer's side over the whole stone, and each
 //!   photon that leaves in direction `w` scores the environment's radiance from `w`
-//!   ([`Lighting::iso`], [`Lighting::cos`], head shadow included). By reciprocity this is the
-//!   light the viewer sees, the quantity the beam tracer's brilliance computes exactly.
-//! * [`verify_scores`]: those figures as [`Check`] rows against a cut's beam [`Scores`]
-//!   (`facetlab score --verify`), flagged beyond [`SIGMA`] standard errors.
+//!   ([`Lighting::iso`](crate::metrics::lighting::Lighting::iso),
+//!   [`Lighting::cos`](crate::metrics::lighting::Lighting::cos), head shadow included). By
+//!   reciprocity this is the light the viewer sees, the quantity the beam tracer's brilliance
+//!   computes exactly.
+//! * [`verify_scores`]: those figures as [`Check`] rows against a cut's beam
+//!   [`Scores`](crate::metrics::Scores) (`facetlab score --verify`), flagged beyond [`SIGMA`]
+//!   standard errors.
 //! * [`photon_report`]: the optimizer's verification of a winner, a [`VerifyReport`]: the
 //!   thesis's top-face shares ([`thesis_rows`]: top-45° and top-90° under overhead and
 //!   off-centre undirected light, top-45° under the directed light rotated 0–180°), which have
