@@ -46,7 +46,7 @@ pub(crate) struct Tracer<'a> {
     /// Weights of an exit direction, summed into [`Counts::weight_sum`].
     pub(crate) exit_weight: Option<&'a ExitWeights<'a>>,
     /// A birefringent stone's crystal (its photons take the kernel of `crystal.rs`).
-    crystal: Option<CrystalSetup>,
+    pub(super) crystal: Option<CrystalSetup>,
 }
 
 /// Unpolarized Fresnel reflectance for incidence cosine `cos_i` and index ratio
@@ -252,8 +252,8 @@ impl<'a> Tracer<'a> {
     fn chunk_impl(&self, c: u64, n: u64, hit_limit: Option<u64>) -> Counts {
         let mut k = Counts::new(self.s.facets);
         let mut none = Vec::new();
-        if let Some(cs) = &self.crystal {
-            self.lanes_crystal::<false>(cs, c, n, hit_limit, &mut k, &mut none, 0);
+        if self.crystal.is_some() {
+            self.lanes_crystal::<false>(c, n, hit_limit, &mut k, &mut none, 0);
         } else if self.polarization {
             self.lanes::<true, false>(c, n, hit_limit, &mut k, &mut none, 0);
         } else {
@@ -279,8 +279,8 @@ impl<'a> Tracer<'a> {
                 None => (CHUNK.min(shot - done), None),
             };
             let mut k = Counts::new(self.s.facets);
-            if let Some(cs) = &self.crystal {
-                self.lanes_crystal::<true>(cs, c, photons, limit, &mut k, &mut out, n);
+            if self.crystal.is_some() {
+                self.lanes_crystal::<true>(c, photons, limit, &mut k, &mut out, n);
             } else if self.polarization {
                 self.lanes::<true, true>(c, photons, limit, &mut k, &mut out, n);
             } else {
