@@ -1,4 +1,4 @@
-//! A whole run: search and verify ([`search`](super::search)), then write the run folder.
+//! A whole run: search and verify ([`search`](super::search::search)), then write the run folder.
 //!
 //! The run folder (`results/<name>-<UTC time>/` or `--out DIR`):
 //!
@@ -255,7 +255,7 @@ pub fn report(config: &Config, o: &Outcome, files: Vec<String>) -> RunReport {
             .history
             .rows
             .iter()
-            .filter(|r| r.cost >= 0.5 * super::FAILED_COST)
+            .filter(|r| r.cost >= 0.5 * super::problem::FAILED_COST)
             .count() as u64,
         design: design_json(config, o),
     }

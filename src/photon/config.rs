@@ -2,6 +2,7 @@
 //! polarization, material, wavelengths, seed), and its checks.
 
 use crate::error::{shown, Error, Result};
+use crate::geometry::DVec3;
 use crate::optics::color::{LAMBDA_MAX, LAMBDA_MIN};
 use crate::optics::{Absorption, Material};
 
@@ -165,3 +166,12 @@ pub fn check_photons(photons: u64) -> Result<()> {
     }
     Ok(())
 }
+
+/// Photons per deterministic chunk.
+pub const CHUNK: u64 = 8192;
+
+/// How many exit weights [`trace_weights`](super::trace_weights) sums at once.
+pub const WEIGHTS: usize = 3;
+
+/// Exit weights: [`WEIGHTS`] functions of the exit direction, computed together.
+pub type ExitWeights<'a> = dyn Fn(DVec3) -> [f64; WEIGHTS] + Sync + 'a;

@@ -9,10 +9,10 @@
 use super::crystal_setup::CrystalSetup;
 use super::kernel::{chunk_seed, two_uniforms, Tracer};
 use super::tally::{Counts, Fate, PhotonPath};
-use super::{Absorption, THESIS_ABSORPTION};
 use crate::geometry::DVec3;
 use crate::optics::crystal::{Crystal, Wave};
 use crate::optics::Stokes;
+use crate::optics::{Absorption, THESIS_ABSORPTION};
 use rand::rngs::SmallRng;
 use rand::SeedableRng;
 

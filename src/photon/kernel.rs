@@ -1,18 +1,17 @@
 //! The per-photon loop.
 
+use super::config::{ExitWeights, TraceConfig, WavelengthSampling, CHUNK, UNLIMITED_CAP};
 use super::crystal_setup::CrystalSetup;
 use super::entry_grid::EntryGrid;
+use super::light::{Light, LightKind, LightSize};
 use super::reach::Reach;
 use super::solid::TraceSolid;
 use super::tally::{Counts, Fate, PhotonPath};
-use super::{
-    Absorption, ExitWeights, Light, LightKind, LightSize, TraceConfig, WavelengthSampling, CHUNK,
-    THESIS_ABSORPTION, UNLIMITED_CAP,
-};
 use crate::error::{Error, Result};
 use crate::geometry::DVec3;
 use crate::optics::color::{d65, D65_MAX, LAMBDA_MAX, LAMBDA_MIN};
 use crate::optics::{fresnel, reflect, rotate_stokes, s_axis, Dispersion, Material, Stokes};
+use crate::optics::{Absorption, THESIS_ABSORPTION};
 use rand::rngs::SmallRng;
 use rand::{RngCore, SeedableRng};
 

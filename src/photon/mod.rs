@@ -57,13 +57,16 @@ mod tally;
 mod tests;
 
 pub use crate::optics::{Absorption, THESIS_ABSORPTION};
-pub use config::{check_photons, TraceConfig, WavelengthSampling, MAX_PHOTONS, UNLIMITED_CAP};
+pub use config::{
+    check_photons, ExitWeights, TraceConfig, WavelengthSampling, CHUNK, MAX_PHOTONS, UNLIMITED_CAP,
+    WEIGHTS,
+};
 pub use light::{
     Light, LightChoice, LightKind, LightSize, LIGHT_DISTANCE, LIGHT_SIDE, ROTATION_ANGLES,
 };
 pub use run::{
-    rotation_sweep, trace, trace_choice, trace_cut, trace_weighted, trace_weights, ExitWeights,
-    WeightedTally, WeightsTally, CHUNK, WEIGHTS,
+    rotation_sweep, trace, trace_choice, trace_cut, trace_weighted, trace_weights, WeightedTally,
+    WeightsTally,
 };
 pub use solid::{face_category, TraceSolid};
 pub use tally::{share, Counts, Fate, PhotonPath, Tally, CATEGORY_KEYS, CATEGORY_LABELS};

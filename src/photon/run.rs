@@ -1,7 +1,7 @@
 //! The runs: [`trace`] and its weighted forms, a named stone ([`trace_cut`]), the rotation
-//! sweep; chunks of [`CHUNK`] photons traced a wave at a time and added in chunk order.
+//! sweep; chunks of [`CHUNK`](super::CHUNK) photons traced a wave at a time and added in chunk order.
 
-use super::config::TraceConfig;
+use super::config::{ExitWeights, TraceConfig, CHUNK, WEIGHTS};
 use super::kernel;
 use super::light::{Light, LightChoice, LightKind, ROTATION_ANGLES};
 use super::solid::TraceSolid;
@@ -10,9 +10,6 @@ use crate::error::{Error, Result};
 use crate::geometry::{DVec3, Polyhedron};
 use rayon::prelude::*;
 use std::time::Instant;
-
-/// Photons per deterministic chunk.
-pub const CHUNK: u64 = 8192;
 
 /// Chunks traced in parallel before their counts are added (in chunk order) to the total, so
 /// memory stays bounded whatever the photon count.
@@ -67,12 +64,6 @@ pub struct WeightedTally {
     /// Standard error of `mean`.
     pub stderr: f64,
 }
-
-/// How many exit weights [`trace_weights`] sums at once.
-pub const WEIGHTS: usize = 3;
-
-/// Exit weights: [`WEIGHTS`] functions of the exit direction, computed together.
-pub type ExitWeights<'a> = dyn Fn(DVec3) -> [f64; WEIGHTS] + Sync + 'a;
 
 /// The mean exit weights of a [`trace_weights`] run, per photon that hit the stone.
 #[derive(Clone, Debug)]

@@ -8,7 +8,8 @@
 use super::points::{evaluate, Grid};
 use super::shard::{hash, read_rows, rows_header, shard_row, AxisRecord, Shard, ShardRecord};
 use crate::error::{Error, Result};
-use crate::optimize::{Config, Evaluator};
+use crate::optimize::config::Config;
+use crate::optimize::evaluator::Evaluator;
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};

@@ -4,8 +4,9 @@
 
 use super::points::{num, Grid, GridCell};
 use crate::error::{Error, Result};
+use crate::metrics::ScoreName;
+use crate::optimize::score_set::ScoreSet;
 use crate::optimize::sweep::{Axis, SCORES};
-use crate::optimize::{ScoreName, ScoreSet};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 
