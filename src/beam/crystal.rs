@@ -24,13 +24,15 @@
 //! touched by any of this.
 
 use super::attenuation::exp_mean_planar;
+use super::exit::ExitBeam;
 use super::footprint::{Affine, PathLength};
+use super::frame::Frame;
 use super::mode::{ModeBeam, ModeRay};
+use super::options::TraceOptions;
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
 use super::symmetry::{clipped_share, SymSink};
 use super::work::{Ctx, Work};
-use super::{ExitBeam, Frame, TraceOptions};
 use crate::optics::crystal::{Crystal, Wave};
 use crate::optics::BodyColour;
 use crate::optics::Material;
@@ -213,6 +215,7 @@ impl Stone {
         }
         let cx = Ctx::new(cr.n_o, opts, sink.wants_footprints(), keep_nodes);
         let mut w = self.work();
+        w.st = st;
         let map0 = Affine {
             a1: frame.u,
             a2: frame.v,
@@ -243,10 +246,10 @@ impl Stone {
             else {
                 continue;
             };
-            st.power_in += p;
+            w.st.power_in += p;
             let node = w.node(&cx, u32::MAX, f);
             let Some(entry) = cr.enter(d0, n, DVec4::new(1.0, 0.0, 0.0, 0.0), frame.u) else {
-                st.cut_off += p;
+                w.st.cut_off += p;
                 continue;
             };
             // Conserve power to rounding: the coefficients add up to 1 within ~1e-14.
@@ -277,7 +280,7 @@ impl Stone {
                 node,
                 sym: 0,
             };
-            st.exits += 1;
+            w.st.exits += 1;
             sym.exit(&ext, &w.foot);
             let transmitted = entry.transmitted.map(|(wave, t)| Some((wave, t * scale)));
             let merge = merged(&transmitted, &cx, optics);
@@ -300,30 +303,29 @@ impl Stone {
                     tau: PathLength::default(),
                 };
                 let narrow = merge.is_some();
-                self.continue_mode_beam(beam, narrow, &cx, optics, &mut w, &mut st, &mut sym);
+                self.continue_mode_beam(beam, narrow, &cx, optics, &mut w, &mut sym);
             }
             while let Some(beam) = w.mode_stack.pop() {
-                self.split_mode_beam(beam, &cx, optics, &mut w, &mut st, &mut sym);
+                self.split_mode_beam(beam, &cx, optics, &mut w, &mut sym);
             }
         }
         let g = group.len() as f64;
-        st.power_in *= g;
-        st.cut_off *= g;
-        st.ray_closed *= g;
-        st.absorbed *= g;
-        st.exits *= group.len();
+        w.st.power_in *= g;
+        w.st.cut_off *= g;
+        w.st.ray_closed *= g;
+        w.st.absorbed *= g;
+        w.st.exits *= group.len();
         let nodes = if keep_nodes {
             std::mem::take(&mut w.nodes)
         } else {
             Vec::new()
         };
-        (st, nodes)
+        (w.st, nodes)
     }
 
     /// The fate of a beam about to travel inside (its polygon in `w.cur`, its footprint in
     /// `w.foot`): split exactly, followed as a narrow beam's ray (always when `narrow`: a
     /// merged pair of narrow beams), or cut off.
-    #[allow(clippy::too_many_arguments)]
     fn continue_mode_beam<S: ExitSink>(
         &self,
         beam: ModeBeam,
@@ -331,12 +333,11 @@ impl Stone {
         cx: &Ctx,
         optics: &Optics,
         w: &mut Work,
-        st: &mut TraceStats,
         sink: &mut S,
     ) {
         let p = beam.power;
         if p.is_nan() || p <= 0.0 || p < cx.threshold || beam.depth > cx.max_depth {
-            st.cut_off += p.max(0.0);
+            w.st.cut_off += p.max(0.0);
         } else if p >= cx.split_threshold && !narrow {
             let start = w.pts.len() as u32;
             w.pts.extend_from_slice(&w.cur);
@@ -362,7 +363,7 @@ impl Stone {
                 depth: beam.depth,
                 node: beam.node,
             };
-            self.follow_mode_ray(ray, beam.entry, cx, optics, w, st, sink);
+            self.follow_mode_ray(ray, beam.entry, cx, optics, w, sink);
         }
     }
 
@@ -374,13 +375,12 @@ impl Stone {
         cx: &Ctx,
         optics: &Optics,
         w: &mut Work,
-        st: &mut TraceStats,
         sink: &mut S,
     ) {
-        st.beams += 1;
+        w.st.beams += 1;
         let t = beam.wave.ray;
-        let Some((e1, e2, sum)) = self.tile(beam.start, beam.len, t, beam.facet, w, st) else {
-            st.cut_off += beam.power;
+        let Some((e1, e2, sum)) = self.tile(beam.start, beam.len, t, beam.facet, w) else {
+            w.st.cut_off += beam.power;
             return;
         };
         let f = beam.facet as usize;
@@ -395,7 +395,7 @@ impl Stone {
             let ch = w.children[ci];
             let g = ch.facet as usize;
             let n = self.normals[g];
-            w.lift(ch, e1, e2, t, n, self.offsets[g], n.dot(t));
+            w.lift(ch, e1, e2, t, n, self.offsets[g]);
             w.foot.clear();
             if cx.want_fp {
                 w.foot.extend(w.cur.iter().map(|&x| map.apply(x)));
@@ -418,7 +418,6 @@ impl Stone {
                 cx,
                 optics,
                 w,
-                st,
                 sink,
             );
             let merge = merged(&reflected, cx, optics);
@@ -440,7 +439,7 @@ impl Stone {
                     map,
                     tau,
                 };
-                self.continue_mode_beam(next, merge.is_some(), cx, optics, w, st, sink);
+                self.continue_mode_beam(next, merge.is_some(), cx, optics, w, sink);
             }
         }
     }
@@ -461,19 +460,18 @@ impl Stone {
         cx: &Ctx,
         optics: &Optics,
         w: &mut Work,
-        st: &mut TraceStats,
         sink: &mut S,
     ) -> [Option<(Wave, f64)>; 2] {
         let (entry, depth, narrow, late, node) = origin;
         let Some(m) = optics.crystal.meet(wave, self.normals[g]) else {
-            st.cut_off += p;
+            w.st.cut_off += p;
             return [None, None];
         };
         let scale = p / (m.reflected[0].1 + m.reflected[1].1 + m.exit_power);
         if m.exit_power > 0.0 {
             let unabsorbed = m.exit_power * scale;
             let power = unabsorbed * keep;
-            st.absorbed += unabsorbed - power;
+            w.st.absorbed += unabsorbed - power;
             let stokes = if cx.pol {
                 m.exit * (scale * keep)
             } else {
@@ -495,7 +493,7 @@ impl Stone {
                 node,
                 sym: 0,
             };
-            st.exits += 1;
+            w.st.exits += 1;
             sink.exit(&e, &w.foot);
         }
         m.reflected
@@ -506,7 +504,6 @@ impl Stone {
     /// beam with the narrow beam's footprint (`w.foot`), and each mode's reflected ray goes on
     /// until its power falls below the floor (the threshold, or the ray floor of the narrow
     /// beam's power) or past the depth limit, where it is cut off.
-    #[allow(clippy::too_many_arguments)]
     fn follow_mode_ray<S: ExitSink>(
         &self,
         ray: ModeRay,
@@ -514,30 +511,28 @@ impl Stone {
         cx: &Ctx,
         optics: &Optics,
         w: &mut Work,
-        st: &mut TraceStats,
         sink: &mut S,
     ) {
-        st.rays += 1;
+        w.st.rays += 1;
         let p0 = ray.power;
-        st.ray_power += p0;
+        w.st.ray_power += p0;
         let floor = cx.threshold.max(cx.ray_floor * p0);
         w.mode_rays.clear();
         w.mode_rays.push(ray);
         while let Some(r) = w.mode_rays.pop() {
             let t = r.wave.ray;
             let Some((g, s)) = self.exit_facet(r.x, t, r.facet as usize) else {
-                st.cut_off += r.power;
+                w.st.cut_off += r.power;
                 continue;
             };
             let s = s.max(0.0);
             let x = r.x + t * s;
             let tau = r.tau + r.alpha * s;
-            st.ray_segments += 1;
+            w.st.ray_segments += 1;
             let node = w.node(cx, r.node, g);
             let keep = if optics.absorbing { (-tau).exp() } else { 1.0 };
             let origin = (entry, r.depth, true, r.power <= 0.5 * p0, node);
-            let reflected =
-                self.cross_mode(&r.wave, g, r.power, keep, origin, cx, optics, w, st, sink);
+            let reflected = self.cross_mode(&r.wave, g, r.power, keep, origin, cx, optics, w, sink);
             let depth = r.depth + 1;
             // A mode too weak to be followed on its own stays with the other mode's ray (its
             // power added, its path that ray's): the ray's tree keeps at most 1/mode_floor
@@ -556,9 +551,9 @@ impl Stone {
             // The extraordinary ray first on the stack: the ordinary one is followed first.
             for (wave, pr) in reflected.into_iter().rev().flatten() {
                 if pr.is_nan() || pr < floor || depth > cx.max_depth {
-                    st.cut_off += pr.max(0.0);
+                    w.st.cut_off += pr.max(0.0);
                     if pr >= cx.threshold && depth <= cx.max_depth {
-                        st.ray_closed += pr;
+                        w.st.ray_closed += pr;
                     }
                     continue;
                 }

@@ -4,7 +4,7 @@
 
 use super::attenuation::exp_mean_planar;
 use super::interface::{cross, Meet, Origin};
-use super::sink::{ExitSink, TraceStats};
+use super::sink::ExitSink;
 use super::stone::{Stone, GRAZE};
 use super::work::{Beam, Child, Ctx, Work};
 use crate::geometry::clip2d;
@@ -48,12 +48,11 @@ impl Stone {
         beam: Beam,
         cx: &Ctx,
         w: &mut Work,
-        st: &mut TraceStats,
         sink: &mut S,
     ) {
         let p = beam.stokes.x;
         if p.is_nan() || p <= 0.0 || p < cx.threshold || beam.depth > cx.max_depth {
-            st.cut_off += p.max(0.0);
+            w.st.cut_off += p.max(0.0);
         } else if p >= cx.split_threshold {
             let start = w.pts.len() as u32;
             w.pts.extend_from_slice(&w.cur);
@@ -71,23 +70,16 @@ impl Stone {
             let (c, area) = area_centroid(&w.cur, n);
             // The disc of the beam's cross-section (kept by mirror reflections).
             let r = (area * n.dot(beam.dir).abs() / std::f64::consts::PI).sqrt();
-            self.follow_ray(beam, c, r, cx, w, st, sink);
+            self.follow_ray(beam, c, r, cx, w, sink);
         }
     }
 
     /// Split one internal beam by the facets it reaches.
-    pub(super) fn split_beam<S: ExitSink>(
-        &self,
-        beam: Beam,
-        cx: &Ctx,
-        w: &mut Work,
-        st: &mut TraceStats,
-        sink: &mut S,
-    ) {
-        st.beams += 1;
+    pub(super) fn split_beam<S: ExitSink>(&self, beam: Beam, cx: &Ctx, w: &mut Work, sink: &mut S) {
+        w.st.beams += 1;
         let t = beam.dir;
-        let Some((e1, e2, sum)) = self.tile(beam.start, beam.len, t, beam.facet, w, st) else {
-            st.cut_off += beam.stokes.x;
+        let Some((e1, e2, sum)) = self.tile(beam.start, beam.len, t, beam.facet, w) else {
+            w.st.cut_off += beam.stokes.x;
             return;
         };
 
@@ -104,8 +96,7 @@ impl Stone {
             let g = ch.facet as usize;
             let n = self.normals[g];
             let o = self.offsets[g];
-            let cos_i = n.dot(t);
-            w.lift(ch, e1, e2, t, n, o, cos_i);
+            w.lift(ch, e1, e2, t, n, o);
             w.foot.clear();
             if cx.want_fp {
                 w.foot.extend(w.cur.iter().map(|&x| map.apply(x)));
@@ -133,7 +124,7 @@ impl Stone {
                 late: false,
                 node,
             };
-            let (sr, axis) = cross(cx, meet, origin, &w.foot, &w.cur, st, sink);
+            let (sr, axis) = cross(cx, meet, origin, &w.foot, &w.cur, &mut w.st, sink);
             let next = Beam {
                 dir: reflect(t, n),
                 stokes: sr,
@@ -147,7 +138,7 @@ impl Stone {
                 map,
                 path,
             };
-            self.continue_beam(next, cx, w, st, sink);
+            self.continue_beam(next, cx, w, sink);
         }
     }
 
@@ -164,7 +155,6 @@ impl Stone {
         t: DVec3,
         facet: u32,
         w: &mut Work,
-        st: &mut TraceStats,
     ) -> Option<(DVec3, DVec3, f64)> {
         // Take the beam's polygon off the point stack (it is on top).
         w.cur.clear();
@@ -237,7 +227,7 @@ impl Stone {
                 }
             }
         }
-        st.max_tiling_error = st.max_tiling_error.max((sum - aq).abs() / aq);
+        w.st.max_tiling_error = w.st.max_tiling_error.max((sum - aq).abs() / aq);
         if sum.is_nan() || sum <= 0.0 {
             return None;
         }

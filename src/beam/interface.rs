@@ -2,9 +2,9 @@
 //! followed as rays (`follow_ray`): the Stokes vector turned into the interface's s–p frame,
 //! Fresnel's split, and the transmitted part handed out as an exit beam.
 
+use super::exit::ExitBeam;
 use super::sink::{ExitSink, TraceStats};
 use super::work::Ctx;
-use super::ExitBeam;
 use crate::optics::{fresnel, refract, rotate_stokes, s_axis, Interface, Stokes};
 use glam::{DVec2, DVec3, DVec4};
 

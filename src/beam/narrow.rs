@@ -5,7 +5,7 @@
 
 use super::disc::{Part, FORK_MAX};
 use super::interface::{cross, Meet, Origin};
-use super::sink::{ExitSink, TraceStats};
+use super::sink::ExitSink;
 use super::stone::Stone;
 use super::work::{Beam, Ctx, Work};
 use crate::optics::{reflect, Stokes};
@@ -36,7 +36,6 @@ impl Stone {
     /// floor or past the depth limit. With
     /// [`TraceOptions::narrow_forks`](super::TraceOptions::narrow_forks) the ray stands for a
     /// disc of radius `r` (the beam's cross-section; see [`Stone::follow_disc`]).
-    #[allow(clippy::too_many_arguments)]
     pub(super) fn follow_ray<S: ExitSink>(
         &self,
         beam: Beam,
@@ -44,15 +43,14 @@ impl Stone {
         r: f64,
         cx: &Ctx,
         w: &mut Work,
-        st: &mut TraceStats,
         sink: &mut S,
     ) {
-        st.rays += 1;
+        w.st.rays += 1;
         let p0 = beam.stokes.x;
-        st.ray_power += p0;
+        w.st.ray_power += p0;
         let floor = cx.threshold.max(cx.ray_floor * p0);
         if cx.forks && r.is_finite() && r > 0.0 {
-            return self.follow_disc(beam, x, r, floor, cx, w, st, sink);
+            return self.follow_disc(beam, x, r, cx, w, sink);
         }
         let (mut t, mut s, mut axis, mut facet, mut depth, mut prev) = (
             beam.dir,
@@ -65,7 +63,7 @@ impl Stone {
         let mut path = if cx.alpha > 0.0 { beam.path.at(x) } else { 0.0 };
         loop {
             let Some((g, best)) = self.exit_facet(x, t, facet) else {
-                st.cut_off += s.x;
+                w.st.cut_off += s.x;
                 return;
             };
             x += t * best.max(0.0);
@@ -81,8 +79,7 @@ impl Stone {
                 prev,
                 late: s.x <= 0.5 * p0,
             };
-            let Some((sr, ax, node)) = self.ray_cross(beam.entry, at, floor, cx, w, st, sink)
-            else {
+            let Some((sr, ax, node)) = self.ray_cross(beam.entry, at, floor, cx, w, sink) else {
                 return;
             };
             t = reflect(t, self.normals[g]);
@@ -98,7 +95,6 @@ impl Stone {
     /// transmitted part leaves as an exit beam, and the reflected part with its polarization
     /// axis and node is returned unless it falls below `floor` (stopped: accounted in
     /// `cut_off`, and in `ray_closed` when above the threshold) or past the depth limit.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn ray_cross<S: ExitSink>(
         &self,
@@ -107,10 +103,9 @@ impl Stone {
         floor: f64,
         cx: &Ctx,
         w: &mut Work,
-        st: &mut TraceStats,
         sink: &mut S,
     ) -> Option<(Stokes, DVec3, u32)> {
-        st.ray_segments += 1;
+        w.st.ray_segments += 1;
         let node = w.node(cx, at.prev, at.facet);
         let meet = Meet {
             t: at.t,
@@ -131,12 +126,12 @@ impl Stone {
             late: at.late,
             node,
         };
-        let (sr, ax) = cross(cx, meet, origin, &w.foot, &[at.x], st, sink);
+        let (sr, ax) = cross(cx, meet, origin, &w.foot, &[at.x], &mut w.st, sink);
         let depth = at.depth + 1;
         if sr.x.is_nan() || sr.x <= 0.0 || sr.x < floor || depth > cx.max_depth {
-            st.cut_off += sr.x.max(0.0);
+            w.st.cut_off += sr.x.max(0.0);
             if sr.x >= cx.threshold && depth <= cx.max_depth {
-                st.ray_closed += sr.x;
+                w.st.ray_closed += sr.x;
             }
             return None;
         }
@@ -150,19 +145,17 @@ impl Stone {
     /// segment's centroid, with its share of the power and a disc of its area) and the rest
     /// goes on from its own centroid, so that a beam sliding across an edge hands its light
     /// over continuously instead of all at once.
-    #[allow(clippy::too_many_arguments)]
     fn follow_disc<S: ExitSink>(
         &self,
         beam: Beam,
         x: DVec3,
         r: f64,
-        floor: f64,
         cx: &Ctx,
         w: &mut Work,
-        st: &mut TraceStats,
         sink: &mut S,
     ) {
         let p0 = beam.stokes.x;
+        let floor = cx.threshold.max(cx.ray_floor * p0);
         w.parts.clear();
         w.parts.push(Part {
             x,
@@ -179,7 +172,7 @@ impl Stone {
         while let Some(part) = w.parts.pop() {
             let t = part.t;
             let Some((g, best)) = self.exit_facet(part.x, t, part.facet as usize) else {
-                st.cut_off += part.s.x;
+                w.st.cut_off += part.s.x;
                 continue;
             };
             let p = part.x + t * best.max(0.0);
@@ -221,9 +214,7 @@ impl Stone {
                     path: path + along,
                     x: y,
                 };
-                if let Some((sr, axis, node)) =
-                    self.ray_cross(beam.entry, at, floor, cx, w, st, sink)
-                {
+                if let Some((sr, axis, node)) = self.ray_cross(beam.entry, at, floor, cx, w, sink) {
                     w.parts.push(Part {
                         x: y,
                         t: reflect(t, nh),

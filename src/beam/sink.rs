@@ -1,7 +1,7 @@
 //! What a trace hands out: the [`ExitSink`] every exit beam is given to, and the power
 //! accounting and work counters of the whole trace ([`TraceStats`]).
 
-use super::ExitBeam;
+use super::exit::ExitBeam;
 use glam::{DVec2, DVec3};
 
 /// Receives exit beams as the tracer produces them.

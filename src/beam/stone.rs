@@ -219,7 +219,7 @@ impl Stone {
     /// How many copies of each traced exit a trace along `frame` hands out (the symmetries
     /// it uses, see [`TraceOptions::symmetry`](super::TraceOptions::symmetry)): it traces
     /// about that fraction of the cross-section.
-    pub fn frame_symmetries(&self, frame: &super::Frame) -> usize {
+    pub fn frame_symmetries(&self, frame: &super::frame::Frame) -> usize {
         self.symmetry.frame_symmetry(frame.dir).0.len()
     }
 

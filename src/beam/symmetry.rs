@@ -1,8 +1,9 @@
 //! Symmetries of a solid about the z axis: finding the group from the facet planes, the wedge
 //! a direction keeps, and handing each traced exit beam out once per symmetry.
 
+use super::exit::ExitBeam;
+use super::frame::Frame;
 use super::sink::ExitSink;
-use super::{ExitBeam, Frame};
 use crate::geometry::clip2d;
 use glam::{DMat3, DVec2, DVec3, DVec4};
 

@@ -2,13 +2,15 @@
 //! reflection and refraction at entry, the symmetry's wedge), then the depth-first loop over
 //! the beams waiting to be split.
 
+use super::exit::ExitBeam;
 use super::footprint::{Affine, PathLength};
+use super::frame::Frame;
 use super::interface::split;
+use super::options::TraceOptions;
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
 use super::symmetry::{clipped_share, SymSink};
 use super::work::{Beam, Ctx};
-use super::{ExitBeam, Frame, TraceOptions};
 use crate::optics::{fresnel, reflect, refract, s_axis};
 use glam::{DVec2, DVec3, DVec4};
 
@@ -42,6 +44,7 @@ impl Stone {
         }
         let cx = Ctx::new(ri, opts, sink.wants_footprints(), keep_nodes);
         let mut w = self.work();
+        w.st = st;
         let map0 = Affine {
             a1: frame.u,
             a2: frame.v,
@@ -73,7 +76,7 @@ impl Stone {
             else {
                 continue;
             };
-            st.power_in += p;
+            w.st.power_in += p;
             let node = w.node(&cx, u32::MAX, f);
             let fr = fresnel(c, 1.0, ri);
             let axis = s_axis(d0, n).unwrap_or(frame.u);
@@ -98,7 +101,7 @@ impl Stone {
                 node,
                 sym: 0,
             };
-            st.exits += 1;
+            w.st.exits += 1;
             sym.exit_at(&ext, &w.foot, &w.cur);
             let beam = match refract(d0, n, 1.0, ri) {
                 Some(t) if stt.x > 0.0 => Beam {
@@ -116,29 +119,29 @@ impl Stone {
                 },
                 // Below the critical angle from outside (ri < 1): everything was reflected.
                 _ => {
-                    st.cut_off += stt.x;
+                    w.st.cut_off += stt.x;
                     continue;
                 }
             };
             // `w.cur` holds the polygon, `w.foot` its footprint.
-            self.continue_beam(beam, &cx, &mut w, &mut st, &mut sym);
+            self.continue_beam(beam, &cx, &mut w, &mut sym);
             // Depth-first from this root; roots go in facet order, so the walk order (and the
             // exit order) is deterministic.
             while let Some(beam) = w.stack.pop() {
-                self.split_beam(beam, &cx, &mut w, &mut st, &mut sym);
+                self.split_beam(beam, &cx, &mut w, &mut sym);
             }
         }
         let g = group.len() as f64;
-        st.power_in *= g;
-        st.cut_off *= g;
-        st.ray_closed *= g;
-        st.absorbed *= g;
-        st.exits *= group.len();
+        w.st.power_in *= g;
+        w.st.cut_off *= g;
+        w.st.ray_closed *= g;
+        w.st.absorbed *= g;
+        w.st.exits *= group.len();
         let nodes = if keep_nodes {
             std::mem::take(&mut w.nodes)
         } else {
             Vec::new()
         };
-        (st, nodes)
+        (w.st, nodes)
     }
 }

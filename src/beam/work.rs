@@ -4,6 +4,7 @@
 use super::disc::{Fork, Part};
 use super::footprint::{Affine, PathLength};
 use super::mode::{ModeBeam, ModeRay};
+use super::sink::TraceStats;
 use super::stone::Stone;
 use crate::optics::Stokes;
 use glam::{DVec2, DVec3};
@@ -55,7 +56,12 @@ pub(super) struct Ctx {
 impl Ctx {
     /// The settings of a trace at index `ri` under `opts` (negative and non-finite powers
     /// read as 0).
-    pub(super) fn new(ri: f64, opts: &super::TraceOptions, want_fp: bool, keep_nodes: bool) -> Ctx {
+    pub(super) fn new(
+        ri: f64,
+        opts: &super::options::TraceOptions,
+        want_fp: bool,
+        keep_nodes: bool,
+    ) -> Ctx {
         let clean = |x: f64| if x.is_finite() { x.max(0.0) } else { 0.0 };
         Ctx {
             ri,
@@ -100,24 +106,17 @@ pub(super) struct Work {
     /// A birefringent trace's beams waiting to be split, and a narrow beam's rays.
     pub(super) mode_stack: Vec<ModeBeam>,
     pub(super) mode_rays: Vec<ModeRay>,
+    /// The trace's accounting so far.
+    pub(super) st: TraceStats,
 }
 
 impl Work {
     /// Lift child `ch`'s polygon (projected on `(e1, e2)`, in `cpts`) along `t` onto the
-    /// plane `n · x = o` of the facet it meets (`cos_i = n · t`), into `cur`.
-    #[allow(clippy::too_many_arguments)]
+    /// plane `n · x = o` of the facet it meets, into `cur`.
     #[inline]
-    pub(super) fn lift(
-        &mut self,
-        ch: Child,
-        e1: DVec3,
-        e2: DVec3,
-        t: DVec3,
-        n: DVec3,
-        o: f64,
-        cos_i: f64,
-    ) {
+    pub(super) fn lift(&mut self, ch: Child, e1: DVec3, e2: DVec3, t: DVec3, n: DVec3, o: f64) {
         // Lift the child's polygon onto facet g's plane.
+        let cos_i = n.dot(t);
         self.cur.clear();
         for p in &self.cpts[ch.start as usize..(ch.start + ch.len) as usize] {
             let x = e1 * p.x + e2 * p.y;
@@ -164,6 +163,7 @@ impl Stone {
             forks: Vec::with_capacity(8),
             mode_stack: Vec::new(),
             mode_rays: Vec::new(),
+            st: TraceStats::default(),
         }
     }
 }

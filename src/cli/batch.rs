@@ -20,21 +20,8 @@ use super::cuts::load_with_sets;
 use super::optimize::choose_shard;
 use super::outputs::{refuse_overwrite, Exit};
 use super::score::{settings, ScoreArgs};
-use facetlab::document::score::{batch_error_line, batch_line};
+use facetlab::document::batch::{cut_lines, BatchOutput};
 use facetlab::error::{Error, Result};
-use facetlab::metrics::score;
-use std::collections::BTreeMap;
-use std::io::Write;
-use std::path::Path;
-
-/// The cut lines of a batch file: `(line number, text)`.
-pub fn cut_lines(text: &str) -> Vec<(usize, String)> {
-    text.lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim().to_string()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'))
-        .collect()
-}
 
 /// A line's cut and its `--set` pairs.
 pub fn parse_line(line: &str) -> Result<(String, Vec<String>)> {
@@ -57,45 +44,6 @@ pub fn parse_line(line: &str) -> Result<(String, Vec<String>)> {
         }
     }
     Ok((cut, sets))
-}
-
-/// The lines already in OUT (`line` → `input`) and the byte length of its complete lines.
-fn done_lines(path: &Path) -> Result<(BTreeMap<usize, String>, usize, usize)> {
-    let mut done = BTreeMap::new();
-    if !path.exists() {
-        return Ok((done, 0, 0));
-    }
-    let bytes = facetlab::io::read_bytes(path)?;
-    let text = String::from_utf8_lossy(&bytes);
-    let mut good = 0;
-    for (n, line) in text.split_inclusive('\n').enumerate() {
-        let Some(body) = line.strip_suffix('\n') else {
-            break; // cut short by an interruption: redone
-        };
-        let v: serde_json::Value = serde_json::from_str(body).map_err(|_| {
-            Error::invalid(
-                "--jsonl",
-                format!(
-                    "{} line {} is not a line of `score --batch`; write to a new file",
-                    path.display(),
-                    n + 1
-                ),
-            )
-        })?;
-        let (Some(l), Some(input)) = (v["line"].as_u64(), v["input"].as_str()) else {
-            return Err(Error::invalid(
-                "--jsonl",
-                format!(
-                    "{} line {} has no `line` and `input`; write to a new file",
-                    path.display(),
-                    n + 1
-                ),
-            ));
-        };
-        done.insert(l as usize, input.to_string());
-        good += line.len();
-    }
-    Ok((done, good, bytes.len()))
 }
 
 /// Whether `score` was asked for a batch (`--batch`, `--jsonl` or `--shard`): then [`run`]
@@ -150,41 +98,11 @@ pub fn run_env(a: &ScoreArgs, env: &dyn Fn(&str) -> Option<String>) -> Result<Ex
         .filter(|(i, _)| shard.as_ref().is_none_or(|(s, _)| s.owns(*i)))
         .map(|(_, l)| l)
         .collect();
-    let (done, good, len) = done_lines(out)?;
-    for (n, input) in &done {
-        match lines.iter().find(|(l, _)| l == n) {
-            Some((_, now)) if now == input => {}
-            _ => {
-                return Err(Error::invalid(
-                    "--jsonl",
-                    format!(
-                        "{} holds line {n} `{input}`, which is not that line of {}; write to a new file",
-                        out.display(),
-                        batch.display()
-                    ),
-                ))
-            }
-        }
-    }
-    let dir = out
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    facetlab::io::check_writable(dir)?;
-    if good < len {
-        let f = std::fs::OpenOptions::new()
-            .write(true)
-            .open(out)
-            .map_err(|e| Error::io(out.display().to_string(), e))?;
-        f.set_len(good as u64)
-            .map_err(|e| Error::io(out.display().to_string(), e))?;
-    }
-    let mut file = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(out)
-        .map_err(|e| Error::io(out.display().to_string(), e))?;
-    let skipped = mine.iter().filter(|(n, _)| done.contains_key(n)).count();
+    let mut output = BatchOutput::open(out, batch, &lines)?;
+    let skipped = mine
+        .iter()
+        .filter(|(n, _)| output.done.contains_key(n))
+        .count();
     if let Some((sh, from)) = &shard {
         println!(
             "shard {}/{} (from {from}): {} of {} cuts (ordinal mod {} == {})",
@@ -201,29 +119,15 @@ pub fn run_env(a: &ScoreArgs, env: &dyn Fn(&str) -> Option<String>) -> Result<Ex
         mine.len(),
         out.display()
     );
-    let (mut scored, mut failed) = (0, 0);
-    for (n, input) in mine {
-        if done.contains_key(n) {
-            continue;
-        }
+    let load = |input: &str| {
         let (name, _) = parse_line(input).unwrap_or_default();
-        let result = parse_line(input).and_then(|(cut, sets)| load_with_sets(&cut, &sets));
-        let json = match result {
-            Ok(cut) => {
-                let sc = score(&cut.solid, &s.config);
-                scored += 1;
-                batch_line(*n, input, &cut.name, &sc)
-            }
-            Err(e) => {
-                failed += 1;
-                eprintln!("facetlab: {} line {n}: {e}", batch.display());
-                batch_error_line(*n, input, &name, &e.to_string())
-            }
-        }
-        .map_err(|e| Error::invalid("--jsonl", e.to_string()))?;
-        file.write_all((json + "\n").as_bytes())
-            .map_err(|e| Error::io(out.display().to_string(), e))?;
-    }
+        let cut = parse_line(input).and_then(|(cut, sets)| load_with_sets(&cut, &sets));
+        (name, cut)
+    };
+    let count = output.run(&mine, &s.config, &load, &mut |n, e| {
+        eprintln!("facetlab: {} line {n}: {e}", batch.display());
+    })?;
+    let (scored, failed) = (count.scored, count.failed);
     println!(
         "scored {scored}, errors {failed}, skipped {skipped}; wrote {}",
         out.display()
@@ -237,14 +141,6 @@ mod tests {
 
     #[test]
     fn lines_and_words() {
-        let l = cut_lines("# head\n\ntolkowsky\n  gia-reference --set table=0.55 \n");
-        assert_eq!(
-            l,
-            vec![
-                (3, "tolkowsky".to_string()),
-                (4, "gia-reference --set table=0.55".to_string())
-            ]
-        );
         assert_eq!(
             parse_line("t --set a=1 --set=b=2").unwrap(),
             ("t".to_string(), vec!["a=1".to_string(), "b=2".to_string()])

@@ -30,6 +30,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("slice point", "--at"),
     ("map axes", "--map"),
     ("shard folder", "--out"),
+    ("batch output", "--jsonl"),
 ];
 
 /// The flag that sets the library's setting `name` ([`FLAGS`]).
@@ -121,6 +122,20 @@ pub fn real(
     move |s| number(flag, s, lo, hi, what)
 }
 
+/// The value parser of a number flag whose range the library checks: its error line names
+/// `flag` and says what to give (`what`) when the value is not a number.
+pub fn a_number(
+    flag: &'static str,
+    what: impl Into<String>,
+) -> impl Fn(&str) -> Result<f64> + Clone + Send + Sync + 'static {
+    let what: String = what.into();
+    move |s| {
+        s.trim()
+            .parse::<f64>()
+            .map_err(|_| Error::invalid(flag, format!("`{s}` is not a number; {what}")))
+    }
+}
+
 /// The value parser of `--score` (`sweep`, `merge`): [`SweepScore::parse`], its error named
 /// by the flag.
 pub fn sweep_score(s: &str) -> Result<SweepScore> {
@@ -183,16 +198,17 @@ pub struct ColourArgs {
     #[arg(long, value_name = "COLOUR")]
     pub colour: Option<String>,
     /// A factor on the body colour's absorption (0.5 paler, 2 darker).
-    #[arg(long, value_name = "X", allow_hyphen_values = true)]
-    pub colour_density: Option<String>,
+    #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = a_number("--colour-density", format!("give a factor on the absorption in (0, {DENSITY_MAX}]")))]
+    pub colour_density: Option<f64>,
     /// The stone's width W in millimetres, for its body colour (default 6.5).
     #[arg(
         long,
         value_name = "MM",
         conflicts_with = "size_mm",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = a_number("--diameter-mm", "give a width in (0, 1000) mm")
     )]
-    pub diameter_mm: Option<String>,
+    pub diameter_mm: Option<f64>,
     /// The stone's size in millimetres instead: its length L (the width follows from the
     /// design's L/W), or LxW.
     #[arg(long, value_name = "L[xW]")]
@@ -204,18 +220,7 @@ impl ColourArgs {
     /// ([`BodyColour::choose`]: `--colour`, else the material's own, times
     /// `--colour-density`).
     pub fn colour_for(&self, material: &Material) -> Result<Option<BodyColour>> {
-        let density = self
-            .colour_density
-            .as_deref()
-            .map(|d| {
-                d.trim().parse::<f64>().map_err(|_| {
-                    Error::invalid(
-                        "--colour-density",
-                        format!("`{d}` is not a number; give a factor on the absorption in (0, {DENSITY_MAX}]"),
-                    )
-                })
-            })
-            .transpose()?;
+        let density = self.colour_density;
         BodyColour::choose(
             material.colour.as_ref(),
             self.colour.as_deref(),
@@ -229,16 +234,8 @@ impl ColourArgs {
 
     /// The stone's size from `--diameter-mm` or `--size-mm` (default a width of 6.5 mm).
     pub fn size(&self) -> Result<StoneSize> {
-        match (&self.diameter_mm, &self.size_mm) {
-            (Some(w), _) => {
-                let w = w.trim().parse::<f64>().map_err(|_| {
-                    Error::invalid(
-                        "--diameter-mm",
-                        format!("`{w}` is not a number; give a width in (0, 1000) mm"),
-                    )
-                })?;
-                StoneSize::width(w, "--diameter-mm")
-            }
+        match (self.diameter_mm, &self.size_mm) {
+            (Some(w), _) => StoneSize::width(w, "--diameter-mm"),
             (None, Some(l)) => StoneSize::parse_length(l, "--size-mm"),
             (None, None) => Ok(StoneSize::default()),
         }
@@ -348,23 +345,6 @@ impl CrystalArgs {
             }
         }
         Ok(notes)
-    }
-}
-
-impl ColourArgs {
-    /// `--colour-density` as a number, if given.
-    pub fn density(&self) -> Result<Option<f64>> {
-        self.colour_density
-            .as_deref()
-            .map(|d| {
-                d.trim().parse::<f64>().map_err(|_| {
-                    Error::invalid(
-                        "--colour-density",
-                        format!("`{d}` is not a number; give a factor on the absorption in (0, {DENSITY_MAX}]"),
-                    )
-                })
-            })
-            .transpose()
     }
 }
 
@@ -571,8 +551,8 @@ mod tests {
         // what is there; the note for stderr names the width.
         let args = ColourArgs {
             colour: None,
-            colour_density: Some("2".into()),
-            diameter_mm: Some("8".into()),
+            colour_density: Some(2.0),
+            diameter_mm: Some(8.0),
             size_mm: None,
         };
         let (mut m, _) = design_materials(&cuts, &Material::diamond(), false);
@@ -586,14 +566,17 @@ mod tests {
         let notes = args.apply(&cuts, &mut m).unwrap();
         assert_eq!(m[0].colour.as_ref().unwrap().density, 2.0);
         assert!(notes[0].contains("stone width 8 mm") && notes[0].contains("not yet traced"));
-        let bad = ColourArgs {
-            diameter_mm: Some("wide".into()),
-            ..Default::default()
-        };
+        let bad = a_number("--diameter-mm", "give a width in (0, 1000) mm")("wide");
         assert!(bad
-            .size()
             .unwrap_err()
             .to_string()
             .starts_with("--diameter-mm: `wide`"));
+        let bad = <ColourArgs as clap::Args>::augment_args(clap::Command::new("t"))
+            .try_get_matches_from(["t", "--colour-density", "dark"])
+            .unwrap_err();
+        assert_eq!(
+            refused_value(&bad).unwrap(),
+            "--colour-density: `dark` is not a number; give a factor on the absorption in (0, 100]"
+        );
     }
 }

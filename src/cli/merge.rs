@@ -5,7 +5,7 @@
 //! shard 1..=N once and complete, and together cover every grid point exactly once; otherwise
 //! a one-line error names the shard folder (exit code 2) and nothing is written.
 
-use super::optimize::{map_spec, write_sweep_outputs, Names};
+use super::optimize::{write_sweep_outputs, Names};
 use super::outputs::{refuse_overwrite, Exit};
 use clap::Args;
 use facetlab::error::{Error, Result};
@@ -159,7 +159,7 @@ pub fn run(a: &MergeArgs) -> Result<Exit> {
         ));
     }
     let grid = first.grid();
-    let spec = map_spec(&grid, a.map.as_deref(), &a.at)?;
+    let spec = opt::MapSpec::new(&grid, a.map.as_deref(), &a.at)?;
     let path = match &a.run {
         Some(dir) if spec.axes.len() == 2 => Some(opt::sweep_path(
             dir,
@@ -228,6 +228,11 @@ pub fn run(a: &MergeArgs) -> Result<Exit> {
         "merged {} shards: {} grid points of config hash {}",
         first.n, first.grid_size, first.config_hash
     );
-    write_sweep_outputs(&grid, &cells, &labels, &score, &spec, &names, path, &a.out)?;
+    let swept = opt::Swept {
+        grid: &grid,
+        cells: &cells,
+        labels: &labels,
+    };
+    write_sweep_outputs(&swept, &score, &spec, &names, path, &a.out)?;
     Ok(Exit::Ok)
 }

@@ -187,7 +187,7 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
     for note in a.colour.apply_traced(&cuts, &mut materials, true)?.0 {
         eprintln!("{note}");
     }
-    let density = a.colour.density()?;
+    let density = a.colour.colour_density;
     for note in a
         .crystal
         .apply(&cuts, &mut materials, density, s.config.wavelength_nm)?

@@ -8,7 +8,9 @@
 //! * [`render`]: `facetlab render --json` (a picture's or a photograph's statistics, per frame
 //!   of an animation);
 //! * [`materials`]: `facetlab materials --json` (the table of stones and coloured varieties);
-//! * [`trace`]: `facetlab trace --json` (the photon tallies and the run's settings).
+//! * [`trace`]: `facetlab trace --json` (the photon tallies and the run's settings);
+//! * [`batch`]: `facetlab score --batch`'s JSON Lines written resumably (the lines of a batch
+//!   file, what its output already holds, the scoring of the rest).
 //!
 //! Each takes the library's own results and settings (a [`Cut`](crate::cut::Cut), a
 //! [`ScoreConfig`](crate::metrics::ScoreConfig), [`Scores`](crate::metrics::Scores), a
@@ -16,6 +18,7 @@
 //! their own documents where they are written: an optimization's `report.json` in
 //! [`crate::optimize`], a rough plan's `summary.json` in [`crate::plan`].
 
+pub mod batch;
 pub mod info;
 pub mod materials;
 pub mod render;

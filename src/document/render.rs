@@ -232,16 +232,14 @@ pub struct PhotoRecord {
 
 impl PhotoRecord {
     /// The record of cut `name` (given as `input`) taken with `opts` (frame 0's), its
-    /// statistics, exposure and outputs.
-    #[allow(clippy::too_many_arguments)]
+    /// statistics and exposure, and its `frames` (`turn_frames` of a turntable); the files it
+    /// was written to are [`PhotoRecord::written`]'s.
     pub fn new(
         name: &str,
         input: &str,
         opts: &PhotoOptions,
         stats: &PhotoStats,
         exposure: f64,
-        output: &str,
-        hdr_output: Option<&str>,
         frames: Vec<PhotoFrame>,
         turn_frames: Option<usize>,
     ) -> PhotoRecord {
@@ -274,10 +272,20 @@ impl PhotoRecord {
             traces: stats.traces,
             ground_light: stats.ground,
             elapsed_s: frames.iter().map(|f| f.elapsed_s).sum(),
-            output: output.to_string(),
-            hdr_output: hdr_output.map(str::to_string),
+            output: String::new(),
+            hdr_output: None,
             turn_frames,
             frames: (frames.len() > 1).then_some(frames),
+        }
+    }
+
+    /// The record with the picture written to `output` (and the linear picture to
+    /// `hdr_output`).
+    pub fn written(self, output: &str, hdr_output: Option<&str>) -> PhotoRecord {
+        PhotoRecord {
+            output: output.to_string(),
+            hdr_output: hdr_output.map(str::to_string),
+            ..self
         }
     }
 }

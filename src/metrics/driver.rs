@@ -6,7 +6,7 @@ use super::config::ScoreConfig;
 use super::fire::{fire_placements, turned, FireLattice};
 use super::scintillation::{scintillation_of, scintillation_turns};
 use super::scores::{Aset, PoseScore, Scores};
-use super::sink::{run_job, ColourImages, Job, PoseResult};
+use super::sink::{ColourImages, Job, JobContext, PoseResult};
 use super::symmetry::{symmetric_pose, symmetric_pose_map};
 use crate::beam::{Frame, Stone, TraceOptions};
 use crate::geometry::{canonical, Polyhedron};
@@ -231,11 +231,16 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
             .then(copies[a].cmp(&copies[b]))
             .then(y.images.len().cmp(&x.images.len()))
     });
-    let results: Vec<PoseResult> = par_in_order(&order, |k| {
-        run_job(
-            &stone, solid, &jobs[k], &light, &lightings, &lattice, cfg, half,
-        )
-    });
+    let ctx = JobContext {
+        stone: &stone,
+        solid,
+        light: &light,
+        lightings: &lightings,
+        lattice: &lattice,
+        cfg,
+        half,
+    };
+    let results: Vec<PoseResult> = par_in_order(&order, |k| ctx.run(&jobs[k]));
     let image = |k: usize, l: usize| -> Option<&Raster> {
         let pos = jobs[k].images.iter().position(|&x| x == l)?;
         results[k].images.get(pos)

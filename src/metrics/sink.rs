@@ -292,92 +292,100 @@ impl ExitSink for PoseSink<'_> {
     }
 }
 
-#[allow(clippy::too_many_arguments)]
-pub(super) fn run_job(
-    stone: &Stone,
-    solid: &Polyhedron,
-    job: &Job,
-    light: &Lighting,
-    lightings: &[Lighting],
-    lattice: &FireLattice,
-    cfg: &ScoreConfig,
-    half: f64,
-) -> PoseResult {
-    let (frame, opts, mut sink) = job_sink(solid, job, light, lightings, lattice, cfg, half);
-    let (stats, _) = stone.trace_medium_into(&frame, &job.medium, &opts, &mut sink, false);
-    sink.finish(stats)
+/// What every job of one score shares: the stone and its solid, the light and the spot
+/// lightings, fire's lattice, the score's settings and the images' half-width.
+#[derive(Clone, Copy)]
+pub(super) struct JobContext<'a> {
+    pub(super) stone: &'a Stone,
+    pub(super) solid: &'a Polyhedron,
+    pub(super) light: &'a Lighting,
+    pub(super) lightings: &'a [Lighting],
+    pub(super) lattice: &'a FireLattice<'a>,
+    pub(super) cfg: &'a ScoreConfig,
+    pub(super) half: f64,
 }
 
-/// A job's viewer frame, trace settings and sink (see [`run_job`]).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn job_sink<'a>(
-    solid: &Polyhedron,
-    job: &Job,
-    light: &'a Lighting,
-    lightings: &'a [Lighting],
-    lattice: &'a FireLattice<'a>,
-    cfg: &ScoreConfig,
-    half: f64,
-) -> (Frame, TraceOptions, PoseSink<'a>) {
-    let rot = job.tilt.rotation();
-    let frame = Frame::viewer(rot);
-    let opts = TraceOptions {
-        polarization: cfg.polarization,
-        footprints: !job.images.is_empty(),
-        split_threshold: job.split,
-        // The face-up figures are the cross-checked exact ones: no closure there.
-        ray_floor: if job.face_up {
-            0.0
-        } else {
-            cfg.trace.ray_floor
-        },
-        narrow_forks: cfg.trace.narrow_forks && !job.face_up,
-        absorption: job.absorption,
-        ..cfg.trace
-    };
-    let spots: Vec<&Lighting> = job
-        .images
-        .iter()
-        .filter_map(|&i| lightings.get(i))
-        .collect();
-    let views = job
-        .views
-        .iter()
-        .map(|g| g.map(|g| (g, [g.x_axis.x, g.y_axis.x, g.x_axis.y, g.y_axis.y])))
-        .collect();
-    let n = lattice.lightings.len();
-    let has_fire = job.images.len() >= n && job.images[..n].iter().copied().eq(0..n);
-    let sink = PoseSink {
-        rot,
-        light,
-        lattice: has_fire.then_some(lattice),
-        area: solid.projected_area(-frame.dir),
-        face_up: job.face_up,
-        brilliance: job.brilliance,
-        r: PoseResult {
-            images: spots
-                .iter()
-                .map(|_| Raster::new(cfg.resolution, half))
-                .collect(),
-            colour: job.colour.then(|| ColourImages {
-                all: Raster::new(crate::render::COLOUR_GRID, half),
-                through: Raster::new(crate::render::COLOUR_GRID, half),
-                seen: 0.0,
-                below: 0.0,
-            }),
-            ..Default::default()
-        },
-        spots,
-        views,
-        vfoot: Vec::new(),
-        vcov: Coverage::default(),
-        cov: Coverage::default(),
-        orbit: OrbitCoverage::default(),
-        corbit: OrbitCoverage::default(),
-        ccov: Coverage::default(),
-        reach: Reach::default(),
-    };
-    (frame, opts, sink)
+impl<'a> JobContext<'a> {
+    /// Trace `job` and measure it.
+    pub(super) fn run(&self, job: &Job) -> PoseResult {
+        let (frame, opts, mut sink) = self.sink(job);
+        let (stats, _) = self
+            .stone
+            .trace_medium_into(&frame, &job.medium, &opts, &mut sink, false);
+        sink.finish(stats)
+    }
+
+    /// A job's viewer frame, trace settings and sink (see [`JobContext::run`]).
+    pub(super) fn sink(&self, job: &Job) -> (Frame, TraceOptions, PoseSink<'a>) {
+        let JobContext {
+            solid,
+            light,
+            lightings,
+            lattice,
+            cfg,
+            half,
+            ..
+        } = *self;
+        let rot = job.tilt.rotation();
+        let frame = Frame::viewer(rot);
+        let opts = TraceOptions {
+            polarization: cfg.polarization,
+            footprints: !job.images.is_empty(),
+            split_threshold: job.split,
+            // The face-up figures are the cross-checked exact ones: no closure there.
+            ray_floor: if job.face_up {
+                0.0
+            } else {
+                cfg.trace.ray_floor
+            },
+            narrow_forks: cfg.trace.narrow_forks && !job.face_up,
+            absorption: job.absorption,
+            ..cfg.trace
+        };
+        let spots: Vec<&Lighting> = job
+            .images
+            .iter()
+            .filter_map(|&i| lightings.get(i))
+            .collect();
+        let views = job
+            .views
+            .iter()
+            .map(|g| g.map(|g| (g, [g.x_axis.x, g.y_axis.x, g.x_axis.y, g.y_axis.y])))
+            .collect();
+        let n = lattice.lightings.len();
+        let has_fire = job.images.len() >= n && job.images[..n].iter().copied().eq(0..n);
+        let sink = PoseSink {
+            rot,
+            light,
+            lattice: has_fire.then_some(lattice),
+            area: solid.projected_area(-frame.dir),
+            face_up: job.face_up,
+            brilliance: job.brilliance,
+            r: PoseResult {
+                images: spots
+                    .iter()
+                    .map(|_| Raster::new(cfg.resolution, half))
+                    .collect(),
+                colour: job.colour.then(|| ColourImages {
+                    all: Raster::new(crate::render::COLOUR_GRID, half),
+                    through: Raster::new(crate::render::COLOUR_GRID, half),
+                    seen: 0.0,
+                    below: 0.0,
+                }),
+                ..Default::default()
+            },
+            spots,
+            views,
+            vfoot: Vec::new(),
+            vcov: Coverage::default(),
+            cov: Coverage::default(),
+            orbit: OrbitCoverage::default(),
+            corbit: OrbitCoverage::default(),
+            ccov: Coverage::default(),
+            reach: Reach::default(),
+        };
+        (frame, opts, sink)
+    }
 }
 
 impl PoseSink<'_> {

@@ -182,10 +182,31 @@ mod tests {
     use crate::geometry::{canonical, Polyhedron};
     use crate::metrics::fire::{fire_placements, turned, FireLattice};
     use crate::metrics::scintillation::scintillation_turns;
-    use crate::metrics::sink::{job_sink, run_job, Job, PoseSink};
+    use crate::metrics::sink::{Job, JobContext, PoseSink};
     use crate::metrics::ScoreConfig;
     use crate::render::lighting::Lighting;
     use crate::testkit::{princess, tolkowsky};
+
+    /// The jobs' context of `solid` (traced as `stone`) under `cfg`, its pictures as wide as
+    /// the score's.
+    fn context<'a>(
+        stone: &'a Stone,
+        solid: &'a Polyhedron,
+        light: &'a Lighting,
+        lightings: &'a [Lighting],
+        lattice: &'a FireLattice<'a>,
+        cfg: &'a ScoreConfig,
+    ) -> JobContext<'a> {
+        JobContext {
+            stone,
+            solid,
+            light,
+            lightings,
+            lattice,
+            cfg,
+            half: crate::render::picture_half(solid),
+        }
+    }
 
     /// The poses a stone's symmetry maps onto each other return the same light: pictures of a
     /// round brilliant and a princess tilted 10° toward several azimuths have the means of their
@@ -274,7 +295,6 @@ mod tests {
             let solid = canonical::canonical(&solid);
             let stone = Stone::new(&solid);
             let light = Lighting::new(0.0, &cfg.spots);
-            let half = crate::render::picture_half(&solid);
             let lattice = FireLattice::new(&[], &[]);
             for az in [72.0, 144.0, 216.0, 288.0, 100.0] {
                 let t = Tilt {
@@ -294,8 +314,8 @@ mod tests {
                     absorption: 0.0,
                     colour: false,
                 };
-                let run =
-                    |j: &Job| run_job(&stone, &solid, j, &light, &lightings, &lattice, &cfg, half);
+                let ctx = context(&stone, &solid, &light, &lightings, &lattice, &cfg);
+                let run = |j: &Job| ctx.run(j);
                 let (rep, view) = symmetric_pose_map(t, stone.symmetry());
                 views += usize::from(view.is_some());
                 let own = run(&job(t, None));
@@ -368,7 +388,6 @@ mod tests {
             let solid = canonical::canonical(&solid);
             let stone = Stone::new(&solid);
             let light = Lighting::new(0.0, &cfg.spots);
-            let half = crate::render::picture_half(&solid);
             let placements = fire_placements(&cfg);
             let mut lightings: Vec<Lighting> = placements
                 .iter()
@@ -395,7 +414,7 @@ mod tests {
             };
             let run = |clip_all: bool| {
                 let (frame, opts, mut sink) =
-                    job_sink(&solid, &job, &light, &lightings, &lattice, &cfg, half);
+                    context(&stone, &solid, &light, &lightings, &lattice, &cfg).sink(&job);
                 let (stats, _) = if clip_all {
                     stone.trace_medium_into(
                         &frame,

@@ -1,10 +1,13 @@
 //! The real objective and verifier: the beam tracer's scores ([`BeamEvaluator`]) and the photon
 //! tracer's thesis metrics plus Monte Carlo brilliance ([`PhotonVerifier`]).
 
-use super::{Config, Evaluator, ScoreSet, Verifier};
+use super::config::Config;
+use super::evaluator::Evaluator;
+use super::score_set::ScoreSet;
 use crate::cut::Cut;
 use crate::error::Result;
 use crate::metrics::{score, Parts, ScoreConfig, ScoreName, Scores};
+use crate::verify::Verifier;
 use crate::verify::VerifyReport;
 use std::collections::BTreeMap;
 

@@ -33,8 +33,13 @@ pub trait Progress: Sync {
     fn update(&self, status: &Status);
 }
 
-/// Counts evaluations and iterations, keeps the best cost, and forwards snapshots.
+/// A stop flag never raised: a run without Ctrl-C.
+static NEVER: AtomicBool = AtomicBool::new(false);
+
+/// Watches a run: counts evaluations and iterations, keeps the best cost, forwards snapshots,
+/// and holds the stop flag every solver checks between iterations.
 pub struct Tracker<'a> {
+    stop: &'a AtomicBool,
     sink: Option<&'a dyn Progress>,
     budget: u64,
     evaluations: AtomicU64,
@@ -44,9 +49,11 @@ pub struct Tracker<'a> {
 }
 
 impl<'a> Tracker<'a> {
-    /// A tracker reporting to `sink` (if any) against an evaluation `budget`.
-    pub fn new(sink: Option<&'a dyn Progress>, budget: u64) -> Self {
+    /// A tracker reporting to `sink` (if any) against an evaluation `budget`, stopped by
+    /// `stop` (if any) being raised.
+    pub fn new(sink: Option<&'a dyn Progress>, stop: Option<&'a AtomicBool>, budget: u64) -> Self {
         Tracker {
+            stop: stop.unwrap_or(&NEVER),
             sink,
             budget,
             evaluations: AtomicU64::new(0),
@@ -54,6 +61,11 @@ impl<'a> Tracker<'a> {
             best: Mutex::new(f64::INFINITY),
             started: Instant::now(),
         }
+    }
+
+    /// Whether the stop flag is raised.
+    pub fn stopped(&self) -> bool {
+        self.stop.load(Ordering::SeqCst)
     }
 
     fn best(&self) -> f64 {
@@ -144,7 +156,6 @@ const EVALS_REACHED: &str = "evaluation budget reached";
 /// iterations (so a run may overshoot the budget by less than one iteration's evaluations).
 pub struct Guarded<'g, S> {
     inner: S,
-    stop: &'g AtomicBool,
     max_evaluations: u64,
     iteration: Option<&'g AtomicU64>,
     tracker: &'g Tracker<'g>,
@@ -155,14 +166,12 @@ impl<'g, S> Guarded<'g, S> {
     /// run (so cost functions can log it).
     pub fn new(
         inner: S,
-        stop: &'g AtomicBool,
         max_evaluations: u64,
         iteration: Option<&'g AtomicU64>,
         tracker: &'g Tracker<'g>,
     ) -> Self {
         Guarded {
             inner,
-            stop,
             max_evaluations,
             iteration,
             tracker,
@@ -204,7 +213,7 @@ where
     }
 
     fn terminate(&mut self, state: &I) -> TerminationStatus {
-        if self.stop.load(Ordering::SeqCst) {
+        if self.tracker.stopped() {
             return TerminationStatus::Terminated(TerminationReason::Interrupt);
         }
         let evals = state

@@ -8,11 +8,16 @@
 //!
 //! - `config/` reads an `optim/*.toml` file into a validated [`Config`] (every error names the
 //!   file and the field), with the cut space it searches;
-//! - `problem.rs` turns a parameter vector into a [`Cut`] (built by the space), scores it with
-//!   an [`Evaluator`] and returns a finite cost: `−(weighted score) + constraint penalties`;
+//! - `config/search_box.rs` is the box a search moves in ([`SearchBox`]): the free parameters
+//!   and the space that builds the cut at a point of it;
+//! - `problem.rs` holds the objective: it turns a point of the box into a
+//!   [`Cut`](crate::cut::Cut), scores it with an [`Evaluator`] (`evaluator.rs`; the scores are
+//!   a [`ScoreSet`], `score_set.rs`) and returns a finite cost: `−(weighted score) +
+//!   constraint penalties`;
 //! - `nelder_mead.rs` (multi-start from a seeded Latin hypercube or Halton set,
-//!   `sampling.rs`) and `pso.rs` (particle swarm) run argmin's solvers on it, stopped by
-//!   `guard.rs` on the evaluation budget or Ctrl-C;
+//!   `sampling.rs`) and `pso.rs` (particle swarm) run argmin's solvers on it, each method
+//!   holding its own settings, budget and seed; `guard.rs` stops them on the evaluation
+//!   budget or Ctrl-C;
 //! - `history.rs` keeps every evaluation (Nelder–Mead) or every particle position (swarm) as
 //!   rows of `history.csv`;
 //! - `search.rs` runs the method, picks distinct winners and has a [`Verifier`] (the photon
@@ -81,6 +86,7 @@
 
 mod config;
 mod engines;
+mod evaluator;
 mod grid;
 mod guard;
 mod history;
@@ -91,6 +97,7 @@ mod pso;
 mod ratio_search;
 mod run;
 mod sampling;
+mod score_set;
 mod search;
 mod summary;
 mod sweep;
@@ -102,8 +109,11 @@ mod sweep;
 pub use config::{
     axis_label, defaults, Budget, Config, Constraints, FreeParam, Method, NelderMeadSettings,
     ParetoSpec, RawConfig, RawConstraints, RawCut, RawMethod, RawObjective, RawScore, RawVerify,
-    Sampling, ScoreSettings, SwarmSettings, VerifySettings, Weights,
+    Sampling, ScoreSettings, SearchBox, SwarmSettings, VerifySettings, Weights,
 };
+// The scores of one cut and the scorer the objective calls.
+pub use evaluator::Evaluator;
+pub use score_set::ScoreSet;
 // The scorers of a config: the beam tracer's evaluator and the photon tracer's verifier.
 pub use engines::{real_scorers, BeamEvaluator, PhotonVerifier, Scorers};
 // Progress reports and why a search stopped.
@@ -123,7 +133,7 @@ pub use history::{History, Row, Track};
 // The cost of a cut that cannot be built or scored.
 pub use problem::{weight_retention, FAILED_COST};
 // The run's summary (`report.json`, `report.md`): the start and the winners, how it went.
-pub use summary::{Candidate, DesignJson, FoundAt, OpenedJson, Report};
+pub use summary::{Candidate, DesignJson, FoundAt, OpenedJson, RunReport};
 // Sweeps: a score mapped over two parameters, or the scores along one (a profile).
 pub use sweep::{
     output_paths as sweep_output_paths, profile, run_path as sweep_path, sweep,
@@ -133,100 +143,13 @@ pub use sweep::{
 // N-axis sweeps, their shards (`--shard K/N`, job arrays) and the exact merge.
 pub use grid::{
     assemble as assemble_shards, best as grid_best, evaluate as evaluate_grid, fixed_at,
-    hash as config_hash, heatmap as grid_heatmap, map_axes, parse_at, profile_lines, read_rows,
-    rows_header, shard_folder, shard_row, to_csv as grid_csv, AxisRecord, Grid, GridCell, Shard,
-    ShardRecord, ShardRun,
+    hash as config_hash, map_axes, parse_at, read_rows, rows_header, shard_folder, shard_row,
+    to_csv as grid_csv, AxisRecord, Grid, GridCell, MapSpec, Shard, ShardRecord, ShardRun, Swept,
 };
 // The photon-tracer check of the winners (all of it `crate::verify`'s).
 pub use crate::verify::{Verification, Verifier, VerifyReport, VerifyRow};
-
-use crate::cut::Cut;
-use crate::error::Result;
+// The names of the scores (all of them `crate::metrics`').
 pub use crate::metrics::ScoreName;
-use serde::Serialize;
-
-/// The scores of one cut, as the optimizer sees them.
-///
-/// `brilliance`, `fire` and `scintillation` are the objective's terms (each roughly in [0, 1],
-/// higher is better). `extra` holds any further named scores the evaluator computes (ASET
-/// shares, …); they are shown in the reports but not optimized.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
-pub struct ScoreSet {
-    /// Light return under diffuse light.
-    pub brilliance: f64,
-    /// Colour seen under small light sources.
-    pub fire: f64,
-    /// How the face-up pattern changes as the stone tilts.
-    pub scintillation: f64,
-    /// Further named scores, shown in reports in this order.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub extra: Vec<(ScoreName, f64)>,
-    /// The beam tracer's whole scores behind these, when the evaluator keeps them
-    /// ([`BeamEvaluator`]'s full evaluations do): a run's report draws its table and tilt chart
-    /// from them instead of scoring the cut again. Not serialised.
-    #[serde(skip)]
-    pub detail: Option<std::sync::Arc<crate::metrics::Scores>>,
-}
-
-impl ScoreSet {
-    /// The three objective scores, no extras.
-    pub fn new(brilliance: f64, fire: f64, scintillation: f64) -> ScoreSet {
-        ScoreSet {
-            brilliance,
-            fire,
-            scintillation,
-            extra: Vec::new(),
-            detail: None,
-        }
-    }
-
-    /// The score `name` (`brilliance`, `fire`, `scintillation` or an extra), if this set has it.
-    pub fn get(&self, name: ScoreName) -> Option<f64> {
-        match name {
-            ScoreName::Brilliance => Some(self.brilliance),
-            ScoreName::Fire => Some(self.fire),
-            ScoreName::Scintillation => Some(self.scintillation),
-            _ => self.extra.iter().find(|(k, _)| *k == name).map(|(_, v)| *v),
-        }
-    }
-
-    /// Every score, name and value, the three objective scores first.
-    pub fn all(&self) -> Vec<(ScoreName, f64)> {
-        let mut out = vec![
-            (ScoreName::Brilliance, self.brilliance),
-            (ScoreName::Fire, self.fire),
-            (ScoreName::Scintillation, self.scintillation),
-        ];
-        out.extend(self.extra.iter().cloned());
-        out
-    }
-}
-
-/// The objective's scorer: a cut in, its scores out.
-///
-/// It must be deterministic (same cut, same scores) so that runs repeat, and `Sync`, because
-/// particle swarms and multi-start searches evaluate cuts on several threads. An `Err` is not
-/// fatal: the optimizer gives that cut a finite penalty cost and moves on.
-pub trait Evaluator: Sync {
-    /// Score one cut, every score.
-    fn evaluate(&self, cut: &Cut) -> Result<ScoreSet>;
-
-    /// Score one cut for the search: the scores the objective weighs must be right; the
-    /// others may be left out as NaN (they weigh 0). The start and the winners are scored
-    /// again with [`Evaluator::evaluate`] for the reports. By default the same as `evaluate`.
-    fn evaluate_for_search(&self, cut: &Cut) -> Result<ScoreSet> {
-        self.evaluate(cut)
-    }
-}
-
-impl<F> Evaluator for F
-where
-    F: Fn(&Cut) -> Result<ScoreSet> + Sync,
-{
-    fn evaluate(&self, cut: &Cut) -> Result<ScoreSet> {
-        self(cut)
-    }
-}
 
 #[cfg(test)]
 mod tests;

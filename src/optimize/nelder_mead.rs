@@ -15,7 +15,7 @@
 //! - **Parallel**: starts run on rayon's pool and are collected in start order, so the history
 //!   does not depend on the thread count.
 
-use super::config::{Budget, Config, NelderMeadSettings, Sampling};
+use super::config::{Budget, FreeParam, NelderMeadSettings, Sampling, SearchBox};
 use super::guard::{Guarded, Stop, Tracker};
 use super::history::{History, Row, Track};
 use super::problem::{logit, Logged, Objective, SigmoidProblem};
@@ -24,7 +24,7 @@ use crate::error::{Error, Result};
 use argmin::core::{Executor, State};
 use argmin::solver::neldermead::NelderMead;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, AtomicU64};
+use std::sync::atomic::AtomicU64;
 
 /// What one start did.
 #[derive(Clone, Debug)]
@@ -37,36 +37,118 @@ pub struct StartRun {
     pub iterations: u64,
 }
 
-/// The start points (parameter space), start 0 first.
-pub fn start_points(config: &Config, nm: &NelderMeadSettings) -> Vec<Vec<f64>> {
-    let d = config.free.len();
-    let own = usize::from(nm.include_start);
-    let n = nm.starts.saturating_sub(own);
-    let samples = match nm.sampling {
-        Sampling::LatinHypercube => latin_hypercube(n, d, config.seed),
-        Sampling::Halton => halton(n, d, config.seed),
-    };
-    let mut out = Vec::with_capacity(nm.starts);
-    if nm.include_start {
-        out.push(config.start_x());
-    }
-    for p in samples {
-        out.push(
-            config
-                .free
-                .iter()
-                .zip(p)
-                .map(|(f, v)| f.at(0.05 + 0.9 * v))
-                .collect(),
-        );
-    }
-    out
+/// Multi-start Nelder–Mead as configured: like argmin's solvers it holds its own settings,
+/// with the run's budget and the seed of its start sample.
+#[derive(Clone, Copy, Debug)]
+pub struct MultiStart {
+    /// Starts, their sampling, the simplex step and the tolerance.
+    pub settings: NelderMeadSettings,
+    /// The iteration budget per start and the evaluation budget shared by the starts.
+    pub budget: Budget,
+    /// Seeds the start sample.
+    pub seed: u64,
 }
 
-/// The initial simplex around `x0`, in `u` coordinates.
-pub fn initial_simplex(config: &Config, x0: &[f64], step: f64) -> Vec<Vec<f64>> {
-    let fs: Vec<f64> = config
-        .free
+impl MultiStart {
+    /// The start points (parameter space) in `space`, start 0 first.
+    pub fn start_points(&self, space: &SearchBox<'_>) -> Vec<Vec<f64>> {
+        let nm = &self.settings;
+        let d = space.free.len();
+        let own = usize::from(nm.include_start);
+        let n = nm.starts.saturating_sub(own);
+        let samples = match nm.sampling {
+            Sampling::LatinHypercube => latin_hypercube(n, d, self.seed),
+            Sampling::Halton => halton(n, d, self.seed),
+        };
+        let mut out = Vec::with_capacity(nm.starts);
+        if nm.include_start {
+            out.push(space.start_x());
+        }
+        for p in samples {
+            out.push(
+                space
+                    .free
+                    .iter()
+                    .zip(p)
+                    .map(|(f, v)| f.at(0.05 + 0.9 * v))
+                    .collect(),
+            );
+        }
+        out
+    }
+
+    /// Run one start from `x0`, with its share `max_evaluations` of the budget.
+    pub fn run_start(
+        &self,
+        objective: &Objective<'_>,
+        x0: &[f64],
+        max_evaluations: u64,
+        tracker: &Tracker<'_>,
+    ) -> Result<StartRun> {
+        let fail = |e: argmin::core::Error| Error::invalid("nelder-mead", e.to_string());
+        let iteration = AtomicU64::new(0);
+        let problem = SigmoidProblem::new(objective, tracker, &iteration);
+        let simplex = initial_simplex(objective.space.free, x0, self.settings.simplex_step);
+        let solver = NelderMead::new(simplex)
+            .with_sd_tolerance(self.settings.tolerance)
+            .map_err(fail)?;
+        let guarded = Guarded::new(solver, max_evaluations, Some(&iteration), tracker);
+        let res = Executor::new(problem, guarded)
+            .configure(|s| s.max_iters(self.budget.max_iterations).counting(true))
+            .run()
+            .map_err(fail)?;
+        let stop = Stop::from_reason(res.state.get_termination_reason());
+        let iterations = res.state.get_iter();
+        let log = res
+            .problem
+            .problem
+            .as_ref()
+            .map(|p| p.take_log())
+            .unwrap_or_default();
+        Ok(StartRun {
+            log,
+            stop,
+            iterations,
+        })
+    }
+
+    /// Run every start (in parallel) and gather the history in start order.
+    pub fn search(
+        &self,
+        objective: &Objective<'_>,
+        tracker: &Tracker<'_>,
+    ) -> Result<(History, Vec<StartRun>)> {
+        let starts = self.start_points(&objective.space);
+        let per_start = (self.budget.max_evaluations / starts.len().max(1) as u64).max(1);
+        let runs: Vec<Result<StartRun>> = starts
+            .par_iter()
+            .map(|x0| self.run_start(objective, x0, per_start, tracker))
+            .collect();
+        let runs: Vec<StartRun> = runs.into_iter().collect::<Result<_>>()?;
+        let mut h = History::new(Track::Start, objective.space.keys());
+        let mut evals = 0;
+        for (k, run) in runs.iter().enumerate() {
+            let mut best = f64::INFINITY;
+            for l in &run.log {
+                evals += 1;
+                best = best.min(l.cost);
+                h.rows.push(Row {
+                    track: k,
+                    iteration: l.iteration,
+                    evaluations: evals,
+                    cost: l.cost,
+                    best_cost: best,
+                    x: l.x.clone(),
+                });
+            }
+        }
+        Ok((h, runs))
+    }
+}
+
+/// The initial simplex around `x0` in the box of `free`, in `u` coordinates.
+pub fn initial_simplex(free: &[FreeParam], x0: &[f64], step: f64) -> Vec<Vec<f64>> {
+    let fs: Vec<f64> = free
         .iter()
         .zip(x0)
         .map(|(f, &x)| f.unit_of(x).clamp(1e-4, 1.0 - 1e-4))
@@ -81,92 +163,4 @@ pub fn initial_simplex(config: &Config, x0: &[f64], step: f64) -> Vec<Vec<f64>> 
         out.push(u);
     }
     out
-}
-
-/// Run one start.
-pub fn run_start(
-    objective: &Objective<'_>,
-    x0: &[f64],
-    nm: &NelderMeadSettings,
-    max_iterations: u64,
-    max_evaluations: u64,
-    stop: &AtomicBool,
-    tracker: &Tracker<'_>,
-) -> Result<StartRun> {
-    let fail = |e: argmin::core::Error| Error::invalid("nelder-mead", e.to_string());
-    let iteration = AtomicU64::new(0);
-    let problem = SigmoidProblem::new(objective, tracker, &iteration);
-    let simplex = initial_simplex(objective.config, x0, nm.simplex_step);
-    let solver = NelderMead::new(simplex)
-        .with_sd_tolerance(nm.tolerance)
-        .map_err(fail)?;
-    let guarded = Guarded::new(solver, stop, max_evaluations, Some(&iteration), tracker);
-    let res = Executor::new(problem, guarded)
-        .configure(|s| s.max_iters(max_iterations).counting(true))
-        .run()
-        .map_err(fail)?;
-    let stop = Stop::from_reason(res.state.get_termination_reason());
-    let iterations = res.state.get_iter();
-    let log = res
-        .problem
-        .problem
-        .as_ref()
-        .map(|p| p.take_log())
-        .unwrap_or_default();
-    Ok(StartRun {
-        log,
-        stop,
-        iterations,
-    })
-}
-
-/// Run every start (in parallel) and gather the history in start order.
-pub fn search(
-    objective: &Objective<'_>,
-    nm: &NelderMeadSettings,
-    budget: &Budget,
-    stop: &AtomicBool,
-    tracker: &Tracker<'_>,
-) -> Result<(History, Vec<StartRun>)> {
-    let starts = start_points(objective.config, nm);
-    let per_start = (budget.max_evaluations / starts.len().max(1) as u64).max(1);
-    let runs: Vec<Result<StartRun>> = starts
-        .par_iter()
-        .map(|x0| {
-            run_start(
-                objective,
-                x0,
-                nm,
-                budget.max_iterations,
-                per_start,
-                stop,
-                tracker,
-            )
-        })
-        .collect();
-    let runs: Vec<StartRun> = runs.into_iter().collect::<Result<_>>()?;
-    let keys = objective
-        .config
-        .free
-        .iter()
-        .map(|f| f.key.clone())
-        .collect();
-    let mut h = History::new(Track::Start, keys);
-    let mut evals = 0;
-    for (k, run) in runs.iter().enumerate() {
-        let mut best = f64::INFINITY;
-        for l in &run.log {
-            evals += 1;
-            best = best.min(l.cost);
-            h.rows.push(Row {
-                track: k,
-                iteration: l.iteration,
-                evaluations: evals,
-                cost: l.cost,
-                best_cost: best,
-                x: l.x.clone(),
-            });
-        }
-    }
-    Ok((h, runs))
 }

@@ -16,10 +16,11 @@
 //! [0, 1] over the front) are re-measured by the photon tracer, as winners are.
 
 use super::config::{Config, ParetoSpec};
+use super::evaluator::Evaluator;
 use super::search::{search, Hooks};
-use super::{Evaluator, ScoreName};
 use crate::error::Result;
 use crate::io::write_atomic;
+use crate::metrics::ScoreName;
 use crate::verify::{Verification, Verifier};
 use rayon::prelude::*;
 use serde::Serialize;

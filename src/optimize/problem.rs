@@ -16,9 +16,10 @@
 //! parameters themselves, kept in the box by the solver) and [`SigmoidProblem`] (Nelder–Mead;
 //! the point `u` is unbounded and mapped to `x = lo + (hi − lo)·sigmoid(u)`).
 
-use super::config::{Config, Constraints, Weights};
+use super::config::{Config, Constraints, SearchBox, Weights};
+use super::evaluator::Evaluator;
 use super::guard::Tracker;
-use super::{Evaluator, ScoreSet};
+use super::score_set::ScoreSet;
 use crate::cut::Cut;
 use crate::error::Result;
 use crate::metrics::ScoreName;
@@ -198,24 +199,34 @@ pub struct Evaluation {
     pub error: Option<String>,
 }
 
-/// The objective of a config: maps free parameters to a cost.
+/// The objective of a search: maps a point of its box to a cost. It holds what it evaluates:
+/// the box (the free parameters and the space that builds their cuts), the scorer, and the
+/// weights and constraints that make the cost.
 pub struct Objective<'a> {
-    /// The config.
-    pub config: &'a Config,
+    /// The box: a point's cut.
+    pub space: SearchBox<'a>,
     /// The scorer.
     pub evaluator: &'a dyn Evaluator,
+    /// The weights of the scores.
+    pub weights: &'a Weights,
+    /// The constraints and their penalty.
+    pub constraints: &'a Constraints,
 }
 
 impl<'a> Objective<'a> {
-    /// Bind a config to a scorer.
+    /// A config's objective: its box, weights and constraints, scored by `evaluator`.
     pub fn new(config: &'a Config, evaluator: &'a dyn Evaluator) -> Objective<'a> {
-        Objective { config, evaluator }
+        Objective {
+            space: config.search_box(),
+            evaluator,
+            weights: &config.weights,
+            constraints: &config.constraints,
+        }
     }
 
     /// The cut at free parameters `x`.
     pub fn cut_at(&self, x: &[f64]) -> Result<Cut> {
-        self.config
-            .build(&self.config.name, &self.config.params_at(x))
+        self.space.cut_at(x)
     }
 
     /// Build, score (for the search: [`Evaluator::evaluate_for_search`]) and charge the cut
@@ -261,10 +272,10 @@ impl<'a> Objective<'a> {
             Ok(s) => s,
             Err(e) => return failed(e.to_string(), Some(cut)),
         };
-        let score = weighted(&scores, &self.config.weights);
-        let mut checks = check_constraints(&cut, &self.config.constraints);
-        checks.extend(check_score_constraints(&scores, &self.config.constraints));
-        let pen = penalty(&checks, &self.config.constraints);
+        let score = weighted(&scores, self.weights);
+        let mut checks = check_constraints(&cut, self.constraints);
+        checks.extend(check_score_constraints(&scores, self.constraints));
+        let pen = penalty(&checks, self.constraints);
         let cost = -score + pen;
         if !cost.is_finite() {
             return failed(
@@ -364,7 +375,7 @@ impl<'a> SigmoidProblem<'a> {
     /// Parameters at `u`.
     pub fn to_x(&self, u: &[f64]) -> Vec<f64> {
         self.objective
-            .config
+            .space
             .free
             .iter()
             .zip(u)
@@ -376,7 +387,7 @@ impl<'a> SigmoidProblem<'a> {
     #[cfg(test)]
     pub fn to_u(&self, x: &[f64]) -> Vec<f64> {
         self.objective
-            .config
+            .space
             .free
             .iter()
             .zip(x)
@@ -611,7 +622,7 @@ mod tests {
     fn sigmoid_map_stays_in_bounds() {
         let c = cfg("");
         let o = Objective::new(&c, &crown);
-        let t = Tracker::new(None, 0);
+        let t = Tracker::new(None, None, 0);
         let it = AtomicU64::new(0);
         let p = SigmoidProblem::new(&o, &t, &it);
         for u in [-1e6, -30.0, -1.0, 0.0, 2.0, 40.0, 1e6] {

@@ -19,7 +19,6 @@ use argmin::core::{Executor, State};
 use argmin::solver::particleswarm::ParticleSwarm;
 use rand::rngs::StdRng;
 use rand::SeedableRng;
-use std::sync::atomic::AtomicBool;
 use std::sync::{Arc, Mutex};
 
 /// What the swarm did.
@@ -31,49 +30,63 @@ pub struct SwarmRun {
     pub iterations: u64,
 }
 
-/// Run the swarm.
-pub fn search(
-    objective: &Objective<'_>,
-    s: &SwarmSettings,
-    budget: &Budget,
-    seed: u64,
-    stop: &AtomicBool,
-    tracker: &Tracker<'_>,
-) -> Result<(History, SwarmRun)> {
-    let fail = |e: argmin::core::Error| Error::invalid("particle-swarm", e.to_string());
-    let free = &objective.config.free;
-    let lo: Vec<f64> = free.iter().map(|f| f.lo).collect();
-    let hi: Vec<f64> = free.iter().map(|f| f.hi).collect();
-    let np = s.particles as u64;
-    let by_evals = (budget.max_evaluations / np).saturating_sub(1);
-    let max_iters = budget.max_iterations.min(by_evals);
-    let solver = ParticleSwarm::new((lo, hi), s.particles)
-        .with_inertia_factor(s.inertia)
-        .and_then(|p| p.with_cognitive_factor(s.cognitive))
-        .and_then(|p| p.with_social_factor(s.social))
-        .map_err(fail)?
-        .with_rng_generator(StdRng::seed_from_u64(seed));
-    let keys = free.iter().map(|f| f.key.clone()).collect();
-    let history = Arc::new(Mutex::new(History::new(Track::Particle, keys)));
-    let observer = SwarmObserver {
-        history: Arc::clone(&history),
-    };
-    let problem = BoxProblem::new(objective, tracker);
-    let guarded = Guarded::new(solver, stop, budget.max_evaluations, None, tracker);
-    let res = Executor::new(problem, guarded)
-        .configure(|st| st.max_iters(max_iters).counting(true))
-        .add_observer(observer, ObserverMode::Always)
-        .run()
-        .map_err(fail)?;
-    let mut stop = Stop::from_reason(res.state.get_termination_reason());
-    if stop == Stop::MaxIterations && max_iters < budget.max_iterations {
-        stop = Stop::MaxEvaluations;
+/// Particle swarm as configured: like argmin's solvers it holds its own settings, with the
+/// run's budget and the seed of its random numbers.
+#[derive(Clone, Copy, Debug)]
+pub struct Swarm {
+    /// Particles and their inertia, cognitive and social factors.
+    pub settings: SwarmSettings,
+    /// The iteration and evaluation budget.
+    pub budget: Budget,
+    /// Seeds the swarm's random numbers.
+    pub seed: u64,
+}
+
+impl Swarm {
+    /// Run the swarm.
+    pub fn search(
+        &self,
+        objective: &Objective<'_>,
+        tracker: &Tracker<'_>,
+    ) -> Result<(History, SwarmRun)> {
+        let (s, budget) = (&self.settings, &self.budget);
+        let fail = |e: argmin::core::Error| Error::invalid("particle-swarm", e.to_string());
+        let free = objective.space.free;
+        let lo: Vec<f64> = free.iter().map(|f| f.lo).collect();
+        let hi: Vec<f64> = free.iter().map(|f| f.hi).collect();
+        let np = s.particles as u64;
+        let by_evals = (budget.max_evaluations / np).saturating_sub(1);
+        let max_iters = budget.max_iterations.min(by_evals);
+        let solver = ParticleSwarm::new((lo, hi), s.particles)
+            .with_inertia_factor(s.inertia)
+            .and_then(|p| p.with_cognitive_factor(s.cognitive))
+            .and_then(|p| p.with_social_factor(s.social))
+            .map_err(fail)?
+            .with_rng_generator(StdRng::seed_from_u64(self.seed));
+        let history = Arc::new(Mutex::new(History::new(
+            Track::Particle,
+            objective.space.keys(),
+        )));
+        let observer = SwarmObserver {
+            history: Arc::clone(&history),
+        };
+        let problem = BoxProblem::new(objective, tracker);
+        let guarded = Guarded::new(solver, budget.max_evaluations, None, tracker);
+        let res = Executor::new(problem, guarded)
+            .configure(|st| st.max_iters(max_iters).counting(true))
+            .add_observer(observer, ObserverMode::Always)
+            .run()
+            .map_err(fail)?;
+        let mut stop = Stop::from_reason(res.state.get_termination_reason());
+        if stop == Stop::MaxIterations && max_iters < budget.max_iterations {
+            stop = Stop::MaxEvaluations;
+        }
+        let iterations = res.state.get_iter();
+        drop(res);
+        let h = match history.lock() {
+            Ok(g) => g.clone(),
+            Err(p) => p.into_inner().clone(),
+        };
+        Ok((h, SwarmRun { stop, iterations }))
     }
-    let iterations = res.state.get_iter();
-    drop(res);
-    let h = match history.lock() {
-        Ok(g) => g.clone(),
-        Err(p) => p.into_inner().clone(),
-    };
-    Ok((h, SwarmRun { stop, iterations }))
 }

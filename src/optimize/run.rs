@@ -1,4 +1,4 @@
-//! A whole run: search and verify ([`search`](super::search)), then write the run folder.
+//! A whole run: search and verify ([`search`](super::search::search)), then write the run folder.
 //!
 //! The run folder (`results/<name>-<UTC time>/` or `--out DIR`):
 //!
@@ -18,10 +18,10 @@
 //! verification, and says so.
 
 use super::config::Config;
+use super::evaluator::Evaluator;
 use super::history::History;
 use super::search::{search, verify, Hooks, Outcome};
-use super::summary::{DesignJson, FreeJson, OpenedJson, Report, SearchJson, VerificationJson};
-use super::Evaluator;
+use super::summary::{DesignJson, FreeJson, OpenedJson, RunReport, SearchJson, VerificationJson};
 use crate::cut::Cut;
 use crate::error::{Error, Result};
 use crate::io::write_atomic;
@@ -166,7 +166,7 @@ pub struct RunSummary {
     /// What was found.
     pub outcome: Outcome,
     /// The report as written.
-    pub report: Report,
+    pub report: RunReport,
 }
 
 /// `YYYYmmdd-HHMMSS` in UTC for a Unix time.
@@ -208,8 +208,8 @@ pub fn new_run_dir(root: &Path, name: &str) -> PathBuf {
 }
 
 /// Build the report of an outcome (`files` lists the folder's files).
-pub fn report(config: &Config, o: &Outcome, files: Vec<String>) -> Report {
-    Report {
+pub fn report(config: &Config, o: &Outcome, files: Vec<String>) -> RunReport {
+    RunReport {
         name: config.name.clone(),
         description: config.description.clone(),
         config: config.source.clone(),
@@ -255,7 +255,7 @@ pub fn report(config: &Config, o: &Outcome, files: Vec<String>) -> Report {
             .history
             .rows
             .iter()
-            .filter(|r| r.cost >= 0.5 * super::FAILED_COST)
+            .filter(|r| r.cost >= 0.5 * super::problem::FAILED_COST)
             .count() as u64,
         design: design_json(config, o),
     }
@@ -331,7 +331,7 @@ pub fn write_folder(
     writers: &[&dyn CutWriter],
     convergence: Option<ConvergenceChart>,
     html_report: Option<RunPage>,
-) -> Result<Report> {
+) -> Result<RunReport> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
     let mut files = Vec::new();
     let mut put = |name: &str, bytes: &[u8]| -> Result<()> {

@@ -5,12 +5,14 @@
 //! Ctrl-C (the stop flag in [`Hooks`]) ends the search after the current iteration; the
 //! winners are still scored, and the check is skipped (and says so).
 
-use super::config::{Config, Method};
+use super::config::{Config, Method, SearchBox};
+use super::evaluator::Evaluator;
 use super::guard::{Progress, Stop, Tracker};
 use super::history::History;
+use super::nelder_mead::MultiStart;
 use super::problem::{Objective, FAILED_COST};
+use super::pso::Swarm;
 use super::summary::{Candidate, FoundAt};
-use super::{nelder_mead, pso, Evaluator};
 use crate::cut::Cut;
 use crate::error::Result;
 use crate::verify::{Verification, Verifier};
@@ -71,7 +73,12 @@ impl Outcome {
 /// Pick up to `n` distinct winners from the history: lowest cost first, each at least
 /// `min_distance` (in the unit box of the free parameters) from those already picked. Failed
 /// cuts are never winners. Returns row indices.
-pub fn pick_winners(config: &Config, history: &History, n: usize, min_distance: f64) -> Vec<usize> {
+pub fn pick_winners(
+    space: &SearchBox<'_>,
+    history: &History,
+    n: usize,
+    min_distance: f64,
+) -> Vec<usize> {
     let mut order: Vec<usize> = (0..history.rows.len())
         .filter(|&i| history.rows[i].cost < 0.5 * FAILED_COST)
         .collect();
@@ -81,20 +88,12 @@ pub fn pick_winners(config: &Config, history: &History, n: usize, min_distance: 
             .total_cmp(&history.rows[b].cost)
             .then(a.cmp(&b))
     });
-    let unit = |x: &[f64]| -> Vec<f64> {
-        config
-            .free
-            .iter()
-            .zip(x)
-            .map(|(f, v)| f.unit_of(*v))
-            .collect()
-    };
     let mut picked: Vec<(usize, Vec<f64>)> = Vec::new();
     for i in order {
         if picked.len() >= n {
             break;
         }
-        let u = unit(&history.rows[i].x);
+        let u = space.unit_of(&history.rows[i].x);
         let far = picked.iter().all(|(_, p)| {
             let d2: f64 = p.iter().zip(&u).map(|(a, b)| (a - b) * (a - b)).sum();
             d2.sqrt() >= min_distance && d2 > 0.0
@@ -109,14 +108,17 @@ pub fn pick_winners(config: &Config, history: &History, n: usize, min_distance: 
 /// Search: run the configured method and score the start and the winners. No files.
 pub fn search(config: &Config, evaluator: &dyn Evaluator, hooks: &Hooks<'_>) -> Result<Outcome> {
     let objective = Objective::new(config, evaluator);
-    let never = AtomicBool::new(false);
-    let stop_flag = hooks.stop.unwrap_or(&never);
-    let tracker = Tracker::new(hooks.progress, config.budget.max_evaluations);
+    let tracker = Tracker::new(hooks.progress, hooks.stop, config.budget.max_evaluations);
+    let (budget, seed) = (config.budget, config.seed);
     let t = Instant::now();
-    let (history, stop, start_stops, iterations) = match &config.method {
-        Method::NelderMead(nm) => {
-            let (h, runs) =
-                nelder_mead::search(&objective, nm, &config.budget, stop_flag, &tracker)?;
+    let (history, stop, start_stops, iterations) = match config.method {
+        Method::NelderMead(settings) => {
+            let method = MultiStart {
+                settings,
+                budget,
+                seed,
+            };
+            let (h, runs) = method.search(&objective, &tracker)?;
             let stops: Vec<Stop> = runs.iter().map(|r| r.stop).collect();
             let stop = if stops.contains(&Stop::Interrupted) {
                 Stop::Interrupted
@@ -134,15 +136,13 @@ pub fn search(config: &Config, evaluator: &dyn Evaluator, hooks: &Hooks<'_>) -> 
             let iters = runs.iter().map(|r| r.iterations).sum();
             (h, stop, stops, iters)
         }
-        Method::ParticleSwarm(s) => {
-            let (h, run) = pso::search(
-                &objective,
-                s,
-                &config.budget,
-                config.seed,
-                stop_flag,
-                &tracker,
-            )?;
+        Method::ParticleSwarm(settings) => {
+            let method = Swarm {
+                settings,
+                budget,
+                seed,
+            };
+            let (h, run) = method.search(&objective, &tracker)?;
             (h, run.stop, Vec::new(), run.iterations)
         }
     };
@@ -150,7 +150,7 @@ pub fn search(config: &Config, evaluator: &dyn Evaluator, hooks: &Hooks<'_>) -> 
     let evaluations = history.rows.len() as u64;
 
     let picks = pick_winners(
-        config,
+        &objective.space,
         &history,
         config.verify.winners.max(1),
         config.verify.min_distance,

@@ -203,9 +203,9 @@ pub struct VerificationJson {
     pub note: Option<String>,
 }
 
-/// The whole report.
+/// A run's summary, `report.json` (and `report.md`): not the `report` module's page.
 #[derive(Clone, Debug, Serialize)]
-pub struct Report {
+pub struct RunReport {
     /// Run name.
     pub name: String,
     /// Free text from the config.
@@ -268,7 +268,7 @@ pub struct OpenedJson {
     pub gap_at_best: Option<f64>,
 }
 
-impl Report {
+impl RunReport {
     /// `report.json`.
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))

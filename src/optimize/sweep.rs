@@ -16,9 +16,10 @@
 //! for one and two axes.
 
 use super::config::{axis_label, Config};
+use super::evaluator::Evaluator;
 use super::history::History;
 use super::problem::{check_constraints, penalty, weighted};
-use super::{Evaluator, ScoreSet};
+use super::score_set::ScoreSet;
 use crate::cut::Unit;
 use crate::error::{Error, Result};
 use crate::io::{read_bytes, write_atomic};

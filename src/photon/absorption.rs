@@ -1,9 +1,9 @@
 //! [`Absorption`] written as text: `none`, `thesis`, `beer:K` or `colour[:W]`, as `facetlab
 //! trace --absorption` takes it.
 
-use super::Absorption;
 use crate::error::{Error, Result};
 use crate::io::text::number;
+use crate::optics::Absorption;
 
 impl Absorption {
     /// Read `none`, `thesis`, `beer:K` (K ≥ 0 per girdle diameter) or `colour[:W]` (the

@@ -9,10 +9,10 @@
 use super::crystal_setup::CrystalSetup;
 use super::kernel::{chunk_seed, two_uniforms, Tracer};
 use super::tally::{Counts, Fate, PhotonPath};
-use super::{Absorption, THESIS_ABSORPTION};
 use crate::geometry::DVec3;
 use crate::optics::crystal::{Crystal, Wave};
 use crate::optics::Stokes;
+use crate::optics::{Absorption, THESIS_ABSORPTION};
 use rand::rngs::SmallRng;
 use rand::SeedableRng;
 
@@ -34,12 +34,10 @@ struct Lane {
 }
 
 impl Tracer<'_> {
-    /// [`Tracer::lanes`](super::kernel) for a birefringent stone: chunk `c`'s `n` photons,
-    /// the lanes seeded as there.
-    #[allow(clippy::too_many_arguments)]
+    /// [`Tracer::lanes`](super::kernel) for a birefringent stone (the tracer's crystal; none:
+    /// nothing is traced): chunk `c`'s `n` photons, the lanes seeded as there.
     pub(crate) fn lanes_crystal<const REC: bool>(
         &self,
-        cs: &CrystalSetup,
         c: u64,
         n: u64,
         hit_limit: Option<u64>,
@@ -48,6 +46,9 @@ impl Tracer<'_> {
         want: usize,
     ) {
         const LANES: usize = super::solid::LANES;
+        let Some(cs) = self.crystal.as_ref() else {
+            return;
+        };
         let limit = hit_limit.unwrap_or(u64::MAX);
         let base = chunk_seed(self.seed, c);
         let blank = Crystal::new(1.5, 1.5, DVec3::Z);

@@ -1,18 +1,17 @@
 //! The per-photon loop.
 
-use super::beam::Beam;
+use super::config::{ExitWeights, TraceConfig, WavelengthSampling, CHUNK, UNLIMITED_CAP};
 use super::crystal_setup::CrystalSetup;
+use super::entry_grid::EntryGrid;
+use super::light::{Light, LightKind, LightSize};
 use super::reach::Reach;
 use super::solid::TraceSolid;
 use super::tally::{Counts, Fate, PhotonPath};
-use super::{
-    Absorption, ExitWeights, Light, LightKind, LightSize, TraceConfig, WavelengthSampling, CHUNK,
-    THESIS_ABSORPTION, UNLIMITED_CAP,
-};
 use crate::error::{Error, Result};
 use crate::geometry::DVec3;
 use crate::optics::color::{d65, D65_MAX, LAMBDA_MAX, LAMBDA_MIN};
 use crate::optics::{fresnel, reflect, rotate_stokes, s_axis, Dispersion, Material, Stokes};
+use crate::optics::{Absorption, THESIS_ABSORPTION};
 use rand::rngs::SmallRng;
 use rand::{RngCore, SeedableRng};
 
@@ -36,7 +35,7 @@ pub(crate) struct Tracer<'a> {
     wavelengths: WavelengthSampling,
     pub(super) fixed_n: Option<f64>,
     pub(super) seed: u64,
-    beam: Option<Beam>,
+    entry_grid: Option<EntryGrid>,
     /// Undirected lights: which photons surely miss, from their start and polar angle.
     reach: Option<Reach>,
     /// cos(k°) for k = 0..=180.
@@ -46,7 +45,7 @@ pub(crate) struct Tracer<'a> {
     /// Weights of an exit direction, summed into [`Counts::weight_sum`].
     pub(crate) exit_weight: Option<&'a ExitWeights<'a>>,
     /// A birefringent stone's crystal (its photons take the kernel of `crystal.rs`).
-    crystal: Option<CrystalSetup>,
+    pub(super) crystal: Option<CrystalSetup>,
 }
 
 /// Unpolarized Fresnel reflectance for incidence cosine `cos_i` and index ratio
@@ -219,8 +218,8 @@ impl<'a> Tracer<'a> {
                 cos_deg[1..180].partition_point(|&t| z <= t) as u8
             })),
             cos_deg,
-            beam: (light.kind == LightKind::Directed)
-                .then(|| Beam::new(s, centre, axis, u, v, half)),
+            entry_grid: (light.kind == LightKind::Directed)
+                .then(|| EntryGrid::new(s, centre, axis, u, v, half)),
             exit_weight: None,
             crystal: CrystalSetup::of(&cfg.material),
         })
@@ -252,8 +251,8 @@ impl<'a> Tracer<'a> {
     fn chunk_impl(&self, c: u64, n: u64, hit_limit: Option<u64>) -> Counts {
         let mut k = Counts::new(self.s.facets);
         let mut none = Vec::new();
-        if let Some(cs) = &self.crystal {
-            self.lanes_crystal::<false>(cs, c, n, hit_limit, &mut k, &mut none, 0);
+        if self.crystal.is_some() {
+            self.lanes_crystal::<false>(c, n, hit_limit, &mut k, &mut none, 0);
         } else if self.polarization {
             self.lanes::<true, false>(c, n, hit_limit, &mut k, &mut none, 0);
         } else {
@@ -279,8 +278,8 @@ impl<'a> Tracer<'a> {
                 None => (CHUNK.min(shot - done), None),
             };
             let mut k = Counts::new(self.s.facets);
-            if let Some(cs) = &self.crystal {
-                self.lanes_crystal::<true>(cs, c, photons, limit, &mut k, &mut out, n);
+            if self.crystal.is_some() {
+                self.lanes_crystal::<true>(c, photons, limit, &mut k, &mut out, n);
             } else if self.polarization {
                 self.lanes::<true, true>(c, photons, limit, &mut k, &mut out, n);
             } else {
@@ -369,7 +368,7 @@ impl<'a> Tracer<'a> {
     #[inline(always)]
     fn angle_bin(&self, z: f64) -> usize {
         let u = (1.0 - z).max(0.0).sqrt() * ANGLE_CELLS_PER_U;
-        let mut bin = self.angle_start[super::grid_cell(u, ANGLE_CELLS)] as usize;
+        let mut bin = self.angle_start[super::entry_grid::grid_cell(u, ANGLE_CELLS)] as usize;
         while bin < 179 && z <= self.cos_deg[bin + 1] {
             bin += 1;
         }
@@ -520,9 +519,9 @@ impl<'a> Tracer<'a> {
                 self.axis * c + self.u * (s * cp) + self.v * (s * sp)
             }
         };
-        let (t, f) = match &self.beam {
-            Some(beam) => {
-                let f = beam.entry(a, b)?;
+        let (t, f) = match &self.entry_grid {
+            Some(grid) => {
+                let f = grid.entry(a, b)?;
                 let n = self.s.normals[f];
                 let t = (self.s.off[f] - n.dot(o)) / n.dot(d);
                 if t < 0.0 {
@@ -750,14 +749,14 @@ mod tests {
         ] {
             let cfg = TraceConfig::thesis();
             let tr = Tracer::new(&s, &light, &cfg).unwrap();
-            let beam = tr.beam.as_ref().unwrap();
+            let grid = tr.entry_grid.as_ref().unwrap();
             let mut rng = SmallRng::seed_from_u64(5);
             let (mut hits, mut differ) = (0, 0);
             for _ in 0..20_000 {
                 let a = (2.0 * rng.random::<f64>() - 1.0) * tr.half;
                 let b = (2.0 * rng.random::<f64>() - 1.0) * tr.half;
                 let o = tr.centre + tr.u * a + tr.v * b;
-                let fast = beam.entry(a, b);
+                let fast = grid.entry(a, b);
                 let general = s.entry(o, tr.axis).map(|(_, f)| f);
                 hits += general.is_some() as u32;
                 differ += (fast != general) as u32;

@@ -67,7 +67,7 @@ impl Reach {
     /// surely misses the stone.
     #[inline(always)]
     pub(crate) fn misses(&self, a: f64, b: f64, c: f64) -> bool {
-        let cell = |x: f64| super::grid_cell((x + self.half) * self.scale, CELLS);
+        let cell = |x: f64| super::entry_grid::grid_cell((x + self.half) * self.scale, CELLS);
         let (i, j) = (cell(a), cell(b));
         let (lo, hi) = self.bounds[i * CELLS + j];
         c < lo || c > hi

@@ -1,7 +1,8 @@
 //! Tallies: integer counts while tracing, shares with standard errors when reported.
 
+use super::config::WEIGHTS;
+use super::light::Light;
 use super::solid::TraceSolid;
-use super::{Light, WEIGHTS};
 use crate::geometry::DVec3;
 use serde::ser::{Serialize, SerializeMap, Serializer};
 

@@ -1,6 +1,9 @@
 //! Physics and bookkeeping tests of the photon tracer (small photon counts).
 
+use super::run::{run_shot_waves, WAVE};
 use super::*;
+use crate::geometry::{DVec3, Polyhedron};
+use crate::optics::Material;
 use crate::optics::{fresnel, reflect, refract};
 use crate::testkit::{cube, slab, tolkowsky};
 
@@ -239,14 +242,14 @@ fn same_seed_same_numbers_on_one_and_two_threads() {
 /// grid of rays over the stone, every Fresnel split followed with its exact weight to the
 /// same depth, no randomness. Written against `Polyhedron` and the `optics` functions only.
 fn grid_light_return(s: &Polyhedron, n: f64, depth: u32, grid: usize) -> (f64, f64) {
-    #[allow(clippy::too_many_arguments)]
+    /// Follow the ray at `p` going `d` (weight `w`, `inter` interactions so far) inside `s`
+    /// of index `n` down to `depth`, adding to `acc` (up, out, cut off).
     fn follow(
         s: &Polyhedron,
-        p: DVec3,
-        d: DVec3,
         n: f64,
-        inter: u32,
         depth: u32,
+        (p, d): (DVec3, DVec3),
+        inter: u32,
         w: f64,
         acc: &mut [f64; 3],
     ) {
@@ -280,7 +283,7 @@ fn grid_light_return(s: &Polyhedron, n: f64, depth: u32, grid: usize) -> (f64, f
             }
             acc[1] += wt;
         }
-        follow(s, q, reflect(d, m), n, inter + 1, depth, w * r, acc);
+        follow(s, n, depth, (q, reflect(d, m)), inter + 1, w * r, acc);
     }
     let (lo, hi) = s.bounding_box();
     let d = DVec3::NEG_Z;
@@ -314,16 +317,8 @@ fn grid_light_return(s: &Polyhedron, n: f64, depth: u32, grid: usize) -> (f64, f
                 acc[0] += r;
             }
             acc[1] += r;
-            follow(
-                s,
-                p,
-                refract(d, m, 1.0, n).unwrap(),
-                n,
-                1,
-                depth,
-                1.0 - r,
-                &mut acc,
-            );
+            let inside = (p, refract(d, m, 1.0, n).unwrap());
+            follow(s, n, depth, inside, 1, 1.0 - r, &mut acc);
             assert!(
                 (acc[1] + acc[2] - 1.0).abs() < 1e-9,
                 "energy of one grid ray"

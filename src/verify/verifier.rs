@@ -9,7 +9,7 @@
 //! Monte Carlo brilliance under the beam tracer's lighting does, and any row whose Monte Carlo
 //! value is more than `sigma` (default 4) standard errors from its beam value is flagged.
 
-use super::VerifyReport;
+use super::report::VerifyReport;
 use crate::cut::Cut;
 use crate::error::Result;
 use crate::metrics::ScoreName;

@@ -8,7 +8,7 @@
 
 mod sweep;
 
-pub(crate) use sweep::{choose_shard, map_spec, write_sweep_outputs, Names};
+pub(crate) use sweep::{choose_shard, write_sweep_outputs, Names};
 pub use sweep::{run_sweep, SweepArgs};
 
 use super::outputs::{refuse_overwrite, Exit};
@@ -508,7 +508,7 @@ mod tests {
             .unwrap(),
         ])
         .unwrap();
-        let spec = map_spec(&grid, s.map.as_deref(), &s.at).unwrap();
+        let spec = facetlab::optimize::MapSpec::new(&grid, s.map.as_deref(), &s.at).unwrap();
         assert_eq!(
             (spec.axes.clone(), spec.fixed.clone()),
             (vec![2, 0], vec![2, 2, 1]),

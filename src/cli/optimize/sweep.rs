@@ -8,7 +8,9 @@ use super::{bar, install_ctrl_c, Scorers, STOP};
 use crate::cli::outputs::{refuse_overwrite, Exit};
 use clap::Args;
 use facetlab::error::{Error, Result};
-use facetlab::optimize::{self as opt, Axis, Config, Grid, GridCell, Shard, ShardRun, SweepScore};
+use facetlab::optimize::{
+    self as opt, Axis, Config, Grid, MapSpec, Shard, ShardRun, SweepScore, Swept,
+};
 use std::path::{Path, PathBuf};
 
 /// Flags of `facetlab sweep`.
@@ -98,13 +100,6 @@ fn sweep_axes(a: &SweepArgs, config: &Config) -> Result<Vec<Axis>> {
     Ok(axes)
 }
 
-/// What a map shows: the mapped axes (one: a profile; two: a heatmap) and where the others
-/// are held (value indices).
-pub(crate) struct MapSpec {
-    pub axes: Vec<usize>,
-    pub fixed: Vec<usize>,
-}
-
 /// Names for a sweep's titles: the config's name, the family, the config's file name.
 pub(crate) struct Names {
     pub name: String,
@@ -151,17 +146,15 @@ pub(super) fn map_title(names: &Names, grid: &Grid, score: &SweepScore, spec: &M
 
 /// Write a whole sweep's CSV and its map where `out` says, and print what was written and the
 /// highest `score`.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn write_sweep_outputs(
-    grid: &Grid,
-    cells: &[GridCell],
-    labels: &[String],
+    swept: &Swept<'_>,
     score: &SweepScore,
     spec: &MapSpec,
     names: &Names,
     path: Option<Vec<(f64, f64)>>,
     out: &Path,
 ) -> Result<()> {
+    let (grid, cells) = (swept.grid, swept.cells);
     let (csv, png, svg) = opt::sweep_output_paths(out);
     if let Some(d) = csv.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(d).map_err(|e| Error::io(d.display().to_string(), e))?;
@@ -169,13 +162,10 @@ pub(crate) fn write_sweep_outputs(
     facetlab::io::write_atomic(&csv, opt::grid_csv(grid, cells).as_bytes())?;
     let title = map_title(names, grid, score, spec);
     if let [ax] = spec.axes[..] {
-        let lines = opt::profile_lines(grid, cells, labels, ax, &spec.fixed, title);
+        let lines = swept.profile_lines(ax, &spec.fixed, title);
         facetlab::plot::optimize::profile(&lines, &png, &svg)?;
     } else {
-        let map = opt::grid_heatmap(
-            grid,
-            cells,
-            labels,
+        let map = swept.heatmap(
             score,
             (spec.axes[0], spec.axes[1]),
             &spec.fixed,
@@ -202,13 +192,6 @@ pub(crate) fn write_sweep_outputs(
     Ok(())
 }
 
-/// The map of `--map`/`--at` for `grid`.
-pub(crate) fn map_spec(grid: &Grid, map: Option<&str>, at: &[String]) -> Result<MapSpec> {
-    let axes = opt::map_axes(grid, map)?;
-    let fixed = opt::fixed_at(grid, &opt::parse_at(at)?)?;
-    Ok(MapSpec { axes, fixed })
-}
-
 /// The shard of `--shard` (`off`: none, whatever the environment), else of a job array's
 /// environment (`env` reads a variable).
 pub(crate) fn choose_shard(
@@ -231,7 +214,7 @@ pub fn run_sweep_env(
     let config = Config::load(&a.config)?;
     let grid = Grid::new(sweep_axes(a, &config)?)?;
     let score = a.score.clone();
-    let spec = map_spec(&grid, a.map.as_deref(), &a.at)?;
+    let spec = MapSpec::new(&grid, a.map.as_deref(), &a.at)?;
     if spec.axes.len() < 2 && a.run.is_some() {
         return Err(Error::invalid(
             "--run",
@@ -308,7 +291,12 @@ pub fn run_sweep_env(
     });
     pb.finish_and_clear();
     let labels: Vec<String> = grid.axes.iter().map(|x| x.label()).collect();
-    write_sweep_outputs(&grid, &cells, &labels, &score, &spec, &names, path, &out)?;
+    let swept = Swept {
+        grid: &grid,
+        cells: &cells,
+        labels: &labels,
+    };
+    write_sweep_outputs(&swept, &score, &spec, &names, path, &out)?;
     Ok(Exit::Ok)
 }
 

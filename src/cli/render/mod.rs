@@ -408,7 +408,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     for note in colour_notes {
         eprintln!("{note}");
     }
-    let density = a.colour.density()?;
+    let density = a.colour.colour_density;
     for note in a
         .crystal
         .apply(&cuts, &mut materials, density, s.opts.wavelength_nm)?

@@ -449,11 +449,10 @@ pub fn run(a: &RenderArgs, light: PhotoLight) -> Result<()> {
                 &opts,
                 &st,
                 s.exposure,
-                &out,
-                if c == 0 { hdr_out.as_deref() } else { None },
                 fr.into_iter().map(|f| f.0).collect(),
                 s.turn,
             )
+            .written(&out, if c == 0 { hdr_out.as_deref() } else { None })
         })
         .collect();
     for r in &records {

@@ -232,16 +232,19 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<AscDesign> {
     }
     let footnotes = lines(&text[TEXT_SLOTS..]);
     let title = lines(&text[..TEXT_SLOTS]);
-    Ok(design(
-        records,
+    let header = AscDesign {
+        title,
         gear,
         gear_offset,
         symmetry,
         mirror,
-        ri,
-        title,
+        ri: Some(ri),
+        tiers: Vec::new(),
+        planes: Vec::new(),
         footnotes,
-    ))
+        instructions: Default::default(),
+    };
+    Ok(design(records, header))
 }
 
 /// Text slots as lines: trimmed (as the `.asc` reader trims `H` and `F` lines), the empty
@@ -254,22 +257,13 @@ fn lines(slots: &[String]) -> Vec<String> {
     out
 }
 
-/// The design of the records: one line per tier number (in order of first appearance), its
-/// angle, distance, indices, name and instructions derived from its facets.
-#[allow(clippy::too_many_arguments)]
-fn design(
-    records: Vec<Record>,
-    gear: f64,
-    gear_offset: f64,
-    symmetry: u32,
-    mirror: bool,
-    ri: f64,
-    title: Vec<String>,
-    footnotes: Vec<String>,
-) -> AscDesign {
+/// The design of the records under `header` (the file's titles, notes, gear, symmetry and
+/// index, no tiers yet): one line per tier number (in order of first appearance), its angle,
+/// distance, indices, name and instructions derived from its facets.
+fn design(records: Vec<Record>, header: AscDesign) -> AscDesign {
     let g = Gear {
-        teeth: gear,
-        offset: gear_offset,
+        teeth: header.gear,
+        offset: header.gear_offset,
     };
     let mut line_of: HashMap<i32, usize> = HashMap::new();
     let mut tiers: Vec<AscTier> = Vec::new();
@@ -309,16 +303,10 @@ fn design(
     }
     let (planes, instructions) = assemble(&tiers, facets);
     AscDesign {
-        title,
-        gear,
-        gear_offset,
-        symmetry,
-        mirror,
-        ri: Some(ri),
         tiers,
         planes,
-        footnotes,
         instructions,
+        ..header
     }
 }
 

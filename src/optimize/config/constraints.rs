@@ -1,6 +1,6 @@
 //! `[constraints]`: limits on the cut's measurements, enforced by penalties.
 
-use super::{defaults, finite, At};
+use super::fields::{defaults, finite, At};
 use crate::cut::grade::Grade;
 use crate::error::{shown, Error, Result};
 use serde::{Deserialize, Serialize};

@@ -1,6 +1,6 @@
 //! `[cut]`: the cut space (a family, or a design's tier angles) and the start cut.
 
-use super::At;
+use super::fields::At;
 use crate::cut::{family, Cut, CutSpace};
 use crate::design::{DesignSpace, OpenMeets, MEET_TOL};
 use crate::error::{shown, Error, Result};

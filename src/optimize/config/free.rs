@@ -1,6 +1,6 @@
 //! `[free]`: the parameters the optimizer varies, `key = [min, max]`.
 
-use super::At;
+use super::fields::At;
 use crate::cut::{CutSpace, Unit};
 use crate::error::{shown, Error, Result};
 use std::collections::BTreeMap;

@@ -4,7 +4,8 @@
 //! the design stops being itself (a facet vanishes, an edge appears or vanishes), refused
 //! with the angle and the range that holds.
 
-use super::{At, FreeParam};
+use super::fields::At;
+use super::free::FreeParam;
 use crate::cut::CutSpace;
 use crate::design::{DesignSpace, OpenMeets, OpenedMeet, Tie, TieKind};
 use crate::error::{Error, Result};

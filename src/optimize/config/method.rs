@@ -1,6 +1,6 @@
 //! `[method]`: the search method, its settings and the budgets.
 
-use super::{defaults, finite, At};
+use super::fields::{defaults, finite, At};
 use crate::error::{shown, Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -148,7 +148,7 @@ pub(super) fn validate(rm: &RawMethod, n_free: usize, at: At) -> Result<(Method,
         }
         Ok(())
     };
-    let count = |field: &str, v: u64, lo: u64, hi: u64| super::count(at, field, v, lo, hi);
+    let count = |field: &str, v: u64, lo: u64, hi: u64| super::fields::count(at, field, v, lo, hi);
     let (method, default_iters) = match mname {
         "nelder-mead" => {
             refuse(&pso_only, "particle-swarm")?;

@@ -35,29 +35,34 @@
 //! (section "The config file").
 //!
 //! Each section has its own file with its raw form, its validated form and its validator
-//! (`cut.rs`, `free.rs`, `objective.rs`, `constraints.rs`, `method.rs`, `winners.rs` for
-//! `[verify]`, `score.rs`); [`Config::from_raw`] runs them in the file's order.
+//! (`cut.rs`, `free.rs`, `objective.rs`, `constraints.rs`, `method.rs`, `verify.rs`,
+//! `score.rs`); [`Config::from_raw`] runs them in the file's order. `search_box.rs` is the box
+//! a validated config's search moves in ([`Config::search_box`]).
 
 mod constraints;
 mod cut;
+mod fields;
 mod free;
 mod meets;
 mod method;
 mod objective;
 mod score;
-mod winners;
+mod search_box;
+mod verify;
 
 pub use constraints::{Constraints, RawConstraints};
 pub use cut::RawCut;
+pub use fields::defaults;
 pub use free::{axis_label, FreeParam, OPTIC_AXIS};
 pub use method::{Budget, Method, NelderMeadSettings, RawMethod, Sampling, SwarmSettings};
 pub use objective::{ParetoSpec, RawObjective, Weights};
 pub use score::{RawScore, ScoreSettings};
-pub use winners::{RawVerify, VerifySettings};
+pub use search_box::SearchBox;
+pub use verify::{RawVerify, VerifySettings};
 
 use crate::cut::{Cut, CutSpace};
 use crate::design::{DesignSpace, OpenedMeet};
-use crate::error::{shown, Error, Result};
+use crate::error::{Error, Result};
 use crate::io::{line_of, read_bytes};
 use crate::metrics::ScoreName;
 use serde::{Deserialize, Serialize};
@@ -146,69 +151,10 @@ pub struct Config {
     pub skip_changes: bool,
 }
 
-/// Defaults (also in the config-file table of `README.md`).
-pub mod defaults {
-    /// Seed.
-    pub const SEED: u64 = 1;
-    /// Penalty per percentage point of violation.
-    pub const PENALTY: f64 = 1.0;
-    /// Nelder–Mead starts.
-    pub const STARTS: u64 = 4;
-    /// Nelder–Mead iterations per start.
-    pub const NM_MAX_ITERATIONS: u64 = 1000;
-    /// Evaluation budget.
-    pub const MAX_EVALUATIONS: u64 = 400;
-    /// Simplex edge.
-    pub const SIMPLEX_STEP: f64 = 0.15;
-    /// Nelder–Mead convergence tolerance (standard deviation of the simplex's costs).
-    pub const TOLERANCE: f64 = 1e-9;
-    /// Particles.
-    pub const PARTICLES: u64 = 16;
-    /// Swarm iterations.
-    pub const PSO_MAX_ITERATIONS: u64 = 25;
-    /// Inertia (argmin's default, 1/(2 ln 2)).
-    pub const INERTIA: f64 = 0.721_347_520_444_481_7;
-    /// Cognitive and social factors (argmin's default, 1/2 + ln 2).
-    pub const PULL: f64 = 1.193_147_180_559_945_3;
-    /// Winners to verify.
-    pub const WINNERS: u64 = 3;
-    /// Photons per verified cut and light.
-    pub const PHOTONS: u64 = 100_000;
-    /// Distance between winners.
-    pub const MIN_DISTANCE: f64 = 0.05;
-    /// Disagreement threshold.
-    pub const SIGMA: f64 = 4.0;
-}
-
 /// A colour weight as the written config gives it (left out when 0).
 fn colour_weight(w: f64) -> Option<f64> {
     (w != 0.0).then_some(w)
 }
-
-fn finite(field: &str, v: f64) -> Result<f64> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(Error::invalid(
-            field,
-            format!("{} is not a finite number", shown(v)),
-        ))
-    }
-}
-
-/// A whole number in `[lo, hi]`, or an error naming the field.
-fn count(at: At, field: &str, v: u64, lo: u64, hi: u64) -> Result<u64> {
-    if !(lo..=hi).contains(&v) {
-        return Err(Error::invalid(
-            at(field),
-            format!("{v} is out of range; allowed {lo} to {hi}"),
-        ));
-    }
-    Ok(v)
-}
-
-/// Names a field in messages: `SOURCE: FIELD`.
-type At<'a> = &'a dyn Fn(&str) -> String;
 
 impl Config {
     /// The files this config reads besides itself (its `[cut] file` design), as found: an
@@ -326,7 +272,7 @@ impl Config {
         }
         let (method, budget) =
             method::validate(&raw.method.clone().unwrap_or_default(), free.len(), &at)?;
-        let verify = winners::validate(&raw.verify.clone().unwrap_or_default(), &at)?;
+        let verify = verify::validate(&raw.verify.clone().unwrap_or_default(), &at)?;
         let raw_score = raw.score.clone().unwrap_or_default();
         let mut score = score::validate(&raw_score, &at)?;
         // A design is scored in its own material (its file's index) unless the config says.
@@ -434,34 +380,29 @@ impl Config {
             .map_err(|e| e.context(&format!("{}: start cut", self.source)))
     }
 
-    /// The cut of the config's space with parameters `params` (the free ones included): a
-    /// free `optic_axis` is not the space's, and rides along in the cut's
-    /// [`params`](Cut::params), where the evaluators read it.
-    pub fn build(&self, label: &str, params: &BTreeMap<String, f64>) -> Result<Cut> {
-        match params.get(free::OPTIC_AXIS) {
-            None => self.space.build(label, params),
-            Some(&axis) => {
-                let mut p = params.clone();
-                p.remove(free::OPTIC_AXIS);
-                let mut cut = self.space.build(label, &p)?;
-                cut.params.insert(free::OPTIC_AXIS.to_string(), axis);
-                Ok(cut)
-            }
+    /// The box the search moves in: the free parameters and the space that builds their cuts.
+    pub fn search_box(&self) -> SearchBox<'_> {
+        SearchBox {
+            name: &self.name,
+            space: &*self.space,
+            start: &self.start,
+            free: &self.free,
         }
+    }
+
+    /// The cut of the config's space with parameters `params` (see [`SearchBox::build`]).
+    pub fn build(&self, label: &str, params: &BTreeMap<String, f64>) -> Result<Cut> {
+        self.search_box().build(label, params)
     }
 
     /// The space's parameters with the free ones set to `x` (in [`Config::free`] order).
     pub fn params_at(&self, x: &[f64]) -> BTreeMap<String, f64> {
-        let mut p = self.start.clone();
-        for (f, v) in self.free.iter().zip(x) {
-            p.insert(f.key.clone(), *v);
-        }
-        p
+        self.search_box().params_at(x)
     }
 
     /// The free parameters' start values.
     pub fn start_x(&self) -> Vec<f64> {
-        self.free.iter().map(|f| f.start).collect()
+        self.search_box().start_x()
     }
 
     /// The config as used: every default written out, TOML.

@@ -1,6 +1,6 @@
 //! `[objective]`: the weights of the scores.
 
-use super::{finite, At};
+use super::fields::{finite, At};
 use crate::error::{shown, Error, Result};
 use crate::metrics::score_name::list;
 use crate::metrics::ScoreName;

@@ -1,6 +1,6 @@
 //! `[score]`: how the cuts are scored (material, lighting).
 
-use super::{finite, At};
+use super::fields::{finite, At};
 use crate::error::{shown, Error, Result};
 use serde::{Deserialize, Serialize};
 

@@ -5,10 +5,11 @@
 //! appending each finished row to `rows.csv` at once, so a run stopped at any moment resumes
 //! where it stopped.
 
+use super::points::{evaluate, Grid};
 use super::shard::{hash, read_rows, rows_header, shard_row, AxisRecord, Shard, ShardRecord};
-use super::{evaluate, Grid};
 use crate::error::{Error, Result};
-use crate::optimize::{Config, Evaluator};
+use crate::optimize::config::Config;
+use crate::optimize::evaluator::Evaluator;
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};

@@ -2,10 +2,11 @@
 //! finished point appends to `rows.csv` and how it is read back, the shard's record
 //! (`shard.json`), and the merge's check that the shards cover the grid exactly once.
 
-use super::{num, Grid, GridCell};
+use super::points::{num, Grid, GridCell};
 use crate::error::{Error, Result};
+use crate::metrics::ScoreName;
+use crate::optimize::score_set::ScoreSet;
 use crate::optimize::sweep::{Axis, SCORES};
-use crate::optimize::{ScoreName, ScoreSet};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 

@@ -2,7 +2,7 @@
 //! values (`--at KEY=VALUE`, default the middle of each axis), as a heatmap or as the scores
 //! along one axis.
 
-use super::{Grid, GridCell};
+use super::points::{Grid, GridCell};
 use crate::error::{Error, Result};
 use crate::optimize::sweep::{Heatmap, ProfileLines, SweepScore, SCORES};
 
@@ -70,77 +70,103 @@ pub fn parse_at(specs: &[String]) -> Result<Vec<(String, f64)>> {
         .collect()
 }
 
-/// A heatmap of `score` over the axes `mx`, `my` with the others at `fixed` (value indices;
-/// see [`fixed_at`]). `cells` are all of the grid's, in grid order; `labels` the axis labels.
-#[allow(clippy::too_many_arguments)]
-pub fn heatmap(
-    grid: &Grid,
-    cells: &[GridCell],
-    labels: &[String],
-    score: &SweepScore,
-    (mx, my): (usize, usize),
-    fixed: &[usize],
-    title: String,
-    path: Option<Vec<(f64, f64)>>,
-) -> Heatmap {
-    let (xs, ys) = (&grid.axes[mx].values, &grid.axes[my].values);
-    let mut idx = fixed.to_vec();
-    let z = (0..ys.len())
-        .map(|j| {
-            (0..xs.len())
-                .map(|i| {
-                    idx[mx] = i;
-                    idx[my] = j;
-                    cells[grid.index(&idx)].value(score)
-                })
-                .collect()
-        })
-        .collect();
-    Heatmap {
-        title,
-        xs: xs.clone(),
-        ys: ys.clone(),
-        z,
-        x_label: labels[mx].clone(),
-        y_label: labels[my].clone(),
-        z_label: match score {
-            SweepScore::Objective => "objective = weighted score − penalties".into(),
-            other => other.name().to_string(),
-        },
-        path,
+/// A swept grid and its scores: the grid, every cell of it in grid order, and the axes'
+/// labels (as a sweep names them, or as its shards recorded them).
+#[derive(Clone, Copy, Debug)]
+pub struct Swept<'a> {
+    /// The grid.
+    pub grid: &'a Grid,
+    /// Every cell, in grid order.
+    pub cells: &'a [GridCell],
+    /// The axes' labels, in axis order.
+    pub labels: &'a [String],
+}
+
+/// What a map shows: the mapped axes (one: a profile; two: a heatmap) and where the others
+/// are held (value indices; see [`fixed_at`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MapSpec {
+    /// The mapped axes (indices into the grid's axes).
+    pub axes: Vec<usize>,
+    /// Every axis' held value index (the mapped axes' are not used).
+    pub fixed: Vec<usize>,
+}
+
+impl MapSpec {
+    /// The map of `map` (`KEY1[,KEY2]`, see [`map_axes`]) with the other axes held at `at`
+    /// (`KEY=VALUE` each, see [`fixed_at`]).
+    pub fn new(grid: &Grid, map: Option<&str>, at: &[String]) -> Result<MapSpec> {
+        let axes = map_axes(grid, map)?;
+        let fixed = fixed_at(grid, &parse_at(at)?)?;
+        Ok(MapSpec { axes, fixed })
     }
 }
 
-/// Every score along axis `ax` with the others at `fixed` (see [`fixed_at`]).
-pub fn profile_lines(
-    grid: &Grid,
-    cells: &[GridCell],
-    labels: &[String],
-    ax: usize,
-    fixed: &[usize],
-    title: String,
-) -> ProfileLines {
-    let xs = &grid.axes[ax].values;
-    let mut idx = fixed.to_vec();
-    let at: Vec<&GridCell> = (0..xs.len())
-        .map(|i| {
-            idx[ax] = i;
-            &cells[grid.index(&idx)]
-        })
-        .collect();
-    ProfileLines {
-        title,
-        xs: xs.clone(),
-        x_label: labels[ax].clone(),
-        series: SCORES
-            .iter()
-            .map(|s| {
-                (
-                    s.name().to_string(),
-                    at.iter().map(|c| c.value(s)).collect(),
-                )
+impl Swept<'_> {
+    /// A heatmap of `score` over the axes `mx`, `my` with the others at `fixed` (value
+    /// indices; see [`fixed_at`]), with an optimizer's `path` drawn on it.
+    pub fn heatmap(
+        &self,
+        score: &SweepScore,
+        (mx, my): (usize, usize),
+        fixed: &[usize],
+        title: String,
+        path: Option<Vec<(f64, f64)>>,
+    ) -> Heatmap {
+        let (grid, cells, labels) = (self.grid, self.cells, self.labels);
+        let (xs, ys) = (&grid.axes[mx].values, &grid.axes[my].values);
+        let mut idx = fixed.to_vec();
+        let z = (0..ys.len())
+            .map(|j| {
+                (0..xs.len())
+                    .map(|i| {
+                        idx[mx] = i;
+                        idx[my] = j;
+                        cells[grid.index(&idx)].value(score)
+                    })
+                    .collect()
             })
-            .collect(),
+            .collect();
+        Heatmap {
+            title,
+            xs: xs.clone(),
+            ys: ys.clone(),
+            z,
+            x_label: labels[mx].clone(),
+            y_label: labels[my].clone(),
+            z_label: match score {
+                SweepScore::Objective => "objective = weighted score − penalties".into(),
+                other => other.name().to_string(),
+            },
+            path,
+        }
+    }
+
+    /// Every score along axis `ax` with the others at `fixed` (see [`fixed_at`]).
+    pub fn profile_lines(&self, ax: usize, fixed: &[usize], title: String) -> ProfileLines {
+        let (grid, cells, labels) = (self.grid, self.cells, self.labels);
+        let xs = &grid.axes[ax].values;
+        let mut idx = fixed.to_vec();
+        let at: Vec<&GridCell> = (0..xs.len())
+            .map(|i| {
+                idx[ax] = i;
+                &cells[grid.index(&idx)]
+            })
+            .collect();
+        ProfileLines {
+            title,
+            xs: xs.clone(),
+            x_label: labels[ax].clone(),
+            series: SCORES
+                .iter()
+                .map(|s| {
+                    (
+                        s.name().to_string(),
+                        at.iter().map(|c| c.value(s)).collect(),
+                    )
+                })
+                .collect(),
+        }
     }
 }
 

@@ -6,7 +6,7 @@
 
 use super::camera::{Camera, Projection, Tile};
 use super::env::{luminance, Environment, Rgb};
-use super::ground::{land, GroundField, GroundKind, Lit, LitTrace};
+use super::ground::{land, GroundField, GroundKind, GroundPlane, Lit, LitTrace};
 use super::options::PhotoOptions;
 use super::{Photo, PhotoStats};
 use crate::beam::{ExitBeam, ExitSink, Frame, Medium, Stone, TraceOptions};
@@ -468,9 +468,7 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
         GroundField::new(
             &stone,
             rot,
-            z,
-            reach,
-            n,
+            GroundPlane { z, half: reach, n },
             &albedo,
             &lights,
             &luminance_of,

@@ -258,23 +258,32 @@ impl ExitSink for CausticSink<'_> {
 /// Rows of the ground's raster one thread fills at a time.
 const GROUND_ROWS: usize = 32;
 
+/// Where a ground lies and how it is sampled: its plane at height `z` (world), a raster of
+/// `n` × `n` cells over ±`half`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GroundPlane {
+    /// Height of the plane.
+    pub z: f64,
+    /// Half-width of the raster.
+    pub half: f64,
+    /// Cells per side.
+    pub n: usize,
+}
+
 impl GroundField {
-    /// The ground under `stone` (posed by `rot`, stone → world) with its plane at `z`, on a
-    /// raster of `n` cells over ±`half`, lit by `lights` (each traced as it says, with
-    /// `opts`); `albedo` per band; `luminance` turns per-band values into luminance Y for the
-    /// bookkeeping.
-    #[allow(clippy::too_many_arguments)]
+    /// The ground under `stone` (posed by `rot`, stone → world) on `plane`, lit by `lights`
+    /// (each traced as it says, with `opts`); `albedo` per band; `luminance` turns per-band
+    /// values into luminance Y for the bookkeeping.
     pub fn new(
         stone: &Stone,
         rot: DMat3,
-        z: f64,
-        half: f64,
-        n: usize,
+        plane: GroundPlane,
         albedo: &[f64],
         lights: &[Lit],
         luminance: &(dyn Fn(&[f64]) -> f64 + Sync),
         opts: &TraceOptions,
     ) -> GroundField {
+        let GroundPlane { z, half, n } = plane;
         let bands = albedo.len();
         let n = n.max(1);
         let cell = 2.0 * half / n as f64;

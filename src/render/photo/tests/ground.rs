@@ -3,7 +3,7 @@
 //! tracer's hits on the same plane within 4 standard errors per cell.
 
 use super::super::env::{direction, LightSample};
-use super::super::ground::{land, GroundField, Lit, LitTrace};
+use super::super::ground::{land, GroundField, GroundPlane, Lit, LitTrace};
 use crate::beam::{Frame, Stone, TraceOptions};
 use crate::geometry::canonical::canonical;
 use crate::optics::Material;
@@ -46,9 +46,7 @@ fn field(
     let g = GroundField::new(
         &stone,
         DMat3::IDENTITY,
-        z,
-        half,
-        n,
+        GroundPlane { z, half, n },
         &[0.8],
         &lights,
         &|v: &[f64]| v[0],

@@ -1,7 +1,7 @@
 //! `[verify]`: the winners — how many distinct ones, how far apart in the box, and the photons
 //! and the threshold of their photon-tracer check.
 
-use super::{defaults, finite, At};
+use super::fields::{defaults, finite, At};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -38,7 +38,7 @@ pub struct VerifySettings {
 
 /// Validate `[verify]`.
 pub(super) fn validate(rv: &RawVerify, at: At) -> Result<VerifySettings> {
-    let count = |field: &str, v: u64, lo: u64, hi: u64| super::count(at, field, v, lo, hi);
+    let count = |field: &str, v: u64, lo: u64, hi: u64| super::fields::count(at, field, v, lo, hi);
     let min_distance = finite(
         &at("verify.min_distance"),
         rv.min_distance.unwrap_or(defaults::MIN_DISTANCE),

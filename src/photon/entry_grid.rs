@@ -1,4 +1,4 @@
-//! A directed light's entry test with a grid over the light square (see [`Beam`]'s notes).
+//! A directed light's entry test with a grid over the light square (see [`EntryGrid`]'s notes).
 
 use super::solid::TraceSolid;
 use crate::geometry::DVec3;
@@ -14,7 +14,7 @@ use crate::geometry::DVec3;
 /// the (convex) shadow is wholly inside, and there the entry facet is the best of the few
 /// front facets whose projected bounding boxes touch the cell. Only cells on the shadow's
 /// border run the full test.
-pub(super) struct Beam {
+pub(super) struct EntryGrid {
     front: [Vec<f64>; 3],
     front_facet: Vec<usize>,
     back: [Vec<f64>; 3],
@@ -35,10 +35,10 @@ const MISS: u32 = u32::MAX;
 const BORDER: u32 = u32::MAX - 1;
 
 const BL: usize = 4;
-/// Cells per side of the beam grid.
+/// Cells per side of the entry grid.
 const GRID: usize = 128;
 
-impl Beam {
+impl EntryGrid {
     pub(super) fn new(
         s: &TraceSolid,
         centre: DVec3,
@@ -46,7 +46,7 @@ impl Beam {
         u: DVec3,
         v: DVec3,
         half: f64,
-    ) -> Beam {
+    ) -> EntryGrid {
         let mut front: [Vec<f64>; 3] = Default::default();
         let mut back: [Vec<f64>; 3] = Default::default();
         let mut front_facet = Vec::new();
@@ -81,7 +81,7 @@ impl Beam {
             back[1].push(0.0);
             back[2].push(0.0);
         }
-        let mut beam = Beam {
+        let mut grid = EntryGrid {
             front,
             front_facet,
             back,
@@ -95,7 +95,7 @@ impl Beam {
         let step = 2.0 * half / GRID as f64;
         let corner = |i: usize| -half + i as f64 * step;
         let mut lists: Vec<Vec<u32>> = vec![Vec::new(); GRID * GRID];
-        for (k, &f) in beam.front_facet[..n_front].iter().enumerate() {
+        for (k, &f) in grid.front_facet[..n_front].iter().enumerate() {
             let (mut alo, mut ahi, mut blo, mut bhi) = (
                 f64::INFINITY,
                 f64::NEG_INFINITY,
@@ -123,28 +123,28 @@ impl Beam {
         }
         let inside: Vec<bool> = (0..(GRID + 1) * (GRID + 1))
             .map(|c| {
-                beam.entry_full(corner(c / (GRID + 1)), corner(c % (GRID + 1)))
+                grid.entry_full(corner(c / (GRID + 1)), corner(c % (GRID + 1)))
                     .is_some()
             })
             .collect();
         for (c, list) in lists.iter().enumerate() {
             let (i, j) = (c / GRID, c % GRID);
             let corners = [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)];
-            let start = beam.candidates.len();
+            let start = grid.candidates.len();
             let cell = if list.is_empty() {
                 MISS
             } else if corners.iter().all(|&(x, y)| inside[x * (GRID + 1) + y])
                 && list.len() < 255
                 && start + list.len() < 1 << 24
             {
-                beam.candidates.extend_from_slice(list);
+                grid.candidates.extend_from_slice(list);
                 start as u32 | (list.len() as u32) << 24
             } else {
                 BORDER
             };
-            beam.cells[c] = cell;
+            grid.cells[c] = cell;
         }
-        beam
+        grid
     }
 
     /// The entry facet of the photon at (a, b), or `None` if it misses.
@@ -156,7 +156,7 @@ impl Beam {
     /// box touches it, so both answer exactly for points that near them.
     #[inline(always)]
     pub(super) fn entry(&self, a: f64, b: f64) -> Option<usize> {
-        let cell = |x: f64| super::grid_cell((x + self.half) * self.scale, GRID);
+        let cell = |x: f64| grid_cell((x + self.half) * self.scale, GRID);
         match self.cells[cell(a) * GRID + cell(b)] {
             MISS => None,
             BORDER => self.entry_full(a, b),
@@ -220,4 +220,13 @@ impl Beam {
         let facet = self.front_facet[f_in];
         (facet != usize::MAX).then_some(facet)
     }
+}
+
+/// The cell of a grid of `cells` cells that `x` (in cell units from the grid's edge) falls
+/// in; points on or past the edges (and NaN) fall in the edge cells. The photon kernel's
+/// lookups (entry grid, sure-miss cells, exit-angle cells) find their cells with it: `as i32`
+/// converts in one instruction and a check, where `as usize` needs more on x86.
+#[inline(always)]
+pub(super) fn grid_cell(x: f64, cells: usize) -> usize {
+    (x as i32).clamp(0, cells as i32 - 1) as usize
 }

@@ -1,0 +1,203 @@
+use super::estimate::photon_config;
+use super::*;
+use crate::beam::Stone;
+use crate::geometry::Polyhedron;
+use crate::metrics::ScoreConfig;
+use crate::metrics::{overhead_light_return_with, score, Tilt};
+use crate::optics::Material;
+use crate::photon::{self, Absorption, Light, TraceConfig, WavelengthSampling};
+
+fn octahedron() -> Polyhedron {
+    crate::testkit::octahedron_of(0.5)
+}
+
+fn solids() -> Vec<(&'static str, Polyhedron)> {
+    vec![
+        ("round", crate::io::load_cut("tolkowsky").unwrap().solid),
+        ("princess", crate::io::load_cut("princess").unwrap().solid),
+        ("octahedron", octahedron()),
+    ]
+}
+
+/// The two tracers agree on the primitive figure within 4 standard errors: three solids,
+/// polarization on and off.
+#[test]
+fn beam_and_photon_tracers_agree_on_overhead_light_return() {
+    for (name, solid) in solids() {
+        for polarization in [true, false] {
+            let cfg = ScoreConfig {
+                polarization,
+                ..ScoreConfig::default()
+            };
+            let opts = crate::beam::TraceOptions {
+                polarization,
+                split_threshold: 1e-5,
+                ..Default::default()
+            };
+            let beam = overhead_light_return_with(
+                &Stone::new(&solid),
+                &crate::beam::Medium::Isotropic(cfg.material.ri(cfg.wavelength_nm)),
+                &opts,
+            );
+            let mc = overhead_light_return_mc(&solid, &cfg, 150_000, 11).unwrap();
+            let z = mc.z(beam);
+            eprintln!(
+                "{name} pol {polarization}: beam {beam:.5} photon {:.5} ± {:.5} ({z:.2} se)",
+                mc.value, mc.stderr
+            );
+            assert!(
+                z.abs() < 4.0,
+                "{name} pol {polarization}: beam {beam} vs photon {} ± {} ({z:.2} se)",
+                mc.value,
+                mc.stderr
+            );
+            assert!(mc.stderr < 2e-3);
+        }
+    }
+}
+
+/// Coloured stones (issue 25's check 3): the beam tracer's exact absorption and the photon
+/// tracer's per-photon Beer–Lambert agree on the light returned upward in every band —
+/// the face-up colour is a sum of these, band by band — within 4 standard errors, on
+/// three cuts in three published colours (6.5 mm wide).
+#[test]
+fn beam_and_photon_tracers_agree_on_coloured_light_return() {
+    let cuts = [
+        ("round", "ruby"),
+        ("princess", "emerald"),
+        ("octahedron", "blue-sapphire"),
+    ];
+    for ((name, solid), (_, variety)) in solids().into_iter().zip(cuts) {
+        let material = Material::by_name(variety).unwrap();
+        let colour = material.colour.clone().unwrap();
+        let mm_per_unit = 6.5 / crate::cut::units::outline_size(solid.vertices()).1;
+        let stone = Stone::new(&solid);
+        for nm in [450.0, 550.0, 650.0] {
+            let opts = crate::beam::TraceOptions {
+                split_threshold: 1e-5,
+                absorption: colour.alpha(nm) * mm_per_unit,
+                ..Default::default()
+            };
+            // Birefringent by default (ruby and sapphire, emerald): the crystal with
+            // its absorption per mode; the photons take the same material.
+            let axis = material.uniaxial.as_ref().unwrap().axis.vector();
+            let medium = crate::beam::Medium::of(&material, nm, axis, mm_per_unit, true);
+            let beam = overhead_light_return_with(&stone, &medium, &opts);
+            let t = photon::trace(
+                &solid,
+                &Light::directed(0.0),
+                &TraceConfig {
+                    absorption: Absorption::Body {
+                        width_mm: mm_per_unit,
+                    },
+                    material: material.clone(),
+                    wavelengths: WavelengthSampling::Fixed(nm),
+                    polarization: true,
+                    ..photon_config(&ScoreConfig::default(), 60_000, 5)
+                },
+                None,
+            )
+            .unwrap();
+            let (value, stderr) = t.light_return();
+            let z = (value - beam) / stderr;
+            eprintln!("{name} {variety} {nm} nm: beam {beam:.5} photon {value:.5} ± {stderr:.5} ({z:.2} se)");
+            assert!(
+                z.abs() < 4.0,
+                "{name} {variety} {nm} nm: {beam} vs {value} ± {stderr}"
+            );
+        }
+    }
+}
+
+/// Monte Carlo brilliance under the same lighting and poses agrees with the beam tracer's.
+#[test]
+fn beam_and_photon_brilliance_agree() {
+    let solid = crate::io::load_cut("tolkowsky").unwrap().solid;
+    let cfg = ScoreConfig {
+        tilts: vec![
+            Tilt::FACE_UP,
+            Tilt {
+                tilt_deg: 15.0,
+                azimuth_deg: 30.0,
+            },
+        ],
+        head_shadow_deg: 10.0,
+        ..ScoreConfig::default()
+    };
+    let s = score(&solid, &cfg);
+    let checks = verify_scores(&solid, &cfg, &s, 60_000, 5).unwrap();
+    for c in &checks {
+        eprintln!(
+            "{}: beam {:.5} photon {:.5} ± {:.5} ({:.2} se)",
+            c.name, c.beam, c.photon, c.stderr, c.z
+        );
+        assert!(c.z.abs() < 4.0, "{c:?}");
+    }
+    // A different material changes the figures: the check is not vacuous.
+    let glass = ScoreConfig {
+        material: Material::glass(),
+        ..cfg.clone()
+    };
+    let g = brilliance_mc(&solid, &glass, 20_000, 5).unwrap();
+    assert!(
+        g.brilliance.value < s.brilliance - 10.0 * g.brilliance.stderr,
+        "{g:?}"
+    );
+}
+
+/// The report given the beam scores is the report that computes them, row for row, and
+/// the optimizer's verifier finds them in an evaluator's score map.
+#[test]
+fn a_report_given_the_beam_scores_is_the_same_report() {
+    let cut = crate::io::load_cut("tolkowsky").unwrap();
+    let cfg = ScoreConfig {
+        tilts: vec![Tilt::FACE_UP],
+        ..ScoreConfig::default()
+    };
+    let s = score(&cut.solid, &cfg);
+    let full = photon_report(&cut, &cfg, 1500, 3).unwrap();
+    let given = photon_report_given(
+        &cut,
+        &cfg,
+        1500,
+        3,
+        Some((s.overhead_light_return, s.brilliance)),
+    )
+    .unwrap();
+    assert_eq!(full, given);
+    assert_eq!(full.rows.last().unwrap().beam, Some(s.brilliance));
+    // Other beam values would show: the given ones are used.
+    let other = photon_report_given(&cut, &cfg, 1500, 3, Some((0.5, 0.25))).unwrap();
+    assert_eq!(other.rows.last().unwrap().beam, Some(0.25));
+}
+
+#[test]
+fn flags_beyond_four_standard_errors() {
+    let r = VerifyRow::new("brilliance_mc", 0.50, 0.01);
+    assert_eq!(r.z(), None);
+    assert!(!r.disagrees(4.0), "no beam value, nothing to compare");
+    let ok = r.clone().with_beam(0.539);
+    assert!((ok.z().unwrap() - 3.9).abs() < 1e-9);
+    assert!(!ok.disagrees(4.0));
+    let edge = r.clone().with_beam(0.54);
+    assert!(!edge.disagrees(4.0 + 1e-9) && edge.disagrees(3.99));
+    let bad = r.clone().with_beam(0.46 - 1e-6);
+    assert!(bad.disagrees(4.0));
+    // Zero standard error: equal (within rounding) is fine, different is flagged.
+    let exact = VerifyRow::new("x", 0.3, 0.0).with_beam(0.1 + 0.2);
+    assert_eq!(exact.z(), Some(0.0));
+    assert!(!exact.disagrees(4.0));
+    assert!(VerifyRow::new("x", 0.3, 0.0).with_beam(0.31).disagrees(4.0));
+    // NaN never passes.
+    assert!(VerifyRow::new("x", f64::NAN, 0.1)
+        .with_beam(0.3)
+        .disagrees(4.0));
+    assert!(VerifyRow::new("x", 0.3, f64::NAN)
+        .with_beam(0.3 + 1e-3)
+        .disagrees(4.0));
+    let rep = VerifyReport {
+        photons: 10,
+        rows: vec![ok, bad, VerifyRow::new("top45", 0.7, 0.01)],
+    };
+    assert_eq!(rep.disagreements(4.0), vec!["brilliance_mc".to_string()]);
+}
