@@ -31,6 +31,17 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("map axes", "--map"),
     ("shard folder", "--out"),
     ("batch output", "--jsonl"),
+    // A picture's settings (render's and photo's options), which the library names by the
+    // picture's own words; [`picture_to_flags`] looks them up as `picture FIELD`.
+    ("picture size", "--size"),
+    ("picture tilt", "--tilt"),
+    ("picture head-shadow", "--head-shadow"),
+    ("picture bands", "--bands"),
+    ("picture view", "--view"),
+    ("picture ground-gap", "--ground-gap"),
+    ("picture light-rotation", "--light-rotation"),
+    ("picture distance", "--distance"),
+    ("picture diameter-mm", "--diameter-mm"),
 ];
 
 /// The flag that sets the library's setting `name` ([`FLAGS`]).
@@ -65,6 +76,29 @@ pub fn to_flags(e: Error) -> Error {
             source: flagged(source),
             message,
         },
+        other => other,
+    }
+}
+
+/// `e` from a picture's `validate` (render's and photo's options) as the command line says it:
+/// its field, one of the picture's own words (`view`, `distance`), looked up in [`FLAGS`] as
+/// `picture FIELD`; its material by the setting `material` names ([`MaterialArgs::setting`]).
+/// A field no flag sets (the tile, the ground's cells) stays as the library names it.
+pub fn picture_to_flags(e: Error, material: &MaterialArgs) -> Error {
+    match e {
+        Error::Invalid { field, message } => {
+            let setting = if field == "material" {
+                material.setting().to_string()
+            } else {
+                format!("picture {field}")
+            };
+            let field = if flag_of(&setting).is_some() {
+                setting
+            } else {
+                field
+            };
+            to_flags(Error::Invalid { field, message })
+        }
         other => other,
     }
 }
@@ -178,12 +212,13 @@ impl MaterialArgs {
         self.ri.is_some() || self.material.is_some()
     }
 
-    /// The flag that chose it (`--ri` over `--material`).
-    pub fn flag(&self) -> &'static str {
+    /// The setting that chose it, as [`FLAGS`] names it: `refractive index` (`--ri`) over
+    /// `material` (`--material`).
+    pub fn setting(&self) -> &'static str {
         if self.ri.is_some() {
-            "--ri"
+            "refractive index"
         } else {
-            "--material"
+            "material"
         }
     }
 }
@@ -431,6 +466,40 @@ mod tests {
         assert_eq!(
             to_flags(Error::parse("photon count", "m")).to_string(),
             "--photons: m"
+        );
+    }
+
+    #[test]
+    fn a_pictures_settings_leave_named_by_flags() {
+        let material = MaterialArgs::default();
+        let ri = MaterialArgs {
+            ri: Some("2.4".into()),
+            ..MaterialArgs::default()
+        };
+        let shown = |field: &str, m: &MaterialArgs| {
+            picture_to_flags(Error::invalid(field, "m"), m).to_string()
+        };
+        for (field, flag) in [
+            ("size", "--size"),
+            ("tilt", "--tilt"),
+            ("head-shadow", "--head-shadow"),
+            ("bands", "--bands"),
+            ("view", "--view"),
+            ("ground-gap", "--ground-gap"),
+            ("light-rotation", "--light-rotation"),
+            ("distance", "--distance"),
+            ("diameter-mm", "--diameter-mm"),
+        ] {
+            assert_eq!(shown(field, &material), format!("{flag}: m"));
+        }
+        assert_eq!(shown("material", &material), "--material: m");
+        assert_eq!(shown("material", &ri), "--ri: m");
+        // No flag sets the tile: named as the library names it.
+        assert_eq!(shown("tile", &material), "tile: m");
+        // A setting's bare word elsewhere (the score's bands) is not a picture's.
+        assert_eq!(
+            to_flags(Error::invalid("bands", "m")).to_string(),
+            "bands: m"
         );
     }
 

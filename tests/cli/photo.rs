@@ -163,6 +163,40 @@ fn turntables_as_gif_and_animated_png_and_perspective() {
     assert_eq!(r.info().animation_control().map(|c| c.num_frames), Some(3));
 }
 
+/// The photograph's own checks (RenderOptions' and PhotoOptions' `validate`) name their
+/// settings as the library does; the binary's one table (FLAGS) names the flag, the whole line
+/// as before.
+#[test]
+fn a_photographs_own_checks_name_the_flag() {
+    let d = tempdir().unwrap();
+    let p = d.path();
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["--view", "-10", "--ground", "white"],
+            "facetlab: --view: -10° looks from under the ground; with a ground the camera's elevation is 0 to 90 degrees",
+        ),
+        (
+            &["--distance", "5"],
+            "facetlab: --distance: 5 mm is out of range; allowed 19.5 mm (three times the stone's width of 6.5 mm) to 100000 mm",
+        ),
+    ];
+    for (extra, line) in cases {
+        let mut args = vec![
+            "render",
+            "tolkowsky",
+            "--size",
+            "16",
+            "-o",
+            "out.png",
+            "--light",
+            "tent",
+        ];
+        args.extend_from_slice(extra);
+        assert_eq!(bad(p, &args, &[]), *line);
+    }
+    assert!(files(p).is_empty());
+}
+
 #[test]
 fn bad_photographs_are_one_line_and_write_nothing() {
     let d = tempdir().unwrap();

@@ -222,18 +222,8 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
         }
     }
     let exposure = a.exposure;
-    // The library names its fields; on the command line they are flags.
-    let material_flag = a.material.flag();
-    opts.validate().map_err(|e| match e {
-        Error::Invalid { field, message } => Error::Invalid {
-            field: match field.as_str() {
-                "material" => material_flag.to_string(),
-                f => format!("--{f}"),
-            },
-            message,
-        },
-        other => other,
-    })?;
+    opts.validate()
+        .map_err(|e| flags::picture_to_flags(e, &a.material))?;
     Ok(Settings {
         opts,
         rock,

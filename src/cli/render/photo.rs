@@ -204,17 +204,8 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<Settings> {
     if let facetlab::optics::StoneSize::Width(w) = a.colour.size()? {
         o.width_mm = w;
     }
-    let material_flag = a.material.flag();
-    o.validate().map_err(|e| match e {
-        Error::Invalid { field, message } => Error::Invalid {
-            field: match field.as_str() {
-                "material" => material_flag.to_string(),
-                f => format!("--{f}"),
-            },
-            message,
-        },
-        other => other,
-    })?;
+    o.validate()
+        .map_err(|e| flags::picture_to_flags(e, &a.material))?;
     Ok(Settings {
         opts: o,
         turn,
