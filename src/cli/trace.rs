@@ -45,13 +45,19 @@ pub struct TraceArgs {
     #[arg(
         long,
         default_value = "overhead",
-        value_name = "overhead|offset|offset-directed|directed"
+        value_name = "overhead|offset|offset-directed|directed",
+        value_parser = TraceLight::parse
     )]
-    pub light: String,
+    pub light: TraceLight,
     /// Turn the light around the x axis by this many degrees (0 = from above, 180 = from
     /// below); for --light directed and overhead.
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
-    pub angle: Option<String>,
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_hyphen_values = true,
+        value_parser = flags::real("--angle", 0.0, 180.0, "degrees")
+    )]
+    pub angle: Option<f64>,
     /// Rotation sweep: the light at 0°, 30°, …, 180°, each shot until --photons have hit.
     #[arg(long)]
     pub rotate: bool,
@@ -70,9 +76,10 @@ pub struct TraceArgs {
         long,
         default_value = "6",
         value_name = "N|unlimited",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = Depth::parse
     )]
-    pub depth: String,
+    pub depth: Depth,
     /// Absorption: none, thesis (flat 0.1 per bounce inside), or beer:K (K per girdle diameter).
     #[arg(
         long,
@@ -96,9 +103,10 @@ pub struct TraceArgs {
         long,
         default_value = "uniform",
         value_name = "uniform|d65|NM",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::parsed("--spectrum", WavelengthSampling::parse)
     )]
-    pub spectrum: String,
+    pub spectrum: WavelengthSampling,
     /// Seed of the random numbers (the same seed gives the same numbers on any thread count).
     #[arg(
         long,
@@ -122,17 +130,19 @@ pub struct TraceArgs {
         long,
         default_value = "400",
         value_name = "N",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::whole("--paths", 0, 100_000)
     )]
-    pub paths: String,
+    pub paths: u64,
     /// Camera of the pictures: azimuth,elevation in degrees.
     #[arg(
         long,
         default_value = "30,20",
         value_name = "AZ,EL",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = parse_camera
     )]
-    pub camera: String,
+    pub camera: Camera,
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
@@ -149,53 +159,93 @@ pub struct Settings {
     pub camera: Camera,
 }
 
+/// `--light` of `trace`: the thesis's four lights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TraceLight {
+    /// Undirected, the 1.5 D square 4 D above.
+    Overhead,
+    /// The undirected square moved by (−1, −1) D.
+    Offset,
+    /// The off-centre square as a parallel beam toward the stone.
+    OffsetDirected,
+    /// A parallel beam just covering the stone.
+    Directed,
+}
+
+impl TraceLight {
+    /// The value parser of `--light`: a name in any case, else the one-line error naming the
+    /// four.
+    pub fn parse(s: &str) -> Result<TraceLight> {
+        Ok(match s.trim().to_ascii_lowercase().as_str() {
+            "overhead" => TraceLight::Overhead,
+            "offset" => TraceLight::Offset,
+            "offset-directed" => TraceLight::OffsetDirected,
+            "directed" => TraceLight::Directed,
+            _ => {
+                return Err(Error::invalid(
+                    "--light",
+                    format!(
+                        "`{s}` is not allowed; use overhead, offset, offset-directed or directed"
+                    ),
+                ))
+            }
+        })
+    }
+}
+
+/// `--depth`: surface interactions per photon, `None` for `unlimited`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Depth(pub Option<u32>);
+
+impl Depth {
+    /// The value parser of `--depth`: a whole number in 1..=[`photon::UNLIMITED_CAP`], or
+    /// `unlimited` (also `none`, `inf`).
+    pub fn parse(s: &str) -> Result<Depth> {
+        Ok(Depth(match s.trim().to_ascii_lowercase().as_str() {
+            "unlimited" | "none" | "inf" => None,
+            t => Some(
+                flags::count("--depth", t, 1, photon::UNLIMITED_CAP as u64).map_err(|_| {
+                    Error::invalid(
+                        "--depth",
+                        format!(
+                            "`{s}` is not allowed; give a whole number in 1..={} or `unlimited`",
+                            photon::UNLIMITED_CAP
+                        ),
+                    )
+                })? as u32,
+            ),
+        }))
+    }
+}
+
 /// Validate the flags into the library's types.
 pub fn settings(a: &TraceArgs) -> Result<Settings> {
     let photons = a.photons;
     photon::check_photons(photons)?;
-    let depth = match a.depth.trim().to_ascii_lowercase().as_str() {
-        "unlimited" | "none" | "inf" => None,
-        s => Some(
-            flags::count("--depth", s, 1, photon::UNLIMITED_CAP as u64).map_err(|_| {
-                Error::invalid(
-                    "--depth",
-                    format!(
-                        "`{}` is not allowed; give a whole number in 1..={} or `unlimited`",
-                        a.depth,
-                        photon::UNLIMITED_CAP
-                    ),
-                )
-            })? as u32,
-        ),
-    };
+    let depth = a.depth.0;
     let absorption = a.absorption;
     let polarization = a.polarization;
     let material = a.material.material()?;
-    let wavelengths = WavelengthSampling::parse("--spectrum", &a.spectrum)?;
+    let wavelengths = a.spectrum;
     let seed = a.seed;
-    let record_paths = flags::count("--paths", &a.paths, 0, 100_000)? as usize;
-    let camera = parse_camera(&a.camera)?;
-    let angle = a
-        .angle
-        .as_deref()
-        .map(|s| flags::number("--angle", s, 0.0, 180.0, "degrees"))
-        .transpose()?;
-    let light_name = a.light.trim().to_ascii_lowercase();
-    let light = match (light_name.as_str(), a.rotate) {
-        ("overhead", true) | ("directed", true) if angle.is_some() => {
+    let record_paths = a.paths as usize;
+    let camera = a.camera;
+    let angle = a.angle;
+    let light = match (a.light, a.rotate) {
+        (TraceLight::Overhead, true) | (TraceLight::Directed, true) if angle.is_some() => {
             return Err(Error::invalid(
                 "--angle",
                 "--rotate sweeps 0–180° itself; drop --angle",
             ))
         }
-        ("overhead", true) => LightChoice::Rotate(LightKind::Undirected),
-        ("directed", true) => LightChoice::Rotate(LightKind::Directed),
-        ("overhead", false) => match angle {
+        (TraceLight::Overhead, true) => LightChoice::Rotate(LightKind::Undirected),
+        (TraceLight::Directed, true) => LightChoice::Rotate(LightKind::Directed),
+        (TraceLight::Overhead, false) => match angle {
             None => LightChoice::Single(Light::overhead()),
             Some(x) => LightChoice::Single(Light::rotated(LightKind::Undirected, x)),
         },
-        ("directed", false) => LightChoice::Single(Light::directed(angle.unwrap_or(0.0))),
-        ("offset", _) | ("offset-directed", _) => {
+        (TraceLight::Directed, false) => LightChoice::Single(Light::directed(angle.unwrap_or(0.0))),
+        (offset @ (TraceLight::Offset | TraceLight::OffsetDirected), _) => {
             if a.rotate {
                 return Err(Error::invalid(
                     "--rotate",
@@ -208,20 +258,11 @@ pub fn settings(a: &TraceArgs) -> Result<Settings> {
                     "is for --light overhead or directed",
                 ));
             }
-            LightChoice::Single(if light_name == "offset" {
+            LightChoice::Single(if offset == TraceLight::Offset {
                 Light::offset()
             } else {
                 Light::offset_directed()
             })
-        }
-        _ => {
-            return Err(Error::invalid(
-                "--light",
-                format!(
-                    "`{}` is not allowed; use overhead, offset, offset-directed or directed",
-                    a.light
-                ),
-            ))
         }
     };
     let record_paths = if a.plots.is_some() { record_paths } else { 0 };

@@ -32,8 +32,12 @@ pub struct PhotoArgs {
     pub distance: Option<String>,
     /// Photographs: the ground the stone rests on, culet-down: white (paper), black
     /// (velvet) or none (default), with its shadow and caustics.
-    #[arg(long, value_name = "white|black|none")]
-    pub ground: Option<String>,
+    #[arg(
+        long,
+        value_name = "white|black|none",
+        value_parser = flags::parsed("--ground", GroundKind::parse)
+    )]
+    pub ground: Option<GroundKind>,
     /// Photographs: height of the stone's lowest point above the ground, girdle diameters
     /// (0–10; default 0: resting on it).
     #[arg(long, value_name = "X", allow_hyphen_values = true)]
@@ -135,16 +139,7 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<Settings> {
     o.material.colour = a.colour.colour_for(&o.material)?;
     a.colour.size()?;
     o.polarization = a.polarization;
-    if let Some(g) = &p.ground {
-        let kind = GroundKind::ALL
-            .into_iter()
-            .find(|k| k.name() == g.trim().to_ascii_lowercase())
-            .ok_or_else(|| {
-                Error::invalid(
-                    "--ground",
-                    format!("`{g}` is not allowed; use white, black or none"),
-                )
-            })?;
+    if let Some(kind) = p.ground {
         o.ground = Ground { kind, gap: 0.0 };
     }
     if let Some(g) = &p.ground_gap {

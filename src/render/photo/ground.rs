@@ -53,6 +53,20 @@ impl GroundKind {
         }
     }
 
+    /// The kind named `text` (any case); the error names `field` and the three names.
+    pub fn parse(field: &str, text: &str) -> crate::error::Result<GroundKind> {
+        let t = text.trim().to_ascii_lowercase();
+        GroundKind::ALL
+            .into_iter()
+            .find(|k| k.name() == t)
+            .ok_or_else(|| {
+                crate::error::Error::invalid(
+                    field,
+                    format!("`{text}` is not allowed; use white, black or none"),
+                )
+            })
+    }
+
     /// Albedo (linear sRGB).
     pub fn albedo(self) -> Rgb {
         match self {
