@@ -91,7 +91,7 @@ pub fn run_env(a: &ScoreArgs, env: &dyn Fn(&str) -> Option<String>) -> Result<Ex
     }
     let text = String::from_utf8_lossy(&facetlab::io::read_bytes(batch)?).to_string();
     let lines = cut_lines(&text);
-    let shard = choose_shard(a.shard.as_deref(), env)?;
+    let shard = choose_shard(a.shard, env)?;
     let mine: Vec<&(usize, String)> = lines
         .iter()
         .enumerate()

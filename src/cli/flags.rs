@@ -5,7 +5,7 @@ use facetlab::error::{Error, Result};
 use facetlab::optics::{
     BodyColour, ColourFields, Material, MaterialFields, StoneSize, DENSITY_MAX,
 };
-use facetlab::optimize::SweepScore;
+use facetlab::optimize::{Shard, SweepScore};
 
 pub use facetlab::io::text::{count, number};
 
@@ -100,6 +100,24 @@ pub fn picture_to_flags(e: Error, material: &MaterialArgs) -> Error {
             to_flags(Error::Invalid { field, message })
         }
         other => other,
+    }
+}
+
+/// `--shard` of `score --batch` and `sweep`: a share of the work, or `off` (a job array's
+/// environment ignored).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShardFlag {
+    /// `off`: all the work, whatever the environment.
+    Off,
+    /// `K/N`.
+    Given(Shard),
+}
+
+/// The value parser of `--shard`: `off` or K/N ([`Shard::parse`]'s words and error line).
+pub fn shard(s: &str) -> Result<ShardFlag> {
+    match s {
+        "off" => Ok(ShardFlag::Off),
+        s => Shard::parse("--shard", s).map(ShardFlag::Given),
     }
 }
 

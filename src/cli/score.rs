@@ -53,8 +53,8 @@ pub struct ScoreArgs {
     /// With --batch: score only shard K of N (1-based), the cuts whose ordinal i has
     /// i mod N == K-1; default from a Slurm or Kubernetes job array's environment (`off`:
     /// all cuts, whatever the environment).
-    #[arg(long, value_name = "K/N|off")]
-    pub shard: Option<String>,
+    #[arg(long, value_name = "K/N|off", value_parser = flags::shard)]
+    pub shard: Option<flags::ShardFlag>,
     #[command(flatten)]
     pub material: super::flags::MaterialArgs,
     #[command(flatten)]

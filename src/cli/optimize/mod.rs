@@ -552,18 +552,14 @@ mod tests {
                 },
                 "--y: needs --x",
             ),
-            (
-                SweepArgs {
-                    shard: Some("0/2".into()),
-                    ..s.clone()
-                },
-                "--shard: `0/2` is not K/N",
-            ),
         ] {
             let e =
                 crate::cli::flags::to_flags(run_sweep_env(&change, &bumps, &no_env).unwrap_err())
                     .to_string();
             assert!(e.contains(want), "{e}");
         }
+        // A bad --shard is refused while the command line is read, in the same words.
+        let e = crate::cli::flags::shard("0/2").unwrap_err().to_string();
+        assert!(e.contains("--shard: `0/2` is not K/N"), "{e}");
     }
 }

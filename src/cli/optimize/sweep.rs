@@ -5,6 +5,7 @@
 //! are the `optimize` command's (`mod.rs`).
 
 use super::{bar, install_ctrl_c, Scorers, STOP};
+use crate::cli::flags::ShardFlag;
 use crate::cli::outputs::{refuse_overwrite, Exit};
 use clap::Args;
 use facetlab::error::{Error, Result};
@@ -42,8 +43,8 @@ pub struct SweepArgs {
     /// wrote; `facetlab merge` joins the shards. Without it, Slurm's SLURM_ARRAY_TASK_ID
     /// (- SLURM_ARRAY_TASK_MIN) of SLURM_ARRAY_TASK_COUNT, or Kubernetes' JOB_COMPLETION_INDEX
     /// of JOB_COMPLETION_COUNT, choose the shard when set; `--shard off` ignores them.
-    #[arg(long, value_name = "K/N|off")]
-    pub shard: Option<String>,
+    #[arg(long, value_name = "K/N|off", value_parser = crate::cli::flags::shard)]
+    pub shard: Option<ShardFlag>,
     /// The score drawn on the map and summarised: brilliance, fire, scintillation,
     /// objective (the config's weighted score minus penalties), or for a coloured stone
     /// (`[score] colour` or a coloured material) colour_l, colour_c, extinction or windowing.
@@ -195,12 +196,12 @@ pub(crate) fn write_sweep_outputs(
 /// The shard of `--shard` (`off`: none, whatever the environment), else of a job array's
 /// environment (`env` reads a variable).
 pub(crate) fn choose_shard(
-    flag: Option<&str>,
+    flag: Option<ShardFlag>,
     env: &dyn Fn(&str) -> Option<String>,
 ) -> Result<Option<(Shard, String)>> {
     match flag {
-        Some("off") => Ok(None),
-        Some(s) => Ok(Some((Shard::parse("--shard", s)?, "--shard".into()))),
+        Some(ShardFlag::Off) => Ok(None),
+        Some(ShardFlag::Given(s)) => Ok(Some((s, "--shard".into()))),
         None => Shard::from_env(env),
     }
 }
@@ -221,7 +222,7 @@ pub fn run_sweep_env(
             "draws an optimizer's path on a 2-D map; give --y too",
         ));
     }
-    let shard = choose_shard(a.shard.as_deref(), env)?;
+    let shard = choose_shard(a.shard, env)?;
     let keys: Vec<&str> = grid.axes.iter().map(|x| x.key.as_str()).collect();
     let default_out =
         || PathBuf::from("results").join(format!("sweep-{}-{}", config.name, keys.join("-")));
