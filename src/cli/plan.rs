@@ -44,8 +44,13 @@ pub struct PlanArgs {
     #[arg(long, value_name = "NAME")]
     pub material: Option<String>,
     /// Distinct plans kept per family (1–50); default the config's (3).
-    #[arg(long, value_name = "K", allow_hyphen_values = true)]
-    pub top: Option<String>,
+    #[arg(
+        long,
+        value_name = "K",
+        allow_hyphen_values = true,
+        value_parser = super::flags::whole("--top", 1, 50)
+    )]
+    pub top: Option<u64>,
     /// The run folder to write (must not exist, or be empty).
     #[arg(short = 'o', long = "out", value_name = "DIR")]
     pub out: PathBuf,
@@ -75,8 +80,8 @@ pub fn run(a: &PlanArgs) -> Result<Exit> {
     if !a.families.is_empty() {
         config.families = check_families(&a.families).map_err(|m| Error::invalid("--family", m))?;
     }
-    if let Some(t) = &a.top {
-        config.top = facetlab::io::text::count("--top", t, 1, 50)? as usize;
+    if let Some(t) = a.top {
+        config.top = t as usize;
     }
     if let Some(m) = &a.material {
         Material::by_name(m)?;

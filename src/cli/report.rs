@@ -28,9 +28,10 @@ pub struct ReportArgs {
         long,
         default_value = "0",
         value_name = "PHOTONS",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = flags::whole("--verify", 0, 1_000_000_000)
     )]
-    pub verify: String,
+    pub verify: u64,
     /// Pixels per side of each picture (64–1024).
     #[arg(
         long,
@@ -54,7 +55,7 @@ pub struct ReportArgs {
 /// Run `facetlab report`.
 pub fn run(a: &ReportArgs) -> Result<()> {
     let size = a.size as usize;
-    let photons = flags::count("--verify", &a.verify, 0, 1_000_000_000)?;
+    let photons = a.verify;
     let material = a.material.material()?;
     refuse_overwrite(&[("-o", a.output.clone())], &cut_files(&a.cuts))?;
     let is_html = a

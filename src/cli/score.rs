@@ -82,8 +82,13 @@ pub struct ScoreArgs {
     pub force: bool,
     /// Re-measure overhead light return and brilliance with this many photons of the photon
     /// tracer and print both with the difference in standard errors.
-    #[arg(long, value_name = "PHOTONS", allow_hyphen_values = true)]
-    pub verify: Option<String>,
+    #[arg(
+        long,
+        value_name = "PHOTONS",
+        allow_hyphen_values = true,
+        value_parser = flags::whole("--verify", 1, facetlab::photon::MAX_PHOTONS)
+    )]
+    pub verify: Option<u64>,
 }
 
 /// The flags, validated.
@@ -102,11 +107,7 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
     let size = a.colour.size()?;
     let polarization = a.polarization;
     let head = a.head_shadow;
-    let verify = a
-        .verify
-        .as_deref()
-        .map(|v| flags::count("--verify", v, 1, facetlab::photon::MAX_PHOTONS))
-        .transpose()?;
+    let verify = a.verify;
     let config = ScoreConfig {
         material,
         size,
@@ -337,9 +338,8 @@ mod tests {
             );
             assert_eq!(v["photons"].as_u64(), Some(3000));
         }
-        let e = run(&args(&["tolkowsky", "--verify", "0"]))
-            .unwrap_err()
-            .to_string();
+        // Refused while the command line is read, the line naming the flag.
+        let e = line(&["tolkowsky", "--verify", "0"]);
         assert!(e.starts_with("--verify"), "{e}");
         let e = run(&args(&["no-such-preset"])).unwrap_err().to_string();
         assert!(e.contains("unknown preset"), "{e}");
