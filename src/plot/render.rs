@@ -94,16 +94,6 @@ impl Layout {
         let t = if first { self.text * 6 / 5 } else { self.text };
         t + t / 3 + 1
     }
-
-    fn caption_height(&self, lines: usize) -> u32 {
-        if lines == 0 {
-            return 0;
-        }
-        self.pad
-            + self.line_height(true)
-            + (lines as u32 - 1) * self.line_height(false)
-            + self.pad / 2
-    }
 }
 
 /// A finished sheet: 8-bit sRGB, rows from the top, 3 bytes per pixel.
@@ -120,6 +110,30 @@ pub struct Sheet {
 fn srgb8(c: [f64; 3]) -> RGBColor {
     let b = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
     RGBColor(b(c[0]), b(c[1]), b(c[2]))
+}
+
+/// `line` set at `text` pixels, broken after its commas into lines no wider than `width`
+/// pixels (a part wider than that alone keeps its own line).
+fn wrap(line: &str, text: u32, width: u32) -> Vec<String> {
+    let fits = |s: &str| super::text::width(s, text as f64) <= width as f32;
+    if fits(line) {
+        return vec![line.to_string()];
+    }
+    let mut out: Vec<String> = Vec::new();
+    let mut cur = String::new();
+    for part in line.split_inclusive(", ") {
+        let joined = format!("{cur}{part}");
+        if cur.is_empty() || fits(joined.trim_end()) {
+            cur = joined;
+        } else {
+            out.push(cur.trim_end().to_string());
+            cur = part.to_string();
+        }
+    }
+    if !cur.is_empty() {
+        out.push(cur.trim_end().to_string());
+    }
+    out
 }
 
 /// Side of a legend swatch: 1.3 times the label's capital height.
@@ -166,9 +180,30 @@ pub fn compose(panels: &[Panel], size: u32, legend: &[LegendEntry]) -> Result<Sh
     let lay = Layout::new(size);
     let pw = lay.panel_width();
     let width = pw * panels.len() as u32;
-    let lines = panels.iter().map(|p| p.lines.len()).max().unwrap_or(0);
+    // Each panel's caption, its lines wrapped to the panel (the first, the title, at its
+    // larger size).
+    let captions: Vec<Vec<(bool, String)>> = panels
+        .iter()
+        .map(|p| {
+            p.lines
+                .iter()
+                .enumerate()
+                .flat_map(|(i, line)| {
+                    let text = if i == 0 { lay.text * 6 / 5 } else { lay.text };
+                    wrap(line, text, size).into_iter().map(move |l| (i == 0, l))
+                })
+                .collect()
+        })
+        .collect();
+    let caption = captions
+        .iter()
+        .map(|c| match c.len() {
+            0 => 0,
+            _ => lay.pad + c.iter().map(|l| lay.line_height(l.0)).sum::<u32>() + lay.pad / 2,
+        })
+        .max()
+        .unwrap_or(0);
     let top = size + 2 * lay.pad;
-    let caption = lay.caption_height(lines);
     let rows = legend_rows(legend, &lay, width);
     let legend_h = if rows.is_empty() {
         0
@@ -207,14 +242,14 @@ pub fn compose(panels: &[Panel], size: u32, legend: &[LegendEntry]) -> Result<Sh
                 .into_drawing_area();
         let big = font(lay.text * 6 / 5);
         let small = font(lay.text).color(&RGBColor(40, 40, 40));
-        for (k, p) in panels.iter().enumerate() {
+        for (k, caption) in captions.iter().enumerate() {
             let x = (k as u32 * pw + lay.pad) as i32;
             let mut y = (top + lay.pad) as i32;
-            for (i, line) in p.lines.iter().enumerate() {
-                let style = if i == 0 { &big } else { &small };
+            for (first, line) in caption {
+                let style = if *first { &big } else { &small };
                 root.draw_text(line, style, (x, y))
                     .map_err(|e| draw_err(&e))?;
-                y += lay.line_height(i == 0) as i32;
+                y += lay.line_height(*first) as i32;
             }
         }
         // A swatch is a square as tall as the label's capitals and a little more, centred on
@@ -336,5 +371,45 @@ mod tests {
         assert_eq!(one.rgb, red);
         assert!(bare(&panels, size + 1).is_err());
         assert!(compose(&[], size, &[]).is_err());
+    }
+
+    /// A caption line wider than its panel is broken after its commas, each line inside the
+    /// panel; the sheet grows by the added lines; a line that fits is left whole.
+    #[test]
+    fn long_caption_lines_wrap_after_commas_inside_the_panel() {
+        let size = 200u32;
+        let lay = Layout::new(size);
+        let long = "L* 31 C* 14 h 153°, dark share 61.7 %, windowing 0.2 %, face-up";
+        assert!(super::super::text::width(long, lay.text as f64) > size as f32);
+        let parts = wrap(long, lay.text, size);
+        assert!(parts.len() >= 2, "{parts:?}");
+        for p in &parts {
+            assert!(
+                super::super::text::width(p, lay.text as f64) <= size as f32,
+                "{p}"
+            );
+        }
+        assert_eq!(parts.join(" "), long);
+        assert_eq!(
+            wrap("mean 6.6 %", lay.text, size),
+            vec!["mean 6.6 %".to_string()]
+        );
+        let grey: Vec<u8> = [90u8, 90, 90].repeat((size * size) as usize);
+        let sheet = |line: &str| {
+            compose(
+                &[Panel {
+                    rgb: &grey,
+                    lines: vec!["Tolkowsky".into(), line.into()],
+                }],
+                size,
+                &[],
+            )
+            .unwrap()
+        };
+        let (short, wrapped) = (sheet("mean 6.6 %"), sheet(long));
+        assert_eq!(
+            wrapped.height - short.height,
+            (parts.len() as u32 - 1) * lay.line_height(false)
+        );
     }
 }
