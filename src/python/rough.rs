@@ -23,7 +23,9 @@ use std::time::Instant;
 /// name, `size_mm` its largest extent. `config` is a plan config's TOML path; `families`,
 /// `material` and `top` override it. Returns the plans, best first within each family, as
 /// dicts: `family`, `rank`, `cut` (a `Cut`, width 1), `width_mm`, `carats`, `volume_mm3`,
-/// `yield_fraction`, `objective`, `grade`. With `out` (a new or empty folder, never one of
+/// `yield_fraction`, `objective`, `grade`, `optic_axis` (`DEG@AZ` in the cut's frame, a
+/// rough with `[rough] c_axis`) and `colour` (the face-up colour a `kind = "colour"` plan is
+/// ranked by, as `score`'s `colour`), each `None` when not planned for. With `out` (a new or empty folder, never one of
 /// the inputs) it also writes the run folder `facetlab plan --out` writes (`summary.json`,
 /// each plan's `.asc .obj .toml` and pictures, the scene, `report.html`) and returns
 /// `{"plans": [...], "folder": out}`. Ctrl-C stops it and raises `KeyboardInterrupt` (with
@@ -121,6 +123,18 @@ fn plan<'py>(
             d.set_item("yield_fraction", p.yield_fraction)?;
             d.set_item("objective", p.objective)?;
             d.set_item("grade", p.grade.map(|g| g.name()))?;
+            // As summary.json gives them: the plan's optic axis (a rough with a c-axis) and
+            // the face-up colour it was ranked by (`kind = "colour"`), else None.
+            d.set_item("optic_axis", cfg.c_axis.map(|c| p.optic_axis(c).label()))?;
+            let colour = match &p.colour {
+                Some(c) => Some(super::from_json(
+                    py,
+                    &serde_json::to_string(c)
+                        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?,
+                )?),
+                None => None,
+            };
+            d.set_item("colour", colour)?;
             d.set_item("cut", Py::new(py, PyCut { cut: p.cut.clone() })?)?;
             plans.append(d)?;
         }

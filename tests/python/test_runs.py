@@ -188,3 +188,28 @@ def test_plan_writes_the_command_lines_folder(cli: Cli, tmp_path: Path) -> None:
                       out=tmp_path / "plan.toml")
     p = cli(tmp_path, "plan", "octahedron", "--size-mm", "6", "-o", "py")
     assert p.returncode == 2 and "--out: " in p.stderr and "not an empty folder" in p.stderr
+
+
+def test_plan_gives_each_plans_colour_and_optic_axis_as_summary_json(
+    cli: Cli, tmp_path: Path
+) -> None:
+    # A ruby rough with its c-axis, ranked by face-up colour (issue 41's objective).
+    (tmp_path / "plan.toml").write_text(
+        'seed = 3\nmaterial = "ruby"\n[objective]\nkind = "colour"\n'
+        "[rough]\nc_axis = [0.3, -0.2, 0.9]\n[search]\nstarts = 2\nmax_iterations = 40\n"
+    )
+    p = cli(
+        tmp_path, "plan", "octahedron", "--size-mm", "6", "--family", "oval",
+        "--config", "plan.toml", "--quiet", "-o", "run",
+    )
+    assert p.returncode == 0, p.stderr
+    want = json.loads((tmp_path / "run" / "summary.json").read_text())["plans"]
+    got = facetlab.plan("octahedron", config=tmp_path / "plan.toml", families=["oval"], size_mm=6)
+    assert len(got) == len(want) > 0
+    for g, w in zip(got, want):
+        assert g["optic_axis"] == w["optic_axis"]
+        assert g["colour"] == w["colour"] and g["objective"] == w["objective"]
+        assert g["colour"]["c"] == g["objective"] > 0
+    # A colourless plan by weight has neither.
+    plain = facetlab.plan("octahedron", families=["oval"], size_mm=6, top=1)
+    assert plain[0]["colour"] is None and plain[0]["optic_axis"] is None
