@@ -31,7 +31,7 @@ use super::mode::{ModeBeam, ModeRay};
 use super::options::TraceOptions;
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
-use super::symmetry::{clipped_share, SymSink};
+use super::symmetry::{RootClip, SymSink};
 use super::work::{Ctx, Work};
 use crate::optics::crystal::{Crystal, Wave};
 use crate::optics::BodyColour;
@@ -228,22 +228,19 @@ impl Stone {
         };
         let mut sym = SymSink::new(&self.symmetry, &group, frame, sink);
         let mut piece: Vec<DVec3> = Vec::with_capacity(32);
+        let clip = RootClip {
+            wedge: &wedge,
+            window,
+            total,
+        };
         for f in 0..self.facet_count() {
             let n = self.normals[f];
             let c = -n.dot(d0);
             if c <= GRAZE {
                 continue;
             }
-            w.cur.clear();
-            w.cur.extend(
-                self.facet_verts(f)
-                    .iter()
-                    .map(|&v| self.vertices[v as usize]),
-            );
-            let full = c * self.areas[f] / total;
             let map = |x: DVec3| map0.apply(x);
-            let Some(p) = clipped_share(&mut w.cur, &wedge, window, &mut piece, map, total, full)
-            else {
+            let Some(p) = self.root_share(f, c, &clip, &mut w.cur, &mut piece, map) else {
                 continue;
             };
             w.st.power_in += p;

@@ -1,9 +1,9 @@
 //! A solid prepared for tracing: facet planes, polygons and adjacency in flat arrays, and the
 //! walk that finds the facet a ray inside the stone leaves by.
 
-use super::symmetry::Symmetry;
+use super::symmetry::{clipped_share, RootClip, Symmetry};
 use crate::geometry::Polyhedron;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Facets with `|n · d|` below this are seen edge-on: no beam starts or ends on them.
@@ -371,6 +371,29 @@ impl Stone {
                 }
             })
             .sum()
+    }
+
+    /// Root facet `f` (lit at incidence cosine `c`) gathered into `cur` and clipped to
+    /// `clip` ([`clipped_share`]; `piece` is scratch, `map` takes a point to the traced
+    /// frame's plane): its share of the light, `None` when nothing of it is left. Both
+    /// traces enter a stone through it.
+    pub(super) fn root_share(
+        &self,
+        f: usize,
+        c: f64,
+        clip: &RootClip<'_>,
+        cur: &mut Vec<DVec3>,
+        piece: &mut Vec<DVec3>,
+        map: impl Fn(DVec3) -> DVec2,
+    ) -> Option<f64> {
+        cur.clear();
+        cur.extend(
+            self.facet_verts(f)
+                .iter()
+                .map(|&v| self.vertices[v as usize]),
+        );
+        let full = c * self.areas[f] / clip.total;
+        clipped_share(cur, clip.wedge, clip.window, piece, map, clip.total, full)
     }
 
     #[inline]

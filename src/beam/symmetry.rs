@@ -144,6 +144,15 @@ fn facet_permutation(normals: &[DVec3], offsets: &[f64], m: &DMat3) -> Option<Ve
     }
     Some(perm)
 }
+/// What a trace clips its root facets to: the symmetry's `wedge` (half-spaces through the
+/// origin), a convex `window` (`n · x <= c` for each `(n, c)`), and the lit cross-section
+/// `total` their shares are taken of (see [`clipped_share`]).
+pub(super) struct RootClip<'a> {
+    pub(super) wedge: &'a [DVec3],
+    pub(super) window: &'a [DVec4],
+    pub(super) total: f64,
+}
+
 /// The part of a root facet's polygon `cur` inside the symmetry's `wedge` (half-spaces
 /// through the origin) and a convex `window` (`n · x <= c` for each `(n, c)`), clipped in
 /// place (`piece` is scratch), and its share of the light: its footprint's area (`map` takes

@@ -9,7 +9,7 @@ use super::interface::split;
 use super::options::TraceOptions;
 use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
-use super::symmetry::{clipped_share, SymSink};
+use super::symmetry::{RootClip, SymSink};
 use super::work::{Beam, Ctx};
 use crate::optics::{fresnel, reflect, refract, s_axis};
 use glam::{DVec2, DVec3, DVec4};
@@ -58,6 +58,11 @@ impl Stone {
         };
         let mut sym = SymSink::new(&self.symmetry, &group, frame, sink);
         let mut piece: Vec<DVec3> = Vec::with_capacity(32);
+        let clip = RootClip {
+            wedge: &wedge,
+            window,
+            total,
+        };
 
         // Entry: external reflection and refraction at every facet facing the light.
         for f in 0..self.facet_count() {
@@ -66,14 +71,8 @@ impl Stone {
             if c <= GRAZE {
                 continue;
             }
-            let verts = self.facet_verts(f);
-            w.cur.clear();
-            w.cur
-                .extend(verts.iter().map(|&v| self.vertices[v as usize]));
-            let full = c * self.areas[f] / total;
             let map = |x: DVec3| map0.apply(x);
-            let Some(p) = clipped_share(&mut w.cur, &wedge, window, &mut piece, map, total, full)
-            else {
+            let Some(p) = self.root_share(f, c, &clip, &mut w.cur, &mut piece, map) else {
                 continue;
             };
             w.st.power_in += p;
