@@ -1,13 +1,16 @@
 //! From mesh vertices to named facet planes: convex hull, convexity check, normalisation to
 //! the girdle frame (see the parent module's documentation) and tier names.
 
-use super::{hull_error, sig2, Points, CONVEX_TOL};
+use super::{hull_error, sig2, Points};
 use crate::cut::units::{girdle_frame, is_girdle};
 use crate::error::{Error, Result};
 use crate::geometry::{
     convex_hull_with_tolerance, facet_angle_deg, facet_azimuth_deg, DVec3, FacetPlane, Plane,
     Polyhedron, MERGE_TOL,
 };
+
+/// Largest allowed depth of a mesh vertex inside its convex hull, as a fraction of the size.
+pub const CONVEX_TOL: f64 = 1e-3;
 
 /// Largest merge tolerance used for coarse coordinates (fraction of the size).
 const MAX_MERGE_TOL: f64 = 1e-4;

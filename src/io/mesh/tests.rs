@@ -3,6 +3,8 @@
 use super::stl::binary_stl_count;
 use super::*;
 use crate::cut::units::girdle_frame;
+use crate::cut::Cut;
+use crate::geometry::{DVec3, FacetPlane, Polyhedron};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 
