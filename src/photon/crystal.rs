@@ -7,7 +7,7 @@
 //! once per chunk: the singly refractive kernel is not touched.
 
 use super::crystal_setup::CrystalSetup;
-use super::kernel::{chunk_seed, two_uniforms, Tracer};
+use super::kernel::{chunk_seed, two_uniforms, Entry, Tracer};
 use super::tally::{Counts, Fate, PhotonPath};
 use crate::geometry::DVec3;
 use crate::optics::crystal::{Crystal, Wave};
@@ -106,19 +106,17 @@ impl Tracer<'_> {
         limit: u64,
         out: &mut Vec<PhotonPath>,
     ) {
-        let (o, d, t, f) = loop {
-            if l.left == 0 || k.hit >= limit {
-                l.left = 0;
-                return;
-            }
-            l.left -= 1;
-            if let Some(entry) = self.shoot(&mut l.rng, k) {
-                break entry;
-            }
+        let Some(Entry {
+            o,
+            d,
+            t,
+            f,
+            lambda,
+            x,
+        }) = self.next_entry(&mut l.rng, &mut l.left, k, limit)
+        else {
+            return;
         };
-        k.hit += 1;
-        let (u, x) = two_uniforms(&mut l.rng);
-        let lambda = self.wavelength(u, &mut l.rng);
         l.lambda = lambda;
         let (n_o, n_e) = match self.fixed_n {
             Some(n) => (

@@ -93,6 +93,18 @@ pub(super) fn chunk_seed(seed: u64, chunk: u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// A photon that enters the stone ([`Tracer::next_entry`]): where it left the light, its
+/// direction, the distance to the stone and the facet it enters by, its wavelength (nm) and
+/// the uniform of the entry's roulette.
+pub(super) struct Entry {
+    pub o: DVec3,
+    pub d: DVec3,
+    pub t: f64,
+    pub f: usize,
+    pub lambda: f64,
+    pub x: f64,
+}
+
 /// Polarization state: Stokes vector (I = 1) and its reference axis.
 struct Pol {
     s: Stokes,
@@ -439,20 +451,17 @@ impl<'a> Tracer<'a> {
         limit: u64,
         out: &mut Vec<PhotonPath>,
     ) {
-        let (o, d, t, f) = loop {
-            if l.left == 0 || k.hit >= limit {
-                l.left = 0;
-                return;
-            }
-            l.left -= 1;
-            if let Some(entry) = self.shoot(&mut l.rng, k) {
-                break entry;
-            }
+        let Some(Entry {
+            o,
+            d,
+            t,
+            f,
+            lambda,
+            x,
+        }) = self.next_entry(&mut l.rng, &mut l.left, k, limit)
+        else {
+            return;
         };
-        k.hit += 1;
-        // One draw for the wavelength and the entry's roulette.
-        let (u, x) = two_uniforms(&mut l.rng);
-        let lambda = self.wavelength(u, &mut l.rng);
         l.lambda = lambda;
         l.n = self.fixed_n.unwrap_or_else(|| self.material.ri(lambda));
         // Beer–Lambert coefficient per unit of path at this photon's wavelength (0 unless the
@@ -489,6 +498,41 @@ impl<'a> Tracer<'a> {
         } else {
             l.live = true;
         }
+    }
+
+    /// Shoot a lane's next photons (`left` of them remain) until one enters the stone, and draw
+    /// its wavelength and the entry roulette's uniform (one draw for both); `None`, the lane
+    /// emptied, when it has none left or the hit limit is reached. The start of a photon in
+    /// both kernels, the singly refractive and the birefringent.
+    #[inline(always)]
+    pub(super) fn next_entry(
+        &self,
+        rng: &mut SmallRng,
+        left: &mut u64,
+        k: &mut Counts,
+        limit: u64,
+    ) -> Option<Entry> {
+        let (o, d, t, f) = loop {
+            if *left == 0 || k.hit >= limit {
+                *left = 0;
+                return None;
+            }
+            *left -= 1;
+            if let Some(entry) = self.shoot(rng, k) {
+                break entry;
+            }
+        };
+        k.hit += 1;
+        let (u, x) = two_uniforms(rng);
+        let lambda = self.wavelength(u, rng);
+        Some(Entry {
+            o,
+            d,
+            t,
+            f,
+            lambda,
+            x,
+        })
     }
 
     /// One photon leaves the light: its start, direction, and where it enters the stone
