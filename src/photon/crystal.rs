@@ -7,12 +7,12 @@
 //! once per chunk: the singly refractive kernel is not touched.
 
 use super::crystal_setup::CrystalSetup;
-use super::kernel::{chunk_seed, two_uniforms, Entry, Tracer};
+use super::kernel::{chunk_seed, end_path, two_uniforms, Tracer};
 use super::tally::{Counts, Fate, PhotonPath};
 use crate::geometry::DVec3;
 use crate::optics::crystal::{Crystal, Wave};
+use crate::optics::Absorption;
 use crate::optics::Stokes;
-use crate::optics::{Absorption, THESIS_ABSORPTION};
 use rand::rngs::SmallRng;
 use rand::SeedableRng;
 
@@ -106,17 +106,10 @@ impl Tracer<'_> {
         limit: u64,
         out: &mut Vec<PhotonPath>,
     ) {
-        let Some(Entry {
-            o,
-            d,
-            t,
-            f,
-            lambda,
-            x,
-        }) = self.next_entry(&mut l.rng, &mut l.left, k, limit)
-        else {
+        let Some(e) = self.next_entry(&mut l.rng, &mut l.left, k, limit) else {
             return;
         };
+        let (o, d, t, f, lambda, x) = (e.o, e.d, e.t, e.f, e.lambda, e.x);
         l.lambda = lambda;
         let (n_o, n_e) = match self.fixed_n {
             Some(n) => (
@@ -184,15 +177,7 @@ impl Tracer<'_> {
             return self.finish_crystal::<REC>(l, k, Fate::DepthLimited, out);
         }
         let (u, x) = two_uniforms(&mut l.rng);
-        let absorbed_at = match self.absorption {
-            Absorption::None => None,
-            Absorption::Thesis => (u < THESIS_ABSORPTION).then_some(t),
-            Absorption::Beer(_) | Absorption::Body { .. } => {
-                let s = -(1.0 - u).ln() / l.beer;
-                (s < t).then_some(s)
-            }
-        };
-        if let Some(s) = absorbed_at {
+        if let Some(s) = self.absorbed_within(u, t, l.beer) {
             k.absorbed += 1;
             if REC {
                 l.path.push(l.p + s * d);
@@ -256,14 +241,7 @@ impl Tracer<'_> {
         fate: Fate,
         out: &mut Vec<PhotonPath>,
     ) {
-        k.interactions += l.inter as u64;
         l.live = false;
-        if REC {
-            out.push(PhotonPath {
-                wavelength: l.lambda,
-                points: std::mem::take(&mut l.path),
-                fate,
-            });
-        }
+        end_path::<REC>(k, l.inter, l.lambda, &mut l.path, fate, out);
     }
 }

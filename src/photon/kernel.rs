@@ -451,17 +451,10 @@ impl<'a> Tracer<'a> {
         limit: u64,
         out: &mut Vec<PhotonPath>,
     ) {
-        let Some(Entry {
-            o,
-            d,
-            t,
-            f,
-            lambda,
-            x,
-        }) = self.next_entry(&mut l.rng, &mut l.left, k, limit)
-        else {
+        let Some(e) = self.next_entry(&mut l.rng, &mut l.left, k, limit) else {
             return;
         };
+        let (o, d, t, f, lambda, x) = (e.o, e.d, e.t, e.f, e.lambda, e.x);
         l.lambda = lambda;
         l.n = self.fixed_n.unwrap_or_else(|| self.material.ri(lambda));
         // Beer–Lambert coefficient per unit of path at this photon's wavelength (0 unless the
@@ -599,15 +592,7 @@ impl<'a> Tracer<'a> {
         }
         // One draw for the absorption and the surface's roulette.
         let (u, x) = two_uniforms(&mut l.rng);
-        let absorbed_at = match self.absorption {
-            Absorption::None => None,
-            Absorption::Thesis => (u < THESIS_ABSORPTION).then_some(t),
-            Absorption::Beer(_) | Absorption::Body { .. } => {
-                let s = -(1.0 - u).ln() / l.beer;
-                (s < t).then_some(s)
-            }
-        };
-        if let Some(s) = absorbed_at {
+        if let Some(s) = self.absorbed_within(u, t, l.beer) {
             k.absorbed += 1;
             if REC {
                 l.path.push(p + s * d);
@@ -635,6 +620,21 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// Where along the next `t` of its path a photon is absorbed, given the uniform `u` drawn for
+    /// it and its Beer–Lambert coefficient `beer` (per girdle diameter): the thesis's flat
+    /// chance per bounce (at the facet), an exponential free path, or never. Both kernels.
+    #[inline(always)]
+    pub(super) fn absorbed_within(&self, u: f64, t: f64, beer: f64) -> Option<f64> {
+        match self.absorption {
+            Absorption::None => None,
+            Absorption::Thesis => (u < THESIS_ABSORPTION).then_some(t),
+            Absorption::Beer(_) | Absorption::Body { .. } => {
+                let s = -(1.0 - u).ln() / beer;
+                (s < t).then_some(s)
+            }
+        }
+    }
+
     /// The lane's photon has ended with `fate`.
     #[inline(always)]
     fn finish<const REC: bool>(
@@ -644,15 +644,29 @@ impl<'a> Tracer<'a> {
         fate: Fate,
         out: &mut Vec<PhotonPath>,
     ) {
-        k.interactions += l.inter as u64;
         l.live = false;
-        if REC {
-            out.push(PhotonPath {
-                wavelength: l.lambda,
-                points: std::mem::take(&mut l.path),
-                fate,
-            });
-        }
+        end_path::<REC>(k, l.inter, l.lambda, &mut l.path, fate, out);
+    }
+}
+
+/// A photon's end, in both kernels: its interactions counted and, when paths are recorded,
+/// its path (taken from the lane) handed out with its wavelength and fate.
+#[inline(always)]
+pub(super) fn end_path<const REC: bool>(
+    k: &mut Counts,
+    inter: u32,
+    lambda: f64,
+    path: &mut Vec<DVec3>,
+    fate: Fate,
+    out: &mut Vec<PhotonPath>,
+) {
+    k.interactions += inter as u64;
+    if REC {
+        out.push(PhotonPath {
+            wavelength: lambda,
+            points: std::mem::take(path),
+            fate,
+        });
     }
 }
 
