@@ -563,49 +563,4 @@ impl GroundField {
                 + fx * self.cell_irradiance(b, i + 1, j + 1));
         (self.k[b] * e).max(0.0)
     }
-
-    /// The cells a polygon on the ground covers (clipped to each), with each piece: calls
-    /// `f(piece, i, j)` for the pieces inside the raster's reach of `max_cells` per side;
-    /// returns false (calling nothing) when the polygon's box spans more cells than that.
-    pub fn pieces(
-        &self,
-        poly: &[DVec2],
-        max_cells: usize,
-        mut f: impl FnMut(&[DVec2], i64, i64),
-    ) -> bool {
-        let h = self.cell();
-        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-        for p in poly {
-            lo = lo.min(*p);
-            hi = hi.max(*p);
-        }
-        if !(lo.is_finite() && hi.is_finite()) {
-            return false;
-        }
-        let idx = |v: f64| ((v + self.half) / h).floor() as i64;
-        let (i0, i1, j0, j1) = (idx(lo.x), idx(hi.x), idx(lo.y), idx(hi.y));
-        if (i1 - i0) as usize >= max_cells || (j1 - j0) as usize >= max_cells {
-            return false;
-        }
-        if i0 == i1 && j0 == j1 {
-            f(poly, i0, j0);
-            return true;
-        }
-        let (mut strip, mut piece, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
-        for j in j0..=j1 {
-            let y0 = -self.half + j as f64 * h;
-            clip2d::clip_strip_y_into(poly, y0, y0 + h, &mut strip, &mut scratch);
-            if strip.is_empty() {
-                continue;
-            }
-            for i in i0..=i1 {
-                let x0 = -self.half + i as f64 * h;
-                clip2d::clip_strip_x_into(&strip, x0, x0 + h, &mut piece, &mut scratch);
-                if piece.len() >= 3 {
-                    f(&piece, i, j);
-                }
-            }
-        }
-        true
-    }
 }
