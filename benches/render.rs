@@ -8,9 +8,11 @@
 //! `cargo bench --bench render` (add `-- quick` for fewer repetitions, `-- instructions` for
 //! one picture to count under callgrind). `-- photo` times the photographs as whole
 //! processes against `render tolkowsky --size 800` in the same run (alternated, medians of
-//! CPU and wall time, and their ratios): an 800² studio picture 30° above (spectral), the same
-//! face-up at one index, with a white ground, in perspective at 250 mm, 512² at one index,
-//! a 36-frame 512² turntable; then the workbench slider's quick 512² picture in process.
+//! CPU and wall time, and their ratios): an 800² studio picture 30° above (spectral), the
+//! fire picture at 800² and a face-up spectral studio picture (the same bands and view: the
+//! fair measure for a spectral photograph), the studio face-up at one index, with a white
+//! ground, in perspective at 250 mm, 512² at one index, a 36-frame 512² turntable; then the
+//! workbench slider's quick 512² picture in process.
 
 use facetlab::beam::{Frame, Stone};
 use facetlab::geometry::canonical::canonical;
@@ -191,6 +193,16 @@ fn photo(reps: usize) {
             "studio 800², 30° above, spectral (8 bands)",
             vec!["--light", "studio", "--size", "800"],
             "≤ 2× iso",
+        ),
+        (
+            "fire 800² (the lab's spectral picture: 8 bands, face-up)",
+            vec!["--light", "fire", "--size", "800"],
+            "—",
+        ),
+        (
+            "studio 800², face-up, spectral (8 bands)",
+            vec!["--light", "studio", "--size", "800", "--view", "90"],
+            "≤ 2× fire",
         ),
         (
             "studio 800², face-up, one index",

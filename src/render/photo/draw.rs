@@ -127,6 +127,8 @@ struct PhotoSink<'a> {
     pixel: f64,
     fp: Vec<DVec2>,
     values: Vec<f64>,
+    /// The ground seen through the stone.
+    seen: Seen<'a>,
 }
 
 impl PhotoSink<'_> {
@@ -139,16 +141,92 @@ impl PhotoSink<'_> {
         }
     }
 
-    /// Values of the ground in the bands drawn, at cell (i, j) or at point p.
-    fn ground_values(&mut self, g: &GroundField, at: Result<(i64, i64), DVec2>) {
+    /// Values of the ground in the bands drawn at ground point `p`.
+    fn ground_values(&mut self, g: &GroundField, p: DVec2) {
         self.values.clear();
         for &b in self.which {
-            self.values.push(match at {
-                Ok((i, j)) => (g.k[b] * g.cell_irradiance(b, i, j)).max(0.0),
-                Err(p) => g.radiance(b, p),
-            });
+            self.values.push(g.radiance(b, p));
         }
     }
+
+    /// A sight-line beam of footprint `fp` (image coordinates) that lands on the ground over
+    /// `landed`, of radiance `k` per unit of ground radiance: its exact coverage of each
+    /// pixel times the ground's radiance seen there, kept in `seen` (see [`Seen`]).
+    fn ground_exit(&mut self, g: &GroundField, landed: &[DVec2], fp: &[DVec2], k: f64) {
+        let mut cov = std::mem::take(&mut self.seen.cov);
+        self.seen.proto.coverage_into(fp, &mut cov);
+        let h = self.pixel;
+        let nc = self.which.len();
+        // The image → ground map of the beam (affine: one exit facet, one direction).
+        let map = if landed.len() == fp.len() && landed.len() >= 3 && cov.cells.len() > 1 {
+            affine(fp, landed)
+        } else {
+            None
+        };
+        match map {
+            None => {
+                // A beam within a pixel (or degenerate): the ground at its landed centroid.
+                let c = clip2d::centroid(landed).unwrap_or(landed[0]);
+                self.ground_values(g, c);
+                for &(px, a) in &cov.cells {
+                    self.seen.pixels.push(px as u32);
+                    let s = k * a / (h * h);
+                    self.seen.values.extend(self.values.iter().map(|v| v * s));
+                }
+            }
+            Some((m, t)) => {
+                // Samples per side of a pixel: enough that each spans at most about a
+                // ground cell (a pixel that sees much of the ground averages it), 4 at most.
+                let ext = h * m.x_axis.length().max(m.y_axis.length());
+                let s = ((ext / g.cell()).ceil() as usize).clamp(1, 4);
+                let (mut lo, mut hi) =
+                    (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+                for p in fp {
+                    lo = lo.min(*p);
+                    hi = hi.max(*p);
+                }
+                let n = self.seen.proto.n;
+                let half = self.seen.proto.half;
+                let mut sum = [0.0; 3];
+                for &(px, a) in &cov.cells {
+                    let (i, j) = (px % n, px / n);
+                    let p0 = DVec2::new(-half + i as f64 * h, -half + j as f64 * h);
+                    // The part of the pixel within the footprint's box, sampled on an
+                    // s × s grid (its centre when s = 1).
+                    let (b0, b1) = (p0.max(lo), (p0 + DVec2::splat(h)).min(hi));
+                    let d = (b1 - b0).max(DVec2::ZERO) / s as f64;
+                    sum[..nc].fill(0.0);
+                    for u in 0..s {
+                        for v in 0..s {
+                            let q = b0 + DVec2::new((u as f64 + 0.5) * d.x, (v as f64 + 0.5) * d.y);
+                            let at = m * q + t;
+                            for (c, &b) in self.which.iter().enumerate() {
+                                sum[c] += g.radiance(b, at);
+                            }
+                        }
+                    }
+                    self.seen.pixels.push(px as u32);
+                    let w = k * a / (h * h * (s * s) as f64);
+                    self.seen.values.extend(sum[..nc].iter().map(|v| v * w));
+                }
+            }
+        }
+        self.seen.cov = cov;
+    }
+}
+
+/// The ground seen through the stone by one trace: per pixel a beam covers, its values (one
+/// per band drawn, before the trace's cross-section scales them, as a [`Layer`]'s are), in
+/// the order the beams came; added to the filled picture after its layers. Each beam's
+/// coverage of the pixels is exact ([`Raster::coverage_into`]); the ground's (bilinear)
+/// radiance is sampled at the part of each pixel within the beam's box: at its centre, or on
+/// a grid of up to 4 × 4 where a pixel sees more than a ground cell.
+struct Seen<'a> {
+    /// An image of the picture's size (for its geometry only).
+    proto: &'a Raster,
+    cov: crate::render::raster::Coverage,
+    pixels: Vec<u32>,
+    values: Vec<f64>,
 }
 
 impl ExitSink for PhotoSink<'_> {
@@ -195,75 +273,7 @@ impl ExitSink for PhotoSink<'_> {
             Some(g) if w.z < 0.0 && !place.is_empty() => {
                 let landed: Vec<DVec2> =
                     place.iter().map(|&x| land(self.rot * x, w, g.z)).collect();
-                let mut done = false;
-                if landed.len() == fp.len() && landed.len() >= 3 {
-                    // The ground polygon → picture map (affine, from three vertex pairs).
-                    if let Some((m, t)) = affine(&landed, &fp) {
-                        let mut pieces: Vec<(Vec<DVec2>, i64, i64)> = Vec::new();
-                        done = g.pieces(&landed, 48, |piece, i, j| {
-                            pieces.push((piece.to_vec(), i, j));
-                        });
-                        // A ground cell the stone magnifies past a pixel and a half is drawn
-                        // in sub-cells of about a pixel, each with the field's bilinear
-                        // radiance at its centre (the ground seen directly is bilinear too):
-                        // a cell's constant would show its edges as steps through the
-                        // pavilion.
-                        let h = g.cell();
-                        let sub = ((h * m.determinant().abs().sqrt() / self.pixel).ceil() as usize)
-                            .clamp(1, 16);
-                        let (mut strip, mut cellp, mut scratch) =
-                            (Vec::new(), Vec::new(), Vec::new());
-                        for (piece, i, j) in pieces {
-                            if sub < 2 {
-                                self.ground_values(g, Ok((i, j)));
-                                let poly: Vec<DVec2> = piece.iter().map(|&p| m * p + t).collect();
-                                let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
-                                self.layer.add_polygon(&poly, &v);
-                                continue;
-                            }
-                            let hs = h / sub as f64;
-                            let (x0, y0) = (-g.half + i as f64 * h, -g.half + j as f64 * h);
-                            for b in 0..sub {
-                                let y = y0 + b as f64 * hs;
-                                clip2d::clip_strip_y_into(
-                                    &piece,
-                                    y,
-                                    y + hs,
-                                    &mut strip,
-                                    &mut scratch,
-                                );
-                                if strip.len() < 3 {
-                                    continue;
-                                }
-                                for a in 0..sub {
-                                    let x = x0 + a as f64 * hs;
-                                    clip2d::clip_strip_x_into(
-                                        &strip,
-                                        x,
-                                        x + hs,
-                                        &mut cellp,
-                                        &mut scratch,
-                                    );
-                                    if cellp.len() < 3 {
-                                        continue;
-                                    }
-                                    let c = clip2d::centroid(&cellp).unwrap_or(cellp[0]);
-                                    self.ground_values(g, Err(c));
-                                    let poly: Vec<DVec2> =
-                                        cellp.iter().map(|&p| m * p + t).collect();
-                                    let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
-                                    self.layer.add_polygon(&poly, &v);
-                                }
-                            }
-                        }
-                    }
-                }
-                if !done {
-                    let c = clip2d::centroid(&landed).unwrap_or(landed[0]);
-                    self.ground_values(g, Err(c));
-                    let v: Vec<f64> = self.values.iter().map(|x| x * k).collect();
-                    self.layer.add_polygon(&fp, &v);
-                }
+                self.ground_exit(g, &landed, &fp, k);
             }
             _ => {
                 self.env_values(w);
@@ -488,7 +498,8 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
     let frame0 = cam.frame();
     // Each group traced (its tiles in parallel) and filled at once, its layers dropped
     // before the next ones are made: a layer keeps every exit's footprint.
-    let trace_unit = |which: &[usize], tile: Option<&Tile>| -> Layer {
+    let proto = Raster::new(size, half);
+    let trace_unit = |which: &[usize], tile: Option<&Tile>| -> (Layer, Vec<u32>, Vec<f64>) {
         let b0 = &bands[which[0]];
         let mut sink = PhotoSink {
             layer: Layer::new(which.len()),
@@ -501,6 +512,12 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
             pixel: 2.0 * half / size as f64,
             fp: Vec::new(),
             values: Vec::new(),
+            seen: Seen {
+                proto: &proto,
+                cov: Default::default(),
+                pixels: Vec::new(),
+                values: Vec::new(),
+            },
         };
         let o = TraceOptions {
             absorption: b0.alpha,
@@ -511,13 +528,17 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
         let (st, _) =
             stone.trace_medium_window_into(&frame, &b0.medium, &o, window, &mut sink, false);
         let mut layer = sink.layer;
+        let Seen {
+            pixels, mut values, ..
+        } = sink.seen;
+        values.iter_mut().for_each(|v| *v *= st.area);
         layer.finish(st);
-        layer
+        (layer, pixels, values)
     };
     let filled: Vec<(Vec<Raster>, f64, usize, usize)> = groups
         .par_iter()
         .map(|which| {
-            let layers: Vec<Layer> = if tiles.is_empty() {
+            let units: Vec<(Layer, Vec<u32>, Vec<f64>)> = if tiles.is_empty() {
                 vec![trace_unit(which, None)]
             } else {
                 tiles
@@ -525,11 +546,20 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
                     .map(|t| trace_unit(which, Some(t)))
                     .collect()
             };
-            let cut: f64 = layers.iter().map(|l| l.stats.cut_off).sum();
-            let exits: usize = layers.iter().map(|l| l.exits).sum();
-            let refs: Vec<&Layer> = layers.iter().collect();
-            let r = Layer::fill(&refs, which.len(), size, half, false);
-            (r, cut, exits, layers.len())
+            let cut: f64 = units.iter().map(|l| l.0.stats.cut_off).sum();
+            let exits: usize = units.iter().map(|l| l.0.exits).sum();
+            let refs: Vec<&Layer> = units.iter().map(|u| &u.0).collect();
+            let mut r = Layer::fill(&refs, which.len(), size, half, false);
+            // The ground seen through the stone, unit by unit in order.
+            let nc = which.len();
+            for (_, pixels, values) in &units {
+                for (&px, v) in pixels.iter().zip(values.chunks_exact(nc)) {
+                    for (raster, x) in r.iter_mut().zip(v) {
+                        raster.data[px as usize] += x;
+                    }
+                }
+            }
+            (r, cut, exits, units.len())
         })
         .collect();
     let mut stats = PhotoStats {

@@ -170,10 +170,11 @@ pub struct GroundField {
     pub stats: GroundStats,
 }
 
-/// A downward exit on the plane: its polygon, its light before absorption per unit area
-/// (per unit of the trace's share) and what absorption left of it.
+/// A downward exit on the plane: its polygon (a range of its trace's points), its light
+/// before absorption per unit area (per unit of the trace's share) and what absorption left
+/// of it.
 struct Landed {
-    poly: Vec<DVec2>,
+    poly: (u32, u32),
     density: f64,
     kept: f64,
 }
@@ -182,6 +183,7 @@ struct Landed {
 /// and the exponent of its absorption, its shares escaping upward (per band) and its stats.
 struct Trace {
     landed: Vec<Landed>,
+    points: Vec<DVec2>,
     bands: Vec<(usize, f64, f64)>,
     up: Vec<f64>,
     stats: TraceStats,
@@ -196,6 +198,7 @@ struct CausticSink<'a> {
     /// The exponents of the bands the trace stands for.
     exponents: &'a [f64],
     landed: Vec<Landed>,
+    points: Vec<DVec2>,
     up: Vec<f64>,
 }
 
@@ -239,33 +242,43 @@ impl ExitSink for CausticSink<'_> {
             return;
         }
         let h = 0.5 * self.dot;
-        let square = |c: DVec2| {
-            vec![
+        let start = self.points.len();
+        let square = |c: DVec2, pts: &mut Vec<DVec2>| {
+            pts.extend([
                 c + DVec2::new(-h, -h),
                 c + DVec2::new(h, -h),
                 c + DVec2::new(h, h),
                 c + DVec2::new(-h, h),
-            ]
+            ])
         };
-        let mut poly: Vec<DVec2> = if place.len() >= 3 {
-            place
-                .iter()
-                .map(|&x| land(self.rot * x, w, self.z))
-                .collect()
+        if place.len() >= 3 {
+            let (rot, z) = (self.rot, self.z);
+            self.points
+                .extend(place.iter().map(|&x| land(rot * x, w, z)));
         } else {
-            square(land(self.rot * place[0], w, self.z))
-        };
-        let mut a = clip2d::area(&poly);
+            square(land(self.rot * place[0], w, self.z), &mut self.points);
+        }
+        let mut a = clip2d::area(&self.points[start..]);
         if !(a > 0.0 && a.is_finite()) {
             // A beam landing edge-on (a sliver): its light on a dot.
-            poly = square(poly[0]);
+            let c = self.points[start];
+            self.points.truncate(start);
+            square(c, &mut self.points);
             a = self.dot * self.dot;
         }
         self.landed.push(Landed {
-            poly,
+            poly: (start as u32, self.points.len() as u32),
             density: e.unabsorbed / a,
             kept,
         });
+    }
+}
+
+impl Trace {
+    /// The polygon of a landed exit.
+    #[inline]
+    fn poly(&self, l: &Landed) -> &[DVec2] {
+        &self.points[l.poly.0 as usize..l.poly.1 as usize]
     }
 }
 
@@ -335,6 +348,7 @@ impl GroundField {
                             dot: 0.5 * cell,
                             exponents: &exponents,
                             landed: Vec::new(),
+                            points: Vec::new(),
                             up: vec![0.0; exponents.len()],
                         };
                         let o = TraceOptions {
@@ -352,6 +366,7 @@ impl GroundField {
                             .collect();
                         Trace {
                             landed: sink.landed,
+                            points: sink.points,
                             bands,
                             up: sink.up,
                             stats: ts,
@@ -418,7 +433,8 @@ impl GroundField {
                                     continue;
                                 }
                                 for l in &tr.landed {
-                                    if misses(&l.poly) {
+                                    let poly = tr.poly(l);
+                                    if misses(poly) {
                                         continue;
                                     }
                                     v.fill(0.0);
@@ -427,7 +443,7 @@ impl GroundField {
                                             v[b - b0] += l.density * kept_to(l.kept, k) * phi;
                                         }
                                     }
-                                    acc.add_polygon(&l.poly, &v[..m]);
+                                    acc.add_polygon(poly, &v[..m]);
                                 }
                             }
                         }
@@ -454,7 +470,7 @@ impl GroundField {
         let down_of = |tr: &Trace, k: f64| -> f64 {
             tr.landed
                 .iter()
-                .map(|l| clip2d::area(&l.poly) * l.density * kept_to(l.kept, k))
+                .map(|l| clip2d::area(tr.poly(l)) * l.density * kept_to(l.kept, k))
                 .sum()
         };
         let intercepted = per(&|tr, _, phi, _| phi * tr.stats.power_in);
@@ -546,50 +562,5 @@ impl GroundField {
             + fy * ((1.0 - fx) * self.cell_irradiance(b, i, j + 1)
                 + fx * self.cell_irradiance(b, i + 1, j + 1));
         (self.k[b] * e).max(0.0)
-    }
-
-    /// The cells a polygon on the ground covers (clipped to each), with each piece: calls
-    /// `f(piece, i, j)` for the pieces inside the raster's reach of `max_cells` per side;
-    /// returns false (calling nothing) when the polygon's box spans more cells than that.
-    pub fn pieces(
-        &self,
-        poly: &[DVec2],
-        max_cells: usize,
-        mut f: impl FnMut(&[DVec2], i64, i64),
-    ) -> bool {
-        let h = self.cell();
-        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-        for p in poly {
-            lo = lo.min(*p);
-            hi = hi.max(*p);
-        }
-        if !(lo.is_finite() && hi.is_finite()) {
-            return false;
-        }
-        let idx = |v: f64| ((v + self.half) / h).floor() as i64;
-        let (i0, i1, j0, j1) = (idx(lo.x), idx(hi.x), idx(lo.y), idx(hi.y));
-        if (i1 - i0) as usize >= max_cells || (j1 - j0) as usize >= max_cells {
-            return false;
-        }
-        if i0 == i1 && j0 == j1 {
-            f(poly, i0, j0);
-            return true;
-        }
-        let (mut strip, mut piece, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
-        for j in j0..=j1 {
-            let y0 = -self.half + j as f64 * h;
-            clip2d::clip_strip_y_into(poly, y0, y0 + h, &mut strip, &mut scratch);
-            if strip.is_empty() {
-                continue;
-            }
-            for i in i0..=i1 {
-                let x0 = -self.half + i as f64 * h;
-                clip2d::clip_strip_x_into(&strip, x0, x0 + h, &mut piece, &mut scratch);
-                if piece.len() >= 3 {
-                    f(&piece, i, j);
-                }
-            }
-        }
-        true
     }
 }

@@ -11,9 +11,10 @@
 //!   (the rigs of [`rigs`], an equirectangular map, [`envmap`]), per wavelength band (fire's
 //!   bands: each traced at its own index, with the body colour's exact absorption), with its
 //!   polarization tracked through the stone;
-//! * sight lines leaving downward onto a [ground](mod@ground) see its radiance over the exact
-//!   polygon they land on (cut into the ground raster's cells, each piece mapped back onto
-//!   the footprint);
+//! * sight lines leaving downward onto a [ground](mod@ground) see its radiance where they
+//!   land: each beam's exact coverage of every pixel times the ground's (bilinear) radiance
+//!   sampled at that pixel's part of the beam, mapped onto the ground by the beam's affine
+//!   map (on a grid of up to 4 × 4 points where a pixel sees more than a ground cell);
 //! * the ground's shadow and caustics are the lights' own beam traces: exit beams projected
 //!   onto the plane with their power;
 //! * a [perspective camera](camera) is traced in tiles of parallel beams;
