@@ -28,7 +28,7 @@ use super::flags;
 use super::outputs::{cut_files, refuse_overwrite, Exit};
 use facetlab::document::score::{score_json, score_table};
 use facetlab::error::{Error, Result};
-use facetlab::metrics::{score, ScoreConfig, Scores};
+use facetlab::metrics::{score, ColourNotes, ScoreConfig, Scores, StoneChoice};
 use facetlab::verify::{verify_scores, Check, SIGMA};
 use std::path::PathBuf;
 
@@ -98,13 +98,15 @@ pub struct Settings {
     pub config: ScoreConfig,
     /// Photons for `--verify`.
     pub verify: Option<u64>,
+    /// The stones' material, colour, size and crystal settings.
+    pub stone: StoneChoice,
 }
 
 /// Validate the flags into the library's types.
 pub fn settings(a: &ScoreArgs) -> Result<Settings> {
-    let mut material = a.material.material()?;
-    material.colour = a.colour.colour_for(&material)?;
-    let size = a.colour.size()?;
+    let mut stone = flags::stone_choice(a.material.material()?, &a.material, &a.colour, None)?;
+    let material = stone.material.clone();
+    let size = stone.size;
     let polarization = a.polarization;
     let head = a.head_shadow;
     let verify = a.verify;
@@ -116,7 +118,12 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
         ..ScoreConfig::default()
     };
     config.validate()?;
-    Ok(Settings { config, verify })
+    stone.crystal = Some(a.crystal.choice(config.wavelength_nm));
+    Ok(Settings {
+        config,
+        verify,
+        stone,
+    })
 }
 
 /// The JSON document for these results (see the module documentation and
@@ -180,21 +187,15 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
     }
     // A design is traced in its own material unless the user chose one; the table's header
     // and the JSON settings name the first cut's.
-    let (mut materials, notes) =
-        flags::design_materials(&cuts, &s.config.material, a.material.chosen());
-    for note in notes {
-        eprintln!("{note}");
-    }
-    for note in a.colour.apply_traced(&cuts, &mut materials, true)?.0 {
-        eprintln!("{note}");
-    }
-    let density = a.colour.colour_density;
-    for note in a
-        .crystal
-        .apply(&cuts, &mut materials, density, s.config.wavelength_nm)?
-    {
-        eprintln!("{note}");
-    }
+    let materials = s
+        .stone
+        .stones(
+            &cuts,
+            &flags::STONE_FIELDS,
+            ColourNotes::Traced,
+            &mut flags::say,
+        )?
+        .materials;
     let configs: Vec<ScoreConfig> = materials
         .into_iter()
         .map(|m| ScoreConfig {

@@ -27,6 +27,7 @@
 use super::flags;
 use facetlab::document::trace::{trace_json, trace_table};
 use facetlab::error::{Error, Result};
+use facetlab::metrics::{ColourNotes, NoteKind, StoneChoice};
 use facetlab::photon::{
     self, Absorption, Light, LightChoice, LightKind, Tally, TraceConfig, WavelengthSampling,
 };
@@ -321,18 +322,29 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         .map(|c| facetlab::io::load_cut(c))
         .collect::<Result<Vec<_>>>()?;
     // A design is traced in its own material unless the user chose one; the table and the
-    // JSON settings name the first cut's.
-    let chosen = args.material.chosen();
-    let (mut materials, notes) = flags::design_materials(&cuts, &set.config.material, chosen);
-    for note in notes {
-        eprintln!("{note}");
-    }
-    // A coloured material (`--material ruby`, a design's note) is traced in colour only with
-    // `--absorption colour[:W]`; otherwise say that it is not, with the default width.
-    let colour_notes = flags::ColourArgs::default().apply(&cuts, &mut materials)?;
-    for note in args.crystal.apply(&cuts, &mut materials, None, 589.3)? {
-        eprintln!("{note}");
-    }
+    // JSON settings name the first cut's. A coloured material (`--material ruby`, a design's
+    // note) is traced in colour only with `--absorption colour[:W]`; otherwise say that it is
+    // not, with the default width, after the crystal's notes.
+    let mut stone = StoneChoice::new(
+        set.config.material.clone(),
+        args.material.chosen(),
+        None,
+        None,
+        flags::STONE_FIELDS.colour,
+    )?;
+    stone.crystal = Some(args.crystal.choice(589.3));
+    let mut colour_notes = Vec::new();
+    let materials = stone
+        .stones(
+            &cuts,
+            &flags::STONE_FIELDS,
+            ColourNotes::NotTraced,
+            &mut |kind, line| match kind {
+                NoteKind::Colour => colour_notes.push(line),
+                _ => flags::say(kind, line),
+            },
+        )?
+        .materials;
     if !matches!(set.config.absorption, Absorption::Body { .. }) {
         for note in colour_notes {
             eprintln!("{note}");
