@@ -33,6 +33,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("map axes", "--map"),
     ("shard folder", "--out"),
     ("batch output", "--jsonl"),
+    ("score document", "--json"),
     // A picture's settings (render's and photo's options), which the library names by the
     // picture's own words; [`picture_to_flags`] looks them up as `picture FIELD`.
     ("picture size", "--size"),
