@@ -34,6 +34,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("shard folder", "--out"),
     ("batch output", "--jsonl"),
     ("score document", "--json"),
+    ("shard", "--shard"),
     // A picture's settings (render's and photo's options), which the library names by the
     // picture's own words; [`picture_to_flags`] looks them up as `picture FIELD`.
     ("picture size", "--size"),
@@ -53,7 +54,8 @@ pub fn flag_of(name: &str) -> Option<&'static str> {
 }
 
 /// `e` as the command line says it: a field the library names by its setting ([`FLAGS`])
-/// named by its flag instead, also behind a context the library put in front (`stone: trace
+/// named by its flag instead (and so every setting its message names,
+/// [`facetlab::error::setting`]), also behind a context the library put in front (`stone: trace
 /// depth`) when the name is one of the library's phrases (several words: a config key, one
 /// word, is never taken for a setting).
 pub fn to_flags(e: Error) -> Error {
@@ -70,6 +72,8 @@ pub fn to_flags(e: Error) -> Error {
         }
         field
     };
+    // The settings named inside the message, spelled as flags too.
+    let e = e.spell_settings(&|name| flag_of(name).map(String::from));
     match e {
         Error::Invalid { field, message } => Error::Invalid {
             field: flagged(field),
@@ -369,6 +373,22 @@ pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_setting_named_inside_a_message_is_spelled_as_its_flag() {
+        let e = facetlab::plan::load_rough("octahedron", None).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "rough size: the crystal form `octahedron` needs rough size L (its largest extent in mm)"
+        );
+        assert_eq!(
+            to_flags(e).to_string(),
+            "--size-mm: the crystal form `octahedron` needs --size-mm L (its largest extent in mm)"
+        );
+        let env = |v: &str| (v == "SLURM_ARRAY_TASK_ID").then(|| "2".to_string());
+        let e = to_flags(Shard::from_env(&env).unwrap_err()).to_string();
+        assert!(e.ends_with("give --shard K/N"), "{e}");
+    }
 
     #[test]
     fn each_setting_names_one_flag_the_command_line_has() {
