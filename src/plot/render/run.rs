@@ -13,7 +13,6 @@ use crate::document::render::{CutJson, FrameJson, PhotoFrame, PhotoRecord};
 use crate::error::{Error, Result};
 use crate::io::hdr::HdrImage;
 use crate::metrics::{ColourNotes, NoteKind, StoneChoice, StoneFields};
-use crate::optics::Dispersion;
 use crate::plot::palette::PICTURE_GROUND;
 use crate::render::photo::{caption, turntable, turntable_period, PhotoOptions, PhotoStats};
 use crate::render::pose::{describe, rocked};
@@ -301,40 +300,27 @@ fn draw_lab(
     progress.finish();
     write_sheets(job.output, &all, delay_ms(nframes, false))?;
     let out = job.output.display().to_string();
-    let ri = match s.opts.material.dispersion {
-        Dispersion::Constant(n) => Some(n),
-        _ => None,
-    };
     Ok(cuts
         .iter()
         .zip(job.inputs)
         .zip(stats)
         .enumerate()
         .map(|(c, ((cut, input), fr))| {
-            let f0 = &fr[0];
+            let opts = RenderOptions {
+                material: materials[c].clone(),
+                width_mm: widths[c],
+                ..s.opts.clone()
+            };
             CutJson {
-                name: cut.name.clone(),
-                input: input.clone(),
-                light: light.name(),
-                size,
-                mean: f0.mean,
-                aset: f0.aset,
-                fire: f0.fire,
-                colour: f0.colour,
-                width_mm: materials[c].colour.is_some().then_some(widths[c]),
-                tilt_deg: f0.tilt_deg,
-                azimuth_deg: f0.azimuth_deg,
-                head_shadow_deg: s.opts.head_shadow(),
-                material: s.opts.material.name.clone(),
-                ri,
-                polarization: s.opts.polarization,
-                exposure: s.exposure,
-                cut_off: f0.cut_off,
-                exits: f0.exits,
-                elapsed_s: fr.iter().map(|f| f.elapsed_s).sum(),
                 output: out.clone(),
-                rock_deg: s.rock.map(|r| r.0),
-                frames: s.rock.is_some().then_some(fr),
+                ..CutJson::new(
+                    (&cut.name, input),
+                    &opts,
+                    &s.opts.material,
+                    s.exposure,
+                    fr,
+                    s.rock.map(|r| r.0),
+                )
             }
         })
         .collect())
