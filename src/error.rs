@@ -88,8 +88,8 @@ pub fn setting(name: &str) -> String {
 /// ```
 /// use facetlab::error::{setting, spell_settings};
 /// let text = format!("give {} L", setting("rough size"));
-/// let flag = |s: &str| (s == "rough size").then(|| "--size-mm".to_string());
-/// assert_eq!(spell_settings(&text, &flag), "give --size-mm L");
+/// let keyword = |s: &str| (s == "rough size").then(|| "size_mm".to_string());
+/// assert_eq!(spell_settings(&text, &keyword), "give size_mm L");
 /// assert_eq!(spell_settings(&text, &|_| None), "give rough size L");
 /// ```
 pub fn spell_settings(text: &str, spell: &dyn Fn(&str) -> Option<String>) -> String {

@@ -35,7 +35,7 @@ pub struct StoneFields<'a> {
     /// The stone's length (or length and width).
     pub length: &'a str,
     /// How the caller overrides a design's own material, said after the note that a design
-    /// is traced in it (`"--material or --ri overrides"`).
+    /// is traced in it (the command line's flags, the Python package's `material overrides`).
     pub overrides: &'a str,
 }
 
