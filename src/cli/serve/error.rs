@@ -159,7 +159,7 @@ mod tests {
                 .unwrap()
                 .unwrap(),
         );
-        photo.light_rotation_deg = 1e4;
+        photo.light_rotation_deg = f64::NAN;
         let e = ApiError::from_picture(photo.validate().unwrap_err());
         assert_eq!(e.field, "light_rotation");
         let e = ApiError::from_picture(Error::Geometry("no solid".into()));
