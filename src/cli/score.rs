@@ -152,26 +152,15 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
         .map(|c| super::cuts::load_with_sets(c, &a.set))
         .collect::<Result<Vec<_>>>()?;
     if let Some(path) = &a.json {
-        // Fail before the work, not after it.
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            if !dir.is_dir() {
-                return Err(Error::io(
-                    path.display().to_string(),
-                    format!("folder {} does not exist", dir.display()),
-                ));
-            }
-        }
+        // Fail before the work, not after it (a folder's parent exists, so the order of the
+        // two refusals does not matter).
         if path.is_dir() {
             return Err(Error::invalid(
                 "--json",
                 format!("{} is a folder; give a file name", path.display()),
             ));
         }
-        let dir = path
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .unwrap_or(std::path::Path::new("."));
-        facetlab::io::check_writable(dir)?;
+        facetlab::io::guard::check_folder_of(path)?;
     }
     let job = ScoreJob {
         cuts: &cuts,

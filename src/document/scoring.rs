@@ -57,23 +57,15 @@ pub struct Scored {
 pub fn score_cuts(job: &ScoreJob<'_>, sink: &mut dyn ScoreSink) -> Result<Scored> {
     // A design is traced in its own material unless the caller chose one; the table's header
     // and the document's settings name the first cut's.
-    let materials = job
+    let stones = job
         .stone
         .stones(job.cuts, job.fields, ColourNotes::Traced, &mut |k, l| {
             sink.note(k, l)
-        })?
-        .materials;
-    let configs: Vec<ScoreConfig> = materials
-        .into_iter()
-        .map(|m| ScoreConfig {
-            material: m,
-            ..job.config.clone()
-        })
-        .collect();
-    let mut config = job.config.clone();
-    if let Some(first) = configs.first() {
-        config.material = first.material.clone();
-    }
+        })?;
+    let (config, configs) = stones.configs(job.config, |c, material| ScoreConfig {
+        material,
+        ..c.clone()
+    });
     let results: Vec<(String, Scores)> = job
         .cuts
         .iter()

@@ -101,6 +101,20 @@ pub struct Stones {
     pub widths: Vec<f64>,
 }
 
+impl Stones {
+    /// A copy of `base` per cut, each in its stone's material (`with`), and `base` in the
+    /// first cut's material (what a document's settings name); `base` itself without cuts.
+    pub fn configs<C: Clone>(&self, base: &C, with: impl Fn(&C, Material) -> C) -> (C, Vec<C>) {
+        let each: Vec<C> = self
+            .materials
+            .iter()
+            .map(|m| with(base, m.clone()))
+            .collect();
+        let named = each.first().cloned().unwrap_or_else(|| base.clone());
+        (named, each)
+    }
+}
+
 impl StoneChoice {
     /// The choice with `material`'s body colour chosen ([`BodyColour::choose`]: the user's
     /// colour, else the material's own, times the density).
@@ -209,16 +223,16 @@ mod tests {
 
     const FIELDS: StoneFields<'static> = StoneFields {
         colour: ColourFields {
-            colour: "colour",
-            density: "colour_density",
+            colour: "body colour",
+            density: "colour density",
         },
         crystal: CrystalFields {
             birefringence: "birefringence",
-            optic_axis: "optic_axis",
-            colour_e: "colour_e",
+            optic_axis: "optic axis",
+            colour_e: "E∥c colour",
         },
-        width: "diameter_mm",
-        length: "size_mm",
+        width: "stone width",
+        length: "stone length",
         overrides: "material overrides",
     };
 
@@ -233,7 +247,7 @@ mod tests {
         });
         let mut choice =
             StoneChoice::new(Material::diamond(), false, None, None, FIELDS.colour).unwrap();
-        choice.size = StoneSize::parse_length("8", "size_mm").unwrap();
+        choice.size = StoneSize::parse_length("8", "stone length").unwrap();
         choice.size_is_length = true;
         choice.crystal = Some(CrystalChoice {
             wavelength_nm: 589.3,

@@ -57,18 +57,15 @@ pub struct TraceJob<'a> {
 /// charts' stems (each written as STEM.png and STEM.svg).
 pub fn trace(job: &TraceJob<'_>, sink: &dyn TraceSink) -> Result<Vec<PathBuf>> {
     let mut colour_notes = Vec::new();
-    let materials = job
-        .stone
-        .stones(
-            job.cuts,
-            job.fields,
-            ColourNotes::NotTraced,
-            &mut |kind, line| match kind {
-                NoteKind::Colour => colour_notes.push(line),
-                _ => sink.note(kind, line),
-            },
-        )?
-        .materials;
+    let stones = job.stone.stones(
+        job.cuts,
+        job.fields,
+        ColourNotes::NotTraced,
+        &mut |kind, line| match kind {
+            NoteKind::Colour => colour_notes.push(line),
+            _ => sink.note(kind, line),
+        },
+    )?;
     // A coloured stone is traced in colour only with a body-colour absorption; otherwise say
     // that it is not, with the default width.
     if !matches!(job.config.absorption, Absorption::Body { .. }) {
@@ -76,17 +73,10 @@ pub fn trace(job: &TraceJob<'_>, sink: &dyn TraceSink) -> Result<Vec<PathBuf>> {
             sink.note(NoteKind::Colour, line);
         }
     }
-    let configs: Vec<TraceConfig> = materials
-        .into_iter()
-        .map(|m| TraceConfig {
-            material: m,
-            ..job.config.clone()
-        })
-        .collect();
-    let mut config = job.config.clone();
-    if let Some(first) = configs.first() {
-        config.material = first.material.clone();
-    }
+    let (config, configs) = stones.configs(job.config, |c, material| TraceConfig {
+        material,
+        ..c.clone()
+    });
     if let Some(dir) = job.plots {
         if dir.exists() && !dir.is_dir() {
             return Err(Error::io(
@@ -97,17 +87,7 @@ pub fn trace(job: &TraceJob<'_>, sink: &dyn TraceSink) -> Result<Vec<PathBuf>> {
         crate::io::check_writable(dir)?;
     }
     if let Some(j) = job.json {
-        let parent = j
-            .parent()
-            .filter(|p| !p.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        if !parent.is_dir() {
-            return Err(Error::io(
-                j.display().to_string(),
-                format!("folder {} does not exist", parent.display()),
-            ));
-        }
-        crate::io::check_writable(parent)?;
+        crate::io::guard::check_folder_of(j)?;
     }
     let (per_cut, unit) = match job.light {
         LightChoice::Single(_) => (config.photons, "photons"),
