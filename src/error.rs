@@ -66,8 +66,74 @@ impl Error {
     }
 }
 
+/// A message on one line, any setting named inside it ([`setting`]) left unspelled by its
+/// face written as the setting's own name.
 fn one_line(s: &str) -> String {
-    s.split_whitespace().collect::<Vec<_>>().join(" ")
+    spell_settings(s, &|_| None)
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// A setting named inside a message (`⟨rough size⟩`), for the face that shows the message to
+/// spell its own way: the command line's flag (`--size-mm`), the Python package's keyword
+/// argument (`size_mm`); unspelled, the message shows the setting's name (`rough size`).
+pub fn setting(name: &str) -> String {
+    format!("⟨{name}⟩")
+}
+
+/// `text` with every setting named inside it ([`setting`]) spelled by `spell`, or by its own
+/// name where `spell` knows none.
+///
+/// ```
+/// use facetlab::error::{setting, spell_settings};
+/// let text = format!("give {} L", setting("rough size"));
+/// let keyword = |s: &str| (s == "rough size").then(|| "size_mm".to_string());
+/// assert_eq!(spell_settings(&text, &keyword), "give size_mm L");
+/// assert_eq!(spell_settings(&text, &|_| None), "give rough size L");
+/// ```
+pub fn spell_settings(text: &str, spell: &dyn Fn(&str) -> Option<String>) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(i) = rest.find('⟨') {
+        out.push_str(&rest[..i]);
+        let after = &rest[i + '⟨'.len_utf8()..];
+        match after.find('⟩') {
+            Some(j) => {
+                let name = &after[..j];
+                out.push_str(&spell(name).unwrap_or_else(|| name.to_string()));
+                rest = &after[j + '⟩'.len_utf8()..];
+            }
+            None => {
+                out.push_str(&rest[i..]);
+                rest = "";
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+impl Error {
+    /// The error with the settings named inside its message spelled by `spell`
+    /// ([`spell_settings`]).
+    pub fn spell_settings(self, spell: &dyn Fn(&str) -> Option<String>) -> Error {
+        match self {
+            Error::Io { path, message } => Error::Io {
+                path,
+                message: spell_settings(&message, spell),
+            },
+            Error::Parse { source, message } => Error::Parse {
+                source,
+                message: spell_settings(&message, spell),
+            },
+            Error::Invalid { field, message } => Error::Invalid {
+                field,
+                message: spell_settings(&message, spell),
+            },
+            Error::Geometry(m) => Error::Geometry(spell_settings(&m, spell)),
+        }
+    }
 }
 
 impl fmt::Display for Error {

@@ -5,6 +5,7 @@ use facetlab::cut::Cut;
 use facetlab::document::info::{info_json, info_text, meets_json, meets_text};
 use facetlab::error::{Error, Result};
 use facetlab::io;
+use facetlab::metrics::{ColourNotes, NoteKind, StoneChoice};
 use facetlab::optics::Material;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -159,12 +160,29 @@ pub fn info(a: &InfoArgs) -> Result<()> {
     let chosen = a.material.as_deref().map(Material::by_name).transpose()?;
     let cut = load_with_sets(&a.cut, &a.set)?;
     let default = chosen.clone().unwrap_or_else(Material::diamond);
-    let (materials, notes) =
-        super::flags::design_materials(std::slice::from_ref(&cut), &default, chosen.is_some());
-    for note in notes {
-        eprintln!("{note}");
-    }
-    let material = materials.into_iter().next().unwrap_or(default);
+    // A design is traced in its own material unless one was chosen (only that is said).
+    let stone = StoneChoice::new(
+        default.clone(),
+        chosen.is_some(),
+        None,
+        None,
+        super::flags::STONE_FIELDS.colour,
+    )?;
+    let material = stone
+        .stones(
+            std::slice::from_ref(&cut),
+            &super::flags::STONE_FIELDS,
+            ColourNotes::Traced,
+            &mut |kind, line| {
+                if kind == NoteKind::Design {
+                    super::flags::say(kind, line)
+                }
+            },
+        )?
+        .materials
+        .into_iter()
+        .next()
+        .unwrap_or(default);
     let lower = a.cut.to_ascii_lowercase();
     if lower.ends_with(".obj") || lower.ends_with(".stl") {
         if let Ok((_, Some(note))) = facetlab::io::mesh::read_with_note(&a.cut) {

@@ -2,12 +2,14 @@
 //! and what is allowed.
 
 use facetlab::error::{Error, Result};
+use facetlab::metrics::{CrystalChoice, NoteKind, StoneChoice, StoneFields};
 use facetlab::optics::{
-    BodyColour, ColourFields, Material, MaterialFields, StoneSize, DENSITY_MAX,
+    ColourFields, CrystalFields, Material, MaterialFields, StoneSize, DENSITY_MAX,
 };
 use facetlab::optimize::{Shard, SweepScore};
 
 pub use facetlab::io::text::{count, number};
+pub use facetlab::metrics::stones::on_off;
 
 /// The one table from the library's names of settings (the field its errors name) to the
 /// flag a user types for each: the library speaks of a `trace depth`, the command line of
@@ -31,6 +33,8 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("map axes", "--map"),
     ("shard folder", "--out"),
     ("batch output", "--jsonl"),
+    ("score document", "--json"),
+    ("shard", "--shard"),
     // A picture's settings (render's and photo's options), which the library names by the
     // picture's own words; [`picture_to_flags`] looks them up as `picture FIELD`.
     ("picture size", "--size"),
@@ -50,7 +54,8 @@ pub fn flag_of(name: &str) -> Option<&'static str> {
 }
 
 /// `e` as the command line says it: a field the library names by its setting ([`FLAGS`])
-/// named by its flag instead, also behind a context the library put in front (`stone: trace
+/// named by its flag instead (and so every setting its message names,
+/// [`facetlab::error::setting`]), also behind a context the library put in front (`stone: trace
 /// depth`) when the name is one of the library's phrases (several words: a config key, one
 /// word, is never taken for a setting).
 pub fn to_flags(e: Error) -> Error {
@@ -67,6 +72,8 @@ pub fn to_flags(e: Error) -> Error {
         }
         field
     };
+    // The settings named inside the message, spelled as flags too.
+    let e = e.spell_settings(&|name| flag_of(name).map(String::from));
     match e {
         Error::Invalid { field, message } => Error::Invalid {
             field: flagged(field),
@@ -118,18 +125,6 @@ pub fn shard(s: &str) -> Result<ShardFlag> {
     match s {
         "off" => Ok(ShardFlag::Off),
         s => Shard::parse("--shard", s).map(ShardFlag::Given),
-    }
-}
-
-/// `on`/`off` (also `true`/`false`, `yes`/`no`).
-pub fn on_off(flag: &str, s: &str) -> Result<bool> {
-    match s.trim().to_ascii_lowercase().as_str() {
-        "on" | "true" | "yes" => Ok(true),
-        "off" | "false" | "no" => Ok(false),
-        _ => Err(Error::invalid(
-            flag,
-            format!("`{s}` is not allowed; use on or off"),
-        )),
     }
 }
 
@@ -269,78 +264,12 @@ pub struct ColourArgs {
 }
 
 impl ColourArgs {
-    /// The body colour `material` is traced with under these flags
-    /// ([`BodyColour::choose`]: `--colour`, else the material's own, times
-    /// `--colour-density`).
-    pub fn colour_for(&self, material: &Material) -> Result<Option<BodyColour>> {
-        let density = self.colour_density;
-        BodyColour::choose(
-            material.colour.as_ref(),
-            self.colour.as_deref(),
-            density,
-            ColourFields {
-                colour: "--colour",
-                density: "--colour-density",
-            },
-        )
-    }
-
     /// The stone's size from `--diameter-mm` or `--size-mm` (default a width of 6.5 mm).
     pub fn size(&self) -> Result<StoneSize> {
         match (self.diameter_mm, &self.size_mm) {
             (Some(w), _) => StoneSize::width(w, "--diameter-mm"),
             (None, Some(l)) => StoneSize::parse_length(l, "--size-mm"),
             (None, None) => Ok(StoneSize::default()),
-        }
-    }
-
-    /// Give every material that has no body colour yet (a design traced in its own
-    /// material) its colour under these flags, and return the lines for stderr: per coloured
-    /// cut, the colour, the stone's width and that this command does not trace it (`trace`
-    /// without `--absorption colour`). `cuts` and `materials` pair up; a material chosen by the flags
-    /// already has its colour ([`ColourArgs::colour_for`] in the command's settings).
-    pub fn apply(
-        &self,
-        cuts: &[facetlab::cut::Cut],
-        materials: &mut [Material],
-    ) -> Result<Vec<String>> {
-        Ok(self.apply_traced(cuts, materials, false)?.0)
-    }
-
-    /// [`ColourArgs::apply`] for a command that traces the colour (`traced`: its notes do
-    /// not say it is not traced), with every cut's width in mm.
-    pub fn apply_traced(
-        &self,
-        cuts: &[facetlab::cut::Cut],
-        materials: &mut [Material],
-        traced: bool,
-    ) -> Result<(Vec<String>, Vec<f64>)> {
-        let size = self.size()?;
-        let mut notes = Vec::new();
-        let mut widths = Vec::with_capacity(cuts.len());
-        for (cut, m) in cuts.iter().zip(materials.iter_mut()) {
-            if m.colour.is_none() {
-                m.colour = self.colour_for(m)?;
-            }
-            let w = size.width_mm(cut.ratios().l_w, self.size_flag())?;
-            widths.push(w);
-            if let Some(c) = &m.colour {
-                let note = if traced {
-                    c.note(w)
-                } else {
-                    c.not_traced_note(w)
-                };
-                notes.push(format!("{}: {note}", cut.name));
-            }
-        }
-        Ok((notes, widths))
-    }
-
-    fn size_flag(&self) -> &'static str {
-        if self.size_mm.is_some() {
-            "--size-mm"
-        } else {
-            "--diameter-mm"
         }
     }
 }
@@ -365,40 +294,58 @@ pub struct CrystalArgs {
 }
 
 impl CrystalArgs {
-    /// Apply the flags to every material ([`Material::choose_crystal`]; `--colour-density`'s
-    /// `density` scales an `--colour-e` colour too) and return a line per cut for stderr
-    /// saying how each birefringent stone is traced at `wavelength_nm`.
-    pub fn apply(
-        &self,
-        cuts: &[facetlab::cut::Cut],
-        materials: &mut [Material],
-        density: Option<f64>,
-        wavelength_nm: f64,
-    ) -> Result<Vec<String>> {
-        let on = self
-            .birefringence
-            .as_deref()
-            .map(|b| on_off("--birefringence", b))
-            .transpose()?;
-        let mut notes = Vec::new();
-        for (cut, m) in cuts.iter().zip(materials.iter_mut()) {
-            m.choose_crystal(
-                on,
-                self.optic_axis.as_deref(),
-                self.colour_e.as_deref(),
-                density,
-                facetlab::optics::CrystalFields {
-                    birefringence: "--birefringence",
-                    optic_axis: "--optic-axis",
-                    colour_e: "--colour-e",
-                },
-            )?;
-            if let Some(n) = m.birefringence_note(wavelength_nm) {
-                notes.push(format!("{}: {n}", cut.name));
-            }
+    /// The crystal settings these flags give, a birefringent stone's note at `wavelength_nm`.
+    pub fn choice(&self, wavelength_nm: f64) -> CrystalChoice {
+        CrystalChoice {
+            birefringence: self.birefringence.clone(),
+            optic_axis: self.optic_axis.clone(),
+            colour_e: self.colour_e.clone(),
+            wavelength_nm,
         }
-        Ok(notes)
     }
+}
+
+/// Where the command line takes a stone's settings: its flags.
+pub const STONE_FIELDS: StoneFields<'static> = StoneFields {
+    colour: ColourFields {
+        colour: "--colour",
+        density: "--colour-density",
+    },
+    crystal: CrystalFields {
+        birefringence: "--birefringence",
+        optic_axis: "--optic-axis",
+        colour_e: "--colour-e",
+    },
+    width: "--diameter-mm",
+    length: "--size-mm",
+    overrides: "--material or --ri overrides",
+};
+
+/// The stones' choice from the material and colour flags: `material` (the material flags',
+/// [`MaterialArgs::material`]) with its body colour chosen, the size from `--diameter-mm` or
+/// `--size-mm`; `crystal` the crystal settings, if the command applies them.
+pub fn stone_choice(
+    material: Material,
+    m: &MaterialArgs,
+    c: &ColourArgs,
+    crystal: Option<CrystalChoice>,
+) -> Result<StoneChoice> {
+    let mut choice = StoneChoice::new(
+        material,
+        m.chosen(),
+        c.colour.clone(),
+        c.colour_density,
+        STONE_FIELDS.colour,
+    )?;
+    choice.size = c.size()?;
+    choice.size_is_length = c.size_mm.is_some();
+    choice.crystal = crystal;
+    Ok(choice)
+}
+
+/// A stone's note, said on stderr.
+pub fn say(_: NoteKind, line: String) {
+    eprintln!("{line}");
 }
 
 /// The material from `--ri N` or `--material NAME` (diamond when neither is given), chosen by
@@ -423,35 +370,25 @@ pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
     )
 }
 
-/// The material each cut is traced in ([`facetlab::metrics::material_of`]: `default` when the
-/// user chose it, else a design's own), and a line (for stderr) per cut traced in its design's
-/// material (a malformed note is reported and ignored).
-pub fn design_materials(
-    cuts: &[facetlab::cut::Cut],
-    default: &Material,
-    chosen: bool,
-) -> (Vec<Material>, Vec<String>) {
-    let mut notes = Vec::new();
-    let materials = cuts
-        .iter()
-        .map(|c| {
-            let (m, said) = facetlab::metrics::material_of(c, default, chosen);
-            notes.extend(said.into_iter().map(|s| {
-                if s.ends_with("; ignored") {
-                    format!("{}: {s}", c.name)
-                } else {
-                    format!("{}: {s}; --material or --ri overrides", c.name)
-                }
-            }));
-            m
-        })
-        .collect();
-    (materials, notes)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_setting_named_inside_a_message_is_spelled_as_its_flag() {
+        let e = facetlab::plan::load_rough("octahedron", None).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "rough size: the crystal form `octahedron` needs rough size L (its largest extent in mm)"
+        );
+        assert_eq!(
+            to_flags(e).to_string(),
+            "--size-mm: the crystal form `octahedron` needs --size-mm L (its largest extent in mm)"
+        );
+        let env = |v: &str| (v == "SLURM_ARRAY_TASK_ID").then(|| "2".to_string());
+        let e = to_flags(Shard::from_env(&env).unwrap_err()).to_string();
+        assert!(e.ends_with("give --shard K/N"), "{e}");
+    }
 
     #[test]
     fn each_setting_names_one_flag_the_command_line_has() {
@@ -592,8 +529,28 @@ mod tests {
         assert!(e.starts_with("--ri: `abc` is not a number"), "{e}");
     }
 
+    /// The materials and the stderr lines of `cuts` under `default` (`chosen`: the user chose
+    /// it) and the colour flags `c`.
+    fn stones_of(
+        cuts: &[facetlab::cut::Cut],
+        default: Material,
+        chosen: bool,
+        c: &ColourArgs,
+        notes: facetlab::metrics::ColourNotes,
+    ) -> Result<(Vec<Material>, Vec<String>)> {
+        let m = MaterialArgs {
+            material: chosen.then(|| default.name.clone()),
+            ri: None,
+        };
+        let choice = stone_choice(default, &m, c, None)?;
+        let mut lines = Vec::new();
+        let s = choice.stones(cuts, &STONE_FIELDS, notes, &mut |_, l| lines.push(l))?;
+        Ok((s.materials, lines))
+    }
+
     #[test]
     fn design_index_is_mentioned_only_when_it_differs_and_nothing_was_chosen() {
+        use facetlab::metrics::ColourNotes::Traced;
         let mut quartz = facetlab::io::load_cut("tolkowsky").unwrap();
         quartz.record = Some(facetlab::cut::GemcadRecord {
             ri: Some(1.54),
@@ -606,17 +563,23 @@ mod tests {
         });
         let plain = facetlab::io::load_cut("gia-reference").unwrap();
         let cuts = [quartz, dia, plain];
-        let (m, notes) = design_materials(&cuts, &Material::diamond(), false);
+        let none = ColourArgs::default();
+        let (m, notes) = stones_of(&cuts, Material::diamond(), false, &none, Traced).unwrap();
         let names: Vec<&str> = m.iter().map(|m| m.name.as_str()).collect();
         assert_eq!(names, ["quartz", "diamond", "diamond"]);
         assert_eq!(notes.len(), 2, "{notes:?}");
         assert!(notes[0].contains("traced as quartz (the design's index 1.54)"));
-        let (m, notes) = design_materials(&cuts, &Material::cubic_zirconia(), true);
+        assert!(
+            notes[0].ends_with("; --material or --ri overrides"),
+            "{notes:?}"
+        );
+        let (m, notes) = stones_of(&cuts, Material::cubic_zirconia(), true, &none, Traced).unwrap();
         assert!(notes.is_empty() && m.iter().all(|m| m.name == "cubic-zirconia"));
     }
 
     #[test]
     fn a_design_note_names_a_coloured_material_and_colour_flags_apply() {
+        use facetlab::metrics::ColourNotes::{NotTraced, Traced};
         let mut cut = facetlab::io::load_cut("tolkowsky").unwrap();
         cut.record = Some(facetlab::cut::GemcadRecord {
             ri: Some(1.54),
@@ -624,7 +587,8 @@ mod tests {
             ..Default::default()
         });
         let cuts = [cut];
-        let (m, notes) = design_materials(&cuts, &Material::diamond(), false);
+        let none = ColourArgs::default();
+        let (m, notes) = stones_of(&cuts, Material::diamond(), false, &none, Traced).unwrap();
         assert_eq!(m[0].name, "amethyst");
         assert!(m[0].colour.is_some());
         assert!(
@@ -632,25 +596,26 @@ mod tests {
             "{notes:?}"
         );
         // A chosen material wins over the note.
-        let (m, _) = design_materials(&cuts, &Material::diamond(), true);
+        let (m, _) = stones_of(&cuts, Material::diamond(), true, &none, Traced).unwrap();
         assert_eq!(m[0].name, "diamond");
         // The colour flags: a user colour colours the design's material; a density scales
-        // what is there; the note for stderr names the width.
+        // what is there (and is refused with nothing to scale); the note for stderr names
+        // the width.
         let args = ColourArgs {
             colour: None,
             colour_density: Some(2.0),
             diameter_mm: Some(8.0),
             size_mm: None,
         };
-        let (mut m, _) = design_materials(&cuts, &Material::diamond(), false);
-        m[0].colour = None;
-        let e = args.apply(&cuts, &mut m).unwrap_err().to_string();
+        let e = stones_of(&cuts, Material::diamond(), true, &args, Traced)
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("--colour-density: there is no colour"), "{e}");
         let args = ColourArgs {
             colour: Some("#2e8b57@10mm".into()),
             ..args
         };
-        let notes = args.apply(&cuts, &mut m).unwrap();
+        let (m, notes) = stones_of(&cuts, Material::diamond(), true, &args, NotTraced).unwrap();
         assert_eq!(m[0].colour.as_ref().unwrap().density, 2.0);
         assert!(notes[0].contains("stone width 8 mm") && notes[0].contains("not yet traced"));
         let bad = a_number("--diameter-mm", "give a width in (0, 1000) mm")("wide");

@@ -47,17 +47,7 @@ pub fn check_new_file(flag: &str, path: &Path, force: bool) -> Result<()> {
             ),
         ));
     }
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    if !dir.is_dir() {
-        return Err(Error::io(
-            path.display().to_string(),
-            format!("folder {} does not exist", dir.display()),
-        ));
-    }
-    facetlab::io::check_writable(dir)
+    facetlab::io::guard::check_folder_of(path)
 }
 
 /// The CUT arguments that are files (presets are not).

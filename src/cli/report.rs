@@ -6,7 +6,7 @@
 use super::flags;
 use super::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
-use facetlab::metrics::ScoreConfig;
+use facetlab::metrics::{ColourNotes, ScoreConfig, StoneChoice};
 use facetlab::report::{html, measure, ReportOptions};
 use std::path::PathBuf;
 
@@ -77,21 +77,24 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     let chosen = a.material.chosen();
     // A design is traced in its own material (GemCad's `I` index) unless one was chosen; the
     // page names the first cut's.
-    let (mut materials, notes) = flags::design_materials(&cuts, &material, chosen);
-    for note in notes {
-        eprintln!("{note}");
-    }
-    // A coloured material (`--material ruby`, a design's note): name it, with the default
+    // A coloured material (`--material ruby`, a design's note) is named with the default
     // width (this command has no size flags); its scores carry the face-up colour.
-    for note in flags::ColourArgs::default()
-        .apply_traced(&cuts, &mut materials, true)?
-        .0
-    {
-        eprintln!("{note}");
-    }
-    for note in flags::CrystalArgs::default().apply(&cuts, &mut materials, None, 589.3)? {
-        eprintln!("{note}");
-    }
+    let mut stone = StoneChoice::new(
+        material.clone(),
+        chosen,
+        None,
+        None,
+        flags::STONE_FIELDS.colour,
+    )?;
+    stone.crystal = Some(flags::CrystalArgs::default().choice(589.3));
+    let materials = stone
+        .stones(
+            &cuts,
+            &flags::STONE_FIELDS,
+            ColourNotes::Traced,
+            &mut flags::say,
+        )?
+        .materials;
     let material = materials.first().cloned().unwrap_or(material);
     let score = ScoreConfig {
         material,

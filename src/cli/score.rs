@@ -26,10 +26,11 @@
 
 use super::flags;
 use super::outputs::{cut_files, refuse_overwrite, Exit};
-use facetlab::document::score::{score_json, score_table};
+use facetlab::document::score::score_table;
+use facetlab::document::scoring::{score_cuts, ScoreJob, ScoreSink};
 use facetlab::error::{Error, Result};
-use facetlab::metrics::{score, ScoreConfig, Scores};
-use facetlab::verify::{verify_scores, Check, SIGMA};
+use facetlab::metrics::{NoteKind, ScoreConfig, Scores, StoneChoice};
+use facetlab::verify::{Check, SIGMA};
 use std::path::PathBuf;
 
 /// Flags of `facetlab score`.
@@ -98,13 +99,15 @@ pub struct Settings {
     pub config: ScoreConfig,
     /// Photons for `--verify`.
     pub verify: Option<u64>,
+    /// The stones' material, colour, size and crystal settings.
+    pub stone: StoneChoice,
 }
 
 /// Validate the flags into the library's types.
 pub fn settings(a: &ScoreArgs) -> Result<Settings> {
-    let mut material = a.material.material()?;
-    material.colour = a.colour.colour_for(&material)?;
-    let size = a.colour.size()?;
+    let mut stone = flags::stone_choice(a.material.material()?, &a.material, &a.colour, None)?;
+    let material = stone.material.clone();
+    let size = stone.size;
     let polarization = a.polarization;
     let head = a.head_shadow;
     let verify = a.verify;
@@ -116,20 +119,12 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
         ..ScoreConfig::default()
     };
     config.validate()?;
-    Ok(Settings { config, verify })
-}
-
-/// The JSON document for these results (see the module documentation and
-/// [`facetlab::document::score`]). `verify` holds, per cut, the photon-tracer checks of
-/// `--verify` (empty when not asked), made with `photons` photons per figure.
-pub fn to_json(
-    config: &ScoreConfig,
-    results: &[(String, Scores)],
-    verify: &[Vec<Check>],
-    photons: u64,
-) -> Result<String> {
-    score_json(config, results, verify, photons)
-        .map_err(|e| Error::invalid("--json", e.to_string()))
+    stone.crystal = Some(a.crystal.choice(config.wavelength_nm));
+    Ok(Settings {
+        config,
+        verify,
+        stone,
+    })
 }
 
 /// The exit status of `score`: a disagreement when any `--verify` check lies beyond
@@ -145,7 +140,7 @@ pub fn verdict(checks: &[Vec<Check>]) -> Exit {
 /// Run `facetlab score`; with `--verify`, a disagreement beyond [`SIGMA`] standard errors
 /// exits 1 after the table and the JSON are written.
 pub fn run(a: &ScoreArgs) -> Result<Exit> {
-    let mut s = settings(a)?;
+    let s = settings(a)?;
     if let Some(path) = &a.json {
         // Never overwrite a cut with its scores.
         refuse_overwrite(&[("--json", path.clone())], &cut_files(&a.cuts))?;
@@ -157,90 +152,26 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
         .map(|c| super::cuts::load_with_sets(c, &a.set))
         .collect::<Result<Vec<_>>>()?;
     if let Some(path) = &a.json {
-        // Fail before the work, not after it.
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            if !dir.is_dir() {
-                return Err(Error::io(
-                    path.display().to_string(),
-                    format!("folder {} does not exist", dir.display()),
-                ));
-            }
-        }
+        // Fail before the work, not after it (a folder's parent exists, so the order of the
+        // two refusals does not matter).
         if path.is_dir() {
             return Err(Error::invalid(
                 "--json",
                 format!("{} is a folder; give a file name", path.display()),
             ));
         }
-        let dir = path
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .unwrap_or(std::path::Path::new("."));
-        facetlab::io::check_writable(dir)?;
+        facetlab::io::guard::check_folder_of(path)?;
     }
-    // A design is traced in its own material unless the user chose one; the table's header
-    // and the JSON settings name the first cut's.
-    let (mut materials, notes) =
-        flags::design_materials(&cuts, &s.config.material, a.material.chosen());
-    for note in notes {
-        eprintln!("{note}");
-    }
-    for note in a.colour.apply_traced(&cuts, &mut materials, true)?.0 {
-        eprintln!("{note}");
-    }
-    let density = a.colour.colour_density;
-    for note in a
-        .crystal
-        .apply(&cuts, &mut materials, density, s.config.wavelength_nm)?
-    {
-        eprintln!("{note}");
-    }
-    let configs: Vec<ScoreConfig> = materials
-        .into_iter()
-        .map(|m| ScoreConfig {
-            material: m,
-            ..s.config.clone()
-        })
-        .collect();
-    if let Some(first) = configs.first() {
-        s.config.material = first.material.clone();
-    }
-    let results: Vec<(String, Scores)> = cuts
-        .iter()
-        .zip(&configs)
-        .map(|(c, cfg)| (c.name.clone(), score(&c.solid, cfg)))
-        .collect();
-    print!("{}", score_table(&s.config, &results));
-    let mut checks: Vec<Vec<Check>> = Vec::new();
-    let photons = s.verify.unwrap_or(0);
-    if let Some(photons) = s.verify {
-        println!(
-            "\nphoton-tracer check, {photons} photons per figure and pose (value ± standard error; beam − photon in standard errors)"
-        );
-        for ((cut, (name, sc)), cfg) in cuts.iter().zip(&results).zip(&configs) {
-            let cs = verify_scores(&cut.solid, cfg, sc, photons, VERIFY_SEED)?;
-            println!("{name}");
-            for c in &cs {
-                let flag = if c.beyond(SIGMA) {
-                    "  ⚠ beyond 4 se"
-                } else {
-                    ""
-                };
-                println!(
-                    "  {:<24} beam {:.4}   photon {:.4} ± {:.4}   {:+.2} se{flag}",
-                    c.name, c.beam, c.photon, c.stderr, c.z
-                );
-            }
-            checks.push(cs);
-        }
-    }
-    if let Some(path) = &a.json {
-        facetlab::io::write_atomic(
-            path,
-            to_json(&s.config, &results, &checks, photons)?.as_bytes(),
-        )?;
-    }
-    let exit = verdict(&checks);
+    let job = ScoreJob {
+        cuts: &cuts,
+        stone: &s.stone,
+        fields: &flags::STONE_FIELDS,
+        config: &s.config,
+        verify: s.verify,
+        json: a.json.as_deref(),
+    };
+    let scored = score_cuts(&job, &mut Printed)?;
+    let exit = verdict(&scored.checks);
     if exit == Exit::Disagreement {
         eprintln!(
             "facetlab: the photon tracer disagrees with the beam tracer beyond {SIGMA} standard errors (exit code 1)"
@@ -249,12 +180,41 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
     Ok(exit)
 }
 
-/// Seed of the photon tracer in `--verify`.
-pub const VERIFY_SEED: u64 = 1;
+/// What `score` prints as it goes: the notes on stderr, the table and each cut's checks.
+struct Printed;
+
+impl ScoreSink for Printed {
+    fn note(&mut self, kind: NoteKind, line: String) {
+        flags::say(kind, line)
+    }
+    fn scored(&mut self, config: &ScoreConfig, results: &[(String, Scores)]) {
+        print!("{}", score_table(config, results));
+    }
+    fn checking(&mut self, photons: u64) {
+        println!(
+            "\nphoton-tracer check, {photons} photons per figure and pose (value ± standard error; beam − photon in standard errors)"
+        );
+    }
+    fn checked(&mut self, name: &str, checks: &[Check]) {
+        println!("{name}");
+        for c in checks {
+            let flag = if c.beyond(SIGMA) {
+                "  ⚠ beyond 4 se"
+            } else {
+                ""
+            };
+            println!(
+                "  {:<24} beam {:.4}   photon {:.4} ± {:.4}   {:+.2} se{flag}",
+                c.name, c.beam, c.photon, c.stderr, c.z
+            );
+        }
+    }
+}
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use facetlab::document::score::score_json;
 
     fn parsed(extra: &[&str]) -> std::result::Result<ScoreArgs, clap::Error> {
         use clap::Parser;
@@ -358,7 +318,7 @@ mod tests {
             }],
             ..Default::default()
         };
-        let one = to_json(&cfg, &[("tolkowsky".into(), s.clone())], &[], 0).unwrap();
+        let one = score_json(&cfg, &[("tolkowsky".into(), s.clone())], &[], 0).unwrap();
         let v: serde_json::Value = serde_json::from_str(&one).unwrap();
         for k in [
             "overhead_light_return",
@@ -379,7 +339,7 @@ mod tests {
         assert_eq!(v["cut"], "tolkowsky");
         assert_eq!(v["settings"]["material"], "diamond");
         assert!(v["settings"]["ri"].is_null());
-        let two = to_json(
+        let two = score_json(
             &cfg,
             &[("a".into(), s.clone()), ("b".into(), s.clone())],
             &[],

@@ -25,11 +25,13 @@
 //! `paths_<cut>_wavelength`, `paths_<cut>_no_first_segment`, `facets_<cut>`.
 
 use super::flags;
-use facetlab::document::trace::{trace_json, trace_table};
+use facetlab::document::trace::trace_table;
 use facetlab::error::{Error, Result};
+use facetlab::metrics::{NoteKind, StoneChoice};
 use facetlab::photon::{
     self, Absorption, Light, LightChoice, LightKind, Tally, TraceConfig, WavelengthSampling,
 };
+use facetlab::plot::trace::{TraceJob, TraceSink};
 use facetlab::plot::{self, Camera};
 use std::path::{Path, PathBuf};
 
@@ -303,7 +305,7 @@ fn parse_camera(s: &str) -> Result<Camera> {
 
 /// Run `facetlab trace`.
 pub fn run(args: &TraceArgs) -> Result<()> {
-    let mut set = settings(args)?;
+    let set = settings(args)?;
     let mut outputs = Vec::new();
     if let Some(j) = &args.json {
         outputs.push(("--json", j.clone()));
@@ -320,99 +322,70 @@ pub fn run(args: &TraceArgs) -> Result<()> {
         .iter()
         .map(|c| facetlab::io::load_cut(c))
         .collect::<Result<Vec<_>>>()?;
-    // A design is traced in its own material unless the user chose one; the table and the
-    // JSON settings name the first cut's.
-    let chosen = args.material.chosen();
-    let (mut materials, notes) = flags::design_materials(&cuts, &set.config.material, chosen);
-    for note in notes {
-        eprintln!("{note}");
-    }
-    // A coloured material (`--material ruby`, a design's note) is traced in colour only with
-    // `--absorption colour[:W]`; otherwise say that it is not, with the default width.
-    let colour_notes = flags::ColourArgs::default().apply(&cuts, &mut materials)?;
-    for note in args.crystal.apply(&cuts, &mut materials, None, 589.3)? {
-        eprintln!("{note}");
-    }
-    if !matches!(set.config.absorption, Absorption::Body { .. }) {
-        for note in colour_notes {
-            eprintln!("{note}");
-        }
-    }
-    let configs: Vec<TraceConfig> = materials
-        .into_iter()
-        .map(|m| TraceConfig {
-            material: m,
-            ..set.config.clone()
-        })
-        .collect();
-    if let Some(first) = configs.first() {
-        set.config.material = first.material.clone();
-    }
-    if let Some(dir) = &args.plots {
-        if dir.exists() && !dir.is_dir() {
-            return Err(Error::io(
-                dir.display().to_string(),
-                "exists and is not a folder",
-            ));
-        }
-        facetlab::io::check_writable(dir)?;
-    }
-    if let Some(j) = &args.json {
-        let parent = j
-            .parent()
-            .filter(|p| !p.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        if !parent.is_dir() {
-            return Err(Error::io(
-                j.display().to_string(),
-                format!("folder {} does not exist", parent.display()),
-            ));
-        }
-        facetlab::io::check_writable(parent)?;
-    }
-    let per_cut = match set.light {
-        LightChoice::Single(_) => set.config.photons,
-        LightChoice::Rotate(_) => set.config.photons * photon::ROTATION_ANGLES.len() as u64,
+    // A design is traced in its own material unless the user chose one.
+    let mut stone = StoneChoice::new(
+        set.config.material.clone(),
+        args.material.chosen(),
+        None,
+        None,
+        flags::STONE_FIELDS.colour,
+    )?;
+    stone.crystal = Some(args.crystal.choice(589.3));
+    let job = TraceJob {
+        cuts: &cuts,
+        inputs: &args.cuts,
+        stone: &stone,
+        fields: &flags::STONE_FIELDS,
+        light: &set.light,
+        config: &set.config,
+        camera: set.camera,
+        json: args.json.as_deref(),
+        plots: args.plots.as_deref(),
     };
-    let unit = match set.light {
-        LightChoice::Single(_) => "photons",
-        LightChoice::Rotate(_) => "hits",
+    let sink = Bar {
+        quiet: args.quiet,
+        bar: std::sync::OnceLock::new(),
     };
-    let template = format!("{{spinner}} tracing [{{bar:30}}] {{percent:>3}}% {{human_pos}}/{{human_len}} {unit}, eta {{eta}}");
-    let bar = super::progress::bar(
-        per_cut.saturating_mul(cuts.len() as u64),
-        args.quiet,
-        &template,
-    );
-    let tick = |n: u64| bar.inc(n);
-    let progress: Option<&(dyn Fn(u64) + Sync)> = Some(&tick);
-    // results[cut] = one tally, or one per rotation angle.
-    let mut results: Vec<Vec<Tally>> = Vec::with_capacity(cuts.len());
-    for (cut, config) in cuts.iter().zip(&configs) {
-        results.push(photon::trace_choice(
-            &cut.solid, &cut.name, &set.light, config, progress,
-        )?);
-    }
-    bar.finish_and_clear();
-    print!("{}", trace_table(&set.light, &set.config, &results));
-    if let Some(j) = &args.json {
-        let text = trace_json(&set.light, &set.config, &args.cuts, &results)
-            .and_then(|doc| serde_json::to_string_pretty(&doc))
-            .map_err(|e| Error::io(j.display().to_string(), e))?;
-        facetlab::io::write_atomic(j, text.as_bytes())?;
-    }
-    if let Some(j) = &args.json {
-        println!("results → {}", j.display());
-    }
-    if let Some(dir) = &args.plots {
-        for stem in plot::trace::trace_plots(dir, &set.light, set.camera, &cuts, &results)? {
-            println!(
-                "plot → {} (and .svg)",
-                plot::with_ext(&stem, "png").display()
-            );
-        }
+    for stem in plot::trace::trace(&job, &sink)? {
+        println!(
+            "plot → {} (and .svg)",
+            plot::with_ext(&stem, "png").display()
+        );
     }
     Ok(())
+}
+
+/// The progress bar of `trace` (drawn once the stones' notes are said), the notes, the table
+/// and the files written.
+struct Bar {
+    quiet: bool,
+    bar: std::sync::OnceLock<indicatif::ProgressBar>,
+}
+
+impl TraceSink for Bar {
+    fn note(&self, kind: NoteKind, line: String) {
+        flags::say(kind, line)
+    }
+    fn start(&self, total: u64, unit: &str) {
+        let template = format!("{{spinner}} tracing [{{bar:30}}] {{percent:>3}}% {{human_pos}}/{{human_len}} {unit}, eta {{eta}}");
+        let _ = self
+            .bar
+            .set(super::progress::bar(total, self.quiet, &template));
+    }
+    fn traced(&self, n: u64) {
+        if let Some(b) = self.bar.get() {
+            b.inc(n)
+        }
+    }
+    fn done(&self, light: &LightChoice, config: &TraceConfig, results: &[Vec<Tally>]) {
+        if let Some(b) = self.bar.get() {
+            b.finish_and_clear()
+        }
+        print!("{}", trace_table(light, config, results));
+    }
+    fn wrote_json(&self, path: &Path) {
+        println!("results → {}", path.display());
+    }
 }
 
 #[cfg(test)]

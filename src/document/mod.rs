@@ -9,6 +9,8 @@
 //!   of an animation);
 //! * [`materials`]: `facetlab materials --json` (the table of stones and coloured varieties);
 //! * [`trace`]: `facetlab trace --json` (the photon tallies and the run's settings);
+//! * [`scoring`]: `facetlab score` as one call (the stones, the scores, the photon tracer's
+//!   checks, the document written);
 //! * [`batch`]: `facetlab score --batch`'s JSON Lines written resumably (the lines of a batch
 //!   file, what its output already holds, the scoring of the rest).
 //!
@@ -23,4 +25,5 @@ pub mod info;
 pub mod materials;
 pub mod render;
 pub mod score;
+pub mod scoring;
 pub mod trace;

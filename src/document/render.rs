@@ -3,9 +3,9 @@
 //! or a photograph's ([`PhotoRecord`], with [`PhotoFrame`] per frame of a turntable or rock).
 //! One cut is written as its object, several as an array of them in the order given.
 
-use crate::optics::Dispersion;
+use crate::optics::{Dispersion, Material};
 use crate::render::photo::{GroundStats, PhotoOptions, PhotoStats, View};
-use crate::render::{Stats, Tilt};
+use crate::render::{RenderOptions, Stats, Tilt};
 use serde::Serialize;
 
 /// Statistics of one frame.
@@ -116,6 +116,51 @@ pub struct CutJson {
     /// Per-frame statistics (with --rock).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub frames: Option<Vec<FrameJson>>,
+}
+
+impl CutJson {
+    /// Cut `name` (given as `input`) drawn with `opts` (its own material and width; the pose
+    /// of frame 0) in `frames` (frame 0 first, at least one), the document naming `named` as
+    /// its material (the one chosen for every cut), with exposure `exposure` and the rock's
+    /// amplitude `rock_deg` (its frames are listed only with a rock). `output` is empty until
+    /// the caller writes the picture.
+    pub fn new(
+        (name, input): (&str, &str),
+        opts: &RenderOptions,
+        named: &Material,
+        exposure: f64,
+        frames: Vec<FrameJson>,
+        rock_deg: Option<f64>,
+    ) -> CutJson {
+        let f0 = &frames[0];
+        CutJson {
+            name: name.to_string(),
+            input: input.to_string(),
+            light: opts.light.name(),
+            size: opts.size,
+            mean: f0.mean,
+            aset: f0.aset,
+            fire: f0.fire,
+            colour: f0.colour,
+            width_mm: opts.material.colour.is_some().then_some(opts.width_mm),
+            tilt_deg: f0.tilt_deg,
+            azimuth_deg: f0.azimuth_deg,
+            head_shadow_deg: opts.head_shadow(),
+            material: named.name.clone(),
+            ri: match named.dispersion {
+                Dispersion::Constant(n) => Some(n),
+                _ => None,
+            },
+            polarization: opts.polarization,
+            exposure,
+            cut_off: f0.cut_off,
+            exits: f0.exits,
+            elapsed_s: frames.iter().map(|f| f.elapsed_s).sum(),
+            output: String::new(),
+            rock_deg,
+            frames: rock_deg.is_some().then_some(frames),
+        }
+    }
 }
 
 /// Statistics of one frame of an animation.

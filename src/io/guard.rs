@@ -1,5 +1,7 @@
 //! Guarding the user's files: an output that is one of the inputs is refused before any work
-//! ([`refuse_overwrite`], by the paths as the file system resolves them, [`resolved`]).
+//! ([`refuse_overwrite`], by the paths as the file system resolves them, [`resolved`]), and an
+//! output whose folder is missing or read-only is refused before any work too
+//! ([`check_folder_of`]).
 
 use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
@@ -58,4 +60,20 @@ pub fn refuse_overwrite(outputs: &[(&str, PathBuf)], inputs: &[PathBuf]) -> Resu
         }
     }
     Ok(())
+}
+
+/// Refuse, before any work, an output `path` whose folder (`.` for a bare name) does not
+/// exist or cannot be written; the error names the path.
+pub fn check_folder_of(path: &Path) -> Result<()> {
+    let parent = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if !parent.is_dir() {
+        return Err(Error::io(
+            path.display().to_string(),
+            format!("folder {} does not exist", parent.display()),
+        ));
+    }
+    crate::io::check_writable(parent)
 }

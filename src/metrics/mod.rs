@@ -187,6 +187,7 @@ mod scintillation;
 pub mod score_name;
 mod scores;
 mod sink;
+pub mod stones;
 mod symmetry;
 
 #[cfg(test)]
@@ -206,4 +207,5 @@ pub use overhead::{overhead_light_return, overhead_light_return_with};
 pub use scintillation::{scintillation_of, scintillation_turns};
 pub use score_name::{ScoreInfo, ScoreName, SCORES};
 pub use scores::{Aset, PoseScore, Scores};
+pub use stones::{ColourNotes, CrystalChoice, NoteKind, StoneChoice, StoneFields, Stones};
 pub use symmetry::symmetric_pose;

@@ -30,17 +30,7 @@ pub fn check_out(
             ),
         ));
     }
-    let parent = out
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    if !parent.is_dir() {
-        return Err(Error::io(
-            out.display().to_string(),
-            format!("folder {} does not exist", parent.display()),
-        ));
-    }
-    crate::io::check_writable(parent)
+    crate::io::guard::check_folder_of(out)
 }
 
 #[cfg(test)]

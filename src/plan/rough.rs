@@ -3,7 +3,7 @@
 
 use super::ball::Ball;
 use super::mesh::{read_triangles, TriMesh};
-use crate::error::{shown, Error, Result};
+use crate::error::{setting, shown, Error, Result};
 use crate::geometry::{hull, DVec3, FacetPlane, HullOptions, Plane, Polyhedron};
 use glam::{DMat3, DQuat};
 use std::path::Path;
@@ -209,15 +209,15 @@ impl Rough {
             None if mesh.units_not_mm => {
                 return Err(Error::invalid(
                     source,
-                    "the file says its units are not millimetres; give --size-mm L (the rough's largest extent in mm)",
+                    format!("the file says its units are not millimetres; give {} L (the rough's largest extent in mm)", setting("rough size")),
                 ))
             }
             None if !(PLAUSIBLE_MM[0]..=PLAUSIBLE_MM[1]).contains(&extent) => {
                 return Err(Error::invalid(
                     source,
                     format!(
-                        "the mesh is {extent:.4} units across, not a plausible size in millimetres ({} to {} mm); give --size-mm L (its largest extent in mm)",
-                        PLAUSIBLE_MM[0], PLAUSIBLE_MM[1]
+                        "the mesh is {extent:.4} units across, not a plausible size in millimetres ({} to {} mm); give {} L (its largest extent in mm)",
+                        PLAUSIBLE_MM[0], PLAUSIBLE_MM[1], setting("rough size")
                     ),
                 ))
             }
@@ -446,7 +446,10 @@ pub fn load_rough(arg: &str, size_mm: Option<f64>) -> Result<Rough> {
         let Some(l) = size_mm else {
             return Err(Error::invalid(
                 "rough size",
-                format!("the crystal form `{arg}` needs --size-mm L (its largest extent in mm)"),
+                format!(
+                    "the crystal form `{arg}` needs {} L (its largest extent in mm)",
+                    setting("rough size")
+                ),
             ));
         };
         return Rough::crystal(arg, l);

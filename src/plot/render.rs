@@ -9,6 +9,17 @@
 //! around it, then the caption lines; the legend, when there is one, wraps across the whole
 //! width below the captions. The sheet is so `n·(size + 2·pad)` pixels wide, whatever the text,
 //! and each picture is exactly `size × size` pixels of it. [`bare`] gives the pictures alone.
+//!
+//! `facetlab render` is one call here, [`draw`]: the stones chosen, every frame drawn and put
+//! on its sheet, the files written, the statistics returned (its progress and notes through
+//! [`Progress`]).
+
+mod run;
+
+pub use run::{
+    delay_ms, draw, printed_line, settings_line, stats_lines, summary, Drawn, LabPictures,
+    PhotoPictures, Pictures, Progress, RenderJob, Silent,
+};
 
 use super::palette::{CAPTION_GROUND, PICTURE_GROUND};
 use super::{font, register_font};

@@ -1,5 +1,11 @@
 //! The photon tracer's charts: where the light leaves (face categories), the cumulative exit
 //! angle, and the rotation sweep; and every chart and picture of a trace ([`trace_plots`]).
+//! `facetlab trace` is one call here, [`trace`] (its notes, progress and files through
+//! [`TraceSink`]).
+
+mod run;
+
+pub use run::{trace, TraceJob, TraceSink};
 
 use super::{
     box_key, every_30, font, legend, line_key, save, DrawResult, Figure, LegendStyle, SERIES,

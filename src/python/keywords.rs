@@ -45,6 +45,19 @@ const fn kw(name: &'static str, kind: Kind, default: Value) -> Keyword {
     }
 }
 
+/// The keyword argument that sets each library setting a message names inside its text
+/// ([`crate::error::setting`]), as the command line's `FLAGS` names its flag; a setting with
+/// no keyword here is shown by its own name.
+pub(crate) const SETTINGS: &[(&str, &str)] = &[("rough size", "size_mm")];
+
+/// The keyword argument of the library's setting `name` ([`SETTINGS`]).
+pub(crate) fn keyword_of(name: &str) -> Option<String> {
+    SETTINGS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, k)| k.to_string())
+}
+
 /// The stone: material, body colour, size and crystal settings ([`super::stone::StoneArgs`]).
 pub(crate) const STONE: [Keyword; 9] = [
     kw("material", Kind::Str, Value::None),

@@ -35,9 +35,10 @@ create_exception!(
     "A bug in facetlab (a caught panic); please report it with the call that raised it."
 );
 
-/// A library error as `facetlab.Error`.
+/// A library error as `facetlab.Error` (the settings its message names spelled as keyword
+/// arguments, [`keywords::SETTINGS`]).
 pub(crate) fn error(e: crate::error::Error) -> PyErr {
-    Error::new_err(e.to_string())
+    Error::new_err(e.spell_settings(&keywords::keyword_of).to_string())
 }
 
 /// A caught panic's payload as `facetlab.InternalError`.

@@ -6,11 +6,10 @@ use super::cuts::cut_of;
 use super::keywords::{self, Keywords};
 use super::run;
 use super::stone::StoneArgs;
-use crate::document::render::CutJson;
+use crate::document::render::{CutJson, FrameJson};
 use crate::error::{Error, Result};
-use crate::optics::Dispersion;
 use crate::plot::palette::PICTURE_GROUND;
-use crate::render::{self, pose::parse_tilt, Image, Light, RenderOptions, Tilt};
+use crate::render::{self, pose::parse_tilt, Image, Light, RenderOptions};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -166,38 +165,15 @@ fn draw(cut: &crate::cut::Cut, input: &str, a: &RenderArgs) -> Result<(Image, St
     let t0 = Instant::now();
     let img = render::render(&cut.solid, &opts);
     let elapsed = t0.elapsed().as_secs_f64();
-    let s = &img.stats;
-    let Tilt {
-        tilt_deg,
-        azimuth_deg,
-    } = opts.tilt;
-    let record = CutJson {
-        name: cut.name.clone(),
-        input: input.to_string(),
-        light: light.name(),
-        size: opts.size,
-        mean: s.mean,
-        aset: s.aset,
-        fire: s.fire,
-        colour: s.colour,
-        width_mm: opts.material.colour.is_some().then_some(width),
-        tilt_deg,
-        azimuth_deg,
-        head_shadow_deg: opts.head_shadow(),
-        material: opts.material.name.clone(),
-        ri: match opts.material.dispersion {
-            Dispersion::Constant(n) => Some(n),
-            _ => None,
-        },
-        polarization: opts.polarization,
-        exposure: a.exposure,
-        cut_off: s.cut_off,
-        exits: s.exits,
-        elapsed_s: elapsed,
-        output: String::new(),
-        rock_deg: None,
-        frames: None,
-    };
+    let frame = FrameJson::new(0, opts.tilt, &img.stats, elapsed);
+    let record = CutJson::new(
+        (&cut.name, input),
+        &opts,
+        &opts.material,
+        a.exposure,
+        vec![frame],
+        None,
+    );
     let json =
         serde_json::to_string(&record).map_err(|e| Error::invalid("stats", e.to_string()))?;
     Ok((img, json))

@@ -7,7 +7,10 @@
 use super::keywords::Keywords;
 use crate::cut::Cut;
 use crate::error::{Error, Result};
-use crate::optics::{BodyColour, ColourFields, CrystalFields, Material, MaterialFields, StoneSize};
+use crate::metrics::{
+    ColourNotes, CrystalChoice, StoneChoice, StoneFields, REFERENCE_WAVELENGTH_NM,
+};
+use crate::optics::{ColourFields, CrystalFields, Material, MaterialFields, StoneSize};
 use pyo3::prelude::*;
 
 /// The keyword arguments that choose the stone.
@@ -56,9 +59,20 @@ pub(crate) fn refuse_existing(path: &std::path::Path, overwrite: bool) -> Result
     Ok(())
 }
 
-const COLOUR: ColourFields<'static> = ColourFields {
-    colour: "colour",
-    density: "colour_density",
+/// Where a Python call takes a stone's settings: its keyword arguments.
+const FIELDS: StoneFields<'static> = StoneFields {
+    colour: ColourFields {
+        colour: "colour",
+        density: "colour_density",
+    },
+    crystal: CrystalFields {
+        birefringence: "birefringence",
+        optic_axis: "optic_axis",
+        colour_e: "colour_e",
+    },
+    width: "diameter_mm",
+    length: "size_mm",
+    overrides: "material overrides",
 };
 
 impl StoneArgs {
@@ -81,9 +95,9 @@ impl StoneArgs {
     }
 
     /// The material `cut` is traced in, with its body colour and crystal settings, and its
-    /// width in mm.
+    /// width in mm ([`StoneChoice::stones`], as the command line chooses them).
     pub fn material_for(&self, cut: &Cut) -> Result<(Material, f64)> {
-        let mut default = Material::choose(
+        let default = Material::choose(
             self.material.as_deref(),
             self.ri,
             MaterialFields {
@@ -91,34 +105,29 @@ impl StoneArgs {
                 ri: "ri",
             },
         )?;
-        default.colour = BodyColour::choose(
-            default.colour.as_ref(),
-            self.colour.as_deref(),
+        let mut choice = StoneChoice::new(
+            default,
+            self.chosen(),
+            self.colour.clone(),
             self.colour_density,
-            COLOUR,
+            FIELDS.colour,
         )?;
-        let (mut m, _) = crate::metrics::material_of(cut, &default, self.chosen());
-        if m.colour.is_none() {
-            m.colour =
-                BodyColour::choose(None, self.colour.as_deref(), self.colour_density, COLOUR)?;
-        }
-        let field = if self.size_mm.is_some() {
-            "size_mm"
-        } else {
-            "diameter_mm"
-        };
-        let width = self.size()?.width_mm(cut.ratios().l_w, field)?;
-        m.choose_crystal(
-            self.birefringence,
-            self.optic_axis.as_deref(),
-            self.colour_e.as_deref(),
-            self.colour_density,
-            CrystalFields {
-                birefringence: "birefringence",
-                optic_axis: "optic_axis",
-                colour_e: "colour_e",
-            },
+        choice.size = self.size()?;
+        choice.size_is_length = self.size_mm.is_some();
+        choice.crystal = Some(CrystalChoice {
+            birefringence: self
+                .birefringence
+                .map(|b| if b { "on" } else { "off" }.into()),
+            optic_axis: self.optic_axis.clone(),
+            colour_e: self.colour_e.clone(),
+            wavelength_nm: REFERENCE_WAVELENGTH_NM,
+        });
+        let s = choice.stones(
+            std::slice::from_ref(cut),
+            &FIELDS,
+            ColourNotes::Traced,
+            &mut |_, _| {},
         )?;
-        Ok((m, width))
+        Ok((s.materials[0].clone(), s.widths[0]))
     }
 }

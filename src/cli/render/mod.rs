@@ -11,9 +11,9 @@
 //! ```
 //!
 //! Flags are read as text and validated here into [`RenderOptions`], so every bad value ends
-//! in a one-line error naming the flag and what is allowed. The pictures are made by
-//! [`facetlab::render::render`]; the sheet (panels, captions, legend) by
-//! [`facetlab::plot::render::compose`].
+//! in a one-line error naming the flag and what is allowed. The pictures, their sheet
+//! (panels, captions, legend), the files and the statistics come from one library call,
+//! [`facetlab::plot::render::draw`].
 //!
 //! **JSON** (`--json FILE`, written atomically): one object per cut (an array of them when
 //! several cuts are given, in the order given) with `name` (the cut's name), `input` (CUT as
@@ -33,16 +33,12 @@ mod photo;
 
 use super::flags;
 use super::outputs::{cut_files, refuse_overwrite};
-use facetlab::document::render::{CutJson, FrameJson};
 use facetlab::error::{Error, Result};
-use facetlab::optics::Dispersion;
-use facetlab::plot::palette::PICTURE_GROUND;
-use facetlab::plot::render::{bare, compose, legend_for, Panel, Sheet};
-use facetlab::render::pose::{parse_rock, parse_tilt, rocked};
-use facetlab::render::{self, Light, RenderOptions, Stats, Tilt};
-use rayon::prelude::*;
+use facetlab::metrics::{NoteKind, StoneChoice};
+use facetlab::plot::render::{draw, printed_line, LabPictures, Pictures, Progress, RenderJob};
+use facetlab::render::pose::{parse_rock, parse_tilt};
+use facetlab::render::{Light, RenderOptions, Tilt};
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// Flags of `facetlab render`.
 #[derive(clap::Args, Debug, Clone)]
@@ -128,38 +124,27 @@ pub struct RenderArgs {
     pub photo: photo::PhotoArgs,
 }
 
-/// The flags, validated.
-#[derive(Clone, Debug)]
-pub struct Settings {
-    /// Options of the face-up (or `--tilt`) picture.
-    pub opts: RenderOptions,
-    /// `--rock`: amplitude in degrees and number of frames.
-    pub rock: Option<(f64, usize)>,
-    /// `--exposure`.
-    pub exposure: f64,
-}
-
-impl Settings {
-    /// The pose of frame `k`: the `--tilt` pose rocked by `DEG·sin(2πk/FRAMES)` toward its
-    /// azimuth.
-    pub fn frame_tilt(&self, k: usize) -> Tilt {
-        match self.rock {
-            None => self.opts.tilt,
-            Some(rock) => rocked(self.opts.tilt, rock, k),
-        }
-    }
-
-    /// Number of frames (1 without `--rock`).
-    pub fn frames(&self) -> usize {
-        self.rock.map_or(1, |r| r.1)
-    }
-}
-
 /// Largest animation: frames × cuts × size² pixels (about 1.2 GB of 8-bit RGB in memory).
 pub const MAX_ANIMATION_PIXELS: f64 = 400e6;
 
-/// Validate the flags into the library's types.
-pub fn settings(a: &RenderArgs) -> Result<Settings> {
+/// Refuse a rock that would tip the stone past 90° from its `--tilt`.
+fn check_rock(tilt: Tilt, rock: Option<(f64, usize)>) -> Result<()> {
+    if let Some((deg, _)) = rock {
+        if tilt.tilt_deg.abs() + deg > 90.0 {
+            return Err(Error::invalid(
+                "--rock",
+                format!(
+                    "rocking {deg}° about the --tilt of {}° would pass 90°; keep |tilt| + DEG <= 90",
+                    tilt.tilt_deg
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Validate the flags into the library's types: the pictures and the stones.
+pub fn settings(a: &RenderArgs) -> Result<(LabPictures, StoneChoice)> {
     let light = Light::parse(a.light.trim().to_ascii_lowercase().as_str()).map_err(|_| {
         Error::invalid(
             "--light",
@@ -189,22 +174,11 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
             )
         })
         .transpose()?;
-    opts.material = a.material.material()?;
-    opts.material.colour = a.colour.colour_for(&opts.material)?;
-    a.colour.size()?;
+    let mut stone = flags::stone_choice(a.material.material()?, &a.material, &a.colour, None)?;
+    opts.material = stone.material.clone();
     opts.polarization = a.polarization;
     let rock = a.rock;
-    if let Some((deg, _)) = rock {
-        if opts.tilt.tilt_deg.abs() + deg > 90.0 {
-            return Err(Error::invalid(
-                "--rock",
-                format!(
-                    "rocking {deg}° about the --tilt of {}° would pass 90°; keep |tilt| + DEG <= 90",
-                    opts.tilt.tilt_deg
-                ),
-            ));
-        }
-    }
+    check_rock(opts.tilt, rock)?;
     if let Some((_, n)) = rock {
         // Every frame of the animation is held in memory until the file is written.
         let pixels = (n * a.cuts.len()) as f64 * (opts.size as f64).powi(2);
@@ -224,107 +198,15 @@ pub fn settings(a: &RenderArgs) -> Result<Settings> {
     let exposure = a.exposure;
     opts.validate()
         .map_err(|e| flags::picture_to_flags(e, &a.material))?;
-    Ok(Settings {
-        opts,
-        rock,
-        exposure,
-    })
-}
-
-fn pct(v: f64) -> String {
-    format!("{:.1} %", 100.0 * v)
-}
-
-/// The share darker than L* 20 under its name: the extinction in the scores' face-up ISO
-/// view, the dark share of any other picture.
-fn dark_text(c: &facetlab::render::ColourStats, extinction: &str, dark: &str) -> String {
-    match c.extinction {
-        Some(e) => format!("{extinction} {}", pct(e)),
-        None => format!("{dark} {}", pct(c.dark())),
-    }
-}
-
-/// The statistics as caption lines (after the name).
-pub fn stats_lines(light: Light, s: &Stats) -> Vec<String> {
-    let mut lines = stats_lines_of_light(light, s);
-    if let Some(c) = s.colour {
-        lines.push(format!(
-            "L* {:.0} C* {:.0} h {:.0}°, {}, window {}",
-            c.l,
-            c.c,
-            c.h_deg,
-            dark_text(&c, "extinct", "dark"),
-            pct(c.windowing)
-        ));
-    }
-    lines
-}
-
-fn stats_lines_of_light(light: Light, s: &Stats) -> Vec<String> {
-    match (light, s.aset, s.fire) {
-        (Light::Aset, Some(a), _) => vec![
-            format!(
-                "blue {:.1}, red {:.1}, green {:.1} %",
-                100.0 * a.blue,
-                100.0 * a.red,
-                100.0 * a.green
-            ),
-            format!("leak {:.1}, port {:.1} %", 100.0 * a.leak, 100.0 * a.port),
-        ],
-        (Light::Fire, _, Some(f)) => {
-            vec![format!("placement fire {f:.2}, mean {}", pct(s.mean))]
-        }
-        (Light::IdealScope, _, _) => vec![format!("returned {}", pct(s.mean))],
-        (l, _, _) => vec![format!("{} mean {}", l.name(), pct(s.mean))],
-    }
-}
-
-/// A caption line with the settings that change the picture from the light's defaults: a head
-/// shadow (or port/head half-angle) other than the light's default, an exposure other than 1.
-pub fn settings_line(opts: &RenderOptions, exposure: f64) -> Option<String> {
-    let mut parts = Vec::new();
-    let light = opts.light;
-    let head = opts.head_shadow();
-    if head != light.default_head_shadow_deg() {
-        parts.push(match light {
-            Light::Aset => format!("port {head}°"),
-            Light::IdealScope => format!("head {head}°"),
-            _ => format!("head shadow {head}°"),
-        });
-    }
-    if exposure != 1.0 && light.false_colours().is_empty() {
-        parts.push(format!("exposure ×{exposure}"));
-    }
-    (!parts.is_empty()).then(|| parts.join(", "))
-}
-
-/// The one-line summary printed per cut.
-fn summary(light: Light, s: &Stats) -> String {
-    match (light, s.aset, s.fire) {
-        (Light::Aset, Some(a), _) => format!(
-            "aset blue {} red {} green {} leak {} port {}",
-            pct(a.blue),
-            pct(a.red),
-            pct(a.green),
-            pct(a.leak),
-            pct(a.port)
-        ),
-        (Light::Fire, _, Some(f)) => format!("placement fire {f:.3}, mean {}", pct(s.mean)),
-        (Light::IdealScope, _, _) => format!("idealscope returned {}", pct(s.mean)),
-        (l, _, _) => match s.colour {
-            Some(c) => format!(
-                "{} mean {}, colour L* {:.1} C* {:.1} h {:.0}°, {}, windowing {}",
-                l.name(),
-                pct(s.mean),
-                c.l,
-                c.c,
-                c.h_deg,
-                dark_text(&c, "extinction", "dark share"),
-                pct(c.windowing)
-            ),
-            None => format!("{} mean {}", l.name(), pct(s.mean)),
+    stone.crystal = Some(a.crystal.choice(opts.wavelength_nm));
+    Ok((
+        LabPictures {
+            opts,
+            rock,
+            exposure,
         },
-    }
+        stone,
+    ))
 }
 
 /// Check the outputs before any work: not an input, -o a .png, not a folder, existing files
@@ -362,203 +244,99 @@ fn check_outputs(a: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
-/// Frame delay of the animation: the whole rock takes about 2.4 s.
-fn delay_ms(frames: usize) -> u16 {
-    (2400 / frames.max(1)).clamp(20, 1000) as u16
+/// The progress bar of `render` (drawn once the stones' notes are said) and those notes.
+struct Bar {
+    quiet: bool,
+    template: &'static str,
+    bar: std::sync::OnceLock<indicatif::ProgressBar>,
+}
+
+impl Progress for Bar {
+    fn note(&self, kind: NoteKind, line: String) {
+        flags::say(kind, line)
+    }
+    fn start(&self, pictures: u64) {
+        let _ = self
+            .bar
+            .set(super::progress::bar(pictures, self.quiet, self.template));
+    }
+    fn picture(&self) {
+        if let Some(b) = self.bar.get() {
+            b.inc(1)
+        }
+    }
+    fn finish(&self) {
+        if let Some(b) = self.bar.get() {
+            b.finish_and_clear()
+        }
+    }
 }
 
 /// Run `facetlab render`.
 pub fn run(a: &RenderArgs) -> Result<()> {
-    if let Some(light) = facetlab::render::photo::PhotoLight::parse(&a.light)? {
-        return photo::run(a, light);
-    }
-    if let Some(flag) = a.photo.first_given() {
-        return Err(Error::invalid(
-            flag,
-            format!(
-                "is for photographs; give a photographic --light ({} or env:FILE)",
-                facetlab::render::photo::PhotoLight::names().join(", ")
-            ),
-        ));
-    }
-    let s = settings(a)?;
-    check_outputs(a)?;
+    let (pictures, stone) = match facetlab::render::photo::PhotoLight::parse(&a.light)? {
+        Some(light) => {
+            let (p, stone) = photo::settings(a, light)?;
+            photo::check_outputs(a)?;
+            if p.frames() > 1 && a.photo.hdr_out.is_some() && a.cuts.len() > 1 {
+                eprintln!("note: --hdr-out writes frame 0 of the first cut");
+            }
+            (Pictures::Photo(p), stone)
+        }
+        None => {
+            if let Some(flag) = a.photo.first_given() {
+                return Err(Error::invalid(
+                    flag,
+                    format!(
+                        "is for photographs; give a photographic --light ({} or env:FILE)",
+                        facetlab::render::photo::PhotoLight::names().join(", ")
+                    ),
+                ));
+            }
+            let (p, stone) = settings(a)?;
+            check_outputs(a)?;
+            (Pictures::Lab(p), stone)
+        }
+    };
     let cuts = a
         .cuts
         .iter()
         .map(|c| super::cuts::load_with_sets(c, &a.set))
         .collect::<Result<Vec<_>>>()?;
-    let chosen = a.material.chosen();
-    // A design is traced in its own material (GemCad's `I` index) unless one was chosen.
-    let (mut materials, notes) = flags::design_materials(&cuts, &s.opts.material, chosen);
-    for note in notes {
-        eprintln!("{note}");
-    }
-    let (colour_notes, widths) = a.colour.apply_traced(&cuts, &mut materials, true)?;
-    for note in colour_notes {
-        eprintln!("{note}");
-    }
-    let density = a.colour.colour_density;
-    for note in a
-        .crystal
-        .apply(&cuts, &mut materials, density, s.opts.wavelength_nm)?
-    {
-        eprintln!("{note}");
-    }
-    let light = s.opts.light;
-    let size = s.opts.size;
-    let nframes = s.frames();
-    // Every frame has the same caption lines (an animation's frames share one size).
-    let show_tilt = s.rock.is_some() || s.opts.tilt.tilt_deg != 0.0;
-    let note = settings_line(&s.opts, s.exposure);
-    let legend = legend_for(light);
-    let bar = super::progress::bar(
-        (nframes * cuts.len()) as u64,
-        a.quiet,
-        "{spinner} rendering [{bar:30}] {pos}/{len} pictures, eta {eta}",
-    );
-    // Frames in parallel (each drawn on its own and collected in order: the same pictures
-    // and statistics on any number of threads); an animation's frames are independent.
-    let drawn: Vec<(Sheet, Vec<FrameJson>)> = (0..nframes)
-        .into_par_iter()
-        .map(|k| {
-            let tilt = s.frame_tilt(k);
-            let mut pictures = Vec::with_capacity(cuts.len());
-            let mut frame_stats = Vec::with_capacity(cuts.len());
-            for (c, cut) in cuts.iter().enumerate() {
-                let t0 = Instant::now();
-                let opts = RenderOptions {
-                    tilt,
-                    material: materials[c].clone(),
-                    width_mm: widths[c],
-                    ..s.opts.clone()
-                };
-                let img = render::render(&cut.solid, &opts);
-                let rgb = img.to_srgb8(s.exposure, PICTURE_GROUND);
-                frame_stats.push(FrameJson::new(
-                    k,
-                    tilt,
-                    &img.stats,
-                    t0.elapsed().as_secs_f64(),
-                ));
-                let mut lines = vec![cut.name.clone()];
-                lines.extend(stats_lines(light, &img.stats));
-                lines.extend(note.clone());
-                if show_tilt {
-                    lines.push(render::pose::describe(light, tilt));
-                }
-                pictures.push((rgb, lines));
-                bar.inc(1);
+    let bar = Bar {
+        quiet: a.quiet,
+        template: match pictures {
+            Pictures::Lab(_) => "{spinner} rendering [{bar:30}] {pos}/{len} pictures, eta {eta}",
+            Pictures::Photo(_) => {
+                "{spinner} photographing [{bar:30}] {pos}/{len} pictures, eta {eta}"
             }
-            let panels: Vec<Panel> = pictures
-                .iter()
-                .map(|(rgb, lines)| Panel {
-                    rgb,
-                    lines: lines.clone(),
-                })
-                .collect();
-            let sheet = if a.bare {
-                bare(&panels, size as u32)
-            } else {
-                compose(&panels, size as u32, &legend)
-            }?;
-            Ok((sheet, frame_stats))
-        })
-        .collect::<Result<Vec<_>>>()?;
-    // frames[cut] = per-frame statistics.
-    let mut stats: Vec<Vec<FrameJson>> = vec![Vec::with_capacity(nframes); cuts.len()];
-    let mut sheets = Vec::with_capacity(nframes);
-    for (sheet, frame_stats) in drawn {
-        sheets.push(sheet);
-        for (c, f) in frame_stats.into_iter().enumerate() {
-            stats[c].push(f);
-        }
-    }
-    bar.finish_and_clear();
-    let (w, h) = (sheets[0].width, sheets[0].height);
-    let frames: Vec<&[u8]> = sheets.iter().map(|f| f.rgb.as_slice()).collect();
-    facetlab::io::png::write_rgb8(&a.output, w, h, &frames, delay_ms(nframes))?;
-    let out = a.output.display().to_string();
-    let ri = match s.opts.material.dispersion {
-        Dispersion::Constant(n) => Some(n),
-        _ => None,
+        },
+        bar: std::sync::OnceLock::new(),
     };
-    let records: Vec<CutJson> = cuts
-        .iter()
-        .zip(&a.cuts)
-        .zip(stats)
-        .enumerate()
-        .map(|(c, ((cut, input), fr))| {
-            let f0 = &fr[0];
-            CutJson {
-                name: cut.name.clone(),
-                input: input.clone(),
-                light: light.name(),
-                size,
-                mean: f0.mean,
-                aset: f0.aset,
-                fire: f0.fire,
-                colour: f0.colour,
-                width_mm: materials[c].colour.is_some().then_some(widths[c]),
-                tilt_deg: f0.tilt_deg,
-                azimuth_deg: f0.azimuth_deg,
-                head_shadow_deg: s.opts.head_shadow(),
-                material: s.opts.material.name.clone(),
-                ri,
-                polarization: s.opts.polarization,
-                exposure: s.exposure,
-                cut_off: f0.cut_off,
-                exits: f0.exits,
-                elapsed_s: fr.iter().map(|f| f.elapsed_s).sum(),
-                output: out.clone(),
-                rock_deg: s.rock.map(|r| r.0),
-                frames: s.rock.is_some().then_some(fr),
-            }
-        })
-        .collect();
-    for r in &records {
-        let stats = Stats {
-            mean: r.mean,
-            aset: r.aset,
-            fire: r.fire,
-            colour: r.colour,
-            ..Stats::default()
-        };
-        let pose = render::pose::describe(
-            light,
-            Tilt {
-                tilt_deg: r.tilt_deg,
-                azimuth_deg: r.azimuth_deg,
-            },
-        );
-        let rock = match (&r.frames, s.rock) {
-            (Some(fr), Some((deg, n))) => {
-                let lo = fr.iter().map(|f| f.mean).fold(f64::INFINITY, f64::min);
-                let hi = fr.iter().map(|f| f.mean).fold(f64::NEG_INFINITY, f64::max);
-                format!(
-                    ", rocking ±{deg}° toward {}° in {n} frames (mean {}–{})",
-                    r.azimuth_deg,
-                    pct(lo),
-                    pct(hi)
-                )
-            }
-            _ => String::new(),
-        };
-        println!(
-            "{}: {}, {pose}{rock}, {size} px, {:.2} s → {out}",
-            r.name,
-            summary(light, &stats),
-            r.elapsed_s
-        );
+    let job = RenderJob {
+        cuts: &cuts,
+        inputs: &a.cuts,
+        stone: &stone,
+        fields: &flags::STONE_FIELDS,
+        pictures: &pictures,
+        bare: a.bare,
+        output: &a.output,
+        json: a.json.as_deref(),
+        hdr_out: a.photo.hdr_out.as_deref(),
+    };
+    let drawn = draw(&job, &bar).map_err(|e| match e {
+        Error::Invalid { field, message } if field == "output" => Error::invalid("-o", message),
+        other => other,
+    })?;
+    for c in 0..drawn.len() {
+        println!("{}", printed_line(&pictures, &drawn, c));
+    }
+    if let Some(h) = &a.photo.hdr_out {
+        if matches!(pictures, Pictures::Photo(_)) {
+            println!("linear picture → {}", h.display());
+        }
     }
     if let Some(j) = &a.json {
-        let text = if let [one] = records.as_slice() {
-            serde_json::to_string_pretty(one)
-        } else {
-            serde_json::to_string_pretty(&records)
-        }
-        .map_err(|e| Error::io(j.display().to_string(), e))?;
-        facetlab::io::write_atomic(j, text.as_bytes())?;
         println!("statistics → {}", j.display());
     }
     Ok(())
@@ -568,6 +346,8 @@ pub fn run(a: &RenderArgs) -> Result<()> {
 mod tests {
     use super::*;
     use clap::Parser;
+    use facetlab::plot::render::{delay_ms, settings_line, stats_lines};
+    use facetlab::render::{self, Stats};
 
     #[derive(clap::Parser)]
     struct Cli {
@@ -593,12 +373,12 @@ mod tests {
 
     #[test]
     fn defaults_and_flags_become_render_options() {
-        let s = settings(&parse(&[])).unwrap();
+        let (s, _) = settings(&parse(&[])).unwrap();
         assert_eq!(s.opts.light, Light::Iso);
         assert_eq!(s.opts.size, 512);
         assert_eq!(s.opts.tilt, Tilt::FACE_UP);
         assert_eq!((s.exposure, s.frames()), (1.0, 1));
-        let s = settings(&parse(&[
+        let (s, _) = settings(&parse(&[
             "--light",
             "ASET",
             "--size",
@@ -630,7 +410,7 @@ mod tests {
         assert!((s.frame_tilt(6).tilt_deg - 25.0).abs() < 1e-9);
         assert!((s.frame_tilt(18).tilt_deg + 5.0).abs() < 1e-9);
         assert_eq!(s.frame_tilt(0).azimuth_deg, 45.0);
-        assert_eq!(delay_ms(24), 100);
+        assert_eq!(delay_ms(24, false), 100);
     }
 
     #[test]
@@ -690,7 +470,7 @@ mod tests {
             ..s
         };
         assert!(stats_lines(Light::Fire, &f)[0].starts_with("placement fire 0.75"));
-        let s = settings(&parse(&[
+        let (s, _) = settings(&parse(&[
             "--light",
             "cos",
             "--head-shadow",
@@ -703,7 +483,7 @@ mod tests {
             settings_line(&s.opts, s.exposure).as_deref(),
             Some("head shadow 15°, exposure ×2")
         );
-        let s = settings(&parse(&["--light", "aset", "--exposure", "2"])).unwrap();
+        let (s, _) = settings(&parse(&["--light", "aset", "--exposure", "2"])).unwrap();
         assert_eq!(settings_line(&s.opts, s.exposure), None);
     }
 }

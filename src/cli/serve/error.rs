@@ -83,6 +83,34 @@ impl ApiError {
     }
 }
 
+/// The request's field for each picture setting the library's render and photo options name
+/// in their errors ([`ApiError::from_picture`]): the one table of the web page, as `FLAGS` is
+/// the command line's. A setting the request cannot send keeps the library's name.
+pub const PICTURE_FIELDS: &[(&str, &str)] = &[
+    ("size", "size"),
+    ("tilt", "tilt"),
+    ("view", "view"),
+    ("light-rotation", "light_rotation"),
+    ("material", "material"),
+];
+
+impl ApiError {
+    /// A render's or a photograph's option refused by the library (its `validate`): a 400
+    /// naming the request's field ([`PICTURE_FIELDS`]); any other error about `render`.
+    pub fn from_picture(e: Error) -> Self {
+        match e {
+            Error::Invalid { field, message } => {
+                let field = PICTURE_FIELDS
+                    .iter()
+                    .find(|(setting, _)| *setting == field)
+                    .map_or(field.clone(), |(_, f)| f.to_string());
+                Self::bad(field, message)
+            }
+            other => Self::bad("render", other.to_string()),
+        }
+    }
+}
+
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
         let one_line: String = self
@@ -110,4 +138,34 @@ pub fn no_store(mut r: Response) -> Response {
     r.headers_mut()
         .insert(header::CACHE_CONTROL, HeaderValue::from_static("no-store"));
     r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_refused_picture_option_names_the_request_field() {
+        let mut lab = facetlab::render::RenderOptions::new(facetlab::render::Light::Iso);
+        lab.size = 4;
+        let e = ApiError::from_picture(lab.validate().unwrap_err());
+        assert_eq!(
+            (e.status, e.field.as_str()),
+            (StatusCode::BAD_REQUEST, "size")
+        );
+        assert!(e.message.contains("out of range"), "{}", e.message);
+        let mut photo = facetlab::render::photo::PhotoOptions::new(
+            facetlab::render::photo::PhotoLight::parse("tent")
+                .unwrap()
+                .unwrap(),
+        );
+        photo.light_rotation_deg = f64::NAN;
+        let e = ApiError::from_picture(photo.validate().unwrap_err());
+        assert_eq!(e.field, "light_rotation");
+        let e = ApiError::from_picture(Error::Geometry("no solid".into()));
+        assert_eq!(
+            (e.field.as_str(), e.message.as_str()),
+            ("render", "geometry: no solid")
+        );
+    }
 }

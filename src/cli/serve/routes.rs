@@ -277,8 +277,7 @@ async fn render_cut(
         };
         o.width_mm = width_mm(&r, &cut)?;
         o.material = material_for(&r, &cut)?;
-        o.validate()
-            .map_err(|e| ApiError::bad("render", e.to_string()))?;
+        o.validate().map_err(ApiError::from_picture)?;
         let img = render(&cut.solid, &o);
         let t2 = Instant::now();
         let rgb = img.to_srgb8(r.exposure, STAGE_GROUND);
@@ -335,10 +334,7 @@ fn photograph(
     if r.quick {
         o = o.quick();
     }
-    o.validate().map_err(|e| match e {
-        facetlab::error::Error::Invalid { field, message } => ApiError::bad(&field, message),
-        other => ApiError::bad("render", other.to_string()),
-    })?;
+    o.validate().map_err(ApiError::from_picture)?;
     let p = photo(&cut.solid, &o);
     let t2 = Instant::now();
     let rgb = p.to_srgb8(r.exposure, o.tone);

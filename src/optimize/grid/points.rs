@@ -1,7 +1,7 @@
 //! The grid's points: the [`Grid`] (its axes, its order, a point's values), a point's
 //! scores ([`GridCell`]), their evaluation in parallel and the sweep's CSV.
 
-use crate::error::{Error, Result};
+use crate::error::{setting, Error, Result};
 use crate::metrics::ScoreName;
 use crate::optimize::config::Config;
 use crate::optimize::evaluator::Evaluator;
@@ -24,7 +24,11 @@ impl Grid {
         if axes.is_empty() {
             return Err(Error::invalid(
                 "first axis",
-                "give at least one axis: --x KEY:MIN:MAX:STEP (or --axis)",
+                format!(
+                    "give at least one axis: {} KEY:MIN:MAX:STEP (or {})",
+                    setting("first axis"),
+                    setting("grid axes")
+                ),
             ));
         }
         for (i, a) in axes.iter().enumerate() {

@@ -3,7 +3,7 @@
 //! (`shard.json`), and the merge's check that the shards cover the grid exactly once.
 
 use super::points::{num, Grid, GridCell};
-use crate::error::{Error, Result};
+use crate::error::{setting, Error, Result};
 use crate::metrics::ScoreName;
 use crate::optimize::score_set::ScoreSet;
 use crate::optimize::sweep::{Axis, SCORES};
@@ -152,21 +152,24 @@ impl Shard {
             let count = int("SLURM_ARRAY_TASK_COUNT")?.ok_or_else(|| {
                 Error::invalid(
                     "SLURM_ARRAY_TASK_COUNT",
-                    "is not set, but SLURM_ARRAY_TASK_ID is; give --shard K/N",
+                    format!(
+                        "is not set, but SLURM_ARRAY_TASK_ID is; give {} K/N",
+                        setting("shard")
+                    ),
                 )
             })?;
             if let Some(step) = int("SLURM_ARRAY_TASK_STEP")? {
                 if step != 1 {
                     return Err(Error::invalid(
                         "SLURM_ARRAY_TASK_STEP",
-                        format!("is {step}; shards need a contiguous array (--array=0-N or 1-N), or give --shard K/N"),
+                        format!("is {step}; shards need a contiguous array (--array=0-N or 1-N), or give {} K/N", setting("shard")),
                     ));
                 }
             }
             if id < min || id - min >= count {
                 return Err(Error::invalid(
                     "SLURM_ARRAY_TASK_ID",
-                    format!("{id} is outside MIN {min} .. MIN + COUNT {count}; the array must be contiguous, or give --shard K/N"),
+                    format!("{id} is outside MIN {min} .. MIN + COUNT {count}; the array must be contiguous, or give {} K/N", setting("shard")),
                 ));
             }
             let s = Shard {
@@ -182,7 +185,10 @@ impl Shard {
             let count = int("JOB_COMPLETION_COUNT")?.ok_or_else(|| {
                 Error::invalid(
                     "JOB_COMPLETION_COUNT",
-                    "is not set, but JOB_COMPLETION_INDEX is; set it to the Job's completions in the manifest, or give --shard K/N",
+                    format!(
+                        "is not set, but JOB_COMPLETION_INDEX is; set it to the Job's completions in the manifest, or give {} K/N",
+                        setting("shard")
+                    ),
                 )
             })?;
             if ix >= count {
