@@ -114,10 +114,10 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
     let config = ScoreConfig {
         material,
         size,
-        polarization,
         head_shadow_deg: head,
         ..ScoreConfig::default()
-    };
+    }
+    .polarized(polarization);
     config.validate()?;
     stone.crystal = Some(a.crystal.choice(config.wavelength_nm));
     Ok(Settings {
@@ -264,7 +264,7 @@ mod tests {
         ]))
         .unwrap();
         assert_eq!(s.config.material.ri(500.0), 2.42);
-        assert!(!s.config.polarization && s.config.head_shadow_deg == 15.0);
+        assert!(!s.config.trace.polarization && s.config.head_shadow_deg == 15.0);
         assert_eq!(
             settings(&args(&["t", "--verify", "1e6"])).unwrap().verify,
             Some(1_000_000)

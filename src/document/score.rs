@@ -61,7 +61,7 @@ impl<'a> SettingsJson<'a> {
                 Dispersion::Constant(n) => Some(n),
                 _ => None,
             },
-            polarization: c.polarization,
+            polarization: c.trace.polarization,
             head_shadow_deg: c.head_shadow_deg,
             wavelength_nm: c.wavelength_nm,
             bands: c.bands,
@@ -214,7 +214,7 @@ pub fn score_table(config: &ScoreConfig, results: &[(String, Scores)]) -> String
                 c.wavelength_nm
             ),
         },
-        if c.polarization { "on" } else { "off" },
+        if c.trace.polarization { "on" } else { "off" },
         c.head_shadow_deg,
         c.tilts.len(),
         c.bands

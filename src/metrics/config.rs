@@ -24,8 +24,6 @@ pub struct ScoreConfig {
     /// Wavelength of the single-wavelength scores (light return, brilliance, ASET,
     /// scintillation), nm. Default 589.3.
     pub wavelength_nm: f64,
-    /// Track polarization (default on).
-    pub polarization: bool,
     /// Half-angle of the viewer's head shadow around the zenith, degrees; 0 = none (default).
     pub head_shadow_deg: f64,
     /// Poses averaged for brilliance. Default [`Tilt::default_set`].
@@ -53,7 +51,8 @@ pub struct ScoreConfig {
     ///
     /// [`fire_placements`]: super::fire_placements
     pub fire_placements: usize,
-    /// Tracer settings (footprints are switched on where needed). The split threshold is the
+    /// Tracer settings, polarization among them (default on; footprints are switched on where
+    /// needed). The split threshold is the
     /// tilted poses'; the ray floor ([`ScoreConfig::RAY_FLOOR`] by default) applies to every
     /// trace but the face-up one at the reference wavelength, and the power it stops is handed
     /// back with the narrow exits' mean (brilliance, not the pictures).
@@ -107,7 +106,6 @@ impl Default for ScoreConfig {
             material: Material::diamond(),
             size: StoneSize::default(),
             wavelength_nm: REFERENCE_WAVELENGTH_NM,
-            polarization: true,
             head_shadow_deg: 0.0,
             tilts: Tilt::default_set(),
             spots: Spot::default_set(),
@@ -128,6 +126,13 @@ impl Default for ScoreConfig {
 }
 
 impl ScoreConfig {
+    /// This configuration with polarization tracked (`true`, the default) or not: the trace
+    /// settings' own switch ([`TraceOptions::polarization`]), the one home of that setting.
+    pub fn polarized(mut self, on: bool) -> ScoreConfig {
+        self.trace.polarization = on;
+        self
+    }
+
     /// Default [`TraceOptions::ray_floor`] of the scores' traces. Measured on 30 tilted poses
     /// of six presets against traces split down to 1e-6: the ISO light return errs by 4.71e-4
     /// on average (4.84e-4 without a floor) while the rays need 0.48 of their segments; the

@@ -352,7 +352,7 @@ fn shared_colour(
     // untilted bands are traced with fire's split and ray floor).
     let picture = colour_options(solid, cfg).colour_trace_options();
     let fires = TraceOptions {
-        polarization: cfg.polarization,
+        polarization: cfg.trace.polarization,
         footprints: true,
         split_threshold: cfg.fire_split_threshold,
         ..cfg.trace
@@ -449,7 +449,7 @@ fn colour_options(solid: &Polyhedron, cfg: &ScoreConfig) -> crate::render::Rende
         size: crate::render::COLOUR_GRID,
         head_shadow_deg: Some(cfg.head_shadow_deg),
         material: cfg.material.clone(),
-        polarization: cfg.polarization,
+        polarization: cfg.trace.polarization,
         bands: cfg.bands,
         trace: cfg.trace,
         // Traced as fire's bands are: the colour rides on their traces when fire is scored.

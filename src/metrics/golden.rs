@@ -111,10 +111,10 @@ fn golden_tolkowsky_default_config() {
 fn golden_tolkowsky_cubic_zirconia_unpolarized_head_shadow_15() {
     let cfg = ScoreConfig {
         material: Material::cubic_zirconia(),
-        polarization: false,
         head_shadow_deg: 15.0,
         ..ScoreConfig::default()
-    };
+    }
+    .polarized(false);
     check(
         "TOLKOWSKY_CZ_UNPOLARIZED_SHADOW_15",
         &cfg,

@@ -329,7 +329,7 @@ impl<'a> JobContext<'a> {
         let rot = job.tilt.rotation();
         let frame = Frame::viewer(rot);
         let opts = TraceOptions {
-            polarization: cfg.polarization,
+            polarization: cfg.trace.polarization,
             footprints: !job.images.is_empty(),
             split_threshold: job.split,
             // The face-up figures are the cross-checked exact ones: no closure there.

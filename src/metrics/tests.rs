@@ -195,8 +195,8 @@ fn scores_are_continuous_in_pavilion_angle() {
         scintillation_tilts: vec![-2.0, 2.0],
         scintillation_turns: 1,
         resolution: 24,
-        polarization: false,
         trace: TraceOptions {
+            polarization: false,
             threshold: 1e-7,
             ..Default::default()
         },
@@ -352,7 +352,7 @@ fn pose_scores_are_the_means_of_the_pictures() {
                 let mut o = RenderOptions::new(light);
                 o.size = 48;
                 o.tilt = *t;
-                o.polarization = cfg.polarization;
+                o.polarization = cfg.trace.polarization;
                 o.trace = TraceOptions {
                     split_threshold: split,
                     ..cfg.trace
@@ -395,7 +395,7 @@ fn default_pictures_trace_at_the_scores_face_up_settings() {
             cfg.trace.threshold,
             cfg.trace.max_depth,
             cfg.trace.symmetry,
-            cfg.polarization
+            cfg.trace.polarization
         )
     );
     // The scores' face-up trace follows narrow beams to the end, unforked, as pictures do.

@@ -118,10 +118,10 @@ impl ScoreArgs {
         let config = ScoreConfig {
             material,
             size: self.stone.size()?,
-            polarization: self.polarization,
             head_shadow_deg: self.head_shadow,
             ..ScoreConfig::default()
-        };
+        }
+        .polarized(self.polarization);
         config.validate()?;
         Ok(config)
     }

@@ -67,7 +67,7 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
         escape(&m.name),
         m.ri_d(),
         o.score.wavelength_nm,
-        if o.score.polarization { "on" } else { "off" }
+        if o.score.trace.polarization { "on" } else { "off" }
     );
     for (heading, body) in &o.sections {
         let _ = writeln!(

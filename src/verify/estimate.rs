@@ -41,7 +41,7 @@ pub(super) fn photon_config(cfg: &ScoreConfig, photons: u64, seed: u64) -> Trace
         until_hit: false,
         depth: None,
         absorption: Absorption::None,
-        polarization: cfg.polarization,
+        polarization: cfg.trace.polarization,
         material: cfg.material.clone(),
         wavelengths: WavelengthSampling::Fixed(cfg.wavelength_nm),
         seed,

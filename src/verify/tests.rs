@@ -25,10 +25,7 @@ fn solids() -> Vec<(&'static str, Polyhedron)> {
 fn beam_and_photon_tracers_agree_on_overhead_light_return() {
     for (name, solid) in solids() {
         for polarization in [true, false] {
-            let cfg = ScoreConfig {
-                polarization,
-                ..ScoreConfig::default()
-            };
+            let cfg = ScoreConfig::default().polarized(polarization);
             let opts = crate::beam::TraceOptions {
                 polarization,
                 split_threshold: 1e-5,

@@ -637,7 +637,7 @@ mod tests {
         let sc = c.score.score_config();
         assert_eq!(sc.material.name, "cubic-zirconia");
         assert_eq!(sc.head_shadow_deg, 15.0);
-        assert!(sc.polarization);
+        assert!(sc.trace.polarization);
         // Written back and read again, the settings survive.
         let back = Config::from_str(&c.as_used_toml(), "back.toml").unwrap();
         assert_eq!(back.score, c.score);
@@ -648,9 +648,13 @@ mod tests {
         .unwrap();
         assert_eq!(c.score.score_config().material.ri(400.0), 2.0);
         assert!(!c.score.polarization);
-        // The split thresholds: defaults, or the config's, and back.
+        // The split thresholds: defaults, or the config's, and back; polarization is the trace
+        // settings' own.
         let d = crate::metrics::ScoreConfig::default();
-        assert_eq!(c.score.score_config().trace, d.trace);
+        assert_eq!(
+            c.score.score_config().trace,
+            d.clone().polarized(false).trace
+        );
         assert_eq!(
             c.score.score_config().fire_split_threshold,
             d.fire_split_threshold

@@ -155,9 +155,9 @@ impl ScoreSettings {
             material: self.material.clone(),
             size: self.size,
             head_shadow_deg: self.head_shadow_deg,
-            polarization: self.polarization,
             fire_split_threshold: self.fire_split_threshold,
             trace: crate::beam::TraceOptions {
+                polarization: self.polarization,
                 split_threshold: self.split_threshold,
                 ray_floor: self.ray_floor,
                 narrow_forks: self.narrow_forks,
