@@ -25,6 +25,62 @@ pub struct Meeting {
     pub axis: DVec3,
 }
 
+/// [`Meeting`] before its reflected waves are built: each reflected mode's real wave vector
+/// and (not normalised) field, and its power (0, with zero vectors, for an evanescent one).
+/// A trace that follows one of the two builds only that one ([`RawMeeting::wave`]); the
+/// numbers are those of [`Crystal::meet`], bit for bit.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RawMeeting {
+    /// Wave vector, field and power of the reflected waves (ordinary, extraordinary).
+    pub(crate) reflected: [(DVec3, DVec3, f64); 2],
+    /// As [`Meeting::exit_dir`].
+    pub(crate) exit_dir: DVec3,
+    /// As [`Meeting::exit_power`].
+    pub(crate) exit_power: f64,
+    /// As [`Meeting::exit`].
+    pub(crate) exit: Stokes,
+    /// As [`Meeting::axis`].
+    pub(crate) axis: DVec3,
+}
+
+impl RawMeeting {
+    /// The reflected wave of mode index `m` (0 ordinary, 1 extraordinary); meaningless when
+    /// its power is 0.
+    #[inline]
+    pub(crate) fn wave(&self, m: usize) -> Wave {
+        let (k, e, _) = self.reflected[m];
+        Crystal::wave_of(k, e, WaveMode::BOTH[m])
+    }
+
+    /// The [`Meeting`] with both reflected waves built (an evanescent one, whose wave vector
+    /// is left zero, as a zero wave).
+    #[inline]
+    fn built(&self) -> Meeting {
+        let wave = |m: usize| {
+            if self.reflected[m].0 == DVec3::ZERO {
+                Wave {
+                    mode: WaveMode::BOTH[m],
+                    k: DVec3::ZERO,
+                    ray: DVec3::ZERO,
+                    field: DVec3::ZERO,
+                }
+            } else {
+                self.wave(m)
+            }
+        };
+        Meeting {
+            reflected: [
+                (wave(0), self.reflected[0].2),
+                (wave(1), self.reflected[1].2),
+            ],
+            exit_dir: self.exit_dir,
+            exit_power: self.exit_power,
+            exit: self.exit,
+            axis: self.axis,
+        }
+    }
+}
+
 impl Crystal {
     /// [`Crystal::meet`] when the incident and both reflected modes propagate (`inc`, `refl`:
     /// wave vectors and fields from [`Crystal::real_modes`]): the same equations with the
@@ -35,7 +91,7 @@ impl Crystal {
         tg: &Tangent,
         inc: (DVec3, DVec3),
         refl: [(DVec3, DVec3); 2],
-    ) -> Option<Meeting> {
+    ) -> Option<RawMeeting> {
         let (q, out_real) = signed_root(1.0 - tg.kt2, 1.0);
         let nu = tg.nu;
         // Tangential E and H, and the flux along ν (½ (E × H) · ν), of a real field.
@@ -61,24 +117,9 @@ impl Crystal {
             return None;
         }
         let r = [(b1 * a22 - a12 * b2) / det, (a11 * b2 - b1 * a21) / det];
-        let wave = |(k, e): (DVec3, DVec3), mode| {
-            let s = k * e.length_squared() - e * e.dot(k);
-            Wave {
-                mode,
-                k,
-                ray: s.normalize(),
-                field: e.normalize(),
-            }
-        };
         let reflected = [
-            (
-                wave(refl[0], WaveMode::Ordinary),
-                -r[0].norm_sqr() * f_o / f_in,
-            ),
-            (
-                wave(refl[1], WaveMode::Extraordinary),
-                -r[1].norm_sqr() * f_e / f_in,
-            ),
+            (refl[0].0, refl[0].1, -r[0].norm_sqr() * f_o / f_in),
+            (refl[1].0, refl[1].1, -r[1].norm_sqr() * f_e / f_in),
         ];
         let (exit_dir, exit_power, exit) = if out_real {
             let t_s = C::real(i[1]) + r[0].scale(o[1]) + r[1].scale(e[1]);
@@ -88,7 +129,7 @@ impl Crystal {
         } else {
             (DVec3::ZERO, 0.0, DVec4::ZERO)
         };
-        Some(Meeting {
+        Some(RawMeeting {
             reflected,
             exit_dir,
             exit_power,
@@ -107,6 +148,11 @@ impl Crystal {
     /// reflected amplitudes: the same solution as the 4×4 system of [`Crystal::enter`]
     /// (both are held to Berreman's in the tests) for a fifth of the time.
     pub fn meet(&self, wave: &Wave, n: DVec3) -> Option<Meeting> {
+        self.meet_raw(wave, n).map(|m| m.built())
+    }
+
+    /// [`Crystal::meet`] with the reflected waves not yet built.
+    pub(crate) fn meet_raw(&self, wave: &Wave, n: DVec3) -> Option<RawMeeting> {
         let nu = n;
         let tg = Tangent::new(wave.k, nu);
         if let (Some(mi), Some(mr)) = (self.real_modes(&tg, 1.0), self.real_modes(&tg, -1.0)) {
@@ -143,18 +189,9 @@ impl Crystal {
         let reflected = [0, 1].map(|m| {
             let f = &refl[m];
             if f.propagating {
-                let p = -r[m].norm_sqr() * f.flux(nu) / f_in;
-                (Crystal::wave(f, WaveMode::BOTH[m]), p)
+                (f.k.re, f.e.re, -r[m].norm_sqr() * f.flux(nu) / f_in)
             } else {
-                (
-                    Wave {
-                        mode: WaveMode::BOTH[m],
-                        k: DVec3::ZERO,
-                        ray: DVec3::ZERO,
-                        field: DVec3::ZERO,
-                    },
-                    0.0,
-                )
+                (DVec3::ZERO, DVec3::ZERO, 0.0)
             }
         });
         let (exit_dir, exit_power, exit) = if out_real {
@@ -166,7 +203,7 @@ impl Crystal {
         } else {
             (DVec3::ZERO, 0.0, DVec4::ZERO)
         };
-        Some(Meeting {
+        Some(RawMeeting {
             reflected,
             exit_dir,
             exit_power,

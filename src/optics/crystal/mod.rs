@@ -65,5 +65,6 @@ mod wave;
 pub use complex::{CVec3, C};
 pub use entry::Entry;
 pub use meeting::Meeting;
+pub(crate) use meeting::RawMeeting;
 pub use uniaxial::Crystal;
 pub use wave::{Wave, WaveMode};

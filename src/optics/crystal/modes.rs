@@ -98,7 +98,13 @@ impl Crystal {
     /// wave: `S = E × (k × E) = k |E|² − E (E · k)`).
     #[inline]
     pub(super) fn wave(f: &Field, mode: WaveMode) -> Wave {
-        let (k, e) = (f.k.re, f.e.re);
+        Crystal::wave_of(f.k.re, f.e.re, mode)
+    }
+
+    /// The propagating wave of `mode` with real wave vector `k` and field `e` (not
+    /// normalised).
+    #[inline]
+    pub(super) fn wave_of(k: DVec3, e: DVec3, mode: WaveMode) -> Wave {
         let s = k * e.length_squared() - e * e.dot(k);
         Wave {
             mode,
