@@ -33,7 +33,7 @@ use super::sink::{ExitSink, TraceStats};
 use super::stone::{Stone, GRAZE};
 use super::symmetry::{RootClip, SymSink};
 use super::work::{Ctx, Work};
-use crate::optics::crystal::{Crystal, Wave};
+use crate::optics::crystal::{Crystal, RawMeeting, Wave};
 use crate::optics::BodyColour;
 use crate::optics::Material;
 use glam::{DVec2, DVec3, DVec4};
@@ -130,17 +130,34 @@ impl Optics {
 /// the weaker carries less than [`TraceOptions::mode_floor`] of the pair's power, one ray in
 /// the stronger mode carries both (as a narrow beam's ray keeps its weaker mode's light from
 /// then on), and the pair costs one ray instead of two. `None` when they go on apart.
+/// `pair` holds the two modes' powers (`None`: not reflected); the result is the mode index
+/// (0 ordinary, 1 extraordinary) that carries both and their sum.
 #[inline]
-fn merged(pair: &[Option<(Wave, f64)>; 2], cx: &Ctx, optics: &Optics) -> Option<(Wave, f64)> {
+fn merged(pair: &[Option<f64>; 2], cx: &Ctx, optics: &Optics) -> Option<(usize, f64)> {
     match *pair {
         [Some(a), Some(b)]
-            if a.1.max(b.1) < cx.split_threshold
-                && a.1.min(b.1) < optics.mode_floor * (a.1 + b.1) =>
+            if a.max(b) < cx.split_threshold && a.min(b) < optics.mode_floor * (a + b) =>
         {
-            Some((if a.1 >= b.1 { a.0 } else { b.0 }, a.1 + b.1))
+            Some((if a >= b { 0 } else { 1 }, a + b))
         }
         _ => None,
     }
+}
+
+/// The modes that go on from a pair of powers: the merged one alone, else each reflected one
+/// (ordinary first), as (mode index, power).
+#[inline]
+fn going_on(pair: [Option<f64>; 2], merge: Option<(usize, f64)>) -> [Option<(usize, f64)>; 2] {
+    merge.map_or([pair[0].map(|p| (0, p)), pair[1].map(|p| (1, p))], |m| {
+        [Some(m), None]
+    })
+}
+
+/// The light reflected at a crossing: the meeting (which builds each mode's wave, only for
+/// the modes followed) and each mode's power (`None` for a mode that is not reflected).
+struct Reflected {
+    meeting: RawMeeting,
+    power: [Option<f64>; 2],
 }
 
 impl Stone {
@@ -279,13 +296,10 @@ impl Stone {
             };
             w.st.exits += 1;
             sym.exit(&ext, &w.foot);
-            let transmitted = entry.transmitted.map(|(wave, t)| Some((wave, t * scale)));
+            let transmitted = entry.transmitted.map(|(_, t)| Some(t * scale));
             let merge = merged(&transmitted, &cx, optics);
-            for (wave, t) in merge
-                .map_or(transmitted, |m| [Some(m), None])
-                .into_iter()
-                .flatten()
-            {
+            for (m, t) in going_on(transmitted, merge).into_iter().flatten() {
+                let wave = entry.transmitted[m].0;
                 let beam = ModeBeam {
                     wave,
                     power: t,
@@ -406,7 +420,7 @@ impl Stone {
                 1.0
             };
             let pc = beam.power * (ch.area / sum);
-            let reflected = self.cross_mode(
+            let Some(reflected) = self.cross_mode(
                 &beam.wave,
                 g,
                 pc,
@@ -416,13 +430,12 @@ impl Stone {
                 optics,
                 w,
                 sink,
-            );
-            let merge = merged(&reflected, cx, optics);
-            for (wave, pr) in merge
-                .map_or(reflected, |m| [Some(m), None])
-                .into_iter()
-                .flatten()
-            {
+            ) else {
+                continue;
+            };
+            let merge = merged(&reflected.power, cx, optics);
+            for (m, pr) in going_on(reflected.power, merge).into_iter().flatten() {
+                let wave = reflected.meeting.wave(m);
                 let next = ModeBeam {
                     wave,
                     power: pr,
@@ -443,7 +456,8 @@ impl Stone {
 
     /// Light of power `p` in `wave` crossing facet `g`: the light leaving (times `keep`, the
     /// share left after absorption) handed to `sink` with footprint `w.foot`, and the
-    /// reflected light of each mode returned (`None` for a mode that is not reflected).
+    /// reflected light of each mode returned (`None` when the crossing is not solved: its
+    /// power is cut off).
     /// `origin` is (entry facet, reflections so far, narrow, late, node).
     #[allow(clippy::too_many_arguments)]
     #[inline]
@@ -458,13 +472,13 @@ impl Stone {
         optics: &Optics,
         w: &mut Work,
         sink: &mut S,
-    ) -> [Option<(Wave, f64)>; 2] {
+    ) -> Option<Reflected> {
         let (entry, depth, narrow, late, node) = origin;
-        let Some(m) = optics.crystal.meet(wave, self.normals[g]) else {
+        let Some(m) = optics.crystal.meet_raw(wave, self.normals[g]) else {
             w.st.cut_off += p;
-            return [None, None];
+            return None;
         };
-        let scale = p / (m.reflected[0].1 + m.reflected[1].1 + m.exit_power);
+        let scale = p / (m.reflected[0].2 + m.reflected[1].2 + m.exit_power);
         if m.exit_power > 0.0 {
             let unabsorbed = m.exit_power * scale;
             let power = unabsorbed * keep;
@@ -493,8 +507,8 @@ impl Stone {
             w.st.exits += 1;
             sink.exit(&e, &w.foot);
         }
-        m.reflected
-            .map(|(wr, r)| (r > 0.0).then_some((wr, r * scale)))
+        let power = m.reflected.map(|(_, _, r)| (r > 0.0).then_some(r * scale));
+        Some(Reflected { meeting: m, power })
     }
 
     /// Follow a narrow beam as rays from `ray.x`: at each facet the light leaving is an exit
@@ -515,8 +529,10 @@ impl Stone {
         w.st.ray_power += p0;
         let floor = cx.threshold.max(cx.ray_floor * p0);
         w.mode_rays.clear();
-        w.mode_rays.push(ray);
-        while let Some(r) = w.mode_rays.pop() {
+        // The ray followed next: the ordinary reflected ray goes on at once, the
+        // extraordinary one waits on the stack (the order a stack of both would give).
+        let mut next = Some(ray);
+        while let Some(r) = next.take().or_else(|| w.mode_rays.pop()) {
             let t = r.wave.ray;
             let Some((g, s)) = self.exit_facet(r.x, t, r.facet as usize) else {
                 w.st.cut_off += r.power;
@@ -529,24 +545,27 @@ impl Stone {
             let node = w.node(cx, r.node, g);
             let keep = if optics.absorbing { (-tau).exp() } else { 1.0 };
             let origin = (entry, r.depth, true, r.power <= 0.5 * p0, node);
-            let reflected = self.cross_mode(&r.wave, g, r.power, keep, origin, cx, optics, w, sink);
+            let Some(reflected) =
+                self.cross_mode(&r.wave, g, r.power, keep, origin, cx, optics, w, sink)
+            else {
+                continue;
+            };
             let depth = r.depth + 1;
             // A mode too weak to be followed on its own stays with the other mode's ray (its
             // power added, its path that ray's): the ray's tree keeps at most 1/mode_floor
             // branches.
-            let reflected = match reflected {
-                [Some(a), Some(b)] if a.1.min(b.1) < optics.mode_floor * p0 => {
-                    let (keep_a, sum) = (a.1 >= b.1, a.1 + b.1);
-                    if keep_a {
-                        [Some((a.0, sum)), None]
+            let going = match reflected.power {
+                [Some(a), Some(b)] if a.min(b) < optics.mode_floor * p0 => {
+                    if a >= b {
+                        [Some((0, a + b)), None]
                     } else {
-                        [None, Some((b.0, sum))]
+                        [None, Some((1, a + b))]
                     }
                 }
-                other => other,
+                [a, b] => [a.map(|p| (0, p)), b.map(|p| (1, p))],
             };
-            // The extraordinary ray first on the stack: the ordinary one is followed first.
-            for (wave, pr) in reflected.into_iter().rev().flatten() {
+            // The extraordinary ray first: the ordinary one is followed first.
+            for (m, pr) in going.into_iter().rev().flatten() {
                 if pr.is_nan() || pr < floor || depth > cx.max_depth {
                     w.st.cut_off += pr.max(0.0);
                     if pr >= cx.threshold && depth <= cx.max_depth {
@@ -554,7 +573,8 @@ impl Stone {
                     }
                     continue;
                 }
-                w.mode_rays.push(ModeRay {
+                let wave = reflected.meeting.wave(m);
+                let ray = ModeRay {
                     x,
                     wave,
                     power: pr,
@@ -563,7 +583,12 @@ impl Stone {
                     facet: g as u32,
                     depth,
                     node,
-                });
+                };
+                if m == 0 {
+                    next = Some(ray);
+                } else {
+                    w.mode_rays.push(ray);
+                }
             }
         }
     }

@@ -1,8 +1,11 @@
 //! The crystal's modes and boundary conditions against closed forms, energy conservation and
 //! an independent 4×4 transfer-matrix (Berreman) computation written here.
 
+use super::boundary::jones_stokes;
 use super::*;
 use crate::optics::fresnel;
+use crate::optics::polarization::Stokes;
+use glam::{DVec3, DVec4};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 
