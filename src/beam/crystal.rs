@@ -295,7 +295,7 @@ impl Stone {
                 sym: 0,
             };
             w.st.exits += 1;
-            sym.exit(&ext, &w.foot);
+            sym.exit_at(&ext, &w.foot, &w.cur);
             let transmitted = entry.transmitted.map(|(_, t)| Some(t * scale));
             let merge = merged(&transmitted, &cx, optics);
             for (m, t) in going_on(transmitted, merge).into_iter().flatten() {
@@ -426,6 +426,7 @@ impl Stone {
                 pc,
                 keep,
                 (beam.entry, beam.depth, false, false, node),
+                None,
                 cx,
                 optics,
                 w,
@@ -458,7 +459,9 @@ impl Stone {
     /// share left after absorption) handed to `sink` with footprint `w.foot`, and the
     /// reflected light of each mode returned (`None` when the crossing is not solved: its
     /// power is cut off).
-    /// `origin` is (entry facet, reflections so far, narrow, late, node).
+    /// `origin` is (entry facet, reflections so far, narrow, late, node); the light leaves
+    /// through the polygon in `w.cur` on facet `g` (an exact beam), or at the point `ray_at`
+    /// (a narrow beam's ray): the exit's place ([`ExitSink::exit_at`]).
     #[allow(clippy::too_many_arguments)]
     #[inline]
     fn cross_mode<S: ExitSink>(
@@ -468,6 +471,7 @@ impl Stone {
         p: f64,
         keep: f64,
         origin: (u32, u32, bool, bool, u32),
+        ray_at: Option<DVec3>,
         cx: &Ctx,
         optics: &Optics,
         w: &mut Work,
@@ -505,7 +509,10 @@ impl Stone {
                 sym: 0,
             };
             w.st.exits += 1;
-            sink.exit(&e, &w.foot);
+            match ray_at {
+                Some(x) => sink.exit_at(&e, &w.foot, &[x]),
+                None => sink.exit_at(&e, &w.foot, &w.cur),
+            }
         }
         let power = m.reflected.map(|(_, _, r)| (r > 0.0).then_some(r * scale));
         Some(Reflected { meeting: m, power })
@@ -545,9 +552,18 @@ impl Stone {
             let node = w.node(cx, r.node, g);
             let keep = if optics.absorbing { (-tau).exp() } else { 1.0 };
             let origin = (entry, r.depth, true, r.power <= 0.5 * p0, node);
-            let Some(reflected) =
-                self.cross_mode(&r.wave, g, r.power, keep, origin, cx, optics, w, sink)
-            else {
+            let Some(reflected) = self.cross_mode(
+                &r.wave,
+                g,
+                r.power,
+                keep,
+                origin,
+                Some(x),
+                cx,
+                optics,
+                w,
+                sink,
+            ) else {
                 continue;
             };
             let depth = r.depth + 1;

@@ -68,7 +68,7 @@ pub struct StoneChoice {
     pub size: StoneSize,
     /// Whether the size was given as a length (its errors name `length`, else `width`).
     pub size_is_length: bool,
-    /// The crystal settings, applied when given (a photograph applies none).
+    /// The crystal settings, applied when given.
     pub crystal: Option<CrystalChoice>,
 }
 

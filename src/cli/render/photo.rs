@@ -97,8 +97,12 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<(PhotoPictures, Sto
             "is for the laboratory lights; a photograph's camera casts no head shadow",
         ));
     }
-    let stone = flags::stone_choice(a.material.material()?, &a.material, &a.colour, None)?;
+    let mut stone = flags::stone_choice(a.material.material()?, &a.material, &a.colour, None)?;
     o.material = stone.material.clone();
+    // A birefringent stone is photographed as it is traced elsewhere: its crystal settings
+    // (--birefringence, --optic-axis, --colour-e) apply, its note giving the indices at the
+    // sodium D line.
+    stone.crystal = Some(a.crystal.choice(facetlab::metrics::REFERENCE_WAVELENGTH_NM));
     o.polarization = a.polarization;
     if let Some(kind) = p.ground {
         o.ground = Ground { kind, gap: 0.0 };
