@@ -257,3 +257,52 @@ fn bad_photographs_are_one_line_and_write_nothing() {
     }
     assert_eq!(files(p), vec!["broken.exr", "broken.hdr"]);
 }
+
+/// A birefringent stone is photographed with its crystal settings (the note says so) and
+/// casts its caustic on the ground, birefringent or not (a uniaxial stone's caustic was
+/// once lost, counted as light escaping upward).
+#[test]
+fn a_birefringent_stone_casts_its_caustic() {
+    let dir = tempdir().unwrap();
+    let caustic = |extra: &[&str]| -> (f64, String) {
+        let mut args = vec![
+            "render",
+            "oval",
+            "--material",
+            "quartz",
+            "--light",
+            "daylight",
+            "--ground",
+            "white",
+            "--view",
+            "35",
+            "--size",
+            "48",
+            "-o",
+            "q.png",
+            "--force",
+        ];
+        args.extend_from_slice(extra);
+        let out = super::run_in(dir.path(), &args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = String::from_utf8_lossy(&out.stdout).to_string()
+            + &String::from_utf8_lossy(&out.stderr);
+        let share = text
+            .split("caustics ")
+            .nth(1)
+            .and_then(|s| s.split_whitespace().next())
+            .and_then(|s| s.parse::<f64>().ok())
+            .unwrap_or_else(|| panic!("no caustics in {text}"));
+        (share, text)
+    };
+    let (on, on_text) = caustic(&[]);
+    let (off, off_text) = caustic(&["--birefringence", "off"]);
+    assert!(on > 0.2 && off > 0.2, "{on} {off}");
+    assert!((on - off).abs() < 0.05, "{on} {off}");
+    assert!(off_text.contains("birefringence off"), "{off_text}");
+    assert!(on_text.contains("optic axis"), "{on_text}");
+}
