@@ -207,7 +207,8 @@ impl StoneChoice {
                     self.colour_density,
                     fields.crystal,
                 )?;
-                if let Some(n) = m.birefringence_note(x.wavelength_nm) {
+                if let Some(n) = m.birefringence_note(x.wavelength_nm, fields.crystal.birefringence)
+                {
                     note(NoteKind::Crystal, format!("{}: {n}", cut.name));
                 }
             }

@@ -91,8 +91,10 @@ impl Material {
 
     /// One line for stderr saying how a birefringent stone is traced (`None` for a singly
     /// refractive one): with both indices at `wavelength_nm` and the optic axis, or with the
-    /// ordinary ray alone (birefringence off), or with α (biaxial).
-    pub fn birefringence_note(&self, wavelength_nm: f64) -> Option<String> {
+    /// ordinary ray alone (birefringence off), or with α (biaxial). `switch` is how the face
+    /// showing the line spells the birefringence setting (`--birefringence` on the command
+    /// line, the `birefringence` keyword in Python).
+    pub fn birefringence_note(&self, wavelength_nm: f64, switch: &str) -> Option<String> {
         if self.optic == Optic::BiaxialAlpha {
             return Some(format!(
                 "{}: biaxial, traced with its lowest index α {:.4} ({BIAXIAL_REASON})",
@@ -116,7 +118,7 @@ impl Material {
             None => String::new(),
         };
         Some(format!(
-            "{}: birefringent, traced with ω {no:.4} and ε {ne:.4} at {wavelength_nm} nm, optic axis {} ({}){pleo}; --birefringence off traces the ordinary ray alone",
+            "{}: birefringent, traced with ω {no:.4} and ε {ne:.4} at {wavelength_nm} nm, optic axis {} ({}){pleo}; {switch} off traces the ordinary ray alone",
             self.name,
             axis_words(u.axis),
             u.axis.label()
@@ -201,11 +203,11 @@ mod tests {
         assert!(!u.traced && u.axis.tilt_deg == 35.0 && u.axis.azimuth_deg == 20.0);
         assert_eq!(u.colour_e.as_ref().unwrap().density, 2.0);
         assert!(m
-            .birefringence_note(589.3)
+            .birefringence_note(589.3, "--birefringence")
             .unwrap()
             .contains("birefringence off"));
         m.choose_crystal(Some(true), None, None, None, F).unwrap();
-        let note = m.birefringence_note(589.3).unwrap();
+        let note = m.birefringence_note(589.3, "--birefringence").unwrap();
         assert!(
             note.contains("birefringent") && note.contains("35° from the table's normal"),
             "{note}"
@@ -220,7 +222,10 @@ mod tests {
         );
         let mut d = Material::diamond();
         d.choose_crystal(Some(true), None, None, None, F).unwrap();
-        assert!(d.birefringence_note(589.3).is_none() && d.birefringence_json(589.3).is_none());
+        assert!(
+            d.birefringence_note(589.3, "--birefringence").is_none()
+                && d.birefringence_json(589.3).is_none()
+        );
         let e = d
             .choose_crystal(None, Some("90"), None, None, F)
             .unwrap_err()
@@ -237,7 +242,7 @@ mod tests {
         assert!(e.starts_with("birefringence: topaz is biaxial"), "{e}");
         assert!(t.choose_crystal(Some(false), None, None, None, F).is_ok());
         assert!(t
-            .birefringence_note(589.3)
+            .birefringence_note(589.3, "--birefringence")
             .unwrap()
             .contains("lowest index α"));
         let j = Material::by_name("sapphire")

@@ -115,7 +115,7 @@ impl TraceConfig {
                 return Err(Error::invalid(
                     "absorption model",
                     format!(
-                        "colour: {} has no body colour; choose a coloured material (--material ruby, …) or give --colour",
+                        "colour: {} has no body colour; choose a coloured material (allowed: a coloured variety such as ruby, emerald or blue-sapphire, `facetlab materials`)",
                         self.material.name
                     ),
                 ));

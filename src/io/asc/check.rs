@@ -17,7 +17,7 @@ pub const MAX_GEAR: f64 = 1000.0;
 pub(in crate::io) fn ri_problem(n: f64) -> Option<String> {
     (!(n > RI_ABOVE && n <= RI_MAX)).then(|| {
         format!(
-            "refractive index {} is not allowed; give an index in ({RI_ABOVE}, {RI_MAX}], as for --ri, e.g. 1.54",
+            "refractive index {} is not allowed; give an index in ({RI_ABOVE}, {RI_MAX}], e.g. 1.54",
             crate::error::shown(n)
         )
     })

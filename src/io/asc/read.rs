@@ -241,7 +241,7 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
                         .ok_or_else(|| {
                             Error::parse(
                                 at(line),
-                                format!("refractive index {v:?} is not allowed; give an index in ({RI_ABOVE}, {RI_MAX}], as for --ri, e.g. `I 1.54`"),
+                                format!("refractive index {v:?} is not allowed; give an index in ({RI_ABOVE}, {RI_MAX}], e.g. `I 1.54`"),
                             )
                         })?,
                 );
