@@ -2,7 +2,7 @@
 //! own: [`material_of`]), its body colour, its width in mm and its crystal settings, chosen
 //! by one rule for `score`, `render`, `trace` and `report`, the Python package and the web
 //! page. What the choice says to the user (a design traced in its own material, a coloured
-//! stone's colour and width, how a birefringent stone is traced) comes out as [`Note`]s,
+//! stone's colour and width, how a birefringent stone is traced) comes out as notes ([`NoteKind`]),
 //! each as soon as it is known, so that a later error follows the lines before it.
 
 use super::material_of;

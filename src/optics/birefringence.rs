@@ -203,13 +203,15 @@ mod tests {
         assert!(!u.traced && u.axis.tilt_deg == 35.0 && u.axis.azimuth_deg == 20.0);
         assert_eq!(u.colour_e.as_ref().unwrap().density, 2.0);
         assert!(m
-            .birefringence_note(589.3, "--birefringence")
+            .birefringence_note(589.3, "birefringence")
             .unwrap()
             .contains("birefringence off"));
         m.choose_crystal(Some(true), None, None, None, F).unwrap();
-        let note = m.birefringence_note(589.3, "--birefringence").unwrap();
+        let note = m.birefringence_note(589.3, "birefringence").unwrap();
         assert!(
-            note.contains("birefringent") && note.contains("35° from the table's normal"),
+            note.contains("birefringent")
+                && note.contains("35° from the table's normal")
+                && note.ends_with("; birefringence off traces the ordinary ray alone"),
             "{note}"
         );
         let e = m
@@ -223,7 +225,7 @@ mod tests {
         let mut d = Material::diamond();
         d.choose_crystal(Some(true), None, None, None, F).unwrap();
         assert!(
-            d.birefringence_note(589.3, "--birefringence").is_none()
+            d.birefringence_note(589.3, "birefringence").is_none()
                 && d.birefringence_json(589.3).is_none()
         );
         let e = d
@@ -242,7 +244,7 @@ mod tests {
         assert!(e.starts_with("birefringence: topaz is biaxial"), "{e}");
         assert!(t.choose_crystal(Some(false), None, None, None, F).is_ok());
         assert!(t
-            .birefringence_note(589.3, "--birefringence")
+            .birefringence_note(589.3, "birefringence")
             .unwrap()
             .contains("lowest index α"));
         let j = Material::by_name("sapphire")

@@ -1,0 +1,91 @@
+//! The flags of `facetlab render`.
+
+use super::photo;
+use crate::cli::flags;
+use facetlab::render::pose::{parse_rock, parse_tilt};
+use facetlab::render::Tilt;
+use std::path::PathBuf;
+
+/// Flags of `facetlab render`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct RenderArgs {
+    /// Cuts to draw side by side: preset names (tolkowsky, princess) or .toml/.asc/.gem/.obj/.stl
+    /// files.
+    #[arg(required = true, value_name = "CUT")]
+    pub cuts: Vec<String>,
+    /// Lighting: iso (uniform sky), cos (cosine sky), aset (false colour by the elevation the
+    /// light comes from), idealscope (red returned, white leak), hearts (face-down in the
+    /// hearts & arrows viewer), arrows (face-up in it), fire (spectral, under spot lights);
+    /// or a photograph under a studio rig: tent (light box with a spark light), darkfield
+    /// (point lights on black), daylight (sky and sun), office (ceiling panels), ring (ring
+    /// light round the lens), studio (the bundled procedural environment map), or
+    /// env:FILE (your equirectangular .hdr or .exr environment map).
+    #[arg(
+        long,
+        default_value = "iso",
+        value_name = "iso|cos|aset|idealscope|hearts|arrows|fire|tent|darkfield|daylight|office|ring|studio|env:FILE"
+    )]
+    pub light: String,
+    /// Pixels per side of each stone's picture (8–8192); the captions (and a grey margin)
+    /// come outside it unless --bare.
+    #[arg(
+        long,
+        default_value = "512",
+        value_name = "PX",
+        allow_hyphen_values = true,
+        value_parser = flags::whole("--size", 8, 8192)
+    )]
+    pub size: u64,
+    /// Tilt the stone DEG degrees (−90 to 90) toward azimuth AZ (degrees from +x, default 0):
+    /// `--tilt 10@45`.
+    #[arg(long, value_name = "DEG[@AZ]", allow_hyphen_values = true, value_parser = flags::parsed("--tilt", parse_tilt))]
+    pub tilt: Option<Tilt>,
+    /// Half-angle of the viewer's head shadow, the ASET port, the IdealScope head or the hearts
+    /// & arrows viewer's dark tube, degrees (0–60; default 10 for aset and idealscope, 20 for
+    /// arrows, 6 for hearts, 0 otherwise).
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub head_shadow: Option<String>,
+    #[command(flatten)]
+    pub material: flags::MaterialArgs,
+    #[command(flatten)]
+    pub colour: flags::ColourArgs,
+    #[command(flatten)]
+    pub crystal: flags::CrystalArgs,
+    /// Track polarization (on) or use the unpolarized average (off).
+    #[arg(long, default_value = "on", value_name = "on|off", action = clap::ArgAction::Set, value_parser = crate::cli::flags::on_off_parser("--polarization"))]
+    pub polarization: bool,
+    /// Change a parameter: a family's (`--set crown_angle=34.5`) or a design's tier angle
+    /// (`--set P1=41.2`). Repeatable; applied to every CUT.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Animated PNG of the stone rocking: frame k tilted DEG·sin(2πk/FRAMES) more toward the
+    /// --tilt azimuth; DEG in (0, 60], FRAMES in 2–240; loops forever.
+    #[arg(long, value_name = "DEG:FRAMES", allow_hyphen_values = true, value_parser = flags::parsed("--rock", parse_rock))]
+    pub rock: Option<(f64, usize)>,
+    /// Brightness factor of the iso, cos, hearts, arrows and fire pictures (0.01–100).
+    #[arg(
+        long,
+        default_value = "1",
+        value_name = "X",
+        allow_hyphen_values = true,
+        value_parser = flags::real("--exposure", 0.01, 100.0, "a factor")
+    )]
+    pub exposure: f64,
+    /// Write the statistics as JSON to this file (keys in the README).
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Replace -o and --json files that already exist (an input is never replaced).
+    #[arg(long)]
+    pub force: bool,
+    /// The picture to write (.png).
+    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    pub output: PathBuf,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+    /// The stones' pictures alone: no margin, captions or legend (one cut: exactly PX × PX).
+    #[arg(long)]
+    pub bare: bool,
+    #[command(flatten)]
+    pub photo: photo::PhotoArgs,
+}

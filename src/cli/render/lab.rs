@@ -1,0 +1,95 @@
+//! A laboratory picture's flags validated into the library's options, and the rock's and
+//! animation's limits both kinds of picture share.
+
+use super::RenderArgs;
+use crate::cli::flags;
+use facetlab::error::{Error, Result};
+use facetlab::metrics::StoneChoice;
+use facetlab::plot::render::LabPictures;
+
+use facetlab::render::{Light, RenderOptions, Tilt};
+
+/// Largest animation: frames × cuts × size² pixels (about 1.2 GB of 8-bit RGB in memory).
+pub const MAX_ANIMATION_PIXELS: f64 = 400e6;
+
+/// Refuse a rock that would tip the stone past 90° from its `--tilt`.
+pub(super) fn check_rock(tilt: Tilt, rock: Option<(f64, usize)>) -> Result<()> {
+    if let Some((deg, _)) = rock {
+        if tilt.tilt_deg.abs() + deg > 90.0 {
+            return Err(Error::invalid(
+                "--rock",
+                format!(
+                    "rocking {deg}° about the --tilt of {}° would pass 90°; keep |tilt| + DEG <= 90",
+                    tilt.tilt_deg
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Validate the flags into the library's types: the pictures and the stones.
+pub fn settings(a: &RenderArgs) -> Result<(LabPictures, StoneChoice)> {
+    let light = Light::parse(a.light.trim().to_ascii_lowercase().as_str()).map_err(|_| {
+        Error::invalid(
+            "--light",
+            format!(
+                "`{}` is not allowed; use {}, {} or env:FILE",
+                a.light,
+                Light::ALL.map(Light::name).join(", "),
+                facetlab::render::photo::PhotoLight::names().join(", ")
+            ),
+        )
+    })?;
+    let mut opts = RenderOptions::new(light);
+    opts.size = a.size as usize;
+    if let Some(t) = a.tilt {
+        opts.tilt = t;
+    }
+    opts.head_shadow_deg = a
+        .head_shadow
+        .as_deref()
+        .map(|h| {
+            flags::number(
+                "--head-shadow",
+                h,
+                0.0,
+                60.0,
+                "a half-angle in degrees (0 = none)",
+            )
+        })
+        .transpose()?;
+    let mut stone = flags::stone_choice(a.material.material()?, &a.material, &a.colour, None)?;
+    opts.material = stone.material.clone();
+    opts.polarization = a.polarization;
+    let rock = a.rock;
+    check_rock(opts.tilt, rock)?;
+    if let Some((_, n)) = rock {
+        // Every frame of the animation is held in memory until the file is written.
+        let pixels = (n * a.cuts.len()) as f64 * (opts.size as f64).powi(2);
+        if pixels > MAX_ANIMATION_PIXELS {
+            return Err(Error::invalid(
+                "--rock",
+                format!(
+                    "{n} frames of {} picture(s) of {} px would hold {:.0} million pixels; allowed {:.0} million: use fewer frames or a smaller --size",
+                    a.cuts.len(),
+                    opts.size,
+                    pixels / 1e6,
+                    MAX_ANIMATION_PIXELS / 1e6
+                ),
+            ));
+        }
+    }
+    let exposure = a.exposure;
+    opts.validate()
+        .map_err(|e| flags::picture_to_flags(e, &a.material))?;
+    stone.crystal = Some(a.crystal.choice(opts.wavelength_nm));
+    Ok((
+        LabPictures {
+            opts,
+            rock,
+            exposure,
+        },
+        stone,
+    ))
+}
