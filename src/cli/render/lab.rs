@@ -12,6 +12,24 @@ use facetlab::render::{Light, RenderOptions, Tilt};
 /// Largest animation: frames × cuts × size² pixels (about 1.2 GB of 8-bit RGB in memory).
 pub const MAX_ANIMATION_PIXELS: f64 = 400e6;
 
+/// Refuse an animation (`flag`: --rock or --turn) of `frames` frames of `cuts` pictures of
+/// `size` px larger than [`MAX_ANIMATION_PIXELS`]: every frame is held in memory until the
+/// file is written.
+pub(super) fn check_animation(flag: &str, frames: usize, cuts: usize, size: usize) -> Result<()> {
+    let pixels = (frames * cuts) as f64 * (size as f64).powi(2);
+    if pixels > MAX_ANIMATION_PIXELS {
+        return Err(Error::invalid(
+            flag,
+            format!(
+                "{frames} frames of {cuts} picture(s) of {size} px would hold {:.0} million pixels; allowed {:.0} million: use fewer frames or a smaller --size",
+                pixels / 1e6,
+                MAX_ANIMATION_PIXELS / 1e6
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Refuse a rock that would tip the stone past 90° from its `--tilt`.
 pub(super) fn check_rock(tilt: Tilt, rock: Option<(f64, usize)>) -> Result<()> {
     if let Some((deg, _)) = rock {
@@ -65,20 +83,7 @@ pub fn settings(a: &RenderArgs) -> Result<(LabPictures, StoneChoice)> {
     let rock = a.rock;
     check_rock(opts.tilt, rock)?;
     if let Some((_, n)) = rock {
-        // Every frame of the animation is held in memory until the file is written.
-        let pixels = (n * a.cuts.len()) as f64 * (opts.size as f64).powi(2);
-        if pixels > MAX_ANIMATION_PIXELS {
-            return Err(Error::invalid(
-                "--rock",
-                format!(
-                    "{n} frames of {} picture(s) of {} px would hold {:.0} million pixels; allowed {:.0} million: use fewer frames or a smaller --size",
-                    a.cuts.len(),
-                    opts.size,
-                    pixels / 1e6,
-                    MAX_ANIMATION_PIXELS / 1e6
-                ),
-            ));
-        }
+        check_animation("--rock", n, a.cuts.len(), opts.size)?;
     }
     let exposure = a.exposure;
     opts.validate()

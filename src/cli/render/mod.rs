@@ -35,8 +35,8 @@ mod photo;
 mod run;
 
 pub use args::RenderArgs;
-use lab::check_rock;
-pub use lab::{settings, MAX_ANIMATION_PIXELS};
+use lab::{check_animation, check_rock};
+pub use lab::settings;
 pub use run::run;
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 //! The flags are parsed here into [`PhotoOptions`]; the pictures, captions and JSON records
 //! come from the library ([`facetlab::plot::render::draw`]).
 
-use super::{check_rock, RenderArgs, MAX_ANIMATION_PIXELS};
+use super::{check_animation, check_rock, RenderArgs};
 use crate::cli::flags;
 use crate::cli::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
@@ -136,18 +136,9 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<(PhotoPictures, Sto
     }
     check_rock(o.tilt, rock)?;
     let frames = turn.or(rock.map(|r| r.1)).unwrap_or(1);
-    let pixels = (frames * a.cuts.len()) as f64 * (o.size as f64).powi(2);
-    if frames > 1 && pixels > MAX_ANIMATION_PIXELS {
-        return Err(Error::invalid(
-            if turn.is_some() { "--turn" } else { "--rock" },
-            format!(
-                "{frames} frames of {} picture(s) of {} px would hold {:.0} million pixels; allowed {:.0} million: use fewer frames or a smaller --size",
-                a.cuts.len(),
-                o.size,
-                pixels / 1e6,
-                MAX_ANIMATION_PIXELS / 1e6
-            ),
-        ));
+    if frames > 1 {
+        let flag = if turn.is_some() { "--turn" } else { "--rock" };
+        check_animation(flag, frames, a.cuts.len(), o.size)?;
     }
     let exposure = a.exposure;
     // The width the stone is seen at (for a perspective camera and absorption).
