@@ -35,8 +35,8 @@ mod photo;
 mod run;
 
 pub use args::RenderArgs;
-use lab::{check_animation, check_rock};
 pub use lab::settings;
+use lab::{check_animation, check_rock};
 pub use run::run;
 
 #[cfg(test)]
