@@ -151,7 +151,7 @@ impl CutJson {
                 Dispersion::Constant(n) => Some(n),
                 _ => None,
             },
-            polarization: opts.polarization,
+            polarization: opts.trace.polarization,
             exposure,
             cut_off: f0.cut_off,
             exits: f0.exits,

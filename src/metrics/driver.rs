@@ -449,7 +449,6 @@ fn colour_options(solid: &Polyhedron, cfg: &ScoreConfig) -> crate::render::Rende
         size: crate::render::COLOUR_GRID,
         head_shadow_deg: Some(cfg.head_shadow_deg),
         material: cfg.material.clone(),
-        polarization: cfg.trace.polarization,
         bands: cfg.bands,
         trace: cfg.trace,
         // Traced as fire's bands are: the colour rides on their traces when fire is scored.

@@ -352,7 +352,6 @@ fn pose_scores_are_the_means_of_the_pictures() {
                 let mut o = RenderOptions::new(light);
                 o.size = 48;
                 o.tilt = *t;
-                o.polarization = cfg.trace.polarization;
                 o.trace = TraceOptions {
                     split_threshold: split,
                     ..cfg.trace

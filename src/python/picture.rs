@@ -148,7 +148,7 @@ fn draw(cut: &crate::cut::Cut, input: &str, a: &RenderArgs) -> Result<(Image, St
         opts.tilt = parse_tilt("tilt", t)?;
     }
     opts.head_shadow_deg = a.head_shadow;
-    opts.polarization = a.polarization;
+    opts.trace.polarization = a.polarization;
     if !(0.01..=100.0).contains(&a.exposure) {
         return Err(Error::invalid(
             "exposure",

@@ -23,15 +23,13 @@ pub struct RenderOptions {
     pub material: Material,
     /// Wavelength of the single-wavelength lights, nm.
     pub wavelength_nm: f64,
-    /// Track polarization (default on).
-    pub polarization: bool,
     /// Wavelength bands of the fire picture (≥ 8 by default; faint ones share a neighbour's
     /// trace, [`color::traced_bands`](crate::optics::color::traced_bands)).
     pub bands: usize,
     /// Spot lights of the fire picture.
     pub spots: Vec<Spot>,
-    /// Tracer settings of a tilted picture (footprints are switched on here, and
-    /// `polarization` is taken from the field above; see [`RenderOptions::trace_options`]).
+    /// Tracer settings of a tilted picture, polarization among them (default on; footprints are
+    /// switched on here, see [`RenderOptions::trace_options`]).
     /// The default splits beams down to [`RenderOptions::SPLIT_THRESHOLD`] of the light, with
     /// no ray floor and no forking narrow beams (pictures are not closed).
     pub trace: TraceOptions,
@@ -84,7 +82,6 @@ impl RenderOptions {
             head_shadow_deg: None,
             material: Material::diamond(),
             wavelength_nm: 589.3,
-            polarization: true,
             bands: 8,
             spots: Spot::default_set(),
             trace: TraceOptions {
@@ -98,9 +95,16 @@ impl RenderOptions {
         }
     }
 
-    /// The tracer settings of this picture: [`RenderOptions::trace`] with footprints on, the
-    /// polarization of [`RenderOptions::polarization`], and for an untilted picture a split
-    /// threshold of at most [`RenderOptions::face_up_split_threshold`].
+    /// These options with polarization tracked (`true`, the default) or not: the trace
+    /// settings' own switch ([`TraceOptions::polarization`]), the one home of that setting.
+    pub fn polarized(mut self, on: bool) -> RenderOptions {
+        self.trace.polarization = on;
+        self
+    }
+
+    /// The tracer settings of this picture: [`RenderOptions::trace`] with footprints on, and
+    /// for an untilted picture a split threshold of at most
+    /// [`RenderOptions::face_up_split_threshold`].
     pub fn trace_options(&self) -> TraceOptions {
         let split = if self.tilt.tilt_deg == 0.0 {
             self.trace.split_threshold.min(self.face_up_split_threshold)
@@ -108,7 +112,6 @@ impl RenderOptions {
             self.trace.split_threshold
         };
         TraceOptions {
-            polarization: self.polarization,
             footprints: true,
             split_threshold: split,
             ..self.trace
@@ -124,7 +127,6 @@ impl RenderOptions {
             return self.trace_options();
         }
         TraceOptions {
-            polarization: self.polarization,
             footprints: true,
             split_threshold: self.colour_split_threshold,
             ray_floor: self.colour_ray_floor,

@@ -99,7 +99,7 @@ pub fn measure_scored(
         }
         r.size = o.size;
         r.material = o.score.material.clone();
-        r.polarization = o.score.trace.polarization;
+        r.trace.polarization = o.score.trace.polarization;
         r.tilt = Tilt {
             tilt_deg,
             azimuth_deg: 0.0,

@@ -79,7 +79,7 @@ pub fn settings(a: &RenderArgs) -> Result<(LabPictures, StoneChoice)> {
         .transpose()?;
     let mut stone = flags::stone_choice(a.material.material()?, &a.material, &a.colour, None)?;
     opts.material = stone.material.clone();
-    opts.polarization = a.polarization;
+    opts.trace.polarization = a.polarization;
     let rock = a.rock;
     check_rock(opts.tilt, rock)?;
     if let Some((_, n)) = rock {

@@ -60,7 +60,7 @@ fn defaults_and_flags_become_render_options() {
     );
     assert_eq!(s.rock, Some((15.0, 24)));
     assert_eq!(s.opts.head_shadow(), 12.0);
-    assert!(!s.opts.polarization && s.opts.material.ri(500.0) == 1.54);
+    assert!(!s.opts.trace.polarization && s.opts.material.ri(500.0) == 1.54);
     // A quarter period in: the full amplitude on top of the base tilt.
     assert!((s.frame_tilt(6).tilt_deg - 25.0).abs() < 1e-9);
     assert!((s.frame_tilt(18).tilt_deg + 5.0).abs() < 1e-9);

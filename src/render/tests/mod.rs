@@ -33,7 +33,7 @@ fn opts(light: Light, size: usize, tilt: Tilt) -> RenderOptions {
     RenderOptions {
         size,
         tilt,
-        polarization: false,
         ..RenderOptions::new(light)
     }
+    .polarized(false)
 }
