@@ -12,7 +12,9 @@
 //!   coloured stone (blue sapphire against colourless sapphire, one thread, and their ratio);
 //! * `birefringence`: the full default score of birefringent stones (sapphire, zircon; the
 //!   optic axis up, in the table, tilted) against the same stones at their ordinary index
-//!   alone, one thread, as alternated ratios (issue 41's ≤ 3× target);
+//!   alone, one thread, as alternated ratios (issue 41's ≤ 3× target), and what the pruning
+//!   leaves out (a face-up trace at the scores' settings, on and off: the light handed to
+//!   narrow rays, the light cut off, the rays' segments);
 //! * `topology`: how much of fire's band traces' exit power follows facet sequences that
 //!   every band's trace has (exact beams and narrow rays apart);
 //! * `instructions` (only when named): ten tilted traces with no timing loop, to run under
@@ -226,6 +228,33 @@ fn main() {
                 }
                 let n = times[0].len() - 1;
                 ratios.push(times[1][n] / times[0][n]);
+            }
+            // What pruning leaves out: one face-up trace at the scores' settings, on and
+            // off — the light handed to narrow rays (found by one ray each, not split
+            // exactly), the light cut off (below the threshold, past the depth limit or the
+            // ray floor), and the segments the rays ran.
+            let stone_b = Stone::new(&cut.solid);
+            let opts = ScoreConfig::default().trace;
+            let c = m.uniaxial.as_ref().expect("uniaxial").axis.vector();
+            for traced in [false, true] {
+                let mut mk = m.clone();
+                mk.uniaxial.as_mut().expect("uniaxial").traced = traced;
+                let medium = Medium::of(&mk, 589.3, c, 0.0, false);
+                let tree = stone_b.trace_medium(&frame, &medium, 589.3, &opts);
+                let st = &tree.stats;
+                println!(
+                    "  face-up trace at the scores' settings, birefringence {}: exact beams {}, \
+                     rays {} ({} segments), light to rays {:.4}, cut off {:.2e} (of it ray floor \
+                     {:.2e}) of power in {:.6}",
+                    if traced { "on " } else { "off" },
+                    st.beams,
+                    st.rays,
+                    st.ray_segments,
+                    st.ray_power,
+                    st.cut_off,
+                    st.ray_closed,
+                    st.power_in
+                );
             }
             ratios.sort_by(f64::total_cmp);
             let med = |v: &mut Vec<f64>| {
