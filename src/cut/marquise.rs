@@ -121,34 +121,7 @@ mod tests {
             (1.5, 0.52, 40.0, 38.0),
             (2.5, 0.62, 28.0, 45.0),
         ] {
-            let c = ok(
-                "marquise",
-                &[
-                    ("length_width", lw),
-                    ("table", t),
-                    ("crown_angle", ca),
-                    ("pavilion_angle", pa),
-                ],
-            );
-            assert!(
-                (bbox_ratio(&c) - lw).abs() < 1e-9,
-                "length/width {}",
-                bbox_ratio(&c)
-            );
-            assert!(
-                (table_width(&c) - t).abs() < 1e-9,
-                "table {}",
-                table_width(&c)
-            );
-            assert!((angle_of(&c, "bezel-3") - ca).abs() < 1e-9);
-            let p = c.proportions();
-            assert!((p.pavilion_angle - pa).abs() < 1e-9);
-            let depth = 0.025 + ((1.0 - t) * ca.to_radians().tan() + pa.to_radians().tan()) / 2.0;
-            assert!(
-                (p.total_depth - depth).abs() < 1e-9,
-                "depth {} vs {depth}",
-                p.total_depth
-            );
+            let c = fancy_measured("marquise", lw, t, ca, pa, None);
             // The table is the outline's shape: a pointed table with the stone's proportions of
             // main points, t times smaller.
             let (tlo, thi) = facet_extent(&c, "table");

@@ -86,6 +86,50 @@ pub fn angle_of(c: &Cut, name: &str) -> f64 {
     crate::geometry::facet_angle_deg(f.plane.normal)
 }
 
+/// Build the fancy shape `fam` (oval, pear, marquise: an outline with a pointed or round end)
+/// at length/width `lw`, table `t`, crown angle `ca`, pavilion angle `pa` and girdle `girdle`
+/// (`None`: the family's default, 0.025), and check what every such family promises: its
+/// length over width, its table's width, the crown angle on the bezel across the width
+/// (`bezel-3`), the pavilion angle, and the total depth girdle + ((1 − t)·tan ca + tan pa)/2.
+pub fn fancy_measured(fam: &str, lw: f64, t: f64, ca: f64, pa: f64, girdle: Option<f64>) -> Cut {
+    let mut kv = vec![
+        ("length_width", lw),
+        ("table", t),
+        ("crown_angle", ca),
+        ("pavilion_angle", pa),
+    ];
+    kv.extend(girdle.map(|g| ("girdle", g)));
+    let c = ok(fam, &kv);
+    assert!(
+        (bbox_ratio(&c) - lw).abs() < 1e-9,
+        "{fam}: length/width {}",
+        bbox_ratio(&c)
+    );
+    assert!(
+        (table_width(&c) - t).abs() < 1e-9,
+        "{fam}: table {}",
+        table_width(&c)
+    );
+    assert!(
+        (angle_of(&c, "bezel-3") - ca).abs() < 1e-9,
+        "{fam}: crown angle"
+    );
+    let p = c.proportions();
+    assert!(
+        (p.pavilion_angle - pa).abs() < 1e-9,
+        "{fam}: pavilion angle"
+    );
+    let g = girdle.unwrap_or(0.025);
+    assert!((p.girdle - g).abs() < 1e-9, "{fam}: girdle {}", p.girdle);
+    let depth = g + ((1.0 - t) * ca.to_radians().tan() + pa.to_radians().tan()) / 2.0;
+    assert!(
+        (p.total_depth - depth).abs() < 1e-9,
+        "{fam}: depth {} vs {depth}",
+        p.total_depth
+    );
+    c
+}
+
 /// `n + 1` values from `min` to `max`, both included exactly (whole numbers for counts).
 fn grid(min: f64, max: f64, n: usize, unit: Unit) -> Vec<f64> {
     if unit == Unit::Count {
