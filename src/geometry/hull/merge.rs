@@ -21,15 +21,15 @@ const MIN_AREA: f64 = 1e-10;
 /// cos 2°: triangles whose normal is within 2° of the facet's set its normal.
 const ALIGNED: f64 = 0.99939;
 
-struct Cluster {
-    area: DVec3,
-    n: DVec3,
+pub(super) struct Cluster {
+    pub area: DVec3,
+    pub n: DVec3,
     sum: DVec3,
     count: f64,
 }
 
 impl Cluster {
-    fn offset(&self) -> f64 {
+    pub fn offset(&self) -> f64 {
         self.n.dot(self.sum / self.count)
     }
     fn add(&mut self, area: DVec3, corners: [DVec3; 3]) {
@@ -92,8 +92,31 @@ impl Graph {
     }
 }
 
-/// Merge hull triangles into planes `(unit normal, offset)` (see the module documentation).
-pub(super) fn merge(pts: &[DVec3], tris: &[Face], tol: f64) -> Vec<(DVec3, f64)> {
+/// The hull's triangles grouped into facets: the triangle across each directed edge, each
+/// triangle's cluster, the clusters, and the union–find forest that joins adjacent clusters
+/// whose planes agree.
+pub(super) struct Clusters {
+    pub edge_tri: FastMap<(usize, usize), usize>,
+    pub owner: Vec<usize>,
+    pub clusters: Vec<Cluster>,
+    parent: Vec<usize>,
+}
+
+impl Clusters {
+    /// The joined facet (a root cluster) that cluster `i` belongs to.
+    pub fn root(&mut self, mut i: usize) -> usize {
+        let parent = &mut self.parent;
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+}
+
+/// Grow facets from the largest triangle over shared edges, then join adjacent facets whose
+/// planes agree within `tol` (see the module documentation).
+pub(super) fn cluster(pts: &[DVec3], tris: &[Face], tol: f64) -> Clusters {
     let corners: Vec<[DVec3; 3]> = tris.iter().map(|t| t.v.map(|k| pts[k])).collect();
     let areas: Vec<DVec3> = corners
         .iter()
@@ -150,29 +173,34 @@ pub(super) fn merge(pts: &[DVec3], tris: &[Face], tol: f64) -> Vec<(DVec3, f64)>
         clusters.push(c);
     }
     // Join adjacent clusters whose planes agree (union–find over shared edges).
-    let mut parent: Vec<usize> = (0..clusters.len()).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
+    let parent: Vec<usize> = (0..clusters.len()).collect();
+    let mut c = Clusters {
+        edge_tri,
+        owner,
+        clusters,
+        parent,
+    };
     for (t, tri) in tris.iter().enumerate() {
         for (a, b) in tri.edges() {
-            let Some(&u) = edge_tri.get(&(b, a)) else {
+            let Some(&u) = c.edge_tri.get(&(b, a)) else {
                 continue;
             };
-            let (ci, cj) = (root(&mut parent, owner[t]), root(&mut parent, owner[u]));
+            let (ci, cj) = (c.root(c.owner[t]), c.root(c.owner[u]));
             if ci == cj {
                 continue;
             }
-            let (x, y) = (&clusters[ci], &clusters[cj]);
+            let (x, y) = (&c.clusters[ci], &c.clusters[cj]);
             if x.n.distance(y.n) + (x.offset() - y.offset()).abs() <= tol {
-                parent[cj] = ci;
+                c.parent[cj] = ci;
             }
         }
     }
+    c
+}
+
+/// Merge hull triangles into planes `(unit normal, offset)` (see the module documentation).
+pub(super) fn merge(pts: &[DVec3], tris: &[Face], tol: f64) -> Vec<(DVec3, f64)> {
+    let mut c = cluster(pts, tris, tol);
     // Per joined facet: its area, a corner to climb from, the points lying on its triangles,
     // and its neighbours (in the order first met, so the result does not depend on hashing).
     struct Joined {
@@ -181,10 +209,10 @@ pub(super) fn merge(pts: &[DVec3], tris: &[Face], tol: f64) -> Vec<(DVec3, f64)>
         near: Vec<usize>,
         neighbours: Vec<usize>,
     }
-    let mut slot: Vec<usize> = vec![usize::MAX; clusters.len()];
+    let mut slot: Vec<usize> = vec![usize::MAX; c.clusters.len()];
     let mut joined: Vec<(usize, Joined)> = Vec::new();
-    for (i, c) in clusters.iter().enumerate() {
-        let r = root(&mut parent, i);
+    for i in 0..c.clusters.len() {
+        let r = c.root(i);
         if slot[r] == usize::MAX {
             slot[r] = joined.len();
             joined.push((
@@ -197,20 +225,20 @@ pub(super) fn merge(pts: &[DVec3], tris: &[Face], tol: f64) -> Vec<(DVec3, f64)>
                 },
             ));
         }
-        joined[slot[r]].1.area += c.area;
+        joined[slot[r]].1.area += c.clusters[i].area;
     }
     for (t, tri) in tris.iter().enumerate() {
-        let j = slot[root(&mut parent, owner[t])];
+        let j = slot[c.root(c.owner[t])];
         let facet = &mut joined[j].1;
         if facet.corner == usize::MAX {
             facet.corner = tri.v[0];
         }
         facet.near.extend_from_slice(&tri.near);
         for (a, b) in tri.edges() {
-            let Some(&u) = edge_tri.get(&(b, a)) else {
+            let Some(&u) = c.edge_tri.get(&(b, a)) else {
                 continue;
             };
-            let k = slot[root(&mut parent, owner[u])];
+            let k = slot[c.root(c.owner[u])];
             if k != j && !joined[j].1.neighbours.contains(&k) {
                 joined[j].1.neighbours.push(k);
             }
@@ -222,7 +250,7 @@ pub(super) fn merge(pts: &[DVec3], tris: &[Face], tol: f64) -> Vec<(DVec3, f64)>
         .iter()
         .enumerate()
         .filter_map(|(j, (r, facet))| {
-            let n = facet.area.try_normalize().unwrap_or(clusters[*r].n);
+            let n = facet.area.try_normalize().unwrap_or(c.clusters[*r].n);
             let near = || {
                 std::iter::once(j)
                     .chain(facet.neighbours.iter().copied())
@@ -255,7 +283,12 @@ pub(super) fn merge(pts: &[DVec3], tris: &[Face], tol: f64) -> Vec<(DVec3, f64)>
             spans_a_facet(&flat, n, d, tol).then_some((n, d))
         })
         .collect();
-    // The same plane twice (parts of one facet kept apart by a dropped sliver): keep one.
+    dedupe(planes, tol)
+}
+
+/// Drop the same plane found twice (parts of one facet kept apart by a dropped sliver): of
+/// planes within `tol` of each other, the first is kept.
+pub(super) fn dedupe(planes: Vec<(DVec3, f64)>, tol: f64) -> Vec<(DVec3, f64)> {
     let mut order: Vec<usize> = (0..planes.len()).collect();
     order.sort_by(|&a, &b| planes[a].0.x.total_cmp(&planes[b].0.x));
     let mut keep = vec![true; planes.len()];

@@ -1,4 +1,4 @@
-use super::merge::spans_a_facet;
+use super::merge::{cluster, dedupe, spans_a_facet};
 use super::*;
 use crate::geometry::{FacetPlane, Polyhedron};
 use rand::rngs::SmallRng;
@@ -295,128 +295,25 @@ fn jittered_cube_surface_gives_six_facets() {
 
 /// The merge before issue 36, kept as a brute-force reference: each facet's offset is the
 /// largest `normal · p` over every point, and the points within `tol` of its plane are found
-/// by scanning them all (O(points × facets)).
-///
-/// Facets grow from the largest triangle over shared edges: a neighbour joins when its corners
-/// lie within `tol` of the facet's current plane. Adjacent facets whose planes still agree
-/// within `tol` are then joined (a triangle turned away early, before the plane had settled).
+/// by scanning them all (O(points × facets)). The facets are the merge's own (grown over
+/// shared edges and joined, `merge::cluster`), so what it checks is the merge's fast offsets
+/// and flatness: the climb over the hull's edges and the walk from the top vertex.
 fn reference_merge(pts: &[DVec3], tris: &[Face], tol: f64) -> Vec<(DVec3, f64)> {
-    struct Cluster {
-        area: DVec3,
-        n: DVec3,
-        sum: DVec3,
-        count: f64,
-    }
-    impl Cluster {
-        fn offset(&self) -> f64 {
-            self.n.dot(self.sum / self.count)
-        }
-        fn add(&mut self, area: DVec3, corners: [DVec3; 3]) {
-            // A sliver along an edge may have its corners within the tolerance and its normal
-            // far off: it joins the facet without tilting it.
-            if area.dot(self.n) >= area.length() * ALIGNED {
-                self.area += area;
-            }
-            self.n = self.area.try_normalize().unwrap_or(self.n);
-            self.sum += corners[0] + corners[1] + corners[2];
-            self.count += 3.0;
-        }
-    }
-    /// cos 2°: triangles whose normal is within 2° of the facet's set its normal.
-    const ALIGNED: f64 = 0.99939;
-    let corners: Vec<[DVec3; 3]> = tris.iter().map(|t| t.v.map(|k| pts[k])).collect();
-    let areas: Vec<DVec3> = corners
-        .iter()
-        .map(|c| 0.5 * (c[1] - c[0]).cross(c[2] - c[0]))
-        .collect();
-    let mut edge_tri: HashMap<(usize, usize), usize> = HashMap::with_capacity(3 * tris.len());
-    for (i, t) in tris.iter().enumerate() {
-        for e in t.edges() {
-            edge_tri.insert(e, i);
-        }
-    }
-    let mut order: Vec<usize> = (0..tris.len()).collect();
-    order.sort_by(|&a, &b| {
-        areas[b]
-            .length()
-            .total_cmp(&areas[a].length())
-            .then(a.cmp(&b))
-    });
-    let mut owner = vec![usize::MAX; tris.len()];
-    let mut clusters: Vec<Cluster> = Vec::new();
-    let mut queue = std::collections::VecDeque::new();
-    for seed in order {
-        if owner[seed] != usize::MAX {
-            continue;
-        }
-        let id = clusters.len();
-        let mut c = Cluster {
-            area: DVec3::ZERO,
-            n: tris[seed].n,
-            sum: DVec3::ZERO,
-            count: 0.0,
-        };
-        c.add(areas[seed], corners[seed]);
-        owner[seed] = id;
-        queue.push_back(seed);
-        while let Some(t) = queue.pop_front() {
-            for (a, b) in tris[t].edges() {
-                let Some(&u) = edge_tri.get(&(b, a)) else {
-                    continue;
-                };
-                // Orientation is not checked: among nearly coplanar points rounding can fold a
-                // few triangles over; their area then counts negative, as it should.
-                if owner[u] != usize::MAX {
-                    continue;
-                }
-                let d = c.offset();
-                if corners[u].iter().all(|p| (c.n.dot(*p) - d).abs() <= tol) {
-                    owner[u] = id;
-                    c.add(areas[u], corners[u]);
-                    queue.push_back(u);
-                }
-            }
-        }
-        clusters.push(c);
-    }
-    // Join adjacent clusters whose planes agree (union–find over shared edges).
-    let mut parent: Vec<usize> = (0..clusters.len()).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
-    for (t, tri) in tris.iter().enumerate() {
-        for (a, b) in tri.edges() {
-            let Some(&u) = edge_tri.get(&(b, a)) else {
-                continue;
-            };
-            let (ci, cj) = (root(&mut parent, owner[t]), root(&mut parent, owner[u]));
-            if ci == cj {
-                continue;
-            }
-            let (x, y) = (&clusters[ci], &clusters[cj]);
-            if x.n.distance(y.n) + (x.offset() - y.offset()).abs() <= tol {
-                parent[cj] = ci;
-            }
-        }
-    }
+    let mut c = cluster(pts, tris, tol);
     let mut joined: HashMap<usize, DVec3> = HashMap::new();
     let mut roots: Vec<usize> = Vec::new();
-    for (i, c) in clusters.iter().enumerate() {
-        let r = root(&mut parent, i);
+    for i in 0..c.clusters.len() {
+        let r = c.root(i);
         let e = joined.entry(r).or_insert_with(|| {
             roots.push(r);
             DVec3::ZERO
         });
-        *e += c.area;
+        *e += c.clusters[i].area;
     }
     let planes: Vec<(DVec3, f64)> = roots
         .into_iter()
         .filter_map(|r| {
-            let n = joined[&r].try_normalize().unwrap_or(clusters[r].n);
+            let n = joined[&r].try_normalize().unwrap_or(c.clusters[r].n);
             let d = pts
                 .iter()
                 .map(|p| n.dot(*p))
@@ -426,29 +323,7 @@ fn reference_merge(pts: &[DVec3], tris: &[Face], tol: f64) -> Vec<(DVec3, f64)> 
             spans_a_facet(pts, n, d, tol).then_some((n, d))
         })
         .collect();
-    // The same plane twice (parts of one facet kept apart by a dropped sliver): keep one.
-    let mut order: Vec<usize> = (0..planes.len()).collect();
-    order.sort_by(|&a, &b| planes[a].0.x.total_cmp(&planes[b].0.x));
-    let mut keep = vec![true; planes.len()];
-    for (k, &i) in order.iter().enumerate() {
-        if !keep[i] {
-            continue;
-        }
-        for &j in &order[k + 1..] {
-            if planes[j].0.x - planes[i].0.x > tol {
-                break;
-            }
-            let (a, b) = (planes[i], planes[j]);
-            if a.0.distance(b.0) + (a.1 - b.1).abs() <= tol {
-                keep[j] = false;
-            }
-        }
-    }
-    planes
-        .into_iter()
-        .zip(keep)
-        .filter_map(|(p, k)| k.then_some(p))
-        .collect()
+    dedupe(planes, tol)
 }
 
 /// [`hull`] with the reference merge: the same normalisation and triangles, every facet's
