@@ -5,6 +5,7 @@ use facetlab::cut::Cut;
 use facetlab::document::info::{info_json, info_text, meets_json, meets_text};
 use facetlab::error::{Error, Result};
 use facetlab::io;
+use facetlab::io::guard::{check_new_file, cut_files, refuse_overwrite, setting};
 use facetlab::metrics::{ColourNotes, NoteKind, StoneChoice};
 use facetlab::optics::Material;
 use std::collections::BTreeMap;
@@ -99,11 +100,11 @@ pub fn load_with_sets(arg: &str, sets: &[String]) -> Result<Cut> {
 /// `facetlab generate`.
 pub fn generate(a: &GenerateArgs) -> Result<()> {
     // `generate t.toml --set … -o t.toml` would replace the design it read.
-    super::outputs::refuse_overwrite(
-        &[("-o", a.output.clone())],
-        &super::outputs::cut_files(std::slice::from_ref(&a.cut)),
+    refuse_overwrite(
+        &[(setting::OUTPUT, a.output.clone())],
+        &cut_files(std::slice::from_ref(&a.cut)),
     )?;
-    super::outputs::check_new_file("-o", &a.output, a.force)?;
+    check_new_file(setting::OUTPUT, &a.output, a.force)?;
     let cut = load_with_sets(&a.cut, &a.set)?;
     let ext = a
         .output

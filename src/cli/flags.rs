@@ -35,6 +35,13 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("batch output", "--jsonl"),
     ("score document", "--json"),
     ("shard", "--shard"),
+    // A command's outputs (facetlab::io::guard::setting).
+    ("output", "-o"),
+    ("json output", "--json"),
+    ("hdr output", "--hdr-out"),
+    ("plots folder", "--plots"),
+    ("force", "--force"),
+    ("picture rock", "--rock"),
     // A picture's settings (render's and photo's options), which the library names by the
     // picture's own words; [`picture_to_flags`] looks them up as `picture FIELD`.
     ("picture size", "--size"),
@@ -394,10 +401,15 @@ mod tests {
     fn each_setting_names_one_flag_the_command_line_has() {
         use clap::CommandFactory;
         let cmd = crate::cli::Cli::command();
-        let longs: std::collections::BTreeSet<String> = cmd
-            .get_subcommands()
-            .flat_map(|s| s.get_arguments().filter_map(|a| a.get_long()))
+        let args = || cmd.get_subcommands().flat_map(|s| s.get_arguments());
+        let longs: std::collections::BTreeSet<String> = args()
+            .filter_map(|a| a.get_long())
             .map(|l| format!("--{l}"))
+            .chain(
+                args()
+                    .filter_map(|a| a.get_short())
+                    .map(|c| format!("-{c}")),
+            )
             .collect();
         for (i, (name, flag)) in FLAGS.iter().enumerate() {
             assert!(FLAGS[..i].iter().all(|(n, _)| n != name), "{name} twice");
@@ -421,6 +433,32 @@ mod tests {
         assert_eq!(
             to_flags(Error::parse("photon count", "m")).to_string(),
             "--photons: m"
+        );
+        // The library's checks of outputs, their field and the settings in their message.
+        let d = tempfile::tempdir().unwrap();
+        let old = d.path().join("old.png");
+        std::fs::write(&old, "x").unwrap();
+        let e = facetlab::io::guard::PictureFiles {
+            picture: &old,
+            json: Some(&old),
+            hdr: None,
+        }
+        .check_laboratory(&[], true)
+        .unwrap_err();
+        assert_eq!(
+            to_flags(e).to_string(),
+            format!(
+                "--json: {} is also the -o picture; give another file",
+                old.display()
+            )
+        );
+        let e = facetlab::io::guard::check_new_file("hdr output", &old, false).unwrap_err();
+        assert_eq!(
+            to_flags(e).to_string(),
+            format!(
+                "--hdr-out: {} exists; pass --force to replace it, or choose another name",
+                old.display()
+            )
         );
     }
 

@@ -6,9 +6,9 @@
 //! reported; the better optimized one is written (the rule's with `--tangent-only`).
 
 use super::flags;
-use super::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
 use facetlab::io;
+use facetlab::io::guard::{check_new_file, cut_files, refuse_overwrite, setting};
 use facetlab::metrics::ScoreConfig;
 use facetlab::optics::Material;
 use std::path::PathBuf;
@@ -73,7 +73,7 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
         }
     };
     refuse_overwrite(
-        &[("-o", a.output.clone())],
+        &[(setting::OUTPUT, a.output.clone())],
         &cut_files(std::slice::from_ref(&a.cut)),
     )?;
     let ext = a
@@ -89,7 +89,7 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
             ),
         ));
     }
-    super::outputs::check_new_file("-o", &a.output, a.force)?;
+    check_new_file(setting::OUTPUT, &a.output, a.force)?;
     let cut = super::cuts::load_with_sets(&a.cut, &[])?;
     let from = match &a.from {
         Some(f) => flags::number("--from", f, 1.0001, 10.0, "a refractive index")?,

@@ -6,8 +6,8 @@
 
 use super::{check_animation, check_rock, RenderArgs};
 use crate::cli::flags;
-use crate::cli::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
+use facetlab::io::guard::{cut_files, PictureFiles};
 use facetlab::metrics::StoneChoice;
 use facetlab::plot::render::PhotoPictures;
 use facetlab::render::photo::{
@@ -158,51 +158,12 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<(PhotoPictures, Sto
     ))
 }
 
-/// Whether `path` ends in `ext` (any case).
-fn has_ext(path: &std::path::Path, ext: &str) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
-}
-
-/// Check the outputs before any work.
+/// Check a photograph's outputs before any work ([`PictureFiles::check_photograph`]).
 pub fn check_outputs(a: &RenderArgs) -> Result<()> {
-    let mut outs = vec![("-o", a.output.clone())];
-    if let Some(j) = &a.json {
-        outs.push(("--json", j.clone()));
+    PictureFiles {
+        picture: &a.output,
+        json: a.json.as_deref(),
+        hdr: a.photo.hdr_out.as_deref(),
     }
-    if let Some(h) = &a.photo.hdr_out {
-        outs.push(("--hdr-out", h.clone()));
-    }
-    refuse_overwrite(&outs, &cut_files(&a.cuts))?;
-    if !(has_ext(&a.output, "png") || has_ext(&a.output, "gif")) {
-        return Err(Error::invalid(
-            "-o",
-            format!(
-                "{} does not end in .png or .gif; a photograph is a PNG, an animation an animated PNG or GIF",
-                a.output.display()
-            ),
-        ));
-    }
-    if let Some(h) = &a.photo.hdr_out {
-        if !facetlab::io::hdr::is_hdr_path(h) {
-            return Err(Error::invalid(
-                "--hdr-out",
-                format!("{} does not end in .exr or .hdr", h.display()),
-            ));
-        }
-    }
-    for (i, (fa, pa)) in outs.iter().enumerate() {
-        for (fb, pb) in &outs[i + 1..] {
-            if crate::cli::outputs::resolved(pa) == crate::cli::outputs::resolved(pb) {
-                return Err(Error::invalid(
-                    *fb,
-                    format!("{} is also the {fa} file; give another file", pb.display()),
-                ));
-            }
-        }
-    }
-    for (flag, p) in &outs {
-        crate::cli::outputs::check_new_file(flag, p, a.force)?;
-    }
-    Ok(())
+    .check_photograph(&cut_files(&a.cuts), a.force)
 }
