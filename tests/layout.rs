@@ -517,6 +517,70 @@ fn serve_imports_no_other_commands_module() {
     assert!(wrong.is_empty(), "serve imports commands: {wrong:#?}");
 }
 
+/// Where `--` and a letter stands outside a comment line (`//`, `///`, `//!`) of `text`: in
+/// a string, a message's prose, a format string over several lines.
+fn flag_words(text: &str) -> Vec<String> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim_start().starts_with("//"))
+        .filter(|(_, l)| {
+            l.match_indices("--")
+                .any(|(i, _)| l[i + 2..].starts_with(|c: char| c.is_ascii_alphabetic()))
+        })
+        .map(|(i, l)| format!("{}: {}", i + 1, l.trim()))
+        .collect()
+}
+
+/// The library's text outside comments that spells a flag on purpose, by file and words:
+/// Slurm's own `--array`, a batch file's format named by the command that writes it (and
+/// a batch file's lines in its tests, which hold a user's flags), and the comment `optimize`
+/// writes into best.toml for a person (the axis as the command line and the config give it).
+const FLAG_WORDS_KEPT: [(&str, &str); 4] = [
+    ("src/optimize/grid/shard.rs", "(--array=0-N or 1-N)"),
+    ("src/document/batch.rs", "`score --batch`"),
+    ("src/document/batch.rs", "gia-reference --set table=0.55"),
+    (
+        "src/optimize/run.rs",
+        "--optic-axis {a}, [score] optic_axis",
+    ),
+];
+
+/// Stricter than the quoted literal: outside comments the library spells no flag at all,
+/// not in the prose of a message or a note either (`give --absorption colour`): it names the
+/// setting ([`facetlab::error::setting`]-style `⟨absorption model⟩`) and each face spells it
+/// (src/cli/flags.rs for the command line). Doc comments may show command lines.
+#[test]
+fn the_library_spells_no_flag_outside_comments() {
+    let src = root().join("src");
+    let mut files = Vec::new();
+    rs_files(&src, &mut files);
+    let found: Vec<String> = files
+        .iter()
+        .filter(|p| {
+            let rel = p.strip_prefix(&src).unwrap();
+            !rel.starts_with(BINARY) && rel != Path::new("main.rs") && !rel.starts_with(PYTHON)
+        })
+        .flat_map(|p| {
+            let rel = p.strip_prefix(root()).unwrap().display().to_string();
+            let kept = |l: &String| {
+                FLAG_WORDS_KEPT
+                    .iter()
+                    .any(|(f, w)| rel.as_str() == *f && l.contains(w))
+            };
+            flag_words(&std::fs::read_to_string(p).unwrap())
+                .into_iter()
+                .filter(|l| !kept(l))
+                .map(|l| format!("{rel}:{l}"))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert!(
+        found.is_empty(),
+        "flags spelled in the library's text (name the setting; each face spells it): {found:#?}"
+    );
+    assert_eq!(flag_words("  x(\"give --ri N\");\n  /// `--ri`").len(), 1);
+}
+
 /// The most the binary's commands (`src/cli/`) may hold of `src/`'s lines, in percent:
 /// it parses, calls the library, prints.
 const MAX_BINARY_SHARE: f64 = 12.0;

@@ -207,7 +207,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
         println!("{text}");
         return Ok(());
     }
-    print!("{}", info_text(&j));
+    print!("{}", super::flags::spelled(&info_text(&j)));
     if let Some(c) = &j.instructions {
         print!("\n{}", c.text());
     }

@@ -42,6 +42,8 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("plots folder", "--plots"),
     ("force", "--force"),
     ("picture rock", "--rock"),
+    // A cut's parameter or a design's tier, `KEY=VALUE` (info's text).
+    ("cut parameter", "--set"),
     // A picture's settings (render's and photo's options), which the library names by the
     // picture's own words; [`picture_to_flags`] looks them up as `picture FIELD`.
     ("picture size", "--size"),
@@ -58,6 +60,27 @@ pub const FLAGS: &[(&str, &str)] = &[
 /// The flag that sets the library's setting `name` ([`FLAGS`]).
 pub fn flag_of(name: &str) -> Option<&'static str> {
     FLAGS.iter().find(|(n, _)| *n == name).map(|(_, f)| *f)
+}
+
+/// Settings the library names inside its text that the command line gives by a whole
+/// command rather than a flag.
+const COMMANDS: &[(&str, &str)] = &[(
+    facetlab::optimize::MEETS_LISTING,
+    "`facetlab info DESIGN --meets`",
+)];
+
+/// How the command line spells the setting `name` named inside a message or note
+/// ([`facetlab::error::setting`]): its flag ([`FLAGS`]), or the command that gives it.
+pub fn spelling(name: &str) -> Option<String> {
+    flag_of(name)
+        .or_else(|| COMMANDS.iter().find(|(n, _)| *n == name).map(|(_, c)| *c))
+        .map(String::from)
+}
+
+/// `text` (a note, a report) with the settings named inside it spelled as the command line
+/// spells them ([`spelling`]).
+pub fn spelled(text: &str) -> String {
+    facetlab::error::spell_settings(text, &spelling)
 }
 
 /// `e` as the command line says it: a field the library names by its setting ([`FLAGS`])
@@ -80,7 +103,7 @@ pub fn to_flags(e: Error) -> Error {
         field
     };
     // The settings named inside the message, spelled as flags too.
-    let e = e.spell_settings(&|name| flag_of(name).map(String::from));
+    let e = e.spell_settings(&spelling);
     match e {
         Error::Invalid { field, message } => Error::Invalid {
             field: flagged(field),
@@ -352,7 +375,7 @@ pub fn stone_choice(
 
 /// A stone's note, said on stderr.
 pub fn say(_: NoteKind, line: String) {
-    eprintln!("{line}");
+    eprintln!("{}", spelled(&line));
 }
 
 /// The material from `--ri N` or `--material NAME` (diamond when neither is given), chosen by
@@ -656,6 +679,16 @@ mod tests {
         let (m, notes) = stones_of(&cuts, Material::diamond(), true, &args, NotTraced).unwrap();
         assert_eq!(m[0].colour.as_ref().unwrap().density, 2.0);
         assert!(notes[0].contains("stone width 8 mm") && notes[0].contains("not yet traced"));
+        // The note names the trace's absorption setting; said, it is spelled as its flag.
+        assert!(spelled(&notes[0]).contains("(give --absorption colour)"));
+        assert!(spelled(&facetlab::document::info::info_text(
+            &facetlab::document::info::info_json(
+                &facetlab::io::load_cut("tolkowsky").unwrap(),
+                6.5,
+                &Material::diamond()
+            )
+        ))
+        .contains("Parameters (--set KEY=VALUE)"));
         let bad = a_number("--diameter-mm", "give a width in (0, 1000) mm")("wide");
         assert!(bad
             .unwrap_err()
