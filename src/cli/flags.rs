@@ -238,16 +238,17 @@ pub fn refused_value(e: &clap::Error) -> Option<String> {
 pub struct MaterialArgs {
     /// Material: diamond (default), a name from `facetlab materials`, or ri:N[:BG].
     #[arg(long, value_name = "NAME")]
+    // A String on purpose: --ri over --material (both refused first, then the one given).
     pub material: Option<String>,
     /// A fixed refractive index instead of the material's dispersion curve (no fire).
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub ri: Option<String>,
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = a_number("--ri", "give a refractive index"))]
+    pub ri: Option<f64>,
 }
 
 impl MaterialArgs {
     /// The material the flags name ([`material`]).
     pub fn material(&self) -> Result<Material> {
-        material(self.ri.as_deref(), self.material.as_deref())
+        material(self.ri, self.material.as_deref())
     }
 
     /// Whether the user chose a material (else a design is traced in its own).
@@ -274,6 +275,7 @@ pub struct ColourArgs {
     /// (default path 10 mm), upsampled to a smooth absorption spectrum; replaces a coloured
     /// variety's.
     #[arg(long, value_name = "COLOUR")]
+    // A String on purpose: checked against the stone's own colour, after the notes said first.
     pub colour: Option<String>,
     /// A factor on the body colour's absorption (0.5 paler, 2 darker).
     #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = a_number("--colour-density", format!("give a factor on the absorption in (0, {DENSITY_MAX}]")))]
@@ -289,16 +291,27 @@ pub struct ColourArgs {
     pub diameter_mm: Option<f64>,
     /// The stone's size in millimetres instead: its length L (the width follows from the
     /// design's L/W), or LxW.
-    #[arg(long, value_name = "L[xW]")]
-    pub size_mm: Option<String>,
+    #[arg(long, value_name = "L[xW]", value_parser = parsed("--size-mm", size_mm))]
+    pub size_mm: Option<StoneSize>,
+}
+
+/// The value parser of a `--material` that stands alone (no `--ri` beside it):
+/// [`Material::by_name`], whose errors name the `material`.
+pub fn material_name(_flag: &str, name: &str) -> Result<Material> {
+    Material::by_name(name)
+}
+
+/// The value parser of `--size-mm`: a length L or LxW in mm ([`StoneSize::parse_length`]).
+pub fn size_mm(flag: &str, text: &str) -> Result<StoneSize> {
+    StoneSize::parse_length(text, flag)
 }
 
 impl ColourArgs {
     /// The stone's size from `--diameter-mm` or `--size-mm` (default a width of 6.5 mm).
     pub fn size(&self) -> Result<StoneSize> {
-        match (self.diameter_mm, &self.size_mm) {
+        match (self.diameter_mm, self.size_mm) {
             (Some(w), _) => StoneSize::width(w, "--diameter-mm"),
-            (None, Some(l)) => StoneSize::parse_length(l, "--size-mm"),
+            (None, Some(l)) => Ok(l),
             (None, None) => Ok(StoneSize::default()),
         }
     }
@@ -311,15 +324,18 @@ pub struct CrystalArgs {
     /// Trace a uniaxial stone (sapphire, quartz, tourmaline, …) birefringent: on (the
     /// default for those stones) or off (its ordinary ray alone).
     #[arg(long, value_name = "on|off")]
+    // A String on purpose: checked for each stone (a crystal or not), after its notes.
     pub birefringence: Option<String>,
     /// The optic (c-)axis of a uniaxial stone: DEG[@AZ], its angle from the table's normal
     /// toward azimuth AZ (0 = c ⟂ table; 90@0 = c in the table along azimuth 0). Default: as
     /// cutters orient the material.
     #[arg(long, value_name = "DEG[@AZ]")]
+    // A String on purpose: checked for each stone (a crystal or not), after its notes.
     pub optic_axis: Option<String>,
     /// A uniaxial stone's colour for light polarized ∥ its optic axis (the e-ray), as
     /// --colour takes it; --colour then gives the E⊥c (o-ray) colour.
     #[arg(long, value_name = "COLOUR")]
+    // A String on purpose: checked for each stone (a crystal or not), after its notes.
     pub colour_e: Option<String>,
 }
 
@@ -380,16 +396,7 @@ pub fn say(_: NoteKind, line: String) {
 
 /// The material from `--ri N` or `--material NAME` (diamond when neither is given), chosen by
 /// [`Material::choose`] like a config's `score.material`/`score.ri`.
-pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
-    let ri = match ri {
-        None => None,
-        Some(r) => Some(r.trim().parse::<f64>().map_err(|_| {
-            Error::invalid(
-                "--ri",
-                format!("`{r}` is not a number; give a refractive index"),
-            )
-        })?),
-    };
+pub fn material(ri: Option<f64>, name: Option<&str>) -> Result<Material> {
     Material::choose(
         name,
         ri,
@@ -489,7 +496,7 @@ mod tests {
     fn a_pictures_settings_leave_named_by_flags() {
         let material = MaterialArgs::default();
         let ri = MaterialArgs {
-            ri: Some("2.4".into()),
+            ri: Some(2.4),
             ..MaterialArgs::default()
         };
         let shown = |field: &str, m: &MaterialArgs| {
@@ -549,9 +556,9 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("on or off"));
-        assert_eq!(material(Some("2.0"), None).unwrap().ri(500.0), 2.0);
-        assert!(material(Some("2.0"), Some("cz")).is_err());
-        assert!(material(Some("0.9"), None)
+        assert_eq!(material(Some(2.0), None).unwrap().ri(500.0), 2.0);
+        assert!(material(Some(2.0), Some("cz")).is_err());
+        assert!(material(Some(0.9), None)
             .unwrap_err()
             .to_string()
             .starts_with("--ri:"));
@@ -560,6 +567,8 @@ mod tests {
 
     #[test]
     fn flag_and_config_accept_the_same_indices() {
+        // `--ri`'s value parser, then the material it chooses.
+        let ri_flag = a_number("--ri", "give a refractive index");
         let config = |ri: &str| {
             let text = format!(
                 "[cut]\nfamily = \"round-brilliant\"\n[free]\ncrown_angle = [30, 38]\n[score]\nri = {ri}\n"
@@ -569,7 +578,7 @@ mod tests {
         for ri in [
             "0.5", "1", "1.00001", "1.0001", "2.4", "10", "10.0001", "11", "nan", "inf",
         ] {
-            let flag = material(Some(ri), None);
+            let flag = ri_flag(ri).and_then(|n| material(Some(n), None));
             let conf = config(ri);
             assert_eq!(flag.is_ok(), conf.is_ok(), "{ri}: {flag:?} vs {conf:?}");
             match (flag, conf) {
@@ -586,7 +595,7 @@ mod tests {
                 _ => unreachable!(),
             }
         }
-        let e = material(Some("abc"), None).unwrap_err().to_string();
+        let e = ri_flag("abc").unwrap_err().to_string();
         assert!(e.starts_with("--ri: `abc` is not a number"), "{e}");
     }
 

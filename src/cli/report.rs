@@ -43,6 +43,7 @@ pub struct ReportArgs {
     pub size: u64,
     /// Title of the page.
     #[arg(long, value_name = "TEXT")]
+    // A String on purpose: a free title.
     pub title: Option<String>,
     /// Replace -o if it exists (an input is never replaced).
     #[arg(long)]

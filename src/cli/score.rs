@@ -408,7 +408,8 @@ mod tests {
         let cut = d.path().join("t.toml");
         std::fs::write(&cut, "not read").unwrap();
         let c = cut.to_str().unwrap();
-        let e = run(&args(&[c, "--json", c])).unwrap_err().to_string();
+        // As the binary says it (cli::run spells every error by its flags).
+        let e = super::flags::to_flags(run(&args(&[c, "--json", c])).unwrap_err()).to_string();
         assert!(e.starts_with("--json: ") && e.contains("overwrite"), "{e}");
         assert_eq!(std::fs::read_to_string(&cut).unwrap(), "not read");
     }

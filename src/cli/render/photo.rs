@@ -25,8 +25,8 @@ pub struct PhotoArgs {
     pub view: Option<View>,
     /// Photographs: a perspective camera this many mm from the stone's centre (the stone's
     /// width from --diameter-mm, default 6.5 mm); default: orthographic.
-    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
-    pub distance: Option<String>,
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = flags::real("--distance", 0.0, 1e5, "millimetres"))]
+    pub distance: Option<f64>,
     /// Photographs: the ground the stone rests on, culet-down: white (paper), black
     /// (velvet) or none (default), with its shadow and caustics.
     #[arg(
@@ -37,16 +37,16 @@ pub struct PhotoArgs {
     pub ground: Option<GroundKind>,
     /// Photographs: height of the stone's lowest point above the ground, girdle diameters
     /// (0–10; default 0: resting on it).
-    #[arg(long, value_name = "X", allow_hyphen_values = true)]
-    pub ground_gap: Option<String>,
+    #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = flags::real("--ground-gap", 0.0, 10.0, "girdle diameters"))]
+    pub ground_gap: Option<f64>,
     /// Photographs: turn the light about the vertical, degrees (counter-clockwise seen from
     /// above).
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
-    pub light_rotation: Option<String>,
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = flags::real("--light-rotation", -360.0, 360.0, "degrees"))]
+    pub light_rotation: Option<f64>,
     /// Photographs: a turntable animation of FRAMES frames (2–360), the stone turned a full
     /// circle under the camera and lights.
-    #[arg(long, value_name = "FRAMES", allow_hyphen_values = true)]
-    pub turn: Option<String>,
+    #[arg(long, value_name = "FRAMES", allow_hyphen_values = true, value_parser = flags::whole("--turn", 2, 360))]
+    pub turn: Option<u64>,
     /// Photographs: the tone curve from linear radiance to the picture: filmic (default) or
     /// clip.
     #[arg(long, value_name = "filmic|clip", value_parser = flags::parsed("--tone", Tone::parse))]
@@ -56,8 +56,8 @@ pub struct PhotoArgs {
     #[arg(long, value_name = "FILE.exr")]
     pub hdr_out: Option<PathBuf>,
     /// Photographs: wavelength bands of a dispersive or coloured stone (3–64; default 8).
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub bands: Option<String>,
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = flags::whole("--bands", 3, 64))]
+    pub bands: Option<u64>,
 }
 
 impl PhotoArgs {
@@ -107,26 +107,22 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<(PhotoPictures, Sto
     if let Some(kind) = p.ground {
         o.ground = Ground { kind, gap: 0.0 };
     }
-    if let Some(g) = &p.ground_gap {
-        o.ground.gap = flags::number("--ground-gap", g, 0.0, 10.0, "girdle diameters")?;
+    if let Some(g) = p.ground_gap {
+        o.ground.gap = g;
     }
-    if let Some(r) = &p.light_rotation {
-        o.light_rotation_deg = flags::number("--light-rotation", r, -360.0, 360.0, "degrees")?;
+    if let Some(r) = p.light_rotation {
+        o.light_rotation_deg = r;
     }
     if let Some(t) = p.tone {
         o.tone = t;
     }
-    if let Some(b) = &p.bands {
-        o.bands = flags::count("--bands", b, 3, 64)? as usize;
+    if let Some(b) = p.bands {
+        o.bands = b as usize;
     }
-    if let Some(d) = &p.distance {
-        o.distance_mm = Some(flags::number("--distance", d, 0.0, 1e5, "millimetres")?);
+    if p.distance.is_some() {
+        o.distance_mm = p.distance;
     }
-    let turn = p
-        .turn
-        .as_deref()
-        .map(|t| flags::count("--turn", t, 2, 360).map(|n| n as usize))
-        .transpose()?;
+    let turn = p.turn.map(|n| n as usize);
     let rock = a.rock;
     if turn.is_some() && rock.is_some() {
         return Err(Error::invalid(
