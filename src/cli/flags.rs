@@ -332,8 +332,10 @@ pub struct CrystalArgs {
     #[arg(long, value_name = "DEG[@AZ]")]
     // A String on purpose: checked for each stone (a crystal or not), after its notes.
     pub optic_axis: Option<String>,
-    /// A uniaxial stone's colour for light polarized ∥ its optic axis (the e-ray), as
-    /// --colour takes it; --colour then gives the E⊥c (o-ray) colour.
+    /// A uniaxial stone's colour for light polarized ∥ its optic axis (the e-ray):
+    /// #rrggbb[@Nmm] or lab(L,a,b)[@Nmm] (default path 10 mm); the stone's body colour (a
+    /// coloured variety's, or --colour's where the command takes it) is then its E⊥c (o-ray)
+    /// colour.
     #[arg(long, value_name = "COLOUR")]
     // A String on purpose: checked for each stone (a crystal or not), after its notes.
     pub colour_e: Option<String>,
