@@ -371,6 +371,36 @@ fn every_source_file_is_at_most_700_lines_before_its_tests() {
     assert!(long.is_empty(), "over {MAX_LINES} lines: {long:?}");
 }
 
+/// What `find` reports in each `.rs` file of the library (`src/` outside the binary and
+/// main.rs; the Python face's files too with `python`), as `path:line: text` items, less
+/// those `kept(path, item)`.
+fn library_hits(
+    find: fn(&str) -> Vec<String>,
+    kept: &dyn Fn(&str, &str) -> bool,
+    python: bool,
+) -> Vec<String> {
+    let src = root().join("src");
+    let mut files = Vec::new();
+    rs_files(&src, &mut files);
+    files
+        .iter()
+        .filter(|p| {
+            let rel = p.strip_prefix(&src).unwrap();
+            !rel.starts_with(BINARY)
+                && rel != Path::new("main.rs")
+                && (python || !rel.starts_with(PYTHON))
+        })
+        .flat_map(|p| {
+            let rel = p.strip_prefix(root()).unwrap().display().to_string();
+            find(&std::fs::read_to_string(p).unwrap())
+                .into_iter()
+                .filter(|l| !kept(&rel, l))
+                .map(|l| format!("{rel}:{l}"))
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
 /// Where a quoted flag (`"--` and a letter) stands in `text`, as `line: text` items.
 fn flag_literals(text: &str) -> Vec<String> {
     text.lines()
@@ -393,22 +423,7 @@ fn flag_literals(text: &str) -> Vec<String> {
 /// not a quoted literal either, and is left to review.
 #[test]
 fn the_library_quotes_no_command_line_flag() {
-    let src = root().join("src");
-    let mut files = Vec::new();
-    rs_files(&src, &mut files);
-    let found: Vec<String> = files
-        .iter()
-        .filter(|p| {
-            let rel = p.strip_prefix(&src).unwrap();
-            !rel.starts_with(BINARY) && rel != Path::new("main.rs")
-        })
-        .flat_map(|p| {
-            let rel = p.strip_prefix(root()).unwrap().display().to_string();
-            flag_literals(&std::fs::read_to_string(p).unwrap())
-                .into_iter()
-                .map(move |l| format!("{rel}:{l}"))
-        })
-        .collect();
+    let found = library_hits(flag_literals, &|_, _| false, true);
     assert!(
         found.is_empty(),
         "flag literals in the library (name the setting; src/cli/flags.rs maps it): {found:#?}"
@@ -515,6 +530,53 @@ fn serve_imports_no_other_commands_module() {
         .map(|(a, b)| format!("{} → {}", a.join("::"), b.join("::")))
         .collect();
     assert!(wrong.is_empty(), "serve imports commands: {wrong:#?}");
+}
+
+/// Where `--` and a letter stands outside a comment line (`//`, `///`, `//!`) of `text`: in
+/// a string, a message's prose, a format string over several lines.
+fn flag_words(text: &str) -> Vec<String> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim_start().starts_with("//"))
+        .filter(|(_, l)| {
+            l.match_indices("--")
+                .any(|(i, _)| l[i + 2..].starts_with(|c: char| c.is_ascii_alphabetic()))
+        })
+        .map(|(i, l)| format!("{}: {}", i + 1, l.trim()))
+        .collect()
+}
+
+/// The library's text outside comments that spells a flag on purpose, by file and words:
+/// Slurm's own `--array`, a batch file's format named by the command that writes it (and
+/// a batch file's lines in its tests, which hold a user's flags), and the comment `optimize`
+/// writes into best.toml for a person (the axis as the command line and the config give it).
+const FLAG_WORDS_KEPT: [(&str, &str); 4] = [
+    ("src/optimize/grid/shard.rs", "(--array=0-N or 1-N)"),
+    ("src/document/batch.rs", "`score --batch`"),
+    ("src/document/batch.rs", "gia-reference --set table=0.55"),
+    (
+        "src/optimize/run.rs",
+        "--optic-axis {a}, [score] optic_axis",
+    ),
+];
+
+/// Stricter than the quoted literal: outside comments the library spells no flag at all,
+/// not in the prose of a message or a note either (`give --absorption colour`): it names the
+/// setting ([`facetlab::error::setting`]-style `⟨absorption model⟩`) and each face spells it
+/// (src/cli/flags.rs for the command line). Doc comments may show command lines.
+#[test]
+fn the_library_spells_no_flag_outside_comments() {
+    let kept = |rel: &str, l: &str| {
+        FLAG_WORDS_KEPT
+            .iter()
+            .any(|(f, w)| rel == *f && l.contains(w))
+    };
+    let found = library_hits(flag_words, &kept, false);
+    assert!(
+        found.is_empty(),
+        "flags spelled in the library's text (name the setting; each face spells it): {found:#?}"
+    );
+    assert_eq!(flag_words("  x(\"give --ri N\");\n  /// `--ri`").len(), 1);
 }
 
 /// The most the binary's commands (`src/cli/`) may hold of `src/`'s lines, in percent:

@@ -5,6 +5,7 @@ use facetlab::cut::Cut;
 use facetlab::document::info::{info_json, info_text, meets_json, meets_text};
 use facetlab::error::{Error, Result};
 use facetlab::io;
+use facetlab::io::guard::{check_new_file, cut_files, refuse_overwrite, setting};
 use facetlab::metrics::{ColourNotes, NoteKind, StoneChoice};
 use facetlab::optics::Material;
 use std::collections::BTreeMap;
@@ -14,6 +15,7 @@ use std::path::PathBuf;
 #[derive(Debug, Args)]
 pub struct GenerateArgs {
     /// Preset name or path (.toml, .asc, .gem, .obj, .stl).
+    // A String on purpose: a preset's name or a file's path.
     pub cut: String,
     /// Change a parameter: a family's (`--set crown_angle=34.5`) or a design's tier angle
     /// (`--set P1=41.2`, depths solved so its meets are kept). Repeatable.
@@ -31,6 +33,7 @@ pub struct GenerateArgs {
 #[derive(Debug, Args)]
 pub struct InfoArgs {
     /// Preset name or path (.toml, .asc, .gem, .obj, .stl).
+    // A String on purpose: a preset's name or a file's path.
     pub cut: String,
     /// Change a parameter: a family's (`--set table=0.55`) or a design's tier angle
     /// (`--set P1=41.2`, depths solved so its meets are kept). Repeatable.
@@ -44,8 +47,8 @@ pub struct InfoArgs {
     pub diameter_mm: f64,
     /// The stone's size in millimetres instead: its length L (the width follows from the
     /// design's L/W), or LxW (which must match the design's L/W within 1 %).
-    #[arg(long, value_name = "L[xW]", conflicts_with = "diameter_mm")]
-    pub size_mm: Option<String>,
+    #[arg(long, value_name = "L[xW]", conflicts_with = "diameter_mm", value_parser = super::flags::parsed("--size-mm", super::flags::size_mm))]
+    pub size_mm: Option<facetlab::optics::StoneSize>,
     /// Also list the cutting instructions: each tier with its angle (0.01°), its indices on the
     /// design's gear (96 for generated cuts) and its note, pavilion first, then crown.
     #[arg(long)]
@@ -59,8 +62,8 @@ pub struct InfoArgs {
     pub meet_tol: f64,
     /// Material, for the carat weight: a name from `facetlab materials` or ri:N[:BG]; default
     /// the design's own (a GemCad file's `I` index), else diamond.
-    #[arg(long)]
-    pub material: Option<String>,
+    #[arg(long, value_parser = super::flags::parsed("--material", super::flags::material_name))]
+    pub material: Option<Material>,
 }
 
 /// Parse `--set key=value` flags.
@@ -99,11 +102,11 @@ pub fn load_with_sets(arg: &str, sets: &[String]) -> Result<Cut> {
 /// `facetlab generate`.
 pub fn generate(a: &GenerateArgs) -> Result<()> {
     // `generate t.toml --set … -o t.toml` would replace the design it read.
-    super::outputs::refuse_overwrite(
-        &[("-o", a.output.clone())],
-        &super::outputs::cut_files(std::slice::from_ref(&a.cut)),
+    refuse_overwrite(
+        &[(setting::OUTPUT, a.output.clone())],
+        &cut_files(std::slice::from_ref(&a.cut)),
     )?;
-    super::outputs::check_new_file("-o", &a.output, a.force)?;
+    check_new_file(setting::OUTPUT, &a.output, a.force)?;
     let cut = load_with_sets(&a.cut, &a.set)?;
     let ext = a
         .output
@@ -131,12 +134,6 @@ pub fn generate(a: &GenerateArgs) -> Result<()> {
     Ok(())
 }
 
-/// The width W in mm from `--size-mm L[xW]` for a design of length/width `l_w` (the same rule
-/// as `score`'s and `render`'s `--size-mm`: [`facetlab::optics::StoneSize`]).
-pub fn width_from_size(size: &str, l_w: f64) -> Result<f64> {
-    facetlab::optics::StoneSize::parse_length(size, "--size-mm")?.width_mm(l_w, "--size-mm")
-}
-
 /// `facetlab info`.
 pub fn info(a: &InfoArgs) -> Result<()> {
     if !(a.diameter_mm.is_finite() && a.diameter_mm > 0.0 && a.diameter_mm < 1000.0) {
@@ -157,7 +154,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             ),
         ));
     }
-    let chosen = a.material.as_deref().map(Material::by_name).transpose()?;
+    let chosen = a.material.clone();
     let cut = load_with_sets(&a.cut, &a.set)?;
     let default = chosen.clone().unwrap_or_else(Material::diamond);
     // A design is traced in its own material unless one was chosen (only that is said).
@@ -190,7 +187,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
         }
     }
     let width_mm = match &a.size_mm {
-        Some(size) => width_from_size(size, cut.ratios().l_w)?,
+        Some(size) => size.width_mm(cut.ratios().l_w, "--size-mm")?,
         None => a.diameter_mm,
     };
     let mut j = info_json(&cut, width_mm, &material);
@@ -206,7 +203,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
         println!("{text}");
         return Ok(());
     }
-    print!("{}", info_text(&j));
+    print!("{}", super::flags::spelled(&info_text(&j)));
     if let Some(c) = &j.instructions {
         print!("\n{}", c.text());
     }

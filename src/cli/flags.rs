@@ -35,6 +35,15 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("batch output", "--jsonl"),
     ("score document", "--json"),
     ("shard", "--shard"),
+    // A command's outputs (facetlab::io::guard::setting).
+    ("output", "-o"),
+    ("json output", "--json"),
+    ("hdr output", "--hdr-out"),
+    ("plots folder", "--plots"),
+    ("force", "--force"),
+    ("picture rock", "--rock"),
+    // A cut's parameter or a design's tier, `KEY=VALUE` (info's text).
+    ("cut parameter", "--set"),
     // A picture's settings (render's and photo's options), which the library names by the
     // picture's own words; [`picture_to_flags`] looks them up as `picture FIELD`.
     ("picture size", "--size"),
@@ -51,6 +60,27 @@ pub const FLAGS: &[(&str, &str)] = &[
 /// The flag that sets the library's setting `name` ([`FLAGS`]).
 pub fn flag_of(name: &str) -> Option<&'static str> {
     FLAGS.iter().find(|(n, _)| *n == name).map(|(_, f)| *f)
+}
+
+/// Settings the library names inside its text that the command line gives by a whole
+/// command rather than a flag.
+const COMMANDS: &[(&str, &str)] = &[(
+    facetlab::optimize::MEETS_LISTING,
+    "`facetlab info DESIGN --meets`",
+)];
+
+/// How the command line spells the setting `name` named inside a message or note
+/// ([`facetlab::error::setting`]): its flag ([`FLAGS`]), or the command that gives it.
+pub fn spelling(name: &str) -> Option<String> {
+    flag_of(name)
+        .or_else(|| COMMANDS.iter().find(|(n, _)| *n == name).map(|(_, c)| *c))
+        .map(String::from)
+}
+
+/// `text` (a note, a report) with the settings named inside it spelled as the command line
+/// spells them ([`spelling`]).
+pub fn spelled(text: &str) -> String {
+    facetlab::error::spell_settings(text, &spelling)
 }
 
 /// `e` as the command line says it: a field the library names by its setting ([`FLAGS`])
@@ -73,7 +103,7 @@ pub fn to_flags(e: Error) -> Error {
         field
     };
     // The settings named inside the message, spelled as flags too.
-    let e = e.spell_settings(&|name| flag_of(name).map(String::from));
+    let e = e.spell_settings(&spelling);
     match e {
         Error::Invalid { field, message } => Error::Invalid {
             field: flagged(field),
@@ -208,16 +238,17 @@ pub fn refused_value(e: &clap::Error) -> Option<String> {
 pub struct MaterialArgs {
     /// Material: diamond (default), a name from `facetlab materials`, or ri:N[:BG].
     #[arg(long, value_name = "NAME")]
+    // A String on purpose: --ri over --material (both refused first, then the one given).
     pub material: Option<String>,
     /// A fixed refractive index instead of the material's dispersion curve (no fire).
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub ri: Option<String>,
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = a_number("--ri", "give a refractive index"))]
+    pub ri: Option<f64>,
 }
 
 impl MaterialArgs {
     /// The material the flags name ([`material`]).
     pub fn material(&self) -> Result<Material> {
-        material(self.ri.as_deref(), self.material.as_deref())
+        material(self.ri, self.material.as_deref())
     }
 
     /// Whether the user chose a material (else a design is traced in its own).
@@ -244,6 +275,7 @@ pub struct ColourArgs {
     /// (default path 10 mm), upsampled to a smooth absorption spectrum; replaces a coloured
     /// variety's.
     #[arg(long, value_name = "COLOUR")]
+    // A String on purpose: checked against the stone's own colour, after the notes said first.
     pub colour: Option<String>,
     /// A factor on the body colour's absorption (0.5 paler, 2 darker).
     #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = a_number("--colour-density", format!("give a factor on the absorption in (0, {DENSITY_MAX}]")))]
@@ -259,16 +291,27 @@ pub struct ColourArgs {
     pub diameter_mm: Option<f64>,
     /// The stone's size in millimetres instead: its length L (the width follows from the
     /// design's L/W), or LxW.
-    #[arg(long, value_name = "L[xW]")]
-    pub size_mm: Option<String>,
+    #[arg(long, value_name = "L[xW]", value_parser = parsed("--size-mm", size_mm))]
+    pub size_mm: Option<StoneSize>,
+}
+
+/// The value parser of a `--material` that stands alone (no `--ri` beside it):
+/// [`Material::by_name`], whose errors name the `material`.
+pub fn material_name(_flag: &str, name: &str) -> Result<Material> {
+    Material::by_name(name)
+}
+
+/// The value parser of `--size-mm`: a length L or LxW in mm ([`StoneSize::parse_length`]).
+pub fn size_mm(flag: &str, text: &str) -> Result<StoneSize> {
+    StoneSize::parse_length(text, flag)
 }
 
 impl ColourArgs {
     /// The stone's size from `--diameter-mm` or `--size-mm` (default a width of 6.5 mm).
     pub fn size(&self) -> Result<StoneSize> {
-        match (self.diameter_mm, &self.size_mm) {
+        match (self.diameter_mm, self.size_mm) {
             (Some(w), _) => StoneSize::width(w, "--diameter-mm"),
-            (None, Some(l)) => StoneSize::parse_length(l, "--size-mm"),
+            (None, Some(l)) => Ok(l),
             (None, None) => Ok(StoneSize::default()),
         }
     }
@@ -281,15 +324,20 @@ pub struct CrystalArgs {
     /// Trace a uniaxial stone (sapphire, quartz, tourmaline, …) birefringent: on (the
     /// default for those stones) or off (its ordinary ray alone).
     #[arg(long, value_name = "on|off")]
+    // A String on purpose: checked for each stone (a crystal or not), after its notes.
     pub birefringence: Option<String>,
     /// The optic (c-)axis of a uniaxial stone: DEG[@AZ], its angle from the table's normal
     /// toward azimuth AZ (0 = c ⟂ table; 90@0 = c in the table along azimuth 0). Default: as
     /// cutters orient the material.
     #[arg(long, value_name = "DEG[@AZ]")]
+    // A String on purpose: checked for each stone (a crystal or not), after its notes.
     pub optic_axis: Option<String>,
-    /// A uniaxial stone's colour for light polarized ∥ its optic axis (the e-ray), as
-    /// --colour takes it; --colour then gives the E⊥c (o-ray) colour.
+    /// A uniaxial stone's colour for light polarized ∥ its optic axis (the e-ray):
+    /// #rrggbb[@Nmm] or lab(L,a,b)[@Nmm] (default path 10 mm); the stone's body colour (a
+    /// coloured variety's, or --colour's where the command takes it) is then its E⊥c (o-ray)
+    /// colour.
     #[arg(long, value_name = "COLOUR")]
+    // A String on purpose: checked for each stone (a crystal or not), after its notes.
     pub colour_e: Option<String>,
 }
 
@@ -345,21 +393,12 @@ pub fn stone_choice(
 
 /// A stone's note, said on stderr.
 pub fn say(_: NoteKind, line: String) {
-    eprintln!("{line}");
+    eprintln!("{}", spelled(&line));
 }
 
 /// The material from `--ri N` or `--material NAME` (diamond when neither is given), chosen by
 /// [`Material::choose`] like a config's `score.material`/`score.ri`.
-pub fn material(ri: Option<&str>, name: Option<&str>) -> Result<Material> {
-    let ri = match ri {
-        None => None,
-        Some(r) => Some(r.trim().parse::<f64>().map_err(|_| {
-            Error::invalid(
-                "--ri",
-                format!("`{r}` is not a number; give a refractive index"),
-            )
-        })?),
-    };
+pub fn material(ri: Option<f64>, name: Option<&str>) -> Result<Material> {
     Material::choose(
         name,
         ri,
@@ -394,10 +433,15 @@ mod tests {
     fn each_setting_names_one_flag_the_command_line_has() {
         use clap::CommandFactory;
         let cmd = crate::cli::Cli::command();
-        let longs: std::collections::BTreeSet<String> = cmd
-            .get_subcommands()
-            .flat_map(|s| s.get_arguments().filter_map(|a| a.get_long()))
+        let args = || cmd.get_subcommands().flat_map(|s| s.get_arguments());
+        let longs: std::collections::BTreeSet<String> = args()
+            .filter_map(|a| a.get_long())
             .map(|l| format!("--{l}"))
+            .chain(
+                args()
+                    .filter_map(|a| a.get_short())
+                    .map(|c| format!("-{c}")),
+            )
             .collect();
         for (i, (name, flag)) in FLAGS.iter().enumerate() {
             assert!(FLAGS[..i].iter().all(|(n, _)| n != name), "{name} twice");
@@ -422,13 +466,39 @@ mod tests {
             to_flags(Error::parse("photon count", "m")).to_string(),
             "--photons: m"
         );
+        // The library's checks of outputs, their field and the settings in their message.
+        let d = tempfile::tempdir().unwrap();
+        let old = d.path().join("old.png");
+        std::fs::write(&old, "x").unwrap();
+        let e = facetlab::io::guard::PictureFiles {
+            picture: &old,
+            json: Some(&old),
+            hdr: None,
+        }
+        .check_laboratory(&[], true)
+        .unwrap_err();
+        assert_eq!(
+            to_flags(e).to_string(),
+            format!(
+                "--json: {} is also the -o picture; give another file",
+                old.display()
+            )
+        );
+        let e = facetlab::io::guard::check_new_file("hdr output", &old, false).unwrap_err();
+        assert_eq!(
+            to_flags(e).to_string(),
+            format!(
+                "--hdr-out: {} exists; pass --force to replace it, or choose another name",
+                old.display()
+            )
+        );
     }
 
     #[test]
     fn a_pictures_settings_leave_named_by_flags() {
         let material = MaterialArgs::default();
         let ri = MaterialArgs {
-            ri: Some("2.4".into()),
+            ri: Some(2.4),
             ..MaterialArgs::default()
         };
         let shown = |field: &str, m: &MaterialArgs| {
@@ -488,9 +558,9 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("on or off"));
-        assert_eq!(material(Some("2.0"), None).unwrap().ri(500.0), 2.0);
-        assert!(material(Some("2.0"), Some("cz")).is_err());
-        assert!(material(Some("0.9"), None)
+        assert_eq!(material(Some(2.0), None).unwrap().ri(500.0), 2.0);
+        assert!(material(Some(2.0), Some("cz")).is_err());
+        assert!(material(Some(0.9), None)
             .unwrap_err()
             .to_string()
             .starts_with("--ri:"));
@@ -499,6 +569,8 @@ mod tests {
 
     #[test]
     fn flag_and_config_accept_the_same_indices() {
+        // `--ri`'s value parser, then the material it chooses.
+        let ri_flag = a_number("--ri", "give a refractive index");
         let config = |ri: &str| {
             let text = format!(
                 "[cut]\nfamily = \"round-brilliant\"\n[free]\ncrown_angle = [30, 38]\n[score]\nri = {ri}\n"
@@ -508,7 +580,7 @@ mod tests {
         for ri in [
             "0.5", "1", "1.00001", "1.0001", "2.4", "10", "10.0001", "11", "nan", "inf",
         ] {
-            let flag = material(Some(ri), None);
+            let flag = ri_flag(ri).and_then(|n| material(Some(n), None));
             let conf = config(ri);
             assert_eq!(flag.is_ok(), conf.is_ok(), "{ri}: {flag:?} vs {conf:?}");
             match (flag, conf) {
@@ -525,7 +597,7 @@ mod tests {
                 _ => unreachable!(),
             }
         }
-        let e = material(Some("abc"), None).unwrap_err().to_string();
+        let e = ri_flag("abc").unwrap_err().to_string();
         assert!(e.starts_with("--ri: `abc` is not a number"), "{e}");
     }
 
@@ -618,6 +690,16 @@ mod tests {
         let (m, notes) = stones_of(&cuts, Material::diamond(), true, &args, NotTraced).unwrap();
         assert_eq!(m[0].colour.as_ref().unwrap().density, 2.0);
         assert!(notes[0].contains("stone width 8 mm") && notes[0].contains("not yet traced"));
+        // The note names the trace's absorption setting; said, it is spelled as its flag.
+        assert!(spelled(&notes[0]).contains("(give --absorption colour)"));
+        assert!(spelled(&facetlab::document::info::info_text(
+            &facetlab::document::info::info_json(
+                &facetlab::io::load_cut("tolkowsky").unwrap(),
+                6.5,
+                &Material::diamond()
+            )
+        ))
+        .contains("Parameters (--set KEY=VALUE)"));
         let bad = a_number("--diameter-mm", "give a width in (0, 1000) mm")("wide");
         assert!(bad
             .unwrap_err()

@@ -28,6 +28,7 @@ pub struct MergeArgs {
     pub score: SweepScore,
     /// The two axes the map shows (as for `sweep`).
     #[arg(long, value_name = "KEY1,KEY2")]
+    // A String on purpose: two axes of the shards' grid, known only once the shards are read.
     pub map: Option<String>,
     /// Where the map holds an axis it does not show (as for `sweep`).
     #[arg(long, value_name = "KEY=VALUE")]

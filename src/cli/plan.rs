@@ -29,6 +29,7 @@ pub struct PlanArgs {
     /// The rough: an .obj or .stl mesh in millimetres (its convex hull is planned), or a
     /// crystal form (octahedron, dodecahedron, cube, macle, or sphere: an exact ball) with --size-mm.
     #[arg(value_name = "ROUGH")]
+    // A String on purpose: a mesh file's path or a crystal form's name.
     pub rough: String,
     /// A family to plan (repeat for more); default: the config's, or round-brilliant and the
     /// fancy shapes.
@@ -38,10 +39,11 @@ pub struct PlanArgs {
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// The rough's largest extent in mm: scales a mesh in other units, sizes a crystal form.
-    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
-    pub size_mm: Option<String>,
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = size_flag)]
+    pub size_mm: Option<f64>,
     /// Material for the carat weight and the scores (`facetlab materials`); default diamond.
     #[arg(long, value_name = "NAME")]
+    // A String on purpose: the name as given goes into the run's config.
     pub material: Option<String>,
     /// Distinct plans kept per family (1–50); default the config's (3).
     #[arg(
@@ -59,6 +61,7 @@ pub struct PlanArgs {
     pub quiet: bool,
 }
 
+/// The value parser of `--size-mm`: the rough's largest extent.
 fn size_flag(s: &str) -> Result<f64> {
     facetlab::io::text::number(
         "--size-mm",
@@ -88,7 +91,7 @@ pub fn run(a: &PlanArgs) -> Result<Exit> {
         config.material = m.clone();
     }
     let material = Material::by_name(&config.material)?;
-    let size = a.size_mm.as_deref().map(size_flag).transpose()?;
+    let size = a.size_mm;
     // Outputs: a new or empty folder that is none of the inputs (the rough, the config, the
     // price table it names).
     check_out("--out", &a.out, &a.rough, a.config.as_deref(), &config)?;

@@ -4,8 +4,8 @@
 //! score with one line on what it means, and with `--verify N` the photon tracer's check.
 
 use super::flags;
-use super::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
+use facetlab::io::guard::{check_new_file, cut_files, refuse_overwrite, setting};
 use facetlab::metrics::{ColourNotes, ScoreConfig, StoneChoice};
 use facetlab::report::{html, measure, ReportOptions};
 use std::path::PathBuf;
@@ -43,6 +43,7 @@ pub struct ReportArgs {
     pub size: u64,
     /// Title of the page.
     #[arg(long, value_name = "TEXT")]
+    // A String on purpose: a free title.
     pub title: Option<String>,
     /// Replace -o if it exists (an input is never replaced).
     #[arg(long)]
@@ -57,7 +58,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     let size = a.size as usize;
     let photons = a.verify;
     let material = a.material.material()?;
-    refuse_overwrite(&[("-o", a.output.clone())], &cut_files(&a.cuts))?;
+    refuse_overwrite(&[(setting::OUTPUT, a.output.clone())], &cut_files(&a.cuts))?;
     let is_html = a
         .output
         .extension()
@@ -68,7 +69,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
             format!("{} does not end in .html", a.output.display()),
         ));
     }
-    super::outputs::check_new_file("-o", &a.output, a.force)?;
+    check_new_file(setting::OUTPUT, &a.output, a.force)?;
     let cuts = a
         .cuts
         .iter()

@@ -6,9 +6,9 @@
 //! reported; the better optimized one is written (the rule's with `--tangent-only`).
 
 use super::flags;
-use super::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
 use facetlab::io;
+use facetlab::io::guard::{check_new_file, cut_files, refuse_overwrite, setting};
 use facetlab::metrics::ScoreConfig;
 use facetlab::optics::Material;
 use std::path::PathBuf;
@@ -18,16 +18,18 @@ use std::path::PathBuf;
 pub struct RetargetArgs {
     /// The design: a preset name or a .toml/.asc/.gem/.obj/.stl file.
     #[arg(value_name = "CUT")]
+    // A String on purpose: a preset's name or a file's path.
     pub cut: String,
     /// The new refractive index (n_D, 1–10), with a generic dispersion (as `ri:N`).
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub ri: Option<String>,
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = flags::real("--ri", 1.0001, 10.0, "a refractive index"))]
+    pub ri: Option<f64>,
     /// The new material by name (see `facetlab materials`).
     #[arg(long, value_name = "NAME")]
+    // A String on purpose: with --ri, the material must have that index (checked together).
     pub material: Option<String>,
     /// The index the design was cut for (default: the file's `I` index, else diamond's).
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub from: Option<String>,
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = flags::real("--from", 1.0001, 10.0, "a refractive index"))]
+    pub from: Option<f64>,
     /// Write the tangent-ratio variant instead of the better optimized one (ratios, or a
     /// design's tiers).
     #[arg(long)]
@@ -42,16 +44,12 @@ pub struct RetargetArgs {
 
 /// Run `facetlab retarget`.
 pub fn run(a: &RetargetArgs) -> Result<()> {
-    let to = match (&a.ri, &a.material) {
-        (Some(r), None) => {
-            let n = flags::number("--ri", r, 1.0001, 10.0, "a refractive index")?;
-            Material::by_name(&format!("ri:{n}"))
-                .map_err(|e| Error::invalid("--ri", e.to_string()))?
-        }
+    let to = match (a.ri, &a.material) {
+        (Some(n), None) => Material::by_name(&format!("ri:{n}"))
+            .map_err(|e| Error::invalid("--ri", e.to_string()))?,
         (None, Some(m)) => Material::by_name(m)?,
-        (Some(r), Some(m)) => {
+        (Some(n), Some(m)) => {
             // Both: the material, which must have that index.
-            let n = flags::number("--ri", r, 1.0001, 10.0, "a refractive index")?;
             let mat = Material::by_name(m)?;
             if (mat.ri_d() - n).abs() > 0.01 {
                 return Err(Error::invalid(
@@ -73,7 +71,7 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
         }
     };
     refuse_overwrite(
-        &[("-o", a.output.clone())],
+        &[(setting::OUTPUT, a.output.clone())],
         &cut_files(std::slice::from_ref(&a.cut)),
     )?;
     let ext = a
@@ -89,10 +87,10 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
             ),
         ));
     }
-    super::outputs::check_new_file("-o", &a.output, a.force)?;
+    check_new_file(setting::OUTPUT, &a.output, a.force)?;
     let cut = super::cuts::load_with_sets(&a.cut, &[])?;
-    let from = match &a.from {
-        Some(f) => flags::number("--from", f, 1.0001, 10.0, "a refractive index")?,
+    let from = match a.from {
+        Some(f) => f,
         None => cut
             .design_ri()
             .unwrap_or_else(|| Material::diamond().ri_d()),

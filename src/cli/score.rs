@@ -25,10 +25,11 @@
 //! photons per figure and pose (seed 1).
 
 use super::flags;
-use super::outputs::{cut_files, refuse_overwrite, Exit};
+use super::outputs::Exit;
 use facetlab::document::score::score_table;
 use facetlab::document::scoring::{score_cuts, ScoreJob, ScoreSink};
 use facetlab::error::{Error, Result};
+use facetlab::io::guard::{check_document_outputs, cut_files};
 use facetlab::metrics::{NoteKind, ScoreConfig, Scores, StoneChoice};
 use facetlab::verify::{Check, SIGMA};
 use std::path::PathBuf;
@@ -143,8 +144,7 @@ pub fn run(a: &ScoreArgs) -> Result<Exit> {
     let s = settings(a)?;
     if let Some(path) = &a.json {
         // Never overwrite a cut with its scores.
-        refuse_overwrite(&[("--json", path.clone())], &cut_files(&a.cuts))?;
-        super::outputs::check_new_file("--json", path, a.force)?;
+        check_document_outputs(Some(path), None, &cut_files(&a.cuts), a.force)?;
     }
     let cuts = a
         .cuts
@@ -408,7 +408,8 @@ mod tests {
         let cut = d.path().join("t.toml");
         std::fs::write(&cut, "not read").unwrap();
         let c = cut.to_str().unwrap();
-        let e = run(&args(&[c, "--json", c])).unwrap_err().to_string();
+        // As the binary says it (cli::run spells every error by its flags).
+        let e = super::flags::to_flags(run(&args(&[c, "--json", c])).unwrap_err()).to_string();
         assert!(e.starts_with("--json: ") && e.contains("overwrite"), "{e}");
         assert_eq!(std::fs::read_to_string(&cut).unwrap(), "not read");
     }

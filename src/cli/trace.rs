@@ -306,17 +306,12 @@ fn parse_camera(s: &str) -> Result<Camera> {
 /// Run `facetlab trace`.
 pub fn run(args: &TraceArgs) -> Result<()> {
     let set = settings(args)?;
-    let mut outputs = Vec::new();
-    if let Some(j) = &args.json {
-        outputs.push(("--json", j.clone()));
-    }
-    if let Some(d) = &args.plots {
-        outputs.push(("--plots", d.clone()));
-    }
-    super::outputs::refuse_overwrite(&outputs, &super::outputs::cut_files(&args.cuts))?;
-    if let Some(j) = &args.json {
-        super::outputs::check_new_file("--json", j, args.force)?;
-    }
+    facetlab::io::guard::check_document_outputs(
+        args.json.as_deref(),
+        args.plots.as_deref(),
+        &facetlab::io::guard::cut_files(&args.cuts),
+        args.force,
+    )?;
     let cuts = args
         .cuts
         .iter()

@@ -46,6 +46,7 @@ fn done_lines(path: &Path) -> Result<(BTreeMap<usize, String>, usize, usize)> {
             Error::invalid(
                 OUTPUT,
                 format!(
+                    // The file's format, named by the command that writes it (kept).
                     "{} line {} is not a line of `score --batch`; write to a new file",
                     path.display(),
                     n + 1

@@ -5,7 +5,7 @@
 //! [`meets_text`]).
 
 use crate::cut::Cut;
-use crate::error::Result;
+use crate::error::{setting, Result};
 use crate::optics::Material;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -189,7 +189,12 @@ pub fn meets_text(meets: &[MeetJson], tol: f64) -> String {
     o
 }
 
-/// Human-readable `info`.
+/// The setting that sets a cut's parameter or turns a design's tier (`KEY=VALUE`), named in
+/// [`info_text`] for each face to spell ([`crate::error::setting`]).
+pub const CUT_PARAMETER: &str = "cut parameter";
+
+/// Human-readable `info`; the setting of a parameter is named as [`CUT_PARAMETER`], for the
+/// face that prints it to spell ([`crate::error::spell_settings`]).
 pub fn info_text(j: &InfoJson) -> String {
     use std::fmt::Write;
     let mut o = String::new();
@@ -237,7 +242,8 @@ pub fn info_text(j: &InfoJson) -> String {
     if j.family.is_none() {
         let _ = writeln!(
             o,
-            "  (--set TIER=DEG turns a tier; the depths follow so that the meets are kept)"
+            "  ({} TIER=DEG turns a tier; the depths follow so that the meets are kept)",
+            setting(CUT_PARAMETER)
         );
     }
     let _ = writeln!(
@@ -286,7 +292,7 @@ pub fn info_text(j: &InfoJson) -> String {
         );
     }
     if !j.params.is_empty() {
-        let _ = writeln!(o, "\nParameters (--set KEY=VALUE)");
+        let _ = writeln!(o, "\nParameters ({} KEY=VALUE)", setting(CUT_PARAMETER));
         for (k, v) in &j.params {
             let _ = writeln!(o, "  {k:<16} {v}");
         }

@@ -237,11 +237,13 @@ impl BodyColour {
     }
 
     /// [`BodyColour::note`], and that this trace does not use it (the photon tracer's
-    /// `trace` without `--absorption colour`).
+    /// `trace` without the absorption model `colour`); the note names the setting
+    /// ([`crate::error::setting`]) for each face to spell.
     pub fn not_traced_note(&self, width_mm: f64) -> String {
         format!(
-            "{}; body colour is not yet traced here (give --absorption colour): the colourless stone's",
-            self.note(width_mm)
+            "{}; body colour is not yet traced here (give {} colour): the colourless stone's",
+            self.note(width_mm),
+            crate::error::setting("absorption model")
         )
     }
 }

@@ -15,7 +15,7 @@ impl Material {
             dispersion: Dispersion::Constant(n),
             density: DIAMOND.density,
             optic: Optic::Isotropic,
-            source: "a fixed index (--ri): no dispersion, no fire".into(),
+            source: "a fixed index: no dispersion, no fire".into(),
             colour: None,
             uniaxial: None,
         }

@@ -37,7 +37,7 @@ pub struct Variety {
 
 /// Why no variety has its E ∥ c spectrum (pleochroism): the polarized companions of the
 /// spectra above are not reachable from where this was built.
-pub const MISSING_E: &str = "no E∥c spectrum: the polarized companion files of the Caltech samples could not be reached from where facetlab was built (its stored copies of the server hold the index pages, not the data), and no other source of E∥c absorption coefficients of the same stones was found; the extraordinary ray takes the E⊥c spectrum (no pleochroism) unless --colour-e gives one";
+pub const MISSING_E: &str = "no E∥c spectrum: the polarized companion files of the Caltech samples could not be reached from where facetlab was built (its stored copies of the server hold the index pages, not the data), and no other source of E∥c absorption coefficients of the same stones was found; the extraordinary ray takes the E⊥c spectrum (no pleochroism) unless the crystal settings give an E∥c colour";
 
 /// Ruby: Caltech GRR 1843, Chanthaburi, Thailand, 0.787 mm, E⊥c (file ru1843.a); Cr³⁺
 /// ⁴A₂→⁴T₁ at 410 nm and ⁴A₂→⁴T₂ at 560 nm, the R lines at 692–694 nm.

@@ -109,7 +109,7 @@ mod sweep;
 pub use config::{
     axis_label, defaults, Budget, Config, Constraints, FreeParam, Method, NelderMeadSettings,
     ParetoSpec, RawConfig, RawConstraints, RawCut, RawMethod, RawObjective, RawScore, RawVerify,
-    Sampling, ScoreSettings, SearchBox, SwarmSettings, VerifySettings, Weights,
+    Sampling, ScoreSettings, SearchBox, SwarmSettings, VerifySettings, Weights, MEETS_LISTING,
 };
 // The scores of one cut and the scorer the objective calls.
 pub use evaluator::Evaluator;

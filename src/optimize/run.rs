@@ -375,6 +375,8 @@ pub fn write_folder(
         for w in best_writers(writers) {
             let name = format!("best.{}", w.extension());
             let mut bytes = w.render(cut)?;
+            // A comment in the file for a person, one file for every face: it gives the
+            // axis as the command line and as the config write it (kept on purpose).
             if let (Some(a), "toml") = (&axis, w.extension()) {
                 bytes.extend(
                     format!(

@@ -104,6 +104,8 @@ fn free_angles_that_open_a_meet_are_refused_naming_the_tier_and_the_meet() {
             "free.A",
             "turning A alone opens the meet A·B",
             "open_meets",
+            // What lists the meets, as the command line spells it.
+            "(`facetlab info DESIGN --meets` lists the meets)",
         ],
     );
     assert!(!p.join("run").exists());

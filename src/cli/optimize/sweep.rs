@@ -21,10 +21,12 @@ pub struct SweepArgs {
     pub config: PathBuf,
     /// First axis: KEY:MIN:MAX:STEP, e.g. crown_angle:25:40:0.5.
     #[arg(long = "x", value_name = "KEY:MIN:MAX:STEP")]
+    // A String on purpose: an axis of the config's free parameters, known once it is read.
     pub x: Option<String>,
     /// Second axis: KEY:MIN:MAX:STEP, e.g. pavilion_angle:38:43:0.1. With one axis only the
     /// sweep is a profile: a CSV and a line chart of every score.
     #[arg(long = "y", value_name = "KEY:MIN:MAX:STEP")]
+    // A String on purpose: an axis of the config's free parameters, known once it is read.
     pub y: Option<String>,
     /// Further axes (repeatable), after --x and --y. The grid is their Cartesian product, the
     /// first axis varying fastest; the CSV has one column per axis.
@@ -33,6 +35,7 @@ pub struct SweepArgs {
     /// The two axes the map shows, KEY1,KEY2 (one KEY: a profile along it). Default: the first
     /// two axes.
     #[arg(long, value_name = "KEY1,KEY2")]
+    // A String on purpose: two of the grid's axes, known once the config is read.
     pub map: Option<String>,
     /// Where the map holds an axis it does not show (repeatable; snapped to the nearest grid
     /// value). Default: the grid value nearest the axis' middle.

@@ -25,6 +25,7 @@ pub struct RenderArgs {
         default_value = "iso",
         value_name = "iso|cos|aset|idealscope|hearts|arrows|fire|tent|darkfield|daylight|office|ring|studio|env:FILE"
     )]
+    // A String on purpose: a laboratory light or a photograph's, whose refusal names both lists.
     pub light: String,
     /// Pixels per side of each stone's picture (8–8192); the captions (and a grey margin)
     /// come outside it unless --bare.
@@ -43,8 +44,8 @@ pub struct RenderArgs {
     /// Half-angle of the viewer's head shadow, the ASET port, the IdealScope head or the hearts
     /// & arrows viewer's dark tube, degrees (0–60; default 10 for aset and idealscope, 20 for
     /// arrows, 6 for hearts, 0 otherwise).
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
-    pub head_shadow: Option<String>,
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = flags::real("--head-shadow", 0.0, 60.0, "a half-angle in degrees (0 = none)"))]
+    pub head_shadow: Option<f64>,
     #[command(flatten)]
     pub material: flags::MaterialArgs,
     #[command(flatten)]

@@ -64,19 +64,7 @@ pub fn settings(a: &RenderArgs) -> Result<(LabPictures, StoneChoice)> {
     if let Some(t) = a.tilt {
         opts.tilt = t;
     }
-    opts.head_shadow_deg = a
-        .head_shadow
-        .as_deref()
-        .map(|h| {
-            flags::number(
-                "--head-shadow",
-                h,
-                0.0,
-                60.0,
-                "a half-angle in degrees (0 = none)",
-            )
-        })
-        .transpose()?;
+    opts.head_shadow_deg = a.head_shadow;
     let mut stone = flags::stone_choice(a.material.material()?, &a.material, &a.colour, None)?;
     opts.material = stone.material.clone();
     opts.trace.polarization = a.polarization;

@@ -6,8 +6,8 @@
 
 use super::{check_animation, check_rock, RenderArgs};
 use crate::cli::flags;
-use crate::cli::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
+use facetlab::io::guard::{cut_files, PictureFiles};
 use facetlab::metrics::StoneChoice;
 use facetlab::plot::render::PhotoPictures;
 use facetlab::render::photo::{
@@ -25,8 +25,8 @@ pub struct PhotoArgs {
     pub view: Option<View>,
     /// Photographs: a perspective camera this many mm from the stone's centre (the stone's
     /// width from --diameter-mm, default 6.5 mm); default: orthographic.
-    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
-    pub distance: Option<String>,
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = flags::real("--distance", 0.0, 1e5, "millimetres"))]
+    pub distance: Option<f64>,
     /// Photographs: the ground the stone rests on, culet-down: white (paper), black
     /// (velvet) or none (default), with its shadow and caustics.
     #[arg(
@@ -37,16 +37,16 @@ pub struct PhotoArgs {
     pub ground: Option<GroundKind>,
     /// Photographs: height of the stone's lowest point above the ground, girdle diameters
     /// (0–10; default 0: resting on it).
-    #[arg(long, value_name = "X", allow_hyphen_values = true)]
-    pub ground_gap: Option<String>,
+    #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = flags::real("--ground-gap", 0.0, 10.0, "girdle diameters"))]
+    pub ground_gap: Option<f64>,
     /// Photographs: turn the light about the vertical, degrees (counter-clockwise seen from
     /// above).
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
-    pub light_rotation: Option<String>,
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = flags::real("--light-rotation", -360.0, 360.0, "degrees"))]
+    pub light_rotation: Option<f64>,
     /// Photographs: a turntable animation of FRAMES frames (2–360), the stone turned a full
     /// circle under the camera and lights.
-    #[arg(long, value_name = "FRAMES", allow_hyphen_values = true)]
-    pub turn: Option<String>,
+    #[arg(long, value_name = "FRAMES", allow_hyphen_values = true, value_parser = flags::whole("--turn", 2, 360))]
+    pub turn: Option<u64>,
     /// Photographs: the tone curve from linear radiance to the picture: filmic (default) or
     /// clip.
     #[arg(long, value_name = "filmic|clip", value_parser = flags::parsed("--tone", Tone::parse))]
@@ -56,8 +56,8 @@ pub struct PhotoArgs {
     #[arg(long, value_name = "FILE.exr")]
     pub hdr_out: Option<PathBuf>,
     /// Photographs: wavelength bands of a dispersive or coloured stone (3–64; default 8).
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub bands: Option<String>,
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = flags::whole("--bands", 3, 64))]
+    pub bands: Option<u64>,
 }
 
 impl PhotoArgs {
@@ -107,26 +107,22 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<(PhotoPictures, Sto
     if let Some(kind) = p.ground {
         o.ground = Ground { kind, gap: 0.0 };
     }
-    if let Some(g) = &p.ground_gap {
-        o.ground.gap = flags::number("--ground-gap", g, 0.0, 10.0, "girdle diameters")?;
+    if let Some(g) = p.ground_gap {
+        o.ground.gap = g;
     }
-    if let Some(r) = &p.light_rotation {
-        o.light_rotation_deg = flags::number("--light-rotation", r, -360.0, 360.0, "degrees")?;
+    if let Some(r) = p.light_rotation {
+        o.light_rotation_deg = r;
     }
     if let Some(t) = p.tone {
         o.tone = t;
     }
-    if let Some(b) = &p.bands {
-        o.bands = flags::count("--bands", b, 3, 64)? as usize;
+    if let Some(b) = p.bands {
+        o.bands = b as usize;
     }
-    if let Some(d) = &p.distance {
-        o.distance_mm = Some(flags::number("--distance", d, 0.0, 1e5, "millimetres")?);
+    if p.distance.is_some() {
+        o.distance_mm = p.distance;
     }
-    let turn = p
-        .turn
-        .as_deref()
-        .map(|t| flags::count("--turn", t, 2, 360).map(|n| n as usize))
-        .transpose()?;
+    let turn = p.turn.map(|n| n as usize);
     let rock = a.rock;
     if turn.is_some() && rock.is_some() {
         return Err(Error::invalid(
@@ -158,51 +154,12 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<(PhotoPictures, Sto
     ))
 }
 
-/// Whether `path` ends in `ext` (any case).
-fn has_ext(path: &std::path::Path, ext: &str) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
-}
-
-/// Check the outputs before any work.
+/// Check a photograph's outputs before any work ([`PictureFiles::check_photograph`]).
 pub fn check_outputs(a: &RenderArgs) -> Result<()> {
-    let mut outs = vec![("-o", a.output.clone())];
-    if let Some(j) = &a.json {
-        outs.push(("--json", j.clone()));
+    PictureFiles {
+        picture: &a.output,
+        json: a.json.as_deref(),
+        hdr: a.photo.hdr_out.as_deref(),
     }
-    if let Some(h) = &a.photo.hdr_out {
-        outs.push(("--hdr-out", h.clone()));
-    }
-    refuse_overwrite(&outs, &cut_files(&a.cuts))?;
-    if !(has_ext(&a.output, "png") || has_ext(&a.output, "gif")) {
-        return Err(Error::invalid(
-            "-o",
-            format!(
-                "{} does not end in .png or .gif; a photograph is a PNG, an animation an animated PNG or GIF",
-                a.output.display()
-            ),
-        ));
-    }
-    if let Some(h) = &a.photo.hdr_out {
-        if !facetlab::io::hdr::is_hdr_path(h) {
-            return Err(Error::invalid(
-                "--hdr-out",
-                format!("{} does not end in .exr or .hdr", h.display()),
-            ));
-        }
-    }
-    for (i, (fa, pa)) in outs.iter().enumerate() {
-        for (fb, pb) in &outs[i + 1..] {
-            if crate::cli::outputs::resolved(pa) == crate::cli::outputs::resolved(pb) {
-                return Err(Error::invalid(
-                    *fb,
-                    format!("{} is also the {fa} file; give another file", pb.display()),
-                ));
-            }
-        }
-    }
-    for (flag, p) in &outs {
-        crate::cli::outputs::check_new_file(flag, p, a.force)?;
-    }
-    Ok(())
+    .check_photograph(&cut_files(&a.cuts), a.force)
 }

@@ -3,44 +3,19 @@
 
 use super::{photo, settings, RenderArgs};
 use crate::cli::flags;
-use crate::cli::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
+use facetlab::io::guard::{cut_files, PictureFiles};
 use facetlab::metrics::NoteKind;
 use facetlab::plot::render::{draw, printed_line, Pictures, Progress, RenderJob};
 
-/// Check the outputs before any work: not an input, -o a .png, not a folder, existing files
-/// only with --force, folders present and writable.
+/// Check a laboratory picture's outputs before any work ([`PictureFiles::check_laboratory`]).
 fn check_outputs(a: &RenderArgs) -> Result<()> {
-    let mut outs = vec![("-o", a.output.clone())];
-    if let Some(j) = &a.json {
-        outs.push(("--json", j.clone()));
+    PictureFiles {
+        picture: &a.output,
+        json: a.json.as_deref(),
+        hdr: None,
     }
-    refuse_overwrite(&outs, &cut_files(&a.cuts))?;
-    let is_png = a
-        .output
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if !is_png {
-        return Err(Error::invalid(
-            "-o",
-            format!(
-                "{} does not end in .png; the picture is a PNG (an animated PNG with --rock)",
-                a.output.display()
-            ),
-        ));
-    }
-    if let Some(j) = &a.json {
-        if crate::cli::outputs::resolved(j) == crate::cli::outputs::resolved(&a.output) {
-            return Err(Error::invalid(
-                "--json",
-                format!("{} is also the -o picture; give another file", j.display()),
-            ));
-        }
-    }
-    for (flag, p) in &outs {
-        crate::cli::outputs::check_new_file(flag, p, a.force)?;
-    }
-    Ok(())
+    .check_laboratory(&cut_files(&a.cuts), a.force)
 }
 
 /// The progress bar of `render` (drawn once the stones' notes are said) and those notes.
@@ -125,10 +100,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         json: a.json.as_deref(),
         hdr_out: a.photo.hdr_out.as_deref(),
     };
-    let drawn = draw(&job, &bar).map_err(|e| match e {
-        Error::Invalid { field, message } if field == "output" => Error::invalid("-o", message),
-        other => other,
-    })?;
+    let drawn = draw(&job, &bar)?;
     for c in 0..drawn.len() {
         println!("{}", printed_line(&pictures, &drawn, c));
     }

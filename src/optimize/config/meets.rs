@@ -11,6 +11,10 @@ use crate::design::{DesignSpace, OpenMeets, OpenedMeet, Tie, TieKind};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
+/// What lists a design's meets (the command line's `facetlab info DESIGN --meets`), named in
+/// an opened meet's error for each face to spell ([`crate::error::setting`]).
+pub const MEETS_LISTING: &str = "info with meets";
+
 /// The meets `free` cannot keep: an error naming the first key that opens one when the design
 /// refuses open meets, else the list (for the report). Then the walk of each free range
 /// ([`DesignSpace::breaches`]): an error at the first value where the design changes.
@@ -151,8 +155,9 @@ fn refusal(d: &DesignSpace, free: &[FreeParam], opened: &[OpenedMeet], at: At) -
     Error::invalid(
         at(&field),
         format!(
-            "{what} the meet {}{more}; {advice}, or set `open_meets = \"allow\"` in [cut] (`facetlab info DESIGN --meets` lists the meets)",
-            first.name
+            "{what} the meet {}{more}; {advice}, or set `open_meets = \"allow\"` in [cut] ({} lists the meets)",
+            first.name,
+            crate::error::setting(MEETS_LISTING)
         ),
     )
 }

@@ -57,6 +57,7 @@ pub use cut::RawCut;
 pub use fields::defaults;
 pub use file::{Config, RawConfig};
 pub use free::{axis_label, FreeParam, OPTIC_AXIS};
+pub use meets::MEETS_LISTING;
 pub use method::{Budget, Method, NelderMeadSettings, RawMethod, Sampling, SwarmSettings};
 pub use objective::{ParetoSpec, RawObjective, Weights};
 pub use score::{RawScore, ScoreSettings};

@@ -158,6 +158,7 @@ impl Shard {
                     ),
                 )
             })?;
+            // `--array` is Slurm's own flag (sbatch), not facetlab's: kept as Slurm spells it.
             if let Some(step) = int("SLURM_ARRAY_TASK_STEP")? {
                 if step != 1 {
                     return Err(Error::invalid(
