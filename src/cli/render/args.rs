@@ -2,6 +2,7 @@
 
 use super::photo;
 use crate::cli::flags;
+use facetlab::plot::render::settings as picture;
 use facetlab::render::pose::{parse_rock, parse_tilt};
 use facetlab::render::Tilt;
 use std::path::PathBuf;
@@ -68,7 +69,7 @@ pub struct RenderArgs {
         default_value = "1",
         value_name = "X",
         allow_hyphen_values = true,
-        value_parser = flags::real("--exposure", 0.01, 100.0, "a factor")
+        value_parser = flags::parsed("--exposure", picture::parse_exposure)
     )]
     pub exposure: f64,
     /// Write the statistics as JSON to this file (keys in the README).
