@@ -2,7 +2,6 @@
 
 use super::photo;
 use crate::cli::flags;
-use facetlab::plot::render::settings as picture;
 use facetlab::render::pose::{parse_rock, parse_tilt};
 use facetlab::render::Tilt;
 use std::path::PathBuf;
@@ -69,7 +68,7 @@ pub struct RenderArgs {
         default_value = "1",
         value_name = "X",
         allow_hyphen_values = true,
-        value_parser = flags::parsed("--exposure", picture::parse_exposure)
+        value_parser = flags::real("--exposure", 0.01, 100.0, "a factor")
     )]
     pub exposure: f64,
     /// Write the statistics as JSON to this file (keys in the README).

@@ -5,7 +5,7 @@ use super::RenderArgs;
 use crate::cli::flags;
 use facetlab::error::{Error, Result};
 use facetlab::metrics::StoneChoice;
-use facetlab::plot::render::{settings as picture, LabPictures};
+use facetlab::plot::render::LabPictures;
 
 use facetlab::render::{Light, RenderOptions, Tilt};
 
@@ -67,7 +67,15 @@ pub fn settings(a: &RenderArgs) -> Result<(LabPictures, StoneChoice)> {
     opts.head_shadow_deg = a
         .head_shadow
         .as_deref()
-        .map(|h| picture::parse_head_shadow("--head-shadow", h))
+        .map(|h| {
+            flags::number(
+                "--head-shadow",
+                h,
+                0.0,
+                60.0,
+                "a half-angle in degrees (0 = none)",
+            )
+        })
         .transpose()?;
     let mut stone = flags::stone_choice(a.material.material()?, &a.material, &a.colour, None)?;
     opts.material = stone.material.clone();

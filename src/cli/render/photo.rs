@@ -9,7 +9,7 @@ use crate::cli::flags;
 use crate::cli::outputs::{cut_files, refuse_overwrite};
 use facetlab::error::{Error, Result};
 use facetlab::metrics::StoneChoice;
-use facetlab::plot::render::{settings as picture, PhotoPictures};
+use facetlab::plot::render::PhotoPictures;
 use facetlab::render::photo::{
     parse_view, Ground, GroundKind, PhotoLight, PhotoOptions, Tone, View,
 };
@@ -108,19 +108,19 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<(PhotoPictures, Sto
         o.ground = Ground { kind, gap: 0.0 };
     }
     if let Some(g) = &p.ground_gap {
-        o.ground.gap = picture::parse_ground_gap("--ground-gap", g)?;
+        o.ground.gap = flags::number("--ground-gap", g, 0.0, 10.0, "girdle diameters")?;
     }
     if let Some(r) = &p.light_rotation {
-        o.light_rotation_deg = picture::parse_light_rotation("--light-rotation", r)?;
+        o.light_rotation_deg = flags::number("--light-rotation", r, -360.0, 360.0, "degrees")?;
     }
     if let Some(t) = p.tone {
         o.tone = t;
     }
     if let Some(b) = &p.bands {
-        o.bands = picture::parse_bands("--bands", b)?;
+        o.bands = flags::count("--bands", b, 3, 64)? as usize;
     }
     if let Some(d) = &p.distance {
-        o.distance_mm = Some(picture::parse_distance("--distance", d)?);
+        o.distance_mm = Some(flags::number("--distance", d, 0.0, 1e5, "millimetres")?);
     }
     let turn = p
         .turn
