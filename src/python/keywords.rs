@@ -45,10 +45,26 @@ const fn kw(name: &'static str, kind: Kind, default: Value) -> Keyword {
     }
 }
 
-/// The keyword argument that sets each library setting a message names inside its text
-/// ([`crate::error::setting`]), as the command line's `FLAGS` names its flag; a setting with
-/// no keyword here is shown by its own name.
-pub(crate) const SETTINGS: &[(&str, &str)] = &[("rough size", "size_mm")];
+/// The keyword argument that sets each library setting an error names, as its field or inside
+/// its text ([`crate::error::setting`]), as the command line's `FLAGS` names its flag; a
+/// setting with no keyword here is shown by its own name. A picture's settings are
+/// [`crate::plot::render::settings::SETTINGS`].
+pub(crate) const SETTINGS: &[(&str, &str)] = &[
+    ("rough size", "size_mm"),
+    ("picture light", "light"),
+    ("picture size", "size"),
+    ("picture tilt", "tilt"),
+    ("picture head-shadow", "head_shadow"),
+    ("picture exposure", "exposure"),
+    ("picture view", "view"),
+    ("picture distance", "distance"),
+    ("picture ground", "ground"),
+    ("picture ground-gap", "ground_gap"),
+    ("picture light-rotation", "light_rotation"),
+    ("picture tone", "tone"),
+    ("picture bands", "bands"),
+    ("picture diameter-mm", "diameter_mm"),
+];
 
 /// The keyword argument of the library's setting `name` ([`SETTINGS`]).
 pub(crate) fn keyword_of(name: &str) -> Option<String> {
@@ -80,12 +96,20 @@ pub(crate) const SCORE: [&[Keyword]; 2] = [
     ],
 ];
 
-/// `render`: the picture's settings, the stone, and the array's type.
+/// `render`: the picture's settings (a photograph's from `view` to `bands`), the stone, and
+/// the array's type.
 pub(crate) const RENDER: [&[Keyword]; 3] = [
     &[
         kw("light", Kind::Str, Value::Str("iso")),
         kw("size", Kind::Int, Value::Int(256)),
         kw("tilt", Kind::Size, Value::None),
+        kw("view", Kind::Size, Value::None),
+        kw("distance", Kind::Float, Value::None),
+        kw("ground", Kind::Str, Value::None),
+        kw("ground_gap", Kind::Float, Value::None),
+        kw("light_rotation", Kind::Float, Value::None),
+        kw("tone", Kind::Str, Value::None),
+        kw("bands", Kind::Int, Value::None),
         kw("head_shadow", Kind::Float, Value::None),
         kw("exposure", Kind::Float, Value::Float(1.0)),
         kw("polarization", Kind::Bool, Value::Bool(true)),
@@ -178,6 +202,25 @@ impl<'py> Keywords<'py> {
         }
         self.get(name)
     }
+    /// Any keyword's value as the command line's text, for the library to parse (a number as
+    /// Rust writes it: `0.5`, `11`), or its default; `None` when neither. A value of another
+    /// type than the keyword's is refused first, as [`Keywords::get`] refuses it.
+    pub fn text(&self, name: &str) -> PyResult<Option<String>> {
+        let given = match self.keyword(name).kind {
+            Kind::Str => self.get::<String>(name)?,
+            Kind::Float => self.get::<f64>(name)?.map(|x| format!("{x}")),
+            Kind::Int => self.get::<i64>(name)?.map(|x| x.to_string()),
+            Kind::Size => self.size_text(name)?,
+            Kind::Bool => self.get::<bool>(name)?.map(|b| b.to_string()),
+        };
+        Ok(given.or_else(|| match self.keyword(name).default {
+            Value::None => None,
+            Value::Bool(b) => Some(b.to_string()),
+            Value::Float(x) => Some(format!("{x}")),
+            Value::Int(i) => Some(i.to_string()),
+            Value::Str(s) => Some(s.to_string()),
+        }))
+    }
     /// A text keyword, or its default.
     pub fn str(&self, name: &str) -> PyResult<String> {
         match (self.get(name)?, self.keyword(name).default) {
@@ -200,14 +243,6 @@ impl<'py> Keywords<'py> {
             (Some(x), _) => Ok(x),
             (None, Value::Bool(d)) => Ok(d),
             (None, d) => panic!("`{name}` has no on/off default: {d:?}"),
-        }
-    }
-    /// A whole-number keyword (0 or more), or its default.
-    pub fn usize(&self, name: &str) -> PyResult<usize> {
-        match (self.get(name)?, self.keyword(name).default) {
-            (Some(x), _) => Ok(x),
-            (None, Value::Int(d)) => Ok(d as usize),
-            (None, d) => panic!("`{name}` has no whole-number default: {d:?}"),
         }
     }
 }

@@ -35,10 +35,22 @@ create_exception!(
     "A bug in facetlab (a caught panic); please report it with the call that raised it."
 );
 
-/// A library error as `facetlab.Error` (the settings its message names spelled as keyword
-/// arguments, [`keywords::SETTINGS`]).
+/// A library error as `facetlab.Error`: the setting it names as its field, and those its
+/// message names, spelled as keyword arguments ([`keywords::SETTINGS`]).
 pub(crate) fn error(e: crate::error::Error) -> PyErr {
-    Error::new_err(e.spell_settings(&keywords::keyword_of).to_string())
+    use crate::error::Error as E;
+    let e = match e.spell_settings(&keywords::keyword_of) {
+        E::Invalid { field, message } => E::Invalid {
+            field: keywords::keyword_of(&field).unwrap_or(field),
+            message,
+        },
+        E::Parse { source, message } => E::Parse {
+            source: keywords::keyword_of(&source).unwrap_or(source),
+            message,
+        },
+        other => other,
+    };
+    Error::new_err(e.to_string())
 }
 
 /// A caught panic's payload as `facetlab.InternalError`.

@@ -1,19 +1,29 @@
-//! `facetlab.render`: a cut's picture under one of the lights, as `facetlab render` draws it
-//! (one cut, `--bare`), with its linear values, its sRGB bytes and its statistics (the
-//! `render --json` document's keys, from [`crate::document::render`]).
+//! `facetlab.render`: a cut's picture as `facetlab render` draws it (one cut, `--bare`), under
+//! a laboratory light or photographed under a studio rig, a map or `env:FILE`, with its linear
+//! values, its sRGB bytes and its statistics (the `render --json` document's keys, from
+//! [`crate::document::render`]). The picture's settings are read by the library's one parse of
+//! them, the command line's ([`PictureSettings`]); its errors name the keyword argument.
 
 use super::cuts::cut_of;
 use super::keywords::{self, Keywords};
 use super::run;
-use super::stone::StoneArgs;
-use crate::document::render::{CutJson, FrameJson};
+use super::stone::{refuse_existing, StoneArgs};
+use crate::document::render::{CutJson, FrameJson, PhotoFrame, PhotoRecord};
 use crate::error::{Error, Result};
 use crate::plot::palette::PICTURE_GROUND;
-use crate::render::{self, pose::parse_tilt, Image, Light, RenderOptions};
+use crate::plot::render::{PictureSettings, Pictures};
+use crate::render::photo::{Photo, PhotoOptions, Tone};
+use crate::render::{self, Image, RenderOptions};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::time::Instant;
+
+/// The picture drawn: a laboratory picture, or a photograph with its tone curve.
+enum Picture {
+    Lab(Box<Image>),
+    Photo(Box<Photo>, Tone),
+}
 
 /// A rendered picture.
 ///
@@ -22,27 +32,49 @@ use std::time::Instant;
 /// ((32, 32, 3), 'float32', ['blue', 'green', 'leak', 'port', 'red'])
 #[pyclass(name = "Render", module = "facetlab", frozen)]
 pub struct PyRender {
-    image: Image,
+    picture: Picture,
     exposure: f64,
     stats: String,
     float64: bool,
 }
 
+impl PyRender {
+    fn size(&self) -> usize {
+        match &self.picture {
+            Picture::Lab(image) => image.size(),
+            Picture::Photo(photo, _) => photo.size(),
+        }
+    }
+
+    /// The 8-bit sRGB bytes, rows from the top: the PNG's.
+    fn rgb8(&self) -> Vec<u8> {
+        match &self.picture {
+            Picture::Lab(image) => image.to_srgb8(self.exposure, PICTURE_GROUND),
+            Picture::Photo(photo, tone) => photo.to_srgb8(self.exposure, *tone),
+        }
+    }
+}
+
 #[pymethods]
 impl PyRender {
-    /// Linear RGB relative to a white diffuser, H×W×3 (rows from the top; a grey light's
-    /// value in all three channels), float32 (float64 with `render(..., float64=True)`).
+    /// Linear RGB, H×W×3 (rows from the top), float32 (float64 with `render(...,
+    /// float64=True)`): a laboratory picture's relative to a white diffuser (a grey light's
+    /// value in all three channels); a photograph's linear sRGB relative to a white diffuser
+    /// under the ISO sky, background and ground included, before exposure and tone (the
+    /// command line's `--hdr-out` picture).
     #[getter]
     fn linear<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let n = self.image.size();
-        let ch = &self.image.channels;
-        let value = |k: usize, q: usize| ch[q.min(ch.len() - 1)].data[k];
+        let n = self.size();
         let mut out = Vec::with_capacity(n * n * 3);
         for j in 0..n {
             for i in 0..n {
                 let k = (n - 1 - j) * n + i;
-                for q in 0..3 {
-                    out.push(value(k, q));
+                match &self.picture {
+                    Picture::Lab(image) => {
+                        let ch = &image.channels;
+                        out.extend((0..3).map(|q| ch[q.min(ch.len() - 1)].data[k]));
+                    }
+                    Picture::Photo(photo, _) => out.extend(photo.linear_rgb(k).to_array()),
                 }
             }
         }
@@ -55,19 +87,23 @@ impl PyRender {
     }
 
     /// The picture's 8-bit sRGB pixels, H×W×3 uint8: the bytes of the PNG `facetlab render
-    /// --bare` writes.
+    /// --bare` writes (a photograph's through its exposure and tone curve).
     #[getter]
     fn srgb<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let n = self.image.size();
-        let bytes = self.image.to_srgb8(self.exposure, PICTURE_GROUND);
-        Ok(PyArray1::from_vec(py, bytes).reshape([n, n, 3])?.into_any())
+        let n = self.size();
+        Ok(PyArray1::from_vec(py, self.rgb8())
+            .reshape([n, n, 3])?
+            .into_any())
     }
 
     /// Share of each pixel the stone's outline covers, H×W float64 (rows from the top).
     #[getter]
     fn coverage<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let n = self.image.size();
-        let c = &self.image.coverage.data;
+        let n = self.size();
+        let c = match &self.picture {
+            Picture::Lab(image) => &image.coverage.data,
+            Picture::Photo(photo, _) => &photo.coverage.data,
+        };
         let out: Vec<f64> = (0..n)
             .flat_map(|j| (0..n).map(move |i| (n - 1 - j) * n + i))
             .map(|k| c[k])
@@ -92,102 +128,103 @@ impl PyRender {
     /// b'\x89PNG'
     #[pyo3(signature = (path, overwrite=false))]
     fn write_png(&self, py: Python<'_>, path: std::path::PathBuf, overwrite: bool) -> PyResult<()> {
-        let n = self.image.size() as u32;
-        let image = &self.image;
-        let exposure = self.exposure;
+        let n = self.size() as u32;
         run(py, || {
-            if path.exists() && !overwrite {
-                return Err(Error::invalid(
-                    "path",
-                    format!(
-                        "{} exists; pass overwrite=True to replace it",
-                        path.display()
-                    ),
-                ));
-            }
-            let rgb = image.to_srgb8(exposure, PICTURE_GROUND);
+            refuse_existing(&path, overwrite)?;
+            let rgb = self.rgb8();
             crate::io::png::write_rgb8(&path, n, n, &[rgb.as_slice()], 0)
         })
     }
 
     fn __repr__(&self) -> String {
-        let n = self.image.size();
-        format!(
-            "<Render {} {n}×{n}, mean {:.4}>",
-            self.image.light.name(),
-            self.image.stats.mean
-        )
+        let n = self.size();
+        let (light, mean) = match &self.picture {
+            Picture::Lab(image) => (image.light.name().to_string(), image.stats.mean),
+            Picture::Photo(photo, _) => (photo.stats.light.clone(), photo.stats.mean),
+        };
+        format!("<Render {light} {n}×{n}, mean {mean:.4}>")
     }
 }
 
-/// Render settings from the keyword arguments.
-struct RenderArgs {
-    light: String,
-    size: usize,
-    tilt: Option<String>,
-    head_shadow: Option<f64>,
-    exposure: f64,
-    polarization: bool,
-    stone: StoneArgs,
-}
-
-fn draw(cut: &crate::cut::Cut, input: &str, a: &RenderArgs) -> Result<(Image, String)> {
-    let light = Light::parse(a.light.trim().to_ascii_lowercase().as_str()).map_err(|_| {
-        Error::invalid(
-            "light",
-            format!(
-                "`{}` is not allowed; use {}",
-                a.light,
-                Light::ALL.map(Light::name).join(", ")
-            ),
-        )
-    })?;
-    let mut opts = RenderOptions::new(light);
-    opts.size = a.size;
-    if let Some(t) = &a.tilt {
-        opts.tilt = parse_tilt("tilt", t)?;
-    }
-    opts.head_shadow_deg = a.head_shadow;
-    opts.trace.polarization = a.polarization;
-    if !(0.01..=100.0).contains(&a.exposure) {
-        return Err(Error::invalid(
-            "exposure",
-            format!(
-                "`{}` is not allowed; give a factor in [0.01, 100]",
-                a.exposure
-            ),
-        ));
-    }
-    let (material, width) = a.stone.material_for(cut)?;
-    opts.material = material;
-    opts.width_mm = width;
-    opts.validate()?;
+/// Draw `cut` (given as `input`) as `settings` say, of the stone `stone` chooses: the picture,
+/// its exposure and its statistics as `render --json` writes them (`output` empty).
+fn draw(
+    cut: &crate::cut::Cut,
+    input: &str,
+    settings: &PictureSettings,
+    stone: &StoneArgs,
+) -> Result<(Picture, f64, String)> {
+    let pictures = settings.pictures(&stone.choice()?)?;
+    let (material, width_mm) = stone.material_for(cut)?;
     let t0 = Instant::now();
-    let img = render::render(&cut.solid, &opts);
-    let elapsed = t0.elapsed().as_secs_f64();
-    let frame = FrameJson::new(0, opts.tilt, &img.stats, elapsed);
-    let record = CutJson::new(
-        (&cut.name, input),
-        &opts,
-        &opts.material,
-        a.exposure,
-        vec![frame],
-        None,
-    );
-    let json =
-        serde_json::to_string(&record).map_err(|e| Error::invalid("stats", e.to_string()))?;
-    Ok((img, json))
+    let (picture, exposure, json) = match pictures {
+        Pictures::Lab(p) => {
+            let opts = RenderOptions {
+                material,
+                width_mm,
+                ..p.opts.clone()
+            };
+            let img = render::render(&cut.solid, &opts);
+            let frame = FrameJson::new(0, opts.tilt, &img.stats, t0.elapsed().as_secs_f64());
+            // The document names the material the cut is traced in (the command line's names
+            // the one chosen for every cut: diamond for a design traced in its own index).
+            let record = CutJson::new(
+                (&cut.name, input),
+                &opts,
+                &opts.material,
+                p.exposure,
+                vec![frame],
+                None,
+            );
+            (
+                Picture::Lab(Box::new(img)),
+                p.exposure,
+                serde_json::to_string(&record),
+            )
+        }
+        Pictures::Photo(p) => {
+            let opts = PhotoOptions {
+                material,
+                width_mm,
+                ..p.frame(0)
+            };
+            let photo = render::photo::photo(&cut.solid, &opts);
+            let stats = &photo.stats;
+            let frame = PhotoFrame::new(0, &opts, stats, t0.elapsed().as_secs_f64());
+            let record = PhotoRecord::new(
+                &cut.name,
+                input,
+                &opts,
+                stats,
+                p.exposure,
+                vec![frame],
+                None,
+            );
+            let json = serde_json::to_string(&record);
+            (Picture::Photo(Box::new(photo), opts.tone), p.exposure, json)
+        }
+    };
+    let json = json.map_err(|e| Error::invalid("stats", e.to_string()))?;
+    Ok((picture, exposure, json))
 }
 
-/// Render a cut (a `Cut`, a preset name or a path) under `light` (iso, cos, aset, fire,
-/// hearts, arrows, idealscope) at `size` pixels, tilted `tilt` ("DEG" or "DEG@AZ").
-/// Keyword arguments: `light` (default "iso"), `size` (256), `tilt`, `head_shadow`,
-/// `exposure` (1.0), `polarization` (True), the stone's as `score` takes them, and `float64`
-/// (False: `.linear` is float32).
+/// Render a cut (a `Cut`, a preset name or a path) under a laboratory `light` (iso, cos, aset,
+/// fire, hearts, arrows, idealscope), or photograph it under a studio one (tent, darkfield,
+/// daylight, office, ring, studio, or "env:FILE", an .hdr or .exr environment map), at `size`
+/// pixels, tilted `tilt` ("DEG" or "DEG@AZ"). Keyword arguments, named as `facetlab render`'s
+/// flags and read by the same parse: `light` (default "iso"), `size` (256), `tilt`,
+/// `exposure` (1.0), `polarization` (True); a laboratory picture's `head_shadow`; a
+/// photograph's `view` ("ELEV@AZ", default "30@0"), `distance` (mm; default orthographic),
+/// `ground` ("white", "black", "none"), `ground_gap`, `light_rotation`, `tone` ("filmic",
+/// "clip") and `bands` (8); the stone's as `score` takes them; and `float64` (False: `.linear`
+/// is float32). One frame: the command line's `--turn` and `--rock` animations are files.
 ///
 /// >>> r = facetlab.render("tolkowsky", size=32, tilt="10@45")
 /// >>> r.stats["tilt_deg"], r.stats["light"]
 /// (10.0, 'iso')
+/// >>> p = facetlab.render("tolkowsky", light="tent", view=60, ground="white", size=32)
+/// >>> p.stats["view"]["elevation_deg"], p.stats["ground"], p.stats["tone"]
+/// (60.0, 'white', 'filmic')
 #[pyfunction]
 #[pyo3(name = "render", signature = (cut, **kwargs))]
 fn render_cut(
@@ -196,23 +233,29 @@ fn render_cut(
     kwargs: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyRender> {
     let kw = Keywords::parse("render", &keywords::RENDER, kwargs)?;
-    let exposure = kw.f64("exposure")?;
-    let args = RenderArgs {
+    let settings = PictureSettings {
         light: kw.str("light")?,
-        size: kw.usize("size")?,
-        // A number of degrees, or the command line's DEG@AZ text.
-        tilt: kw.size_text("tilt")?,
-        head_shadow: kw.opt_f64("head_shadow")?,
-        exposure,
+        size: kw.text("size")?,
+        // A number of degrees, or the command line's DEG@AZ text (and ELEV@AZ).
+        tilt: kw.text("tilt")?,
+        view: kw.text("view")?,
+        distance: kw.text("distance")?,
+        ground: kw.text("ground")?,
+        ground_gap: kw.text("ground_gap")?,
+        light_rotation: kw.text("light_rotation")?,
+        tone: kw.text("tone")?,
+        bands: kw.text("bands")?,
+        head_shadow: kw.text("head_shadow")?,
+        exposure: kw.text("exposure")?,
         polarization: kw.bool("polarization")?,
-        stone: StoneArgs::from_keywords(&kw)?,
     };
+    let stone = StoneArgs::from_keywords(&kw)?;
     let float64 = kw.bool("float64")?;
     let input = super::cuts::input_of(cut)?;
     let c = cut_of(cut)?;
-    let (image, stats) = run(py, || draw(&c, &input, &args))?;
+    let (picture, exposure, stats) = run(py, || draw(&c, &input, &settings, &stone))?;
     Ok(PyRender {
-        image,
+        picture,
         exposure,
         stats,
         float64,

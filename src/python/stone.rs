@@ -97,6 +97,17 @@ impl StoneArgs {
     /// The material `cut` is traced in, with its body colour and crystal settings, and its
     /// width in mm ([`StoneChoice::stones`], as the command line chooses them).
     pub fn material_for(&self, cut: &Cut) -> Result<(Material, f64)> {
+        let s = self.choice()?.stones(
+            std::slice::from_ref(cut),
+            &FIELDS,
+            ColourNotes::Traced,
+            &mut |_, _| {},
+        )?;
+        Ok((s.materials[0].clone(), s.widths[0]))
+    }
+
+    /// The stones chosen as the command line chooses them from its flags.
+    pub fn choice(&self) -> Result<StoneChoice> {
         let default = Material::choose(
             self.material.as_deref(),
             self.ri,
@@ -122,12 +133,6 @@ impl StoneArgs {
             colour_e: self.colour_e.clone(),
             wavelength_nm: REFERENCE_WAVELENGTH_NM,
         });
-        let s = choice.stones(
-            std::slice::from_ref(cut),
-            &FIELDS,
-            ColourNotes::Traced,
-            &mut |_, _| {},
-        )?;
-        Ok((s.materials[0].clone(), s.widths[0]))
+        Ok(choice)
     }
 }

@@ -1,0 +1,408 @@
+//! A picture's settings as a face gives them, each by its name and as text (the command
+//! line's flag values, the Python package's keyword arguments written out), turned into the
+//! library's options by one parse ([`PictureSettings::pictures`]): a laboratory picture
+//! ([`LabPictures`]) or a photograph ([`PhotoPictures`]), by the light.
+//!
+//! Each value is read by the library's own parsers, the ones the command line's flags call
+//! ([`parse_tilt`], [`parse_view`], [`GroundKind::parse`], [`Tone::parse`]) and those here
+//! for the numbers, each with its range ([`parse_size`], [`parse_ground_gap`], …), and
+//! every error names the setting ([`SETTINGS`]: `picture view`, `picture ground-gap`, …), a
+//! setting inside a message too ([`crate::error::setting`]), for each face to spell as it
+//! spells it: the command line's flag (`--view`), Python's keyword argument (`view`).
+
+use super::{LabPictures, PhotoPictures, Pictures};
+use crate::error::{setting, Error, Result};
+use crate::io::text::{count, number};
+use crate::metrics::StoneChoice;
+use crate::optics::StoneSize;
+use crate::render::photo::{parse_view, Ground, GroundKind, PhotoLight, PhotoOptions, Tone};
+use crate::render::pose::parse_tilt;
+use crate::render::{Light, RenderOptions};
+
+/// The light (a laboratory light, a photographic rig, `studio` or `env:FILE`).
+pub const LIGHT: &str = "picture light";
+/// Pixels per side.
+pub const SIZE: &str = "picture size";
+/// The stone's tilt, `DEG[@AZ]`.
+pub const TILT: &str = "picture tilt";
+/// A laboratory picture's head shadow, degrees.
+pub const HEAD_SHADOW: &str = "picture head-shadow";
+/// Brightness factor.
+pub const EXPOSURE: &str = "picture exposure";
+/// A photograph's camera direction, `ELEV[@AZ]`.
+pub const VIEW: &str = "picture view";
+/// A photograph's camera distance, mm.
+pub const DISTANCE: &str = "picture distance";
+/// A photograph's ground.
+pub const GROUND: &str = "picture ground";
+/// A photograph's gap under the stone, girdle diameters.
+pub const GROUND_GAP: &str = "picture ground-gap";
+/// A photograph's light turned about the vertical, degrees.
+pub const LIGHT_ROTATION: &str = "picture light-rotation";
+/// A photograph's tone curve.
+pub const TONE: &str = "picture tone";
+/// A photograph's wavelength bands.
+pub const BANDS: &str = "picture bands";
+/// The stone's width, mm (checked by a photograph against its camera distance).
+pub const DIAMETER: &str = "picture diameter-mm";
+
+/// Every setting a picture's errors name, for the faces' tables of their spellings.
+pub const SETTINGS: [&str; 13] = [
+    LIGHT,
+    SIZE,
+    TILT,
+    HEAD_SHADOW,
+    EXPOSURE,
+    VIEW,
+    DISTANCE,
+    GROUND,
+    GROUND_GAP,
+    LIGHT_ROTATION,
+    TONE,
+    BANDS,
+    DIAMETER,
+];
+
+/// The settings that only a photograph takes, in the order a face lists them.
+const PHOTOGRAPHIC: [&str; 7] = [
+    VIEW,
+    DISTANCE,
+    GROUND,
+    GROUND_GAP,
+    LIGHT_ROTATION,
+    TONE,
+    BANDS,
+];
+
+/// Pixels per side, 8 to 8192 (`field` named in the error, as in each of these parsers: the
+/// setting, or a face's own name for it, a command line's flag).
+pub fn parse_size(field: &str, s: &str) -> Result<usize> {
+    count(field, s, 8, 8192).map(|n| n as usize)
+}
+
+/// A brightness factor, 0.01 to 100.
+pub fn parse_exposure(field: &str, s: &str) -> Result<f64> {
+    number(field, s, 0.01, 100.0, "a factor")
+}
+
+/// A laboratory picture's head shadow, a half-angle of 0 to 60 degrees.
+pub fn parse_head_shadow(field: &str, s: &str) -> Result<f64> {
+    number(field, s, 0.0, 60.0, "a half-angle in degrees (0 = none)")
+}
+
+/// A photograph's gap under the stone, 0 to 10 girdle diameters.
+pub fn parse_ground_gap(field: &str, s: &str) -> Result<f64> {
+    number(field, s, 0.0, 10.0, "girdle diameters")
+}
+
+/// A photograph's light turned about the vertical, −360 to 360 degrees.
+pub fn parse_light_rotation(field: &str, s: &str) -> Result<f64> {
+    number(field, s, -360.0, 360.0, "degrees")
+}
+
+/// A photograph's wavelength bands, 3 to 64.
+pub fn parse_bands(field: &str, s: &str) -> Result<usize> {
+    count(field, s, 3, 64).map(|n| n as usize)
+}
+
+/// A photograph's camera distance, 0 to 100000 mm (its least, three times the stone's width,
+/// is [`PhotoOptions::validate`]'s).
+pub fn parse_distance(field: &str, s: &str) -> Result<f64> {
+    number(field, s, 0.0, 1e5, "millimetres")
+}
+
+/// A picture's settings, each as text (`None`: not given, the light's default).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PictureSettings {
+    /// A laboratory light (iso, cos, aset, idealscope, hearts, arrows, fire) or a
+    /// photographic one (tent, darkfield, daylight, office, ring, studio, `env:FILE`, the map
+    /// read here).
+    pub light: String,
+    /// Pixels per side (8–8192; default 512).
+    pub size: Option<String>,
+    /// `DEG[@AZ]`: the stone tilted DEG degrees toward azimuth AZ.
+    pub tilt: Option<String>,
+    /// Half-angle of the viewer's head shadow, degrees (0–60; laboratory lights only).
+    pub head_shadow: Option<String>,
+    /// Brightness factor (0.01–100; default 1).
+    pub exposure: Option<String>,
+    /// Track polarization.
+    pub polarization: bool,
+    /// `ELEV[@AZ]`: where a photograph's camera looks from (default 30@0).
+    pub view: Option<String>,
+    /// A perspective camera this many mm from the stone's centre (default orthographic).
+    pub distance: Option<String>,
+    /// white, black or none (default).
+    pub ground: Option<String>,
+    /// Height of the stone's lowest point above the ground, girdle diameters (0–10).
+    pub ground_gap: Option<String>,
+    /// The light turned about the vertical, degrees (−360 to 360).
+    pub light_rotation: Option<String>,
+    /// filmic (default) or clip.
+    pub tone: Option<String>,
+    /// Wavelength bands of a dispersive or coloured stone (3–64; default 8).
+    pub bands: Option<String>,
+}
+
+impl PictureSettings {
+    /// The settings of a picture under `light`, every other setting its default.
+    pub fn new(light: &str) -> PictureSettings {
+        PictureSettings {
+            light: light.to_string(),
+            size: None,
+            tilt: None,
+            head_shadow: None,
+            exposure: None,
+            polarization: true,
+            view: None,
+            distance: None,
+            ground: None,
+            ground_gap: None,
+            light_rotation: None,
+            tone: None,
+            bands: None,
+            // (a new field is a new setting: name it in SETTINGS)
+        }
+    }
+
+    /// The photographic settings given, by name ([`PHOTOGRAPHIC`]'s order).
+    fn photographic(&self) -> impl Iterator<Item = &'static str> + '_ {
+        let given = [
+            &self.view,
+            &self.distance,
+            &self.ground,
+            &self.ground_gap,
+            &self.light_rotation,
+            &self.tone,
+            &self.bands,
+        ];
+        PHOTOGRAPHIC
+            .into_iter()
+            .zip(given)
+            .filter(|(_, v)| v.is_some())
+            .map(|(name, _)| name)
+    }
+
+    /// The single picture these settings describe of stones chosen as `stone` (its material
+    /// and, given as a width, its size; each cut's own are [`StoneChoice::stones`]'): a
+    /// laboratory picture or a photograph, by the light. An error names the setting; a
+    /// photographic setting with a laboratory light, or a head shadow with a photographic
+    /// one, is refused.
+    pub fn pictures(&self, stone: &StoneChoice) -> Result<Pictures> {
+        match PhotoLight::parse(&self.light)? {
+            Some(light) => self.photo(light, stone).map(Pictures::Photo),
+            None => {
+                if let Some(name) = self.photographic().next() {
+                    return Err(Error::invalid(
+                        name,
+                        format!(
+                            "is for photographs; give a photographic {} ({} or env:FILE)",
+                            setting(LIGHT),
+                            PhotoLight::names().join(", ")
+                        ),
+                    ));
+                }
+                self.lab(stone).map(Pictures::Lab)
+            }
+        }
+    }
+
+    fn exposure(&self) -> Result<f64> {
+        self.exposure
+            .as_deref()
+            .map_or(Ok(1.0), |x| parse_exposure(EXPOSURE, x))
+    }
+
+    fn size(&self) -> Result<Option<usize>> {
+        self.size
+            .as_deref()
+            .map(|s| parse_size(SIZE, s))
+            .transpose()
+    }
+
+    fn lab(&self, stone: &StoneChoice) -> Result<LabPictures> {
+        let light =
+            Light::parse(self.light.trim().to_ascii_lowercase().as_str()).map_err(|_| {
+                Error::invalid(
+                    LIGHT,
+                    format!(
+                        "`{}` is not allowed; use {}, {} or env:FILE",
+                        self.light,
+                        Light::ALL.map(Light::name).join(", "),
+                        PhotoLight::names().join(", ")
+                    ),
+                )
+            })?;
+        let mut opts = RenderOptions::new(light);
+        if let Some(n) = self.size()? {
+            opts.size = n;
+        }
+        if let Some(t) = &self.tilt {
+            opts.tilt = parse_tilt(TILT, t)?;
+        }
+        opts.head_shadow_deg = self
+            .head_shadow
+            .as_deref()
+            .map(|h| parse_head_shadow(HEAD_SHADOW, h))
+            .transpose()?;
+        opts.material = stone.material.clone();
+        opts.trace.polarization = self.polarization;
+        let exposure = self.exposure()?;
+        opts.validate().map_err(named)?;
+        Ok(LabPictures {
+            opts,
+            rock: None,
+            exposure,
+        })
+    }
+
+    fn photo(&self, light: PhotoLight, stone: &StoneChoice) -> Result<PhotoPictures> {
+        let mut o = PhotoOptions::new(light);
+        if let Some(n) = self.size()? {
+            o.size = n;
+        }
+        if let Some(v) = &self.view {
+            o.view = parse_view(VIEW, v)?;
+        }
+        if let Some(t) = &self.tilt {
+            o.tilt = parse_tilt(TILT, t)?;
+        }
+        if self.head_shadow.is_some() {
+            return Err(Error::invalid(
+                HEAD_SHADOW,
+                "is for the laboratory lights; a photograph's camera casts no head shadow",
+            ));
+        }
+        o.material = stone.material.clone();
+        o.polarization = self.polarization;
+        if let Some(g) = &self.ground {
+            o.ground = Ground {
+                kind: GroundKind::parse(GROUND, g)?,
+                gap: 0.0,
+            };
+        }
+        if let Some(g) = &self.ground_gap {
+            o.ground.gap = parse_ground_gap(GROUND_GAP, g)?;
+        }
+        if let Some(r) = &self.light_rotation {
+            o.light_rotation_deg = parse_light_rotation(LIGHT_ROTATION, r)?;
+        }
+        if let Some(t) = &self.tone {
+            o.tone = Tone::parse(TONE, t)?;
+        }
+        if let Some(b) = &self.bands {
+            o.bands = parse_bands(BANDS, b)?;
+        }
+        if let Some(d) = &self.distance {
+            o.distance_mm = Some(parse_distance(DISTANCE, d)?);
+        }
+        let exposure = self.exposure()?;
+        // The width the stone is seen at (for a perspective camera and absorption).
+        if let StoneSize::Width(w) = stone.size {
+            o.width_mm = w;
+        }
+        o.validate().map_err(named)?;
+        Ok(PhotoPictures {
+            opts: o,
+            turn: None,
+            rock: None,
+            exposure,
+        })
+    }
+}
+
+/// An error of a picture's `validate`, which names the field by the picture's own word
+/// (`view`, `ground-gap`), named by its setting (`picture view`); a field no setting here
+/// sets (the material, the tile) stays as it is.
+fn named(e: Error) -> Error {
+    match e {
+        Error::Invalid { field, message } => {
+            let name = format!("picture {field}");
+            let field = if SETTINGS.contains(&name.as_str()) {
+                name
+            } else {
+                field
+            };
+            Error::Invalid { field, message }
+        }
+        other => other,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::optics::Material;
+
+    fn stone() -> StoneChoice {
+        let fields = crate::optics::ColourFields {
+            colour: "colour",
+            density: "colour_density",
+        };
+        StoneChoice::new(Material::diamond(), false, None, None, fields).unwrap()
+    }
+
+    fn error(s: &PictureSettings) -> String {
+        s.pictures(&stone()).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn the_light_chooses_a_laboratory_picture_or_a_photograph() {
+        let mut s = PictureSettings::new("aset");
+        s.tilt = Some("10@45".into());
+        s.size = Some("64".into());
+        match s.pictures(&stone()).unwrap() {
+            Pictures::Lab(p) => {
+                assert_eq!(p.opts.light, Light::Aset);
+                assert_eq!((p.opts.size, p.opts.tilt.tilt_deg), (64, 10.0));
+                assert_eq!(p.opts.tilt.azimuth_deg, 45.0);
+                assert_eq!(p.exposure, 1.0);
+            }
+            other => panic!("{other:?}"),
+        }
+        let mut s = PictureSettings::new("Tent");
+        s.view = Some("60@90".into());
+        s.ground = Some("white".into());
+        s.ground_gap = Some("0.5".into());
+        s.tone = Some("clip".into());
+        s.bands = Some("12".into());
+        s.exposure = Some("2".into());
+        s.distance = Some("100".into());
+        match s.pictures(&stone()).unwrap() {
+            Pictures::Photo(p) => {
+                let o = &p.opts;
+                assert_eq!(o.light.name(), "tent");
+                assert_eq!((o.view.elevation_deg, o.view.azimuth_deg), (60.0, 90.0));
+                assert_eq!((o.ground.kind, o.ground.gap), (GroundKind::White, 0.5));
+                assert_eq!(
+                    (o.tone, o.bands, o.distance_mm),
+                    (Tone::Clip, 12, Some(100.0))
+                );
+                assert_eq!(p.exposure, 2.0);
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn every_error_names_its_setting() {
+        type Change = fn(&mut PictureSettings);
+        let cases: [(&str, Change); 9] = [
+            ("picture light: `sunset` is not allowed; use iso, cos, aset, idealscope, hearts, arrows, fire, tent, darkfield, daylight, office, ring, studio or env:FILE", |s| s.light = "sunset".into()),
+            ("picture size: `4` is not allowed; give a whole number from 8 to 8192", |s| s.size = Some("4".into())),
+            ("picture view: ", |s| { s.light = "tent".into(); s.view = Some("95".into()) }),
+            ("picture ground-gap: `11` is not allowed; give girdle diameters in [0, 10]", |s| { s.light = "ring".into(); s.ground_gap = Some("11".into()) }),
+            ("picture ground: ", |s| { s.light = "ring".into(); s.ground = Some("grass".into()) }),
+            ("picture tone: ", |s| { s.light = "ring".into(); s.tone = Some("sepia".into()) }),
+            ("picture head-shadow: is for the laboratory lights; a photograph's camera casts no head shadow", |s| { s.light = "ring".into(); s.head_shadow = Some("5".into()) }),
+            ("picture distance: 10 mm is out of range; allowed 19.5 mm", |s| { s.light = "ring".into(); s.distance = Some("10".into()) }),
+            ("picture bands: is for photographs; give a photographic picture light (tent, darkfield, daylight, office, ring, studio or env:FILE)", |s| s.bands = Some("8".into())),
+        ];
+        for (want, set) in cases {
+            let mut s = PictureSettings::new("iso");
+            set(&mut s);
+            let got = error(&s);
+            assert!(got.starts_with(want), "{got}\nwanted {want}");
+        }
+    }
+}
