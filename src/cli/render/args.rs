@@ -2,6 +2,7 @@
 
 use super::photo;
 use crate::cli::flags;
+use facetlab::plot::render::settings as picture;
 use facetlab::render::pose::{parse_rock, parse_tilt};
 use facetlab::render::Tilt;
 use std::path::PathBuf;
@@ -34,9 +35,9 @@ pub struct RenderArgs {
         default_value = "512",
         value_name = "PX",
         allow_hyphen_values = true,
-        value_parser = flags::whole("--size", 8, 8192)
+        value_parser = flags::parsed("--size", picture::parse_size)
     )]
-    pub size: u64,
+    pub size: usize,
     /// Tilt the stone DEG degrees (−90 to 90) toward azimuth AZ (degrees from +x, default 0):
     /// `--tilt 10@45`.
     #[arg(long, value_name = "DEG[@AZ]", allow_hyphen_values = true, value_parser = flags::parsed("--tilt", parse_tilt))]
@@ -44,7 +45,7 @@ pub struct RenderArgs {
     /// Half-angle of the viewer's head shadow, the ASET port, the IdealScope head or the hearts
     /// & arrows viewer's dark tube, degrees (0–60; default 10 for aset and idealscope, 20 for
     /// arrows, 6 for hearts, 0 otherwise).
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = flags::real("--head-shadow", 0.0, 60.0, "a half-angle in degrees (0 = none)"))]
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = flags::parsed("--head-shadow", picture::parse_head_shadow))]
     pub head_shadow: Option<f64>,
     #[command(flatten)]
     pub material: flags::MaterialArgs,
@@ -69,7 +70,7 @@ pub struct RenderArgs {
         default_value = "1",
         value_name = "X",
         allow_hyphen_values = true,
-        value_parser = flags::real("--exposure", 0.01, 100.0, "a factor")
+        value_parser = flags::parsed("--exposure", picture::parse_exposure)
     )]
     pub exposure: f64,
     /// Write the statistics as JSON to this file (keys in the README).

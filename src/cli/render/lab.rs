@@ -60,7 +60,7 @@ pub fn settings(a: &RenderArgs) -> Result<(LabPictures, StoneChoice)> {
         )
     })?;
     let mut opts = RenderOptions::new(light);
-    opts.size = a.size as usize;
+    opts.size = a.size;
     if let Some(t) = a.tilt {
         opts.tilt = t;
     }

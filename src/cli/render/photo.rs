@@ -9,7 +9,7 @@ use crate::cli::flags;
 use facetlab::error::{Error, Result};
 use facetlab::io::guard::{cut_files, PictureFiles};
 use facetlab::metrics::StoneChoice;
-use facetlab::plot::render::PhotoPictures;
+use facetlab::plot::render::{settings as picture, PhotoPictures};
 use facetlab::render::photo::{
     parse_view, Ground, GroundKind, PhotoLight, PhotoOptions, Tone, View,
 };
@@ -25,7 +25,7 @@ pub struct PhotoArgs {
     pub view: Option<View>,
     /// Photographs: a perspective camera this many mm from the stone's centre (the stone's
     /// width from --diameter-mm, default 6.5 mm); default: orthographic.
-    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = flags::real("--distance", 0.0, 1e5, "millimetres"))]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = flags::parsed("--distance", picture::parse_distance))]
     pub distance: Option<f64>,
     /// Photographs: the ground the stone rests on, culet-down: white (paper), black
     /// (velvet) or none (default), with its shadow and caustics.
@@ -37,11 +37,11 @@ pub struct PhotoArgs {
     pub ground: Option<GroundKind>,
     /// Photographs: height of the stone's lowest point above the ground, girdle diameters
     /// (0–10; default 0: resting on it).
-    #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = flags::real("--ground-gap", 0.0, 10.0, "girdle diameters"))]
+    #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = flags::parsed("--ground-gap", picture::parse_ground_gap))]
     pub ground_gap: Option<f64>,
     /// Photographs: turn the light about the vertical, degrees (counter-clockwise seen from
     /// above).
-    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = flags::real("--light-rotation", -360.0, 360.0, "degrees"))]
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = flags::parsed("--light-rotation", picture::parse_light_rotation))]
     pub light_rotation: Option<f64>,
     /// Photographs: a turntable animation of FRAMES frames (2–360), the stone turned a full
     /// circle under the camera and lights.
@@ -56,8 +56,8 @@ pub struct PhotoArgs {
     #[arg(long, value_name = "FILE.exr")]
     pub hdr_out: Option<PathBuf>,
     /// Photographs: wavelength bands of a dispersive or coloured stone (3–64; default 8).
-    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = flags::whole("--bands", 3, 64))]
-    pub bands: Option<u64>,
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = flags::parsed("--bands", picture::parse_bands))]
+    pub bands: Option<usize>,
 }
 
 impl PhotoArgs {
@@ -84,7 +84,7 @@ impl PhotoArgs {
 pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<(PhotoPictures, StoneChoice)> {
     let p = &a.photo;
     let mut o = PhotoOptions::new(light);
-    o.size = a.size as usize;
+    o.size = a.size;
     if let Some(v) = p.view {
         o.view = v;
     }
@@ -117,7 +117,7 @@ pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<(PhotoPictures, Sto
         o.tone = t;
     }
     if let Some(b) = p.bands {
-        o.bands = b as usize;
+        o.bands = b;
     }
     if p.distance.is_some() {
         o.distance_mm = p.distance;
