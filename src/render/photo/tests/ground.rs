@@ -137,7 +137,8 @@ fn caustic_power_and_shadow_area() {
 }
 
 /// A birefringent stone's caustic lands too (both rays' exits leaving downward, exact beams
-/// as polygons and narrow beams' rays as dots): in the isotropic limit (n_e = n_o + 1e-9, so
+/// as polygons and narrow beams' rays as dots; the singly refractive trace's narrow beams
+/// land over their cross-sections): in the isotropic limit (n_e = n_o + 1e-9, so
 /// traced as a crystal) the ground is the singly refractive stone's within the narrow-beam
 /// approximation (caustic and escaping light to 1e-3, the pattern on 16 × 16 blocks to 6 % in L1: 4.5,
 /// 3.5 and 2.5 % at split thresholds 1e-5, 1e-6 and 1e-7, shrinking with the narrow beams), and a zircon
@@ -169,8 +170,9 @@ fn birefringent_caustic_lands_on_the_ground() {
     // the narrow-beam approximation, not to rounding.
     assert!((a.caustic - b.caustic).abs() < 1e-3 * phi, "{a:?} vs {b:?}");
     assert!((a.escaped - b.escaped).abs() < 1e-3 * phi, "{a:?} vs {b:?}");
-    // The pattern on a coarse grid (16 × 16 blocks of 8 × 8 cells): a narrow beam lands as a
-    // dot of half a cell, so cell by cell the two differ where their rays differ.
+    // The pattern on a coarse grid (16 × 16 blocks of 8 × 8 cells): the crystal's narrow
+    // beams land as dots of half a cell, so cell by cell the two differ where their rays
+    // differ.
     let h = iso.cell();
     let blocks = |f: &GroundField| {
         let mut b = vec![0.0; 256];
