@@ -27,6 +27,9 @@ struct RayAt {
     path: f64,
     /// Where the ray meets the facet.
     x: DVec3,
+    /// The exit's place is the narrow beam's polygon carried along (`Work::ray_poly`), not
+    /// the point `x` ([`ExitSink::wants_narrow_polygons`]).
+    poly: bool,
 }
 
 impl Stone {
@@ -61,6 +64,12 @@ impl Stone {
             beam.node,
         );
         let mut path = if cx.alpha > 0.0 { beam.path.at(x) } else { 0.0 };
+        // The narrow beam's polygon (in `w.cur`, on its facet's plane), carried along.
+        let poly = sink.wants_exit_places() && sink.wants_narrow_polygons();
+        w.ray_poly.clear();
+        if poly {
+            w.ray_poly.extend_from_slice(&w.cur);
+        }
         loop {
             let Some((g, best)) = self.exit_facet(x, t, facet) else {
                 w.st.cut_off += s.x;
@@ -68,6 +77,14 @@ impl Stone {
             };
             x += t * best.max(0.0);
             path += best.max(0.0);
+            if poly {
+                // Slid along the ray onto facet g's plane (unclipped).
+                let (n, o) = (self.normals[g], self.offsets[g]);
+                let cos = n.dot(t);
+                for p in w.ray_poly.iter_mut() {
+                    *p += t * ((o - n.dot(*p)) / cos);
+                }
+            }
             let at = RayAt {
                 path,
                 x,
@@ -78,6 +95,7 @@ impl Stone {
                 depth,
                 prev,
                 late: s.x <= 0.5 * p0,
+                poly,
             };
             let Some((sr, ax, node)) = self.ray_cross(beam.entry, at, floor, cx, w, sink) else {
                 return;
@@ -126,7 +144,9 @@ impl Stone {
             late: at.late,
             node,
         };
-        let (sr, ax) = cross(cx, meet, origin, &w.foot, &[at.x], &mut w.st, sink);
+        let one = [at.x];
+        let place: &[DVec3] = if at.poly { &w.ray_poly } else { &one };
+        let (sr, ax) = cross(cx, meet, origin, &w.foot, place, &mut w.st, sink);
         let depth = at.depth + 1;
         if sr.x.is_nan() || sr.x <= 0.0 || sr.x < floor || depth > cx.max_depth {
             w.st.cut_off += sr.x.max(0.0);
@@ -213,6 +233,7 @@ impl Stone {
                     late: s_in.x <= 0.5 * share * p0,
                     path: path + along,
                     x: y,
+                    poly: false,
                 };
                 if let Some((sr, axis, node)) = self.ray_cross(beam.entry, at, floor, cx, w, sink) {
                     w.parts.push(Part {

@@ -32,10 +32,20 @@ pub(crate) trait ExitSink {
     fn wants_exit_places(&self) -> bool {
         false
     }
+    /// Whether a narrow beam's ray should give, as its exit's place, its narrow beam's
+    /// polygon carried along the ray to the exit facet's plane (slid along each segment,
+    /// unclipped: the cross-section it stands for) instead of one point. Only asked when
+    /// [`ExitSink::wants_exit_places`]; singly refractive traces without
+    /// [`TraceOptions::narrow_forks`](super::TraceOptions::narrow_forks) (others give the
+    /// point). Default: no.
+    fn wants_narrow_polygons(&self) -> bool {
+        false
+    }
     /// One exit beam with its footprint and where it leaves the stone (stone coordinates):
     /// the polygon it crosses the exit facet's plane in, vertex for vertex the footprint's
     /// (each footprint vertex's ray leaves there), or one point, where a narrow beam's ray
-    /// leaves (its footprint is the whole narrow beam's). `place` is empty unless
+    /// leaves (its footprint is the whole narrow beam's; its polygon carried there instead
+    /// when [`ExitSink::wants_narrow_polygons`]). `place` is empty unless
     /// [`ExitSink::wants_exit_places`]. The tracer hands every exit out through this; by
     /// default it is [`ExitSink::exit`].
     #[inline(always)]

@@ -84,6 +84,9 @@ impl<S: ExitSink> ExitSink for SymSink<'_, S> {
     fn wants_exit_places(&self) -> bool {
         self.inner.wants_exit_places()
     }
+    fn wants_narrow_polygons(&self) -> bool {
+        self.inner.wants_narrow_polygons()
+    }
     fn exit(&mut self, e: &ExitBeam, fp: &[DVec2]) {
         self.exit_at(e, fp, &[]);
     }

@@ -98,6 +98,8 @@ pub(super) struct Work {
     pub(super) children: Vec<Child>,
     pub(super) cpts: Vec<DVec2>,
     pub(super) foot: Vec<DVec2>,
+    /// A narrow beam's polygon carried along its ray (when the sink wants it as the place).
+    pub(super) ray_poly: Vec<DVec3>,
     /// Exponents `−α L` at the vertices of `cur` (when absorbing).
     pub(super) phi: Vec<f64>,
     pub(super) nodes: Vec<(u32, u32)>,
@@ -157,6 +159,7 @@ impl Stone {
             children: Vec::with_capacity(self.normals.len()),
             cpts: Vec::with_capacity(256),
             foot: Vec::with_capacity(32),
+            ray_poly: Vec::new(),
             phi: Vec::with_capacity(32),
             nodes: Vec::with_capacity(4096),
             parts: Vec::with_capacity(32),

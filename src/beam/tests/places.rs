@@ -8,10 +8,12 @@ use crate::optics::refract;
 use crate::testkit::{boxed, tolkowsky};
 use glam::{DVec2, DVec3, DVec4};
 
-/// Keeps every exit with its footprint and place.
+/// Keeps every exit with its footprint and place (narrow beams' as their polygons when
+/// `polygons`).
 #[derive(Default)]
 struct Places {
     exits: Vec<(ExitBeam, Vec<DVec2>, Vec<DVec3>)>,
+    polygons: bool,
 }
 
 impl ExitSink for Places {
@@ -20,6 +22,9 @@ impl ExitSink for Places {
     }
     fn wants_exit_places(&self) -> bool {
         true
+    }
+    fn wants_narrow_polygons(&self) -> bool {
+        self.polygons
     }
     fn exit(&mut self, _: &ExitBeam, _: &[DVec2]) {
         unreachable!("the tracer hands exits out with their places");
@@ -60,6 +65,63 @@ fn straight_through_places_follow_snell() {
         checked += 1;
     }
     assert!(checked > 0);
+}
+
+/// A narrow beam's polygon carried along its ray ([`ExitSink::wants_narrow_polygons`]):
+/// through a tilted box with every beam narrow (split threshold above the light), the light
+/// straight through leaves the bottom in the whole top face slid along the refracted ray
+/// (Snell's law computed here): its vertices there, its area the top's (1), its centroid
+/// the one-point place; and every narrow place, reflected ones too, lies on its exit facet.
+#[test]
+fn narrow_polygons_are_carried_to_the_exit() {
+    let solid = boxed(0.5, 0.5, 0.2);
+    let stone = Stone::new(&solid);
+    let frame = Frame::new(DVec3::new(0.3, -0.2, -1.0)).unwrap();
+    let ri = 1.7;
+    let opts = TraceOptions {
+        split_threshold: 2.0,
+        symmetry: false,
+        ..TraceOptions::default()
+    };
+    let mut points = Places::default();
+    stone.trace_window_into(&frame, ri, &opts, &[], &mut points, false);
+    let mut polys = Places {
+        polygons: true,
+        ..Places::default()
+    };
+    stone.trace_window_into(&frame, ri, &opts, &[], &mut polys, false);
+    assert_eq!(points.exits.len(), polys.exits.len());
+    let t = refract(frame.dir, DVec3::Z, 1.0, ri).unwrap();
+    let mut checked = 0;
+    for ((e, _, one), (f, _, poly)) in points.exits.iter().zip(&polys.exits) {
+        assert_eq!(e.exit_facet, f.exit_facet);
+        if e.external {
+            continue;
+        }
+        assert!(
+            e.narrow && one.len() == 1 && poly.len() >= 3,
+            "{e:?} {poly:?}"
+        );
+        let n = solid.facets()[e.exit_facet].plane.normal;
+        let o = solid.facets()[e.exit_facet].plane.offset;
+        for x in poly {
+            assert!((n.dot(*x) - o).abs() < 1e-12);
+        }
+        if e.reflections != 0 || n.z > -0.5 {
+            continue;
+        }
+        let xy: Vec<DVec2> = poly.iter().map(|x| x.truncate()).collect();
+        let area = crate::geometry::clip2d::area(&xy);
+        assert!((area - 1.0).abs() < 1e-12, "{area}");
+        let c = crate::geometry::clip2d::centroid(&xy).unwrap();
+        assert!((c - one[0].truncate()).length() < 1e-12, "{c} {}", one[0]);
+        for x in poly {
+            let top = *x + t * ((0.2 - x.z) / t.z);
+            assert!((top.x.abs() - 0.5).abs() < 1e-12 && (top.y.abs() - 0.5).abs() < 1e-12);
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, 1);
 }
 
 /// Every exit's place lies on its exit facet's plane; an exact beam's has its footprint's

@@ -139,7 +139,9 @@ pub struct PhotoOptions {
     pub trace: TraceOptions,
     /// Split threshold of a face-up orthographic view (the scores' and `render`'s).
     pub face_up_split_threshold: f64,
-    /// Tracer settings of the lights' traces for the ground.
+    /// Tracer settings of the lights' traces for the ground (default: split at 5e-4, its
+    /// narrow beams landing over their own cross-sections; a birefringent stone's at 1e-4 at
+    /// most, its narrow beams landing on dots).
     pub ground_trace: TraceOptions,
     /// How linear radiance becomes display values.
     pub tone: Tone,
@@ -175,7 +177,7 @@ impl PhotoOptions {
             },
             face_up_split_threshold: crate::render::RenderOptions::FACE_UP_SPLIT_THRESHOLD,
             ground_trace: TraceOptions {
-                split_threshold: 1e-4,
+                split_threshold: 5e-4,
                 threshold: 1e-7,
                 ray_floor: 0.02,
                 ..TraceOptions::default()
