@@ -3,7 +3,7 @@
 //! or a photograph's ([`PhotoRecord`], with [`PhotoFrame`] per frame of a turntable or rock).
 //! One cut is written as its object, several as an array of them in the order given.
 
-use crate::optics::{Dispersion, Material};
+use crate::optics::Dispersion;
 use crate::render::photo::{GroundStats, PhotoOptions, PhotoStats, View};
 use crate::render::{RenderOptions, Stats, Tilt};
 use serde::Serialize;
@@ -119,15 +119,14 @@ pub struct CutJson {
 }
 
 impl CutJson {
-    /// Cut `name` (given as `input`) drawn with `opts` (its own material and width; the pose
-    /// of frame 0) in `frames` (frame 0 first, at least one), the document naming `named` as
-    /// its material (the one chosen for every cut), with exposure `exposure` and the rock's
+    /// Cut `name` (given as `input`) drawn with `opts` (its own material, the one it is traced
+    /// in, and width; the pose of frame 0) in `frames` (frame 0 first, at least one), with
+    /// exposure `exposure` and the rock's
     /// amplitude `rock_deg` (its frames are listed only with a rock). `output` is empty until
     /// the caller writes the picture.
     pub fn new(
         (name, input): (&str, &str),
         opts: &RenderOptions,
-        named: &Material,
         exposure: f64,
         frames: Vec<FrameJson>,
         rock_deg: Option<f64>,
@@ -146,8 +145,8 @@ impl CutJson {
             tilt_deg: f0.tilt_deg,
             azimuth_deg: f0.azimuth_deg,
             head_shadow_deg: opts.head_shadow(),
-            material: named.name.clone(),
-            ri: match named.dispersion {
+            material: opts.material.name.clone(),
+            ri: match opts.material.dispersion {
                 Dispersion::Constant(n) => Some(n),
                 _ => None,
             },

@@ -166,16 +166,7 @@ fn draw(
             };
             let img = render::render(&cut.solid, &opts);
             let frame = FrameJson::new(0, opts.tilt, &img.stats, t0.elapsed().as_secs_f64());
-            // The document names the material the cut is traced in (the command line's names
-            // the one chosen for every cut: diamond for a design traced in its own index).
-            let record = CutJson::new(
-                (&cut.name, input),
-                &opts,
-                &opts.material,
-                p.exposure,
-                vec![frame],
-                None,
-            );
+            let record = CutJson::new((&cut.name, input), &opts, p.exposure, vec![frame], None);
             (
                 Picture::Lab(Box::new(img)),
                 p.exposure,

@@ -106,6 +106,16 @@ fn a_design_is_traced_in_its_own_material_unless_told_otherwise() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("traced as quartz"), "{err}");
     assert!(String::from_utf8_lossy(&out.stdout).contains("material quartz"));
+    // render's record names the material the design is traced in, as info's does.
+    ok(
+        p,
+        &[
+            "render", "star.asc", "--size", "32", "--json", "r.json", "-o", "r.png",
+        ],
+    );
+    let j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(p.join("r.json")).unwrap()).unwrap();
+    assert_eq!(j["material"], "quartz", "{j}");
     // An index without a listed stone: ri:N with generic dispersion.
     std::fs::write(p.join("t161.asc"), QUARTZ_STAR.replace("I 1.54", "I 1.61")).unwrap();
     let j: serde_json::Value =

@@ -316,7 +316,6 @@ fn draw_lab(
                 ..CutJson::new(
                     (&cut.name, input),
                     &opts,
-                    &s.opts.material,
                     s.exposure,
                     fr,
                     s.rock.map(|r| r.0),
