@@ -45,18 +45,11 @@ impl StoneArgs {
     }
 }
 
-/// Refuse to replace an existing `path` unless `overwrite` (the package's `--force`).
+/// Check a file a call writes (`path`) before any work: not a folder, replaced only with
+/// `overwrite=True`, its folder present and writable (the library's check, as the command
+/// line's outputs; its settings spelled as keywords, [`super::keywords::SETTINGS`]).
 pub(crate) fn refuse_existing(path: &std::path::Path, overwrite: bool) -> Result<()> {
-    if path.exists() && !overwrite {
-        return Err(Error::invalid(
-            "path",
-            format!(
-                "{} exists; pass overwrite=True to replace it",
-                path.display()
-            ),
-        ));
-    }
-    Ok(())
+    crate::io::guard::check_new_file(crate::io::guard::setting::OUTPUT, path, overwrite)
 }
 
 /// Where a Python call takes a stone's settings: its keyword arguments.
