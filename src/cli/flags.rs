@@ -46,6 +46,10 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("cut parameter", "--set"),
     // A picture's settings (render's and photo's options), which the library names by the
     // picture's own words; [`picture_to_flags`] looks them up as `picture FIELD`.
+    ("picture light", "--light"),
+    ("picture exposure", "--exposure"),
+    ("picture ground", "--ground"),
+    ("picture tone", "--tone"),
     ("picture size", "--size"),
     ("picture tilt", "--tilt"),
     ("picture head-shadow", "--head-shadow"),

@@ -2,7 +2,8 @@
 //! a laboratory light or photographed under a studio rig, a map or `env:FILE`, with its linear
 //! values, its sRGB bytes and its statistics (the `render --json` document's keys, from
 //! [`crate::document::render`]). The picture's settings are read by the library's one parse of
-//! them, the command line's ([`PictureSettings`]); its errors name the keyword argument.
+//! them ([`PictureText::parse`]) into the settings the command line's pictures are made from
+//! too ([`PictureSettings`]); its errors name the keyword argument.
 
 use super::cuts::cut_of;
 use super::keywords::{self, Keywords};
@@ -11,7 +12,7 @@ use super::stone::{refuse_existing, StoneArgs};
 use crate::document::render::{CutJson, FrameJson, PhotoFrame, PhotoRecord};
 use crate::error::{Error, Result};
 use crate::plot::palette::PICTURE_GROUND;
-use crate::plot::render::{PictureSettings, Pictures};
+use crate::plot::render::{PictureSettings, PictureText, Pictures};
 use crate::render::photo::{Photo, PhotoOptions, Tone};
 use crate::render::{self, Image, RenderOptions};
 use numpy::{PyArray1, PyArrayMethods};
@@ -224,7 +225,7 @@ fn render_cut(
     kwargs: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyRender> {
     let kw = Keywords::parse("render", &keywords::RENDER, kwargs)?;
-    let settings = PictureSettings {
+    let settings = PictureText {
         light: kw.str("light")?,
         size: kw.text("size")?,
         // A number of degrees, or the command line's DEG@AZ text (and ELEV@AZ).
@@ -244,7 +245,7 @@ fn render_cut(
     let float64 = kw.bool("float64")?;
     let input = super::cuts::input_of(cut)?;
     let c = cut_of(cut)?;
-    let (picture, exposure, stats) = run(py, || draw(&c, &input, &settings, &stone))?;
+    let (picture, exposure, stats) = run(py, || draw(&c, &input, &settings.parse()?, &stone))?;
     Ok(PyRender {
         picture,
         exposure,

@@ -30,14 +30,13 @@
 //! `exits`, `elapsed_s`; the top-level statistics are frame 0's (the centre of the rock).
 
 mod args;
-mod lab;
 mod photo;
 mod run;
+mod settings;
 
 pub use args::RenderArgs;
-pub use lab::settings;
-use lab::{check_animation, check_rock};
 pub use run::run;
+pub use settings::settings_under;
 
 #[cfg(test)]
 mod tests;

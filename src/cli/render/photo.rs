@@ -1,18 +1,16 @@
 //! `facetlab render CUT... --light tent|darkfield|daylight|office|ring|studio|env:FILE`:
 //! photographs of stones ([`facetlab::render::photo`]), side by side, each captioned; with
 //! `--turn FRAMES` (or `--rock`) an animation, as animated PNG or GIF (by `-o`'s extension).
-//! The flags are parsed here into [`PhotoOptions`]; the pictures, captions and JSON records
+//! The flags are parsed here into the library's picture settings (`super::settings`); the
+//! pictures, captions and JSON records
 //! come from the library ([`facetlab::plot::render::draw`]).
 
-use super::{check_animation, check_rock, RenderArgs};
+use super::RenderArgs;
 use crate::cli::flags;
-use facetlab::error::{Error, Result};
+use facetlab::error::Result;
 use facetlab::io::guard::{cut_files, PictureFiles};
-use facetlab::metrics::StoneChoice;
-use facetlab::plot::render::{settings as picture, PhotoPictures};
-use facetlab::render::photo::{
-    parse_view, Ground, GroundKind, PhotoLight, PhotoOptions, Tone, View,
-};
+use facetlab::plot::render::settings as picture;
+use facetlab::render::photo::{parse_view, GroundKind, Tone, View};
 use std::path::PathBuf;
 
 /// The photographic flags of `render` (they need a photographic `--light`).
@@ -78,80 +76,6 @@ impl PhotoArgs {
         .find(|x| x.0)
         .map(|x| x.1)
     }
-}
-
-/// Validate the flags into the library's options: the photographs and the stones.
-pub fn settings(a: &RenderArgs, light: PhotoLight) -> Result<(PhotoPictures, StoneChoice)> {
-    let p = &a.photo;
-    let mut o = PhotoOptions::new(light);
-    o.size = a.size;
-    if let Some(v) = p.view {
-        o.view = v;
-    }
-    if let Some(t) = a.tilt {
-        o.tilt = t;
-    }
-    if a.head_shadow.is_some() {
-        return Err(Error::invalid(
-            "--head-shadow",
-            "is for the laboratory lights; a photograph's camera casts no head shadow",
-        ));
-    }
-    let mut stone = flags::stone_choice(a.material.material()?, &a.material, &a.colour, None)?;
-    o.material = stone.material.clone();
-    // A birefringent stone is photographed as it is traced elsewhere: its crystal settings
-    // (--birefringence, --optic-axis, --colour-e) apply, its note giving the indices at the
-    // sodium D line.
-    stone.crystal = Some(a.crystal.choice(facetlab::metrics::REFERENCE_WAVELENGTH_NM));
-    o.polarization = a.polarization;
-    if let Some(kind) = p.ground {
-        o.ground = Ground { kind, gap: 0.0 };
-    }
-    if let Some(g) = p.ground_gap {
-        o.ground.gap = g;
-    }
-    if let Some(r) = p.light_rotation {
-        o.light_rotation_deg = r;
-    }
-    if let Some(t) = p.tone {
-        o.tone = t;
-    }
-    if let Some(b) = p.bands {
-        o.bands = b;
-    }
-    if p.distance.is_some() {
-        o.distance_mm = p.distance;
-    }
-    let turn = p.turn.map(|n| n as usize);
-    let rock = a.rock;
-    if turn.is_some() && rock.is_some() {
-        return Err(Error::invalid(
-            "--turn",
-            "give either --turn (a turntable) or --rock, not both",
-        ));
-    }
-    check_rock(o.tilt, rock)?;
-    let frames = turn.or(rock.map(|r| r.1)).unwrap_or(1);
-    if frames > 1 {
-        let flag = if turn.is_some() { "--turn" } else { "--rock" };
-        check_animation(flag, frames, a.cuts.len(), o.size)?;
-    }
-    let exposure = a.exposure;
-    // The width the stone is seen at (for a perspective camera and absorption).
-    if let facetlab::optics::StoneSize::Width(w) = stone.size {
-        o.width_mm = w;
-    }
-    o.validate()
-        .map_err(|e| flags::picture_to_flags(e, &a.material))?;
-    Ok((
-        PhotoPictures {
-            opts: o,
-            turn,
-            rock,
-            exposure,
-        },
-        stone,
-    ))
 }
 
 /// Check a photograph's outputs before any work ([`PictureFiles::check_photograph`]).

@@ -1,7 +1,7 @@
 //! `facetlab render`: its outputs checked, its progress bar and the stones' notes, and the one
 //! library call that draws.
 
-use super::{photo, settings, RenderArgs};
+use super::{photo, settings_under, RenderArgs};
 use crate::cli::flags;
 use facetlab::error::{Error, Result};
 use facetlab::io::guard::{cut_files, PictureFiles};
@@ -50,30 +50,28 @@ impl Progress for Bar {
 
 /// Run `facetlab render`.
 pub fn run(a: &RenderArgs) -> Result<()> {
-    let (pictures, stone) = match facetlab::render::photo::PhotoLight::parse(&a.light)? {
-        Some(light) => {
-            let (p, stone) = photo::settings(a, light)?;
+    let light = facetlab::render::photo::PhotoLight::parse(&a.light)?;
+    if light.is_none() {
+        if let Some(flag) = a.photo.first_given() {
+            return Err(Error::invalid(
+                flag,
+                format!(
+                    "is for photographs; give a photographic --light ({} or env:FILE)",
+                    facetlab::render::photo::PhotoLight::names().join(", ")
+                ),
+            ));
+        }
+    }
+    let (pictures, stone) = settings_under(a, light)?;
+    match &pictures {
+        Pictures::Photo(p) => {
             photo::check_outputs(a)?;
             if p.frames() > 1 && a.photo.hdr_out.is_some() && a.cuts.len() > 1 {
                 eprintln!("note: --hdr-out writes frame 0 of the first cut");
             }
-            (Pictures::Photo(p), stone)
         }
-        None => {
-            if let Some(flag) = a.photo.first_given() {
-                return Err(Error::invalid(
-                    flag,
-                    format!(
-                        "is for photographs; give a photographic --light ({} or env:FILE)",
-                        facetlab::render::photo::PhotoLight::names().join(", ")
-                    ),
-                ));
-            }
-            let (p, stone) = settings(a)?;
-            check_outputs(a)?;
-            (Pictures::Lab(p), stone)
-        }
-    };
+        Pictures::Lab(_) => check_outputs(a)?,
+    }
     let cuts = a
         .cuts
         .iter()

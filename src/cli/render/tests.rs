@@ -16,6 +16,20 @@ fn parse(extra: &[&str]) -> RenderArgs {
     Cli::try_parse_from(v).unwrap().args
 }
 
+/// A laboratory picture's settings from the flags (as `run` reads them).
+fn settings(
+    a: &RenderArgs,
+) -> facetlab::error::Result<(
+    facetlab::plot::render::LabPictures,
+    facetlab::metrics::StoneChoice,
+)> {
+    let light = facetlab::render::photo::PhotoLight::parse(&a.light)?;
+    settings_under(a, light).map(|(p, stone)| match p {
+        facetlab::plot::render::Pictures::Lab(p) => (p, stone),
+        facetlab::plot::render::Pictures::Photo(_) => panic!("a photograph"),
+    })
+}
+
 /// The line a user sees for `extra`: a typed flag's refusal, else the settings' error.
 fn first_error(extra: &[&str]) -> String {
     let mut v = vec!["render", "tolkowsky", "-o", "x.png"];

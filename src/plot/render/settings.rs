@@ -1,7 +1,8 @@
-//! A picture's settings as a face gives them, each by its name and as text (the command
-//! line's flag values, the Python package's keyword arguments written out), turned into the
-//! library's options by one parse ([`PictureSettings::pictures`]): a laboratory picture
-//! ([`LabPictures`]) or a photograph ([`PhotoPictures`]), by the light.
+//! A picture's settings as a face gives them, turned into the library's options in one place
+//! ([`PictureSettings::pictures`]): a laboratory picture ([`LabPictures`]) or a photograph
+//! ([`PhotoPictures`]), by the light. The command line fills [`PictureSettings`] from its
+//! typed flags; the Python package writes its keyword arguments out as text
+//! ([`PictureText`]), read by [`PictureText::parse`].
 //!
 //! Each value is read by the library's own parsers, the ones the command line's flags call
 //! ([`parse_tilt`], [`parse_view`], [`GroundKind::parse`], [`Tone::parse`]) and those here
@@ -15,9 +16,9 @@ use crate::error::{setting, Error, Result};
 use crate::io::text::{count, number};
 use crate::metrics::StoneChoice;
 use crate::optics::StoneSize;
-use crate::render::photo::{parse_view, Ground, GroundKind, PhotoLight, PhotoOptions, Tone};
+use crate::render::photo::{parse_view, Ground, GroundKind, PhotoLight, PhotoOptions, Tone, View};
 use crate::render::pose::parse_tilt;
-use crate::render::{Light, RenderOptions};
+use crate::render::{Light, RenderOptions, Tilt};
 
 /// The light (a laboratory light, a photographic rig, `studio` or `env:FILE`).
 pub const LIGHT: &str = "picture light";
@@ -111,37 +112,111 @@ pub fn parse_distance(field: &str, s: &str) -> Result<f64> {
     number(field, s, 0.0, 1e5, "millimetres")
 }
 
-/// A picture's settings, each as text (`None`: not given, the light's default).
+/// A picture's settings as the library's values (`None`: not given, the light's default),
+/// turned into options by [`PictureSettings::pictures`]. The command line fills them from
+/// its typed flags; the Python package from its keywords through [`PictureText::parse`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct PictureSettings {
     /// A laboratory light (iso, cos, aset, idealscope, hearts, arrows, fire) or a
     /// photographic one (tent, darkfield, daylight, office, ring, studio, `env:FILE`, the map
-    /// read here).
+    /// read by [`PictureSettings::pictures`]).
     pub light: String,
     /// Pixels per side (8–8192; default 512).
-    pub size: Option<String>,
-    /// `DEG[@AZ]`: the stone tilted DEG degrees toward azimuth AZ.
-    pub tilt: Option<String>,
+    pub size: Option<usize>,
+    /// The stone tilted toward an azimuth.
+    pub tilt: Option<Tilt>,
     /// Half-angle of the viewer's head shadow, degrees (0–60; laboratory lights only).
-    pub head_shadow: Option<String>,
+    pub head_shadow: Option<f64>,
     /// Brightness factor (0.01–100; default 1).
-    pub exposure: Option<String>,
+    pub exposure: Option<f64>,
     /// Track polarization.
     pub polarization: bool,
-    /// `ELEV[@AZ]`: where a photograph's camera looks from (default 30@0).
-    pub view: Option<String>,
+    /// Where a photograph's camera looks from (default 30@0).
+    pub view: Option<View>,
     /// A perspective camera this many mm from the stone's centre (default orthographic).
-    pub distance: Option<String>,
-    /// white, black or none (default).
-    pub ground: Option<String>,
+    pub distance: Option<f64>,
+    /// White, black or none (default).
+    pub ground: Option<GroundKind>,
     /// Height of the stone's lowest point above the ground, girdle diameters (0–10).
-    pub ground_gap: Option<String>,
+    pub ground_gap: Option<f64>,
     /// The light turned about the vertical, degrees (−360 to 360).
-    pub light_rotation: Option<String>,
-    /// filmic (default) or clip.
-    pub tone: Option<String>,
+    pub light_rotation: Option<f64>,
+    /// The tone curve (default filmic).
+    pub tone: Option<Tone>,
     /// Wavelength bands of a dispersive or coloured stone (3–64; default 8).
+    pub bands: Option<usize>,
+}
+
+/// A picture's settings as text, each by its name (Python's keyword arguments written out):
+/// [`PictureText::parse`] reads them with the parsers the command line's flags call.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PictureText {
+    /// As [`PictureSettings::light`].
+    pub light: String,
+    /// `PX`.
+    pub size: Option<String>,
+    /// `DEG[@AZ]`.
+    pub tilt: Option<String>,
+    /// `DEG`.
+    pub head_shadow: Option<String>,
+    /// A factor.
+    pub exposure: Option<String>,
+    /// As [`PictureSettings::polarization`].
+    pub polarization: bool,
+    /// `ELEV[@AZ]`.
+    pub view: Option<String>,
+    /// `MM`.
+    pub distance: Option<String>,
+    /// `white|black|none`.
+    pub ground: Option<String>,
+    /// Girdle diameters.
+    pub ground_gap: Option<String>,
+    /// Degrees.
+    pub light_rotation: Option<String>,
+    /// `filmic|clip`.
+    pub tone: Option<String>,
+    /// `N`.
     pub bands: Option<String>,
+}
+
+/// `text` read by `parse` as the setting `name`, if given.
+fn read<T>(
+    text: &Option<String>,
+    name: &str,
+    parse: fn(&str, &str) -> Result<T>,
+) -> Result<Option<T>> {
+    text.as_deref().map(|t| parse(name, t)).transpose()
+}
+
+impl PictureText {
+    /// The settings of a picture under `light`, every other setting its default.
+    pub fn new(light: &str) -> PictureText {
+        PictureText {
+            light: light.to_string(),
+            polarization: true,
+            ..PictureText::default()
+        }
+    }
+
+    /// The values these texts give, each read by its parser (the first error, in the order
+    /// of the fields, names its setting).
+    pub fn parse(&self) -> Result<PictureSettings> {
+        Ok(PictureSettings {
+            light: self.light.clone(),
+            size: read(&self.size, SIZE, parse_size)?,
+            tilt: read(&self.tilt, TILT, parse_tilt)?,
+            head_shadow: read(&self.head_shadow, HEAD_SHADOW, parse_head_shadow)?,
+            exposure: read(&self.exposure, EXPOSURE, parse_exposure)?,
+            polarization: self.polarization,
+            view: read(&self.view, VIEW, parse_view)?,
+            distance: read(&self.distance, DISTANCE, parse_distance)?,
+            ground: read(&self.ground, GROUND, GroundKind::parse)?,
+            ground_gap: read(&self.ground_gap, GROUND_GAP, parse_ground_gap)?,
+            light_rotation: read(&self.light_rotation, LIGHT_ROTATION, parse_light_rotation)?,
+            tone: read(&self.tone, TONE, Tone::parse)?,
+            bands: read(&self.bands, BANDS, parse_bands)?,
+        })
+    }
 }
 
 impl PictureSettings {
@@ -168,28 +243,38 @@ impl PictureSettings {
     /// The photographic settings given, by name ([`PHOTOGRAPHIC`]'s order).
     fn photographic(&self) -> impl Iterator<Item = &'static str> + '_ {
         let given = [
-            &self.view,
-            &self.distance,
-            &self.ground,
-            &self.ground_gap,
-            &self.light_rotation,
-            &self.tone,
-            &self.bands,
+            self.view.is_some(),
+            self.distance.is_some(),
+            self.ground.is_some(),
+            self.ground_gap.is_some(),
+            self.light_rotation.is_some(),
+            self.tone.is_some(),
+            self.bands.is_some(),
         ];
         PHOTOGRAPHIC
             .into_iter()
             .zip(given)
-            .filter(|(_, v)| v.is_some())
+            .filter(|(_, g)| *g)
             .map(|(name, _)| name)
     }
 
     /// The single picture these settings describe of stones chosen as `stone` (its material
     /// and, given as a width, its size; each cut's own are [`StoneChoice::stones`]'): a
-    /// laboratory picture or a photograph, by the light. An error names the setting; a
-    /// photographic setting with a laboratory light, or a head shadow with a photographic
-    /// one, is refused.
+    /// laboratory picture or a photograph, by the light (no animation: a face adds its rock
+    /// or turntable). An error names the setting; a photographic setting with a laboratory
+    /// light, or a head shadow with a photographic one, is refused.
     pub fn pictures(&self, stone: &StoneChoice) -> Result<Pictures> {
-        match PhotoLight::parse(&self.light)? {
+        self.pictures_under(PhotoLight::parse(&self.light)?, stone)
+    }
+
+    /// [`PictureSettings::pictures`] with the light already read: `Some` photographic light
+    /// (a map read once) or `None` for a laboratory light named by [`PictureSettings::light`].
+    pub fn pictures_under(
+        &self,
+        light: Option<PhotoLight>,
+        stone: &StoneChoice,
+    ) -> Result<Pictures> {
+        match light {
             Some(light) => self.photo(light, stone).map(Pictures::Photo),
             None => {
                 if let Some(name) = self.photographic().next() {
@@ -207,19 +292,6 @@ impl PictureSettings {
         }
     }
 
-    fn exposure(&self) -> Result<f64> {
-        self.exposure
-            .as_deref()
-            .map_or(Ok(1.0), |x| parse_exposure(EXPOSURE, x))
-    }
-
-    fn size(&self) -> Result<Option<usize>> {
-        self.size
-            .as_deref()
-            .map(|s| parse_size(SIZE, s))
-            .transpose()
-    }
-
     fn lab(&self, stone: &StoneChoice) -> Result<LabPictures> {
         let light =
             Light::parse(self.light.trim().to_ascii_lowercase().as_str()).map_err(|_| {
@@ -234,38 +306,33 @@ impl PictureSettings {
                 )
             })?;
         let mut opts = RenderOptions::new(light);
-        if let Some(n) = self.size()? {
+        if let Some(n) = self.size {
             opts.size = n;
         }
-        if let Some(t) = &self.tilt {
-            opts.tilt = parse_tilt(TILT, t)?;
+        if let Some(t) = self.tilt {
+            opts.tilt = t;
         }
-        opts.head_shadow_deg = self
-            .head_shadow
-            .as_deref()
-            .map(|h| parse_head_shadow(HEAD_SHADOW, h))
-            .transpose()?;
+        opts.head_shadow_deg = self.head_shadow;
         opts.material = stone.material.clone();
         opts.trace.polarization = self.polarization;
-        let exposure = self.exposure()?;
         opts.validate().map_err(named)?;
         Ok(LabPictures {
             opts,
             rock: None,
-            exposure,
+            exposure: self.exposure.unwrap_or(1.0),
         })
     }
 
     fn photo(&self, light: PhotoLight, stone: &StoneChoice) -> Result<PhotoPictures> {
         let mut o = PhotoOptions::new(light);
-        if let Some(n) = self.size()? {
+        if let Some(n) = self.size {
             o.size = n;
         }
-        if let Some(v) = &self.view {
-            o.view = parse_view(VIEW, v)?;
+        if let Some(v) = self.view {
+            o.view = v;
         }
-        if let Some(t) = &self.tilt {
-            o.tilt = parse_tilt(TILT, t)?;
+        if let Some(t) = self.tilt {
+            o.tilt = t;
         }
         if self.head_shadow.is_some() {
             return Err(Error::invalid(
@@ -275,28 +342,24 @@ impl PictureSettings {
         }
         o.material = stone.material.clone();
         o.polarization = self.polarization;
-        if let Some(g) = &self.ground {
-            o.ground = Ground {
-                kind: GroundKind::parse(GROUND, g)?,
-                gap: 0.0,
-            };
+        if let Some(kind) = self.ground {
+            o.ground = Ground { kind, gap: 0.0 };
         }
-        if let Some(g) = &self.ground_gap {
-            o.ground.gap = parse_ground_gap(GROUND_GAP, g)?;
+        if let Some(g) = self.ground_gap {
+            o.ground.gap = g;
         }
-        if let Some(r) = &self.light_rotation {
-            o.light_rotation_deg = parse_light_rotation(LIGHT_ROTATION, r)?;
+        if let Some(r) = self.light_rotation {
+            o.light_rotation_deg = r;
         }
-        if let Some(t) = &self.tone {
-            o.tone = Tone::parse(TONE, t)?;
+        if let Some(t) = self.tone {
+            o.tone = t;
         }
-        if let Some(b) = &self.bands {
-            o.bands = parse_bands(BANDS, b)?;
+        if let Some(b) = self.bands {
+            o.bands = b;
         }
-        if let Some(d) = &self.distance {
-            o.distance_mm = Some(parse_distance(DISTANCE, d)?);
+        if self.distance.is_some() {
+            o.distance_mm = self.distance;
         }
-        let exposure = self.exposure()?;
         // The width the stone is seen at (for a perspective camera and absorption).
         if let StoneSize::Width(w) = stone.size {
             o.width_mm = w;
@@ -306,7 +369,7 @@ impl PictureSettings {
             opts: o,
             turn: None,
             rock: None,
-            exposure,
+            exposure: self.exposure.unwrap_or(1.0),
         })
     }
 }
@@ -342,16 +405,23 @@ mod tests {
         StoneChoice::new(Material::diamond(), false, None, None, fields).unwrap()
     }
 
-    fn error(s: &PictureSettings) -> String {
-        s.pictures(&stone()).unwrap_err().to_string()
+    fn error(s: &PictureText) -> String {
+        s.parse()
+            .and_then(|v| v.pictures(&stone()))
+            .unwrap_err()
+            .to_string()
+    }
+
+    fn pictures(s: &PictureText) -> Pictures {
+        s.parse().unwrap().pictures(&stone()).unwrap()
     }
 
     #[test]
     fn the_light_chooses_a_laboratory_picture_or_a_photograph() {
-        let mut s = PictureSettings::new("aset");
+        let mut s = PictureText::new("aset");
         s.tilt = Some("10@45".into());
         s.size = Some("64".into());
-        match s.pictures(&stone()).unwrap() {
+        match pictures(&s) {
             Pictures::Lab(p) => {
                 assert_eq!(p.opts.light, Light::Aset);
                 assert_eq!((p.opts.size, p.opts.tilt.tilt_deg), (64, 10.0));
@@ -360,7 +430,7 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
-        let mut s = PictureSettings::new("Tent");
+        let mut s = PictureText::new("Tent");
         s.view = Some("60@90".into());
         s.ground = Some("white".into());
         s.ground_gap = Some("0.5".into());
@@ -368,7 +438,7 @@ mod tests {
         s.bands = Some("12".into());
         s.exposure = Some("2".into());
         s.distance = Some("100".into());
-        match s.pictures(&stone()).unwrap() {
+        match pictures(&s) {
             Pictures::Photo(p) => {
                 let o = &p.opts;
                 assert_eq!(o.light.name(), "tent");
@@ -386,7 +456,7 @@ mod tests {
 
     #[test]
     fn every_error_names_its_setting() {
-        type Change = fn(&mut PictureSettings);
+        type Change = fn(&mut PictureText);
         let cases: [(&str, Change); 9] = [
             ("picture light: `sunset` is not allowed; use iso, cos, aset, idealscope, hearts, arrows, fire, tent, darkfield, daylight, office, ring, studio or env:FILE", |s| s.light = "sunset".into()),
             ("picture size: `4` is not allowed; give a whole number from 8 to 8192", |s| s.size = Some("4".into())),
@@ -399,7 +469,7 @@ mod tests {
             ("picture bands: is for photographs; give a photographic picture light (tent, darkfield, daylight, office, ring, studio or env:FILE)", |s| s.bands = Some("8".into())),
         ];
         for (want, set) in cases {
-            let mut s = PictureSettings::new("iso");
+            let mut s = PictureText::new("iso");
             set(&mut s);
             let got = error(&s);
             assert!(got.starts_with(want), "{got}\nwanted {want}");
