@@ -21,7 +21,7 @@ pub use run::{
     delay_ms, draw, printed_line, settings_line, stats_lines, summary, Drawn, LabPictures,
     PhotoPictures, Pictures, Progress, RenderJob, Silent,
 };
-pub use settings::{PictureSettings, PictureText};
+pub use settings::PictureSettings;
 
 use super::palette::{CAPTION_GROUND, PICTURE_GROUND};
 use super::{font, register_font};

@@ -1,9 +1,9 @@
 //! `facetlab.render`: a cut's picture as `facetlab render` draws it (one cut, `--bare`), under
 //! a laboratory light or photographed under a studio rig, a map or `env:FILE`, with its linear
 //! values, its sRGB bytes and its statistics (the `render --json` document's keys, from
-//! [`crate::document::render`]). The picture's settings are read by the library's one parse of
-//! them ([`PictureText::parse`]) into the settings the command line's pictures are made from
-//! too ([`PictureSettings`]); its errors name the keyword argument.
+//! [`crate::document::render`]). Each of the picture's settings is read by the library's parser
+//! of it ([`read`]) into the settings the command line's pictures are made from too
+//! ([`PictureSettings`]); its errors name the keyword argument.
 
 use super::cuts::cut_of;
 use super::keywords::{self, Keywords};
@@ -12,7 +12,8 @@ use super::stone::{refuse_existing, StoneArgs};
 use crate::document::render::{CutJson, FrameJson, PhotoFrame, PhotoRecord};
 use crate::error::{Error, Result};
 use crate::plot::palette::PICTURE_GROUND;
-use crate::plot::render::{PictureSettings, PictureText, Pictures};
+use crate::plot::render::settings::{self as picture, read};
+use crate::plot::render::{PictureSettings, Pictures};
 use crate::render::photo::{Photo, PhotoOptions, Tone};
 use crate::render::{self, Image, RenderOptions};
 use numpy::{PyArray1, PyArrayMethods};
@@ -225,32 +226,66 @@ fn render_cut(
     kwargs: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyRender> {
     let kw = Keywords::parse("render", &keywords::RENDER, kwargs)?;
-    let settings = PictureText {
-        light: kw.str("light")?,
-        size: kw.text("size")?,
-        // A number of degrees, or the command line's DEG@AZ text (and ELEV@AZ).
-        tilt: kw.text("tilt")?,
-        view: kw.text("view")?,
-        distance: kw.text("distance")?,
-        ground: kw.text("ground")?,
-        ground_gap: kw.text("ground_gap")?,
-        light_rotation: kw.text("light_rotation")?,
-        tone: kw.text("tone")?,
-        bands: kw.text("bands")?,
-        head_shadow: kw.text("head_shadow")?,
-        exposure: kw.text("exposure")?,
-        polarization: kw.bool("polarization")?,
-    };
+    let settings = picture_settings(&kw)?;
     let stone = StoneArgs::from_keywords(&kw)?;
     let float64 = kw.bool("float64")?;
     let input = super::cuts::input_of(cut)?;
     let c = cut_of(cut)?;
-    let (picture, exposure, stats) = run(py, || draw(&c, &input, &settings.parse()?, &stone))?;
+    let (picture, exposure, stats) = run(py, || draw(&c, &input, &settings, &stone))?;
     Ok(PyRender {
         picture,
         exposure,
         stats,
         float64,
+    })
+}
+
+/// The picture's settings from the keywords: each as the command line's text (a number of
+/// degrees or `DEG@AZ`, …), read by its setting's parser, whose error names the keyword.
+fn picture_settings(kw: &Keywords) -> PyResult<PictureSettings> {
+    use crate::render::photo::{parse_view, GroundKind, Tone};
+    use crate::render::pose::parse_tilt;
+    let t = |k: &str| kw.text(k);
+    let e = super::error;
+    Ok(PictureSettings {
+        light: kw.str("light")?,
+        size: read(t("size")?.as_deref(), picture::SIZE, picture::parse_size).map_err(e)?,
+        tilt: read(t("tilt")?.as_deref(), picture::TILT, parse_tilt).map_err(e)?,
+        head_shadow: read(
+            t("head_shadow")?.as_deref(),
+            picture::HEAD_SHADOW,
+            picture::parse_head_shadow,
+        )
+        .map_err(e)?,
+        exposure: read(
+            t("exposure")?.as_deref(),
+            picture::EXPOSURE,
+            picture::parse_exposure,
+        )
+        .map_err(e)?,
+        polarization: kw.bool("polarization")?,
+        view: read(t("view")?.as_deref(), picture::VIEW, parse_view).map_err(e)?,
+        distance: read(
+            t("distance")?.as_deref(),
+            picture::DISTANCE,
+            picture::parse_distance,
+        )
+        .map_err(e)?,
+        ground: read(t("ground")?.as_deref(), picture::GROUND, GroundKind::parse).map_err(e)?,
+        ground_gap: read(
+            t("ground_gap")?.as_deref(),
+            picture::GROUND_GAP,
+            picture::parse_ground_gap,
+        )
+        .map_err(e)?,
+        light_rotation: read(
+            t("light_rotation")?.as_deref(),
+            picture::LIGHT_ROTATION,
+            picture::parse_light_rotation,
+        )
+        .map_err(e)?,
+        tone: read(t("tone")?.as_deref(), picture::TONE, Tone::parse).map_err(e)?,
+        bands: read(t("bands")?.as_deref(), picture::BANDS, picture::parse_bands).map_err(e)?,
     })
 }
 

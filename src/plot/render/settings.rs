@@ -1,11 +1,12 @@
 //! A picture's settings as a face gives them, turned into the library's options in one place
 //! ([`PictureSettings::pictures`]): a laboratory picture ([`LabPictures`]) or a photograph
 //! ([`PhotoPictures`]), by the light. The command line fills [`PictureSettings`] from its
-//! typed flags; the Python package writes its keyword arguments out as text
-//! ([`PictureText`]), read by [`PictureText::parse`].
+//! typed flags; the Python package writes its keyword arguments out as text, each read by
+//! [`read`] with its parser.
 //!
 //! Each value is read by the library's own parsers, the ones the command line's flags call
-//! ([`parse_tilt`], [`parse_view`], [`GroundKind::parse`], [`Tone::parse`]) and those here
+//! ([`crate::render::pose::parse_tilt`], [`crate::render::photo::parse_view`],
+//! [`GroundKind::parse`], [`Tone::parse`]) and those here
 //! for the numbers, each with its range ([`parse_size`], [`parse_ground_gap`], …), and
 //! every error names the setting ([`SETTINGS`]: `picture view`, `picture ground-gap`, …), a
 //! setting inside a message too ([`crate::error::setting`]), for each face to spell as it
@@ -16,8 +17,7 @@ use crate::error::{setting, Error, Result};
 use crate::io::text::{count, number};
 use crate::metrics::StoneChoice;
 use crate::optics::StoneSize;
-use crate::render::photo::{parse_view, Ground, GroundKind, PhotoLight, PhotoOptions, Tone, View};
-use crate::render::pose::parse_tilt;
+use crate::render::photo::{Ground, GroundKind, PhotoLight, PhotoOptions, Tone, View};
 use crate::render::{Light, RenderOptions, Tilt};
 
 /// The light (a laboratory light, a photographic rig, `studio` or `env:FILE`).
@@ -114,7 +114,7 @@ pub fn parse_distance(field: &str, s: &str) -> Result<f64> {
 
 /// A picture's settings as the library's values (`None`: not given, the light's default),
 /// turned into options by [`PictureSettings::pictures`]. The command line fills them from
-/// its typed flags; the Python package from its keywords through [`PictureText::parse`].
+/// its typed flags; the Python package from its keywords, each read by [`read`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct PictureSettings {
     /// A laboratory light (iso, cos, aset, idealscope, hearts, arrows, fire) or a
@@ -147,76 +147,14 @@ pub struct PictureSettings {
     pub bands: Option<usize>,
 }
 
-/// A picture's settings as text, each by its name (Python's keyword arguments written out):
-/// [`PictureText::parse`] reads them with the parsers the command line's flags call.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct PictureText {
-    /// As [`PictureSettings::light`].
-    pub light: String,
-    /// `PX`.
-    pub size: Option<String>,
-    /// `DEG[@AZ]`.
-    pub tilt: Option<String>,
-    /// `DEG`.
-    pub head_shadow: Option<String>,
-    /// A factor.
-    pub exposure: Option<String>,
-    /// As [`PictureSettings::polarization`].
-    pub polarization: bool,
-    /// `ELEV[@AZ]`.
-    pub view: Option<String>,
-    /// `MM`.
-    pub distance: Option<String>,
-    /// `white|black|none`.
-    pub ground: Option<String>,
-    /// Girdle diameters.
-    pub ground_gap: Option<String>,
-    /// Degrees.
-    pub light_rotation: Option<String>,
-    /// `filmic|clip`.
-    pub tone: Option<String>,
-    /// `N`.
-    pub bands: Option<String>,
-}
-
-/// `text` read by `parse` as the setting `name`, if given.
-fn read<T>(
-    text: &Option<String>,
+/// `text`, if given, read by `parse` as the setting `name` (a face that takes a picture's
+/// settings as text, Python's keyword arguments written out, reads each so).
+pub fn read<T>(
+    text: Option<&str>,
     name: &str,
     parse: fn(&str, &str) -> Result<T>,
 ) -> Result<Option<T>> {
-    text.as_deref().map(|t| parse(name, t)).transpose()
-}
-
-impl PictureText {
-    /// The settings of a picture under `light`, every other setting its default.
-    pub fn new(light: &str) -> PictureText {
-        PictureText {
-            light: light.to_string(),
-            polarization: true,
-            ..PictureText::default()
-        }
-    }
-
-    /// The values these texts give, each read by its parser (the first error, in the order
-    /// of the fields, names its setting).
-    pub fn parse(&self) -> Result<PictureSettings> {
-        Ok(PictureSettings {
-            light: self.light.clone(),
-            size: read(&self.size, SIZE, parse_size)?,
-            tilt: read(&self.tilt, TILT, parse_tilt)?,
-            head_shadow: read(&self.head_shadow, HEAD_SHADOW, parse_head_shadow)?,
-            exposure: read(&self.exposure, EXPOSURE, parse_exposure)?,
-            polarization: self.polarization,
-            view: read(&self.view, VIEW, parse_view)?,
-            distance: read(&self.distance, DISTANCE, parse_distance)?,
-            ground: read(&self.ground, GROUND, GroundKind::parse)?,
-            ground_gap: read(&self.ground_gap, GROUND_GAP, parse_ground_gap)?,
-            light_rotation: read(&self.light_rotation, LIGHT_ROTATION, parse_light_rotation)?,
-            tone: read(&self.tone, TONE, Tone::parse)?,
-            bands: read(&self.bands, BANDS, parse_bands)?,
-        })
-    }
+    text.map(|t| parse(name, t)).transpose()
 }
 
 impl PictureSettings {
@@ -306,12 +244,8 @@ impl PictureSettings {
                 )
             })?;
         let mut opts = RenderOptions::new(light);
-        if let Some(n) = self.size {
-            opts.size = n;
-        }
-        if let Some(t) = self.tilt {
-            opts.tilt = t;
-        }
+        opts.size = self.size.unwrap_or(opts.size);
+        opts.tilt = self.tilt.unwrap_or(opts.tilt);
         opts.head_shadow_deg = self.head_shadow;
         opts.material = stone.material.clone();
         opts.trace.polarization = self.polarization;
@@ -325,15 +259,9 @@ impl PictureSettings {
 
     fn photo(&self, light: PhotoLight, stone: &StoneChoice) -> Result<PhotoPictures> {
         let mut o = PhotoOptions::new(light);
-        if let Some(n) = self.size {
-            o.size = n;
-        }
-        if let Some(v) = self.view {
-            o.view = v;
-        }
-        if let Some(t) = self.tilt {
-            o.tilt = t;
-        }
+        o.size = self.size.unwrap_or(o.size);
+        o.view = self.view.unwrap_or(o.view);
+        o.tilt = self.tilt.unwrap_or(o.tilt);
         if self.head_shadow.is_some() {
             return Err(Error::invalid(
                 HEAD_SHADOW,
@@ -345,21 +273,11 @@ impl PictureSettings {
         if let Some(kind) = self.ground {
             o.ground = Ground { kind, gap: 0.0 };
         }
-        if let Some(g) = self.ground_gap {
-            o.ground.gap = g;
-        }
-        if let Some(r) = self.light_rotation {
-            o.light_rotation_deg = r;
-        }
-        if let Some(t) = self.tone {
-            o.tone = t;
-        }
-        if let Some(b) = self.bands {
-            o.bands = b;
-        }
-        if self.distance.is_some() {
-            o.distance_mm = self.distance;
-        }
+        o.ground.gap = self.ground_gap.unwrap_or(o.ground.gap);
+        o.light_rotation_deg = self.light_rotation.unwrap_or(o.light_rotation_deg);
+        o.tone = self.tone.unwrap_or(o.tone);
+        o.bands = self.bands.unwrap_or(o.bands);
+        o.distance_mm = self.distance.or(o.distance_mm);
         // The width the stone is seen at (for a perspective camera and absorption).
         if let StoneSize::Width(w) = stone.size {
             o.width_mm = w;
@@ -396,6 +314,8 @@ fn named(e: Error) -> Error {
 mod tests {
     use super::*;
     use crate::optics::Material;
+    use crate::render::photo::parse_view;
+    use crate::render::pose::parse_tilt;
 
     fn stone() -> StoneChoice {
         let fields = crate::optics::ColourFields {
@@ -405,20 +325,60 @@ mod tests {
         StoneChoice::new(Material::diamond(), false, None, None, fields).unwrap()
     }
 
-    fn error(s: &PictureText) -> String {
-        s.parse()
+    /// A picture's settings as text, each read by its parser as a face does ([`read`]).
+    #[derive(Default)]
+    struct Text {
+        light: String,
+        size: Option<String>,
+        tilt: Option<String>,
+        head_shadow: Option<String>,
+        exposure: Option<String>,
+        view: Option<String>,
+        distance: Option<String>,
+        ground: Option<String>,
+        ground_gap: Option<String>,
+        tone: Option<String>,
+        bands: Option<String>,
+    }
+
+    impl Text {
+        fn new(light: &str) -> Text {
+            Text {
+                light: light.into(),
+                ..Text::default()
+            }
+        }
+        fn settings(&self) -> Result<PictureSettings> {
+            Ok(PictureSettings {
+                size: read(self.size.as_deref(), SIZE, parse_size)?,
+                tilt: read(self.tilt.as_deref(), TILT, parse_tilt)?,
+                head_shadow: read(self.head_shadow.as_deref(), HEAD_SHADOW, parse_head_shadow)?,
+                exposure: read(self.exposure.as_deref(), EXPOSURE, parse_exposure)?,
+                view: read(self.view.as_deref(), VIEW, parse_view)?,
+                distance: read(self.distance.as_deref(), DISTANCE, parse_distance)?,
+                ground: read(self.ground.as_deref(), GROUND, GroundKind::parse)?,
+                ground_gap: read(self.ground_gap.as_deref(), GROUND_GAP, parse_ground_gap)?,
+                tone: read(self.tone.as_deref(), TONE, Tone::parse)?,
+                bands: read(self.bands.as_deref(), BANDS, parse_bands)?,
+                ..PictureSettings::new(&self.light)
+            })
+        }
+    }
+
+    fn error(s: &Text) -> String {
+        s.settings()
             .and_then(|v| v.pictures(&stone()))
             .unwrap_err()
             .to_string()
     }
 
-    fn pictures(s: &PictureText) -> Pictures {
-        s.parse().unwrap().pictures(&stone()).unwrap()
+    fn pictures(s: &Text) -> Pictures {
+        s.settings().unwrap().pictures(&stone()).unwrap()
     }
 
     #[test]
     fn the_light_chooses_a_laboratory_picture_or_a_photograph() {
-        let mut s = PictureText::new("aset");
+        let mut s = Text::new("aset");
         s.tilt = Some("10@45".into());
         s.size = Some("64".into());
         match pictures(&s) {
@@ -430,7 +390,7 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
-        let mut s = PictureText::new("Tent");
+        let mut s = Text::new("Tent");
         s.view = Some("60@90".into());
         s.ground = Some("white".into());
         s.ground_gap = Some("0.5".into());
@@ -456,7 +416,7 @@ mod tests {
 
     #[test]
     fn every_error_names_its_setting() {
-        type Change = fn(&mut PictureText);
+        type Change = fn(&mut Text);
         let cases: [(&str, Change); 9] = [
             ("picture light: `sunset` is not allowed; use iso, cos, aset, idealscope, hearts, arrows, fire, tent, darkfield, daylight, office, ring, studio or env:FILE", |s| s.light = "sunset".into()),
             ("picture size: `4` is not allowed; give a whole number from 8 to 8192", |s| s.size = Some("4".into())),
@@ -469,7 +429,7 @@ mod tests {
             ("picture bands: is for photographs; give a photographic picture light (tent, darkfield, daylight, office, ring, studio or env:FILE)", |s| s.bands = Some("8".into())),
         ];
         for (want, set) in cases {
-            let mut s = PictureText::new("iso");
+            let mut s = Text::new("iso");
             set(&mut s);
             let got = error(&s);
             assert!(got.starts_with(want), "{got}\nwanted {want}");
