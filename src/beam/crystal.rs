@@ -126,6 +126,18 @@ impl Optics {
     }
 }
 
+/// Where light crossing a facet leaves ([`ExitSink::exit_at`]'s place).
+#[derive(Clone, Copy, Debug)]
+enum Place {
+    /// An exact beam: through its polygon in `Work::cur`.
+    Beam,
+    /// A narrow beam's ray: at one point.
+    Point(DVec3),
+    /// A narrow beam's ray: through its narrow beam's polygon carried along the ray,
+    /// `Work::mode_polys[start..start + n]`.
+    Polygon(u32, u32),
+}
+
 /// Two sibling beams (the two modes one beam splits into) that are both narrow beams: when
 /// the weaker carries less than [`TraceOptions::mode_floor`] of the pair's power, one ray in
 /// the stronger mode carries both (as a narrow beam's ray keeps its weaker mode's light from
@@ -373,6 +385,7 @@ impl Stone {
                 facet: beam.facet,
                 depth: beam.depth,
                 node: beam.node,
+                poly: 0,
             };
             self.follow_mode_ray(ray, beam.entry, cx, optics, w, sink);
         }
@@ -426,7 +439,7 @@ impl Stone {
                 pc,
                 keep,
                 (beam.entry, beam.depth, false, false, node),
-                None,
+                Place::Beam,
                 cx,
                 optics,
                 w,
@@ -460,8 +473,7 @@ impl Stone {
     /// reflected light of each mode returned (`None` when the crossing is not solved: its
     /// power is cut off).
     /// `origin` is (entry facet, reflections so far, narrow, late, node); the light leaves
-    /// through the polygon in `w.cur` on facet `g` (an exact beam), or at the point `ray_at`
-    /// (a narrow beam's ray): the exit's place ([`ExitSink::exit_at`]).
+    /// where `place` says: the exit's place ([`ExitSink::exit_at`]).
     #[allow(clippy::too_many_arguments)]
     #[inline]
     fn cross_mode<S: ExitSink>(
@@ -471,7 +483,7 @@ impl Stone {
         p: f64,
         keep: f64,
         origin: (u32, u32, bool, bool, u32),
-        ray_at: Option<DVec3>,
+        place: Place,
         cx: &Ctx,
         optics: &Optics,
         w: &mut Work,
@@ -509,9 +521,13 @@ impl Stone {
                 sym: 0,
             };
             w.st.exits += 1;
-            match ray_at {
-                Some(x) => sink.exit_at(&e, &w.foot, &[x]),
-                None => sink.exit_at(&e, &w.foot, &w.cur),
+            match place {
+                Place::Beam => sink.exit_at(&e, &w.foot, &w.cur),
+                Place::Point(x) => sink.exit_at(&e, &w.foot, &[x]),
+                Place::Polygon(start, n) => {
+                    let (a, b) = (start as usize, (start + n) as usize);
+                    sink.exit_at(&e, &w.foot, &w.mode_polys[a..b])
+                }
             }
         }
         let power = m.reflected.map(|(_, _, r)| (r > 0.0).then_some(r * scale));
@@ -536,6 +552,14 @@ impl Stone {
         w.st.ray_power += p0;
         let floor = cx.threshold.max(cx.ray_floor * p0);
         w.mode_rays.clear();
+        // The narrow beam's polygon (in `w.cur`, on its facet's plane), carried along each
+        // ray when the sink wants it as the exit's place.
+        let polys = sink.wants_exit_places() && sink.wants_narrow_polygons();
+        let nv = w.cur.len() as u32;
+        w.mode_polys.clear();
+        if polys {
+            w.mode_polys.extend_from_slice(&w.cur);
+        }
         // The ray followed next: the ordinary reflected ray goes on at once, the
         // extraordinary one waits on the stack (the order a stack of both would give).
         let mut next = Some(ray);
@@ -549,20 +573,24 @@ impl Stone {
             let x = r.x + t * s;
             let tau = r.tau + r.alpha * s;
             w.st.ray_segments += 1;
+            let place = if polys {
+                // Slid along the ray onto facet g's plane (unclipped).
+                let (n, o) = (self.normals[g], self.offsets[g]);
+                let cos = n.dot(t);
+                let start = w.mode_polys.len() as u32;
+                for k in r.poly..r.poly + nv {
+                    let p = w.mode_polys[k as usize];
+                    w.mode_polys.push(p + t * ((o - n.dot(p)) / cos));
+                }
+                Place::Polygon(start, nv)
+            } else {
+                Place::Point(x)
+            };
             let node = w.node(cx, r.node, g);
             let keep = if optics.absorbing { (-tau).exp() } else { 1.0 };
             let origin = (entry, r.depth, true, r.power <= 0.5 * p0, node);
             let Some(reflected) = self.cross_mode(
-                &r.wave,
-                g,
-                r.power,
-                keep,
-                origin,
-                Some(x),
-                cx,
-                optics,
-                w,
-                sink,
+                &r.wave, g, r.power, keep, origin, place, cx, optics, w, sink,
             ) else {
                 continue;
             };
@@ -599,6 +627,10 @@ impl Stone {
                     facet: g as u32,
                     depth,
                     node,
+                    poly: match place {
+                        Place::Polygon(start, _) => start,
+                        _ => 0,
+                    },
                 };
                 if m == 0 {
                     next = Some(ray);

@@ -36,4 +36,7 @@ pub(super) struct ModeRay {
     pub(super) facet: u32,
     pub(super) depth: u32,
     pub(super) node: u32,
+    /// Where its narrow beam's polygon, carried along to `facet`'s plane, starts in
+    /// `Work::mode_polys` (when the sink wants it, [`super::ExitSink::wants_narrow_polygons`]).
+    pub(super) poly: u32,
 }

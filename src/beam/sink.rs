@@ -34,10 +34,11 @@ pub(crate) trait ExitSink {
     }
     /// Whether a narrow beam's ray should give, as its exit's place, its narrow beam's
     /// polygon carried along the ray to the exit facet's plane (slid along each segment,
-    /// unclipped: the cross-section it stands for) instead of one point. Only asked when
-    /// [`ExitSink::wants_exit_places`]; singly refractive traces without
-    /// [`TraceOptions::narrow_forks`](super::TraceOptions::narrow_forks) (others give the
-    /// point). Default: no.
+    /// unclipped: the cross-section it stands for; a birefringent ray's carried along its
+    /// own ray direction, mode by mode) instead of one point. Only asked when
+    /// [`ExitSink::wants_exit_places`]; traces with
+    /// [`TraceOptions::narrow_forks`](super::TraceOptions::narrow_forks) give the point.
+    /// Default: no.
     fn wants_narrow_polygons(&self) -> bool {
         false
     }

@@ -108,6 +108,9 @@ pub(super) struct Work {
     /// A birefringent trace's beams waiting to be split, and a narrow beam's rays.
     pub(super) mode_stack: Vec<ModeBeam>,
     pub(super) mode_rays: Vec<ModeRay>,
+    /// The polygons of a birefringent narrow beam's rays, each carried to the facet its ray
+    /// is on ([`ModeRay::poly`]), all of the narrow beam's vertex count.
+    pub(super) mode_polys: Vec<DVec3>,
     /// The trace's accounting so far.
     pub(super) st: TraceStats,
 }
@@ -166,6 +169,7 @@ impl Stone {
             forks: Vec::with_capacity(8),
             mode_stack: Vec::new(),
             mode_rays: Vec::new(),
+            mode_polys: Vec::new(),
             st: TraceStats::default(),
         }
     }

@@ -3,7 +3,7 @@
 
 use super::{dirs, solids};
 use crate::beam::{ExitBeam, ExitSink, Frame, Medium, Stone, TraceOptions};
-use crate::optics::crystal::Crystal;
+use crate::optics::crystal::{Crystal, WaveMode};
 use crate::optics::refract;
 use crate::testkit::{boxed, tolkowsky};
 use glam::{DVec2, DVec3, DVec4};
@@ -122,6 +122,70 @@ fn narrow_polygons_are_carried_to_the_exit() {
         checked += 1;
     }
     assert_eq!(checked, 1);
+}
+
+/// A birefringent narrow beam's polygon is carried along each mode's own ray: through a
+/// tilted box of a uniaxial crystal whose axis is tilted (walk-off), every beam narrow, each
+/// exit's polygon lies on its exit facet, its area centroid is the ray's one-point place
+/// (sliding a polygon along one direction between planes keeps its centroid), the light
+/// straight through leaves the bottom over the top face's area (1), and both modes' rays
+/// carry polygons.
+#[test]
+fn birefringent_narrow_polygons_follow_each_mode() {
+    let solid = boxed(0.5, 0.5, 0.2);
+    let stone = Stone::new(&solid);
+    let frame = Frame::new(DVec3::new(0.3, -0.2, -1.0)).unwrap();
+    let medium = Medium::Uniaxial {
+        crystal: Crystal::new(1.9254, 1.9841, DVec3::new(0.6, 0.3, 0.74).normalize()),
+        alpha_o: 0.0,
+        alpha_e: 0.0,
+    };
+    let opts = TraceOptions {
+        split_threshold: 2.0,
+        symmetry: false,
+        ..TraceOptions::default()
+    };
+    let mut points = Places::default();
+    stone.trace_medium_into(&frame, &medium, &opts, &mut points, false);
+    let mut polys = Places {
+        polygons: true,
+        ..Places::default()
+    };
+    stone.trace_medium_into(&frame, &medium, &opts, &mut polys, false);
+    assert_eq!(points.exits.len(), polys.exits.len());
+    let mut straight = Vec::new();
+    for ((e, _, one), (f, _, poly)) in points.exits.iter().zip(&polys.exits) {
+        assert_eq!((e.exit_facet, e.mode), (f.exit_facet, f.mode));
+        if e.external {
+            continue;
+        }
+        assert!(
+            e.narrow && one.len() == 1 && poly.len() >= 3,
+            "{e:?} {poly:?}"
+        );
+        let n = solid.facets()[e.exit_facet].plane.normal;
+        let o = solid.facets()[e.exit_facet].plane.offset;
+        for x in poly {
+            assert!((n.dot(*x) - o).abs() < 1e-12);
+        }
+        let (c, area) = crate::beam::exact::area_centroid(poly, n);
+        assert!((c - one[0]).length() < 1e-12, "{c} {}", one[0]);
+        if e.reflections == 0 && n.z < -0.5 {
+            straight.push((e.mode, area));
+        }
+    }
+    // Straight through (the narrow pair entering goes on as its stronger mode's ray), over
+    // the top face's area; and both modes' rays, reflected ones, carry polygons.
+    assert!(!straight.is_empty());
+    for (_, area) in &straight {
+        assert!((area - 1.0).abs() < 1e-12, "{area}");
+    }
+    for mode in [WaveMode::Ordinary, WaveMode::Extraordinary] {
+        assert!(polys
+            .exits
+            .iter()
+            .any(|(e, _, p)| !e.external && e.mode == Some(mode) && p.len() >= 3));
+    }
 }
 
 /// Every exit's place lies on its exit facet's plane; an exact beam's has its footprint's

@@ -290,12 +290,6 @@ impl Trace {
     }
 }
 
-/// The coarsest split threshold of a birefringent trace's light on the ground: its narrow
-/// beams' rays carry no polygon and land on dots of half a cell, which speckle the ground
-/// when they carry much of the light (a blue sapphire in daylight, 800², against a trace
-/// split at 1e-5: max |dY| 0.08 at 1e-4, 0.23 at 5e-4).
-const DOT_SPLIT: f64 = 1e-4;
-
 /// Rows of the ground's raster one thread fills at a time.
 const GROUND_ROWS: usize = 32;
 
@@ -365,14 +359,9 @@ impl GroundField {
                             points: Vec::new(),
                             up: vec![0.0; exponents.len()],
                         };
-                        let split = match lt.medium {
-                            Medium::Isotropic(_) => opts.split_threshold,
-                            _ => opts.split_threshold.min(DOT_SPLIT),
-                        };
                         let o = TraceOptions {
                             absorption: lt.alpha,
                             footprints: false,
-                            split_threshold: split,
                             ..*opts
                         };
                         let (ts, _) =

@@ -140,8 +140,7 @@ pub struct PhotoOptions {
     /// Split threshold of a face-up orthographic view (the scores' and `render`'s).
     pub face_up_split_threshold: f64,
     /// Tracer settings of the lights' traces for the ground (default: split at 5e-4, its
-    /// narrow beams landing over their own cross-sections; a birefringent stone's at 1e-4 at
-    /// most, its narrow beams landing on dots).
+    /// narrow beams landing over their own cross-sections, a birefringent stone's too).
     pub ground_trace: TraceOptions,
     /// How linear radiance becomes display values.
     pub tone: Tone,

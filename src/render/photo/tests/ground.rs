@@ -137,11 +137,12 @@ fn caustic_power_and_shadow_area() {
 }
 
 /// A birefringent stone's caustic lands too (both rays' exits leaving downward, exact beams
-/// as polygons and narrow beams' rays as dots; the singly refractive trace's narrow beams
-/// land over their cross-sections): in the isotropic limit (n_e = n_o + 1e-9, so
-/// traced as a crystal) the ground is the singly refractive stone's within the narrow-beam
-/// approximation (caustic and escaping light to 1e-3, the pattern on 16 × 16 blocks to 6 % in L1: 4.5,
-/// 3.5 and 2.5 % at split thresholds 1e-5, 1e-6 and 1e-7, shrinking with the narrow beams), and a zircon
+/// as polygons and narrow beams' rays over their cross-sections, as the singly refractive
+/// trace's): in the isotropic limit (n_e = n_o + 1e-9, so traced as a crystal) the ground is
+/// the singly refractive stone's within the narrow-beam approximation (caustic and escaping
+/// light to 1e-3, the pattern on 16 × 16 blocks to 6 % in L1: 4.2 % at split 1e-5, 4.5 %
+/// when the crystal's narrow beams landed on dots; the rest is the two traces' different
+/// narrow beams, each beam split into two modes), and a zircon
 /// with a tilted axis conserves power on the ground to 1e-9 and sends a caustic within a
 /// few per cent of its ordinary ray's alone.
 #[test]
@@ -170,9 +171,8 @@ fn birefringent_caustic_lands_on_the_ground() {
     // the narrow-beam approximation, not to rounding.
     assert!((a.caustic - b.caustic).abs() < 1e-3 * phi, "{a:?} vs {b:?}");
     assert!((a.escaped - b.escaped).abs() < 1e-3 * phi, "{a:?} vs {b:?}");
-    // The pattern on a coarse grid (16 × 16 blocks of 8 × 8 cells): the crystal's narrow
-    // beams land as dots of half a cell, so cell by cell the two differ where their rays
-    // differ.
+    // The pattern on a coarse grid (16 × 16 blocks of 8 × 8 cells): cell by cell the two
+    // differ where their narrow beams' rays differ.
     let h = iso.cell();
     let blocks = |f: &GroundField| {
         let mut b = vec![0.0; 256];
