@@ -1,5 +1,6 @@
 //! Shared test solids (test builds only): boxes, the cube, slabs, octahedra, the Tolkowsky
-//! preset and a plane-built square brilliant. One copy here instead of one per test module.
+//! preset, the GIA reference round brilliant and a plane-built square brilliant. One copy
+//! here instead of one per test module.
 //!
 //! All are centred at the origin, z up. Box faces are named `+x`, `-x`, `+y`, `-y`, `top`,
 //! `bottom` (tier `side`); octahedron faces `o0`…`o7` (tier `o`), ordered by the signs of
@@ -86,6 +87,24 @@ pub(crate) fn octahedron() -> Polyhedron {
 /// The `tolkowsky` preset's solid.
 pub(crate) fn tolkowsky() -> Polyhedron {
     crate::io::load_cut("tolkowsky").unwrap().solid
+}
+
+/// The GIA reference round brilliant (table 57 %, crown 34°, girdle 2.5 %, stars 50 %,
+/// lower halves 80 %) at pavilion angle `pavilion_deg` (the reference's is 40.7°), named
+/// `name`.
+pub(crate) fn gia_round(name: &str, pavilion_deg: f64) -> crate::cut::Cut {
+    let v: std::collections::BTreeMap<String, f64> = [
+        ("table", 0.57),
+        ("crown_angle", 34.0),
+        ("pavilion_angle", pavilion_deg),
+        ("girdle", 0.025),
+        ("star", 0.5),
+        ("lower_half", 0.8),
+    ]
+    .iter()
+    .map(|(k, v)| (k.to_string(), *v))
+    .collect();
+    crate::cut::Cut::from_family(name, "round-brilliant", &v).unwrap()
 }
 
 /// A princess-like square brilliant built from planes: square girdle, table, 4 bezels and 4

@@ -2,18 +2,7 @@ use super::*;
 use std::collections::BTreeMap;
 
 fn gia() -> Cut {
-    let v: BTreeMap<String, f64> = [
-        ("table", 0.57),
-        ("crown_angle", 34.0),
-        ("pavilion_angle", 40.7),
-        ("girdle", 0.025),
-        ("star", 0.5),
-        ("lower_half", 0.8),
-    ]
-    .iter()
-    .map(|(k, v)| (k.to_string(), *v))
-    .collect();
-    Cut::from_family("gia", "round-brilliant", &v).unwrap()
+    crate::testkit::gia_round("gia", 40.7)
 }
 
 #[test]

@@ -198,18 +198,7 @@ fn coarse_profile_is_smooth() {
     let scores: Vec<Scores> = (0..=40)
         .into_par_iter()
         .map(|k| {
-            let v: BTreeMap<String, f64> = [
-                ("table", 0.57),
-                ("crown_angle", 34.0),
-                ("pavilion_angle", 40.0 + 0.025 * k as f64),
-                ("girdle", 0.025),
-                ("star", 0.5),
-                ("lower_half", 0.8),
-            ]
-            .iter()
-            .map(|(k, v)| (k.to_string(), *v))
-            .collect();
-            let cut = crate::cut::Cut::from_family("p", "round-brilliant", &v).unwrap();
+            let cut = crate::testkit::gia_round("p", 40.0 + 0.025 * k as f64);
             score(&cut.solid, &cfg)
         })
         .collect();
