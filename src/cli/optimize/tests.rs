@@ -126,10 +126,10 @@ fn optimize_and_sweep_write_their_files() {
     assert_eq!(optimize_exit(false), Exit::Ok);
 }
 
-#[test]
-fn a_profile_writes_one_row_per_x_and_outputs_never_overwrite_inputs() {
-    let dir = tempfile::tempdir().unwrap();
-    let cfg = dir.path().join("small.toml");
+/// A small config in `dir` (a round brilliant, its crown angle free) and a sweep of it over
+/// the crown angle (30–38° by 2) into `dir/out`, brilliance scored, quiet.
+fn small_sweep(dir: &std::path::Path, out: &str) -> (std::path::PathBuf, SweepArgs) {
+    let cfg = dir.join("small.toml");
     std::fs::write(
         &cfg,
         "[cut]\nfamily = \"round-brilliant\"\n[free]\ncrown_angle = [30.0, 38.0]\n",
@@ -145,9 +145,16 @@ fn a_profile_writes_one_row_per_x_and_outputs_never_overwrite_inputs() {
         shard: None,
         score: SweepScore::BRILLIANCE,
         run: None,
-        out: Some(dir.path().join("prof")),
+        out: Some(dir.join(out)),
         quiet: true,
     };
+    (cfg, s)
+}
+
+#[test]
+fn a_profile_writes_one_row_per_x_and_outputs_never_overwrite_inputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let (cfg, s) = small_sweep(dir.path(), "prof");
     assert_eq!(run_sweep(&s, &bumps).unwrap(), Exit::Ok);
     let csv = std::fs::read_to_string(dir.path().join("prof/sweep.csv")).unwrap();
     assert!(csv.starts_with("crown_angle,brilliance,fire,scintillation,objective\n30,"));
@@ -181,24 +188,13 @@ fn a_profile_writes_one_row_per_x_and_outputs_never_overwrite_inputs() {
 #[test]
 fn three_axes_map_any_two_held_where_asked() {
     let dir = tempfile::tempdir().unwrap();
-    let cfg = dir.path().join("small.toml");
-    std::fs::write(
-        &cfg,
-        "[cut]\nfamily = \"round-brilliant\"\n[free]\ncrown_angle = [30.0, 38.0]\n",
-    )
-    .unwrap();
+    let (cfg, s) = small_sweep(dir.path(), "three");
     let s = SweepArgs {
-        config: cfg.clone(),
-        x: Some("crown_angle:30:38:2".into()),
         y: Some("pavilion_angle:40:41:0.5".into()),
         axis: vec!["table:0.55:0.58:0.01".into()],
         map: Some("table,crown_angle".into()),
         at: vec!["pavilion_angle=40.9".into()],
-        shard: None,
-        score: SweepScore::BRILLIANCE,
-        run: None,
-        out: Some(dir.path().join("three")),
-        quiet: true,
+        ..s
     };
     let no_env = |_: &str| None;
     assert_eq!(run_sweep_env(&s, &bumps, &no_env).unwrap(), Exit::Ok);
