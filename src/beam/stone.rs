@@ -235,6 +235,15 @@ impl Stone {
         self.symmetry.rotations_and_mirror()
     }
 
+    /// [`Stone::symmetry`] of a birefringent stone with optic axis `axis` (stone
+    /// coordinates): only the symmetries that also map the axis onto itself or its opposite
+    /// (for an axis along z all of them, for one in the table at most the half-turn and the
+    /// mirrors through and across it, for a tilted one at most the mirror through it), in the
+    /// same form. Two poses one of these maps onto the other see the same crystal.
+    pub fn symmetry_keeping(&self, axis: DVec3) -> (usize, Option<f64>) {
+        self.symmetry.rotations_and_mirror_keeping(axis)
+    }
+
     /// Number of symmetries of the solid about the z axis (1 = none; 16 for a round brilliant).
     pub fn symmetry_order(&self) -> usize {
         self.symmetry.order()

@@ -313,6 +313,23 @@ impl Symmetry {
         (self.rot_order, self.mirror_az)
     }
 
+    /// [`Symmetry::rotations_and_mirror`] of the subgroup that maps `axis` onto itself or its
+    /// opposite: its rotations are a cyclic group (order `k'`) and its mirrors, if any, the
+    /// mirrors `β' + jπ/k'` of that group.
+    pub(super) fn rotations_and_mirror_keeping(&self, axis: DVec3) -> (usize, Option<f64>) {
+        let keeps = |op: &&SymOp| {
+            let m = op.m * axis;
+            (m - axis).length() < 1e-9 || (m + axis).length() < 1e-9
+        };
+        let kept: Vec<&SymOp> = self.ops.iter().filter(keeps).collect();
+        let k = kept.iter().filter(|op| !op.mirror).count().max(1);
+        let mirror = kept
+            .iter()
+            .find(|op| op.mirror)
+            .map(|op| op.azimuth.rem_euclid(std::f64::consts::PI / k as f64));
+        (k, mirror)
+    }
+
     /// The symmetries that fix direction `d` (indices into `ops`), and the half-spaces
     /// `n · x <= 0` (planes through the z axis) cutting out a fundamental wedge whose images
     /// under them tile space.

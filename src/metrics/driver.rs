@@ -143,7 +143,13 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
     );
     // Brilliance sees no spot light: a pose and its image under one of the stone's
     // symmetries return the same light, so they share one trace.
-    let symmetry = stone.symmetry();
+    // A birefringent stone's poses are mapped only by the symmetries that keep its optic
+    // axis: another one would trace the crystal turned.
+    let symmetry = if cfg.material.birefringent() {
+        stone.symmetry_keeping(axis)
+    } else {
+        stone.symmetry()
+    };
     let brill: Vec<usize> = cfg
         .tilts
         .iter()

@@ -239,6 +239,21 @@ impl OpticAxis {
         })
     }
 
+    /// The axis along `v` (stone coordinates, any length; `v` and `−v` are the same axis),
+    /// unrounded: its [`OpticAxis::vector`] is `v` normalised, up or down, to rounding.
+    pub fn along(v: glam::DVec3) -> OpticAxis {
+        let v = if v.z < 0.0 { -v } else { v }.normalize();
+        let h = v.truncate().length();
+        OpticAxis {
+            tilt_deg: h.atan2(v.z).to_degrees(),
+            azimuth_deg: if h > 0.0 {
+                v.y.atan2(v.x).to_degrees()
+            } else {
+                0.0
+            },
+        }
+    }
+
     /// The unit vector along the axis, in the stone's coordinates.
     pub fn vector(&self) -> glam::DVec3 {
         let (t, a) = (self.tilt_deg.to_radians(), self.azimuth_deg.to_radians());

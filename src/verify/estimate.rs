@@ -3,9 +3,10 @@
 //! photon tracer under the scores' settings is here.
 
 use crate::error::Result;
-use crate::geometry::{FacetPlane, Polyhedron};
+use crate::geometry::{canonical, FacetPlane, Polyhedron};
 use crate::metrics::lighting::Lighting;
 use crate::metrics::ScoreConfig;
+use crate::optics::OpticAxis;
 use crate::photon::{self, Absorption, Light, TraceConfig, WavelengthSampling};
 use serde::Serialize;
 
@@ -103,12 +104,26 @@ pub fn brilliance_mc(
     seed: u64,
 ) -> Result<BrillianceMc> {
     let light = Lighting::new(cfg.head_shadow_deg, &cfg.spots);
+    // The beam scores turn the stone's canonical placement into each pose, a birefringent
+    // stone's optic axis carried into it (`geometry::canonical`): so do the photons.
+    let axis = cfg
+        .material
+        .uniaxial
+        .as_ref()
+        .map(|u| canonical::canonical_axis(solid, u.axis.vector()));
+    let solid = &canonical::canonical(solid);
     let n = cfg.tilts.len().max(1) as f64;
     let (mut iso, mut iso_var, mut cos, mut cos_var, mut both, mut both_var) =
         (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     for (k, tilt) in cfg.tilts.iter().enumerate() {
-        let world = turned(solid, tilt.rotation())?;
-        let pc = photon_config(cfg, photons, seed.wrapping_add(k as u64 * 0x9E37_79B9));
+        let rot = tilt.rotation();
+        let world = turned(solid, rot)?;
+        let mut pc = photon_config(cfg, photons, seed.wrapping_add(k as u64 * 0x9E37_79B9));
+        // A birefringent stone's optic axis turns with it: the photon tracer takes the axis
+        // in the coordinates of the solid it traces.
+        if let (Some(u), Some(axis)) = (pc.material.uniaxial.as_mut(), axis) {
+            u.axis = OpticAxis::along(rot * axis);
+        }
         let down = Light::directed(0.0);
         // ISO, COS and their mean summed over the same photons in one trace, so the mean's
         // error is its own (not a sum of independent errors).

@@ -198,3 +198,56 @@ fn flags_beyond_four_standard_errors() {
     };
     assert_eq!(rep.disagreements(4.0), vec!["brilliance_mc".to_string()]);
 }
+
+/// Strongly birefringent stones (issue 50): the two tracers' brilliance agrees within 4
+/// standard errors for zircon and moissanite rounds with the optic axis up (0), tilted in a
+/// mirror plane (45@0), in the table (90) and tilted off every mirror (30@40), at a tilted
+/// pose that the round's own symmetry maps onto another (20° toward 108°: a symmetry that
+/// does not keep the axis must not be used). Two faults made them disagree: the photon
+/// tracer kept the optic axis fixed in the world while the stone was turned into the pose,
+/// and the beam tracer traced a pose's symmetric image under the stone's symmetry whether or
+/// not it kept the axis. (How far off the old code was at this photon count is not yet
+/// measured here; with 300000 photons over the 11 default poses it was +27 se for zircon
+/// axis 0, +49 for 45@0 and +12 for moissanite axis 0.)
+#[test]
+fn beam_and_photon_brilliance_agree_on_strongly_birefringent_stones() {
+    use crate::metrics::Parts;
+    use crate::optics::OpticAxis;
+    let solid = crate::io::load_cut("tolkowsky").unwrap().solid;
+    let mut worst = 0.0f64;
+    for name in ["zircon", "moissanite"] {
+        for axis in ["0", "45@0", "90", "30@40"] {
+            let mut material = Material::by_name(name).unwrap();
+            material.uniaxial.as_mut().unwrap().axis = OpticAxis::parse(axis, "axis").unwrap();
+            let cfg = ScoreConfig {
+                material,
+                tilts: vec![Tilt {
+                    tilt_deg: 20.0,
+                    azimuth_deg: 108.0,
+                }],
+                parts: Parts {
+                    fire: false,
+                    scintillation: false,
+                },
+                face_up_split_threshold: 1e-3,
+                fire_split_threshold: 1e-3,
+                ..ScoreConfig::default()
+            };
+            let s = score(&solid, &cfg);
+            let mc = brilliance_mc(&solid, &cfg, 40_000, 7).unwrap();
+            for (what, beam, e) in [
+                ("iso", s.brilliance_iso, mc.brilliance_iso),
+                ("cos", s.brilliance_cos, mc.brilliance_cos),
+            ] {
+                let z = e.z(beam);
+                eprintln!(
+                    "{name} axis {axis} {what}: beam {beam:.5} photon {:.5} ± {:.5} ({z:+.2} se)",
+                    e.value, e.stderr
+                );
+                worst = worst.max(z.abs());
+                assert!(z.abs() < 4.0, "{name} axis {axis} {what}: {beam} vs {e:?}");
+            }
+        }
+    }
+    eprintln!("largest disagreement {worst:.2} standard errors");
+}

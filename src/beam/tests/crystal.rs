@@ -352,3 +352,135 @@ fn beam_and_photon_tracers_agree_per_mode_and_band() {
     }
     eprintln!("largest disagreement {worst:.2} standard errors");
 }
+
+/// Total internal reflection inside a uniaxial crystal (issue 50), in closed form: a
+/// right-angle prism (legs 1, long along its edge) lit straight down through one leg, its
+/// optic axis along the edge. The light enters at normal incidence, meets the hypotenuse at
+/// 45° (beyond both modes' critical angles for zircon, moissanite and sapphire), is totally
+/// reflected and meets the other leg at normal incidence; what that leg reflects goes back
+/// the same way to the entry leg, and so on. With the axis normal to every plane of
+/// incidence the modes never convert (E ⊥ ĉ in the plane: ordinary, index n_o; E ∥ ĉ:
+/// extraordinary, n_e; both travel along their wave vectors), so per mode m, with
+/// `R_m = ((n_m − 1)/(n_m + 1))²`, half the light leaves through the far leg as
+/// `(1 − R_m)² Σ R_m^2j = (1 − R_m)/(1 + R_m)` and back through the entry leg as
+/// `R_m (1 − R_m)/(1 + R_m)`, and the entry leg reflects `R_m` outside. The beam tracer
+/// gives these to 1e-9 (polarization on and off, the scene turned about the light); the
+/// photon tracer, per mode, within 4 standard errors.
+#[test]
+fn a_prism_totally_reflecting_both_modes_matches_its_closed_form() {
+    use crate::geometry::{FacetPlane, Polyhedron};
+    use crate::optics::{Material, OpticAxis};
+    use crate::photon::{trace_weights, Absorption, Light, TraceConfig, WavelengthSampling};
+    let nm = 589.3;
+    for (name, turn) in [("zircon", 0.0), ("moissanite", 0.3), ("sapphire", -1.1)] {
+        let rot = glam::DMat3::from_rotation_z(turn);
+        let s2 = std::f64::consts::FRAC_1_SQRT_2;
+        let planes: Vec<FacetPlane> = [
+            (DVec3::Z, 0.0, "entry"),
+            (DVec3::X, 1.0, "far"),
+            (DVec3::new(-s2, 0.0, -s2), 0.0, "hypotenuse"),
+            (DVec3::Y, 2.0, "+y"),
+            (DVec3::NEG_Y, 2.0, "-y"),
+        ]
+        .into_iter()
+        .map(|(n, o, f)| FacetPlane::new(rot * n, o, f, "prism"))
+        .collect();
+        let solid = Polyhedron::from_planes(&planes).unwrap();
+        let far = rot * DVec3::X;
+        let axis = rot * DVec3::Y;
+        let mut material = Material::by_name(name).unwrap();
+        material.uniaxial.as_mut().unwrap().axis = OpticAxis::along(axis);
+        let (n_o, n_e) = (material.ri(nm), material.ri_e(nm));
+        assert!(
+            n_o.min(n_e) * s2 > 1.0,
+            "{name}: not beyond the critical angle"
+        );
+        let r = |n: f64| ((n - 1.0) / (n + 1.0)).powi(2);
+        let want = |n: f64| {
+            let r = r(n);
+            (0.5 * (1.0 - r) / (1.0 + r), 0.5 * r * (1.0 - r) / (1.0 + r))
+        };
+        let medium = Medium::Uniaxial {
+            crystal: Crystal::new(n_o, n_e, axis),
+            alpha_o: 0.0,
+            alpha_e: 0.0,
+        };
+        let stone = Stone::new(&solid);
+        for pol in [true, false] {
+            let opts = TraceOptions {
+                polarization: pol,
+                max_depth: 400,
+                ..TraceOptions::exact(1e-15)
+            };
+            let tree = stone.trace_medium(&Frame::overhead(), &medium, nm, &opts);
+            assert!(tree.balance().abs() < 1e-12, "{}", tree.balance());
+            let p_in = tree.stats.power_in;
+            for (mode, n) in [(WaveMode::Ordinary, n_o), (WaveMode::Extraordinary, n_e)] {
+                let sum = |dir: DVec3| -> f64 {
+                    tree.exits
+                        .iter()
+                        .filter(|e| e.mode == Some(mode) && e.direction.dot(dir) > 1.0 - 1e-9)
+                        .map(|e| e.power)
+                        .sum::<f64>()
+                        / p_in
+                };
+                let (through, back) = want(n);
+                let (t, b) = (sum(far), sum(DVec3::Z));
+                assert!((t - through).abs() < 1e-9, "{name} {mode:?}: {t} {through}");
+                assert!((b - back).abs() < 1e-9, "{name} {mode:?}: {b} {back}");
+                // Nothing else leaves in this mode (no light through the hypotenuse).
+                let all: f64 = tree
+                    .exits
+                    .iter()
+                    .filter(|e| e.mode == Some(mode))
+                    .map(|e| e.power)
+                    .sum::<f64>()
+                    / p_in;
+                assert!((all - t - b).abs() < 1e-12, "{name} {mode:?}: {all}");
+            }
+            let ext: f64 = tree
+                .exits
+                .iter()
+                .filter(|e| e.external)
+                .map(|e| e.power)
+                .sum::<f64>()
+                / p_in;
+            assert!(
+                (ext - 0.5 * (r(n_o) + r(n_e))).abs() < 1e-12,
+                "{name}: {ext}"
+            );
+        }
+        // The photon tracer: each photon's mode as it leaves, through the far leg or not.
+        let cfg = TraceConfig {
+            photons: 20_000,
+            depth: None,
+            absorption: Absorption::None,
+            material: material.clone(),
+            wavelengths: WavelengthSampling::Fixed(nm),
+            seed: 3,
+            ..TraceConfig::thesis()
+        };
+        let t = trace_weights(&solid, &Light::directed(0.0), &cfg, &|w| {
+            [f64::from(w.dot(far) > 1.0 - 1e-9), 0.0, 0.0]
+        })
+        .unwrap();
+        let (through, _) = want(n_o);
+        let (through_e, _) = want(n_e);
+        let z = (t.mean[0] - through - through_e) / t.stderr[0];
+        eprintln!(
+            "{name}: photons through the far leg {:.5} ± {:.5}, closed form {:.5} ({z:+.2} se)",
+            t.mean[0],
+            t.stderr[0],
+            through + through_e
+        );
+        assert!(z.abs() < 4.0, "{name}: {z}");
+        let hit = t.tally.counts.hit as f64;
+        for (m, n) in [n_o, n_e].into_iter().enumerate() {
+            // Each mode's light leaving from inside: (1 − R_m)/2 of the light.
+            let p = 0.5 * (1.0 - r(n));
+            let got = t.tally.counts.mode_exits[m] as f64 / hit;
+            let z = (got - p) / (p * (1.0 - p) / hit).sqrt();
+            assert!(z.abs() < 4.0, "{name} mode {m}: {got} {p} ({z:.2} se)");
+        }
+    }
+}
