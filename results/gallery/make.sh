@@ -20,6 +20,10 @@ render tolkowsky --material tourmaline --colour "#1f5a36@10mm" --diameter-mm 9 -
     --light cos --head-shadow 15 --size 320 -o "$out/tourmaline-dark-cos.png"
 render tolkowsky --material beryl --colour "#bfe0ea@10mm" --diameter-mm 8 \
     --light cos --head-shadow 15 --size 320 -o "$out/aquamarine-pale-cos.png"
+# Pleochroism: a ruby with its c-axis ⟂ the table (the purplish-red E⊥c ray face-up) and in
+# the table's plane (more of the lighter, orange-red E∥c ray).
+render oval --material ruby --optic-axis 0 --light cos --head-shadow 15 --size 320 -o "$out/ruby-oval-axis0-cos.png"
+render oval --material ruby --optic-axis 90 --light cos --head-shadow 15 --size 320 -o "$out/ruby-oval-axis90-cos.png"
 # Photographs (`--light` a studio rig or the procedural studio map; `--view`, `--ground`).
 render tolkowsky --light tent --view 30 --size 420 -o "$out/photo-tolkowsky-tent.png"
 render princess --light darkfield --view 45 --size 420 -o "$out/photo-princess-darkfield.png"

@@ -13,7 +13,8 @@ pub struct MaterialsArgs {
     /// Print a JSON array instead of the table (keys: name, nd, dispersion, formula, source,
     /// ordinary_ray, optic, density, aliases; coloured varieties follow with variety_of,
     /// chromophores and colour — {source, seen_through_mm, hex, lab} or null with
-    /// no_spectrum saying why).
+    /// no_spectrum saying why — and, uniaxial ones, colour_e, the E∥c colour in the same form
+    /// or null with no_spectrum_e saying why).
     #[arg(long)]
     pub json: bool,
 }
@@ -66,8 +67,21 @@ fn text(rows: &[Row]) -> String {
                 );
             }
         }
+        match &v.colour_e {
+            Some(Some(c)) => {
+                out += &format!(
+                    "{:<17} {:<11} E∥c {}  L* {:>5.1} a* {:>6.1} b* {:>6.1}  spectrum: {}\n",
+                    "", "", c.hex, c.lab[0], c.lab[1], c.lab[2], c.source
+                );
+            }
+            Some(None) => {
+                out += &format!("{:<17} {:<11} {}\n", "", "", v.no_spectrum_e);
+            }
+            None => {}
+        }
     }
-    out += "Spectra: polarized absorbance of one stone each (the ray the model traces), 10 nm bins, baseline (smallest absorbance) removed, α = ln 10 · A / thickness; --colour-density scales them.\n";
+    out += "Spectra: polarized absorbance of one stone each (the ray the model traces), 10 nm bins, baseline (smallest absorbance) removed, α = ln 10 · A / thickness; --colour-density scales them.\n\
+            Uniaxial varieties: the first colour is E⊥c (the ordinary ray ω), the E∥c line the extraordinary ray's (pleochroism: --optic-axis turns the stone between them); without one the e-ray takes the E⊥c spectrum (--colour-e gives one).\n";
     out
 }
 
@@ -108,6 +122,27 @@ mod tests {
             );
         }
         assert!(t.contains("Caltech Mineral Spectroscopy Server"), "{t}");
+        // Which uniaxial varieties have an E∥c spectrum, and why the others have none.
+        let block = |name: &str| -> Vec<&str> {
+            t.lines()
+                .skip_while(|l| !l.starts_with(name))
+                .take(3)
+                .collect()
+        };
+        for v in ["ruby", "blue-sapphire", "emerald"] {
+            assert!(
+                block(v).iter().any(|l| l.contains("E∥c #")),
+                "{v}: {:?}",
+                block(v)
+            );
+        }
+        for v in ["amethyst", "green-tourmaline", "pink-tourmaline"] {
+            assert!(
+                block(v).iter().any(|l| l.contains("no E∥c")),
+                "{v}: {:?}",
+                block(v)
+            );
+        }
         let json = serde_json::to_value(rows()).unwrap();
         let ruby = json
             .as_array()
@@ -117,6 +152,20 @@ mod tests {
             .unwrap();
         assert_eq!(ruby["variety_of"], "sapphire");
         assert!(ruby["colour"]["hex"].as_str().unwrap().starts_with('#'));
+        assert!(ruby["colour_e"]["source"].as_str().unwrap().contains("GIA"));
+        let find = |n: &str| {
+            json.as_array()
+                .unwrap()
+                .iter()
+                .find(|r| r["name"] == n)
+                .unwrap()
+        };
+        assert!(find("green-tourmaline")["colour_e"].is_null());
+        assert!(find("green-tourmaline")["no_spectrum_e"]
+            .as_str()
+            .unwrap()
+            .contains("E∥c"));
+        assert!(find("peridot").get("colour_e").is_none()); // biaxial: no such ray
         let diamond = &json[Material::NAMES.len() - 2];
         assert_eq!(diamond["name"], "diamond");
         assert!(diamond.get("variety_of").is_none());

@@ -1,7 +1,9 @@
 //! The materials document, as `facetlab materials --json` writes it: one row per material of
 //! the table (`name`, `nd`, `dispersion`, `formula`, `source`, `ordinary_ray`, `optic`,
 //! `density`, `aliases`), then the coloured varieties with `variety_of`, `chromophores` and
-//! `colour` (`{source, seen_through_mm, hex, lab}`, or null with `no_spectrum` saying why).
+//! `colour` (`{source, seen_through_mm, hex, lab}`, or null with `no_spectrum` saying why), and
+//! for a uniaxial host `colour_e`, the E ∥ c (extraordinary ray's) colour in the same form, or
+//! null with `no_spectrum_e` saying why.
 
 use crate::optics::{Material, Variety};
 use serde::Serialize;
@@ -44,6 +46,13 @@ pub struct VarietyRow {
     #[serde(skip_serializing_if = "str::is_empty")]
     /// Why it has no spectrum (empty when it has one).
     pub no_spectrum: &'static str,
+    /// A uniaxial variety's published E ∥ c colour (`Some(None)`: none found); `None` for a
+    /// variety that is not uniaxial.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub colour_e: Option<Option<ColourRow>>,
+    #[serde(skip_serializing_if = "str::is_empty")]
+    /// Why a uniaxial variety has no E ∥ c spectrum (empty otherwise).
+    pub no_spectrum_e: &'static str,
 }
 
 /// A published body colour: its source and the colour seen through [`SEEN_MM`].
@@ -57,6 +66,19 @@ pub struct ColourRow {
     pub hex: String,
     /// The colour as CIELAB L*, a*, b*.
     pub lab: [f64; 3],
+}
+
+impl ColourRow {
+    /// A body colour's row: its source and its colour through [`SEEN_MM`].
+    fn of(c: &crate::optics::BodyColour) -> ColourRow {
+        let lab = c.lab_through(SEEN_MM);
+        ColourRow {
+            source: c.source.clone(),
+            seen_through_mm: SEEN_MM,
+            hex: c.hex_through(SEEN_MM),
+            lab: [lab.x, lab.y, lab.z].map(|x| (x * 100.0).round() / 100.0),
+        }
+    }
 }
 
 /// The path the listing shows each variety's colour through, mm.
@@ -73,16 +95,13 @@ pub fn rows() -> Vec<Row> {
             variety: v.map(|v| VarietyRow {
                 variety_of: v.host,
                 chromophores: v.chromophores,
-                colour: m.colour.as_ref().map(|c| {
-                    let lab = c.lab_through(SEEN_MM);
-                    ColourRow {
-                        source: c.source.clone(),
-                        seen_through_mm: SEEN_MM,
-                        hex: c.hex_through(SEEN_MM),
-                        lab: [lab.x, lab.y, lab.z].map(|x| (x * 100.0).round() / 100.0),
-                    }
-                }),
+                colour: m.colour.as_ref().map(ColourRow::of),
                 no_spectrum: v.missing,
+                colour_e: m
+                    .uniaxial
+                    .as_ref()
+                    .map(|u| u.colour_e.as_ref().map(ColourRow::of)),
+                no_spectrum_e: v.missing_e,
             }),
             nd: m.ri_d(),
             dispersion: m.bg_dispersion(),

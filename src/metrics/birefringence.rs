@@ -157,3 +157,31 @@ fn a_pleochroic_stone_is_darker_with_its_closed_axis_up() {
     let up_turned = colour("0@40");
     assert!((up.l - up_turned.l).abs() < 1e-9);
 }
+
+/// Ruby's published pleochroism shows face-up (issue 50): its E⊥c spectrum (Caltech GRR
+/// 1843) and its E∥c one (GIA's Cr³⁺ σ∥ at the same Cr content) make its face-up colour
+/// differ by ΔE76 > 5 (CIELAB of the scores' face-up colour, a* b* from C* and h) between c ⟂
+/// table and c in the table; with the e-ray taking the E⊥c spectrum, as before the data,
+/// by < 1. With c in the table the light is more of the orange-red ray: lighter.
+#[test]
+fn ruby_face_up_colour_turns_with_its_optic_axis() {
+    let s = crate::testkit::tolkowsky();
+    let lab = |m: Material| {
+        let c = score(&s, &cfg(m)).colour.unwrap();
+        let h = c.h_deg.to_radians();
+        glam::DVec3::new(c.l, c.c * h.cos(), c.c * h.sin())
+    };
+    let (up, flat) = (lab(with_axis("ruby", "0")), lab(with_axis("ruby", "90")));
+    let de = (up - flat).length();
+    eprintln!("ruby face-up c ⟂ table {up:.2}, c in the table {flat:.2}: ΔE76 {de:.2}");
+    assert!(de > 5.0, "ΔE76 {de}");
+    assert!(flat.x > up.x, "{up} vs {flat}");
+    let without = |axis: &str| {
+        let mut m = with_axis("ruby", axis);
+        m.uniaxial.as_mut().unwrap().colour_e = None;
+        lab(m)
+    };
+    let de0 = (without("0") - without("90")).length();
+    eprintln!("without E∥c: ΔE76 {de0:.2}");
+    assert!(de0 < 1.0, "ΔE76 {de0}");
+}

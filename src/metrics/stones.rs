@@ -8,7 +8,7 @@
 use super::material_of;
 use crate::cut::Cut;
 use crate::error::{Error, Result};
-use crate::optics::{BodyColour, ColourFields, CrystalFields, Material, StoneSize};
+use crate::optics::{ColourFields, CrystalFields, Material, StoneSize};
 
 /// `on`/`off` (also `true`/`false`, `yes`/`no`); an error names `field`.
 pub fn on_off(field: &str, s: &str) -> Result<bool> {
@@ -126,12 +126,7 @@ impl StoneChoice {
         fields: ColourFields<'_>,
     ) -> Result<StoneChoice> {
         let mut material = material;
-        material.colour = BodyColour::choose(
-            material.colour.as_ref(),
-            colour.as_deref(),
-            colour_density,
-            fields,
-        )?;
+        material.choose_colour(colour.as_deref(), colour_density, fields)?;
         Ok(StoneChoice {
             material,
             chosen,
@@ -176,12 +171,7 @@ impl StoneChoice {
         let mut widths = Vec::with_capacity(cuts.len());
         for (cut, m) in cuts.iter().zip(materials.iter_mut()) {
             if m.colour.is_none() {
-                m.colour = BodyColour::choose(
-                    m.colour.as_ref(),
-                    self.colour.as_deref(),
-                    self.colour_density,
-                    fields.colour,
-                )?;
+                m.choose_colour(self.colour.as_deref(), self.colour_density, fields.colour)?;
             }
             let w = self.size.width_mm(cut.ratios().l_w, size_field)?;
             widths.push(w);

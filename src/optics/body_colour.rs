@@ -218,7 +218,33 @@ impl BodyColour {
             },
         }
     }
+}
 
+impl super::material::Material {
+    /// Choose this stone's body colour as [`BodyColour::choose`] does with its own, and keep a
+    /// uniaxial stone's E ∥ c colour in step: a user's colour replaces the variety's spectra
+    /// of both rays (its E ∥ c one is dropped: the crystal settings' E ∥ c colour gives one
+    /// back), and a density scales both. Errors as [`BodyColour::choose`]'s.
+    pub fn choose_colour(
+        &mut self,
+        user: Option<&str>,
+        density: Option<f64>,
+        fields: ColourFields<'_>,
+    ) -> Result<()> {
+        let colour = BodyColour::choose(self.colour.as_ref(), user, density, fields)?;
+        if let Some(u) = self.uniaxial.as_mut() {
+            u.colour_e = match (user, u.colour_e.take(), density) {
+                (Some(_), _, _) | (None, None, _) => None,
+                (None, Some(c), Some(d)) => Some(c.with_density(d)),
+                (None, Some(c), None) => Some(c),
+            };
+        }
+        self.colour = colour;
+        Ok(())
+    }
+}
+
+impl BodyColour {
     /// One line for stderr naming the colour, its source, the stone's width and the colour
     /// seen through that width (a picture drawn in the colour prints this).
     pub fn note(&self, width_mm: f64) -> String {
@@ -693,5 +719,29 @@ mod tests {
         }
         let note = own.not_traced_note(6.5);
         assert!(note.contains("6.5 mm") && note.contains("not yet traced") && !note.contains('\n'));
+    }
+    /// A pleochroic variety's E∥c colour follows its E⊥c one through the chooser: a density
+    /// scales both rays, a user's colour replaces both (the E∥c spectrum dropped).
+    #[test]
+    fn the_e_ray_follows_the_chosen_colour() {
+        let f = ColourFields {
+            colour: "colour",
+            density: "colour density",
+        };
+        let ruby = crate::optics::Material::by_name("ruby").unwrap();
+        let e = ruby.colour_e().unwrap().clone();
+        assert_ne!(Some(&e), ruby.colour.as_ref());
+        let mut dark = ruby.clone();
+        dark.choose_colour(None, Some(2.0), f).unwrap();
+        assert_eq!(dark.colour_e().unwrap().density, 2.0);
+        assert_eq!(dark.colour.as_ref().unwrap().density, 2.0);
+        assert!((dark.colour_e().unwrap().alpha(550.0) - 2.0 * e.alpha(550.0)).abs() < 1e-12);
+        let mut same = ruby.clone();
+        same.choose_colour(None, None, f).unwrap();
+        assert_eq!(same, ruby);
+        let mut user = ruby.clone();
+        user.choose_colour(Some("#7a3fa0@10mm"), None, f).unwrap();
+        assert!(user.uniaxial.as_ref().unwrap().colour_e.is_none());
+        assert_eq!(user.colour_e(), user.colour.as_ref());
     }
 }

@@ -208,8 +208,7 @@ impl Material {
         };
         if let Some(c) = &colour {
             let field = format!("the design's note `colour: {c}`");
-            m.colour = super::body_colour::BodyColour::choose(
-                m.colour.as_ref(),
+            m.choose_colour(
                 Some(c),
                 None,
                 super::body_colour::ColourFields {

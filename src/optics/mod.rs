@@ -37,4 +37,4 @@ pub use body_colour::{
 pub use fresnel::{critical_angle, fresnel, reflect, refract, Complex, Interface};
 pub use material::{Dispersion, Material, MaterialFields, OpticAxis, Uniaxial};
 pub use polarization::{rotate_stokes, s_axis, Mueller, Stokes};
-pub use varieties::{Variety, MISSING_E};
+pub use varieties::Variety;

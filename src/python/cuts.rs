@@ -315,7 +315,8 @@ fn families(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 
 /// The materials and coloured varieties with their data, as `facetlab materials --json`
 /// lists them (dicts: `name`, `nd`, `dispersion`, `formula`, `source`, `optic`, `density`,
-/// `aliases`; a variety also `variety_of`, `chromophores`, `colour`).
+/// `aliases`; a variety also `variety_of`, `chromophores`, `colour`, and a uniaxial one
+/// `colour_e`, its E∥c colour or None with `no_spectrum_e` saying why).
 ///
 /// >>> diamond = next(m for m in facetlab.materials() if m["name"] == "diamond")
 /// >>> round(diamond["nd"], 4)

@@ -11,7 +11,7 @@ use base64::engine::general_purpose::GeneralPurpose;
 use base64::engine::{DecodePaddingMode, GeneralPurposeConfig};
 use base64::Engine;
 use facetlab::io;
-use facetlab::optics::{BodyColour, ColourFields, Material, MaterialFields, StoneSize};
+use facetlab::optics::{ColourFields, Material, MaterialFields, StoneSize};
 use facetlab::render::photo::{GroundKind, PhotoLight, View};
 use facetlab::render::Light;
 use serde::Deserialize;
@@ -513,16 +513,16 @@ fn stone(b: &Body) -> ApiResult<Stone> {
             ))
         }
     };
-    material.colour = BodyColour::choose(
-        material.colour.as_ref(),
-        colour,
-        density,
-        ColourFields {
-            colour: "colour",
-            density: "colour_density",
-        },
-    )
-    .map_err(invalid)?;
+    material
+        .choose_colour(
+            colour,
+            density,
+            ColourFields {
+                colour: "colour",
+                density: "colour_density",
+            },
+        )
+        .map_err(invalid)?;
     // A uniaxial stone's optic axis (degrees from the table's normal, toward azimuth 0),
     // whether it is traced birefringent and its E ∥ c colour, through the chooser
     // `--optic-axis`, `--birefringence` and `--colour-e` use.
@@ -602,8 +602,7 @@ pub fn material_for(r: &Req, cut: &facetlab::cut::Cut) -> ApiResult<Material> {
         return Ok(r.material.clone());
     };
     let (mut m, _) = facetlab::metrics::material_of(cut, &Material::diamond(), false);
-    m.colour = BodyColour::choose(
-        m.colour.as_ref(),
+    m.choose_colour(
         colour.as_deref(),
         *density,
         ColourFields {
