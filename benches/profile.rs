@@ -19,7 +19,9 @@
 //! `FACETLAB_PROFILE_PARTS=brilliance` leaves fire and scintillation out,
 //! `FACETLAB_PROFILE_FACE_UP_SPLIT` the face-up trace's split threshold (it splits down to the
 //! smallest of this, fire's and the tilted poses'),
-//! `FACETLAB_PROFILE_TILTS=face-up` scores the face-up pose only, and `FACETLAB_PROFILE_DEGREES`
+//! `FACETLAB_PROFILE_TILTS=face-up` scores the face-up pose only,
+//! `FACETLAB_PROFILE_HEAD_SHADOW` sets the viewer's head shadow (default 15°, 0 the open-sky
+//! scores), and `FACETLAB_PROFILE_DEGREES`
 //! the profile's width (default 1°) (for experiments).
 //!
 //! Then, per pose of the brilliance average, the same two figures for its light return
@@ -128,6 +130,14 @@ fn main() {
         .and_then(|s| s.parse().ok())
     {
         cfg.face_up_split_threshold = x;
+    }
+    // `FACETLAB_PROFILE_HEAD_SHADOW`: the viewer's head shadow in degrees (default 15; 0 for
+    // the open-sky scores).
+    if let Some(x) = std::env::var("FACETLAB_PROFILE_HEAD_SHADOW")
+        .ok()
+        .and_then(|s| s.parse().ok())
+    {
+        cfg.head_shadow_deg = x;
     }
     // `FACETLAB_PROFILE_TILTS=face-up`: the face-up pose only.
     if std::env::var("FACETLAB_PROFILE_TILTS").as_deref() == Ok("face-up") {

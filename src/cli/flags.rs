@@ -271,6 +271,25 @@ impl MaterialArgs {
     }
 }
 
+/// `--head-shadow DEG`, shared by the commands that score (`score`, `report`, `retarget`):
+/// the viewer's head shadow of the scores ([`ScoreConfig::head_shadow_deg`]).
+///
+/// [`ScoreConfig::head_shadow_deg`]: facetlab::metrics::ScoreConfig::head_shadow_deg
+#[derive(Clone, Debug, clap::Args)]
+pub struct HeadShadowArgs {
+    /// Half-angle in degrees of the viewer's head shadow around the line of sight, darkening
+    /// the skies and spot lights of the scores as the viewer's head does (default 15; 0 =
+    /// none, the open-sky scores of earlier versions).
+    #[arg(
+        long,
+        default_value = "15",
+        value_name = "DEG",
+        allow_hyphen_values = true,
+        value_parser = real("--head-shadow", 0.0, 60.0, "a half-angle in degrees (0 = none)")
+    )]
+    pub head_shadow: f64,
+}
+
 /// `--colour`, `--colour-density`, `--diameter-mm` and `--size-mm`, shared by `score` and
 /// `render`: a body colour and the stone's size (absorption depends on the path in mm).
 #[derive(Clone, Debug, Default, clap::Args)]

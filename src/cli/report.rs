@@ -22,6 +22,8 @@ pub struct ReportArgs {
     pub set: Vec<String>,
     #[command(flatten)]
     pub material: super::flags::MaterialArgs,
+    #[command(flatten)]
+    pub head: super::flags::HeadShadowArgs,
     /// Re-measure light return and brilliance with the photon tracer using this many photons
     /// (e.g. 200000); 0 = no check.
     #[arg(
@@ -99,6 +101,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
     let material = materials.first().cloned().unwrap_or(material);
     let score = ScoreConfig {
         material,
+        head_shadow_deg: a.head.head_shadow,
         ..ScoreConfig::default()
     };
     // With the default settings only the material can be at fault: the error names it, and

@@ -40,6 +40,8 @@ pub struct RetargetArgs {
     /// The retargeted design (.asc, .gem, .toml, .obj, .stl or .svg, by extension).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: PathBuf,
+    #[command(flatten)]
+    pub head: flags::HeadShadowArgs,
 }
 
 /// Run `facetlab retarget`.
@@ -95,7 +97,11 @@ pub fn run(a: &RetargetArgs) -> Result<()> {
             .design_ri()
             .unwrap_or_else(|| Material::diamond().ri_d()),
     };
-    let r = facetlab::optimize::retarget(&cut, from, &to, &ScoreConfig::default())?;
+    let full = ScoreConfig {
+        head_shadow_deg: a.head.head_shadow,
+        ..ScoreConfig::default()
+    };
+    let r = facetlab::optimize::retarget(&cut, from, &to, &full)?;
     println!(
         "{}: cut for n = {from:.4}, retargeted to {} (n = {:.4}); brilliance at the new index:",
         cut.name, r.material, r.to_ri

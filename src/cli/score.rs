@@ -15,7 +15,7 @@
 //! name), `overhead_light_return`, `brilliance`, `brilliance_iso`, `brilliance_cos`, `fire`,
 //! `scintillation`, `aset.{blue,red,green,leak}`, `poses[].{tilt_deg,azimuth_deg,iso,cos}` (each
 //! pose of the brilliance average with its ISO and COS light return: the mean of the picture
-//! `facetlab render` draws of that pose) (the keys of [`Scores`]) and `settings` (the
+//! `facetlab render` draws of that pose with the same `--head-shadow`, 15 by default here) (the keys of [`Scores`]) and `settings` (the
 //! run's configuration as understood: `material`, `ri` (null unless `--ri`), `polarization`,
 //! `head_shadow_deg`, `wavelength_nm`, `bands`, `tilts`, `scintillation_tilts`, `resolution`,
 //! `split_threshold`, `fire_split_threshold`, `face_up_split_threshold`, `threshold`, `ray_floor`, `narrow_forks`). Several cuts: `{"settings": {...}, "results": [one such
@@ -67,15 +67,8 @@ pub struct ScoreArgs {
     /// unpolarized average (off).
     #[arg(long, default_value = "on", value_name = "on|off", action = clap::ArgAction::Set, value_parser = super::flags::on_off_parser("--polarization"))]
     pub polarization: bool,
-    /// Half-angle in degrees of the viewer's head shadow around the zenith (0 = none).
-    #[arg(
-        long,
-        default_value = "0",
-        value_name = "DEG",
-        allow_hyphen_values = true,
-        value_parser = super::flags::real("--head-shadow", 0.0, 60.0, "a half-angle in degrees (0 = none)")
-    )]
-    pub head_shadow: f64,
+    #[command(flatten)]
+    pub head: super::flags::HeadShadowArgs,
     /// Write the scores as JSON to this file.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
@@ -110,7 +103,7 @@ pub fn settings(a: &ScoreArgs) -> Result<Settings> {
     let material = stone.material.clone();
     let size = stone.size;
     let polarization = a.polarization;
-    let head = a.head_shadow;
+    let head = a.head.head_shadow;
     let verify = a.verify;
     let config = ScoreConfig {
         material,
@@ -265,6 +258,10 @@ mod tests {
         .unwrap();
         assert_eq!(s.config.material.ri(500.0), 2.42);
         assert!(!s.config.trace.polarization && s.config.head_shadow_deg == 15.0);
+        // The flag's default is the library's, and 0 switches the head shadow off.
+        let head = |extra: &[&str]| settings(&args(extra)).unwrap().config.head_shadow_deg;
+        assert_eq!(head(&["t"]), facetlab::metrics::DEFAULT_HEAD_SHADOW_DEG);
+        assert_eq!(head(&["t", "--head-shadow", "0"]), 0.0);
         assert_eq!(
             settings(&args(&["t", "--verify", "1e6"])).unwrap().verify,
             Some(1_000_000)

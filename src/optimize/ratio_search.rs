@@ -173,7 +173,8 @@ fn variant(label: &'static str, cut: &Cut, kc: f64, kp: f64, cfg: &ScoreConfig) 
 }
 
 /// Retarget `cut` (cut for index `from_ri`) to `to`. `full` gives the scoring settings (its
-/// material is replaced by `to`); the search uses [`ScoreConfig::fast`] in the same material.
+/// material is replaced by `to`); the search uses [`ScoreConfig::fast`] in the same material,
+/// under the same head shadow.
 pub fn retarget(cut: &Cut, from_ri: f64, to: &Material, full: &ScoreConfig) -> Result<Retarget> {
     let full = ScoreConfig {
         material: to.clone(),
@@ -181,6 +182,7 @@ pub fn retarget(cut: &Cut, from_ri: f64, to: &Material, full: &ScoreConfig) -> R
     };
     let quick = ScoreConfig {
         material: to.clone(),
+        head_shadow_deg: full.head_shadow_deg,
         ..ScoreConfig::fast()
     };
     let n = to.ri_d();

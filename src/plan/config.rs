@@ -15,7 +15,7 @@
 //!                               # ranked by their face-up colour's chroma C*, each scored
 //!                               # at its own size and optic axis (src/plan/colour.rs)
 //! grade = "excellent"           # round brilliants only: the grade estimate must reach it
-//! min_brilliance = 0.75         # every family: brilliance (fast scores) at least this
+//! min_brilliance = 0.65         # every family: brilliance (fast scores) at least this
 //! prices = "prices.toml"        # for "value", relative to this file
 //!
 //! [rough]

@@ -94,7 +94,11 @@ pub(crate) const SCORE: [&[Keyword]; 2] = [
     &STONE,
     &[
         kw("polarization", Kind::Bool, Value::Bool(true)),
-        kw("head_shadow", Kind::Float, Value::Float(0.0)),
+        kw(
+            "head_shadow",
+            Kind::Float,
+            Value::Float(crate::metrics::DEFAULT_HEAD_SHADOW_DEG),
+        ),
     ],
 ];
 

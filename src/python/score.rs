@@ -152,10 +152,10 @@ impl ScoreArgs {
 /// Score a cut (a `Cut`, a preset name or a path) with the beam tracer, as `facetlab score`.
 /// Keyword arguments (the command line's flags): `material`, `ri`, `colour`,
 /// `colour_density`, `size_mm` (a length or "LxW"), `diameter_mm`, `birefringence`,
-/// `optic_axis`, `colour_e`, `polarization` (default True), `head_shadow` (degrees, default 0).
+/// `optic_axis`, `colour_e`, `polarization` (default True), `head_shadow` (degrees, default 15; 0 = none).
 ///
 /// >>> round(facetlab.score("tolkowsky", material="cubic-zirconia").brilliance, 2)
-/// 0.81
+/// 0.62
 #[pyfunction]
 #[pyo3(signature = (cut, **kwargs))]
 fn score(
@@ -214,7 +214,7 @@ fn _library_score_seconds(
     let args = ScoreArgs {
         stone: StoneArgs::default(),
         polarization: true,
-        head_shadow: 0.0,
+        head_shadow: crate::metrics::DEFAULT_HEAD_SHADOW_DEG,
     };
     run(py, || {
         let config = args.config(&cut)?;

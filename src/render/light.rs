@@ -115,7 +115,8 @@ impl Light {
             })
     }
 
-    /// Default head shadow (ISO, COS, fire: none, as the scores; ASET's port and IdealScope's
+    /// Default head shadow (ISO, COS, fire: none, an open sky; the scores count light under a
+    /// 15° head shadow by default, which a picture draws when given it; ASET's port and IdealScope's
     /// head: [`PORT_DEG`]; the hearts & arrows viewer's dark tube: [`SCOPE_TUBE_DEG`] face-up,
     /// [`HEARTS_APERTURE_DEG`] face-down).
     pub fn default_head_shadow_deg(self) -> f64 {

@@ -61,7 +61,8 @@ impl RenderOptions {
 
     /// Default split threshold of an untilted picture: the scores' face-up one
     /// (`ScoreConfig::default().face_up_split_threshold`), so that `render --light iso`
-    /// face-up gives the scores' face-up ISO light return to the last bit. A face-up stone
+    /// face-up, under the scores' head shadow (15° by default), gives the scores' face-up ISO
+    /// light return to the last bit. A face-up stone
     /// traces one symmetry wedge, so this fine trace is cheap.
     pub const FACE_UP_SPLIT_THRESHOLD: f64 = 1e-6;
 

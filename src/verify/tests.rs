@@ -106,7 +106,9 @@ fn beam_and_photon_tracers_agree_on_coloured_light_return() {
     }
 }
 
-/// Monte Carlo brilliance under the same lighting and poses agrees with the beam tracer's.
+/// Monte Carlo brilliance under the same lighting and poses agrees with the beam tracer's,
+/// under the default head shadow (both tracers see the same light: the check's photons are
+/// weighted by the head-shadowed skies of the configuration).
 #[test]
 fn beam_and_photon_brilliance_agree() {
     let solid = crate::io::load_cut("tolkowsky").unwrap().solid;
@@ -118,9 +120,9 @@ fn beam_and_photon_brilliance_agree() {
                 azimuth_deg: 30.0,
             },
         ],
-        head_shadow_deg: 10.0,
         ..ScoreConfig::default()
     };
+    assert_eq!(cfg.head_shadow_deg, crate::metrics::DEFAULT_HEAD_SHADOW_DEG);
     let s = score(&solid, &cfg);
     let checks = verify_scores(&solid, &cfg, &s, 60_000, 5).unwrap();
     for c in &checks {
@@ -139,6 +141,18 @@ fn beam_and_photon_brilliance_agree() {
     assert!(
         g.brilliance.value < s.brilliance - 10.0 * g.brilliance.stderr,
         "{g:?}"
+    );
+    // So does the head shadow: photons under an open sky find more light than the beam
+    // tracer's shadowed figure, far beyond their error.
+    let open = ScoreConfig {
+        head_shadow_deg: 0.0,
+        ..cfg.clone()
+    };
+    let o = brilliance_mc(&solid, &open, 20_000, 5).unwrap();
+    assert!(
+        o.brilliance.value > s.brilliance + 10.0 * o.brilliance.stderr,
+        "{o:?} vs {}",
+        s.brilliance
     );
 }
 

@@ -32,6 +32,15 @@ pub struct OptimizeArgs {
     /// Override the config's seed.
     #[arg(long, value_name = "N")]
     pub seed: Option<u64>,
+    /// Override the config's `[score] head_shadow`: the viewer's head shadow in degrees
+    /// (0–60; default 15; 0 = none, the open-sky scores of earlier versions).
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_hyphen_values = true,
+        value_parser = crate::cli::flags::real("--head-shadow", 0.0, 60.0, "a half-angle in degrees (0 = none)")
+    )]
+    pub head_shadow: Option<f64>,
     /// Skip the photon-tracer verification of the winners.
     #[arg(long)]
     pub no_verify: bool,
@@ -126,6 +135,9 @@ pub fn run_optimize(a: &OptimizeArgs, make: &dyn Fn(&Config) -> Scorers) -> Resu
     }
     if let Some(s) = a.seed {
         config.seed = s;
+    }
+    if let Some(h) = a.head_shadow {
+        config.score.head_shadow_deg = h;
     }
     let (evaluator, verifier) = make(&config);
     let evaluator = evaluator.as_ref();

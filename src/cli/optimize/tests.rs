@@ -36,6 +36,7 @@ fn optimize_and_sweep_write_their_files() {
         config: cfg.clone(),
         out: Some(out.clone()),
         seed: Some(9),
+        head_shadow: Some(0.0),
         no_verify: false,
         quiet: true,
         force: false,
@@ -44,6 +45,8 @@ fn optimize_and_sweep_write_their_files() {
     assert!(out.join("report.md").is_file());
     let used = std::fs::read_to_string(out.join("config.toml")).unwrap();
     assert!(used.contains("seed = 9"));
+    // --head-shadow overrides the config's (default 15) and is written back with it.
+    assert!(used.contains("head_shadow = 0"), "{used}");
     let s = SweepArgs {
         config: cfg.clone(),
         x: Some("crown_angle:30:38:1".into()),
@@ -70,6 +73,7 @@ fn optimize_and_sweep_write_their_files() {
             config: dir.path().join("missing.toml"),
             out: None,
             seed: None,
+            head_shadow: None,
             no_verify: true,
             quiet: true,
             force: false,

@@ -630,13 +630,27 @@ mod tests {
     #[test]
     fn score_section_sets_material_and_lighting() {
         let c = Config::from_str(
-            &format!("{GOOD}\n[score]\nmaterial = \"cz\"\nhead_shadow = 15\n"),
+            &format!("{GOOD}\n[score]\nmaterial = \"cz\"\nhead_shadow = 25\n"),
             "round.toml",
         )
         .unwrap();
         let sc = c.score.score_config();
         assert_eq!(sc.material.name, "cubic-zirconia");
-        assert_eq!(sc.head_shadow_deg, 15.0);
+        assert_eq!(sc.head_shadow_deg, 25.0);
+        // The head shadow: the scores' default when not given, off with 0 (written back too).
+        let head = |s: &str| {
+            Config::from_str(&format!("{GOOD}\n[score]\n{s}"), "round.toml")
+                .unwrap()
+                .score
+                .score_config()
+                .head_shadow_deg
+        };
+        assert_eq!(head(""), crate::metrics::DEFAULT_HEAD_SHADOW_DEG);
+        assert_eq!(head("head_shadow = 0\n"), 0.0);
+        let off =
+            Config::from_str(&format!("{GOOD}\n[score]\nhead_shadow = 0\n"), "r.toml").unwrap();
+        let back = Config::from_str(&off.as_used_toml(), "back.toml").unwrap();
+        assert_eq!(back.score.head_shadow_deg, 0.0);
         assert!(sc.trace.polarization);
         // Written back and read again, the settings survive.
         let back = Config::from_str(&c.as_used_toml(), "back.toml").unwrap();

@@ -14,7 +14,8 @@ pub struct RawScore {
     /// A fixed refractive index instead of a material (no dispersion, no fire).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ri: Option<f64>,
-    /// Head-shadow half-angle in degrees, 0–60; default 0.
+    /// Head-shadow half-angle in degrees, 0–60; default
+    /// [`DEFAULT_HEAD_SHADOW_DEG`](crate::metrics::DEFAULT_HEAD_SHADOW_DEG), 15 (0 = none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub head_shadow: Option<f64>,
     /// Track polarization; default true.
@@ -246,7 +247,7 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
         head_shadow_deg: ranged(
             "score.head_shadow",
             rs.head_shadow,
-            0.0,
+            defaults.head_shadow_deg,
             0.0..=60.0,
             "[0, 60] degrees (0 = none)",
         )?,

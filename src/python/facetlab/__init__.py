@@ -7,7 +7,7 @@ preset name such as ``"tolkowsky"``, a ``.toml .asc .gem .obj .stl`` path) or a
 
 >>> import facetlab
 >>> s = facetlab.score("tolkowsky")
->>> round(s.brilliance, 2) > 0.7
+>>> round(s.brilliance, 2) > 0.6
 True
 >>> sorted(s.aset)
 ['blue', 'green', 'leak', 'port', 'red']

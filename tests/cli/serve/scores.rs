@@ -68,7 +68,8 @@ fn every_view_shows_the_value_of_score_json() {
         close(label, shown, num(key), 5.1e-5);
     }
 
-    // render: the face-up ISO and COS pictures' means are the face-up pose's light return,
+    // render: the face-up ISO and COS pictures' means, under the scores' head shadow (15° by
+    // default; a picture's own default is none), are the face-up pose's light return,
     // the ASET picture's shares are the score's five (same port), and the fire picture's
     // number, one placement of the lights, is named so and not `fire`.
     for (light, key) in [("iso", "iso"), ("cos", "cos")] {
@@ -80,6 +81,8 @@ fn every_view_shows_the_value_of_score_json() {
                 "tolkowsky",
                 "--light",
                 light,
+                "--head-shadow",
+                "15",
                 "--size",
                 "96",
                 "--quiet",
