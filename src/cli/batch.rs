@@ -91,6 +91,15 @@ pub fn run_env(a: &ScoreArgs, env: &dyn Fn(&str) -> Option<String>) -> Result<Ex
     }
     let text = String::from_utf8_lossy(&facetlab::io::read_bytes(batch)?).to_string();
     let lines = cut_lines(&text);
+    // The cuts the lines name are inputs too (the output is appended to, never replaced).
+    let named: Vec<String> = lines
+        .iter()
+        .map(|(_, l)| parse_line(l).map(|(c, _)| c).unwrap_or_default())
+        .collect();
+    refuse_overwrite(
+        &[("--jsonl", out.clone())],
+        &facetlab::io::guard::cut_files(&named),
+    )?;
     let shard = choose_shard(a.shard, env)?;
     let mine: Vec<&(usize, String)> = lines
         .iter()

@@ -93,6 +93,9 @@ impl BatchOutput {
     /// holds a line that is not that line of the batch (or is not a batch's output at all);
     /// a last line cut short is dropped, to be redone.
     pub fn open(out: &Path, batch: &Path, lines: &[(usize, String)]) -> Result<BatchOutput> {
+        if let Some(m) = crate::io::guard::not_regular(out) {
+            return Err(Error::invalid(OUTPUT, format!("{} {m}", out.display())));
+        }
         let (done, good, len) = done_lines(out)?;
         for (n, input) in &done {
             match lines.iter().find(|(l, _)| l == n) {

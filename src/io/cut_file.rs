@@ -69,7 +69,7 @@ pub const CUT_FORMATS: [&str; 5] = ["toml", "asc", "gem", "obj", "stl"];
 pub fn write_cut(cut: &crate::cut::Cut, format: &str) -> Result<Vec<u8>> {
     match format {
         "toml" => Ok(spec::write(cut).into_bytes()),
-        "asc" => Ok(asc::write(cut, 0).into_bytes()),
+        "asc" => asc::check(cut).map(|()| asc::write(cut, 0).into_bytes()),
         "gem" => gem::write(cut, 0),
         "obj" => Ok(mesh::write_obj(cut).into_bytes()),
         "stl" => Ok(mesh::write_stl(cut)),

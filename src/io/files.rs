@@ -21,6 +21,10 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let file = path
         .file_name()
         .ok_or_else(|| Error::io(&shown, "not a file name"))?;
+    // Renaming over a device, pipe or socket would replace the node itself.
+    if let Some(m) = super::guard::not_regular(path) {
+        return Err(Error::io(&shown, m));
+    }
     let tmp = dir.join(format!(
         ".{}.tmp-{}",
         file.to_string_lossy(),

@@ -106,15 +106,28 @@ pub fn cut_files<S: AsRef<str>>(cuts: &[S]) -> Vec<PathBuf> {
         .collect()
 }
 
-/// Check a file output before any work: not a folder, replaced only with
-/// [`setting::FORCE`], its folder present and writable; errors name `field`. (Outputs equal
-/// to an input are [`refuse_overwrite`]'s.)
+/// Why `path` cannot be written as a file, if it exists and is no regular file: a device,
+/// a pipe or a socket (following links) is never replaced, whatever [`setting::FORCE`] says;
+/// `None` for a regular file, a folder (refused by its own rule) or a new name.
+pub fn not_regular(path: &Path) -> Option<&'static str> {
+    let t = std::fs::metadata(path).ok()?.file_type();
+    (!t.is_file() && !t.is_dir()).then_some(
+        "is not a regular file (a device, pipe or socket), which is never replaced; give a file name",
+    )
+}
+
+/// Check a file output before any work: not a folder, nor a device, pipe or socket
+/// ([`not_regular`]), replaced only with [`setting::FORCE`], its folder present and
+/// writable; errors name `field`. (Outputs equal to an input are [`refuse_overwrite`]'s.)
 pub fn check_new_file(field: &str, path: &Path, force: bool) -> Result<()> {
     if path.is_dir() {
         return Err(Error::invalid(
             field,
             format!("{} is a folder; give a file name", path.display()),
         ));
+    }
+    if let Some(m) = not_regular(path) {
+        return Err(Error::invalid(field, format!("{} {m}", path.display())));
     }
     if path.exists() && !force {
         return Err(Error::invalid(
@@ -382,5 +395,31 @@ mod tests {
             e.starts_with("json output: ") && e.contains("pass force to replace"),
             "{e}"
         );
+    }
+
+    /// Issue 51: a socket (a device or pipe alike) is never replaced by an output, with or
+    /// without force: refused before any work, and by the atomic write itself.
+    #[cfg(unix)]
+    #[test]
+    fn a_socket_is_never_replaced() {
+        use std::os::unix::fs::FileTypeExt;
+        let d = tempfile::tempdir().unwrap();
+        let sock = d.path().join("s.json");
+        let _l = std::os::unix::net::UnixListener::bind(&sock).unwrap();
+        for force in [false, true] {
+            let e = line(check_new_file(setting::JSON, &sock, force));
+            assert!(
+                e.starts_with("json output: ") && e.contains("is not a regular file"),
+                "{e}"
+            );
+        }
+        let e = crate::io::write_atomic(&sock, b"{}")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("is not a regular file"), "{e}");
+        let t = std::fs::symlink_metadata(&sock).unwrap().file_type();
+        assert!(t.is_socket());
+        assert_eq!(not_regular(d.path()), None);
+        assert_eq!(not_regular(&d.path().join("new.json")), None);
     }
 }

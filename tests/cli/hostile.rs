@@ -9,7 +9,7 @@ use rand::{Rng, SeedableRng};
 use std::path::Path;
 
 /// An octahedron as GemCad writes it (tiers `crown`, `table`, `pav`).
-const OCTA: &str = "g 96 0.0\nI 2.42\na 41.0 0.5 0 24 48 72 n crown\na 0 0.3 0 n table\na -41.0 0.5 0 24 48 72 n pav\n";
+pub(super) const OCTA: &str = "g 96 0.0\nI 2.42\na 41.0 0.5 0 24 48 72 n crown\na 0 0.3 0 n table\na -41.0 0.5 0 24 48 72 n pav\n";
 
 /// A closed tetrahedron, `scale` units on a side, its first vertex at `at`.
 fn tetra(dir: &Path, name: &str, scale: f64, at: [f64; 3]) -> String {
@@ -407,7 +407,7 @@ fn errors_say_what_is_allowed() {
 
 /// One seeded mutation of `text`: byte flips, deletions, duplications, insertions of
 /// hostile tokens, truncation.
-fn mutate(rng: &mut rand::rngs::SmallRng, text: impl AsRef<[u8]>) -> Vec<u8> {
+pub(super) fn mutate(rng: &mut rand::rngs::SmallRng, text: impl AsRef<[u8]>) -> Vec<u8> {
     const TOKENS: [&str; 14] = [
         "nan",
         "inf",
@@ -451,13 +451,25 @@ fn mutate(rng: &mut rand::rngs::SmallRng, text: impl AsRef<[u8]>) -> Vec<u8> {
 }
 
 /// Run and check the contract for a mutated input: success, or exit 2 with one line and no
-/// panic; and never a half-written output.
-fn survives(p: &Path, args: &[&str], out: &str, what: &str) {
+/// panic; and never a half-written output. A design or mesh written (`out` a cut file) reads
+/// back (issue 51: a `.gem` with a huge gear offset was exported as a `.asc` facetlab could
+/// not read).
+pub(super) fn survives(p: &Path, args: &[&str], out: &str, what: &str) {
     let o = run_in(p, args);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!err.contains("panicked"), "{what}: {err}");
     match o.status.code() {
-        Some(0) => {}
+        Some(0) => {
+            let cut = [".asc", ".gem", ".obj", ".stl", ".toml"];
+            if cut.iter().any(|e| out.ends_with(e)) && p.join(out).is_file() {
+                let back = run_in(p, &["info", out]);
+                assert!(
+                    back.status.success(),
+                    "{what}: {out} written but not read back: {}",
+                    String::from_utf8_lossy(&back.stderr)
+                );
+            }
+        }
         Some(2) => {
             let lines = err.lines().filter(|l| !l.trim().is_empty()).count();
             assert_eq!(lines, 1, "{what}: {err}");

@@ -11,6 +11,7 @@ mod render;
 mod safety;
 mod serve;
 mod shards;
+mod untrusted;
 
 use std::path::Path;
 use std::process::{Command, Output};

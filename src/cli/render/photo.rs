@@ -78,12 +78,15 @@ impl PhotoArgs {
     }
 }
 
-/// Check a photograph's outputs before any work ([`PictureFiles::check_photograph`]).
+/// Check a photograph's outputs before any work ([`PictureFiles::check_photograph`]): none
+/// of them a cut's file or the environment map.
 pub fn check_outputs(a: &RenderArgs) -> Result<()> {
+    let mut inputs = cut_files(&a.cuts);
+    inputs.extend(facetlab::render::photo::PhotoLight::file_of(&a.light));
     PictureFiles {
         picture: &a.output,
         json: a.json.as_deref(),
         hdr: a.photo.hdr_out.as_deref(),
     }
-    .check_photograph(&cut_files(&a.cuts), a.force)
+    .check_photograph(&inputs, a.force)
 }

@@ -369,7 +369,12 @@ async fn export_cut(
         let cut = build(&designs, &r)?;
         let bytes: Vec<u8> = match to {
             "toml" => io::spec::write(&cut).into_bytes(),
-            "asc" => io::asc::write(&cut, io::asc::DEFAULT_GEAR).into_bytes(),
+            "asc" => {
+                io::asc::check(&cut).map_err(|e| {
+                    ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, "to", e.to_string())
+                })?;
+                io::asc::write(&cut, io::asc::DEFAULT_GEAR).into_bytes()
+            }
             "gem" => io::gem::write(&cut, io::asc::DEFAULT_GEAR).map_err(|e| {
                 ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, "to", e.to_string())
             })?,

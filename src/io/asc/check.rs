@@ -34,10 +34,18 @@ pub(in crate::io) fn gear_problem(teeth: f64) -> Option<String> {
     })
 }
 
-/// Why `offset` cannot be a gear offset (an index), or `None` when it can: a finite number.
-pub(in crate::io) fn offset_problem(offset: f64) -> Option<String> {
-    (!offset.is_finite())
-        .then(|| format!("gear offset {offset} is not allowed; it is an index, e.g. 0"))
+/// Why `offset` cannot be the offset of a gear of `teeth` teeth, or `None` when it can: an
+/// index, so a finite number within one turn of the gear, |`offset`| ≤ |`teeth`|. (Beyond
+/// that an offset only repeats a smaller one, and a huge one, 1e18, swamps the facets'
+/// indices in rounding: the design written again would put a tier's facets at one azimuth.)
+pub(in crate::io) fn offset_problem(offset: f64, teeth: f64) -> Option<String> {
+    (!(offset.abs() <= teeth.abs())).then(|| {
+        let t = crate::error::shown(teeth.abs());
+        format!(
+            "gear offset {} is not allowed; it is an index on the gear, from -{t} to {t}, e.g. 0",
+            crate::error::shown(offset)
+        )
+    })
 }
 
 #[cfg(test)]
@@ -60,6 +68,10 @@ mod tests {
         assert!(gear_problem(96.0).is_none() && gear_problem(-64.0).is_none());
         assert!(gear_problem(0.0).unwrap().contains("non-zero"));
         assert!(gear_problem(f64::NAN).is_some());
-        assert!(offset_problem(48.0).is_none() && offset_problem(f64::INFINITY).is_some());
+        assert!(offset_problem(48.0, 96.0).is_none() && offset_problem(-64.0, -64.0).is_none());
+        for bad in [f64::INFINITY, f64::NAN, 96.5, -97.0, 1e18, -1e308] {
+            let e = offset_problem(bad, 96.0).unwrap();
+            assert!(e.contains("from -96 to 96"), "{e}");
+        }
     }
 }

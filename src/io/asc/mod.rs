@@ -96,7 +96,7 @@ pub use instructions::{cutting_instructions, CuttingInstructions, CuttingStep};
 pub(in crate::io) use read::{assemble, generated_tier, read_design, RawFacet};
 pub use read::{parse, read, AscDesign, AscTier};
 pub(in crate::io) use write::derived_name;
-pub use write::{write, write_for};
+pub use write::{check, write, write_for};
 
 /// The index gear used when a file has no `g` line, and by [`write()`] for a cut without a
 /// GemCad record.

@@ -203,14 +203,16 @@ pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
                         )
                     })?;
                 if let Some(o) = it.next() {
-                    d.gear_offset = number(o)
-                        .filter(|v| check::offset_problem(*v).is_none())
-                        .ok_or_else(|| {
-                            Error::parse(
-                                at(line),
-                                format!("gear offset {o:?} is not a number; e.g. `g 96 0.0`"),
-                            )
-                        })?;
+                    let v = number(o).ok_or_else(|| {
+                        Error::parse(
+                            at(line),
+                            format!("gear offset {o:?} is not a number; e.g. `g 96 0.0`"),
+                        )
+                    })?;
+                    if let Some(e) = check::offset_problem(v, d.gear) {
+                        return Err(Error::parse(at(line), e));
+                    }
+                    d.gear_offset = v;
                 }
             }
             'y' => {

@@ -110,8 +110,8 @@ pub(super) fn gear_lines(cut: &Cut, gear: u32, ri: f64) -> (GemcadRecord, Gear, 
 /// else the fewest decimals that keep it (a fractional index, as GemCad allows). The tier is
 /// written as `n TIER` after the first index unless it is the name the reader would generate
 /// anyway (`table`, `girdle`, `crown-34.00` …); a facet with a name of its own (not `TIER` or
-/// `TIER-K`) gets `n NAME` after its index. Planes with a negative offset (the origin outside
-/// the solid) cannot be expressed in GemCad's convention and do not read back the same.
+/// `TIER-K`) gets `n NAME` after its index. Planes through or behind the origin cannot be
+/// expressed in GemCad's convention and do not read back the same ([`check`] refuses them).
 ///
 /// A round trip through the text:
 ///
@@ -180,6 +180,29 @@ pub fn write_for(cut: &Cut, gear: u32, ri: f64) -> String {
         let _ = writeln!(out, "F {f}");
     }
     out
+}
+
+/// Refuse a cut a `.asc` cannot hold, before [`write`]: GemCad gives each facet its distance
+/// from the origin (the stone's axis in its girdle plane) and tells a culet from a table by
+/// that distance's sign, so every facet plane must pass outside the origin, at a distance
+/// the file's 8 decimals keep (a millionth of the farthest facet's). A mesh whose lowest
+/// facet lies in its girdle plane was written as a `.asc` that read back unbounded.
+pub fn check(cut: &Cut) -> crate::error::Result<()> {
+    let planes = cut.solid.facet_planes();
+    let far = planes
+        .iter()
+        .map(|p| p.plane.offset.abs())
+        .fold(0.0, f64::max);
+    match planes.iter().find(|p| !(p.plane.offset > 1e-6 * far)) {
+        None => Ok(()),
+        Some(p) => Err(crate::error::Error::invalid(
+            "output",
+            format!(
+                "facet {} of {} passes through or behind the origin in the girdle plane, which a GemCad .asc cannot hold (.gem, .toml, .obj and .stl can)",
+                p.name, cut.name
+            ),
+        )),
+    }
 }
 
 #[cfg(test)]

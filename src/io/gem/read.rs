@@ -205,7 +205,7 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<AscDesign> {
     c.u32("the trailer's constant")?;
     let at = c.pos;
     let gear_offset = c.f64("the gear offset")?;
-    if let Some(e) = offset_problem(gear_offset) {
+    if let Some(e) = offset_problem(gear_offset, gear) {
         return Err(c.error(at, e));
     }
     let mut text = Vec::with_capacity(2 * TEXT_SLOTS);

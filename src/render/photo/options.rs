@@ -37,6 +37,12 @@ pub enum PhotoLight {
 pub const STUDIO: &str = "studio";
 
 impl PhotoLight {
+    /// The file the light named `s` reads, if any: FILE of `env:FILE`, an input that no
+    /// output of the picture may replace.
+    pub fn file_of(s: &str) -> Option<std::path::PathBuf> {
+        s.trim().strip_prefix("env:").map(std::path::PathBuf::from)
+    }
+
     /// The light a `--light` value names, if it is a photographic one: a rig's name,
     /// [`STUDIO`], or `env:FILE` (a Radiance `.hdr` or OpenEXR `.exr` map, read here; errors
     /// name the file). `Ok(None)` for any other name (the laboratory lights).
