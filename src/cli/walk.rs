@@ -83,7 +83,11 @@ const BESIDE: &[(&str, &str, &[&str])] = &[
     ("render", "--view", &["--light", "tent"]),
     ("render", "--distance", &["--light", "tent"]),
     ("render", "--ground", &["--light", "tent"]),
-    ("render", "--ground-gap", &["--light", "tent", "--ground", "white"]),
+    (
+        "render",
+        "--ground-gap",
+        &["--light", "tent", "--ground", "white"],
+    ),
     ("render", "--light-rotation", &["--light", "tent"]),
     ("render", "--turn", &["--light", "tent"]),
     ("render", "--tone", &["--light", "tent"]),
@@ -136,8 +140,17 @@ fn a_value_no_flag_takes_is_refused_in_one_line_naming_it() {
     let shards = d.path().join("shards").display().to_string();
     let c = d.path().join("c.toml").display().to_string();
     line_of(
-        &["sweep", &c, "--x", "crown_angle:31:33:1", "--shard", "1/1", "--out", &shards]
-            .map(String::from),
+        &[
+            "sweep",
+            &c,
+            "--x",
+            "crown_angle:31:33:1",
+            "--shard",
+            "1/1",
+            "--out",
+            &shards,
+        ]
+        .map(String::from),
     )
     .unwrap();
     let mut wrong = Vec::new();
@@ -169,7 +182,12 @@ fn a_value_no_flag_takes_is_refused_in_one_line_naming_it() {
         ("render", "--distance", "1e-300", &["--light", "tent"][..]),
         ("sweep", "--x", "crown_angle:31:33:1e-300", &[][..]),
         ("render", "--view", "1e-300@1e300", &["--light", "tent"][..]),
-        ("score", "--optic-axis", "45@1e300", &["--material", "sapphire"][..]),
+        (
+            "score",
+            "--optic-axis",
+            "45@1e300",
+            &["--material", "sapphire"][..],
+        ),
     ] {
         let args = line(cmd, d.path(), flag, value, extra);
         match line_of(&args) {
@@ -207,7 +225,11 @@ const SCORE_VALUES: &[(&str, Option<&str>, &[&str])] = &[
     ("--size-mm", Some("12"), &["--material", "ruby"]),
     ("--birefringence", Some("off"), &["--material", "sapphire"]),
     ("--optic-axis", Some("90@30"), &["--material", "sapphire"]),
-    ("--colour-e", Some("#30c050"), &["--material", "blue-sapphire"]),
+    (
+        "--colour-e",
+        Some("#30c050"),
+        &["--material", "blue-sapphire"],
+    ),
     ("--polarization", Some("off"), &[]),
     ("--head-shadow", Some("20"), &[]),
     ("--set", Some("crown_angle=30"), &[]),
@@ -231,7 +253,11 @@ fn scores(d: &Path, batch: bool, flags: &[&str]) -> Result<serde_json::Value, St
         args.extend(["--batch".into(), list.display().to_string()]);
         args.extend(["--jsonl".into(), out.display().to_string()]);
     } else {
-        args.extend(["tolkowsky".into(), "--json".into(), out.display().to_string()]);
+        args.extend([
+            "tolkowsky".into(),
+            "--json".into(),
+            out.display().to_string(),
+        ]);
     }
     args.extend(flags.iter().map(|s| s.to_string()));
     line_of(&args)?;
@@ -256,8 +282,7 @@ fn every_flag_of_score_changes_the_scores_or_is_refused_with_cuts_and_with_a_bat
         if let (false, Some(l)) = (a.is_positional(), a.get_long()) {
             let flag = format!("--{l}");
             assert!(
-                SCORE_VALUES.iter().any(|(f, _, _)| *f == flag)
-                    || !a.get_action().takes_values(),
+                SCORE_VALUES.iter().any(|(f, _, _)| *f == flag) || !a.get_action().takes_values(),
                 "{flag}: a flag of score with no value in SCORE_VALUES"
             );
         }

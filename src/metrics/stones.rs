@@ -377,7 +377,10 @@ mod tests {
                 &mut |_, l| notes.push(l),
             )
             .unwrap_err();
-        assert!(e.to_string().starts_with("optic axis: peridot is biaxial"), "{e}");
+        assert!(
+            e.to_string().starts_with("optic axis: peridot is biaxial"),
+            "{e}"
+        );
         assert!(notes.is_empty(), "{notes:?}");
         // Without the axis its colour's note is said.
         peridot.crystal = None;
@@ -403,9 +406,17 @@ mod tests {
             .map_err(|e| e.to_string())
         };
         assert!(given(Some("off"), Some("45@22.5"), Some("#3050c0")).is_ok());
-        assert!(given(Some("maybe"), None, None).unwrap_err().starts_with("birefringence:"));
-        assert!(given(None, Some("nan@5"), None).unwrap_err().starts_with("optic axis:"));
-        assert!(given(None, Some("45@1e300"), None).unwrap_err().starts_with("optic axis:"));
-        assert!(given(None, None, Some("zzz")).unwrap_err().starts_with("E∥c colour:"));
+        assert!(given(Some("maybe"), None, None)
+            .unwrap_err()
+            .starts_with("birefringence:"));
+        assert!(given(None, Some("nan@5"), None)
+            .unwrap_err()
+            .starts_with("optic axis:"));
+        assert!(given(None, Some("45@1e300"), None)
+            .unwrap_err()
+            .starts_with("optic axis:"));
+        assert!(given(None, None, Some("zzz"))
+            .unwrap_err()
+            .starts_with("E∥c colour:"));
     }
 }

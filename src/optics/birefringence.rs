@@ -207,8 +207,14 @@ mod tests {
             .choose_crystal(None, None, Some("#40a060@5mm"), None, F)
             .unwrap_err()
             .to_string();
-        assert!(e.starts_with("extraordinary colour: tourmaline has no body colour"), "{e}");
-        let mut m = Material::by_name("green-tourmaline").unwrap();
+        assert!(
+            e.starts_with("extraordinary colour: tourmaline has no body colour"),
+            "{e}"
+        );
+        let mut m = Material::by_name("tourmaline").unwrap();
+        m.colour = Some(
+            BodyColour::from_colour(&UserColour::parse("#40a060", "c").unwrap(), "c").unwrap(),
+        );
         m.choose_crystal(
             Some(false),
             Some("35@20"),
