@@ -15,6 +15,11 @@
 //! **Shards.** With `--shard K/N` (or a Slurm / Kubernetes job array's environment, as for
 //! `sweep`), only the cuts whose ordinal `i` (0-based, counting cut lines only) has
 //! `i mod N == K − 1` are scored; concatenate the shards' OUT files (or sort by `line`).
+//!
+//! **Stones.** Each line's stone is chosen as `score` chooses it: a design in its own material
+//! unless `--material`/`--ri` chose one, with the colour, size and crystal flags applied
+//! (a stone that refuses them, an optic axis for a diamond, is that line's error; a value no
+//! stone takes is refused before any line). The notes `score` prints are not said.
 
 use super::cuts::load_with_sets;
 use super::optimize::choose_shard;
@@ -82,6 +87,8 @@ pub fn run_env(a: &ScoreArgs, env: &dyn Fn(&str) -> Option<String>) -> Result<Ex
         ));
     }
     let s = settings(a)?;
+    // The crystal settings no stone takes, refused before OUT is touched.
+    s.stone.check(&super::flags::STONE_FIELDS)?;
     refuse_overwrite(&[("--jsonl", out.clone())], std::slice::from_ref(batch))?;
     if out.is_dir() {
         return Err(Error::invalid(
@@ -133,7 +140,8 @@ pub fn run_env(a: &ScoreArgs, env: &dyn Fn(&str) -> Option<String>) -> Result<Ex
         let cut = parse_line(input).and_then(|(cut, sets)| load_with_sets(&cut, &sets));
         (name, cut)
     };
-    let count = output.run(&mine, &s.config, &load, &mut |n, e| {
+    let stone = (&s.stone, &super::flags::STONE_FIELDS);
+    let count = output.run(&mine, &s.config, stone, &load, &mut |n, e| {
         eprintln!("facetlab: {} line {n}: {e}", batch.display());
     })?;
     let (scored, failed) = (count.scored, count.failed);

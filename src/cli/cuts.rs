@@ -91,10 +91,16 @@ pub fn load_with_sets(arg: &str, sets: &[String]) -> Result<Cut> {
     let changes = parse_sets(sets)?;
     let cut = io::load_cut(arg)?;
     facetlab::design::with_set(&cut, &changes).map_err(|e| match e {
-        Error::Invalid { field, message } if !field.starts_with("--set") => Error::Invalid {
-            field: format!("--set {field}"),
-            message,
-        },
+        // A tier's or parameter's error named by its key; the setting itself is spelled
+        // `--set` by `flags::to_flags`.
+        Error::Invalid { field, message }
+            if !field.starts_with("--set") && field != facetlab::design::CUT_PARAMETER =>
+        {
+            Error::Invalid {
+                field: format!("--set {field}"),
+                message,
+            }
+        }
         other => other,
     })
 }
@@ -141,7 +147,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             "--diameter-mm",
             format!(
                 "{} is not allowed; give a diameter in (0, 1000) mm",
-                a.diameter_mm
+                facetlab::error::shown(a.diameter_mm)
             ),
         ));
     }
@@ -150,7 +156,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             "--meet-tol",
             format!(
                 "{} is not allowed; give a tolerance in (0, 0.01] of W",
-                a.meet_tol
+                facetlab::error::shown(a.meet_tol)
             ),
         ));
     }

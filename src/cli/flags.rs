@@ -42,6 +42,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("plots folder", "--plots"),
     ("force", "--force"),
     ("picture rock", "--rock"),
+    ("picture turn", "--turn"),
     // A cut's parameter or a design's tier, `KEY=VALUE` (info's text).
     ("cut parameter", "--set"),
     // A picture's settings (render's and photo's options), which the library names by the
@@ -569,6 +570,10 @@ mod tests {
             .to_string()
             .starts_with("--photons:"));
         assert!(count("--photons", "0", 1, 10).is_err());
+        // 2^64 is one past the largest seed, not the largest seed.
+        assert_eq!(seed("18446744073709551615").unwrap(), u64::MAX);
+        assert!(seed("18446744073709551616").is_err() && seed("1.8446744073709552e19").is_err());
+        assert!(seed("-1").is_err());
         assert_eq!(
             number("--angle", " 30 ", 0.0, 180.0, "an angle").unwrap(),
             30.0

@@ -17,6 +17,8 @@ pub mod retarget;
 pub mod score;
 pub mod serve;
 pub mod trace;
+#[cfg(test)]
+mod walk;
 
 use clap::{Parser, Subcommand};
 use facetlab::error::Result;

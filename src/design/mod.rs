@@ -43,6 +43,6 @@ mod ties;
 
 pub use meets::{find_meets, Meet};
 pub use reangle::{TierModel, MEET_TOL};
-pub use space::{with_set, DesignSpace, OpenMeets, OpenedMeet, KEPT};
+pub use space::{with_set, DesignSpace, OpenMeets, OpenedMeet, CUT_PARAMETER, KEPT};
 pub use tie_key::{Breach, Tie, TieKind};
 pub use tiers::{fixed, tiers, token, Gear, Tier, TierFacet, ANGLE_DECIMALS, DEPTH_DECIMALS};

@@ -595,13 +595,35 @@ impl DesignSpace {
     }
 }
 
+/// The setting that sets a cut's parameter or turns a design's tier (`KEY=VALUE`), named in
+/// the errors of [`with_set`] and in `info`'s text, for each face to spell
+/// ([`crate::error::setting`]).
+pub const CUT_PARAMETER: &str = "cut parameter";
+
 /// `cut` with `changes` applied: a family cut's parameters, or a design's tier angles (by
 /// [`DesignSpace`], refusing angles that open a meet). The `--set KEY=VALUE` of the command
 /// line.
+///
+/// Changes that make no solid are refused naming the setting `cut parameter` and the
+/// changes (`A=89.9: …`), not as the geometry's own error.
 pub fn with_set(cut: &Cut, changes: &BTreeMap<String, f64>) -> Result<Cut> {
+    let unmade = |e: Error| match e {
+        Error::Geometry(m) => Error::invalid(
+            CUT_PARAMETER,
+            format!(
+                "{} makes no solid: {m}",
+                changes
+                    .iter()
+                    .map(|(k, v)| format!("`{k}={}`", crate::error::shown(*v)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ),
+        other => other,
+    };
     if changes.is_empty() || cut.family.is_some() {
-        return cut.with_params(changes);
+        return cut.with_params(changes).map_err(unmade);
     }
     let space = DesignSpace::new(cut, super::MEET_TOL, OpenMeets::Refuse)?;
-    space.build(&cut.name, changes)
+    space.build(&cut.name, changes).map_err(unmade)
 }

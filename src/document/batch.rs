@@ -9,7 +9,7 @@
 use super::score::{batch_error_line, batch_line};
 use crate::cut::Cut;
 use crate::error::{Error, Result};
-use crate::metrics::{score, ScoreConfig};
+use crate::metrics::{score, ColourNotes, ScoreConfig, StoneChoice, StoneFields};
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::Write;
@@ -137,16 +137,36 @@ impl BatchOutput {
         })
     }
 
-    /// Score the lines of `mine` not done yet under `cfg`, appending one JSON line each as
+    /// Score the lines of `mine` not done yet under `cfg`, each cut's stone chosen by `stone`
+    /// as `score` chooses it (a design in its own material unless one was chosen, the colour,
+    /// size and crystal settings applied; the notes unsaid), appending one JSON line each as
     /// soon as it is scored. `load` reads a line into the name an error line gives its cut
-    /// and the cut, or the error written for it (which `failed` also hears).
+    /// and the cut, or the error written for it (which `failed` also hears), as is a stone
+    /// that refuses the settings (an optic axis for a diamond). The settings no stone takes
+    /// are refused before any line ([`StoneChoice::check`]).
     pub fn run(
         &mut self,
         mine: &[&(usize, String)],
         cfg: &ScoreConfig,
+        stone: (&StoneChoice, &StoneFields<'_>),
         load: &dyn Fn(&str) -> (String, Result<Cut>),
         failed: &mut dyn FnMut(usize, &Error),
     ) -> Result<BatchCount> {
+        let (choice, fields) = stone;
+        choice.check(fields)?;
+        let scored = |cut: &Cut| -> Result<crate::metrics::Scores> {
+            let stones = choice.stones(
+                std::slice::from_ref(cut),
+                fields,
+                ColourNotes::Traced,
+                &mut |_, _| {},
+            )?;
+            let (cfg, _) = stones.configs(cfg, |c, material| ScoreConfig {
+                material,
+                ..c.clone()
+            });
+            Ok(score(&cut.solid, &cfg))
+        };
         let mut count = BatchCount {
             skipped: mine
                 .iter()
@@ -159,9 +179,8 @@ impl BatchOutput {
                 continue;
             }
             let (name, cut) = load(input);
-            let json = match cut {
-                Ok(cut) => {
-                    let sc = score(&cut.solid, cfg);
+            let json = match cut.and_then(|cut| Ok((scored(&cut)?, cut))) {
+                Ok((sc, cut)) => {
                     count.scored += 1;
                     batch_line(*n, input, &cut.name, &sc)
                 }

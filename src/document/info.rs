@@ -191,7 +191,7 @@ pub fn meets_text(meets: &[MeetJson], tol: f64) -> String {
 
 /// The setting that sets a cut's parameter or turns a design's tier (`KEY=VALUE`), named in
 /// [`info_text`] for each face to spell ([`crate::error::setting`]).
-pub const CUT_PARAMETER: &str = "cut parameter";
+pub use crate::design::CUT_PARAMETER;
 
 /// Human-readable `info`; the setting of a parameter is named as [`CUT_PARAMETER`], for the
 /// face that prints it to spell ([`crate::error::spell_settings`]).

@@ -44,7 +44,8 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
             None => Err(Error::invalid(
                 arg,
                 format!(
-                    "unknown preset; presets: {}; or give a path to a .toml, .asc, .gem, .obj or .stl file",
+                    "unknown preset{}; presets: {}; or give a path to a .toml, .asc, .gem, .obj or .stl file",
+                    presets::suggestion(arg),
                     presets::names().join(", ")
                 ),
             )),

@@ -95,6 +95,8 @@ pub mod setting {
     pub const FORCE: &str = "force";
     /// A laboratory picture rocked back and forth (an animated PNG).
     pub const ROCK: &str = "picture rock";
+    /// A photograph's turntable animation (an animated PNG or GIF).
+    pub const TURN: &str = "picture turn";
 }
 
 /// The CUT arguments that are files (a preset's name is none), as the inputs an output must
@@ -204,9 +206,17 @@ impl PictureFiles<'_> {
             return Err(Error::invalid(
                 setting::OUTPUT,
                 format!(
-                    "{} does not end in .png; the picture is a PNG (an animated PNG with {})",
+                    "{} does not end in .png; the picture is a PNG (an animated PNG with {}){}",
                     self.picture.display(),
-                    crate::error::setting(setting::ROCK)
+                    crate::error::setting(setting::ROCK),
+                    if has_ext(self.picture, "gif") {
+                        format!(
+                            "; a GIF is a photograph's animation ({} under a photographic light)",
+                            crate::error::setting(setting::TURN)
+                        )
+                    } else {
+                        String::new()
+                    }
                 ),
             ));
         }
@@ -355,7 +365,10 @@ mod tests {
         // The extensions each kind writes.
         let gif = d.path().join("a.gif");
         let e = line(pic(&gif, None, None).check_laboratory(&inputs, false));
-        assert!(e.ends_with("(an animated PNG with picture rock)"), "{e}");
+        assert!(
+            e.ends_with("(an animated PNG with picture rock); a GIF is a photograph's animation (picture turn under a photographic light)"),
+            "{e}"
+        );
         assert!(pic(&gif, None, None)
             .check_photograph(&inputs, false)
             .is_ok());

@@ -35,7 +35,8 @@ pub fn count(field: &str, s: &str, min: u64, max: u64) -> Result<u64> {
     let v = match t.parse::<u64>() {
         Ok(v) => Some(v),
         Err(_) => match t.parse::<f64>() {
-            Ok(f) if f.is_finite() && f >= 0.0 && f.fract() == 0.0 && f <= u64::MAX as f64 => {
+            // `u64::MAX as f64` is 2^64, one past the largest u64: below it only.
+            Ok(f) if f.is_finite() && f >= 0.0 && f.fract() == 0.0 && f < u64::MAX as f64 => {
                 Some(f as u64)
             }
             _ => None,

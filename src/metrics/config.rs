@@ -3,7 +3,7 @@
 //! compute).
 
 use crate::beam::TraceOptions;
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use crate::optics::{Material, StoneSize};
 use crate::render::lighting::Spot;
 use crate::render::Tilt;
@@ -189,7 +189,10 @@ impl ScoreConfig {
         if !(380.0..=780.0).contains(&w) {
             return Err(Error::invalid(
                 "wavelength",
-                format!("{w} nm is outside the visible range; allowed [380, 780] nm"),
+                format!(
+                    "{} nm is outside the visible range; allowed [380, 780] nm",
+                    shown(w)
+                ),
             ));
         }
         for (what, l) in [("wavelength", w), ("bands", 380.0), ("bands", 780.0)] {
@@ -208,7 +211,10 @@ impl ScoreConfig {
         if !(0.0..=60.0).contains(&h) {
             return Err(Error::invalid(
                 "head-shadow",
-                format!("{h}° is out of range; allowed [0, 60] degrees (0 = no head shadow)"),
+                format!(
+                    "{}° is out of range; allowed [0, 60] degrees (0 = no head shadow)",
+                    shown(h)
+                ),
             ));
         }
         if self.tilts.is_empty() {

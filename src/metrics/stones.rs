@@ -8,7 +8,9 @@
 use super::material_of;
 use crate::cut::Cut;
 use crate::error::{Error, Result};
-use crate::optics::{ColourFields, CrystalFields, Material, StoneSize};
+use crate::optics::{
+    BodyColour, ColourFields, CrystalFields, Material, OpticAxis, StoneSize, UserColour,
+};
 
 /// `on`/`off` (also `true`/`false`, `yes`/`no`); an error names `field`.
 pub fn on_off(field: &str, s: &str) -> Result<bool> {
@@ -50,6 +52,24 @@ pub struct CrystalChoice {
     pub colour_e: Option<String>,
     /// The wavelength (nm) a birefringent stone's note gives its indices at.
     pub wavelength_nm: f64,
+}
+
+impl CrystalChoice {
+    /// Read each setting given as a uniaxial stone reads it (on/off, `DEG[@AZ]`, a colour),
+    /// whatever stones it will be applied to, so a value no stone takes is refused before
+    /// any work; the error names its field.
+    pub fn check(&self, fields: &CrystalFields<'_>) -> Result<()> {
+        if let Some(b) = &self.birefringence {
+            on_off(fields.birefringence, b)?;
+        }
+        if let Some(a) = &self.optic_axis {
+            OpticAxis::parse(a, fields.optic_axis)?;
+        }
+        if let Some(c) = &self.colour_e {
+            BodyColour::from_colour(&UserColour::parse(c, fields.colour_e)?, fields.colour_e)?;
+        }
+        Ok(())
+    }
 }
 
 /// What the caller chose for the stones; [`StoneChoice::stones`] makes each cut's.
@@ -138,9 +158,34 @@ impl StoneChoice {
         })
     }
 
-    /// Every cut's stone. Notes go to `note` as they are known: first each design traced in
-    /// its own material, then each coloured stone (as `colour` says), then each birefringent
-    /// stone; an error stops there.
+    /// Check the choice before any cut is known: the crystal settings read
+    /// ([`CrystalChoice::check`]) and, when the caller chose the material (every cut is then
+    /// traced in it), taken by it. A cut's own material is checked by [`StoneChoice::stones`].
+    pub fn check(&self, fields: &StoneFields<'_>) -> Result<()> {
+        let Some(x) = &self.crystal else {
+            return Ok(());
+        };
+        x.check(&fields.crystal)?;
+        if self.chosen {
+            let on = x
+                .birefringence
+                .as_deref()
+                .map(|b| on_off(fields.crystal.birefringence, b))
+                .transpose()?;
+            self.material.clone().choose_crystal(
+                on,
+                x.optic_axis.as_deref(),
+                x.colour_e.as_deref(),
+                self.colour_density,
+                fields.crystal,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Every cut's stone. Its notes go to `note` once every stone is chosen, in this order:
+    /// each design traced in its own material, then each coloured stone (as `colour` says),
+    /// then each birefringent stone; an error comes alone, no note before it.
     pub fn stones(
         &self,
         cuts: &[Cut],
@@ -148,6 +193,22 @@ impl StoneChoice {
         colour: ColourNotes,
         note: &mut dyn FnMut(NoteKind, String),
     ) -> Result<Stones> {
+        let mut notes: Vec<(NoteKind, String)> = Vec::new();
+        let stones = self.stones_noted(cuts, fields, colour, &mut |k, l| notes.push((k, l)))?;
+        for (k, l) in notes {
+            note(k, l);
+        }
+        Ok(stones)
+    }
+
+    fn stones_noted(
+        &self,
+        cuts: &[Cut],
+        fields: &StoneFields<'_>,
+        colour: ColourNotes,
+        note: &mut dyn FnMut(NoteKind, String),
+    ) -> Result<Stones> {
+        self.check(fields)?;
         let mut materials = Vec::with_capacity(cuts.len());
         for c in cuts {
             let (m, said) = material_of(c, &self.material, self.chosen);
@@ -267,15 +328,85 @@ mod tests {
         let mut sorted = kinds.clone();
         sorted.sort_by_key(|k| *k as u8);
         assert_eq!(kinds, sorted, "design, then colour, then crystal notes");
-        // A bad setting names its field, after the notes before it.
+        // A bad setting names its field, and comes alone: no note before it.
         choice.crystal = Some(CrystalChoice {
             birefringence: Some("maybe".into()),
             wavelength_nm: 589.3,
             ..Default::default()
         });
+        let mut notes = Vec::new();
         let e = choice
-            .stones(&[round], &FIELDS, ColourNotes::Traced, &mut |_, _| {})
+            .stones(
+                &[round.clone()],
+                &FIELDS,
+                ColourNotes::Traced,
+                &mut |_, l| notes.push(l),
+            )
             .unwrap_err();
         assert!(e.to_string().starts_with("birefringence"), "{e}");
+        assert!(notes.is_empty(), "{notes:?}");
+        // A coloured biaxial stone (its colour a note) given an optic axis: the error alone.
+        let mut peridot = StoneChoice::new(
+            Material::by_name("peridot").unwrap(),
+            true,
+            None,
+            None,
+            FIELDS.colour,
+        )
+        .unwrap();
+        peridot.crystal = Some(CrystalChoice {
+            optic_axis: Some("30".into()),
+            wavelength_nm: 589.3,
+            ..Default::default()
+        });
+        let e = peridot
+            .stones(
+                &[round.clone()],
+                &FIELDS,
+                ColourNotes::Traced,
+                &mut |_, l| notes.push(l),
+            )
+            .unwrap_err();
+        assert!(
+            e.to_string().starts_with("optic axis: peridot is biaxial"),
+            "{e}"
+        );
+        assert!(notes.is_empty(), "{notes:?}");
+        // Without the axis its colour's note is said.
+        peridot.crystal = None;
+        peridot
+            .stones(&[round], &FIELDS, ColourNotes::Traced, &mut |_, l| {
+                notes.push(l)
+            })
+            .unwrap();
+        assert!(!notes.is_empty());
+    }
+
+    #[test]
+    fn crystal_settings_are_read_before_any_stone() {
+        let fields = FIELDS.crystal;
+        let given = |b: Option<&str>, a: Option<&str>, c: Option<&str>| {
+            CrystalChoice {
+                birefringence: b.map(String::from),
+                optic_axis: a.map(String::from),
+                colour_e: c.map(String::from),
+                wavelength_nm: 589.3,
+            }
+            .check(&fields)
+            .map_err(|e| e.to_string())
+        };
+        assert!(given(Some("off"), Some("45@22.5"), Some("#3050c0")).is_ok());
+        assert!(given(Some("maybe"), None, None)
+            .unwrap_err()
+            .starts_with("birefringence:"));
+        assert!(given(None, Some("nan@5"), None)
+            .unwrap_err()
+            .starts_with("optic axis:"));
+        assert!(given(None, Some("45@1e300"), None)
+            .unwrap_err()
+            .starts_with("optic axis:"));
+        assert!(given(None, None, Some("zzz"))
+            .unwrap_err()
+            .starts_with("E∥c colour:"));
     }
 }

@@ -57,6 +57,17 @@ impl Material {
                 format!("{} is biaxial: {BIAXIAL_REASON}", self.name),
             ));
         }
+        // The E ∥ c colour pairs with the stone's own (E ⟂ c) body colour: a colourless
+        // stone is traced without absorption, so alone it would be ignored.
+        if colour_e.is_some() && self.uniaxial.is_some() && self.colour.is_none() {
+            return Err(Error::invalid(
+                fields.colour_e,
+                format!(
+                    "{} has no body colour: the E∥c colour pairs with the stone's own (its E⊥c colour); give the stone a colour too, or a coloured variety (blue-sapphire, ruby, …)",
+                    self.name
+                ),
+            ));
+        }
         match self.uniaxial.as_mut() {
             Some(u) => {
                 if let Some(on) = birefringence {
@@ -190,7 +201,20 @@ mod tests {
 
     #[test]
     fn the_chooser_sets_axis_and_switch_and_names_the_field() {
+        // An E ∥ c colour needs the stone's own colour beside it: alone it is refused.
+        let e = Material::by_name("tourmaline")
+            .unwrap()
+            .choose_crystal(None, None, Some("#40a060@5mm"), None, F)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("extraordinary colour: tourmaline has no body colour"),
+            "{e}"
+        );
         let mut m = Material::by_name("tourmaline").unwrap();
+        m.colour = Some(
+            BodyColour::from_colour(&UserColour::parse("#40a060", "c").unwrap(), "c").unwrap(),
+        );
         m.choose_crystal(
             Some(false),
             Some("35@20"),

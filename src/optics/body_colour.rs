@@ -204,7 +204,7 @@ impl BodyColour {
             None => Ok(base),
             Some(d) if !(d > 0.0 && d <= DENSITY_MAX) => Err(Error::invalid(
                 fields.density,
-                format!("{d} is out of range; allowed (0, {DENSITY_MAX}] (a factor on the absorption: 0.5 paler, 2 darker)"),
+                format!("{} is out of range; allowed (0, {DENSITY_MAX}] (a factor on the absorption: 0.5 paler, 2 darker)", shown(d)),
             )),
             Some(d) => match base {
                 Some(c) => Ok(Some(c.with_density(d))),

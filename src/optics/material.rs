@@ -221,7 +221,7 @@ impl OpticAxis {
             crate::error::Error::invalid(
                 field,
                 format!(
-                    "`{t}` is not an optic axis; give DEG[@AZ]: the angle of the c-axis from the table's normal in [0, 90] degrees, toward azimuth AZ in degrees (e.g. 0, 90@0, 45@22.5)"
+                    "`{t}` is not an optic axis; give DEG[@AZ]: the angle of the c-axis from the table's normal in [0, 90] degrees, toward azimuth AZ in [-360, 360] degrees (e.g. 0, 90@0, 45@22.5)"
                 ),
             )
         };
@@ -230,7 +230,7 @@ impl OpticAxis {
             Some(a) => a.trim_end_matches('°').parse().map_err(|_| bad())?,
             None => 0.0,
         };
-        if !((0.0..=90.0).contains(&tilt_deg) && azimuth_deg.is_finite()) {
+        if !((0.0..=90.0).contains(&tilt_deg) && (-360.0..=360.0).contains(&azimuth_deg)) {
             return Err(bad());
         }
         Ok(OpticAxis {

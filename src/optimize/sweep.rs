@@ -21,7 +21,7 @@ use super::history::History;
 use super::problem::{check_constraints, penalty, weighted};
 use super::score_set::ScoreSet;
 use crate::cut::Unit;
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use crate::io::{read_bytes, write_atomic};
 use crate::metrics::score_name::list as score_list;
 use crate::metrics::ScoreName;
@@ -116,20 +116,20 @@ impl Axis {
         if step <= 0.0 {
             return Err(Error::invalid(
                 flag,
-                format!("STEP {step} must be positive"),
+                format!("STEP {} must be positive", shown(step)),
             ));
         }
         if max <= min {
             return Err(Error::invalid(
                 flag,
-                format!("MAX {max} must be above MIN {min}"),
+                format!("MAX {} must be above MIN {}", shown(max), shown(min)),
             ));
         }
         let steps = ((max - min) / step * (1.0 + 1e-9)).floor();
         if steps >= 5000.0 {
             return Err(Error::invalid(
                 flag,
-                format!("{} values; at most 5000 per axis", steps + 1.0),
+                format!("{} values; at most 5000 per axis", shown(steps + 1.0)),
             ));
         }
         let n = steps as usize + 1;
@@ -137,7 +137,10 @@ impl Axis {
             return Err(Error::invalid(
                 flag,
                 format!(
-                    "STEP {step} leaves a single value between {min} and {max}; use a smaller step"
+                    "STEP {} leaves a single value between {} and {}; use a smaller step",
+                    shown(step),
+                    shown(min),
+                    shown(max)
                 ),
             ));
         }

@@ -65,8 +65,8 @@ pub use light::{
     Light, LightChoice, LightKind, LightSize, LIGHT_DISTANCE, LIGHT_SIDE, ROTATION_ANGLES,
 };
 pub use run::{
-    rotation_sweep, trace, trace_choice, trace_cut, trace_weighted, trace_weights, WeightedTally,
-    WeightsTally,
+    rotation_sweep, trace, trace_choice, trace_choice_until, trace_cut, trace_weighted,
+    trace_weights, WeightedTally, WeightsTally, STOPPED,
 };
 pub use solid::{face_category, TraceSolid};
 pub use tally::{share, Counts, Fate, PhotonPath, Tally, CATEGORY_KEYS, CATEGORY_LABELS};

@@ -9,6 +9,7 @@ use super::tally::{Counts, Tally};
 use crate::error::{Error, Result};
 use crate::geometry::{DVec3, Polyhedron};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// Chunks traced in parallel before their counts are added (in chunk order) to the total, so
@@ -24,15 +25,26 @@ pub fn trace(
     cfg: &TraceConfig,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Result<Tally> {
+    traced(solid, light, cfg, progress, None)
+}
+
+/// [`trace`], stopped within a chunk's photons once `stop` is raised (an error then).
+fn traced(
+    solid: &Polyhedron,
+    light: &Light,
+    cfg: &TraceConfig,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    stop: Option<&AtomicBool>,
+) -> Result<Tally> {
     cfg.validate()?;
     light.validate()?;
     let ts = TraceSolid::new(solid)?;
     let tracer = kernel::Tracer::new(&ts, light, cfg)?;
     let start = Instant::now();
     let counts = if cfg.until_hit {
-        run_until_hit(&tracer, cfg.photons, progress)?
+        run_until_hit(&tracer, cfg.photons, progress, stop)?
     } else {
-        run_shot(&tracer, cfg.photons, progress)
+        run_shot(&tracer, cfg.photons, progress, stop)?
     };
     let elapsed = start.elapsed().as_secs_f64();
     let paths = if cfg.record_paths > 0 {
@@ -109,9 +121,9 @@ pub fn trace_weights(
     tracer.exit_weight = Some(weight);
     let start = Instant::now();
     let counts = if cfg.until_hit {
-        run_until_hit(&tracer, cfg.photons, None)?
+        run_until_hit(&tracer, cfg.photons, None, None)?
     } else {
-        run_shot(&tracer, cfg.photons, None)
+        run_shot(&tracer, cfg.photons, None, None)?
     };
     let elapsed = start.elapsed().as_secs_f64();
     let n = counts.hit as f64;
@@ -140,7 +152,18 @@ pub fn trace_cut(
     cfg: &TraceConfig,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Result<Tally> {
-    let mut t = trace(solid, light, cfg, progress).map_err(|e| e.context(name))?;
+    trace_cut_until(solid, name, light, cfg, progress, None)
+}
+
+fn trace_cut_until(
+    solid: &Polyhedron,
+    name: &str,
+    light: &Light,
+    cfg: &TraceConfig,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    stop: Option<&AtomicBool>,
+) -> Result<Tally> {
+    let mut t = traced(solid, light, cfg, progress, stop).map_err(|e| e.context(name))?;
     t.cut = name.to_string();
     Ok(t)
 }
@@ -155,13 +178,24 @@ pub fn rotation_sweep(
     cfg: &TraceConfig,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Result<Vec<Tally>> {
+    sweep_until(solid, name, kind, cfg, progress, None)
+}
+
+fn sweep_until(
+    solid: &Polyhedron,
+    name: &str,
+    kind: LightKind,
+    cfg: &TraceConfig,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    stop: Option<&AtomicBool>,
+) -> Result<Vec<Tally>> {
     let cfg = TraceConfig {
         until_hit: true,
         ..cfg.clone()
     };
     ROTATION_ANGLES
         .iter()
-        .map(|&a| trace_cut(solid, name, &Light::rotated(kind, a), &cfg, progress))
+        .map(|&a| trace_cut_until(solid, name, &Light::rotated(kind, a), &cfg, progress, stop))
         .collect()
 }
 
@@ -180,20 +214,64 @@ pub fn trace_choice(
     }
 }
 
+/// [`trace_choice`] that stops once `stop` is raised (another thread's interrupt): every
+/// chunk not yet begun is skipped, so it returns within about one chunk's time per thread,
+/// with the error [`STOPPED`] names.
+pub fn trace_choice_until(
+    solid: &Polyhedron,
+    name: &str,
+    light: &LightChoice,
+    cfg: &TraceConfig,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    stop: &AtomicBool,
+) -> Result<Vec<Tally>> {
+    match light {
+        LightChoice::Single(l) => Ok(vec![trace_cut_until(
+            solid,
+            name,
+            l,
+            cfg,
+            progress,
+            Some(stop),
+        )?]),
+        LightChoice::Rotate(k) => sweep_until(solid, name, *k, cfg, progress, Some(stop)),
+    }
+}
+
+/// The setting a stopped run's error names ([`trace_choice_until`]).
+pub const STOPPED: &str = "photon run";
+
+/// Whether `stop` is raised.
+fn raised(stop: Option<&AtomicBool>) -> bool {
+    stop.is_some_and(|s| s.load(Ordering::Relaxed))
+}
+
+/// The error of a run stopped by its flag.
+fn stopped() -> Error {
+    Error::invalid(STOPPED, "stopped before its photons were traced")
+}
+
 fn run_shot(
     tracer: &kernel::Tracer,
     photons: u64,
     progress: Option<&(dyn Fn(u64) + Sync)>,
-) -> Counts {
-    run_shot_waves(tracer, photons, progress, WAVE)
+    stop: Option<&AtomicBool>,
+) -> Result<Counts> {
+    let counts = run_shot_waves(tracer, photons, progress, WAVE, stop);
+    if raised(stop) {
+        return Err(stopped());
+    }
+    Ok(counts)
 }
 
-/// [`run_shot`] with `wave` chunks per wave (tests vary it).
+/// [`run_shot`] with `wave` chunks per wave (tests vary it); a raised `stop` skips the chunks
+/// not yet begun (the counts are then short).
 pub(super) fn run_shot_waves(
     tracer: &kernel::Tracer,
     photons: u64,
     progress: Option<&(dyn Fn(u64) + Sync)>,
     wave: u64,
+    stop: Option<&AtomicBool>,
 ) -> Counts {
     let chunks = photons.div_ceil(CHUNK);
     let mut total = Counts::new(tracer.facet_count());
@@ -206,6 +284,9 @@ pub(super) fn run_shot_waves(
         let wave: Vec<Counts> = (first..last)
             .into_par_iter()
             .map(|c| {
+                if raised(stop) {
+                    return Counts::new(tracer.facet_count());
+                }
                 let n = CHUNK.min(photons - c * CHUNK);
                 let counts = tracer.chunk(c, n, None);
                 if let Some(p) = progress {
@@ -216,6 +297,9 @@ pub(super) fn run_shot_waves(
             .collect();
         for c in &wave {
             total.add(c);
+        }
+        if raised(stop) {
+            break;
         }
         first = last;
     }
@@ -229,11 +313,15 @@ fn run_until_hit(
     tracer: &kernel::Tracer,
     hits: u64,
     progress: Option<&(dyn Fn(u64) + Sync)>,
+    stop: Option<&AtomicBool>,
 ) -> Result<Counts> {
     let mut total = Counts::new(tracer.facet_count());
     let mut next = 0u64;
     let mut wave = 1u64;
     loop {
+        if raised(stop) {
+            return Err(stopped());
+        }
         let results: Vec<Counts> = (next..next + wave)
             .into_par_iter()
             .map(|c| tracer.chunk(c, CHUNK, None))

@@ -503,7 +503,7 @@ fn counts_are_added_in_chunk_order_wave_by_wave_on_any_thread_count() {
             .build()
             .unwrap();
         for wave in [1, 2, WAVE] {
-            let new = pool.install(|| run_shot_waves(&tracer, photons, None, wave));
+            let new = pool.install(|| run_shot_waves(&tracer, photons, None, wave, None));
             assert_eq!(new, old, "{threads} threads, waves of {wave}");
             for i in 0..WEIGHTS {
                 assert_eq!(new.weight_sum[i].to_bits(), old.weight_sum[i].to_bits());

@@ -241,7 +241,10 @@ impl Rough {
         if !(size_mm.is_finite() && size_mm > 0.0 && size_mm <= REACH_MM) {
             return Err(Error::invalid(
                 "rough size",
-                format!("{size_mm} is not a crystal size; allowed (0, {REACH_MM}] mm"),
+                format!(
+                    "{} is not a crystal size; allowed (0, {REACH_MM}] mm",
+                    shown(size_mm)
+                ),
             ));
         }
         if form == "sphere" {

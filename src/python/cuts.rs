@@ -116,6 +116,13 @@ impl PyCut {
         let cut = &self.cut;
         let out = run(py, || {
             crate::design::with_set(cut, &all).map_err(|e| match e {
+                // Changes that make no solid: named by the method itself.
+                Error::Invalid { field, message } if field == crate::design::CUT_PARAMETER => {
+                    Error::Invalid {
+                        field: "with_set".into(),
+                        message,
+                    }
+                }
                 Error::Invalid { field, message } => Error::Invalid {
                     field: format!("with_set {field}"),
                     message,
@@ -137,7 +144,15 @@ impl PyCut {
     /// 73
     #[pyo3(signature = (path, overwrite=false))]
     fn write(&self, py: Python<'_>, path: &Bound<'_, PyAny>, overwrite: bool) -> PyResult<()> {
-        let path = std::path::PathBuf::from(spec_of(path)?);
+        let path: std::path::PathBuf = path.extract().map_err(|_| {
+            super::Error::new_err(format!(
+                "path: expected a file name (str or os.PathLike), got {}",
+                path.get_type()
+                    .name()
+                    .map(|n| n.to_string())
+                    .unwrap_or_default()
+            ))
+        })?;
         let cut = &self.cut;
         run(py, || {
             super::stone::refuse_existing(&path, overwrite)?;
@@ -183,13 +198,19 @@ impl PyCut {
             if !(diameter_mm.is_finite() && diameter_mm > 0.0 && diameter_mm < 1000.0) {
                 return Err(Error::invalid(
                     "diameter_mm",
-                    format!("{diameter_mm} is not allowed; give a diameter in (0, 1000) mm"),
+                    format!(
+                        "{} is not allowed; give a diameter in (0, 1000) mm",
+                        crate::error::shown(diameter_mm)
+                    ),
                 ));
             }
             if !(meet_tol.is_finite() && meet_tol > 0.0 && meet_tol <= 0.01) {
                 return Err(Error::invalid(
                     "meet_tol",
-                    format!("{meet_tol} is not allowed; give a tolerance in (0, 0.01] of W"),
+                    format!(
+                        "{} is not allowed; give a tolerance in (0, 0.01] of W",
+                        crate::error::shown(meet_tol)
+                    ),
                 ));
             }
             let stone = super::stone::StoneArgs {

@@ -51,6 +51,7 @@ const fn kw(name: &'static str, kind: Kind, default: Value) -> Keyword {
 /// [`crate::plot::render::settings::SETTINGS`].
 pub(crate) const SETTINGS: &[(&str, &str)] = &[
     ("rough size", "size_mm"),
+    ("photon count", "photons"),
     ("output", "path"),
     ("force", "overwrite=True"),
     ("picture light", "light"),

@@ -74,6 +74,47 @@ pub(crate) fn run<T: Send>(
         .map_err(error)
 }
 
+/// A whole-number argument as Python gave it, its digits kept to be read by the command
+/// line's parser ([`Whole::get`]): a negative or huge int is then `facetlab.Error` with the
+/// command line's line, never Python's `OverflowError`. Anything but an int (a bool
+/// included) is a `TypeError`, as for any int argument.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Whole(String);
+
+impl From<u64> for Whole {
+    fn from(n: u64) -> Whole {
+        Whole(n.to_string())
+    }
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Whole {
+    type Error = PyErr;
+
+    fn extract(obj: pyo3::Borrowed<'a, 'py, PyAny>) -> PyResult<Whole> {
+        use pyo3::types::{PyBool, PyInt};
+        if obj.is_instance_of::<PyBool>() || !obj.is_instance_of::<PyInt>() {
+            return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                "'{}' object cannot be interpreted as an integer",
+                obj.get_type().name()?
+            )));
+        }
+        Ok(Whole(obj.str()?.to_string()))
+    }
+}
+
+impl Whole {
+    /// The number in `lo..=hi`, else `facetlab.Error` naming `field` as the command line's
+    /// flag of it says ([`crate::io::text::count`]).
+    pub fn get(&self, field: &str, lo: u64, hi: u64) -> PyResult<u64> {
+        crate::io::text::count(field, &self.0, lo, hi).map_err(error)
+    }
+
+    /// The digits as given (`-1`, `18446744073709551616`).
+    pub fn text(&self) -> &str {
+        &self.0
+    }
+}
+
 /// `json.loads(text)`: the library's JSON documents handed to Python as dicts and lists.
 pub(crate) fn from_json<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
     py.import("json")?.call_method1("loads", (text,))

@@ -4,8 +4,8 @@
 //! with the report's drawings, [`crate::report::PlanDrawings`], the binary's call).
 
 use super::cuts::PyCut;
-use super::run;
 use super::runs::watch;
+use super::{run, Whole};
 use crate::error::Error;
 use crate::optics::Material;
 use crate::plan::config::check_families;
@@ -50,10 +50,12 @@ fn plan<'py>(
     families: Option<Vec<String>>,
     size_mm: Option<f64>,
     material: Option<String>,
-    top: Option<usize>,
+    top: Option<Whole>,
     out: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let started = Instant::now();
+    // Read as the command line reads --top.
+    let top = top.map(|t| t.get("top", 1, 50)).transpose()?;
     let rough_arg = rough.display().to_string();
     let (cfg, rough, material) = run(py, || {
         let mut cfg = match &config {
@@ -64,13 +66,7 @@ fn plan<'py>(
             cfg.families = check_families(f).map_err(|m| Error::invalid("families", m))?;
         }
         if let Some(t) = top {
-            if !(1..=50).contains(&t) {
-                return Err(Error::invalid(
-                    "top",
-                    format!("`{t}` is not allowed; give a whole number in [1, 50]"),
-                ));
-            }
-            cfg.top = t;
+            cfg.top = t as usize;
         }
         if let Some(m) = &material {
             Material::by_name(m)?;
@@ -81,7 +77,10 @@ fn plan<'py>(
             if !(s.is_finite() && s > 0.0 && s < 1000.0) {
                 return Err(Error::invalid(
                     "size_mm",
-                    format!("{s} is not allowed; give the rough's largest extent in (0, 1000) mm"),
+                    format!(
+                        "{} is not allowed; give the rough's largest extent in (0, 1000) mm",
+                        crate::error::shown(s)
+                    ),
                 ));
             }
         }

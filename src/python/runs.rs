@@ -7,7 +7,7 @@
 //! progress to the Python callback and, on Ctrl-C (`KeyboardInterrupt`), raises the run's stop
 //! flag, waits for the run to write its folder, then re-raises.
 
-use super::run;
+use super::{run, Whole};
 use crate::error::{Error, Result};
 use crate::optimize::{
     self as opt, BeamEvaluator, Config, Grid, Hooks, PhotonVerifier, Progress, RunOptions, Status,
@@ -133,11 +133,13 @@ fn optimize<'py>(
     py: Python<'py>,
     config: &Bound<'py, PyAny>,
     out: Option<PathBuf>,
-    seed: Option<u64>,
+    seed: Option<Whole>,
     verify: bool,
     progress: Option<Bound<'py, PyAny>>,
     overwrite: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
+    // Read as the command line reads --seed.
+    let seed = seed.map(|s| s.get("seed", 0, u64::MAX)).transpose()?;
     let mut config = config_of(config)?;
     if let Some(s) = seed {
         config.seed = s;
@@ -358,15 +360,26 @@ impl PyGrid {
     fn rows<'py>(
         &self,
         py: Python<'py>,
-        indices: Option<Vec<usize>>,
+        indices: Option<Vec<Whole>>,
     ) -> PyResult<Bound<'py, PyList>> {
         let len = self.grid.len();
-        let indices = indices.unwrap_or_else(|| (0..len).collect());
-        if let Some(bad) = indices.iter().find(|&&i| i >= len) {
-            return Err(super::Error::new_err(format!(
-                "indices: {bad} is beyond the grid's {len} points"
-            )));
-        }
+        let indices: Vec<usize> = match indices {
+            None => (0..len).collect(),
+            Some(given) => given
+                .iter()
+                .map(|i| {
+                    i.get("indices", 0, len.saturating_sub(1) as u64)
+                        .map(|i| i as usize)
+                        .map_err(|_| {
+                            super::Error::new_err(format!(
+                                "indices: `{}` is not allowed; give an index from 0 to {} (the grid's {len} points)",
+                                i.text(),
+                                len.saturating_sub(1)
+                            ))
+                        })
+                })
+                .collect::<PyResult<_>>()?,
+        };
         let stop = AtomicBool::new(false);
         let evaluator = BeamEvaluator::new(&self.config);
         let cells = watched(

@@ -183,6 +183,13 @@ fn score_many<'py>(
 ) -> PyResult<Bound<'py, PyList>> {
     let kw = Keywords::parse("score_many", &keywords::SCORE, kwargs)?;
     let args = ScoreArgs::from_keywords(&kw)?;
+    // A str is iterable too, letter by letter: one cut is `score`'s.
+    if cuts.is_instance_of::<pyo3::types::PyString>() {
+        return Err(super::Error::new_err(format!(
+            "cuts: `{}` is one str, not a list of cuts; give a list such as [\"tolkowsky\"], or score one cut with facetlab.score",
+            cuts
+        )));
+    }
     let cuts: Vec<Cut> = cuts
         .try_iter()?
         .map(|c| cut_of(&c?))

@@ -2,14 +2,16 @@
 //! counts them, returned as the `trace --json` document ([`crate::document::trace`]).
 
 use super::cuts::cut_of;
-use super::run;
+use super::runs::watched;
 use super::stone::StoneArgs;
+use super::Whole;
 use crate::document::trace::trace_json;
 use crate::error::{Error, Result};
 use crate::photon::{
     self, Absorption, Light, LightChoice, LightKind, TraceConfig, WavelengthSampling,
 };
 use pyo3::prelude::*;
+use std::sync::atomic::AtomicBool;
 
 /// The photon run of the keyword arguments.
 struct TraceArgs {
@@ -72,7 +74,12 @@ fn light_choice(a: &TraceArgs) -> Result<LightChoice> {
     })
 }
 
-fn trace_cut(cut: &crate::cut::Cut, input: &str, a: &TraceArgs) -> Result<String> {
+fn trace_cut(
+    cut: &crate::cut::Cut,
+    input: &str,
+    a: &TraceArgs,
+    stop: &std::sync::atomic::AtomicBool,
+) -> Result<String> {
     photon::check_photons(a.photons)?;
     let light = light_choice(a)?;
     let wavelengths = WavelengthSampling::parse("spectrum", &a.spectrum)?;
@@ -89,7 +96,7 @@ fn trace_cut(cut: &crate::cut::Cut, input: &str, a: &TraceArgs) -> Result<String
         record_paths: 0,
     };
     config.validate()?;
-    let tallies = photon::trace_choice(&cut.solid, &cut.name, &light, &config, None)?;
+    let tallies = photon::trace_choice_until(&cut.solid, &cut.name, &light, &config, None, stop)?;
     let doc = trace_json(&light, &config, &[input.to_string()], &[tallies])
         .map_err(|e| Error::invalid("trace", e.to_string()))?;
     Ok(doc.to_string())
@@ -101,12 +108,14 @@ fn trace_cut(cut: &crate::cut::Cut, input: &str, a: &TraceArgs) -> Result<String
 /// unlimited); `absorption` is none, thesis, beer:K or colour[:W]; `spectrum` uniform, d65
 /// or a wavelength in nm.
 ///
+/// Ctrl-C stops the photons within a moment and raises `KeyboardInterrupt`.
+///
 /// >>> t = facetlab.trace("tolkowsky", photons=2000, seed=1)
 /// >>> t["photons_shot"], t["settings"]["seed"]
 /// (2000, 1)
 #[pyfunction]
-#[pyo3(signature = (cut, *, light="overhead", angle=None, rotate=false, photons=1_000_000,
-    depth=Some(6), absorption="thesis", polarization=true, spectrum="uniform", seed=1,
+#[pyo3(signature = (cut, *, light="overhead", angle=None, rotate=false, photons=Whole::from(1_000_000),
+    depth=Some(Whole::from(6)), absorption="thesis", polarization=true, spectrum="uniform", seed=Whole::from(1),
     material=None, ri=None, birefringence=None, optic_axis=None, colour_e=None))]
 #[allow(clippy::too_many_arguments)]
 fn trace<'py>(
@@ -115,26 +124,34 @@ fn trace<'py>(
     light: &str,
     angle: Option<f64>,
     rotate: bool,
-    photons: u64,
-    depth: Option<u32>,
+    photons: Whole,
+    depth: Option<Whole>,
     absorption: &str,
     polarization: bool,
     spectrum: &str,
-    seed: u64,
+    seed: Whole,
     material: Option<String>,
     ri: Option<f64>,
     birefringence: Option<bool>,
     optic_axis: Option<String>,
     colour_e: Option<String>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    if let Some(d) = depth {
-        if !(1..=photon::UNLIMITED_CAP).contains(&d) {
-            return Err(super::Error::new_err(format!(
-                "depth: `{d}` is not allowed; give a whole number in 1..={} or None (unlimited)",
-                photon::UNLIMITED_CAP
-            )));
-        }
-    }
+    // Read as the command line reads --photons, --depth and --seed.
+    let photons = photons.get("photon count", 1, u64::MAX)?;
+    let depth = match depth {
+        None => None,
+        Some(d) => Some(
+            d.get("depth", 1, photon::UNLIMITED_CAP as u64)
+                .map_err(|_| {
+                    super::Error::new_err(format!(
+                        "depth: `{}` is not allowed; give a whole number in 1..={} or None (unlimited)",
+                        d.text(),
+                        photon::UNLIMITED_CAP
+                    ))
+                })? as u32,
+        ),
+    };
+    let seed = seed.get("seed", 0, u64::MAX)?;
     let args = TraceArgs {
         light: light.to_string(),
         angle,
@@ -156,7 +173,14 @@ fn trace<'py>(
     };
     let input = super::cuts::input_of(cut)?;
     let c = cut_of(cut)?;
-    let text = run(py, || trace_cut(&c, &input, &args))?;
+    // On a worker thread, this one watching for Ctrl-C: the photons stop within a chunk.
+    let stop = AtomicBool::new(false);
+    let text = watched(
+        py,
+        &stop,
+        || trace_cut(&c, &input, &args, &stop),
+        |_| Ok(()),
+    )?;
     super::from_json(py, &text)
 }
 

@@ -4,7 +4,7 @@ use super::light::Light;
 use super::lighting::Spot;
 use super::pose::Tilt;
 use crate::beam::TraceOptions;
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use crate::optics::Material;
 
 /// What to draw and how.
@@ -153,14 +153,20 @@ impl RenderOptions {
         if !(t.tilt_deg.abs() <= 90.0 && t.azimuth_deg.is_finite()) {
             return Err(Error::invalid(
                 "tilt",
-                format!("{}° is out of range; allowed −90 to 90 degrees", t.tilt_deg),
+                format!(
+                    "{}° is out of range; allowed −90 to 90 degrees",
+                    shown(t.tilt_deg)
+                ),
             ));
         }
         let h = self.head_shadow();
         if !(0.0..=60.0).contains(&h) {
             return Err(Error::invalid(
                 "head-shadow",
-                format!("{h}° is out of range; allowed 0 to 60 degrees (0 = none)"),
+                format!(
+                    "{}° is out of range; allowed 0 to 60 degrees (0 = none)",
+                    shown(h)
+                ),
             ));
         }
         if !(380.0..=780.0).contains(&self.wavelength_nm) {
@@ -168,7 +174,7 @@ impl RenderOptions {
                 "wavelength",
                 format!(
                     "{} nm is outside the visible range; allowed 380 to 780 nm",
-                    self.wavelength_nm
+                    shown(self.wavelength_nm)
                 ),
             ));
         }
@@ -184,8 +190,9 @@ impl RenderOptions {
                 return Err(Error::invalid(
                     "material",
                     format!(
-                        "{} has refractive index {n} at {l} nm; allowed [1, 10]",
-                        self.material.name
+                        "{} has refractive index {} at {l} nm; allowed [1, 10]",
+                        self.material.name,
+                        shown(n)
                     ),
                 ));
             }

@@ -221,6 +221,11 @@ fn bad_photographs_are_one_line_and_write_nothing() {
             &["--light", "tent", "--ground-gap", "-1"],
             &["--ground-gap"],
         ),
+        // A gap above no ground would be ignored.
+        (
+            &["--light", "tent", "--ground-gap", "0.5"],
+            &["--ground-gap: is the stone's height above a ground; give --ground white or black"],
+        ),
         (
             &["--light", "tent", "--distance", "5"],
             &["--distance", "three times"],

@@ -4,7 +4,10 @@ facetlab.InternalError."""
 
 from __future__ import annotations
 
+import _thread
 import random
+import threading
+import time
 from pathlib import Path
 from typing import List, Tuple
 
@@ -73,3 +76,64 @@ def test_wrong_types_are_errors_too() -> None:
         facetlab.score(3.5)  # type: ignore[arg-type]
     with pytest.raises(facetlab.Error, match="not a number"):
         facetlab.family("round-brilliant", table="wide")  # type: ignore[arg-type]
+
+
+# Issue 51 item 8: whole numbers out of range (negative, past 2**64) are the command line's
+# error naming the keyword, never Python's OverflowError.
+GRID = {"cut": {"family": "round-brilliant"}, "free": {"table": [0.5, 0.6]},
+        "score": {"ri": 1.54, "polarization": False}}
+
+
+def test_whole_numbers_out_of_range_are_the_command_lines_error(cli: Cli, tmp_path: Path) -> None:
+    for flag, value, call in [
+        ("--photons", "-1", lambda: facetlab.trace("tolkowsky", photons=-1)),
+        ("--photons", str(2**64), lambda: facetlab.trace("tolkowsky", photons=2**64)),
+        ("--seed", "-1", lambda: facetlab.trace("tolkowsky", photons=10, seed=-1)),
+        ("--seed", str(2**64), lambda: facetlab.trace("tolkowsky", photons=10, seed=2**64)),
+    ]:
+        p = cli(tmp_path, "trace", "tolkowsky", flag, value)
+        assert p.returncode == 2, p.stderr
+        with pytest.raises(facetlab.Error) as e:
+            call()
+        line = p.stderr.strip()
+        # The same line, the keyword where the command line names its flag.
+        assert str(e.value) == line[len("facetlab: "):].replace(flag, flag[2:]), (str(e.value), line)
+    for call, keyword in [
+        (lambda: facetlab.trace("tolkowsky", depth=-1), "depth"),
+        (lambda: facetlab.trace("tolkowsky", depth=2**70), "depth"),
+        (lambda: facetlab.Grid(GRID, ["table:0.55:0.57:0.01"]).rows([-1]), "indices"),
+        (lambda: facetlab.Grid(GRID, ["table:0.55:0.57:0.01"]).rows([2**64]), "indices"),
+        (lambda: facetlab.plan("octahedron", size_mm=6, top=2**64), "top"),
+        (lambda: facetlab.plan("octahedron", size_mm=6, top=-1), "top"),
+        (lambda: facetlab.optimize(GRID, seed=-1), "seed"),
+    ]:
+        with pytest.raises(facetlab.Error) as e:
+            call()
+        assert str(e.value).startswith(f"{keyword}: `"), str(e.value)
+        assert "\n" not in str(e.value)
+    # A number of another type is still Python's TypeError, as for any int argument.
+    with pytest.raises(TypeError):
+        facetlab.trace("tolkowsky", photons=1.5)  # type: ignore[arg-type]
+    with pytest.raises(TypeError):
+        facetlab.trace("tolkowsky", photons=True)
+
+
+def test_a_bare_str_is_no_list_of_cuts_and_a_write_names_its_path() -> None:
+    with pytest.raises(facetlab.Error, match=r"^cuts: `tolkowsky` is one str, not a list of cuts"):
+        facetlab.score_many("tolkowsky")
+    with pytest.raises(facetlab.Error, match=r"^path: expected a file name"):
+        facetlab.cut("tolkowsky").write(None)  # type: ignore[arg-type]
+
+
+def test_ctrl_c_stops_a_long_trace() -> None:
+    # 10**9 photons take minutes; Ctrl-C (here 0.5 s in) stops them within a chunk per thread.
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    t0 = time.monotonic()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            facetlab.trace("tolkowsky", photons=10**9)
+    finally:
+        timer.cancel()
+    # Not a timed test: the run stopped, long before its photons were traced.
+    assert time.monotonic() - t0 < 60

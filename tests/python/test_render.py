@@ -186,6 +186,7 @@ BAD: List[Dict[str, Any]] = [
     {"view": -10, "ground": "white"},
     {"ground": "grass"},
     {"ground_gap": 11},
+    {"ground_gap": 0.5},
     {"light_rotation": 400},
     {"tone": "sepia"},
     {"bands": 2},

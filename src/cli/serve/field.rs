@@ -29,4 +29,9 @@ impl<T> Field<T> {
             Field::Other(v) => Err(v),
         }
     }
+
+    /// Whether the field was sent (of any type but `null`).
+    pub fn sent(&self) -> bool {
+        !matches!(self.given(), Ok(None))
+    }
 }

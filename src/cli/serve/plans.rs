@@ -23,6 +23,7 @@ use axum::http::{header, StatusCode};
 use axum::response::{IntoResponse, Response};
 use facetlab::error::Error;
 use facetlab::optics::Material;
+use facetlab::plan::config::check_families;
 use facetlab::plan::mesh::read_triangles;
 use facetlab::plan::{plan_families, write_folder, Run as Folder};
 use facetlab::plan::{PlanConfig, Rough, CRYSTALS};
@@ -261,16 +262,8 @@ pub async fn start(
         Body::deserialize(Value::Object(m)).map_err(|e| ApiError::bad("body", e.to_string()))?;
     let families = match b.families.given() {
         Ok(None) => vec![DEFAULT_FAMILY.to_string()],
-        Ok(Some(f)) if f.is_empty() => {
-            return Err(unprocessable("families", "name at least one family"))
-        }
-        Ok(Some(f)) => {
-            for name in f {
-                facetlab::cut::family(name)
-                    .map_err(|e| unprocessable("families", e.to_string()))?;
-            }
-            f.clone()
-        }
+        // Each a known family, named once (as `facetlab plan` and Python check them).
+        Ok(Some(f)) => check_families(f).map_err(|m| unprocessable("families", m))?,
         Err(_) => {
             return Err(ApiError::bad(
                 "families",

@@ -271,6 +271,23 @@ pub fn parse_req(
         }
     };
     let is_photo = photo.is_some();
+    // A photograph's settings with a laboratory light would be ignored: refused, as the
+    // command line and Python refuse them.
+    let sent = [
+        b.view.sent(),
+        b.view_az.sent(),
+        b.light_rotation.sent(),
+        b.ground.sent(),
+    ];
+    if let (false, Some((key, _))) = (is_photo, PHOTO.iter().zip(sent).find(|(_, s)| *s)) {
+        return Err(ApiError::bad(
+            *key,
+            format!(
+                "is for photographs; give a photographic light ({})",
+                PhotoLight::names().join(", ")
+            ),
+        ));
+    }
     Ok(Req {
         photo,
         view,
@@ -418,8 +435,9 @@ fn source(b: &Body) -> ApiResult<Source> {
         return Err(ApiError::bad(
             "cut",
             format!(
-                "unknown preset {:?}; presets: {}; or send a file's text with \"format\"",
+                "unknown preset {:?}{}; presets: {}; or send a file's text with \"format\"",
                 short(cut),
+                io::presets::suggestion(cut),
                 io::presets::names().join(", ")
             ),
         ));

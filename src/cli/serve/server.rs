@@ -70,7 +70,7 @@ pub fn run(a: &ServeArgs) -> Result<()> {
         .enable_all()
         .build()
         .map_err(|e| Error::io("serve", e))?;
-    rt.block_on(async move {
+    let served = rt.block_on(async move {
         let listener = tokio::net::TcpListener::bind((ip, a.port))
             .await
             .map_err(|e| {
@@ -79,6 +79,9 @@ pub fn run(a: &ServeArgs) -> Result<()> {
                     format!("cannot listen on {ip} port {}: {e}", a.port),
                 )
             })?;
+        // The signals are caught from before the URL is printed: a client (or a script)
+        // that stops the server as soon as it is up is heard.
+        let signals = Signals::new()?;
         let addr = listener.local_addr().map_err(|e| Error::io("serve", e))?;
         let url = format!("http://{addr}/");
         println!("facetlab serve: {url}  (Ctrl-C stops it)");
@@ -87,12 +90,33 @@ pub fn run(a: &ServeArgs) -> Result<()> {
         if a.open {
             open_browser(&url);
         }
-        axum::serve(listener, app())
-            .with_graceful_shutdown(shutdown())
-            .await
-            .map_err(|e| Error::io("serve", e))
-    })
+        // At the signal the server stops taking connections and lets the requests under way
+        // finish for at most GRACE; those still running then are cut (their connections
+        // closed), as is the heavy work behind them, so the process is gone within about
+        // GRACE.
+        let (signalled, heard) = tokio::sync::oneshot::channel::<()>();
+        let server = axum::serve(listener, app()).with_graceful_shutdown(async move {
+            signals.first().await;
+            let _ = signalled.send(());
+        });
+        tokio::select! {
+            r = server => r.map_err(|e| Error::io("serve", e)),
+            _ = async {
+                if heard.await.is_ok() {
+                    tokio::time::sleep(GRACE).await;
+                } else {
+                    std::future::pending::<()>().await;
+                }
+            } => Ok(()),
+        }
+    });
+    // Blocking jobs (a render, an export) are not waited for: the process ends with them.
+    rt.shutdown_timeout(std::time::Duration::ZERO);
+    served
 }
+
+/// How long requests under way may finish after Ctrl-C or SIGTERM before they are cut.
+pub const GRACE: std::time::Duration = std::time::Duration::from_millis(300);
 
 /// Try to open `url` in the default browser; a failure is a note, never an error.
 fn open_browser(url: &str) {
@@ -119,24 +143,40 @@ fn open_browser(url: &str) {
     }
 }
 
-async fn shutdown() {
-    let ctrl_c = async {
-        let _ = tokio::signal::ctrl_c().await;
-    };
+/// Ctrl-C and SIGTERM, caught from their creation on.
+struct Signals {
     #[cfg(unix)]
-    let term = async {
-        match tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate()) {
-            Ok(mut s) => {
-                s.recv().await;
-            }
-            Err(_) => std::future::pending::<()>().await,
+    interrupt: tokio::signal::unix::Signal,
+    #[cfg(unix)]
+    terminate: tokio::signal::unix::Signal,
+}
+
+impl Signals {
+    fn new() -> Result<Signals> {
+        #[cfg(unix)]
+        {
+            use tokio::signal::unix::{signal, SignalKind};
+            let caught = |kind| signal(kind).map_err(|e| Error::io("serve", e));
+            Ok(Signals {
+                interrupt: caught(SignalKind::interrupt())?,
+                terminate: caught(SignalKind::terminate())?,
+            })
         }
-    };
-    #[cfg(not(unix))]
-    let term = std::future::pending::<()>();
-    tokio::select! {
-        _ = ctrl_c => {},
-        _ = term => {},
+        #[cfg(not(unix))]
+        Ok(Signals {})
+    }
+
+    /// The first of them.
+    async fn first(mut self) {
+        #[cfg(unix)]
+        tokio::select! {
+            _ = self.interrupt.recv() => {},
+            _ = self.terminate.recv() => {},
+        }
+        #[cfg(not(unix))]
+        {
+            let _ = tokio::signal::ctrl_c().await;
+        }
     }
 }
 

@@ -63,9 +63,50 @@ pub struct RawScore {
     pub colour_e: Option<String>,
 }
 
+/// A number or text as a config writes it (`optic_axis`, `size_mm`): anything else is
+/// refused saying what is expected (`expecting`), not as a data type's own name.
+struct NumberOrText(&'static str);
+
+impl serde::de::Visitor<'_> for NumberOrText {
+    type Value = std::result::Result<f64, String>;
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.0)
+    }
+    fn visit_f64<E>(self, v: f64) -> std::result::Result<Self::Value, E> {
+        Ok(Ok(v))
+    }
+    fn visit_i64<E>(self, v: i64) -> std::result::Result<Self::Value, E> {
+        Ok(Ok(v as f64))
+    }
+    fn visit_u64<E>(self, v: u64) -> std::result::Result<Self::Value, E> {
+        Ok(Ok(v as f64))
+    }
+    fn visit_str<E>(self, v: &str) -> std::result::Result<Self::Value, E> {
+        Ok(Err(v.to_string()))
+    }
+}
+
+impl<'de> Deserialize<'de> for RawAxis {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        d.deserialize_any(NumberOrText(
+            "a number of degrees from the table's normal or text \"DEG@AZ\" (e.g. 30 or \"90@0\")",
+        ))
+        .map(|v| v.map_or_else(RawAxis::Text, RawAxis::Number))
+    }
+}
+
+impl<'de> Deserialize<'de> for RawSize {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        d.deserialize_any(NumberOrText(
+            "a length in mm or text \"LxW\" (e.g. 8 or \"10x5\")",
+        ))
+        .map(|v| v.map_or_else(RawSize::Text, RawSize::Number))
+    }
+}
+
 /// `score.optic_axis` as written: a number (the angle from the table's normal) or text
 /// (`"90@0"`).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum RawAxis {
     /// Degrees from the table's normal, toward azimuth 0.
@@ -85,7 +126,7 @@ impl RawAxis {
 }
 
 /// `score.size_mm` as written: a number (the length) or text (`"10"`, `"10x5"`).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum RawSize {
     /// A length in mm.

@@ -283,6 +283,17 @@ impl PictureSettings {
             o.width_mm = w;
         }
         o.validate().map_err(named)?;
+        // A gap under no ground would be ignored: refused, as a photographic setting is with a
+        // laboratory light.
+        if self.ground_gap.is_some() && o.ground.kind == GroundKind::None {
+            return Err(Error::invalid(
+                GROUND_GAP,
+                format!(
+                    "is the stone's height above a ground; give {} white or black",
+                    setting(GROUND)
+                ),
+            ));
+        }
         Ok(PhotoPictures {
             opts: o,
             turn: None,
@@ -417,7 +428,7 @@ mod tests {
     #[test]
     fn every_error_names_its_setting() {
         type Change = fn(&mut Text);
-        let cases: [(&str, Change); 9] = [
+        let cases: [(&str, Change); 11] = [
             ("picture light: `sunset` is not allowed; use iso, cos, aset, idealscope, hearts, arrows, fire, tent, darkfield, daylight, office, ring, studio or env:FILE", |s| s.light = "sunset".into()),
             ("picture size: `4` is not allowed; give a whole number from 8 to 8192", |s| s.size = Some("4".into())),
             ("picture view: ", |s| { s.light = "tent".into(); s.view = Some("95".into()) }),
@@ -427,6 +438,8 @@ mod tests {
             ("picture head-shadow: is for the laboratory lights; a photograph's camera casts no head shadow", |s| { s.light = "ring".into(); s.head_shadow = Some("5".into()) }),
             ("picture distance: 10 mm is out of range; allowed 19.5 mm", |s| { s.light = "ring".into(); s.distance = Some("10".into()) }),
             ("picture bands: is for photographs; give a photographic picture light (tent, darkfield, daylight, office, ring, studio or env:FILE)", |s| s.bands = Some("8".into())),
+            ("picture ground-gap: is the stone's height above a ground; give picture ground white or black", |s| { s.light = "tent".into(); s.ground_gap = Some("0.5".into()) }),
+            ("picture ground-gap: is the stone's height above a ground", |s| { s.light = "tent".into(); s.ground = Some("none".into()); s.ground_gap = Some("0".into()) }),
         ];
         for (want, set) in cases {
             let mut s = Text::new("iso");

@@ -9,7 +9,7 @@ use super::ground::{Ground, GroundKind};
 use super::rigs::Rig;
 use super::tone::Tone;
 use crate::beam::TraceOptions;
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use crate::optics::Material;
 use crate::render::Tilt;
 use glam::DVec3;
@@ -248,7 +248,7 @@ impl PhotoOptions {
                 "view",
                 format!(
                     "{}° is out of range; allowed −90 to 90 degrees of elevation",
-                    v.elevation_deg
+                    shown(v.elevation_deg)
                 ),
             ));
         }
@@ -257,7 +257,7 @@ impl PhotoOptions {
                 "view",
                 format!(
                     "{}° looks from under the ground; with a ground the camera's elevation is 0 to 90 degrees",
-                    v.elevation_deg
+                    shown(v.elevation_deg)
                 ),
             ));
         }
@@ -266,7 +266,7 @@ impl PhotoOptions {
                 "ground-gap",
                 format!(
                     "{} is out of range; allowed 0 to 10 girdle diameters",
-                    self.ground.gap
+                    shown(self.ground.gap)
                 ),
             ));
         }
@@ -274,7 +274,10 @@ impl PhotoOptions {
         if !(t.tilt_deg.abs() <= 90.0 && t.azimuth_deg.is_finite()) {
             return Err(Error::invalid(
                 "tilt",
-                format!("{}° is out of range; allowed −90 to 90 degrees", t.tilt_deg),
+                format!(
+                    "{}° is out of range; allowed −90 to 90 degrees",
+                    shown(t.tilt_deg)
+                ),
             ));
         }
         if !self.light_rotation_deg.is_finite() || !self.turn_deg.is_finite() {
@@ -289,8 +292,10 @@ impl PhotoOptions {
                 return Err(Error::invalid(
                     "distance",
                     format!(
-                        "{d} mm is out of range; allowed {lo} mm (three times the stone's width of {} mm) to 100000 mm",
-                        self.width_mm
+                        "{} mm is out of range; allowed {} mm (three times the stone's width of {} mm) to 100000 mm",
+                        shown(d),
+                        shown(lo),
+                        shown(self.width_mm)
                     ),
                 ));
             }

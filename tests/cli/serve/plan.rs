@@ -87,6 +87,18 @@ fn serve_plans_a_rough() {
         "families",
         422,
     );
+    // A family named twice would write its plans over each other, as the CLI and Python say.
+    let e = bad(
+        serde_json::json!({"crystal": "cube", "size_mm": 6, "families": ["oval", "oval"]}),
+        "families",
+        422,
+    );
+    assert!(e.contains("`oval` is named twice"), "{e}");
+    bad(
+        serde_json::json!({"crystal": "cube", "size_mm": 6, "families": []}),
+        "families",
+        422,
+    );
     bad(
         serde_json::json!({"crystal": "cube", "size_mm": 6, "top": 0}),
         "top",
