@@ -75,7 +75,7 @@ pub fn caption(opts: &PhotoOptions, stats: &PhotoStats) -> Vec<String> {
         None => view,
     };
     match opts.aperture_mm {
-        Some(a) if a == 0.0 => cam.push_str(", pinhole"),
+        Some(0.0) => cam.push_str(", pinhole"),
         Some(a) => cam.push_str(&format!(", {a} mm aperture")),
         None => {}
     }
