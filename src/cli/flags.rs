@@ -59,6 +59,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("picture ground-gap", "--ground-gap"),
     ("picture light-rotation", "--light-rotation"),
     ("picture distance", "--distance"),
+    ("picture aperture", "--aperture"),
     ("picture diameter-mm", "--diameter-mm"),
 ];
 

@@ -222,6 +222,13 @@ pub struct PhotoRecord {
     /// Tile side of a perspective picture, pixels.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tile: Option<usize>,
+    /// The entrance pupil given, mm (0: a pinhole).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aperture_mm: Option<f64>,
+    /// The half-angle the light is seen through, degrees ([`PhotoOptions::aperture_deg`]),
+    /// unless it is the scores' ±1°.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aperture_deg: Option<f64>,
     /// The ground: none, white or black.
     pub ground: &'static str,
     /// Height of the stone's lowest point above the ground, girdle diameters.
@@ -296,6 +303,9 @@ impl PhotoRecord {
             view: opts.view,
             distance_mm: opts.distance_mm,
             tile: opts.distance_mm.map(|_| opts.tile),
+            aperture_mm: opts.aperture_mm,
+            aperture_deg: Some(opts.aperture_deg())
+                .filter(|&d| d != crate::render::lighting::EDGE_DEG),
             ground: opts.ground.kind.name(),
             ground_gap: opts.ground.gap,
             tilt_deg: opts.tilt.tilt_deg,

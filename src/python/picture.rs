@@ -208,7 +208,8 @@ fn draw(
 /// flags and read by the same parse: `light` (default "iso"), `size` (256), `tilt`,
 /// `exposure` (1.0), `polarization` (True); a laboratory picture's `head_shadow`; a
 /// photograph's `view` ("ELEV@AZ", default "30@0"), `distance` (mm; default orthographic),
-/// `ground` ("white", "black", "none"), `ground_gap`, `light_rotation`, `tone` ("filmic",
+/// `aperture` (the entrance pupil in mm, 0 = a pinhole; default a 4 mm pupil with `distance`,
+/// the ±1° filter without; without `distance` it is read at 250 mm), `ground` ("white", "black", "none"), `ground_gap`, `light_rotation`, `tone` ("filmic",
 /// "clip") and `bands` (8); the stone's as `score` takes them; and `float64` (False: `.linear`
 /// is float32). One frame: the command line's `--turn` and `--rock` animations are files.
 ///
@@ -269,6 +270,12 @@ fn picture_settings(kw: &Keywords) -> PyResult<PictureSettings> {
             t("distance")?.as_deref(),
             picture::DISTANCE,
             picture::parse_distance,
+        )
+        .map_err(e)?,
+        aperture: read(
+            t("aperture")?.as_deref(),
+            picture::APERTURE,
+            picture::parse_aperture,
         )
         .map_err(e)?,
         ground: read(t("ground")?.as_deref(), picture::GROUND, GroundKind::parse).map_err(e)?,

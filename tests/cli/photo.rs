@@ -179,6 +179,26 @@ fn a_photographs_own_checks_name_the_flag() {
             &["--distance", "5"],
             "facetlab: --distance: 5 mm is out of range; allowed 19.5 mm (three times the stone's width of 6.5 mm) to 100000 mm",
         ),
+        (
+            &["--distance", "100", "--aperture", "50"],
+            "facetlab: --aperture: 50 mm is out of range; allowed 0 (a pinhole) to 35.3 mm, an entrance pupil seen within ±10° from 100 mm",
+        ),
+        (
+            &["--aperture", "90"],
+            "facetlab: --aperture: 90 mm is out of range; allowed 0 (a pinhole) to 88.2 mm, an entrance pupil seen within ±10° from 250 mm",
+        ),
+        (
+            &["--aperture", "-1"],
+            "facetlab: --aperture: `-1` is not allowed; give millimetres (0 = a pinhole) in [0, 100]",
+        ),
+        (
+            &["--aperture", "nan"],
+            "facetlab: --aperture: `nan` is not allowed; give millimetres (0 = a pinhole) in [0, 100]",
+        ),
+        (
+            &["--aperture", "1e9"],
+            "facetlab: --aperture: `1e9` is not allowed; give millimetres (0 = a pinhole) in [0, 100]",
+        ),
     ];
     for (extra, line) in cases {
         let mut args = vec![
@@ -252,6 +272,10 @@ fn bad_photographs_are_one_line_and_write_nothing() {
         (
             &["--light", "fire", "--ground", "white"],
             &["--ground", "photographic"],
+        ),
+        (
+            &["--light", "aset", "--aperture", "0"],
+            &["--aperture", "photographic"],
         ),
         (&["--light", "disco"], &["--light", "tent", "env:FILE"]),
     ];

@@ -75,6 +75,8 @@ PHOTOS = [
     ("darkfield", {"tilt": "10@45", "tone": "clip", "exposure": 2.0, "light_rotation": 30.0}),
     ("studio", {"view": 90, "distance": 60.0, "bands": 3, "material": "ruby"}),
     ("env", {"view": 45, "ground": "black", "polarization": False}),
+    ("studio", {"view": 90, "aperture": 0}),
+    ("ring", {"view": "50@10", "distance": 80.0, "aperture": 2.5}),
 ]
 
 
@@ -191,6 +193,11 @@ BAD: List[Dict[str, Any]] = [
     {"tone": "sepia"},
     {"bands": 2},
     {"distance": 10},
+    {"aperture": -1},
+    {"aperture": float("nan")},
+    {"aperture": 500},
+    {"distance": 100, "aperture": 50},
+    {"light": "iso", "aperture": 0},
     {"exposure": 0.001},
     {"size": 4},
     {"head_shadow": 5},

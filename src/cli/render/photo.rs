@@ -25,6 +25,14 @@ pub struct PhotoArgs {
     /// width from --diameter-mm, default 6.5 mm); default: orthographic.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = flags::parsed("--distance", picture::parse_distance))]
     pub distance: Option<f64>,
+    /// Photographs: the camera's (or eye's) entrance pupil, MM across: the light is seen
+    /// through the angle it subtends from the stone, ±atan(MM / 2 / distance), each edge of
+    /// the light ramped over it; 0 = a pinhole (no filter: lights' sharp rims, a map's own
+    /// texels, bilinear). Without --distance it is read at 250 mm (the near point). Default:
+    /// a human pupil, 4 mm, with --distance (±0.46° at 250 mm); without, ±1° (the scores'
+    /// filter). At most ±10°.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = flags::parsed("--aperture", picture::parse_aperture))]
+    pub aperture: Option<f64>,
     /// Photographs: the ground the stone rests on, culet-down: white (paper), black
     /// (velvet) or none (default), with its shadow and caustics.
     #[arg(
@@ -64,6 +72,7 @@ impl PhotoArgs {
         [
             (self.view.is_some(), "--view"),
             (self.distance.is_some(), "--distance"),
+            (self.aperture.is_some(), "--aperture"),
             (self.ground.is_some(), "--ground"),
             (self.ground_gap.is_some(), "--ground-gap"),
             (self.light_rotation.is_some(), "--light-rotation"),

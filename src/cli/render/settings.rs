@@ -59,6 +59,7 @@ fn picture_settings(a: &RenderArgs) -> PictureSettings {
         polarization: a.polarization,
         view: p.view,
         distance: p.distance,
+        aperture: p.aperture,
         ground: p.ground,
         ground_gap: p.ground_gap,
         light_rotation: p.light_rotation,

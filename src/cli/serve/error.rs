@@ -91,6 +91,7 @@ pub const PICTURE_FIELDS: &[(&str, &str)] = &[
     ("tilt", "tilt"),
     ("view", "view"),
     ("light-rotation", "light_rotation"),
+    ("aperture", "aperture"),
     ("material", "material"),
 ];
 

@@ -59,6 +59,8 @@ const state = {
   view: 30,
   rotation: 0,
   ground: 'none',
+  // The camera's entrance pupil in mm ('' = the default ±1° filter, '0' = a pinhole).
+  aperture: '',
   slots: { a: null, b: null },
   // The stone's material, body colour and width (both slots): see stoneBody().
   stone: { material: 'diamond', own: false, colour: '#7a3fa0', colourMm: 10, density: 1, width: 6.5, axis: null },
@@ -180,6 +182,7 @@ async function doRender(name, quick) {
   clearTimeout(timers[name + 'photo']);
   if (photo) {
     Object.assign(want, { view: state.view, light_rotation: state.rotation, ground: state.ground });
+    if (state.aperture !== '') want.aperture = Number(state.aperture);
     want.quick = quick !== false;
   }
   frame.classList.add('busy');
@@ -644,6 +647,8 @@ function caption(name) {
     parts.push(`· view ${v.view}°`);
     if (v.light_rotation) parts.push(`· light turned ${v.light_rotation}°`);
     if (v.ground !== 'none') parts.push(`· ${v.ground} ground`);
+    if (v.aperture === 0) parts.push('· pinhole');
+    else if (v.aperture) parts.push(`· ${v.aperture} mm aperture`);
     if (v.quick) parts.push('· quick');
     const st = v.stats || {};
     if (typeof st.mean === 'number') parts.push(`· mean ${st.mean.toFixed(3)}`);
@@ -890,6 +895,7 @@ async function start() {
   photoControl('view', 'view', '°');
   photoControl('rotation', 'rotation', '°');
   photoControl('ground', 'ground', '');
+  photoControl('aperture', 'aperture', '');
   exposure.addEventListener('input', () => {
     state.exposure = Number(exposure.value);
     $('#exposure-val').textContent = state.exposure.toFixed(2);

@@ -59,6 +59,9 @@ pub struct Req {
     pub light_rotation: f64,
     /// A photograph's ground (`ground`).
     pub ground: GroundKind,
+    /// A photograph's entrance pupil (`aperture`), mm, read at 250 mm (0: a pinhole; not
+    /// sent: the ±1° filter).
+    pub aperture: Option<f64>,
     /// No `material` was sent: a design is traced in its own (its index, its notes), as every
     /// command does; `colour` and `colour_density` as sent, to colour it.
     pub own: Option<(Option<String>, Option<f64>)>,
@@ -90,13 +93,14 @@ struct Body {
     view_az: Field<Number>,
     light_rotation: Field<Number>,
     ground: Field<String>,
+    aperture: Field<Number>,
     optic_axis: Field<Number>,
     birefringence: Field<bool>,
     colour_e: Field<String>,
 }
 
 /// The keys of a photograph (`render` with a photographic light).
-pub const PHOTO: [&str; 4] = ["view", "view_az", "light_rotation", "ground"];
+pub const PHOTO: [&str; 5] = ["view", "view_az", "light_rotation", "ground", "aperture"];
 
 /// A number field within `[lo, hi]` (default `default`), the error naming `field` and `what`.
 fn bounded(
@@ -270,6 +274,17 @@ pub fn parse_req(
             ))
         }
     };
+    let aperture = match b.aperture.given() {
+        Ok(None) => None,
+        _ => Some(bounded(
+            &b.aperture,
+            "aperture",
+            0.0,
+            88.0,
+            0.0,
+            "the entrance pupil in mm (0 = a pinhole, read at 250 mm)",
+        )?),
+    };
     let is_photo = photo.is_some();
     // A photograph's settings with a laboratory light would be ignored: refused, as the
     // command line and Python refuse them.
@@ -293,6 +308,7 @@ pub fn parse_req(
         view,
         light_rotation,
         ground,
+        aperture,
         material,
         stone,
         own,

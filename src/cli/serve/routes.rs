@@ -325,6 +325,7 @@ fn photograph(
         azimuth_deg: 0.0,
     };
     o.light_rotation_deg = r.light_rotation;
+    o.aperture_mm = r.aperture;
     o.ground = Ground {
         kind: r.ground,
         gap: 0.0,

@@ -34,6 +34,8 @@ pub const EXPOSURE: &str = "picture exposure";
 pub const VIEW: &str = "picture view";
 /// A photograph's camera distance, mm.
 pub const DISTANCE: &str = "picture distance";
+/// A photograph's entrance pupil, mm (0: a pinhole).
+pub const APERTURE: &str = "picture aperture";
 /// A photograph's ground.
 pub const GROUND: &str = "picture ground";
 /// A photograph's gap under the stone, girdle diameters.
@@ -48,7 +50,7 @@ pub const BANDS: &str = "picture bands";
 pub const DIAMETER: &str = "picture diameter-mm";
 
 /// Every setting a picture's errors name, for the faces' tables of their spellings.
-pub const SETTINGS: [&str; 13] = [
+pub const SETTINGS: [&str; 14] = [
     LIGHT,
     SIZE,
     TILT,
@@ -56,6 +58,7 @@ pub const SETTINGS: [&str; 13] = [
     EXPOSURE,
     VIEW,
     DISTANCE,
+    APERTURE,
     GROUND,
     GROUND_GAP,
     LIGHT_ROTATION,
@@ -65,9 +68,10 @@ pub const SETTINGS: [&str; 13] = [
 ];
 
 /// The settings that only a photograph takes, in the order a face lists them.
-const PHOTOGRAPHIC: [&str; 7] = [
+const PHOTOGRAPHIC: [&str; 8] = [
     VIEW,
     DISTANCE,
+    APERTURE,
     GROUND,
     GROUND_GAP,
     LIGHT_ROTATION,
@@ -112,6 +116,12 @@ pub fn parse_distance(field: &str, s: &str) -> Result<f64> {
     number(field, s, 0.0, 1e5, "millimetres")
 }
 
+/// A photograph's entrance pupil, 0 (a pinhole) to 100 mm (its most, the pupil seen within
+/// ±10° from the camera's distance, is [`PhotoOptions::validate`]'s).
+pub fn parse_aperture(field: &str, s: &str) -> Result<f64> {
+    number(field, s, 0.0, 100.0, "millimetres (0 = a pinhole)")
+}
+
 /// A picture's settings as the library's values (`None`: not given, the light's default),
 /// turned into options by [`PictureSettings::pictures`]. The command line fills them from
 /// its typed flags; the Python package from its keywords, each read by [`read`].
@@ -135,6 +145,9 @@ pub struct PictureSettings {
     pub view: Option<View>,
     /// A perspective camera this many mm from the stone's centre (default orthographic).
     pub distance: Option<f64>,
+    /// The camera's entrance pupil, mm (0: a pinhole; default
+    /// [`PhotoOptions::aperture_deg`]'s).
+    pub aperture: Option<f64>,
     /// White, black or none (default).
     pub ground: Option<GroundKind>,
     /// Height of the stone's lowest point above the ground, girdle diameters (0–10).
@@ -169,6 +182,7 @@ impl PictureSettings {
             polarization: true,
             view: None,
             distance: None,
+            aperture: None,
             ground: None,
             ground_gap: None,
             light_rotation: None,
@@ -183,6 +197,7 @@ impl PictureSettings {
         let given = [
             self.view.is_some(),
             self.distance.is_some(),
+            self.aperture.is_some(),
             self.ground.is_some(),
             self.ground_gap.is_some(),
             self.light_rotation.is_some(),
@@ -278,6 +293,7 @@ impl PictureSettings {
         o.tone = self.tone.unwrap_or(o.tone);
         o.bands = self.bands.unwrap_or(o.bands);
         o.distance_mm = self.distance.or(o.distance_mm);
+        o.aperture_mm = self.aperture.or(o.aperture_mm);
         // The width the stone is seen at (for a perspective camera and absorption).
         if let StoneSize::Width(w) = stone.size {
             o.width_mm = w;
@@ -346,6 +362,7 @@ mod tests {
         exposure: Option<String>,
         view: Option<String>,
         distance: Option<String>,
+        aperture: Option<String>,
         ground: Option<String>,
         ground_gap: Option<String>,
         tone: Option<String>,
@@ -367,6 +384,7 @@ mod tests {
                 exposure: read(self.exposure.as_deref(), EXPOSURE, parse_exposure)?,
                 view: read(self.view.as_deref(), VIEW, parse_view)?,
                 distance: read(self.distance.as_deref(), DISTANCE, parse_distance)?,
+                aperture: read(self.aperture.as_deref(), APERTURE, parse_aperture)?,
                 ground: read(self.ground.as_deref(), GROUND, GroundKind::parse)?,
                 ground_gap: read(self.ground_gap.as_deref(), GROUND_GAP, parse_ground_gap)?,
                 tone: read(self.tone.as_deref(), TONE, Tone::parse)?,
@@ -428,7 +446,7 @@ mod tests {
     #[test]
     fn every_error_names_its_setting() {
         type Change = fn(&mut Text);
-        let cases: [(&str, Change); 11] = [
+        let cases: [(&str, Change); 15] = [
             ("picture light: `sunset` is not allowed; use iso, cos, aset, idealscope, hearts, arrows, fire, tent, darkfield, daylight, office, ring, studio or env:FILE", |s| s.light = "sunset".into()),
             ("picture size: `4` is not allowed; give a whole number from 8 to 8192", |s| s.size = Some("4".into())),
             ("picture view: ", |s| { s.light = "tent".into(); s.view = Some("95".into()) }),
@@ -437,6 +455,10 @@ mod tests {
             ("picture tone: ", |s| { s.light = "ring".into(); s.tone = Some("sepia".into()) }),
             ("picture head-shadow: is for the laboratory lights; a photograph's camera casts no head shadow", |s| { s.light = "ring".into(); s.head_shadow = Some("5".into()) }),
             ("picture distance: 10 mm is out of range; allowed 19.5 mm", |s| { s.light = "ring".into(); s.distance = Some("10".into()) }),
+            ("picture aperture: `-1` is not allowed; give millimetres (0 = a pinhole) in [0, 100]", |s| { s.light = "ring".into(); s.aperture = Some("-1".into()) }),
+            ("picture aperture: `nan` is not allowed", |s| { s.light = "ring".into(); s.aperture = Some("nan".into()) }),
+            ("picture aperture: 50 mm is out of range; allowed 0 (a pinhole) to 35.3 mm, an entrance pupil seen within ±10° from 100 mm", |s| { s.light = "ring".into(); s.distance = Some("100".into()); s.aperture = Some("50".into()) }),
+            ("picture aperture: is for photographs", |s| s.aperture = Some("0".into())),
             ("picture bands: is for photographs; give a photographic picture light (tent, darkfield, daylight, office, ring, studio or env:FILE)", |s| s.bands = Some("8".into())),
             ("picture ground-gap: is the stone's height above a ground; give picture ground white or black", |s| { s.light = "tent".into(); s.ground_gap = Some("0.5".into()) }),
             ("picture ground-gap: is the stone's height above a ground", |s| { s.light = "tent".into(); s.ground = Some("none".into()); s.ground_gap = Some("0".into()) }),

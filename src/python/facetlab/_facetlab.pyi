@@ -115,6 +115,7 @@ class RenderKeywords(StoneKeywords, total=False):
     tilt: Optional[Size]
     view: Optional[Size]
     distance: Optional[float]
+    aperture: Optional[float]
     ground: Optional[str]
     ground_gap: Optional[float]
     light_rotation: Optional[float]

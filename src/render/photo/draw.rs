@@ -381,11 +381,14 @@ pub fn photo(solid: &Polyhedron, opts: &PhotoOptions) -> Photo {
         size,
         projection,
     };
-    let env = opts.light.environment(
-        dir,
-        view.world_azimuth_deg(),
-        opts.light_rotation_deg - opts.turn_deg,
-    );
+    let env = opts
+        .light
+        .environment(
+            dir,
+            view.world_azimuth_deg(),
+            opts.light_rotation_deg - opts.turn_deg,
+        )
+        .with_aperture(opts.aperture_deg());
     let (bands, spectral) = bands(opts, axis, mm_per_unit, env.is_grey());
     let nb = bands.len();
     let luminance_of = |v: &[f64]| -> f64 { v.iter().zip(&bands).map(|(x, b)| x * b.xyz.y).sum() };

@@ -6,19 +6,26 @@
 //! # The filter
 //!
 //! An exit beam leaves in one exact direction; a light with a sharp rim would make its whole
-//! power jump in or out of a picture as the stone moves by a hair. Every edge is therefore
-//! seen through the same ramp as the scores' lights ([`EDGE_DEG`], ±1°): the C¹ ramp
-//! `3s² − 2s³` across ±1° of the rim's angular distance. It is a filter: the radiance is the
+//! power jump in or out of a picture as the stone moves by a hair. A camera sees every
+//! direction through its aperture: the sight lines reaching its entrance pupil from a point
+//! of the stone spread over the angle the pupil subtends. Every edge is therefore seen
+//! through a ramp of that half-width `h` ([`Environment::edge_deg`]; as made, the scores'
+//! [`EDGE_DEG`], ±1°, [`Environment::with_aperture`] for another): the C¹ ramp `3s² − 2s³`
+//! across ±`h` of the rim's angular distance. It is a filter: the radiance is the
 //! environment convolved, along the direction across each edge, with the kernel
-//! `k(x) = 6s(1 − s) / 2°`, `s = (x + 1°) / 2°` (whose integral is the ramp), so a picture is
-//! Lipschitz in the stone's pose with a constant ∝ 1/1°. A round light of angular radius `R`
-//! is a disc of radius `max(R, 1°)` with that ramp at its rim, its radiance scaled so that its
-//! power (radiance × solid angle) is the source's: the sun (R = 0.27°) is a 1° disc of
-//! 0.07 of its radiance. An equirectangular map is filtered by the same kernel along
+//! `k(x) = 6s(1 − s) / 2h`, `s = (x + h) / 2h` (whose integral is the ramp), so a picture is
+//! Lipschitz in the stone's pose with a constant ∝ 1/h. A round light of angular radius `R`
+//! is a disc of radius `max(R, h)` with that ramp at its rim, its radiance scaled so that its
+//! power (radiance × solid angle) is the source's: at ±1° the sun (R = 0.27°) is a 1° disc
+//! of 0.07 of its radiance. An equirectangular map is filtered by the same kernel along
 //! elevation and azimuth ([`EnvMap`]). The sky's horizon is the ISO
-//! light's ramp, so that a sky of radiance 1 is [`Lighting::iso`](crate::render::lighting::Lighting::iso)
+//! light's ramp, so that at ±1° a sky of radiance 1 is [`Lighting::iso`](crate::render::lighting::Lighting::iso)
 //! and a sky of radiance cos(zenith) is [`Lighting::cos`](crate::render::lighting::Lighting::cos),
 //! to the last bit.
+//!
+//! A pinhole (`h` = 0) has no filter: every edge is a step (half its value on the edge
+//! itself), a round light its own disc, a map its own texels (bilinear). Its picture is exact
+//! for a pinhole camera, and jumps as a rim crosses a beam's direction.
 //!
 //! # Light on the ground
 //!
@@ -31,13 +38,48 @@
 
 use super::envmap::EnvMap;
 pub use super::sky::{direction, luminance, Rgb};
-use crate::render::lighting::{smoothstep, soft_above, EDGE_DEG};
+use crate::render::lighting::{smoothstep, EDGE_DEG};
 use glam::DVec3;
 use std::f64::consts::TAU;
 use std::sync::Arc;
 
 fn scale(c: Rgb, k: f64) -> Rgb {
     [c[0] * k, c[1] * k, c[2] * k]
+}
+
+/// 0 well below `edge_deg`, 1 well above, a ramp of ±`h` around it: for `h` = [`EDGE_DEG`]
+/// [`soft_above`](crate::render::lighting::soft_above) to the last bit; for `h` = 0 a step,
+/// ½ on the edge.
+#[inline]
+fn soft(value_deg: f64, edge_deg: f64, h: f64) -> f64 {
+    if h > 0.0 {
+        smoothstep((value_deg - edge_deg + h) / (2.0 * h))
+    } else if value_deg > edge_deg {
+        1.0
+    } else if value_deg < edge_deg {
+        0.0
+    } else {
+        0.5
+    }
+}
+
+/// Largest kernel half-width, degrees (a camera's aperture is refused past it).
+pub const MAX_EDGE_DEG: f64 = 10.0;
+
+/// The filter of an environment: its kernel's half-width and the height `z` past which no
+/// ramp of the horizon reaches (the radiance of the sky and floor is whole).
+#[derive(Clone, Copy, Debug)]
+struct Filter {
+    h: f64,
+    far_z: f64,
+}
+
+impl Filter {
+    fn new(h: f64) -> Filter {
+        // sin 5.74° = 0.1: the ±1° filter's bound (as the ISO light's), kept for narrower.
+        let far_z = (h * 1.01).to_radians().sin().max(0.1);
+        Filter { h, far_z }
+    }
 }
 
 fn add(a: &mut Rgb, b: Rgb) {
@@ -55,8 +97,9 @@ pub struct Disc {
     pub radius_deg: f64,
     /// Radiance of the source, linear sRGB.
     pub radiance: Rgb,
-    /// The filtered disc: the cosines of its inner and outer ramp ends, the ramp's centre
-    /// (degrees) and the factor that keeps its power.
+    /// The filtered disc: its filter's half-width (degrees), the cosines of its inner and
+    /// outer ramp ends, the ramp's centre (degrees) and the factor that keeps its power.
+    edge_deg: f64,
     inner: f64,
     outer: f64,
     rim_deg: f64,
@@ -64,13 +107,13 @@ pub struct Disc {
 }
 
 /// Solid angle of the filtered disc of rim `rim_deg` (the ramp 1 − smoothstep across
-/// ±[`EDGE_DEG`] of the rim), by Simpson's rule over the polar angle.
-fn ramped_solid_angle(rim_deg: f64) -> f64 {
-    let (a, b) = ((rim_deg - EDGE_DEG).max(0.0), rim_deg + EDGE_DEG);
+/// ±`edge` of the rim), by Simpson's rule over the polar angle.
+fn ramped_solid_angle(rim_deg: f64, edge: f64) -> f64 {
+    let (a, b) = ((rim_deg - edge).max(0.0), rim_deg + edge);
     let n = 400;
     let h = (b - a) / n as f64;
     let f = |deg: f64| {
-        let v = 1.0 - soft_above(deg, rim_deg);
+        let v = 1.0 - soft(deg, rim_deg, edge);
         TAU * v * deg.to_radians().sin() * h.to_radians() / 3.0
     };
     let mut s = 0.0;
@@ -89,19 +132,26 @@ fn ramped_solid_angle(rim_deg: f64) -> f64 {
 }
 
 impl Disc {
-    /// A round light of `radiance` and angular radius `radius_deg` (> 0) toward `dir`.
+    /// A round light of `radiance` and angular radius `radius_deg` (> 0) toward `dir`, seen
+    /// through the ±[`EDGE_DEG`] filter.
     pub fn new(dir: DVec3, radius_deg: f64, radiance: Rgb) -> Disc {
+        Disc::filtered(dir, radius_deg, radiance, EDGE_DEG)
+    }
+
+    /// [`Disc::new`] seen through a filter of half-width `edge_deg` (0: its own disc).
+    pub fn filtered(dir: DVec3, radius_deg: f64, radiance: Rgb, edge_deg: f64) -> Disc {
         let dir = dir.normalize();
-        let rim = radius_deg.max(EDGE_DEG);
+        let rim = radius_deg.max(edge_deg);
         let source = TAU * (1.0 - radius_deg.to_radians().cos());
         Disc {
             dir,
             radius_deg,
             radiance,
-            inner: (rim - EDGE_DEG).max(0.0).to_radians().cos(),
-            outer: (rim + EDGE_DEG).to_radians().cos(),
+            edge_deg,
+            inner: (rim - edge_deg).max(0.0).to_radians().cos(),
+            outer: (rim + edge_deg).to_radians().cos(),
             rim_deg: rim,
-            gain: source / ramped_solid_angle(rim),
+            gain: source / ramped_solid_angle(rim, edge_deg),
         }
     }
 
@@ -114,7 +164,8 @@ impl Disc {
         } else if d >= self.inner {
             self.gain
         } else {
-            self.gain * (1.0 - soft_above(d.clamp(-1.0, 1.0).acos().to_degrees(), self.rim_deg))
+            let ang = d.clamp(-1.0, 1.0).acos().to_degrees();
+            self.gain * (1.0 - soft(ang, self.rim_deg, self.edge_deg))
         }
     }
 
@@ -153,7 +204,7 @@ pub enum Part {
         radiance: Rgb,
     },
     /// A rectangle on the ceiling plane `z = 1` (in units of the ceiling's height above the
-    /// stone): `|x − cx| ≤ hx`, `|y − cy| ≤ hy`, soft edges of about ±1°.
+    /// stone): `|x − cx| ≤ hx`, `|y − cy| ≤ hy`, soft edges of about ±h.
     Panel {
         /// Centre (cx, cy).
         centre: [f64; 2],
@@ -167,28 +218,29 @@ pub enum Part {
 }
 
 impl Part {
-    /// Filtered radiance from direction `w` (in the environment's own frame).
+    /// Radiance from direction `w` (in the environment's own frame) through `filter`.
     #[inline]
-    fn radiance(&self, w: DVec3) -> Rgb {
+    fn radiance(&self, w: DVec3, filter: Filter) -> Rgb {
+        let Filter { h, far_z } = filter;
         match self {
             Part::Sky { zenith, horizon } => {
-                let ramp = if w.z >= 0.1 {
+                let ramp = if w.z >= far_z {
                     1.0
-                } else if w.z <= -0.1 {
+                } else if w.z <= -far_z {
                     0.0
                 } else {
-                    soft_above(crate::render::lighting::elevation_deg(w), 0.0)
+                    soft(crate::render::lighting::elevation_deg(w), 0.0, h)
                 };
                 let cz = w.z.max(0.0);
                 [0, 1, 2].map(|c| horizon[c] * ramp + (zenith[c] - horizon[c]) * cz)
             }
             Part::Floor(c) => {
-                let below = if w.z >= 0.1 {
+                let below = if w.z >= far_z {
                     0.0
-                } else if w.z <= -0.1 {
+                } else if w.z <= -far_z {
                     1.0
                 } else {
-                    1.0 - soft_above(crate::render::lighting::elevation_deg(w), 0.0)
+                    1.0 - soft(crate::render::lighting::elevation_deg(w), 0.0, h)
                 };
                 scale(*c, below)
             }
@@ -207,14 +259,14 @@ impl Part {
                 radiance,
             } => {
                 let d = w.dot(*axis);
-                let far = (outer_deg + EDGE_DEG).to_radians().cos();
+                let far = (outer_deg + h).to_radians().cos();
                 if d <= far {
                     return [0.0; 3];
                 }
                 let ang = d.clamp(-1.0, 1.0).acos().to_degrees();
-                let inside = 1.0 - soft_above(ang, *outer_deg);
+                let inside = 1.0 - soft(ang, *outer_deg, h);
                 let k = if *inner_deg > 0.0 {
-                    inside * soft_above(ang, *inner_deg)
+                    inside * soft(ang, *inner_deg, h)
                 } else {
                     inside
                 };
@@ -235,9 +287,15 @@ impl Part {
                 let k = w.z * w.z;
                 let ex = ((x - centre[0]).abs() - half[0]) * k;
                 let ey = ((y - centre[1]).abs() - half[1]) * k;
-                let e = EDGE_DEG.to_radians();
-                let fx = 1.0 - smoothstep((ex + e) / (2.0 * e));
-                let fy = 1.0 - smoothstep((ey + e) / (2.0 * e));
+                let e = h.to_radians();
+                let (fx, fy) = if e > 0.0 {
+                    (
+                        1.0 - smoothstep((ex + e) / (2.0 * e)),
+                        1.0 - smoothstep((ey + e) / (2.0 * e)),
+                    )
+                } else {
+                    (1.0 - soft(ex, 0.0, 0.0), 1.0 - soft(ey, 0.0, 0.0))
+                };
                 scale(*radiance, fx * fy)
             }
             Part::Map(m) => m.radiance(w),
@@ -255,6 +313,8 @@ pub struct Environment {
     /// Rotation about the vertical axis, degrees (counter-clockwise seen from above): the
     /// environment's azimuth 0 faces this azimuth.
     pub rotation_deg: f64,
+    /// The filter every part is seen through ([`Environment::with_aperture`]).
+    filter: Filter,
 }
 
 /// One direction of light on the ground ([`Environment::samples`]).
@@ -275,7 +335,33 @@ impl Environment {
             name: name.to_string(),
             parts,
             rotation_deg: 0.0,
+            filter: Filter::new(EDGE_DEG),
         }
+    }
+
+    /// The environment seen through an aperture whose sight lines spread over ±`edge_deg`
+    /// (0 to [`MAX_EDGE_DEG`]; 0: a pinhole, no filter): every part's edges ramped over
+    /// ±`edge_deg`, round lights filtered so, maps through that kernel (made once per map
+    /// and kept). At [`EDGE_DEG`] it is the environment as made, to the last bit.
+    pub fn with_aperture(mut self, edge_deg: f64) -> Environment {
+        let h = edge_deg.clamp(0.0, MAX_EDGE_DEG);
+        if h == self.filter.h {
+            return self;
+        }
+        self.filter = Filter::new(h);
+        for p in &mut self.parts {
+            match p {
+                Part::Disc(d) => *d = Disc::filtered(d.dir, d.radius_deg, d.radiance, h),
+                Part::Map(m) => *m = m.at_edge(h),
+                _ => {}
+            }
+        }
+        self
+    }
+
+    /// The half-width of the filter every part is seen through, degrees (0: a pinhole).
+    pub fn edge_deg(&self) -> f64 {
+        self.filter.h
     }
 
     /// Radiance 1 from every direction (the white furnace).
@@ -315,7 +401,7 @@ impl Environment {
         let l = self.local(w);
         let mut c = [0.0; 3];
         for p in &self.parts {
-            add(&mut c, p.radiance(l));
+            add(&mut c, p.radiance(l, self.filter));
         }
         c.map(|v| v.max(0.0))
     }
@@ -325,7 +411,7 @@ impl Environment {
         let mut c = [0.0; 3];
         for p in &self.parts {
             if !matches!(p, Part::Disc(_)) {
-                add(&mut c, p.radiance(l));
+                add(&mut c, p.radiance(l, self.filter));
             }
         }
         c

@@ -39,10 +39,10 @@ mod tests;
 
 pub use camera::{parse_view, Projection, View};
 pub use draw::photo;
-pub use env::{Disc, Environment, LightSample, Part};
+pub use env::{Disc, Environment, LightSample, Part, MAX_EDGE_DEG};
 pub use envmap::EnvMap;
 pub use ground::{Ground, GroundKind, GroundStats};
-pub use options::{PhotoLight, PhotoOptions, STUDIO};
+pub use options::{PhotoLight, PhotoOptions, NEAR_POINT_MM, PUPIL_MM, STUDIO};
 pub use record::{caption, turntable, turntable_period};
 pub use rigs::Rig;
 pub use tone::Tone;

@@ -3,7 +3,7 @@
 //! HDR environment map.
 
 use super::camera::View;
-use super::env::Environment;
+use super::env::{Environment, MAX_EDGE_DEG};
 use super::envmap::EnvMap;
 use super::ground::{Ground, GroundKind};
 use super::rigs::Rig;
@@ -11,6 +11,7 @@ use super::tone::Tone;
 use crate::beam::TraceOptions;
 use crate::error::{shown, Error, Result};
 use crate::optics::Material;
+use crate::render::lighting::EDGE_DEG;
 use crate::render::Tilt;
 use glam::DVec3;
 use std::path::Path;
@@ -107,6 +108,14 @@ impl PhotoLight {
     }
 }
 
+/// The entrance pupil a perspective camera has when none is given, mm: a human eye's in
+/// room light (at the near point of 250 mm, ±0.46°).
+pub const PUPIL_MM: f64 = 4.0;
+
+/// The distance an aperture is read at when the camera is orthographic (no distance of its
+/// own), mm: the near point, where a person holds a stone to look at it.
+pub const NEAR_POINT_MM: f64 = 250.0;
+
 /// What to photograph and how.
 #[derive(Clone, Debug)]
 pub struct PhotoOptions {
@@ -118,6 +127,9 @@ pub struct PhotoOptions {
     pub view: View,
     /// Camera distance from the stone's centre in mm (perspective); `None`: orthographic.
     pub distance_mm: Option<f64>,
+    /// Diameter of the camera's (or eye's) entrance pupil, mm; 0: a pinhole. `None`: the
+    /// default ([`PhotoOptions::aperture_deg`]).
+    pub aperture_mm: Option<f64>,
     /// Tile side of a perspective picture, pixels.
     pub tile: usize,
     /// Pixels per side.
@@ -166,6 +178,7 @@ impl PhotoOptions {
                 azimuth_deg: 0.0,
             },
             distance_mm: None,
+            aperture_mm: None,
             tile: 32,
             size: 512,
             tilt: Tilt::FACE_UP,
@@ -217,6 +230,21 @@ impl PhotoOptions {
     /// distance (the laboratory pictures' view: traced as finely as they are).
     pub fn face_up(&self) -> bool {
         self.view.elevation_deg == 90.0 && self.tilt.tilt_deg == 0.0 && self.distance_mm.is_none()
+    }
+
+    /// The half-angle the entrance pupil subtends from the stone, degrees: the half-width of
+    /// the filter the light is seen through ([`Environment::with_aperture`]). An aperture of
+    /// diameter A at distance d subtends atan(A / 2d); an orthographic camera reads its
+    /// aperture at [`NEAR_POINT_MM`]; 0 is a pinhole. Not given: a perspective camera has a
+    /// human pupil ([`PUPIL_MM`], at most ±10°), an orthographic one the scores' ±1°
+    /// ([`EDGE_DEG`]).
+    pub fn aperture_deg(&self) -> f64 {
+        let half = |a: f64, d: f64| (a / (2.0 * d)).atan().to_degrees();
+        match (self.aperture_mm, self.distance_mm) {
+            (Some(a), d) => half(a, d.unwrap_or(NEAR_POINT_MM)),
+            (None, Some(d)) => half(PUPIL_MM, d).min(MAX_EDGE_DEG),
+            (None, None) => EDGE_DEG,
+        }
     }
 
     /// The tracer settings of the picture's traces.
@@ -296,6 +324,19 @@ impl PhotoOptions {
                         shown(d),
                         shown(lo),
                         shown(self.width_mm)
+                    ),
+                ));
+            }
+        }
+        if let Some(a) = self.aperture_mm {
+            let d = self.distance_mm.unwrap_or(NEAR_POINT_MM);
+            let deg = self.aperture_deg();
+            if !(a.is_finite() && a >= 0.0 && deg <= MAX_EDGE_DEG) {
+                return Err(Error::invalid(
+                    "aperture",
+                    format!(
+                        "{a} mm is out of range; allowed 0 (a pinhole) to {:.1} mm, an entrance pupil seen within ±{MAX_EDGE_DEG}° from {d} mm",
+                        2.0 * d * MAX_EDGE_DEG.to_radians().tan()
                     ),
                 ));
             }

@@ -70,10 +70,15 @@ pub fn caption(opts: &PhotoOptions, stats: &PhotoStats) -> Vec<String> {
     } else {
         format!("{:.0}° above", v.elevation_deg)
     };
-    let cam = match opts.distance_mm {
+    let mut cam = match opts.distance_mm {
         Some(d) => format!("{view}, {d:.0} mm away"),
         None => view,
     };
+    match opts.aperture_mm {
+        Some(0.0) => cam.push_str(", pinhole"),
+        Some(a) => cam.push_str(&format!(", {a} mm aperture")),
+        None => {}
+    }
     let mut first = format!("{}, {cam}", opts.light.name());
     if opts.ground.kind != super::GroundKind::None {
         first.push_str(&format!(", {} ground", opts.ground.kind.name()));

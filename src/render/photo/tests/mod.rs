@@ -4,6 +4,7 @@
 use super::*;
 use crate::geometry::canonical::canonical;
 
+mod aperture;
 mod ground;
 mod perspective;
 mod turntable;

@@ -33,6 +33,9 @@ fn opts(size: usize, distance: Option<f64>, tile: usize) -> PhotoOptions {
             azimuth_deg: 10.0,
         },
         distance_mm: distance,
+        // The ±1° filter at every distance (the brute-force tracer's environment's), so that
+        // the pictures differ by their projection alone.
+        aperture_mm: distance.map(|d| 2.0 * d * 1f64.to_radians().tan()),
         tile,
         material: Material::constant(2.4173),
         polarization: false,
@@ -68,8 +71,9 @@ fn perspective_converges_to_orthographic() {
     }
 }
 
-/// The independent tracer: sight lines from the eye through each pixel.
-struct Brute {
+/// The independent tracer: sight lines from the eye through each pixel (and, in
+/// `aperture.rs`, parallel sight lines under a map looked up exactly).
+pub(super) struct Brute {
     planes: Vec<(DVec3, f64)>,
     ri: f64,
 }
@@ -88,7 +92,7 @@ fn fresnel(n1: f64, n2: f64, c: f64) -> (f64, f64) {
 }
 
 impl Brute {
-    fn new(solid: &Polyhedron, ri: f64) -> Brute {
+    pub(super) fn new(solid: &Polyhedron, ri: f64) -> Brute {
         Brute {
             planes: solid
                 .facets()
@@ -99,8 +103,9 @@ impl Brute {
         }
     }
 
-    /// Radiance along the sight line from `o` in direction `d`.
-    fn radiance(&self, env: &Environment, o: DVec3, d: DVec3) -> f64 {
+    /// Radiance along the sight line from `o` in direction `d`, the light looking along `w`
+    /// being `look(w)`; `None` when the line misses the stone.
+    pub(super) fn trace(&self, look: &dyn Fn(DVec3) -> f64, o: DVec3, d: DVec3) -> Option<f64> {
         // Entry: the largest entering distance below the smallest leaving one.
         let (mut t0, mut t1, mut n0) = (f64::NEG_INFINITY, f64::INFINITY, DVec3::ZERO);
         for &(n, off) in &self.planes {
@@ -114,16 +119,16 @@ impl Brute {
             } else if k > 0.0 {
                 t1 = t1.min(t);
             } else if n.dot(o) > off {
-                return env.radiance(d)[0];
+                return None;
             }
         }
         if !(t0 < t1 && t0 > 0.0) {
-            return env.radiance(d)[0];
+            return None;
         }
         let c = -n0.dot(d);
         let (r, ct) = fresnel(1.0, self.ri, c);
         let eta = 1.0 / self.ri;
-        let mut l = r * env.radiance(d + 2.0 * c * n0)[0];
+        let mut l = r * look(d + 2.0 * c * n0);
         let mut x = o + d * t0;
         let mut t = (eta * d + (eta * c - ct) * n0).normalize();
         let mut w = 1.0 - r;
@@ -148,12 +153,19 @@ impl Brute {
             if r < 1.0 {
                 let eta = self.ri;
                 let out = (eta * t - (eta * c - ct) * nb).normalize();
-                l += w * (1.0 - r) * env.radiance(out)[0];
+                l += w * (1.0 - r) * look(out);
             }
             w *= r;
             t -= 2.0 * c * nb;
         }
-        l
+        Some(l)
+    }
+
+    /// Radiance along the sight line from `o` in direction `d` under `env` (the background
+    /// where it misses the stone).
+    fn radiance(&self, env: &Environment, o: DVec3, d: DVec3) -> f64 {
+        let look = |w: DVec3| env.radiance(w)[0];
+        self.trace(&look, o, d).unwrap_or_else(|| look(d))
     }
 }
 
