@@ -45,6 +45,10 @@ pub struct Req {
     pub size: usize,
     pub tilt: f64,
     pub exposure: f64,
+    /// The viewer's head shadow (`head_shadow`), degrees: the picture's (ISO, COS, fire; for
+    /// ASET, IdealScope and the hearts & arrows viewer, their port, head or tube) and the
+    /// brilliance scores'; `None` for the light's and the scores' defaults.
+    pub head_shadow: Option<f64>,
     pub quick: bool,
     pub to: Option<&'static str>,
     /// The material traced, with its body colour (`material`, `colour`, `colour_density`).
@@ -79,6 +83,7 @@ struct Body {
     size: Field<Number>,
     tilt: Field<Number>,
     exposure: Field<Number>,
+    head_shadow: Field<Number>,
     quick: Field<bool>,
     to: Field<String>,
     material: Field<String>,
@@ -125,6 +130,9 @@ fn bounded(
         Err(v) => Err(bad(v.to_string())),
     }
 }
+
+/// The largest head shadow a request may ask for, degrees (as `--head-shadow`).
+pub const HEAD_SHADOW_MAX: f64 = 60.0;
 
 /// Which keys an endpoint takes beyond `cut`, `format`, `encoding`, `name`, `set`.
 const COMMON: [&str; 5] = ["cut", "format", "encoding", "name", "set"];
@@ -320,6 +328,17 @@ pub fn parse_req(
                 _ => return Err(bad_exposure(n.to_string())),
             },
             Err(v) => return Err(bad_exposure(v.to_string())),
+        },
+        head_shadow: match b.head_shadow.given() {
+            Ok(None) => None,
+            _ => Some(bounded(
+                &b.head_shadow,
+                "head_shadow",
+                0.0,
+                HEAD_SHADOW_MAX,
+                0.0,
+                "degrees",
+            )?),
         },
         quick: match b.quick.given() {
             Ok(q) => q.copied().unwrap_or(false),
