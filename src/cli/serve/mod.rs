@@ -43,4 +43,6 @@ mod runs;
 mod server;
 
 use server::AppState;
-pub use server::{run, ServeArgs, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
+pub use server::{
+    run, ServeArgs, BODY_LIMIT, EXPOSURE_MAX, HEAD_SHADOW_MAX, SIZE_RANGE, TILT_LIMIT,
+};

@@ -3,7 +3,7 @@
 //! itself is built later, on a blocking thread ([`super::jobs::build`]).
 
 use super::error::{ApiError, ApiResult};
-use super::{BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
+use super::{BODY_LIMIT, EXPOSURE_MAX, HEAD_SHADOW_MAX, SIZE_RANGE, TILT_LIMIT};
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
 use axum::http::StatusCode;
@@ -45,9 +45,7 @@ pub struct Req {
     pub size: usize,
     pub tilt: f64,
     pub exposure: f64,
-    /// The viewer's head shadow (`head_shadow`), degrees: the picture's (ISO, COS, fire; for
-    /// ASET, IdealScope and the hearts & arrows viewer, their port, head or tube) and the
-    /// brilliance scores'; `None` for the light's and the scores' defaults.
+    /// The viewer's head shadow (`head_shadow`), degrees; `None`: the light's and scores' own.
     pub head_shadow: Option<f64>,
     pub quick: bool,
     pub to: Option<&'static str>,
@@ -130,9 +128,6 @@ fn bounded(
         Err(v) => Err(bad(v.to_string())),
     }
 }
-
-/// The largest head shadow a request may ask for, degrees (as `--head-shadow`).
-pub const HEAD_SHADOW_MAX: f64 = 60.0;
 
 /// Which keys an endpoint takes beyond `cut`, `format`, `encoding`, `name`, `set`.
 const COMMON: [&str; 5] = ["cut", "format", "encoding", "name", "set"];

@@ -121,7 +121,7 @@ fn presets_json() -> Value {
             "size": [SIZE_RANGE.0, SIZE_RANGE.1],
             "tilt": [-TILT_LIMIT, TILT_LIMIT],
             "exposure": [0.0, EXPOSURE_MAX],
-            "head_shadow": [0.0, super::request::HEAD_SHADOW_MAX],
+            "head_shadow": [0.0, super::HEAD_SHADOW_MAX],
             "body_bytes": BODY_LIMIT,
         },
     })
