@@ -194,29 +194,35 @@ struct Convergence<'a> {
 }
 
 impl Convergence<'_> {
-    /// The y range `(bottom, cut, top)`: the data from the lowest cost to the 90th percentile
-    /// of the best costs so far (where the searches spend their time) or the start's cost if
-    /// higher, with a margin; costs above `cut` are drawn at it with a mark (failed cuts and wild
-    /// starts would squeeze the progress into a few pixels), and the room from `cut` to `top`
-    /// holds the legend, clear of the lines.
+    /// The y range `(bottom, cut, top)`: the data from the lowest cost to the highest best cost
+    /// each start (or the swarm) has half way through its evaluations, or the start cut's cost
+    /// if higher, with a margin — where the searches spend their time; costs above `cut` are
+    /// drawn at it with a mark (failed cuts and wild first steps would squeeze the progress
+    /// into a few pixels), and the room from `cut` to `top` holds the legend, clear of the lines.
     fn y_range(&self) -> (f64, f64, f64) {
         let ok = |c: f64| c.is_finite() && c < 0.5 * FAILED_COST;
         let rows = &self.history.rows;
-        let mut c: Vec<f64> = rows.iter().map(|r| r.cost).filter(|c| ok(*c)).collect();
-        c.sort_by(f64::total_cmp);
-        if c.is_empty() {
+        let lo = rows
+            .iter()
+            .map(|r| r.cost)
+            .filter(|c| ok(*c))
+            .fold(f64::INFINITY, f64::min);
+        if !lo.is_finite() {
             return (-1.0, 0.9, 1.0);
         }
-        let lo = c[0];
-        let mut best: Vec<f64> = rows
+        let mut hi = rows
             .iter()
-            .map(|r| r.best_cost)
-            .filter(|c| ok(*c))
-            .collect();
-        best.sort_by(f64::total_cmp);
-        let mut hi = quantile(&best, 0.9);
-        if let Some(first) = rows.iter().find(|r| ok(r.cost)) {
-            hi = hi.max(first.best_cost.min(c[c.len() - 1]));
+            .find(|r| ok(r.cost))
+            .map_or(lo, |r| r.best_cost.min(r.cost));
+        for k in 0..self.history.tracks() {
+            let track: Vec<f64> = rows
+                .iter()
+                .filter(|r| r.track == k && ok(r.best_cost))
+                .map(|r| r.best_cost)
+                .collect();
+            if let Some(&half) = track.get(track.len() / 2) {
+                hi = hi.max(half);
+            }
         }
         let span = (hi - lo).max(1e-3 * lo.abs().max(1.0));
         (lo - 0.06 * span, hi + 0.06 * span, hi + 0.6 * span)

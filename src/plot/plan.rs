@@ -220,7 +220,7 @@ impl Overview<'_> {
     /// family's panel is narrower than its title), up to four panels (a longer title is cut).
     fn width(&self) -> u32 {
         let (cols, _) = self.grid();
-        let text = |t: &str, size: u32| super::text::width(t, f64::from(size)) as u32 + 20;
+        let text = |t: &str, size: u32| super::text::width(t, f64::from(size)).ceil() as u32 + 20;
         (cols as u32 * CELL)
             .max(text(&self.title, 17))
             .max(text(OVERVIEW_NOTE, 13))
