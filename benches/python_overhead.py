@@ -3,7 +3,7 @@ library call it wraps, ``metrics::score`` timed inside Rust on the same cut and 
 (``facetlab._facetlab._library_score_seconds``), alternated in the same minutes, medians of
 each; and ``score_many`` on 200 cuts against one ``score`` at a time (parallel speed-up).
 
-Run after building the package into a virtual environment (README.md, section Python):
+Run after building the package into a virtual environment (docs/python.md):
 
     .venv/bin/python benches/python_overhead.py [ROUNDS]
 

@@ -1,7 +1,7 @@
 //! The house rules of `src/`, checked on the source as it stands: every file at most
 //! [`MAX_LINES`] lines of code before its tests, no import circle between the files of one
-//! module, and every floor of the library importing only the floors that README.md's Layout
-//! table says it may. The table is read from the README itself, so the README cannot drift
+//! module, and every floor of the library importing only the floors that docs/development.md's
+//! Layout table says it may. The table is read from that page itself, so it cannot drift
 //! from the code without this test failing. The library names no command-line flag: its
 //! errors name settings and fields, and `src/cli` alone turns them into flags.
 
@@ -322,14 +322,14 @@ fn cycles(graph: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
     t.out
 }
 
-/// README.md's Layout rows for the library's floors: `` | `name` | what it holds | `a`, `b` | ``
+/// docs/development.md's Layout rows for the library's floors: `` | `name` | what it holds | `a`, `b` | ``
 /// → name → the floors it may import.
 fn readme_floors() -> BTreeMap<String, BTreeSet<String>> {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let readme = std::fs::read_to_string(root().join("docs/development.md")).unwrap();
     let section = readme
         .split("\n## Layout")
         .nth(1)
-        .expect("README.md has a `## Layout` section");
+        .expect("docs/development.md has a `## Layout` section");
     let section = section.split("\n## ").next().unwrap();
     let mut out = BTreeMap::new();
     for line in section.lines() {
@@ -478,7 +478,7 @@ fn each_floor_imports_only_what_the_readme_layout_allows() {
     let undocumented: Vec<&String> = top.iter().filter(|m| !floors.contains_key(*m)).collect();
     assert!(
         undocumented.is_empty(),
-        "modules with no row in README.md's Layout: {undocumented:?}"
+        "modules with no row in docs/development.md's Layout: {undocumented:?}"
     );
     let stale: Vec<&String> = floors.keys().filter(|f| !top.contains(*f)).collect();
     assert!(stale.is_empty(), "Layout rows with no module: {stale:?}");

@@ -39,7 +39,7 @@ pub struct InfoArgs {
     /// (`--set P1=41.2`, depths solved so its meets are kept). Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
-    /// Print JSON instead of a table (keys documented in the README).
+    /// Print JSON instead of a table (keys documented in docs/commands.md).
     #[arg(long)]
     pub json: bool,
     /// Girdle width W (a round's diameter) in millimetres, for the carat weight.

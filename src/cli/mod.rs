@@ -74,8 +74,9 @@ pub enum Command {
     /// More axes with --axis (the map shows two of them: --map, --at); --shard K/N (or a Slurm
     /// or Kubernetes job array) evaluates a share of the grid, resumably, for `merge`.
     Sweep(optimize::SweepArgs),
-    /// One self-contained HTML page per cut or comparing cuts: ISO, ASET and fire pictures, the
-    /// diagram, proportions with the grade estimate, every score explained, `--verify N`.
+    /// One self-contained HTML page per cut or comparing cuts: COS (15° head shadow), ASET and
+    /// fire pictures, the diagram, proportions with the grade estimate, every score explained,
+    /// `--verify N`.
     Report(report::ReportArgs),
     /// Adapt a design to another refractive index: the tangent-ratio rule, an optimized pair
     /// of ratios that restores its light return there and, for a design (.asc), its tier

@@ -35,7 +35,7 @@ pub struct PlanArgs {
     /// fancy shapes.
     #[arg(long = "family", value_name = "NAME")]
     pub families: Vec<String>,
-    /// Plan config (objective, bounds, search; see README).
+    /// Plan config (objective, bounds, search; see docs/plan.md).
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// The rough's largest extent in mm: scales a mesh in other units, sizes a crystal form.

@@ -1,7 +1,8 @@
 //! `facetlab report CUT... -o FILE.html`: a one-page report per cut, or comparing cuts side by
-//! side, as one self-contained HTML file (pictures embedded, no network): ISO, ASET and fire
-//! pictures, the facet diagram, proportions with the grade estimate (round brilliants), every
-//! score with one line on what it means, and with `--verify N` the photon tracer's check.
+//! side, as one self-contained HTML file (pictures embedded, no network): COS with a 15° head
+//! shadow, ASET and fire pictures, the facet diagram, proportions with the grade estimate (round
+//! brilliants), every score with one line on what it means, and with `--verify N` the photon
+//! tracer's check.
 
 use super::flags;
 use facetlab::error::{Error, Result};

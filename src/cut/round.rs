@@ -1,4 +1,4 @@
-//! The round brilliant from the industry's proportions (the README's "The round brilliant").
+//! The round brilliant from the industry's proportions (docs/cuts.md, "The round brilliant").
 //!
 //! Radius R = 0.5 (girdle diameter 1). Table corners lie at the main azimuths k·45° at radius
 //! t·R, so crown height = (1 − t)/2 · tan(crown angle). Bezels and pavilion mains touch the

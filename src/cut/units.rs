@@ -1,4 +1,4 @@
-//! The unit convention, in one place for generated cuts and imports alike (the README's
+//! The unit convention, in one place for generated cuts and imports alike (docs/cuts.md's
 //! Conventions section): z up, origin at the centre of the girdle plane, lengths in girdle
 //! diameters.
 //!

@@ -1,4 +1,4 @@
-//! The info document, as `facetlab info --json` prints it ([`InfoJson`], keys in the README):
+//! The info document, as `facetlab info --json` prints it ([`InfoJson`], keys in docs/commands.md):
 //! a cut's proportions, tiers, ratios, size and weight for a width and a material, its
 //! geometric checks and grade estimate, and on request its cutting instructions and meets
 //! ([`meets_json`]); and the same as the text `facetlab info` prints ([`info_text`],
@@ -10,7 +10,7 @@ use crate::optics::Material;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
-/// JSON of `info` (keys documented in the README).
+/// JSON of `info` (keys documented in docs/commands.md).
 #[derive(Debug, Serialize)]
 pub struct InfoJson {
     /// Cut name.

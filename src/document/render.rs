@@ -1,4 +1,4 @@
-//! The render document, as `facetlab render --json` writes it (keys in the README): per cut,
+//! The render document, as `facetlab render --json` writes it (keys in docs/commands.md): per cut,
 //! a picture's statistics ([`CutJson`], with [`FrameJson`] per frame of a rocking animation)
 //! or a photograph's ([`PhotoRecord`], with [`PhotoFrame`] per frame of a turntable or rock).
 //! One cut is written as its object, several as an array of them in the order given.
@@ -202,7 +202,7 @@ impl PhotoFrame {
     }
 }
 
-/// One photographed cut as `render --json` writes it (keys in the README).
+/// One photographed cut as `render --json` writes it (keys in docs/commands.md).
 #[derive(Clone, Debug, Serialize)]
 pub struct PhotoRecord {
     /// The cut's name.

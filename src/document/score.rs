@@ -189,11 +189,11 @@ pub fn score_table(config: &ScoreConfig, results: &[(String, Scores)]) -> String
         ("  brilliance COS", |s| s.brilliance_cos),
         ("fire", |s| s.fire),
         ("scintillation", |s| s.scintillation),
-        ("ASET blue 75-80°", |s| s.aset.blue),
-        ("ASET red 45-75°", |s| s.aset.red),
-        ("ASET green 0-45°", |s| s.aset.green),
+        ("ASET blue 75–80°", |s| s.aset.blue),
+        ("ASET red 45–75°", |s| s.aset.red),
+        ("ASET green 0–45°", |s| s.aset.green),
         ("ASET leak <0°", |s| s.aset.leak),
-        ("ASET port 80-90°", |s| s.aset.port),
+        ("ASET port 80–90°", |s| s.aset.port),
     ];
     let label_w = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
     let col_w = results

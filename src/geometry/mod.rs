@@ -1,7 +1,7 @@
 //! Geometry: planes, convex polyhedra built from half-spaces, facet polygons, 2-D convex
 //! clipping and convex hulls.
 //!
-//! Conventions (the README's "Conventions"): right-handed, z up, origin at the centre of the girdle plane,
+//! Conventions (docs/cuts.md, "Conventions"): right-handed, z up, origin at the centre of the girdle plane,
 //! lengths in girdle diameters (D = 1). A facet is the half-space `normal · x <= offset` with an
 //! outward unit normal.
 

@@ -176,8 +176,8 @@
 //!   for a round brilliant turned by 22.5°.)
 //! * **`aset`** `{blue, red, green, leak, port}`, each ∈ [0, 1], sum 1: the shares of the
 //!   face-up view (by power, over the traced light; cut-off light excluded) whose sight lines
-//!   leave the stone toward 75–90° elevation (blue), 45–75° (red), 0–45° (green), below the
-//!   horizon (leak), or into the viewer's dark port within [`PORT_DEG`](crate::render::PORT_DEG)
+//!   leave the stone toward 75–80° elevation (blue: 75–90° less the port), 45–75° (red), 0–45°
+//!   (green), below the horizon (leak), or into the viewer's dark port within [`PORT_DEG`](crate::render::PORT_DEG)
 //!   (10°) of the zenith (port, taken out of blue), with ±1° soft boundaries: the shares of
 //!   the ASET picture at its default port ([`lighting::aset_shares`], one definition for
 //!   both). The brilliance's head shadow does not apply to them.

@@ -24,7 +24,7 @@ pub enum ScoreName {
     Scintillation,
     /// Share of overhead parallel light leaving upward.
     OverheadLightReturn,
-    /// ASET share of light from 75–90° elevation, outside the viewer's port.
+    /// ASET share of light from 75–80° elevation (75–90° outside the viewer's port).
     AsetBlue,
     /// ASET share of light from 45–75° elevation.
     AsetRed,
@@ -100,7 +100,7 @@ pub const SCORES: [ScoreInfo; 15] = [
         name: ScoreName::AsetBlue,
         key: "aset_blue",
         range: "[0, 1]",
-        meaning: "share of the face-up view lit from 75–90° elevation, outside the viewer's dark port (ASET blue)",
+        meaning: "share of the face-up view lit from 75–80° elevation, between the red band and the viewer's dark port (ASET blue)",
     },
     ScoreInfo {
         name: ScoreName::AsetRed,
@@ -124,7 +124,7 @@ pub const SCORES: [ScoreInfo; 15] = [
         name: ScoreName::AsetPort,
         key: "aset_port",
         range: "[0, 1]",
-        meaning: "share of the face-up view lit from within 10° of the zenith, the ASET viewer's dark port",
+        meaning: "share of the face-up view lit from 80–90° elevation, the ASET viewer's dark port",
     },
     ScoreInfo {
         name: ScoreName::ColourL,

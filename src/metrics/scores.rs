@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 /// counts them with its default port ([`crate::render::PORT_DEG`], 10°); they add up to 1.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Aset {
-    /// Light from 75–90° elevation, outside the viewer's port.
+    /// Light from 75–80° elevation (75–90° outside the viewer's port).
     pub blue: f64,
     /// Light from 45–75° elevation.
     pub red: f64,

@@ -274,31 +274,59 @@ impl Material {
     pub const FOR_INDEX_TOL: f64 = 0.005;
 
     /// The material a cut made for refractive index `n` (GemCad's `I` line) is traced in by
-    /// default: the table material ([`Material::table`]) whose n_D is closest to `n`, if within
-    /// [`FOR_INDEX_TOL`](Material::FOR_INDEX_TOL) (1.54 → quartz, 1.72 → spinel, 1.77 →
-    /// sapphire), else `ri:N` (index N with the generic dispersion of [`Material::by_name`]).
-    /// `None` for an index `ri:N` does not accept (N ≤ 1 or above 10).
+    /// default: the table material ([`Material::table`]) whose indices at the D line come
+    /// closest to `n`, if within [`FOR_INDEX_TOL`](Material::FOR_INDEX_TOL) (1.54 → quartz,
+    /// 1.72 → spinel, 1.77 → sapphire), else `ri:N` (index N with the generic dispersion of
+    /// [`Material::by_name`]). A uniaxial stone's indices are those from its ε to its ω: GemCad
+    /// gives corundum 1.76, sapphire's ε (1.7600; ω 1.7681), so a design for 1.76 is traced as
+    /// sapphire. Of two stones as close, the one whose n_D is closer. `None` for an index `ri:N`
+    /// does not accept (N ≤ 1 or above 10).
     ///
     /// ```
     /// use facetlab::optics::Material;
     /// assert_eq!(Material::for_index(1.54).unwrap().name, "quartz");
+    /// assert_eq!(Material::for_index(1.76).unwrap().name, "sapphire");
     /// assert_eq!(Material::for_index(1.61).unwrap().name, "ri:1.61");
     /// assert!(Material::for_index(0.9).is_none());
     /// ```
     pub fn for_index(n: f64) -> Option<Material> {
         let listed = Material::table()
             .into_iter()
-            .map(|m| ((m.ri_d() - n).abs(), m))
-            .filter(|(d, _)| *d <= Material::FOR_INDEX_TOL + 1e-12)
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .map(|(_, m)| m);
+            .map(|m| (m.index_distance(n), (m.ri_d() - n).abs(), m))
+            .filter(|(d, ..)| *d <= Material::FOR_INDEX_TOL + 1e-12)
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)))
+            .map(|(.., m)| m);
         listed.or_else(|| Material::by_name(&format!("ri:{n}")).ok())
     }
 
+    /// How far `n` is from this stone's indices at the D line: from n_D, or for a uniaxial
+    /// stone from the range between its ε and ω.
+    fn index_distance(&self, n: f64) -> f64 {
+        let o = self.ri_d();
+        let e = self
+            .uniaxial
+            .as_ref()
+            .map_or(o, |u| u.extraordinary.at(super::material::LINE_D_NM));
+        let (lo, hi) = (o.min(e), o.max(e));
+        (lo - n).max(n - hi).max(0.0)
+    }
+
     /// The line saying how a cut made for index `n` is traced in this material (found by
-    /// [`Material::for_index`]): `traced as quartz (the design's index 1.54)`.
+    /// [`Material::for_index`]): `traced as quartz (the design's index 1.54)`, and when `n` is
+    /// further than [`FOR_INDEX_TOL`](Material::FOR_INDEX_TOL) from its n_D (ω), which of its
+    /// indices it is: `traced as sapphire (the design's index 1.76: sapphire's ε 1.7600; ω
+    /// 1.7681)`.
     pub fn for_index_note(&self, n: f64) -> String {
-        format!("traced as {} (the design's index {n})", self.name)
+        let o = self.ri_d();
+        match &self.uniaxial {
+            Some(u) if (o - n).abs() > Material::FOR_INDEX_TOL + 1e-12 => format!(
+                "traced as {} (the design's index {n}: {}'s ε {:.4}; ω {o:.4})",
+                self.name,
+                self.name,
+                u.extraordinary.at(super::material::LINE_D_NM)
+            ),
+            _ => format!("traced as {} (the design's index {n})", self.name),
+        }
     }
 }
 

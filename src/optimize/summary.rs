@@ -353,7 +353,7 @@ impl RunReport {
         if v.available {
             let _ = writeln!(
                 o,
-                "- verification: photon tracer, {} photons per light, {:.1} s; flagged beyond {} standard errors{}",
+                "- verification: photon tracer, {} photons per light, {:.1} s; a difference beyond {} standard errors is flagged ⚠{}",
                 v.photons,
                 v.seconds,
                 v.sigma,
@@ -527,7 +527,9 @@ impl RunReport {
                     };
                     let mut s = format!("{:.4} ± {:.4}", r.value, r.stderr);
                     if let (Some(b), Some(z)) = (r.beam, r.z()) {
-                        let _ = write!(s, " (beam {b:.4}, z {z:.1})");
+                        // Signed as report.html's: (beam − photon) / stderr.
+                        let z = z.copysign(b - r.value);
+                        let _ = write!(s, " (beam {b:.4}, z {z:+.1})");
                         if r.disagrees(sigma) {
                             s.push_str(" ⚠");
                         }

@@ -1,4 +1,4 @@
-//! The plan document: a rough plan's `summary.json` (keys in README, section
+//! The plan document: a rough plan's `summary.json` (keys in docs/plan.md, section
 //! "`facetlab plan`"): the rough, the material and the objective as understood, and every plan
 //! with its weight, yield, grade, pose and scores ([`PlanJson`], made as the folder is
 //! written by [`crate::plan::run`]).

@@ -194,32 +194,38 @@ struct Convergence<'a> {
 }
 
 impl Convergence<'_> {
-    /// The y range: from the lowest cost to the 90th percentile of the costs of cuts that could
-    /// be built (failed cuts and wild starts would flatten the picture), with a margin.
-    fn y_range(&self) -> (f64, f64) {
-        let mut c: Vec<f64> = self
-            .history
-            .rows
+    /// The y range `(bottom, cut, top)`: the data from the lowest cost to the highest best cost
+    /// each start (or the swarm) has half way through its evaluations, or the start cut's cost
+    /// if higher, with a margin — where the searches spend their time; costs above `cut` are
+    /// drawn at it with a mark (failed cuts and wild first steps would squeeze the progress
+    /// into a few pixels), and the room from `cut` to `top` holds the legend, clear of the lines.
+    fn y_range(&self) -> (f64, f64, f64) {
+        let ok = |c: f64| c.is_finite() && c < 0.5 * FAILED_COST;
+        let rows = &self.history.rows;
+        let lo = rows
             .iter()
             .map(|r| r.cost)
-            .filter(|c| c.is_finite() && *c < 0.5 * FAILED_COST)
-            .collect();
-        c.sort_by(f64::total_cmp);
-        if c.is_empty() {
-            return (-1.0, 1.0);
+            .filter(|c| ok(*c))
+            .fold(f64::INFINITY, f64::min);
+        if !lo.is_finite() {
+            return (-1.0, 0.9, 1.0);
         }
-        let lo = c[0];
-        let mut hi = quantile(&c, 0.9);
-        if let Some(first) = self
-            .history
-            .rows
+        let mut hi = rows
             .iter()
-            .find(|r| r.cost < 0.5 * FAILED_COST)
-        {
-            hi = hi.max(first.best_cost.min(c[c.len() - 1]));
+            .find(|r| ok(r.cost))
+            .map_or(lo, |r| r.best_cost.min(r.cost));
+        for k in 0..self.history.tracks() {
+            let track: Vec<f64> = rows
+                .iter()
+                .filter(|r| r.track == k && ok(r.best_cost))
+                .map(|r| r.best_cost)
+                .collect();
+            if let Some(&half) = track.get(track.len() / 2) {
+                hi = hi.max(half);
+            }
         }
         let span = (hi - lo).max(1e-3 * lo.abs().max(1.0));
-        (lo - 0.06 * span, lo + 1.06 * span)
+        (lo - 0.06 * span, hi + 0.06 * span, hi + 0.6 * span)
     }
 }
 
@@ -230,8 +236,8 @@ impl Figure for Convergence<'_> {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
         let h = self.history;
-        let (ylo, yhi) = self.y_range();
-        let clamp = |v: f64| v.clamp(ylo, yhi);
+        let (ylo, cut, yhi) = self.y_range();
+        let clamp = |v: f64| v.clamp(ylo, cut);
         let xmax = h.rows.last().map(|r| r.evaluations).unwrap_or(1).max(1) as f64;
         let root = root.titled(&self.title, font(20))?;
         let mut chart = ChartBuilder::on(&root)
@@ -268,6 +274,10 @@ impl Figure for Convergence<'_> {
                         best.label(format!("start {k}: best {last:.4}"))
                             .legend(line_key(col.stroke_width(3), 22));
                     }
+                    // Costs above the chart's range: a mark at its top edge.
+                    chart.draw_series(rows.iter().filter(|r| r.cost > cut).map(|r| {
+                        TriangleMarker::new((r.evaluations as f64, cut), 4, col.mix(0.6).filled())
+                    }))?;
                 }
                 // Legend entry for the thin lines.
                 chart
@@ -346,6 +356,15 @@ impl Figure for Convergence<'_> {
                     .label(format!("swarm best: {last:.4}"))
                     .legend(line_key(red.stroke_width(3), 22));
             }
+        }
+        if h.rows.iter().any(|r| r.cost > cut) {
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(0.0, cut), (xmax * 1.01, cut)],
+                    BLACK.mix(0.3),
+                )))?
+                .label("▲ cost above the chart (drawn at its edge)")
+                .legend(|(x, y)| TriangleMarker::new((x + 11, y), 4, BLACK.mix(0.6).filled()));
         }
         if let Some(b) = h.best_row() {
             chart
@@ -585,6 +604,29 @@ mod tests {
             });
         }
         h
+    }
+
+    #[test]
+    fn convergence_keeps_the_progress_in_view_and_marks_what_it_cuts() {
+        // Two starts near -0.86, the second from a wild -0.39: the range follows the progress,
+        // the wild costs are cut and marked, and the legend's room is above the cut.
+        let mut costs: Vec<(usize, f64)> = (0..20).map(|k| (0, -0.85 - 0.001 * k as f64)).collect();
+        costs.extend([(1, -0.39), (1, -0.39), (1, -0.6)]);
+        costs.extend((0..17).map(|k| (1, -0.84 - 0.001 * k as f64)));
+        let h = history(Track::Start, &costs);
+        let c = Convergence {
+            history: &h,
+            title: "t".into(),
+        };
+        let (lo, cut, top) = c.y_range();
+        assert!(lo < -0.869 && cut > -0.85 && cut < -0.8, "{lo} {cut}");
+        assert!(top > cut + 0.3 * (cut - lo), "{cut} {top}");
+        let dir = tempfile::tempdir().unwrap();
+        let (png, svg) = (dir.path().join("c.png"), dir.path().join("c.svg"));
+        convergence(&h, "t", &png, &svg).unwrap();
+        assert!(std::fs::read_to_string(&svg)
+            .unwrap()
+            .contains("cost above the chart"));
     }
 
     #[test]

@@ -206,35 +206,52 @@ const CELL: u32 = 270;
 const CAPTION: u32 = 44;
 const COLUMNS: usize = 4;
 
+/// The overview's subtitle.
+const OVERVIEW_NOTE: &str = "each cut from the front, table up (the rough turned with it)";
+
 impl Overview<'_> {
     fn grid(&self) -> (usize, usize) {
         let n = self.cuts.len().max(1);
         let cols = n.min(COLUMNS);
         (cols, n.div_ceil(cols))
     }
+
+    /// The picture's width: the panels', or the title's and subtitle's when wider (one
+    /// family's panel is narrower than its title), up to four panels (a longer title is cut).
+    fn width(&self) -> u32 {
+        let (cols, _) = self.grid();
+        let text = |t: &str, size: u32| super::text::width(t, f64::from(size)).ceil() as u32 + 20;
+        (cols as u32 * CELL)
+            .max(text(&self.title, 17))
+            .max(text(OVERVIEW_NOTE, 13))
+            .min(COLUMNS as u32 * CELL)
+    }
 }
 
 impl Figure for Overview<'_> {
     fn size(&self) -> (u32, u32) {
-        let (cols, rows) = self.grid();
-        (cols as u32 * CELL, TOP + rows as u32 * (CELL + CAPTION))
+        let (_, rows) = self.grid();
+        (self.width(), TOP + rows as u32 * (CELL + CAPTION))
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
         let (cols, _) = self.grid();
+        let width = self.width();
         root.draw(&Text::new(
-            fitted(&self.title, 17, f64::from(cols as u32 * CELL) - 20.0),
+            fitted(&self.title, 17, f64::from(width) - 20.0),
             (10, 8),
             font(17),
         ))?;
+        // The panels centred under the title.
+        let left = (width - cols as u32 * CELL) / 2;
         root.draw(&Text::new(
-            "each cut from the front, table up (the rough turned with it)",
+            fitted(OVERVIEW_NOTE, 13, f64::from(width) - 20.0),
             (10, 32),
             font(13).color(&RGBColor(90, 90, 90)),
         ))?;
         for (k, cut) in self.cuts.iter().enumerate() {
             let (c, r) = (k % cols, k / cols);
-            let (x0, y0) = (c as u32 * CELL, TOP + r as u32 * (CELL + CAPTION));
+            let (x0, y0) = (left + c as u32 * CELL, TOP + r as u32 * (CELL + CAPTION));
             let colour = SERIES[k % SERIES.len()];
             draw_view(
                 root,

@@ -47,19 +47,27 @@ pub struct LegendEntry {
     pub label: String,
 }
 
-/// The legend of a light's false colours: ASET's five bins, IdealScope's three; none for the
-/// radiance pictures (iso, cos, hearts, arrows, fire).
-pub fn legend_for(light: Light) -> Vec<LegendEntry> {
-    let labels: &[&str] = match light {
-        Light::Aset => &[
-            "75–90° (blue)",
-            "45–75° (red)",
-            "0–45° (green)",
-            "leak (black)",
-            "port (black)",
+/// The legend of a light's false colours: ASET's bands (the bands' elevations as the viewer's
+/// port of `port_deg` about the zenith leaves them; leak and port share one entry, both black
+/// in the picture as in the viewer), IdealScope's three; none for the radiance pictures (iso,
+/// cos, hearts, arrows, fire).
+pub fn legend_for(light: Light, port_deg: f64) -> Vec<LegendEntry> {
+    let top = (90.0 - port_deg).clamp(0.0, 90.0);
+    let band = |lo: f64, hi: f64, colour: &str| match hi.min(top) {
+        hi if hi > lo => format!("{lo:.0}–{hi:.0}° ({colour})"),
+        _ => format!("none ({colour}: the port covers it)"),
+    };
+    let labels: Vec<String> = match light {
+        Light::Aset => vec![
+            band(75.0, 90.0, "blue"),
+            band(45.0, 75.0, "red"),
+            band(0.0, 45.0, "green"),
+            format!("leak below 0°, port {top:.0}–90° (black)"),
         ],
-        Light::IdealScope => &["returned (red)", "leak (white)", "head (black)"],
-        _ => &[],
+        Light::IdealScope => ["returned (red)", "leak (white)", "head (black)"]
+            .map(String::from)
+            .to_vec(),
+        _ => Vec::new(),
     };
     let colours: &[[f64; 3]] = match light {
         Light::Aset => &ASET_COLOURS,
@@ -67,13 +75,53 @@ pub fn legend_for(light: Light) -> Vec<LegendEntry> {
         _ => &[],
     };
     labels
-        .iter()
+        .into_iter()
         .zip(colours)
-        .map(|(l, c)| LegendEntry {
-            colour: *c,
-            label: (*l).to_string(),
-        })
+        .map(|(label, c)| LegendEntry { colour: *c, label })
         .collect()
+}
+
+/// The colour of a laboratory picture's outline ([`outline`]).
+pub const OUTLINE: [u8; 3] = [28, 28, 28];
+
+/// The bytes of a laboratory picture's ground, [`PICTURE_GROUND`] (as `to_srgb8` writes it
+/// where no stone covers a pixel).
+pub fn picture_ground() -> [u8; 3] {
+    PICTURE_GROUND.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
+}
+
+/// The stone's outline on a laboratory picture of `size` × `size` sRGB pixels on the ground
+/// `ground` ([`picture_ground`]): the ground's pixels beside the stone turned to [`OUTLINE`],
+/// so a stone whose rim is as grey as the ground (quartz under COS light) keeps its edge. For
+/// the captioned sheets and the reports; `render --bare` and the Python package keep the
+/// pictures as traced.
+pub fn outline(rgb: &mut [u8], size: usize, ground: [u8; 3]) {
+    if size < 3 || rgb.len() != size * size * 3 {
+        return;
+    }
+    let at = |i: usize, j: usize| (j * size + i) * 3;
+    let is_ground = |i: usize, j: usize| rgb[at(i, j)..at(i, j) + 3] == ground;
+    let mut rim = Vec::new();
+    for j in 0..size {
+        for i in 0..size {
+            let beside = [
+                (i.wrapping_sub(1), j),
+                (i + 1, j),
+                (i, j.wrapping_sub(1)),
+                (i, j + 1),
+            ];
+            if is_ground(i, j)
+                && beside
+                    .into_iter()
+                    .any(|(a, b)| a < size && b < size && !is_ground(a, b))
+            {
+                rim.push(at(i, j));
+            }
+        }
+    }
+    for k in rim {
+        rgb[k..k + 3].copy_from_slice(&OUTLINE);
+    }
 }
 
 /// Sizes of a sheet, from the panel size.
@@ -366,12 +414,26 @@ mod tests {
             .filter(|p| p[0] < 100)
             .count();
         assert!(dark > 10, "{dark}");
-        let with = compose(&panels, size, &legend_for(Light::Aset)).unwrap();
+        let with = compose(&panels, size, &legend_for(Light::Aset, 10.0)).unwrap();
         assert_eq!(with.width, plain.width);
         assert!(with.height > plain.height);
-        assert_eq!(legend_for(Light::Aset).len(), 5);
-        assert_eq!(legend_for(Light::IdealScope).len(), 3);
-        assert!(legend_for(Light::Iso).is_empty());
+        let aset: Vec<String> = legend_for(Light::Aset, 10.0)
+            .into_iter()
+            .map(|e| e.label)
+            .collect();
+        assert_eq!(
+            aset,
+            [
+                "75–80° (blue)",
+                "45–75° (red)",
+                "0–45° (green)",
+                "leak below 0°, port 80–90° (black)"
+            ]
+        );
+        // A wider port takes the top of the bands.
+        assert_eq!(legend_for(Light::Aset, 20.0)[1].label, "45–70° (red)");
+        assert_eq!(legend_for(Light::IdealScope, 10.0).len(), 3);
+        assert!(legend_for(Light::Iso, 10.0).is_empty());
         assert!(compose(&panels, size + 1, &[]).is_err());
         // Bare: the pictures alone, side by side.
         let b = bare(&panels, size).unwrap();

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 /// the tracer's thresholds (a few 1e-6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct AsetShares {
-    /// Light from 75–90° elevation, outside the port.
+    /// Light from 75–80° elevation (75–90° outside the port).
     pub blue: f64,
     /// Light from 45–75°.
     pub red: f64,

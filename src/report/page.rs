@@ -107,7 +107,12 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
         h.push_str("<div class=\"pics\">");
         for (light, img) in &c.pictures {
             let n = img.size() as u32;
-            let rgb = img.to_srgb8(exposure(*light), PICTURE_GROUND);
+            let mut rgb = img.to_srgb8(exposure(*light), PICTURE_GROUND);
+            crate::plot::render::outline(
+                &mut rgb,
+                n as usize,
+                crate::plot::render::picture_ground(),
+            );
             let png = crate::io::png::encode_rgb8(n, n, &[&rgb], 0)?;
             let caption = match light {
                 Light::Iso | Light::Cos => format!(
@@ -146,7 +151,7 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
                 escape(&caption)
             );
         }
-        h.push_str("</div>\n<p class=\"legend\"><span style=\"background:#1a4dff\"></span>75–90° <span style=\"background:#e61414\"></span>45–75° <span style=\"background:#1ab829\"></span>0–45° <span style=\"background:#000\"></span>leak or viewer's port (ASET)</p>\n");
+        h.push_str("</div>\n<p class=\"legend\"><span style=\"background:#1a4dff\"></span>75–80° <span style=\"background:#e61414\"></span>45–75° <span style=\"background:#1ab829\"></span>0–45° <span style=\"background:#000\"></span>leak (below the horizon) or port (80–90°), both black as in the viewer (ASET)</p>\n");
         if !c.tilted.is_empty() {
             let _ = write!(h, "<h3>Tilted ({})</h3>", super::brightness_caption());
             h.push_str(&tilt::row(c)?);
@@ -209,7 +214,7 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
         if !c.checks.is_empty() {
             let _ = write!(
                 h,
-                "<h3>Verification</h3><p class=\"sub\">The photon tracer ({} photons) re-measures the beam tracer's numbers; flagged beyond {} standard errors.</p><table><tr><th></th><th>beam</th><th>photon</th><th>z</th></tr>",
+                "<h3>Verification</h3><p class=\"sub\">The photon tracer ({} photons) re-measures the beam tracer's numbers; z is (beam − photon) / standard error, and a difference beyond {} standard errors is flagged.</p><table><tr><th></th><th>beam</th><th>photon</th><th>z</th></tr>",
                 o.verify_photons, o.sigma
             );
             for k in &c.checks {
@@ -235,11 +240,11 @@ pub fn html(cuts: &[CutReport], o: &ReportOptions) -> Result<String> {
 const STYLE: &str = "body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:24px;color:#222;background:#fafafa}\
 h1{font-size:22px;margin:0 0 4px}h2{font-size:18px;margin:0}h3{font-size:14px;margin:14px 0 4px;color:#555}\
 .sub{color:#666;font-size:13px;margin:2px 0 8px}.cuts{display:flex;flex-wrap:wrap;gap:24px}\
-.cut{background:#fff;border:1px solid #ddd;border-radius:6px;padding:16px;flex:1 1 420px;max-width:1040px}\
+.cut{background:#fff;border:1px solid #ddd;border-radius:6px;padding:16px;flex:1 1 560px;max-width:1040px}\
 .pics{display:grid;grid-template-columns:repeat(3,minmax(0,1fr));gap:8px}figure{margin:0}figure img{display:block;width:100%;height:auto;border-radius:3px}\
 figcaption{font-size:12px;color:#555}.legend{font-size:12px;color:#555}\
 .legend span{display:inline-block;width:10px;height:10px;margin:0 3px 0 8px;vertical-align:middle}\
-.diagram svg{max-width:100%;height:auto;max-height:360px}table{border-collapse:collapse;font-size:13px}\
+.diagram svg{width:100%;height:auto}table{border-collapse:collapse;font-size:13px}\
 th{text-align:left;font-weight:600;padding:2px 10px 2px 0}td{padding:2px 10px 2px 0}.num{text-align:right;font-variant-numeric:tabular-nums}\
 .note{background:#fff;border:1px solid #ddd;border-radius:6px;padding:12px 16px;margin:0 0 16px;max-width:1040px}\
 .note svg{max-width:100%;height:auto}.tilts{margin-top:4px}\

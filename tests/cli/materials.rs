@@ -121,6 +121,18 @@ fn a_design_is_traced_in_its_own_material_unless_told_otherwise() {
     let j: serde_json::Value =
         serde_json::from_str(&ok(p, &["info", "t161.asc", "--json"])).unwrap();
     assert_eq!(j["material"], "ri:1.61");
+    // GemCad's corundum, 1.76: sapphire's ε (1.7600; its ω 1.7681 is 0.008 away), so sapphire,
+    // and the note says which index it matched.
+    std::fs::write(p.join("t176.asc"), QUARTZ_STAR.replace("I 1.54", "I 1.76")).unwrap();
+    let out = super::run_in(p, &["info", "t176.asc", "--json"]);
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("traced as sapphire (the design's index 1.76: sapphire's ε 1.7600; ω 1.768"),
+        "{err}"
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["material"], "sapphire");
     // The design's record survives .asc export.
     ok(p, &["generate", "star.asc", "-o", "again.asc"]);
     assert_eq!(

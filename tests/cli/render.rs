@@ -271,11 +271,24 @@ fn size_is_the_stones_picture_and_bare_is_it_alone() {
     let pad = (w - 200) / 2;
     assert!(pad >= 4, "{pad}");
     let px = |x: usize, y: usize| &sheet[(y * w + x) * 3..(y * w + x) * 3 + 3];
-    // The stone's region of the sheet is the bare picture, pixel for pixel.
+    // The stone's region of the sheet is the bare picture, pixel for pixel, but for the
+    // stone's outline: ground pixels beside the stone drawn dark on the sheet.
+    let mut outlined = 0;
     for y in 0..200 {
         let row = &sheet[((pad + y) * w + pad) * 3..((pad + y) * w + pad + 200) * 3];
-        assert_eq!(row, &bare[y * 600..(y + 1) * 600], "row {y}");
+        for (s, b) in row.chunks(3).zip(bare[y * 600..(y + 1) * 600].chunks(3)) {
+            if s != b {
+                assert_eq!(
+                    (b, s),
+                    (&[102u8, 102, 102][..], &[28u8, 28, 28][..]),
+                    "row {y}"
+                );
+                outlined += 1;
+            }
+        }
     }
+    // About the outline's perimeter (π · 200 px), one pixel wide.
+    assert!((400..1200).contains(&outlined), "{outlined} outline pixels");
     // Grey margin above and below the picture, then the caption band to the bottom.
     for y in [0, pad - 1, pad + 200, 2 * pad + 199] {
         assert_eq!(px(0, y), [102, 102, 102], "row {y}");

@@ -5,10 +5,14 @@ modules."""
 from __future__ import annotations
 
 import doctest
+import importlib.util
 import inspect
 import os
+import shutil
+import subprocess
+import sys
 from pathlib import Path
-from typing import Any, Iterator, Tuple
+from typing import Any, Iterator, List, Tuple
 
 import facetlab
 import facetlab.dask
@@ -25,6 +29,8 @@ ATTRIBUTES = {
 
 # Private names with examples all the same: how a Cut pickles.
 PICKLING = {"__reduce__", "_from_state"}
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def documented() -> Iterator[Tuple[str, Any]]:
@@ -64,3 +70,56 @@ def test_the_package_docstring_runs() -> None:
             module, extraglobs={"facetlab": facetlab}, optionflags=doctest.ELLIPSIS
         )
         assert result.failed == 0 and result.attempted > 0, module.__name__
+
+
+# The ```python blocks of the README and of the pages under docs/, run as written.
+DOC_PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+
+
+def python_blocks() -> Iterator[Tuple[str, str]]:
+    for page in DOC_PAGES:
+        lines = page.read_text(encoding="utf-8").splitlines()
+        i = 0
+        while i < len(lines):
+            if lines[i].startswith("```"):
+                lang, start = lines[i].strip("`").strip(), i + 1
+                body: List[str] = []
+                i += 1
+                while i < len(lines) and not lines[i].startswith("```"):
+                    body.append(lines[i])
+                    i += 1
+                if lang == "python":
+                    yield f"{page.relative_to(ROOT)}:{start}", "\n".join(body) + "\n"
+            i += 1
+
+
+def test_the_pages_have_python_blocks() -> None:
+    where = [w for w, _ in python_blocks()]
+    assert any(w.startswith("README.md") for w in where), where
+    assert any(w.startswith("docs/python.md") for w in where), where
+
+
+@pytest.mark.parametrize("where, code", list(python_blocks()), ids=lambda x: x if ":" in x else "")
+def test_the_python_blocks_of_the_docs_run_as_written(where: str, code: str, tmp_path: Path) -> None:
+    # As a reader runs them: a script (so a main guard works, for Dask's worker processes) in a
+    # folder holding the repository's bundled files and an empty results/.
+    if "distributed" in code and importlib.util.find_spec("distributed") is None and not os.environ.get("CI"):
+        pytest.skip("dask[distributed] is not installed (CI installs it)")
+    for folder in ("cuts", "optim"):
+        shutil.copytree(ROOT / folder, tmp_path / folder)
+    (tmp_path / "results").mkdir()
+    script = tmp_path / "block.py"
+    script.write_text(code, encoding="utf-8")
+    done = subprocess.run(
+        [sys.executable, str(script)], cwd=tmp_path, capture_output=True, text=True, timeout=600
+    )
+    assert done.returncode == 0, f"{where} failed:\n{code}\n{done.stderr}"
+    written = [p.name for p in (tmp_path / "results").iterdir()]
+    # (Dask's scratch folder aside, its own.)
+    stray = [
+        p.name
+        for p in tmp_path.iterdir()
+        if p.name not in ("cuts", "optim", "results", "block.py") and not p.name.startswith("dask-")
+    ]
+    assert not stray, f"{where} wrote {stray} outside results/"
+    assert written or "write" not in code, f"{where} says it writes but wrote nothing under results/"

@@ -73,7 +73,7 @@ pub struct RenderArgs {
         value_parser = flags::parsed("--exposure", picture::parse_exposure)
     )]
     pub exposure: f64,
-    /// Write the statistics as JSON to this file (keys in the README).
+    /// Write the statistics as JSON to this file (keys in docs/commands.md).
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
     /// Replace -o and --json files that already exist (an input is never replaced).

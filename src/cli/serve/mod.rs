@@ -6,7 +6,7 @@
 //! facetlab serve --port 0 --open      # any free port, open the default browser
 //! ```
 //!
-//! API (see the README's "serve" section):
+//! API (see docs/serve.md):
 //!
 //! - `GET /api/presets`: presets, families with their parameters and ranges, lights, limits.
 //! - `POST /api/cut`: the cut's `info --json` record plus `svg` (the diagram), and for a cut
@@ -43,4 +43,6 @@ mod runs;
 mod server;
 
 use server::AppState;
-pub use server::{run, ServeArgs, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
+pub use server::{
+    run, ServeArgs, BODY_LIMIT, EXPOSURE_MAX, HEAD_SHADOW_MAX, SIZE_RANGE, TILT_LIMIT,
+};

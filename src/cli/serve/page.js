@@ -50,11 +50,21 @@ const QUICK_DELAY = 15;     // ms of quiet before a request leaves (debounce) �
 const MAX_WAIT = 100;       // … but while a slider keeps moving, one leaves at least this often
 const FULL_DELAY = 700;     // ms of quiet before the full (slow) scores are asked for
 
+// The page opens on COS light with a 15° head shadow, the report's brightness picture: the
+// even ISO sky shows a good stone as a nearly uniform bright disc, the cosine sky and the
+// viewer's head give the contrast a cutter looks at.
+const FIRST_LIGHT = 'cos';
+// Lights whose picture takes the head-shadow control (the others have a port, head or tube of
+// their own, or are photographs).
+const HEAD_SHADOW_LIGHTS = ['iso', 'cos', 'fire'];
+
 const state = {
   meta: null,
-  light: 'iso',
+  light: FIRST_LIGHT,
   tilt: 0,
-  exposure: LIGHT_EXPOSURE.iso,
+  exposure: LIGHT_EXPOSURE[FIRST_LIGHT],
+  // The viewer's head shadow (half-angle, degrees) of the ISO, COS and fire pictures.
+  headShadow: 15,
   // A photograph's camera elevation, light rotation and ground.
   view: 30,
   rotation: 0,
@@ -62,8 +72,9 @@ const state = {
   // The camera's entrance pupil in mm ('' = the default ±1° filter, '0' = a pinhole).
   aperture: '',
   slots: { a: null, b: null },
-  // The stone's material, body colour and width (both slots): see stoneBody().
-  stone: { material: 'diamond', own: false, colour: '#7a3fa0', colourMm: 10, density: 1, width: 6.5, axis: null },
+  // The stone's material, body colour and width (both slots): see stoneBody(). Material ''
+  // is each cut's own (a design's index or notes, else diamond), as every command traces it.
+  stone: { material: '', own: false, colour: '#7a3fa0', colourMm: 10, density: 1, width: 6.5, axis: null },
 };
 
 function newSlot(source) {
@@ -112,7 +123,7 @@ const aborted = (e) => e && e.name === 'AbortError';
 function stoneBody() {
   const st = state.stone;
   const b = { diameter_mm: st.width };
-  if (st.material !== 'diamond') b.material = st.material;
+  if (st.material) b.material = st.material;
   if (st.own) b.colour = `${st.colour}@${st.colourMm}mm`;
   if (coloured() && st.density !== 1) b.colour_density = st.density;
   if (st.axis !== null) b.optic_axis = st.axis;
@@ -178,6 +189,7 @@ async function doRender(name, quick) {
   const img = $('#render-' + name);
   const frame = img.parentElement;
   const want = { light: state.light, tilt: state.tilt, exposure: state.exposure };
+  if (HEAD_SHADOW_LIGHTS.includes(state.light)) want.head_shadow = state.headShadow;
   const photo = isPhoto(state.light);
   clearTimeout(timers[name + 'photo']);
   if (photo) {
@@ -554,7 +566,7 @@ function buildTables() {
   }
   const pb = $('#props tbody');
   pb.textContent = '';
-  const rows = PROP_ROWS.concat([['facet_count', 'Facets', ''], ['carats', 'Weight', 'ct']]);
+  const rows = PROP_ROWS.concat([['facet_count', 'Facets', ''], ['material', 'Traced in', ''], ['carats', 'Weight', 'ct']]);
   for (const [key, label] of rows) {
     const tr = document.createElement('tr');
     tr.innerHTML = `<td></td><td id="prop-a-${key}">—</td><td class="b-col" id="prop-b-${key}">—</td>`;
@@ -618,6 +630,8 @@ function fillProps() {
       $(`#prop-${name}-${key}`).textContent = fmtProp(key, unit, info ? info.proportions[key] : undefined);
     }
     $(`#prop-${name}-facet_count`).textContent = info ? String(info.facet_count) : '—';
+    // The material this stone is traced in: the one chosen, else its own.
+    $(`#prop-${name}-material`).textContent = info ? info.material : '—';
     $(`#prop-${name}-carats`).textContent = fmtProp('carats', 'ct', info ? info.carats : undefined);
   }
   const w = $('#prop-a-carats');
@@ -642,6 +656,8 @@ function caption(name) {
   const parts = [v.name];
   if (v.changed) parts.push(`(${v.changed} changed)`);
   parts.push('· ' + (LIGHT_NAMES[v.light] || v.light));
+  if (v.head_shadow) parts.push(`· head shadow ${v.head_shadow}°`);
+  if (s.info) parts.push('· ' + s.info.material);
   if (v.tilt) parts.push(`· tilt ${v.tilt}°`);
   if (isPhoto(v.light)) {
     parts.push(`· view ${v.view}°`);
@@ -866,6 +882,19 @@ async function start() {
     if (f) readFile(f);
     ev.target.value = '';
   });
+  const head = $('#head-shadow');
+  const setHeadShadow = () => {
+    const on = HEAD_SHADOW_LIGHTS.includes(state.light);
+    head.disabled = !on;
+    $('#head-shadow-val').textContent = on ? `${state.headShadow}°` : 'n/a';
+  };
+  head.value = String(state.headShadow);
+  setHeadShadow();
+  head.addEventListener('input', () => {
+    state.headShadow = Number(head.value);
+    setHeadShadow();
+    for (const n of ['a', 'b']) if (state.slots[n]) { state.slots[n].t0 = performance.now(); schedule(n, 'render'); }
+  });
   const setExposure = (v) => {
     state.exposure = v;
     exposure.value = String(v);
@@ -879,6 +908,7 @@ async function start() {
     state.light = light.value;
     photoBar.hidden = !isPhoto(state.light);
     setExposure(LIGHT_EXPOSURE[state.light] || 1);
+    setHeadShadow();
     for (const n of ['a', 'b']) if (state.slots[n]) { state.slots[n].t0 = performance.now(); schedule(n, 'render', 0); }
   });
   // The photograph's controls: every move re-draws quick pictures (debounced), the full one
@@ -1041,6 +1071,10 @@ function setupStone() {
     if (m.colour) o.style.color = m.colour;
     sel.appendChild(o);
   }
+  const ownOption = document.createElement('option');
+  ownOption.value = '';
+  ownOption.textContent = "the cut's own (a design's index, else diamond)";
+  sel.prepend(ownOption);
   sel.value = state.stone.material;
   const own = $('#own-colour'), colour = $('#colour'), mm = $('#colour-mm'), density = $('#density');
   const axis = $('#optic-axis');

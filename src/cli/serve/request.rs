@@ -3,7 +3,7 @@
 //! itself is built later, on a blocking thread ([`super::jobs::build`]).
 
 use super::error::{ApiError, ApiResult};
-use super::{BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
+use super::{BODY_LIMIT, EXPOSURE_MAX, HEAD_SHADOW_MAX, SIZE_RANGE, TILT_LIMIT};
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
 use axum::http::StatusCode;
@@ -45,6 +45,8 @@ pub struct Req {
     pub size: usize,
     pub tilt: f64,
     pub exposure: f64,
+    /// The viewer's head shadow (`head_shadow`), degrees; `None`: the light's and scores' own.
+    pub head_shadow: Option<f64>,
     pub quick: bool,
     pub to: Option<&'static str>,
     /// The material traced, with its body colour (`material`, `colour`, `colour_density`).
@@ -82,6 +84,7 @@ struct Body {
     size: Field<Number>,
     tilt: Field<Number>,
     exposure: Field<Number>,
+    head_shadow: Field<Number>,
     quick: Field<bool>,
     to: Field<String>,
     material: Field<String>,
@@ -353,6 +356,17 @@ pub fn parse_req(
                 _ => return Err(bad_exposure(n.to_string())),
             },
             Err(v) => return Err(bad_exposure(v.to_string())),
+        },
+        head_shadow: match b.head_shadow.given() {
+            Ok(None) => None,
+            _ => Some(bounded(
+                &b.head_shadow,
+                "head_shadow",
+                0.0,
+                HEAD_SHADOW_MAX,
+                0.0,
+                "degrees",
+            )?),
         },
         quick: match b.quick.given() {
             Ok(q) => q.copied().unwrap_or(false),

@@ -121,6 +121,7 @@ fn presets_json() -> Value {
             "size": [SIZE_RANGE.0, SIZE_RANGE.1],
             "tilt": [-TILT_LIMIT, TILT_LIMIT],
             "exposure": [0.0, EXPOSURE_MAX],
+            "head_shadow": [0.0, super::HEAD_SHADOW_MAX],
             "body_bytes": BODY_LIMIT,
         },
     })
@@ -208,21 +209,23 @@ async fn score_cut(
     State(st): State<Arc<AppState>>,
     body: std::result::Result<Bytes, BytesRejection>,
 ) -> ApiResult<Response> {
-    let r = parse_req(body, &[&["quick"][..], &STONE].concat())?;
+    let r = parse_req(body, &[&["quick", "head_shadow"][..], &STONE].concat())?;
     let designs = st.designs.clone();
     let (text, timing) = heavy(&st, move || {
         let t0 = Instant::now();
         let cut = build(&designs, &r)?;
         // Refuses a length × width that disagrees with the cut's L/W.
         width_mm(&r, &cut)?;
+        let base = if r.quick {
+            ScoreConfig::fast()
+        } else {
+            ScoreConfig::default()
+        };
         let cfg = ScoreConfig {
             material: material_for(&r, &cut)?,
             size: r.stone,
-            ..if r.quick {
-                ScoreConfig::fast()
-            } else {
-                ScoreConfig::default()
-            }
+            head_shadow_deg: r.head_shadow.unwrap_or(base.head_shadow_deg),
+            ..base
         };
         let s = score(&cut.solid, &cfg);
         let text = facetlab::document::score::score_json(&cfg, &[(cut.name.clone(), s)], &[], 0)
@@ -255,7 +258,7 @@ async fn render_cut(
     let r = parse_req(
         body,
         &[
-            &["light", "size", "tilt", "exposure", "quick"][..],
+            &["light", "size", "tilt", "exposure", "head_shadow", "quick"][..],
             &STONE,
             &PHOTO,
         ]
@@ -275,6 +278,7 @@ async fn render_cut(
             tilt_deg: r.tilt,
             azimuth_deg: 0.0,
         };
+        o.head_shadow_deg = r.head_shadow;
         o.width_mm = width_mm(&r, &cut)?;
         o.material = material_for(&r, &cut)?;
         o.validate().map_err(ApiError::from_picture)?;
@@ -331,7 +335,8 @@ fn photograph(
         gap: 0.0,
     };
     o.width_mm = width_mm(r, cut)?;
-    o.material = r.material.clone();
+    // The cut's own material unless one was sent, as the laboratory pictures and the scores.
+    o.material = material_for(r, cut)?;
     if r.quick {
         o = o.quick();
     }

@@ -33,6 +33,8 @@ pub const SIZE_RANGE: (u64, u64) = (16, 1024);
 pub const TILT_LIMIT: f64 = 45.0;
 /// Largest exposure factor of a picture.
 pub const EXPOSURE_MAX: f64 = 16.0;
+/// The largest head shadow a request may ask for, degrees (as `--head-shadow`).
+pub const HEAD_SHADOW_MAX: f64 = 60.0;
 
 /// Shared state: the job limit, the presets' JSON (built once), the optimization and plan runs
 /// and the designs adopted lately.

@@ -18,7 +18,7 @@
 //! is repeated (at most 8 rounds) while corners are still split. [`read_with_note`] says what
 //! was welded (`facetlab info` prints it on standard error).
 //!
-//! Normalisation (the README's Conventions section: z up, origin at the centre of the girdle
+//! Normalisation (docs/cuts.md's Conventions section: z up, origin at the centre of the girdle
 //! plane, girdle diameter 1): the stone is assumed to be upright (z up, table on
 //! top). The origin moves to the centre of the girdle plane: horizontally to the centre of the
 //! outline's bounding box; vertically to the middle of the girdle, i.e. of the near-vertical

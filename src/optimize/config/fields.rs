@@ -3,7 +3,7 @@
 
 use crate::error::{shown, Error, Result};
 
-/// Defaults (also in the config-file table of `README.md`).
+/// Defaults (also in the config-file table of `docs/optimize.md`).
 pub mod defaults {
     /// Seed.
     pub const SEED: u64 = 1;

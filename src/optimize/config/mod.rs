@@ -31,7 +31,7 @@
 //! photons = 100000
 //! ```
 //!
-//! The full list of fields with their defaults is the config-file table in `README.md`
+//! The full list of fields with their defaults is the config-file table in `docs/optimize.md`
 //! (section "The config file").
 //!
 //! `file.rs` holds the file as a whole: [`RawConfig`] as written and [`Config`] as validated.

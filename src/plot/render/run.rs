@@ -259,7 +259,7 @@ fn draw_lab(
     // Every frame has the same caption lines (an animation's frames share one size).
     let show_tilt = s.rock.is_some() || s.opts.tilt.tilt_deg != 0.0;
     let note = settings_line(&s.opts, s.exposure);
-    let legend = legend_for(light);
+    let legend = legend_for(light, s.opts.head_shadow());
     progress.start((nframes * cuts.len()) as u64);
     let drawn = sheets(
         nframes,
@@ -277,7 +277,10 @@ fn draw_lab(
                 ..s.opts.clone()
             };
             let img = render::render(&cuts[c].solid, &opts);
-            let rgb = img.to_srgb8(s.exposure, PICTURE_GROUND);
+            let mut rgb = img.to_srgb8(s.exposure, PICTURE_GROUND);
+            if !job.bare {
+                super::outline(&mut rgb, size, super::picture_ground());
+            }
             let frame = FrameJson::new(k, tilt, &img.stats, t0.elapsed().as_secs_f64());
             let mut lines = vec![cuts[c].name.clone()];
             lines.extend(stats_lines(light, &img.stats));
@@ -579,12 +582,19 @@ pub fn printed_line(pictures: &Pictures, drawn: &Drawn, c: usize) -> String {
                 }
                 _ => String::new(),
             };
+            let time = if r.frames.is_some() {
+                format!(
+                    "{:.2} s of tracing over the frames (traced in parallel)",
+                    r.elapsed_s
+                )
+            } else {
+                format!("{:.2} s", r.elapsed_s)
+            };
             format!(
-                "{}: {}, {pose}{rock}, {} px, {:.2} s → {}",
+                "{}: {}, {pose}{rock}, {} px, {time} → {}",
                 r.name,
                 summary(light, &stats),
                 r.size,
-                r.elapsed_s,
                 r.output
             )
         }
@@ -610,13 +620,22 @@ pub fn printed_line(pictures: &Pictures, drawn: &Drawn, c: usize) -> String {
                 ),
                 None => String::new(),
             };
+            // An animation's frames are traced side by side: their times add up to more than
+            // the wall time, so the line says which it is.
+            let time = if r.frames.is_some() {
+                format!(
+                    "{:.2} s of tracing over the frames (traced in parallel)",
+                    r.elapsed_s
+                )
+            } else {
+                format!("{:.2} s", r.elapsed_s)
+            };
             format!(
-                "{}: {} photograph, mean {:.1} %{ground}{anim}, {} px, {:.2} s → {}",
+                "{}: {} photograph, mean {:.1} %{ground}{anim}, {} px, {time} → {}",
                 r.name,
                 r.light,
                 100.0 * r.mean,
                 r.size,
-                r.elapsed_s,
                 r.output
             )
         }

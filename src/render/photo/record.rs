@@ -60,7 +60,7 @@ fn gcd(a: usize, b: usize) -> usize {
 }
 
 /// Caption lines of a photograph (after the cut's name): the light, view and ground, and
-/// the stone's mean luminance.
+/// the material the stone is traced in with its mean luminance.
 pub fn caption(opts: &PhotoOptions, stats: &PhotoStats) -> Vec<String> {
     let v = opts.view;
     let view = if v.elevation_deg == 90.0 {
@@ -83,5 +83,8 @@ pub fn caption(opts: &PhotoOptions, stats: &PhotoStats) -> Vec<String> {
     if opts.ground.kind != super::GroundKind::None {
         first.push_str(&format!(", {} ground", opts.ground.kind.name()));
     }
-    vec![first, format!("mean {:.1} %", 100.0 * stats.mean)]
+    vec![
+        first,
+        format!("{}, mean {:.1} %", opts.material.name, 100.0 * stats.mean),
+    ]
 }

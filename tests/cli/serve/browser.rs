@@ -197,6 +197,24 @@ async fn browser_session(
     page.save_screenshot(ScreenshotParams::builder().build(), shot("1-tolkowsky.png"))
         .await
         .unwrap();
+    // The first picture shows the stone's pattern (COS light with a head shadow), not a
+    // near-uniform disc: the luminance of its stone pixels spreads widely.
+    let spread: f64 = js(
+        &page,
+        "(() => { const img = document.querySelector('#render-a'); const c = document.createElement('canvas'); c.width = img.naturalWidth; c.height = img.naturalHeight; const g = c.getContext('2d'); g.drawImage(img, 0, 0); const d = g.getImageData(0, 0, c.width, c.height).data; const y = []; for (let i = 0; i < d.length; i += 4) { if (d[i] === d[0] && d[i + 1] === d[1] && d[i + 2] === d[2]) continue; y.push(0.2126 * d[i] + 0.7152 * d[i + 1] + 0.0722 * d[i + 2]); } const m = y.reduce((a, b) => a + b, 0) / y.length; return Math.sqrt(y.reduce((a, b) => a + (b - m) ** 2, 0) / y.length); })()",
+    )
+    .await;
+    assert!(
+        spread > 40.0,
+        "the first picture is a near-uniform disc: luminance spread {spread:.1}"
+    );
+    // The stone says what it is traced in.
+    let traced: String = js(
+        &page,
+        "document.querySelector('#prop-a-material').textContent",
+    )
+    .await;
+    assert_eq!(traced, "diamond");
 
     // Move the pavilion slider by script: the picture and the scores change.
     let before_src: String = js(&page, "document.querySelector('#render-a').src").await;

@@ -9,6 +9,7 @@ mod api;
 mod browser;
 mod colour;
 mod crystal;
+mod first;
 mod fuzz;
 mod paths;
 mod plan;
@@ -303,4 +304,13 @@ fn the_browser_test_is_not_skipped_in_ci() {
     eprintln!(
         "SKIPPED the browser test of `facetlab serve`: `cargo test --features browser-tests` runs it (needs /usr/bin/chromium)"
     );
+}
+
+/// Without the feature `browser-tests`, `cargo test` lists the browser test as ignored with
+/// the reason, where a user sees it (run with `--ignored`, it fails saying how to build it).
+#[cfg(not(feature = "browser-tests"))]
+#[test]
+#[ignore = "the browser test of `facetlab serve` runs with `cargo test --features browser-tests` (needs /usr/bin/chromium)"]
+fn serve_page_works_in_a_browser() {
+    panic!("built without the feature `browser-tests`: run `cargo test --features browser-tests`");
 }
