@@ -90,7 +90,7 @@ fn check_size(width: u64, height: u64, name: &str) -> Result<usize> {
             name,
             format!(
                 "{width} × {height} pixels; allowed 1 to {MAX_PIXELS} pixels ({} MiB as linear RGB)",
-                MAX_PIXELS * 12 >> 20
+                (MAX_PIXELS * 12) >> 20
             ),
         )),
     }

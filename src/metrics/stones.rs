@@ -337,7 +337,7 @@ mod tests {
         let mut notes = Vec::new();
         let e = choice
             .stones(
-                &[round.clone()],
+                std::slice::from_ref(&round),
                 &FIELDS,
                 ColourNotes::Traced,
                 &mut |_, l| notes.push(l),
@@ -361,7 +361,7 @@ mod tests {
         });
         let e = peridot
             .stones(
-                &[round.clone()],
+                std::slice::from_ref(&round),
                 &FIELDS,
                 ColourNotes::Traced,
                 &mut |_, l| notes.push(l),

@@ -39,7 +39,10 @@ pub(in crate::io) fn gear_problem(teeth: f64) -> Option<String> {
 /// that an offset only repeats a smaller one, and a huge one, 1e18, swamps the facets'
 /// indices in rounding: the design written again would put a tier's facets at one azimuth.)
 pub(in crate::io) fn offset_problem(offset: f64, teeth: f64) -> Option<String> {
-    (!(offset.abs() <= teeth.abs())).then(|| {
+    (offset.abs().partial_cmp(&teeth.abs()) > Some(std::cmp::Ordering::Equal)
+        || offset.is_nan()
+        || teeth.is_nan())
+    .then(|| {
         let t = crate::error::shown(teeth.abs());
         format!(
             "gear offset {} is not allowed; it is an index on the gear, from -{t} to {t}, e.g. 0",

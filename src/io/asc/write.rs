@@ -193,7 +193,7 @@ pub fn check(cut: &Cut) -> crate::error::Result<()> {
         .iter()
         .map(|p| p.plane.offset.abs())
         .fold(0.0, f64::max);
-    match planes.iter().find(|p| !(p.plane.offset > 1e-6 * far)) {
+    match planes.iter().find(|p| p.plane.offset.partial_cmp(&(1e-6 * far)) != Some(std::cmp::Ordering::Greater)) {
         None => Ok(()),
         Some(p) => Err(crate::error::Error::invalid(
             "output",
