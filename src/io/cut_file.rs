@@ -32,7 +32,12 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
             let text = String::from_utf8_lossy(&bytes);
             spec::parse(&text, arg)?.to_cut(&stem, arg)
         }
-        Some("asc") => asc::read(path),
+        Some("asc") => asc::read(path).map_err(|e| {
+            read_bytes(path)
+                .ok()
+                .and_then(|b| binary_gem(&b, &path.display().to_string()))
+                .unwrap_or(e)
+        }),
         Some("gem") => gem::read(path),
         Some("obj") | Some("stl") => mesh::read(path),
         Some(other) if path.exists() || other.len() <= 4 => Err(Error::invalid(
@@ -51,6 +56,17 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
             )),
         },
     }
+}
+
+/// A binary GemCad `.gem` named `.asc` is told so (the `.asc` reader, which knows no `.gem`,
+/// only sees binary bytes): `Some` the error when `bytes` read as a `.gem`.
+fn binary_gem(bytes: &[u8], source: &str) -> Option<Error> {
+    (bytes.contains(&0) && gem::parse(bytes, source).is_ok()).then(|| {
+        Error::parse(
+            source,
+            "not a GemCad .asc: it is a binary GemCad .gem file; name it .gem",
+        )
+    })
 }
 
 /// The file types [`write_cut`] writes (by extension, lower case): the ones [`load_cut`] reads.
@@ -104,7 +120,10 @@ pub fn parse_cut(format: &str, bytes: &[u8], name: &str, source: &str) -> Result
             let text = String::from_utf8_lossy(bytes);
             spec::parse(&text, source)?.to_cut(name, source)
         }
-        "asc" => asc::parse(bytes, source)?.to_cut(name),
+        "asc" => match binary_gem(bytes, source) {
+            Some(e) => Err(e),
+            None => asc::parse(bytes, source)?.to_cut(name),
+        },
         "gem" => gem::parse(bytes, source)?.to_cut(name),
         "obj" | "stl" => {
             let planes = if format == "obj" {

@@ -220,30 +220,6 @@ impl BodyColour {
     }
 }
 
-impl super::material::Material {
-    /// Choose this stone's body colour as [`BodyColour::choose`] does with its own, and keep a
-    /// uniaxial stone's E ∥ c colour in step: a user's colour replaces the variety's spectra
-    /// of both rays (its E ∥ c one is dropped: the crystal settings' E ∥ c colour gives one
-    /// back), and a density scales both. Errors as [`BodyColour::choose`]'s.
-    pub fn choose_colour(
-        &mut self,
-        user: Option<&str>,
-        density: Option<f64>,
-        fields: ColourFields<'_>,
-    ) -> Result<()> {
-        let colour = BodyColour::choose(self.colour.as_ref(), user, density, fields)?;
-        if let Some(u) = self.uniaxial.as_mut() {
-            u.colour_e = match (user, u.colour_e.take(), density) {
-                (Some(_), _, _) | (None, None, _) => None,
-                (None, Some(c), Some(d)) => Some(c.with_density(d)),
-                (None, Some(c), None) => Some(c),
-            };
-        }
-        self.colour = colour;
-        Ok(())
-    }
-}
-
 impl BodyColour {
     /// One line for stderr naming the colour, its source, the stone's width and the colour
     /// seen through that width (a picture drawn in the colour prints this).

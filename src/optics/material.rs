@@ -15,6 +15,9 @@
 //! Handbook values (n_D, B–G, SG) are those of the GIA *Gem Reference Guide* (1988) and the
 //! Gem-A/Read *Gemmology* tables; where those give a range, the ray the model uses is stated.
 
+use super::body_colour::{BodyColour, ColourFields};
+use crate::error::Result;
+
 /// How the refractive index depends on wavelength.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Dispersion {
@@ -333,5 +336,29 @@ impl Material {
     /// The dispersion formula with its coefficients (see [`Dispersion::formula`]).
     pub fn formula(&self) -> String {
         self.dispersion.formula()
+    }
+}
+
+impl Material {
+    /// Choose this stone's body colour as [`BodyColour::choose`] does with its own, and keep a
+    /// uniaxial stone's E ∥ c colour in step: a user's colour replaces the variety's spectra
+    /// of both rays (its E ∥ c one is dropped: the crystal settings' E ∥ c colour gives one
+    /// back), and a density scales both. Errors as [`BodyColour::choose`]'s.
+    pub fn choose_colour(
+        &mut self,
+        user: Option<&str>,
+        density: Option<f64>,
+        fields: ColourFields<'_>,
+    ) -> Result<()> {
+        let colour = BodyColour::choose(self.colour.as_ref(), user, density, fields)?;
+        if let Some(u) = self.uniaxial.as_mut() {
+            u.colour_e = match (user, u.colour_e.take(), density) {
+                (Some(_), _, _) | (None, None, _) => None,
+                (None, Some(c), Some(d)) => Some(c.with_density(d)),
+                (None, Some(c), None) => Some(c),
+            };
+        }
+        self.colour = colour;
+        Ok(())
     }
 }

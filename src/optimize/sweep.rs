@@ -129,7 +129,11 @@ impl Axis {
         if steps >= 5000.0 {
             return Err(Error::invalid(
                 flag,
-                format!("{} values; at most 5000 per axis", shown(steps + 1.0)),
+                // The count to three figures: the step's slack (1e-9) would show as noise.
+                format!(
+                    "{} values; at most 5000 per axis",
+                    shown(format!("{:.2e}", steps + 1.0).parse().unwrap_or(steps))
+                ),
             ));
         }
         let n = steps as usize + 1;

@@ -148,17 +148,17 @@ struct OpenTier<'a> {
     tokens: Vec<(&'a str, usize)>,
 }
 
+/// Why bytes holding a NUL are not a `.asc`.
+const BINARY: &str =
+    "it holds binary bytes (a GemCad .asc is text); a binary GemCad design is read from a .gem";
+
 /// Parse the bytes of a `.asc` file. `source` names the file in error messages
 /// (`design.asc:12: angle "x3" is not a number`).
 pub fn parse(text_bytes: &[u8], source: &str) -> Result<AscDesign> {
-    // A text file holds no NUL byte; a binary GemCad `.gem` (doubles, whole numbers) does.
+    // A text file holds no NUL byte; a binary GemCad `.gem` (doubles, whole numbers) does
+    // (`crate::io::parse_cut` says so when the bytes read as one).
     if text_bytes.contains(&0) {
-        let what = if crate::io::gem::parse(text_bytes, source).is_ok() {
-            "it is a binary GemCad .gem file; name it .gem"
-        } else {
-            "it holds binary bytes (a GemCad .asc is text); a binary GemCad design is read from a .gem"
-        };
-        return Err(Error::parse(source, format!("not a GemCad .asc: {what}")));
+        return Err(Error::parse(source, format!("not a GemCad .asc: {BINARY}")));
     }
     let text = decode(text_bytes);
     let at = |line: usize| format!("{source}:{line}");

@@ -182,7 +182,7 @@ pub fn write_for(cut: &Cut, gear: u32, ri: f64) -> String {
     out
 }
 
-/// Refuse a cut a `.asc` cannot hold, before [`write`]: GemCad gives each facet its distance
+/// Refuse a cut a `.asc` cannot hold, before [`write()`]: GemCad gives each facet its distance
 /// from the origin (the stone's axis in its girdle plane) and tells a culet from a table by
 /// that distance's sign, so every facet plane must pass outside the origin, at a distance
 /// the file's 8 decimals keep (a millionth of the farthest facet's). A mesh whose lowest

@@ -207,7 +207,7 @@ fn every_view_shows_the_value_of_score_json() {
 }
 
 /// Extinction is one number: `score --json`'s `colour.extinction` is what the score table
-/// prints, what `render --light iso` (face-up, the score's bands and head shadow) writes and
+/// prints, what `render --light iso --head-shadow 15` (face-up, the score's bands and head shadow) writes and
 /// prints at any picture size (it is measured on its own grid, not the picture's pixels), and
 /// what the server's full score returns. A coloured picture at another light (COS) shows its
 /// share of dark outline under its own name, `dark_share`, not `extinction`.
@@ -259,6 +259,8 @@ fn extinction_is_one_number_wherever_it_is_shown() {
             "tolkowsky",
             "--light",
             "iso",
+            "--head-shadow",
+            "15",
             "--size",
             size,
             "--quiet",
