@@ -127,7 +127,7 @@ pub(super) fn score_with_faint(solid: &Polyhedron, cfg: &ScoreConfig, faint: f64
             }
             k
         };
-    let split = cfg.trace.split_threshold;
+    let split = cfg.tilted_split();
     // The face-up figures (overhead light return, ASET) are the cross-checked ones: the
     // face-up trace at the reference wavelength splits down to `face_up_split_threshold`
     // (cheap: a face-up stone traces one symmetry wedge), the other face-up traces (fire's

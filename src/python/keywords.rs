@@ -217,7 +217,14 @@ impl<'py> Keywords<'py> {
     pub fn text(&self, name: &str) -> PyResult<Option<String>> {
         let given = match self.keyword(name).kind {
             Kind::Str => self.get::<String>(name)?,
-            Kind::Float => self.get::<f64>(name)?.map(|x| format!("{x}")),
+            // NaN as Python writes it (`str(float("nan"))`), so the error quotes what was given.
+            Kind::Float => self.get::<f64>(name)?.map(|x| {
+                if x.is_nan() {
+                    "nan".to_string()
+                } else {
+                    format!("{x}")
+                }
+            }),
             Kind::Int => self.get::<i64>(name)?.map(|x| x.to_string()),
             Kind::Size => self.size_text(name)?,
             Kind::Bool => self.get::<bool>(name)?.map(|b| b.to_string()),

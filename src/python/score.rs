@@ -19,7 +19,7 @@ use std::collections::BTreeMap;
 ///
 /// >>> s = facetlab.score("tolkowsky")
 /// >>> round(s.brilliance, 2), round(sum(s.aset.values()), 12)
-/// (0.78, 1.0)
+/// (0.67, 1.0)
 #[pyclass(name = "Scores", module = "facetlab", frozen)]
 pub struct PyScores {
     name: String,

@@ -9,7 +9,7 @@ import random
 import threading
 import time
 from pathlib import Path
-from typing import List, Tuple
+from typing import Callable, List, Tuple
 
 import facetlab
 import pytest
@@ -85,12 +85,14 @@ GRID = {"cut": {"family": "round-brilliant"}, "free": {"table": [0.5, 0.6]},
 
 
 def test_whole_numbers_out_of_range_are_the_command_lines_error(cli: Cli, tmp_path: Path) -> None:
-    for flag, value, call in [
+    # Typed: a list of lambdas returning different things is inferred from its first one.
+    cases: List[Tuple[str, str, Callable[[], object]]] = [
         ("--photons", "-1", lambda: facetlab.trace("tolkowsky", photons=-1)),
         ("--photons", str(2**64), lambda: facetlab.trace("tolkowsky", photons=2**64)),
         ("--seed", "-1", lambda: facetlab.trace("tolkowsky", photons=10, seed=-1)),
         ("--seed", str(2**64), lambda: facetlab.trace("tolkowsky", photons=10, seed=2**64)),
-    ]:
+    ]
+    for flag, value, call in cases:
         p = cli(tmp_path, "trace", "tolkowsky", flag, value)
         assert p.returncode == 2, p.stderr
         with pytest.raises(facetlab.Error) as e:
@@ -98,7 +100,7 @@ def test_whole_numbers_out_of_range_are_the_command_lines_error(cli: Cli, tmp_pa
         line = p.stderr.strip()
         # The same line, the keyword where the command line names its flag.
         assert str(e.value) == line[len("facetlab: "):].replace(flag, flag[2:]), (str(e.value), line)
-    for call, keyword in [
+    calls: List[Tuple[Callable[[], object], str]] = [
         (lambda: facetlab.trace("tolkowsky", depth=-1), "depth"),
         (lambda: facetlab.trace("tolkowsky", depth=2**70), "depth"),
         (lambda: facetlab.Grid(GRID, ["table:0.55:0.57:0.01"]).rows([-1]), "indices"),
@@ -106,7 +108,8 @@ def test_whole_numbers_out_of_range_are_the_command_lines_error(cli: Cli, tmp_pa
         (lambda: facetlab.plan("octahedron", size_mm=6, top=2**64), "top"),
         (lambda: facetlab.plan("octahedron", size_mm=6, top=-1), "top"),
         (lambda: facetlab.optimize(GRID, seed=-1), "seed"),
-    ]:
+    ]
+    for call, keyword in calls:
         with pytest.raises(facetlab.Error) as e:
             call()
         assert str(e.value).startswith(f"{keyword}: `"), str(e.value)
