@@ -205,12 +205,6 @@ pub mod stones;
 mod symmetry;
 
 #[cfg(test)]
-mod birefringence;
-#[cfg(test)]
-mod golden;
-#[cfg(test)]
-mod invariance;
-#[cfg(test)]
 mod tests;
 
 pub use config::{Parts, ScoreConfig, DEFAULT_HEAD_SHADOW_DEG, REFERENCE_WAVELENGTH_NM};

@@ -3,7 +3,7 @@
 //! stone with its optic axis moves no score (check 5), and the optic axis changes what a
 //! pleochroic stone shows face-up.
 
-use super::*;
+use super::super::*;
 use crate::beam::TraceOptions;
 use crate::geometry::{FacetPlane, Polyhedron};
 use crate::optics::{BodyColour, Material, OpticAxis, SAMPLES};

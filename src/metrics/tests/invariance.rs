@@ -2,7 +2,7 @@
 //! the same; a stone turned about its axis scores nearly the same; a profile in the pavilion
 //! angle is smooth.
 
-use super::*;
+use super::super::*;
 use crate::beam::TraceOptions;
 use crate::geometry::{FacetPlane, Polyhedron};
 use glam::{DMat3, DVec3};

@@ -18,7 +18,7 @@
 //! `FACETLAB_PRINT_GOLDEN=1 cargo test --lib metrics::golden -- --nocapture` prints each
 //! setting's current values as Rust constants to paste over the ones below.
 
-use super::*;
+use super::super::*;
 use crate::optics::Material;
 use crate::testkit::tolkowsky;
 
@@ -46,7 +46,7 @@ fn fields(s: &Scores) -> [(&'static str, f64); 11] {
 /// each equals `pinned` within [`TOL`].
 fn check(constant: &str, cfg: &ScoreConfig, pinned: &[f64; 11]) {
     let s = score(&tolkowsky(), cfg);
-    super::tests::check_ranges(constant, &s);
+    super::check_ranges(constant, &s);
     let got = fields(&s);
     if std::env::var_os("FACETLAB_PRINT_GOLDEN").is_some() {
         let mut out = format!("const {constant}: [f64; 11] = [\n");
