@@ -33,3 +33,15 @@ pub fn install() {
 pub fn stopped() -> bool {
     STOP.load(Ordering::SeqCst)
 }
+
+/// Held by each test of this binary that runs a command reading [`STOP`] (optimize, sweep,
+/// plan) in process or raises it: the flag is one per process, and tests run side by side (a
+/// test raising it once stopped another's sweep).
+#[cfg(test)]
+pub static TESTS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// [`TESTS`], taken (a test that failed while holding it leaves it poisoned, not locked).
+#[cfg(test)]
+pub fn one_at_a_time() -> std::sync::MutexGuard<'static, ()> {
+    TESTS.lock().unwrap_or_else(|e| e.into_inner())
+}

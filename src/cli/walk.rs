@@ -134,6 +134,7 @@ fn digits(line: &str) -> bool {
 
 #[test]
 fn a_value_no_flag_takes_is_refused_in_one_line_naming_it() {
+    let _one = crate::cli::interrupt::one_at_a_time();
     let d = tempfile::tempdir().unwrap();
     std::fs::write(d.path().join("c.toml"), CONFIG).unwrap();
     // A sweep's shards, for `merge`.

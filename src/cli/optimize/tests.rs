@@ -24,6 +24,7 @@ fn bumps(_: &Config) -> Scorers {
 
 #[test]
 fn optimize_and_sweep_write_their_files() {
+    let _one = crate::cli::interrupt::one_at_a_time();
     let dir = tempfile::tempdir().unwrap();
     let cfg = dir.path().join("small.toml");
     std::fs::write(
@@ -157,6 +158,7 @@ fn small_sweep(dir: &std::path::Path, out: &str) -> (std::path::PathBuf, SweepAr
 
 #[test]
 fn a_profile_writes_one_row_per_x_and_outputs_never_overwrite_inputs() {
+    let _one = crate::cli::interrupt::one_at_a_time();
     let dir = tempfile::tempdir().unwrap();
     let (cfg, s) = small_sweep(dir.path(), "prof");
     assert_eq!(run_sweep(&s, &bumps).unwrap(), Exit::Ok);
@@ -191,6 +193,7 @@ fn a_profile_writes_one_row_per_x_and_outputs_never_overwrite_inputs() {
 
 #[test]
 fn three_axes_map_any_two_held_where_asked() {
+    let _one = crate::cli::interrupt::one_at_a_time();
     let dir = tempfile::tempdir().unwrap();
     let (cfg, s) = small_sweep(dir.path(), "three");
     let s = SweepArgs {
