@@ -582,14 +582,7 @@ pub fn printed_line(pictures: &Pictures, drawn: &Drawn, c: usize) -> String {
                 }
                 _ => String::new(),
             };
-            let time = if r.frames.is_some() {
-                format!(
-                    "{:.2} s of tracing over the frames (traced in parallel)",
-                    r.elapsed_s
-                )
-            } else {
-                format!("{:.2} s", r.elapsed_s)
-            };
+            let time = traced_time(r.frames.is_some(), r.elapsed_s);
             format!(
                 "{}: {}, {pose}{rock}, {} px, {time} → {}",
                 r.name,
@@ -620,16 +613,7 @@ pub fn printed_line(pictures: &Pictures, drawn: &Drawn, c: usize) -> String {
                 ),
                 None => String::new(),
             };
-            // An animation's frames are traced side by side: their times add up to more than
-            // the wall time, so the line says which it is.
-            let time = if r.frames.is_some() {
-                format!(
-                    "{:.2} s of tracing over the frames (traced in parallel)",
-                    r.elapsed_s
-                )
-            } else {
-                format!("{:.2} s", r.elapsed_s)
-            };
+            let time = traced_time(r.frames.is_some(), r.elapsed_s);
             format!(
                 "{}: {} photograph, mean {:.1} %{ground}{anim}, {} px, {time} → {}",
                 r.name,
@@ -655,5 +639,15 @@ impl Drawn {
     /// Whether no cut was drawn.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+}
+
+/// A picture's tracing time for its printed line. An animation's frames are traced side by
+/// side: their times add up to more than the wall time, so the line says which it is.
+fn traced_time(animation: bool, elapsed_s: f64) -> String {
+    if animation {
+        format!("{elapsed_s:.2} s of tracing over the frames (traced in parallel)")
+    } else {
+        format!("{elapsed_s:.2} s")
     }
 }
