@@ -3,6 +3,7 @@
 
 mod batch;
 mod cuts;
+mod design;
 pub mod flags;
 mod interrupt;
 pub mod materials;
@@ -50,6 +51,10 @@ pub enum Command {
     /// Write a cut to a file: .toml spec, .asc or .gem (GemCad), .obj, .stl or .svg diagram, by
     /// extension.
     Generate(cuts::GenerateArgs),
+    /// Build a design from a recipe written tier by tier (cut to meet, to the centre point, a
+    /// girdle, a table width; angles as expressions), or write the recipe of an existing
+    /// design with --from.
+    Design(design::DesignArgs),
     /// Show a cut's proportions, tiers, facet count, volume and carat weight.
     Info(cuts::InfoArgs),
     /// List the bundled presets and the families with their parameters (defaults, ranges).
@@ -109,6 +114,7 @@ pub fn run(cli: Cli) -> Result<Exit> {
     let done = |r: Result<()>| r.map(|()| Exit::Ok);
     let result = match cli.command {
         Command::Generate(a) => done(cuts::generate(&a)),
+        Command::Design(a) => done(design::run(&a)),
         Command::Info(a) => done(cuts::info(&a)),
         Command::List(a) => done(cuts::list(&a)),
         Command::Materials(a) => done(materials::run(&a)),

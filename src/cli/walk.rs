@@ -31,6 +31,7 @@ fn base(cmd: &str, d: &Path) -> String {
     let d = d.display();
     match cmd {
         "generate" => format!("tolkowsky -o {d}/g.asc"),
+        "design" => format!("--from tolkowsky -o {d}/d.toml"),
         "info" => "tolkowsky".into(),
         "trace" => "tolkowsky --photons 64".into(),
         "score" => "tolkowsky".into(),
@@ -66,6 +67,7 @@ fn line(cmd: &str, d: &Path, flag: &str, value: &str, extra: &[&str]) -> Vec<Str
 /// Flags whose value is any text (a file to write, a title): no value is garbage to them.
 const ANY_TEXT: &[(&str, &str)] = &[
     ("generate", "-o"),
+    ("design", "-o"),
     ("trace", "--json"),
     ("trace", "--plots"),
     ("score", "--json"),

@@ -34,6 +34,7 @@
 
 pub mod meets;
 pub mod reangle;
+pub mod recipe;
 mod space;
 #[cfg(test)]
 pub(crate) mod tests;

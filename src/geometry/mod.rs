@@ -19,4 +19,4 @@ pub use glam::{DVec2, DVec3};
 pub use hull::{convex_hull, convex_hull_with_tolerance, hull, Hull, HullOptions, MERGE_TOL};
 pub use outline::outline_size;
 pub use plane::{facet_angle_deg, facet_azimuth_deg, facet_normal, FacetPlane, Plane, EPS, WELD};
-pub use polyhedron::{Edge, Facet, Polyhedron};
+pub use polyhedron::{Block, Edge, Facet, Polyhedron};

@@ -1,7 +1,7 @@
 //! A cut from or to a file of any kind facetlab reads: presets, TOML specs, GemCad `.asc` and
 //! `.gem`, OBJ and STL meshes.
 
-use super::{asc, gem, mesh, presets, read_bytes, spec};
+use super::{asc, gem, mesh, presets, read_bytes, recipe, spec};
 use crate::error::{Error, Result};
 use std::path::Path;
 
@@ -29,8 +29,7 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
     match ext.as_deref() {
         Some("toml") => {
             let bytes = read_bytes(path)?;
-            let text = String::from_utf8_lossy(&bytes);
-            spec::parse(&text, arg)?.to_cut(&stem, arg)
+            toml_cut(&String::from_utf8_lossy(&bytes), &stem, arg)
         }
         Some("asc") => asc::read(path).map_err(|e| {
             read_bytes(path)
@@ -55,6 +54,16 @@ pub fn load_cut(arg: &str) -> Result<crate::cut::Cut> {
                 ),
             )),
         },
+    }
+}
+
+/// A `.toml` file's cut: a recipe built tier by tier ([`recipe`]) or a cut spec ([`spec`]).
+fn toml_cut(text: &str, name: &str, source: &str) -> Result<crate::cut::Cut> {
+    if recipe::is_recipe(text) {
+        let r = recipe::parse(text, source, name)?;
+        Ok(r.build().map_err(|e| e.context(source))?.cut)
+    } else {
+        spec::parse(text, source)?.to_cut(name, source)
     }
 }
 
@@ -116,10 +125,7 @@ pub fn write_cut(cut: &crate::cut::Cut, format: &str) -> Result<Vec<u8>> {
 /// ```
 pub fn parse_cut(format: &str, bytes: &[u8], name: &str, source: &str) -> Result<crate::cut::Cut> {
     match format {
-        "toml" => {
-            let text = String::from_utf8_lossy(bytes);
-            spec::parse(&text, source)?.to_cut(name, source)
-        }
+        "toml" => toml_cut(&String::from_utf8_lossy(bytes), name, source),
         "asc" => match binary_gem(bytes, source) {
             Some(e) => Err(e),
             None => asc::parse(bytes, source)?.to_cut(name),

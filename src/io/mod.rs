@@ -11,6 +11,7 @@ pub mod hdr;
 pub mod mesh;
 pub mod png;
 pub mod presets;
+pub mod recipe;
 pub mod spec;
 pub mod text;
 

@@ -6,7 +6,7 @@ use crate::geometry::FacetPlane;
 
 /// A small brilliant on a 96 gear: 16 girdle facets (tier named `G`), 8 pavilion mains,
 /// 8 bezels, table, culet. Girdle radius 1 (GemCad units), girdle 0.06 thick at the mains.
-pub(in crate::io) const MINI: &str = "GemCad 5.0
+pub(crate) const MINI: &str = "GemCad 5.0
 g 96 0.0
 y 8 y
 I 2.42
@@ -64,7 +64,7 @@ pub(in crate::io) fn same_planes(
 }
 
 /// A gear-80 design of our own with every kind of metadata GemCad writes.
-pub(in crate::io) const STAR80: &str = "GemCad 5.0
+pub(crate) const STAR80: &str = "GemCad 5.0
 g 80 0.0
 y 5 y
 I 1.61

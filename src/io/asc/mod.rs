@@ -87,7 +87,7 @@ mod read;
 mod write;
 
 #[cfg(test)]
-pub(in crate::io) mod fixtures;
+pub(crate) mod fixtures;
 #[cfg(test)]
 mod measure_tests;
 
