@@ -687,7 +687,9 @@ impl Recipe {
     }
 
     fn finish(&self, c: Carved) -> Result<Built> {
-        let open = c.block.open();
+        let mut open = c.block.open();
+        // A stone open at the side is told so first (it is open above or below too).
+        open.sort_by(|a, b| a.z.abs().total_cmp(&b.z.abs()));
         if let Some(n) = open.first() {
             let msg = if n.z > 0.5 {
                 "the stone is open above: no tier closes the crown (add a table, or cut a crown tier to the centre point)"
