@@ -7,6 +7,7 @@ mod materials;
 mod optimize;
 mod photo;
 mod plan;
+mod recipes;
 mod refused;
 mod render;
 mod safety;
