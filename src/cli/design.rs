@@ -65,7 +65,14 @@ pub fn run(a: &DesignArgs) -> Result<()> {
         for n in &inferred.notes {
             eprintln!("note: {n}");
         }
-        io::write_atomic(&a.output, io::recipe::write(&inferred.recipe).as_bytes())?;
+        let mut text = format!(
+            "# Inferred by `facetlab design --from {input}`; building it gives the same solid.\n"
+        );
+        for n in &inferred.notes {
+            text.push_str(&format!("# Note: {n}.\n"));
+        }
+        text.push_str(&io::recipe::write(&inferred.recipe));
+        io::write_atomic(&a.output, text.as_bytes())?;
         eprintln!(
             "wrote {} ({} tiers; `facetlab design {}` builds it back)",
             a.output.display(),

@@ -222,10 +222,17 @@ pub fn infer(cut: &Cut) -> Result<Inferred> {
             .filter(|&i| raw[i].kind() == phase)
             .collect();
         let mut chosen: Option<(usize, Place)> = None;
+        let mut ambiguous = std::collections::BTreeSet::new();
         for &i in &pool {
-            if let Some(p) = relative_place(&mut recipe, &raw[i], &reps(&raw[i]), &c, &mut notes) {
-                chosen = Some((i, p));
-                break;
+            match relative_place(&mut recipe, &raw[i], &reps(&raw[i]), &c) {
+                Ok(p) => {
+                    chosen = Some((i, p));
+                    break;
+                }
+                Err(true) => {
+                    ambiguous.insert(i);
+                }
+                Err(false) => {}
             }
         }
         let (i, place) = chosen.unwrap_or_else(|| {
@@ -235,6 +242,12 @@ pub fn infer(cut: &Cut) -> Result<Inferred> {
                 .find(|&i| raw[i].angle.abs() == 90.0)
                 .unwrap_or(pool[0]);
             let d = raw[i].planes[0].offset;
+            if ambiguous.contains(&i) {
+                notes.push(format!(
+                    "tier {}: the meet it passes through is ambiguous (cut to it, the tier would stop first at another vertex of the same tiers); it is placed by its depth",
+                    raw[i].name
+                ));
+            }
             let anchored = recipe
                 .tiers
                 .iter()
@@ -289,14 +302,13 @@ fn tier_of(l: &Line, indices: Vec<f64>, place: Place) -> RecipeTier {
 }
 
 /// A placement relative to the stone cut so far (centre, meet, girdle, table) that gives
-/// back `l`'s depth, if there is one.
+/// back `l`'s depth; else whether a meet it passes through was ambiguous.
 fn relative_place(
     recipe: &mut Recipe,
     l: &Line,
     reps: &[f64],
     c: &Carved,
-    notes: &mut Vec<String>,
-) -> Option<Place> {
+) -> std::result::Result<Place, bool> {
     let d = l.planes[0].offset;
     let tol = 1e-9 * c.size().max(1.0);
     let mut tries: Vec<Place> = Vec::new();
@@ -339,7 +351,13 @@ fn relative_place(
         } else {
             None
         };
-        if side.is_some() {
+        // A girdle thickness places the first tier of a side ("leave some girdle").
+        let first_of_side = !recipe.tiers.iter().enumerate().any(|(j, _)| {
+            c.resolved
+                .get(j)
+                .is_some_and(|r| r.side == side && r.tilt > 0.0)
+        });
+        if side.is_some() && first_of_side {
             // The girdle thickness that gives this depth: the depth is linear in it.
             let at = |t: f64, recipe: &mut Recipe| depth_for(recipe, l, reps, Place::Girdle(t), c);
             if let (Some(d0), Some(d1)) = (at(0.0, recipe), at(0.5, recipe)) {
@@ -357,23 +375,12 @@ fn relative_place(
     }
     let mut meets_failed = false;
     for p in tries {
-        let got = depth_for(recipe, l, reps, p.clone(), c);
-        match got {
-            Some(g) if (g - d).abs() <= tol => return Some(p),
-            _ => {
-                if matches!(p, Place::Meet(_)) {
-                    meets_failed = true;
-                }
-            }
+        match depth_for(recipe, l, reps, p.clone(), c) {
+            Some(g) if (g - d).abs() <= tol => return Ok(p),
+            _ => meets_failed |= matches!(p, Place::Meet(_)),
         }
     }
-    if meets_failed && !c.planes.is_empty() {
-        notes.push(format!(
-            "tier {}: the meet it passes through is ambiguous (cut to it, the tier would stop first at another vertex of the same tiers); it is placed by its depth",
-            l.name
-        ));
-    }
-    None
+    Err(meets_failed)
 }
 
 /// The depth `place` gives tier `l` on `c` (the tier appended to `recipe` for the asking).
