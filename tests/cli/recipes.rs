@@ -168,3 +168,40 @@ fn a_bad_recipe_is_one_line_naming_the_file_and_the_tier() {
         files(p)
     );
 }
+
+/// A recipe optimized with its tiers free keeps its own placements: the winner's pavilion
+/// halves are still one degree flatter than its mains (`=P1-1`) and still meet P1-G1.
+#[test]
+fn a_recipe_is_optimized_with_its_own_meets() {
+    let dir = tempdir().unwrap();
+    let p = dir.path();
+    std::fs::write(p.join("r.toml"), RECIPE).unwrap();
+    std::fs::write(
+        p.join("opt.toml"),
+        "name = \"r\"\nseed = 1\n[cut]\nfile = \"r.toml\"\n[free]\nP1 = [40.6, 43.5]\nC1 = [30.0, 40.0]\n\
+         [method]\nstarts = 1\nmax_evaluations = 8\n[verify]\nwinners = 0\n",
+    )
+    .unwrap();
+    ok(p, &["optimize", "opt.toml", "--out", "run", "--quiet"]);
+    let asc = std::fs::read_to_string(p.join("run/best.asc")).unwrap();
+    let angle = |name: &str| -> f64 {
+        let line = asc
+            .lines()
+            .find(|l| l.contains(&format!(" n {name} ")))
+            .unwrap_or_else(|| panic!("{name} in {asc}"));
+        line.split_whitespace().nth(1).unwrap().parse().unwrap()
+    };
+    assert!((angle("P2") - (angle("P1") + 1.0)).abs() < 1e-5, "{asc}");
+    assert!(asc.contains("G meet P1-G1"), "{asc}");
+    // A recipe's meets are its own: the design-only keys are refused.
+    std::fs::write(
+        p.join("bad.toml"),
+        "name = \"r\"\n[cut]\nfile = \"r.toml\"\nopen_meets = \"allow\"\n[free]\nP1 = [40.6, 43.5]\n",
+    )
+    .unwrap();
+    super::bad(
+        p,
+        &["optimize", "bad.toml", "--out", "run2"],
+        &["cut.open_meets", "recipe keeps its own meets"],
+    );
+}

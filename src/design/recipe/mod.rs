@@ -49,6 +49,7 @@ mod build;
 mod expr;
 mod index;
 mod infer;
+mod space;
 #[cfg(test)]
 mod tests;
 
@@ -56,6 +57,7 @@ pub use build::{Built, Finding, FindingKind, Step};
 pub use expr::eval_angle;
 pub use index::{parse_indices, symmetric_indices};
 pub use infer::{infer, Inferred};
+pub use space::RecipeSpace;
 
 /// Where a tier is cut: see the module documentation.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,7 +1,9 @@
 //! `[cut]`: the cut space (a family, or a design's tier angles) and the start cut.
 
 use super::fields::At;
+use crate::cut::GemcadRecord;
 use crate::cut::{family, Cut, CutSpace};
+use crate::design::recipe::{Recipe, RecipeSpace};
 use crate::design::{DesignSpace, OpenMeets, MEET_TOL};
 use crate::error::{shown, Error, Result};
 use serde::{Deserialize, Serialize};
@@ -48,6 +50,8 @@ pub(super) struct CutSection {
     pub file: Option<(String, Option<PathBuf>)>,
     /// `facet_changes = "skip"`: free ranges in which the design changes are searched anyway.
     pub skip_changes: bool,
+    /// The GemCad record of a design or recipe (its index and notes choose the material).
+    pub record: Option<GemcadRecord>,
 }
 
 /// Where a `[cut] file` may be read from.
@@ -117,6 +121,28 @@ pub(super) fn validate(
                     format!("{} is out of range; allowed (0, 0.01] of the width W", shown(tol)),
                 ));
             }
+            if let (Designs::Files, Some((recipe, path))) = (designs, load_recipe(file, source, at)?) {
+                for (key, given) in [("open_meets", rc.open_meets.is_some()), ("meet_tol", rc.meet_tol.is_some())] {
+                    if given {
+                        return Err(Error::invalid(
+                            at(&format!("cut.{key}")),
+                            "a recipe keeps its own meets (each tier is cut again as the recipe places it); leave it out",
+                        ));
+                    }
+                }
+                let r = RecipeSpace::new(recipe).map_err(|e| {
+                    Error::invalid(at("cut.file"), format!("{file}: {e}"))
+                })?;
+                if r.keys().is_empty() {
+                    return Err(Error::invalid(
+                        at("cut.file"),
+                        format!("{file}: the recipe has no tier whose angle is a number to turn"),
+                    ));
+                }
+                let record = r.base().record.clone();
+                let r = Arc::new(r);
+                return finish(rc, at, r as Arc<dyn CutSpace>, None, Some((file.clone(), Some(path))), record);
+            }
             let (cut, path) = match designs {
                 Designs::Files => load_design(file, source, at)?,
                 Designs::Only(given) => (given_design(file, given, at)?, None),
@@ -138,6 +164,19 @@ pub(super) fn validate(
             )
         }
     };
+    let record = design.as_ref().and_then(|d| d.base().record.clone());
+    finish(rc, at, space, design, file, record)
+}
+
+/// The `[cut]` section of a space: its start and the facet-changes rule.
+fn finish(
+    rc: &RawCut,
+    at: At,
+    space: Arc<dyn CutSpace>,
+    design: Option<Arc<DesignSpace>>,
+    file: Option<(String, Option<PathBuf>)>,
+    record: Option<GemcadRecord>,
+) -> Result<CutSection> {
     let start = space.complete(&rc.params).map_err(|e| match e {
         Error::Invalid { field, message } => {
             let field = field
@@ -164,7 +203,41 @@ pub(super) fn validate(
         design,
         file,
         skip_changes,
+        record,
     })
+}
+
+/// The recipe `file` names (a `.toml` with `[design]` or `[[tier]]`, relative to the config's
+/// folder) and where it was found; `None` when it is not a recipe.
+fn load_recipe(file: &str, source: &str, at: At) -> Result<Option<(Recipe, PathBuf)>> {
+    let given = Path::new(file);
+    if !given
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
+    {
+        return Ok(None);
+    }
+    let path = if given.is_absolute() {
+        given.to_path_buf()
+    } else {
+        Path::new(source)
+            .parent()
+            .unwrap_or(Path::new(""))
+            .join(given)
+    };
+    let Ok(bytes) = crate::io::read_bytes(&path) else {
+        return Ok(None);
+    };
+    let text = String::from_utf8_lossy(&bytes);
+    if !crate::io::recipe::is_recipe(&text) {
+        return Ok(None);
+    }
+    let stem = given
+        .file_stem()
+        .map_or(String::new(), |s| s.to_string_lossy().to_string());
+    let recipe = crate::io::recipe::parse(&text, file, &stem)
+        .map_err(|e| Error::invalid(at("cut.file"), e.to_string()))?;
+    Ok(Some((recipe, path)))
 }
 
 /// A TOML key as written: bare when it can be, else quoted.

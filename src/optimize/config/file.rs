@@ -228,7 +228,7 @@ impl Config {
         let raw_score = raw.score.clone().unwrap_or_default();
         let mut score = score::validate(&raw_score, &at)?;
         // A design is scored in its own material (its file's index) unless the config says.
-        let own = section.design.as_ref().and_then(|d| d.base().design_ri());
+        let own = section.record.as_ref().and_then(|r| r.ri);
         if let (None, None, Some(n)) = (&raw_score.material, raw_score.ri, own) {
             if let Some(m) = crate::optics::Material::for_index(n) {
                 score.material = m;
@@ -237,10 +237,7 @@ impl Config {
             }
         }
         // A design whose notes name its material (`F Material: ruby`) is scored in it.
-        let record = section
-            .design
-            .as_ref()
-            .and_then(|d| d.base().record.clone());
+        let record = section.record.clone();
         if let (None, None, Some(r)) = (&raw_score.material, raw_score.ri, record) {
             let lines = r.title.iter().chain(&r.footnotes);
             let named = crate::optics::Material::from_design_notes(lines, &score.material)
@@ -384,6 +381,18 @@ impl Config {
                     ),
                     meet_tol: Some(d.model().meet_tol()),
                     params: self.start.clone(),
+                },
+                // A recipe: its file by its full path, its meets its own.
+                (None, Some((given, path))) => RawCut {
+                    family: None,
+                    file: Some(path.as_ref().map_or(given.clone(), |p| {
+                        std::path::absolute(p)
+                            .unwrap_or_else(|_| p.clone())
+                            .display()
+                            .to_string()
+                    })),
+                    params: self.start.clone(),
+                    ..RawCut::default()
                 },
                 _ => RawCut {
                     family: Some(self.space.name().to_string()),
