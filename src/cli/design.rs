@@ -26,6 +26,11 @@ pub struct DesignArgs {
     /// below the critical angle (printed as warnings).
     #[arg(long)]
     pub lenient: bool,
+    /// Also print, for each tier whose angle is a number, how brilliance, its COS half and
+    /// fire change per degree (central differences of the exact scores, the recipe cut again
+    /// at ±0.5°), in the material of the recipe's index.
+    #[arg(long)]
+    pub slopes: bool,
     /// Replace an existing output file (an input is never replaced, even with --force).
     #[arg(long)]
     pub force: bool,
@@ -128,6 +133,9 @@ pub fn run(a: &DesignArgs) -> Result<()> {
         );
     }
     io::write_atomic(&a.output, &bytes)?;
+    if a.slopes {
+        print_slopes(&input)?;
+    }
     eprintln!(
         "wrote {} ({} facets in {} tiers)",
         a.output.display(),
@@ -157,4 +165,34 @@ fn build(path: &str) -> Result<Built> {
         .unwrap_or_default();
     let recipe = io::recipe::parse(&text, path, &stem)?;
     recipe.build().map_err(|e| e.context(path))
+}
+
+/// The table of `--slopes`: each free tier's change of the scores per degree.
+fn print_slopes(path: &str) -> Result<()> {
+    let text = String::from_utf8_lossy(&io::read_bytes(std::path::Path::new(path))?).to_string();
+    let recipe = io::recipe::parse(&text, path, "recipe")?;
+    let index = recipe.index;
+    let space = facetlab::design::recipe::RecipeSpace::new(recipe)?;
+    let mut config = facetlab::metrics::ScoreConfig::default();
+    if let Some(m) = facetlab::optics::Material::for_index(index) {
+        config.material = m;
+    }
+    let slopes = facetlab::optimize::tier_slopes(&space, &config, 0.5)?;
+    println!("per degree steeper (in {}):", config.material.name);
+    println!(
+        "{:<6} {:>8} {:>11} {:>11} {:>9}",
+        "tier", "angle", "brilliance", "COS look", "fire"
+    );
+    for s in &slopes {
+        println!(
+            "{:<6} {:>8.2} {:>+11.4} {:>+11.4} {:>+9.4}{}",
+            s.tier,
+            s.angle,
+            s.brilliance,
+            s.brilliance_cos,
+            s.fire,
+            if s.one_sided { "  (one side)" } else { "" }
+        );
+    }
+    Ok(())
 }

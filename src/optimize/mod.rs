@@ -99,6 +99,7 @@ mod run;
 mod sampling;
 mod score_set;
 mod search;
+mod slopes;
 mod summary;
 mod sweep;
 
@@ -124,6 +125,7 @@ pub use run::{
     RunOptions, RunPage, RunSummary, TOML_WRITER,
 };
 pub use search::{search, verify, Hooks, Outcome};
+pub use slopes::{tier_slopes, TierSlope};
 // The trade-off between scores (`[objective] pareto`).
 pub use pareto::{non_dominated, run_pareto, weight_grid, FrontPoint, ParetoChart, ParetoOutcome};
 // Adapting a design to another index (tangent ratio, and its optimized variant).
