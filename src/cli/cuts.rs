@@ -90,7 +90,17 @@ pub fn parse_sets(sets: &[String]) -> Result<BTreeMap<String, f64>> {
 pub fn load_with_sets(arg: &str, sets: &[String]) -> Result<Cut> {
     let changes = parse_sets(sets)?;
     let cut = io::load_cut(arg)?;
-    facetlab::design::with_set(&cut, &changes).map_err(|e| match e {
+    // A recipe's tiers turn as the recipe places them (its meets, not the solid's).
+    let recipe = match changes.is_empty() {
+        true => None,
+        false => io::recipe::read(std::path::Path::new(arg))?,
+    };
+    let set = match recipe {
+        Some(r) => facetlab::design::recipe::RecipeSpace::new(r)
+            .and_then(|space| facetlab::cut::CutSpace::build(&space, &cut.name, &changes)),
+        None => facetlab::design::with_set(&cut, &changes),
+    };
+    set.map_err(|e| match e {
         // A tier's or parameter's error named by its key; the setting itself is spelled
         // `--set` by `flags::to_flags`.
         Error::Invalid { field, message }

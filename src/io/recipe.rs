@@ -48,6 +48,26 @@ const TIER_KEYS: [&str; 11] = [
 ];
 const PLACES: [&str; 6] = ["meet", "centre", "depth", "scale", "girdle", "table"];
 
+/// The recipe at `path` when it is one (a `.toml` file with `[design]` or `[[tier]]`), else
+/// `None`; errors name the file.
+pub fn read(path: &std::path::Path) -> Result<Option<Recipe>> {
+    if !path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
+        || !path.is_file()
+    {
+        return Ok(None);
+    }
+    let text = String::from_utf8_lossy(&super::read_bytes(path)?).to_string();
+    if !is_recipe(&text) {
+        return Ok(None);
+    }
+    let stem = path
+        .file_stem()
+        .map_or(String::new(), |s| s.to_string_lossy().to_string());
+    parse(&text, &path.display().to_string(), &stem).map(Some)
+}
+
 /// Read a recipe from TOML `text`; `source` (the file name) and the field prefix errors.
 /// `default_name` names a recipe without `name`.
 ///

@@ -68,6 +68,27 @@ fn a_recipe_builds_and_every_command_reads_it() {
     let t_w = a["ratios"]["t_w"].as_f64().unwrap();
     assert!((t_w - 0.55).abs() < 1e-6, "{t_w}");
     ok(p, &["render", "r.toml", "-o", "r.png", "--size", "24"]);
+    // `--set` turns a tier as the recipe places it: the halves (=P1-1) follow the mains.
+    let set = json(p, &["info", "r.toml", "--set", "P1=43", "--json"]);
+    let tier = |n: &str| {
+        set["tiers"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|t| t["name"] == n)
+            .unwrap()["angle"]
+            .as_f64()
+            .unwrap()
+    };
+    assert!(
+        (tier("P1") - 43.0).abs() < 1e-9 && (tier("P2") - 42.0).abs() < 1e-9,
+        "{set}"
+    );
+    bad(
+        p,
+        &["info", "r.toml", "--set", "P2=40"],
+        &["--set P2", "not a free tier"],
+    );
 }
 
 #[test]
