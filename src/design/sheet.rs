@@ -125,15 +125,15 @@ fn section_of(t: &Tier) -> Section {
     }
 }
 
-/// The point where `t`'s facet planes cross the axis, when they all cross it at one point.
-fn axis_point(cut: &Cut, t: &Tier) -> Option<DVec3> {
+/// Where `t`'s facets reach the axis when cut first: the one point where its planes cross the
+/// axis, `Some(true)` when it is a vertex of the finished stone (the centre point), `Some(false)`
+/// when only a flat culet cuts it away (a temporary centre point, GemCad's TCP).
+fn axis_point(cut: &Cut, t: &Tier) -> Option<bool> {
     let mut z0: Option<f64> = None;
-    for f in cut.solid.facets() {
-        if !t.facets.iter().any(|tf| tf.name == f.name) {
-            continue;
-        }
+    let mine = |name: &str| t.facets.iter().any(|tf| tf.name == name);
+    for f in cut.solid.facets().iter().filter(|f| mine(&f.name)) {
         let n = f.plane.normal;
-        if n.z.abs() < 1e-9 {
+        if n.z.abs() < 1e-9 || n.x.hypot(n.y) < 1e-9 {
             return None;
         }
         let z = f.plane.offset / n.z;
@@ -143,12 +143,20 @@ fn axis_point(cut: &Cut, t: &Tier) -> Option<DVec3> {
         }
     }
     let p = DVec3::new(0.0, 0.0, z0?);
-    // The point must be a vertex of the finished stone: the tier really reaches it.
-    cut.solid
-        .vertices()
+    if cut.solid.vertices().iter().any(|v| v.distance(p) < 1e-5) {
+        return Some(true);
+    }
+    // Inside every other facet but a flat culet: the tier reaches it until the culet is cut.
+    let culet = |n: DVec3| n.x.hypot(n.y) < 1e-9 && n.z < 0.0;
+    let culet_cuts = cut
+        .solid
+        .facets()
         .iter()
-        .any(|v| v.distance(p) < 1e-5)
-        .then_some(p)
+        .any(|f| culet(f.plane.normal) && f.plane.normal.dot(p) > f.plane.offset + TOL);
+    let inside = cut.solid.facets().iter().all(|f| {
+        mine(&f.name) || culet(f.plane.normal) || f.plane.normal.dot(p) <= f.plane.offset + TOL
+    });
+    (culet_cuts && inside).then_some(false)
 }
 
 /// The steps of `cut`'s cutting sheet, in cutting order. Instructions are the design's own
@@ -325,8 +333,12 @@ fn infer(
             }
         }
     }
-    if step.angle != 0.0 && axis_point(cut, t).is_some() {
-        return "cut to centre point".to_string();
+    match axis_point(cut, t) {
+        Some(true) if step.angle != 0.0 => return "cut to centre point".to_string(),
+        Some(false) if step.angle != 0.0 => {
+            return "cut to temporary centre point (TCP)".to_string()
+        }
+        _ => {}
     }
     let d = step.depth.abs();
     match size_mm {
@@ -425,30 +437,120 @@ pub fn sheet_record(cut: &Cut, ri: f64) -> GemcadRecord {
 mod tests {
     use super::*;
 
+    /// A small brilliant with the designer's instructions on three of its lines.
+    const MINI: &str = "GemCad 5.0
+g 96 0.0
+y 8 y
+I 1.54
+H Mini
+H by a tester
+a -90.000000 1.000000 3 n G 9 15 21 27 33 39 45 51 57 63 69 75 81 87 93
+a -41.000000 0.691553 96 n P 12 24 36 48 60 72 84 G Cut to TCP
+a 0.000000 -0.900000 96 n K G Small culet
+a 34.000000 0.595019 96 n B 12 24 36 48 60 72 84 G Leave some girdle
+a 0.000000 0.332598 96 n T
+";
+
+    fn rank(s: Section) -> u8 {
+        s as u8
+    }
+
     #[test]
-    fn sheet_steps_print() {
-        for name in [
-            "tolkowsky",
-            "emerald",
-            "oval",
-            "princess",
-            "optim/quartz-brilliant.asc",
-        ] {
-            let cut = crate::io::load_cut(name).unwrap();
-            let steps = sheet_steps(&cut, Some(6.5));
-            eprintln!("== {name}");
-            for s in &steps {
-                eprintln!(
-                    "{:?} {:4} {:16} {:8.2} {:>3} {}  [{}]",
+    fn a_round_is_cut_preform_pavilion_crown_table_with_inferred_instructions() {
+        let cut = crate::io::load_cut("tolkowsky").unwrap();
+        let steps = sheet_steps(&cut, Some(6.5));
+        let got: Vec<(Section, &str, usize, &str)> = steps
+            .iter()
+            .map(|s| {
+                (
                     s.section,
-                    s.name,
-                    s.tier,
-                    s.angle,
+                    s.tier.as_str(),
                     s.indices.len(),
-                    s.instruction,
-                    s.indices.join("-")
+                    s.instruction.as_str(),
+                )
+            })
+            .collect();
+        assert_eq!(
+            got[..3],
+            [
+                (Section::Preform, "pavilion-main", 8, "cut to centre point"),
+                (Section::Preform, "girdle", 16, "level girdle"),
+                (Section::Pavilion, "lower-half", 16, "meet P1-G1"),
+            ],
+            "{steps:#?}"
+        );
+        assert_eq!(steps.last().unwrap().section, Section::Table);
+        assert!(steps
+            .windows(2)
+            .all(|w| rank(w[0].section) <= rank(w[1].section)));
+        // Every facet is on exactly one step, and the names are short and distinct.
+        let owner = step_of_facets(&cut, &steps);
+        assert!(owner.iter().all(Option::is_some));
+        let total: usize = steps.iter().map(|s| s.indices.len()).sum();
+        assert_eq!(total, cut.solid.facets().len());
+        for (k, s) in steps.iter().enumerate() {
+            assert!(s.name.chars().count() <= 3, "{}", s.name);
+            assert!(steps[..k].iter().all(|t| t.name != s.name));
+        }
+        // The bezel: 34.5° as the preset says, its depth in mm at 6.5 mm.
+        let bezel = steps.iter().find(|s| s.tier == "bezel").unwrap();
+        assert!((bezel.angle - 34.5).abs() < 1e-9);
+        assert_eq!(
+            bezel.instruction,
+            format!("cut to depth {:.2} mm at 6.5 mm", bezel.depth * 6.5)
+        );
+        // Without a size, in W.
+        let w = sheet_steps(&cut, None);
+        assert!(w[3].instruction.ends_with(" W"), "{}", w[3].instruction);
+        // Indices ascending, as a cutter reads them.
+        assert_eq!(
+            steps[0].indices,
+            ["12", "24", "36", "48", "60", "72", "84", "96"]
+        );
+    }
+
+    #[test]
+    fn a_designs_own_instructions_and_names_are_kept() {
+        let cut = crate::io::asc::parse(MINI.as_bytes(), "mini")
+            .unwrap()
+            .to_cut("mini")
+            .unwrap();
+        let steps = sheet_steps(&cut, None);
+        let got: Vec<(&str, Section, &str)> = steps
+            .iter()
+            .map(|s| (s.name.as_str(), s.section, s.instruction.as_str()))
+            .collect();
+        assert_eq!(
+            got,
+            [
+                ("P", Section::Preform, "Cut to TCP"),
+                ("G", Section::Preform, "level girdle"),
+                ("K", Section::Pavilion, "Small culet"),
+                ("B", Section::Crown, "Leave some girdle"),
+                ("T", Section::Table, "cut to depth 0.1631 W"),
+            ]
+        );
+    }
+
+    #[test]
+    fn the_stone_cut_so_far_grows_tier_by_tier_to_the_finished_stone() {
+        for name in ["tolkowsky", "emerald", "princess", "oval"] {
+            let cut = crate::io::load_cut(name).unwrap();
+            let steps = sheet_steps(&cut, None);
+            let mut last = 0;
+            let mut volume = f64::INFINITY;
+            for k in 0..=steps.len() {
+                let solid = cut_so_far(&cut, &steps[..k]).unwrap();
+                let real = solid.facets().iter().filter(|f| f.tier != UNCUT).count();
+                assert!(
+                    k == 0 || real > last,
+                    "{name} step {k}: {real} facets after {last}"
                 );
+                assert!(solid.volume() <= volume + 1e-12, "{name} step {k}");
+                (last, volume) = (real, solid.volume());
             }
+            assert_eq!(last, cut.solid.facets().len(), "{name}");
+            assert!((volume - cut.solid.volume()).abs() < 1e-9, "{name}");
         }
     }
 }

@@ -412,8 +412,9 @@ fn rows(steps: &[SheetStep], size: f64) -> (String, f64) {
         let lines = idx.len().max(ins.len()).max(1);
         let _ = writeln!(
             out,
-            r#"<g class="step" data-step="{}" data-name="{}" data-angle="{:.2}" data-facets="{}">"#,
+            r#"<g class="step" data-step="{}" data-section="{}" data-name="{}" data-angle="{:.2}" data-facets="{}">"#,
             k + 1,
+            section_id(s.section),
             esc(&s.name),
             s.angle.abs(),
             s.indices.len()
@@ -447,6 +448,17 @@ fn rows(steps: &[SheetStep], size: f64) -> (String, f64) {
         y += 0.5 * size;
     }
     (out, y)
+}
+
+fn section_id(s: crate::design::Section) -> &'static str {
+    use crate::design::Section::*;
+    match s {
+        Preform => "preform",
+        Pavilion => "pavilion",
+        Girdle => "girdle",
+        Crown => "crown",
+        Table => "table",
+    }
 }
 
 /// The sheet's body (everything inside `<svg>`), A4 in points.
