@@ -150,6 +150,35 @@ pub fn generate(a: &GenerateArgs) -> Result<()> {
     Ok(())
 }
 
+/// The material of a cut's weight: `chosen`, else a design's own (a GemCad file's index), else
+/// diamond; the design's note said as `info` says it.
+pub(crate) fn weight_material(chosen: Option<Material>, cut: &Cut) -> Result<Material> {
+    let default = chosen.clone().unwrap_or_else(Material::diamond);
+    // A design is traced in its own material unless one was chosen (only that is said).
+    let stone = StoneChoice::new(
+        default.clone(),
+        chosen.is_some(),
+        None,
+        None,
+        super::flags::STONE_FIELDS.colour,
+    )?;
+    Ok(stone
+        .stones(
+            std::slice::from_ref(cut),
+            &super::flags::STONE_FIELDS,
+            ColourNotes::Traced,
+            &mut |kind, line| {
+                if kind == NoteKind::Design {
+                    super::flags::say(kind, line)
+                }
+            },
+        )?
+        .materials
+        .into_iter()
+        .next()
+        .unwrap_or(default))
+}
+
 /// `facetlab info`.
 pub fn info(a: &InfoArgs) -> Result<()> {
     if !(a.diameter_mm.is_finite() && a.diameter_mm > 0.0 && a.diameter_mm < 1000.0) {
@@ -170,32 +199,8 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             ),
         ));
     }
-    let chosen = a.material.clone();
     let cut = load_with_sets(&a.cut, &a.set)?;
-    let default = chosen.clone().unwrap_or_else(Material::diamond);
-    // A design is traced in its own material unless one was chosen (only that is said).
-    let stone = StoneChoice::new(
-        default.clone(),
-        chosen.is_some(),
-        None,
-        None,
-        super::flags::STONE_FIELDS.colour,
-    )?;
-    let material = stone
-        .stones(
-            std::slice::from_ref(&cut),
-            &super::flags::STONE_FIELDS,
-            ColourNotes::Traced,
-            &mut |kind, line| {
-                if kind == NoteKind::Design {
-                    super::flags::say(kind, line)
-                }
-            },
-        )?
-        .materials
-        .into_iter()
-        .next()
-        .unwrap_or(default);
+    let material = weight_material(a.material.clone(), &cut)?;
     let lower = a.cut.to_ascii_lowercase();
     if lower.ends_with(".obj") || lower.ends_with(".stl") {
         if let Ok((_, Some(note))) = facetlab::io::mesh::read_with_note(&a.cut) {

@@ -17,6 +17,7 @@ pub mod report;
 pub mod retarget;
 pub mod score;
 pub mod serve;
+mod sheet;
 pub mod trace;
 #[cfg(test)]
 mod walk;
@@ -57,6 +58,10 @@ pub enum Command {
     Design(design::DesignArgs),
     /// Show a cut's proportions, tiers, facet count, volume and carat weight.
     Info(cuts::InfoArgs),
+    /// A cutting sheet to print: the design's header and ratios, its views with every facet's
+    /// name and index, one row per tier in cutting order (.html, .svg or .pdf, one A4 page);
+    /// `--mode`: the cutting mode, one step per screen with the stone as cut so far (.html).
+    Sheet(sheet::SheetArgs),
     /// List the bundled presets and the families with their parameters (defaults, ranges).
     List(cuts::ListArgs),
     /// List the materials: n_D, B–G dispersion, density, which ray of a birefringent stone,
@@ -116,6 +121,7 @@ pub fn run(cli: Cli) -> Result<Exit> {
         Command::Generate(a) => done(cuts::generate(&a)),
         Command::Design(a) => done(design::run(&a)),
         Command::Info(a) => done(cuts::info(&a)),
+        Command::Sheet(a) => done(sheet::run(&a)),
         Command::List(a) => done(cuts::list(&a)),
         Command::Materials(a) => done(materials::run(&a)),
         Command::Trace(a) => done(trace::run(&a)),

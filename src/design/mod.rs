@@ -26,6 +26,8 @@
 //! - `meets.rs`: meets of a solid, the depth solve, a small dense least-squares solver.
 //! - `reangle.rs`: tiers turned to new angles with the meets kept (or reported open).
 //! - `space.rs`: [`DesignSpace`], a design's tier angles as a cut space; [`with_set`].
+//! - `sheet.rs`: a cutting sheet's steps ([`SheetStep`], [`sheet_steps`]): the tiers in cutting
+//!   order with their instructions, and the stone as cut so far ([`cut_so_far`]).
 //! - `ties.rs`: tied tiers ([`Tie`]: `P1+P2` turned by one change, `C1=C2` set to one angle),
 //!   the smallest tie that keeps a refused tier's meets, and the walk of free ranges before a
 //!   search ([`Breach`]).
@@ -35,6 +37,7 @@
 pub mod meets;
 pub mod reangle;
 pub mod recipe;
+mod sheet;
 mod space;
 #[cfg(test)]
 pub(crate) mod tests;
@@ -44,6 +47,9 @@ mod ties;
 
 pub use meets::{find_meets, Meet};
 pub use reangle::{TierModel, MEET_TOL};
+pub use sheet::{
+    cut_so_far, sheet_gear, sheet_record, sheet_steps, step_of_facets, Section, SheetStep, UNCUT,
+};
 pub use space::{with_set, DesignSpace, OpenMeets, OpenedMeet, CUT_PARAMETER, KEPT};
 pub use tie_key::{Breach, Tie, TieKind};
 pub use tiers::{fixed, tiers, token, Gear, Tier, TierFacet, ANGLE_DECIMALS, DEPTH_DECIMALS};

@@ -24,6 +24,12 @@ pub fn register_font() {
 }
 
 /// Black text in the bundled font, `size` pixels.
+/// The bundled DejaVu Sans, the text of every picture and page (for drawing elsewhere, e.g. a PDF).
+pub fn font_bytes() -> &'static [u8] {
+    FONT
+}
+
+/// Plotters' text style of the bundled font at `size`, black.
 pub fn font(size: u32) -> TextStyle<'static> {
     ("sans-serif", size).into_font().color(&BLACK)
 }

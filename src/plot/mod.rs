@@ -45,7 +45,7 @@ pub mod text;
 pub mod trace;
 
 pub(crate) use figure::FONT;
-pub use figure::{font, register_font, save, save_to, with_ext, DrawResult, Figure};
+pub use figure::{font, font_bytes, register_font, save, save_to, with_ext, DrawResult, Figure};
 pub use legends::{box_key, every_30, legend, line_key, LegendStyle};
 pub use palette::{SERIES, TAB10};
 pub use paths::{

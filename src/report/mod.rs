@@ -16,13 +16,15 @@
 //! chart, an inline SVG); `run.rs` makes an optimizer run's `report.html` from
 //! what the run returned ([`run_page`], the [`RunPage`](crate::optimize::RunPage) the binary
 //! hands to a run); `plan.rs` a rough plan's page ([`plan_page`]) and the pictures of its run folder
-//! ([`PlanDrawings`]). The report sits on top of the library: it may import every floor below it
+//! ([`PlanDrawings`]); `sheet.rs` the cutting sheet and the cutting mode ([`sheet::sheet_svg`],
+//! [`sheet::cutting_mode_html`]). The report sits on top of the library: it may import every floor below it
 //! (the optimizer, the plots and everything under them); nothing in the library imports it.
 
 mod cut_report;
 mod page;
 mod plan;
 mod run;
+pub mod sheet;
 mod tilt;
 
 pub use cut_report::{

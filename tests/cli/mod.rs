@@ -13,6 +13,7 @@ mod render;
 mod safety;
 mod serve;
 mod shards;
+mod sheet;
 mod untrusted;
 
 use std::path::Path;
