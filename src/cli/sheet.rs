@@ -95,7 +95,17 @@ pub fn run(a: &SheetArgs) -> Result<()> {
         (None, d) => d,
     };
     let o = SheetOptions { size_mm, material };
-    let steps = facetlab::design::sheet_steps(&cut, size_mm);
+    // A recipe's sheet: its own cutting order and instructions.
+    let recipe = io::recipe::read(std::path::Path::new(&a.cut))?;
+    let steps = match recipe {
+        Some(r) => {
+            let space = facetlab::design::recipe::RecipeSpace::new(r)?;
+            let values = super::cuts::parse_sets(&a.set)?;
+            let built = space.recipe_at(&values)?.build()?;
+            built.sheet_steps(size_mm)
+        }
+        None => facetlab::design::sheet_steps(&cut, size_mm),
+    };
     let bytes = if a.mode {
         cutting_mode_html(&cut, &steps, &o)?.into_bytes()
     } else {

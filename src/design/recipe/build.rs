@@ -941,3 +941,66 @@ fn instruction(t: &RecipeTier, r: &Resolved, depth: f64) -> String {
         _ => what,
     }
 }
+
+impl Built {
+    /// The cutting sheet's steps of the built recipe: the recipe's own order and
+    /// instructions (a depth in mm at a width of `size_mm` when given), with the sheet's
+    /// sections, short names and indices ([`crate::design::sheet_steps`]).
+    ///
+    /// ```
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/cuts/recipes/brilliant.toml");
+    /// let text = std::fs::read_to_string(path).unwrap();
+    /// let built = facetlab::io::recipe::parse(&text, path, "b").unwrap().build().unwrap();
+    /// let steps = built.sheet_steps(Some(6.5));
+    /// let names: Vec<&str> = steps.iter().map(|s| s.tier.as_str()).collect();
+    /// assert_eq!(names, ["P1", "G1", "P2", "C1", "C2", "C3", "T"]);
+    /// assert_eq!(steps[2].instruction, "meet P1-G1");
+    /// ```
+    pub fn sheet_steps(&self, size_mm: Option<f64>) -> Vec<crate::design::SheetStep> {
+        let mut sheet = crate::design::sheet_steps(&self.cut, size_mm);
+        let mut out = Vec::new();
+        for s in &self.steps {
+            let Some(k) = sheet.iter().position(|t| t.tier == s.tier) else {
+                continue;
+            };
+            let mut step = sheet.remove(k);
+            step.instruction = match (s.instruction.starts_with("cut to depth"), size_mm) {
+                (true, Some(mm)) => {
+                    format!("cut to depth {:.2} mm at {} mm", s.depth * mm, shown(mm))
+                }
+                _ => s.instruction.clone(),
+            };
+            out.push(step);
+        }
+        // Tiers the sheet groups apart (none for a recipe's own tiers) keep their place.
+        out.extend(sheet);
+        // Sections in the recipe's order: the preform (CAM) is the tiers up to the first
+        // girdle tier when they are cut to the centre point or are the girdle; then each
+        // tier's side.
+        use crate::design::Section;
+        let preform = self
+            .steps
+            .iter()
+            .position(|s| s.angle.abs() == 90.0)
+            .filter(|&g| {
+                self.steps[..g]
+                    .iter()
+                    .all(|s| s.instruction.starts_with("cut to centre point"))
+            });
+        for (k, step) in out.iter_mut().enumerate() {
+            let a = step.angle;
+            step.section = if preform.is_some_and(|g| k <= g) {
+                Section::Preform
+            } else if a.abs() == 90.0 {
+                Section::Girdle
+            } else if a < 0.0 || (a == 0.0 && step.depth < 0.0) {
+                Section::Pavilion
+            } else if a == 0.0 {
+                Section::Table
+            } else {
+                Section::Crown
+            };
+        }
+        out
+    }
+}
