@@ -191,6 +191,8 @@ pub struct SawCut {
     pub offset: f64,
     /// The volume the kerf takes from the piece (mm³).
     pub kerf_loss_mm3: f64,
+    /// The piece it cuts (mm).
+    pub piece_solid: Polyhedron,
 }
 
 /// One stone of a layout: its piece, its plan, the half-spaces that keep inclusions out and
@@ -598,6 +600,7 @@ impl<'a> LayoutPlanner<'a> {
                 normal: u,
                 offset: c,
                 kerf_loss_mm3: loss,
+                piece_solid: pieces[i].0.solid.clone(),
             });
             let va = self
                 .stone(&a, Effort::Screen)
@@ -703,6 +706,42 @@ impl<'a> LayoutPlanner<'a> {
         }
         (u, c, best)
     }
+}
+
+/// Plan a layout of `config.stones` stones in `rough` keeping off `inclusions`, for
+/// `material`'s density: `tick` after each saw candidate, a raised `stop` ends it (an
+/// error). The colour objective plans one stone at a time and is refused here.
+pub fn plan_layout(
+    rough: &Rough,
+    config: &PlanConfig,
+    material: &crate::optics::Material,
+    inclusions: &[Inclusion],
+    tick: &(dyn Fn() + Sync),
+    stop: Option<&AtomicBool>,
+) -> Result<Layout> {
+    if config.objective == Objective::Colour {
+        return Err(Error::invalid(
+            "objective.kind",
+            "\"colour\" ranks the single plans of each family; a layout of several stones or with inclusions is ranked by weight or value",
+        ));
+    }
+    if rough.ball.is_some() {
+        return Err(Error::invalid(
+            "ROUGH",
+            "the sphere is an exact ball for single plans; a layout of several stones or with inclusions needs a polyhedral rough",
+        ));
+    }
+    let mut planner = LayoutPlanner::new(rough, config, material.density, inclusions);
+    if let Some(s) = stop {
+        planner = planner.with_stop(s);
+    }
+    planner.plan(tick)
+}
+
+/// How many saw candidates [`LayoutPlanner::plan`] judges at most (for a progress bar).
+pub fn candidates(config: &PlanConfig) -> u64 {
+    let per_piece = (13 * config.saw_offsets) as u64;
+    (1..config.stones as u64).map(|k| k * per_piece).sum()
 }
 
 /// The smallest and largest `u·v` over a solid's vertices.
