@@ -19,10 +19,13 @@
 //!   table whose `included` factor is set, a stone may instead keep the inclusions inside,
 //!   its value times that factor; the better of the two is kept;
 //! - the **saw plan** is grown greedily: for every piece, every direction of [`directions`]
-//!   (13 in the rough's principal frame: its axes, their face and body diagonals) and
+//!   (13 in the rough's principal frame: its axes, their face and body diagonals) and of the
+//!   normals of the rough's 6 largest faces and the directions to its 6 farthest corners
+//!   (with those tied with them), and
 //!   `saw_offsets` offsets across the piece, the two halves' best stones are found by a short
-//!   search (two starts); the cut that adds most to the total is refined (its offset by
-//!   golden section, its direction by tilts of 8° and 3°) and made, until `stones` pieces or
+//!   search (two starts); the best 4 cuts (of different pieces or directions) are refined
+//!   (the offset by golden section, the direction by tilts of 12°, 6°, 3° and 1.5°) and the
+//!   best of them made, until `stones` pieces or
 //!   no cut adds value. The final pieces' stones are then searched with the config's full
 //!   search. Candidates run in parallel and are gathered in order, so the layout is the same
 //!   on any number of threads; directions in the principal frame make a turned and moved
@@ -63,6 +66,12 @@ const PROXY: [[f64; 3]; 12] = {
         [-P, 0.0, -1.0],
     ]
 };
+
+/// Saw directions taken from the rough's largest faces, besides the 13 of [`directions`].
+const FACE_DIRECTIONS: usize = 6;
+
+/// Saw candidates refined per cut (the best of different pieces or directions).
+const REFINED: usize = 4;
 
 /// The directions of the support planes that, with the hull's own faces, bound an
 /// inclusion grown by its margin (the 26 of a cube's faces, edges and corners).
@@ -163,7 +172,13 @@ impl Inclusion {
         }
         let bytes = std::fs::read(path).map_err(|e| Error::io(&shown, e))?;
         let mesh = read_triangles(&bytes, &ext, &shown)?;
-        mesh.check_closed(&shown)?;
+        mesh.check_closed(&shown).map_err(|e| match e {
+            Error::Parse { source, message } => Error::Parse {
+                source,
+                message: message.replace("a rough must", "an inclusion must"),
+            },
+            other => other,
+        })?;
         if mesh.vertices.iter().any(|p| !p.is_finite()) {
             return Err(Error::parse(
                 &shown,
@@ -558,7 +573,64 @@ impl<'a> LayoutPlanner<'a> {
             .map_or(0.0, |s| s.plan.objective);
         pieces.push((whole, v0));
         let mut saw: Vec<SawCut> = Vec::new();
-        let dirs = directions(self.frame);
+        // The normals of the rough's largest faces (a crystal is sawn along its faces), the
+        // directions to its farthest corners, then the principal frame's (a symmetric
+        // rough's principal frame is any frame: its own directions come first).
+        let mut dirs: Vec<DVec3> = Vec::new();
+        let mut faces: Vec<(f64, DVec3)> = (0..self.rough.solid.facets().len())
+            .map(|i| {
+                let poly = self.rough.solid.facet_polygon(i);
+                let area = (1..poly.len().saturating_sub(1))
+                    .map(|k| 0.5 * (poly[k] - poly[0]).cross(poly[k + 1] - poly[0]).length())
+                    .sum::<f64>();
+                (area, self.rough.solid.facets()[i].plane.normal)
+            })
+            .collect();
+        faces.sort_by(|a, b| b.0.total_cmp(&a.0));
+        // Faces as large as the last one kept are all kept (a symmetric rough's equal faces
+        // are taken together, whatever their order).
+        let least = faces
+            .get(FACE_DIRECTIONS.saturating_sub(1))
+            .map_or(0.0, |f| f.0 * (1.0 - 1e-6));
+        let apart = |dirs: &[DVec3], n: DVec3| {
+            dirs.iter()
+                .all(|d| d.dot(n).abs() < 2f64.to_radians().cos())
+        };
+        for (area, n) in faces {
+            if area < least || dirs.len() >= 2 * FACE_DIRECTIONS {
+                break;
+            }
+            if apart(&dirs, n) {
+                dirs.push(n);
+            }
+        }
+        // And the directions from the centroid to its farthest corners (a crystal's tips).
+        let centre = self.rough.solid.centroid();
+        let mut tips: Vec<(f64, DVec3)> = self
+            .rough
+            .solid
+            .vertices()
+            .iter()
+            .map(|v| (v.distance(centre), (*v - centre).normalize()))
+            .collect();
+        tips.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let least = tips
+            .get(FACE_DIRECTIONS.saturating_sub(1))
+            .map_or(0.0, |t| t.0 * (1.0 - 1e-6));
+        let cap = dirs.len() + 2 * FACE_DIRECTIONS;
+        for (d, n) in tips {
+            if d < least || dirs.len() >= cap {
+                break;
+            }
+            if apart(&dirs, n) {
+                dirs.push(n);
+            }
+        }
+        for n in directions(self.frame) {
+            if apart(&dirs, n) {
+                dirs.push(n);
+            }
+        }
         let m = self.config.saw_offsets;
         while pieces.len() < self.config.stones && !self.stopped() {
             // Every piece × direction × offset, judged in parallel, gathered in order.
@@ -580,18 +652,40 @@ impl<'a> LayoutPlanner<'a> {
                     g
                 })
                 .collect();
-            let Some((k, &g)) = gains
+            // The best few candidates (at most one per piece and direction) refined, the
+            // best refined one made.
+            let mut order: Vec<usize> =
+                (0..cands.len()).filter(|&k| gains[k].is_finite()).collect();
+            order.sort_by(|&x, &y| gains[y].total_cmp(&gains[x]).then(x.cmp(&y)));
+            let mut picked: Vec<usize> = Vec::new();
+            for k in order {
+                if picked.len() >= REFINED {
+                    break;
+                }
+                let (i, u, ..) = cands[k];
+                if !picked.iter().any(|&q| cands[q].0 == i && cands[q].1 == u) {
+                    picked.push(k);
+                }
+            }
+            let refined: Vec<(usize, DVec3, f64, f64)> = picked
+                .par_iter()
+                .map(|&k| {
+                    let (i, u, c, step) = cands[k];
+                    let (u, c, v) = self.refine(&pieces[i].0, u, c, step, gains[k] + pieces[i].1);
+                    (i, u, c, v - pieces[i].1)
+                })
+                .collect();
+            let Some(&(i, u, c, g)) = refined
                 .iter()
                 .enumerate()
-                .max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(&a.0)))
+                .max_by(|a, b| a.1 .3.total_cmp(&b.1 .3).then(b.0.cmp(&a.0)))
+                .map(|(_, r)| r)
             else {
                 break;
             };
             if g.is_nan() || g <= 1e-9 * pieces.iter().map(|p| p.1).sum::<f64>().max(1e-300) {
                 break;
             }
-            let (i, u, c, step) = cands[k];
-            let (u, c, _) = self.refine(&pieces[i].0, u, c, step, g + pieces[i].1);
             let Some((a, b, loss)) = self.saw(&pieces[i].0, u, c) else {
                 break;
             };
@@ -669,7 +763,7 @@ impl<'a> LayoutPlanner<'a> {
                 (c, best) = (x, f);
             }
         }
-        for deg in [8.0f64, 3.0] {
+        for deg in [12.0f64, 6.0, 3.0, 1.5] {
             // Axes across the normal taken from the rough's frame (so a turned rough tilts
             // the same way).
             let e = [
@@ -738,9 +832,9 @@ pub fn plan_layout(
     planner.plan(tick)
 }
 
-/// How many saw candidates [`LayoutPlanner::plan`] judges at most (for a progress bar).
+/// About how many saw candidates [`LayoutPlanner::plan`] judges at most (for a progress bar).
 pub fn candidates(config: &PlanConfig) -> u64 {
-    let per_piece = (13 * config.saw_offsets) as u64;
+    let per_piece = ((13 + 4 * FACE_DIRECTIONS) * config.saw_offsets) as u64;
     (1..config.stones as u64).map(|k| k * per_piece).sum()
 }
 
