@@ -142,7 +142,10 @@ pub fn run(a: &PlanArgs) -> Result<Exit> {
         .map(|p| Inclusion::from_mesh(p, config.margin_mm))
         .collect::<Result<_>>()?;
     for p in &a.inclusions {
-        facetlab::io::guard::refuse_overwrite(&[("--out", a.out.clone())], &[p.clone()])?;
+        facetlab::io::guard::refuse_overwrite(
+            &[("--out", a.out.clone())],
+            std::slice::from_ref(p),
+        )?;
     }
     // Outputs: a new or empty folder that is none of the inputs (the rough, the config, the
     // price table it names).
