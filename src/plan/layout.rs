@@ -12,7 +12,7 @@
 //!   inner parallel body of a convex piece, exact) and outside every inclusion grown by its
 //!   margin: an inclusion that the piece still holds is kept out by one more half-space, the
 //!   far side of one face of its grown hull ([`Inclusion::grown`]), chosen per inclusion in
-//!   turn as the one that leaves the largest ball-like proxy ([`PROXY`]) inside. So each
+//!   turn as the one that leaves the largest ball-like proxy (a regular icosahedron) inside. So each
 //!   stone's containment stays the exact program of [`super::fit`] over the piece's planes
 //!   (its polyhedron inside, not its bounding box), searched over orientation and
 //!   proportions by the single-stone [`Planner`] treating the region as a rough. With a price
