@@ -15,9 +15,10 @@ use super::outputs::Exit;
 use super::progress;
 use facetlab::error::{Error, Result};
 use facetlab::optics::Material;
-use facetlab::plan::config::check_families;
+use facetlab::plan::config::{check_families, MAX_GAP_MM, MAX_STONES};
 use facetlab::plan::{
-    check_out, load_rough, plan_families, plan_warnings, write_folder, PlanConfig, Run, CRYSTALS,
+    check_out, load_rough, plan_families, plan_layout, plan_warnings, write_folder, Inclusion,
+    PlanConfig, Run, CRYSTALS,
 };
 use facetlab::report::PlanDrawings;
 use std::path::{Path, PathBuf};
@@ -53,6 +54,31 @@ pub struct PlanArgs {
         value_parser = super::flags::whole("--top", 1, 50)
     )]
     pub top: Option<u64>,
+    /// Stones to place in the rough (1–8; default the config's, 1): 2 and more saw the rough
+    /// into pieces, one stone each, ranked by total value (docs/plan.md).
+    #[arg(
+        long,
+        value_name = "N",
+        allow_hyphen_values = true,
+        value_parser = super::flags::whole("--stones", 1, MAX_STONES as u64)
+    )]
+    pub stones: Option<u64>,
+    /// The saw's kerf in mm (default the config's, 0.30).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true,
+          value_parser = super::flags::real("--kerf", 0.0, MAX_GAP_MM, "the saw's kerf in mm"))]
+    pub kerf: Option<f64>,
+    /// The polishing allowance per stone in mm (default the config's, 0.20).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true,
+          value_parser = super::flags::real("--allowance", 0.0, MAX_GAP_MM, "the polishing allowance in mm"))]
+    pub allowance: Option<f64>,
+    /// An inclusion: a closed .obj or .stl mesh in mm in the rough's coordinates (repeat for
+    /// more); no stone comes within the margin of its convex hull.
+    #[arg(long = "inclusion", value_name = "FILE")]
+    pub inclusions: Vec<PathBuf>,
+    /// How far stones keep from an inclusion, mm (default the config's, 0.30).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true,
+          value_parser = super::flags::real("--margin", 0.0, MAX_GAP_MM, "the inclusions' margin in mm"))]
+    pub margin: Option<f64>,
     /// The run folder to write (must not exist, or be empty).
     #[arg(short = 'o', long = "out", value_name = "DIR")]
     pub out: PathBuf,
@@ -90,8 +116,37 @@ pub fn run(a: &PlanArgs) -> Result<Exit> {
         Material::by_name(m)?;
         config.material = m.clone();
     }
+    if let Some(n) = a.stones {
+        config.stones = n as usize;
+    }
+    if let Some(k) = a.kerf {
+        config.kerf_mm = k;
+    }
+    if let Some(k) = a.allowance {
+        config.allowance_mm = k;
+    }
+    if let Some(k) = a.margin {
+        config.margin_mm = k;
+    }
     let material = Material::by_name(&config.material)?;
     let size = a.size_mm;
+    if !a.inclusions.is_empty() && size.is_some() && !CRYSTALS.contains(&a.rough.as_str()) {
+        return Err(Error::invalid(
+            "--inclusion",
+            "a mesh rescaled by --size-mm has no coordinates the inclusions could share; give the rough in mm without --size-mm",
+        ));
+    }
+    let inclusions: Vec<Inclusion> = a
+        .inclusions
+        .iter()
+        .map(|p| Inclusion::from_mesh(p, config.margin_mm))
+        .collect::<Result<_>>()?;
+    for p in &a.inclusions {
+        facetlab::io::guard::refuse_overwrite(
+            &[("--out", a.out.clone())],
+            std::slice::from_ref(p),
+        )?;
+    }
     // Outputs: a new or empty folder that is none of the inputs (the rough, the config, the
     // price table it names).
     check_out("--out", &a.out, &a.rough, a.config.as_deref(), &config)?;
@@ -110,6 +165,9 @@ pub fn run(a: &PlanArgs) -> Result<Exit> {
     })?;
 
     interrupt::install();
+    if config.stones > 1 || !inclusions.is_empty() {
+        return run_layout(a, &config, &material, &rough, &inclusions, started);
+    }
     let bar = progress::bar(
         (config.families.len() * config.starts) as u64,
         a.quiet,
@@ -147,6 +205,8 @@ pub fn run(a: &PlanArgs) -> Result<Exit> {
         all: &all,
         started,
         warnings: &warnings,
+        layout: None,
+        inclusions: &[],
     };
     write_folder(&run, &PlanDrawings)?;
     print_summary(&run);
@@ -168,6 +228,90 @@ pub fn run(a: &PlanArgs) -> Result<Exit> {
         );
         return Ok(Exit::Interrupted);
     }
+    Ok(Exit::Ok)
+}
+
+/// `facetlab plan --stones N` (or with inclusions): the layout, its folder and its lines.
+fn run_layout(
+    a: &PlanArgs,
+    config: &PlanConfig,
+    material: &Material,
+    rough: &facetlab::plan::Rough,
+    inclusions: &[Inclusion],
+    started: Instant,
+) -> Result<Exit> {
+    let bar = progress::bar(
+        facetlab::plan::layout::candidates(config).max(1),
+        a.quiet,
+        "{msg:>16} [{bar:40}] {pos}/{len} saw cuts judged, {elapsed}",
+    );
+    bar.set_message("layout");
+    let tick = || bar.inc(1);
+    let layout = plan_layout(
+        rough,
+        config,
+        material,
+        inclusions,
+        &tick,
+        Some(&interrupt::STOP),
+    );
+    bar.finish_and_clear();
+    if interrupt::stopped() {
+        eprintln!(
+            "facetlab: interrupted before the layout was planned; nothing written (exit code 130)"
+        );
+        return Ok(Exit::Interrupted);
+    }
+    let layout = layout?;
+    let run = Run {
+        out: &a.out,
+        input: &a.rough,
+        config,
+        material,
+        rough,
+        all: &[],
+        started,
+        warnings: &[],
+        layout: Some(&layout),
+        inclusions,
+    };
+    write_folder(&run, &PlanDrawings)?;
+    println!("rough {}: {:.3} mm³", rough.name, rough.volume());
+    for (k, c) in layout.saw.iter().enumerate() {
+        println!(
+            "saw {} ({}): normal ({:.4}, {:.4}, {:.4}), offset {:.3} mm, kerf loss {:.3} mm³",
+            k + 1,
+            c.piece,
+            c.normal.x,
+            c.normal.y,
+            c.normal.z,
+            c.offset,
+            c.kerf_loss_mm3
+        );
+    }
+    for (k, s) in layout.stones.iter().enumerate() {
+        let holds = if s.holds.is_empty() {
+            ""
+        } else {
+            ", holds an inclusion"
+        };
+        println!(
+            "stone-{} {:<16} {:.4} ct, W {:.3} mm, objective {:.4}{holds}",
+            k + 1,
+            s.family,
+            s.plan.carats,
+            s.plan.scale,
+            s.plan.objective
+        );
+    }
+    println!(
+        "total {:.4} ct, objective {:.4}, yield {:.2} %, kerf loss {:.3} mm³",
+        layout.carats,
+        layout.total,
+        100.0 * layout.yield_fraction,
+        layout.kerf_loss_mm3
+    );
+    println!("{}", a.out.display());
     Ok(Exit::Ok)
 }
 

@@ -516,6 +516,47 @@ impl Polyhedron {
         Err(first_err.unwrap_or_else(|| Error::Geometry("degenerate solid".into())))
     }
 
+    /// The solid of the half-spaces `planes`, those that do not touch it left out (a
+    /// rough's piece cut by a saw plane: the rough's planes beyond the cut bound nothing).
+    /// The planes kept are the ones whose face has an area above `1e-12` of the box's after
+    /// clipping, in the order given; the solid is then [`Polyhedron::from_planes`] of those.
+    pub fn from_planes_pruned(planes: &[FacetPlane]) -> Result<Polyhedron> {
+        let mut faces = box_faces();
+        let mut buffer = Vec::new();
+        for (k, fp) in planes.iter().enumerate() {
+            if !(fp.plane.normal.is_finite() && fp.plane.offset.is_finite()) {
+                return Err(Error::Geometry(format!(
+                    "facet {} ({}) has no valid plane",
+                    k + 1,
+                    fp.name
+                )));
+            }
+            clip(&mut faces, &fp.plane, k, &mut buffer);
+            if faces.is_empty() {
+                return Err(Error::Geometry(format!(
+                    "the solid is empty: facet {} ({}) cuts away everything left",
+                    k + 1,
+                    fp.name
+                )));
+            }
+        }
+        let scale = faces
+            .iter()
+            .flat_map(|f| f.poly.iter())
+            .map(|p| p.length())
+            .fold(0.0, f64::max)
+            .max(1e-300);
+        let mut keep: Vec<usize> = faces
+            .iter()
+            .filter(|f| area_vector(&f.poly).length() > 1e-10 * scale * scale)
+            .filter_map(|f| f.source)
+            .collect();
+        keep.sort_unstable();
+        keep.dedup();
+        let kept: Vec<FacetPlane> = keep.iter().map(|&k| planes[k].clone()).collect();
+        Polyhedron::from_planes(&kept)
+    }
+
     /// The facet planes of this solid (the input of [`Polyhedron::from_planes`]).
     pub fn facet_planes(&self) -> Vec<FacetPlane> {
         self.facets

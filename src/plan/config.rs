@@ -90,6 +90,9 @@ pub struct PriceTable {
     pub quality: BTreeMap<Grade, f64>,
     /// Factor for cuts the grade estimate does not cover (fancy shapes).
     pub ungraded: f64,
+    /// Factor for a stone of a layout that keeps an inclusion inside (its lower clarity),
+    /// the price file's `included`; `None`: no stone may hold an inclusion.
+    pub included: Option<f64>,
 }
 
 impl PriceTable {
@@ -137,6 +140,7 @@ impl PriceTable {
             band: Vec<RawBand>,
             #[serde(default)]
             quality: BTreeMap<String, f64>,
+            included: Option<f64>,
         }
         let raw: Raw = toml::from_str(text).map_err(|e| {
             let line = e
@@ -220,11 +224,23 @@ impl PriceTable {
                 }
             }
         }
+        if let Some(f) = raw.included {
+            if !(f.is_finite() && (0.0..=1.0).contains(&f)) {
+                return Err(Error::invalid(
+                    format!("{source}: included"),
+                    format!(
+                        "{} is not allowed; the factor of a stone holding an inclusion is a number from 0 to 1",
+                        shown(f)
+                    ),
+                ));
+            }
+        }
         Ok(PriceTable {
             currency: raw.currency.unwrap_or_else(|| "USD".into()),
             bands,
             quality,
             ungraded,
+            included: raw.included,
         })
     }
 }
@@ -265,7 +281,24 @@ pub struct PlanConfig {
     ///
     /// [`Plan::optic_axis`]: super::Plan::optic_axis
     pub c_axis: Option<glam::DVec3>,
+    /// Stones planned in the rough, `[rough] stones` (1: the single best cut of each family,
+    /// as before; 2 and more: a layout of sawn pieces, [`super::layout`]).
+    pub stones: usize,
+    /// The saw's kerf (mm), `[rough] kerf_mm`: the slab a saw cut takes away.
+    pub kerf_mm: f64,
+    /// The polishing allowance per stone (mm), `[rough] allowance_mm`: every stone of a layout
+    /// keeps at least this far inside its piece (its sawn faces and the rough's surface).
+    pub allowance_mm: f64,
+    /// How far a stone keeps from an inclusion (mm), `[rough] inclusion_margin_mm`.
+    pub margin_mm: f64,
+    /// Saw offsets tried per direction and piece, `[search] saw_offsets`.
+    pub saw_offsets: usize,
 }
+
+/// The most stones a layout plans.
+pub const MAX_STONES: usize = 8;
+/// The largest kerf, allowance or inclusion margin (mm).
+pub const MAX_GAP_MM: f64 = 10.0;
 
 impl Default for PlanConfig {
     fn default() -> Self {
@@ -284,6 +317,11 @@ impl Default for PlanConfig {
             max_iterations: 250,
             price_file: None,
             c_axis: None,
+            stones: 1,
+            kerf_mm: 0.30,
+            allowance_mm: 0.20,
+            margin_mm: 0.30,
+            saw_offsets: 5,
         }
     }
 }
@@ -303,6 +341,10 @@ struct RawObjective {
 #[serde(deny_unknown_fields)]
 struct RawRough {
     c_axis: Option<toml::Value>,
+    stones: Option<toml::Value>,
+    kerf_mm: Option<toml::Value>,
+    allowance_mm: Option<toml::Value>,
+    inclusion_margin_mm: Option<toml::Value>,
 }
 
 #[derive(Deserialize, Default)]
@@ -310,6 +352,7 @@ struct RawRough {
 struct RawSearch {
     starts: Option<toml::Value>,
     max_iterations: Option<toml::Value>,
+    saw_offsets: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -614,6 +657,42 @@ impl PlanConfig {
         }
         if let Some(v) = &raw.rough.c_axis {
             c.c_axis = Some(c_axis(at("rough.c_axis"), v, &c.material)?);
+        }
+        if let Some(v) = &raw.rough.stones {
+            c.stones = whole(
+                at("rough.stones"),
+                v,
+                1,
+                MAX_STONES as u64,
+                "the stones planned in the rough",
+            )? as usize;
+        }
+        let gap = |key: &str, v: &toml::Value| {
+            ranged(
+                at(&format!("rough.{key}")),
+                v,
+                0.0,
+                MAX_GAP_MM,
+                "a distance in mm",
+            )
+        };
+        if let Some(v) = &raw.rough.kerf_mm {
+            c.kerf_mm = gap("kerf_mm", v)?;
+        }
+        if let Some(v) = &raw.rough.allowance_mm {
+            c.allowance_mm = gap("allowance_mm", v)?;
+        }
+        if let Some(v) = &raw.rough.inclusion_margin_mm {
+            c.margin_mm = gap("inclusion_margin_mm", v)?;
+        }
+        if let Some(v) = &raw.search.saw_offsets {
+            c.saw_offsets = whole(
+                at("search.saw_offsets"),
+                v,
+                1,
+                50,
+                "the saw offsets tried per direction",
+            )? as usize;
         }
         Ok(c)
     }

@@ -16,6 +16,8 @@
 //! - the plans as data ([`Plan`]): the family's cut, its pose and scale, the placed cut in the
 //!   rough's coordinates, carats, yield, grade and objective, for the run folder and for the
 //!   plot floor to draw;
+//! - several stones ([`layout`]): a rough sawn into pieces with the kerf, one cut in each
+//!   kept an allowance inside its piece and off the inclusions, ranked by total value;
 //! - the run ([`run`]): the families planned in turn ([`plan_families`]) and the run folder
 //!   written from them with scores ([`write_folder`]: OBJ, TOML, GemCad, glTF, the
 //!   `summary.json` document of [`summary`], and the pictures and page that a [`Drawings`]
@@ -36,6 +38,7 @@ pub mod ball;
 pub mod colour;
 pub mod config;
 pub mod fit;
+pub mod layout;
 pub mod mesh;
 pub mod out;
 pub mod rough;
@@ -47,6 +50,7 @@ pub mod summary;
 pub use ball::{enclosing_ball, Ball};
 pub use config::{Bound, Objective, PlanConfig, PriceTable, DEFAULT_FAMILIES};
 pub use fit::{largest_copy, Fit};
+pub use layout::{plan_layout, Inclusion, Layout, LayoutPlanner, SawCut, Stone};
 pub use out::check_out;
 pub use rough::{load_rough, Rough, CRYSTALS};
 pub use run::{plan_families, write_folder, Drawings, PlacedPlan, Run};

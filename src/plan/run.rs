@@ -14,11 +14,12 @@
 //! The pictures and the page are drawn by the floors above the planner, through
 //! [`Drawings`] (the real ones are `crate::report::PlanDrawings`).
 
+use super::layout::{Inclusion, Layout};
 use super::summary::{summary_json, PlanJson, SummaryOf};
 use super::{Plan, PlanConfig, Planner, Rough};
 use crate::cut::Cut;
 use crate::error::{Error, Result};
-use crate::geometry::Polyhedron;
+use crate::geometry::{DVec3, Polyhedron};
 use crate::io::gltf::{write_gltf, GltfObject};
 use crate::io::mesh::write_obj_objects;
 use crate::metrics::{score, ScoreConfig};
@@ -96,6 +97,22 @@ pub struct Run<'r> {
     pub started: Instant,
     /// What the run should tell its user (`summary.json`'s `warnings`).
     pub warnings: &'r [String],
+    /// A layout of several stones (`--stones N`, inclusions): written instead of `all`, its
+    /// stones as `stone-K`.
+    pub layout: Option<&'r Layout>,
+    /// The inclusions kept out of the stones.
+    pub inclusions: &'r [Inclusion],
+}
+
+/// A layout as its picture shows it: the stones placed, the saw planes `(normal, offset)` in
+/// cutting order and the inclusions' hulls.
+pub struct LayoutShown<'a> {
+    /// The stones placed in the rough.
+    pub stones: Vec<PlacedPlan<'a>>,
+    /// The saw planes `(normal, offset, the piece it cuts)`, in cutting order.
+    pub saw: Vec<(DVec3, f64, &'a Polyhedron)>,
+    /// The inclusions' hulls (mm).
+    pub inclusions: Vec<&'a Polyhedron>,
 }
 
 /// One plan's cut placed in the rough, as a picture shows it.
@@ -127,6 +144,9 @@ pub trait Drawings {
         png: &Path,
         svg: &Path,
     ) -> Result<()>;
+    /// A layout of several stones in `rough` (the rough see-through, the saw planes, the
+    /// inclusions, each stone), written to `png` and `svg`.
+    fn layout(&self, rough: &Rough, shown: &LayoutShown<'_>, png: &Path, svg: &Path) -> Result<()>;
     /// `report.html`: the rough, every plan, and each family's best with its three views
     /// (`views`, PNG bytes, one per family) scored with `score`.
     fn page(
@@ -176,8 +196,52 @@ fn write_into(dir: &Path, run: &Run<'_>, drawings: &dyn Drawings) -> Result<()> 
         all,
         started,
         warnings,
+        layout,
+        inclusions,
         out: _,
     } = *run;
+    // What is written: each family's plans, or the layout's stones.
+    type Entry<'p> = (String, usize, String, &'p Plan);
+    let entries: Vec<Entry<'_>> = match layout {
+        Some(l) => l
+            .stones
+            .iter()
+            .enumerate()
+            .map(|(k, s)| (s.family.clone(), k + 1, format!("stone-{}", k + 1), &s.plan))
+            .collect(),
+        None => all
+            .iter()
+            .flat_map(|(fam, plans)| {
+                plans
+                    .iter()
+                    .enumerate()
+                    .map(move |(k, p)| (fam.clone(), k + 1, format!("{fam}-{}", k + 1), p))
+            })
+            .collect(),
+    };
+    let page_all: Vec<(String, Vec<Plan>)> = match layout {
+        Some(l) => l
+            .stones
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                (
+                    format!("stone-{} ({})", k + 1, s.family),
+                    vec![s.plan.clone()],
+                )
+            })
+            .collect(),
+        None => all.to_vec(),
+    };
+    let view_files: Vec<String> = match layout {
+        Some(l) => (1..=l.stones.len())
+            .map(|k| format!("stone-{k}-views.png"))
+            .collect(),
+        None => all
+            .iter()
+            .map(|(fam, _)| format!("{fam}-1-views.png"))
+            .collect(),
+    };
     std::fs::create_dir(dir).map_err(|e| Error::io(dir.display().to_string(), e))?;
     let header = format!(
         "# facetlab plan of {}: units mm, the rough's own coordinates\n",
@@ -191,9 +255,9 @@ fn write_into(dir: &Path, run: &Run<'_>, drawings: &dyn Drawings) -> Result<()> 
     let mut plans_json = Vec::new();
     let mut best: Vec<(Polyhedron, String, DQuat)> = Vec::new();
     let mut scene_solids: Vec<(String, Polyhedron)> = Vec::new();
-    for (fam, plans) in all {
-        for (k, p) in plans.iter().enumerate() {
-            let stem = format!("{fam}-{}", k + 1);
+    for (fam, rank, stem, p) in &entries {
+        let (fam, stem, p) = (fam.as_str(), stem.clone(), *p);
+        {
             let placed = p.placed_solid()?;
             let mut placed_cut = Cut::from_planes(&stem, &p.placed_planes())?;
             placed_cut.name = stem.clone();
@@ -240,11 +304,18 @@ fn write_into(dir: &Path, run: &Run<'_>, drawings: &dyn Drawings) -> Result<()> 
                 &format!("{stem}.asc"),
                 crate::io::asc::write_for(&design, 96, material.ri_d()).as_bytes(),
             )?;
-            let label = format!(
-                "{stem}: {:.3} ct, yield {:.1} %",
-                p.carats,
-                100.0 * p.yield_fraction
-            );
+            let label = match layout {
+                Some(_) => format!(
+                    "{stem} ({fam}): {:.3} ct, yield {:.1} %",
+                    p.carats,
+                    100.0 * p.yield_fraction
+                ),
+                None => format!(
+                    "{stem}: {:.3} ct, yield {:.1} %",
+                    p.carats,
+                    100.0 * p.yield_fraction
+                ),
+            };
             let shown = PlacedPlan {
                 solid: &placed,
                 label: &label,
@@ -257,14 +328,14 @@ fn write_into(dir: &Path, run: &Run<'_>, drawings: &dyn Drawings) -> Result<()> 
                 &dir.join(format!("{stem}-views.png")),
                 &dir.join(format!("{stem}-views.svg")),
             )?;
-            if k == 0 {
+            if *rank == 1 || layout.is_some() {
                 best.push((placed.clone(), label.clone(), p.rotation.inverse()));
             }
             let s = score(&p.cut.solid, &plan_cfg);
             let (lo, hi) = placed.bounding_box();
             plans_json.push(PlanJson::new(
                 fam,
-                k + 1,
+                *rank,
                 &stem,
                 p,
                 (hi - lo).to_array(),
@@ -303,14 +374,14 @@ fn write_into(dir: &Path, run: &Run<'_>, drawings: &dyn Drawings) -> Result<()> 
         "scene.gltf",
         write_gltf(&objects, &generator).as_bytes(),
     )?;
-    let views: Vec<Vec<u8>> = all
+    let views: Vec<Vec<u8>> = view_files
         .iter()
-        .map(|(fam, _)| {
-            let p = dir.join(format!("{fam}-1-views.png"));
+        .map(|f| {
+            let p = dir.join(f);
             std::fs::read(&p).map_err(|e| Error::io(p.display().to_string(), e))
         })
         .collect::<Result<_>>()?;
-    let page = drawings.page(rough, all, &views, &score_cfg)?;
+    let page = drawings.page(rough, &page_all, &views, &score_cfg)?;
     write(dir, "report.html", page.as_bytes())?;
     let best: Vec<PlacedPlan> = best
         .iter()
@@ -320,12 +391,28 @@ fn write_into(dir: &Path, run: &Run<'_>, drawings: &dyn Drawings) -> Result<()> 
             frame: *frame,
         })
         .collect();
-    drawings.overview(
-        rough,
-        &best,
-        &dir.join("overview.png"),
-        &dir.join("overview.svg"),
-    )?;
+    match layout {
+        Some(l) => drawings.layout(
+            rough,
+            &LayoutShown {
+                stones: best,
+                saw: l
+                    .saw
+                    .iter()
+                    .map(|c| (c.normal, c.offset, &c.piece_solid))
+                    .collect(),
+                inclusions: inclusions.iter().map(|i| &i.hull).collect(),
+            },
+            &dir.join("overview.png"),
+            &dir.join("overview.svg"),
+        )?,
+        None => drawings.overview(
+            rough,
+            &best,
+            &dir.join("overview.png"),
+            &dir.join("overview.svg"),
+        )?,
+    }
     let of = SummaryOf {
         input,
         rough,
@@ -333,6 +420,8 @@ fn write_into(dir: &Path, run: &Run<'_>, drawings: &dyn Drawings) -> Result<()> 
         material,
         elapsed_s: started.elapsed().as_secs_f64(),
         warnings,
+        layout,
+        inclusions,
     };
     write(
         dir,

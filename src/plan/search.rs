@@ -148,7 +148,7 @@ pub struct Planner<'a> {
 
 /// The rough's frame: vertices' centroid and principal axes (largest spread first), each
 /// axis's sign chosen so that the vertices' third moment along it is positive.
-fn principal_frame(pts: &[DVec3]) -> DQuat {
+pub(crate) fn principal_frame(pts: &[DVec3]) -> DQuat {
     let n = pts.len() as f64;
     let c = pts.iter().copied().sum::<DVec3>() / n;
     let mut m = [[0.0; 3]; 3];

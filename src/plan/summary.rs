@@ -3,6 +3,7 @@
 //! with its weight, yield, grade, pose and scores ([`PlanJson`], made as the folder is
 //! written by [`crate::plan::run`]).
 
+use super::layout::{Inclusion, Layout};
 use super::{Objective, Plan, PlanConfig, Rough};
 use crate::error::{Error, Result};
 use crate::metrics::Scores;
@@ -110,6 +111,58 @@ impl PlanJson {
     }
 }
 
+/// One stone of a layout as `summary.json`'s `stones[]` lists it (its full plan is
+/// `plans[]`'s entry of the same `stem`).
+#[derive(Serialize)]
+struct StoneJson {
+    stem: String,
+    family: String,
+    piece: String,
+    carats: f64,
+    objective: f64,
+    #[serde(rename = "yield")]
+    yield_fraction: f64,
+    width_mm: f64,
+    piece_volume_mm3: f64,
+    /// Half-spaces `normal·x <= offset_mm` that keep the inclusions off it.
+    keep_off: Vec<KeepOffJson>,
+    /// Inclusions it holds (at the price table's `included` factor).
+    holds: Vec<String>,
+}
+
+#[derive(Serialize)]
+struct KeepOffJson {
+    inclusion: String,
+    normal: [f64; 3],
+    offset_mm: f64,
+}
+
+/// One saw cut of a layout, in cutting order.
+#[derive(Serialize)]
+struct SawJson {
+    order: usize,
+    piece: String,
+    normal: [f64; 3],
+    offset_mm: f64,
+    kerf_loss_mm3: f64,
+}
+
+/// The layout's totals and settings.
+#[derive(Serialize)]
+struct LayoutJson {
+    stones_asked: usize,
+    stones: usize,
+    kerf_mm: f64,
+    allowance_mm: f64,
+    inclusion_margin_mm: f64,
+    inclusions: Vec<String>,
+    total_objective: f64,
+    total_carats: f64,
+    #[serde(rename = "yield")]
+    yield_fraction: f64,
+    kerf_loss_mm3: f64,
+}
+
 #[derive(Serialize)]
 struct SummaryJson {
     rough: RoughJson,
@@ -125,6 +178,12 @@ struct SummaryJson {
     elapsed_s: f64,
     plans: Vec<PlanJson>,
     warnings: Vec<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    layout: Option<LayoutJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stones: Option<Vec<StoneJson>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    saw_plan: Option<Vec<SawJson>>,
 }
 
 /// What `summary.json` is made of besides the plans.
@@ -141,6 +200,10 @@ pub struct SummaryOf<'a> {
     pub elapsed_s: f64,
     /// What the run should tell its user.
     pub warnings: &'a [String],
+    /// A layout of several stones, when one was planned.
+    pub layout: Option<&'a Layout>,
+    /// The inclusions kept out.
+    pub inclusions: &'a [Inclusion],
 }
 
 /// `summary.json`, pretty-printed: the run `of` with its `plans` in order.
@@ -152,7 +215,61 @@ pub fn summary_json(of: &SummaryOf<'_>, plans: Vec<PlanJson>) -> Result<String> 
         material,
         elapsed_s,
         warnings,
+        layout,
+        inclusions,
     } = *of;
+    let name = |i: usize| inclusions.get(i).map_or(String::new(), |x| x.name.clone());
+    let stones = layout.map(|l| {
+        l.stones
+            .iter()
+            .enumerate()
+            .map(|(k, s)| StoneJson {
+                stem: format!("stone-{}", k + 1),
+                family: s.family.clone(),
+                piece: s.piece.clone(),
+                carats: s.plan.carats,
+                objective: s.plan.objective,
+                yield_fraction: s.plan.yield_fraction,
+                width_mm: s.plan.scale,
+                piece_volume_mm3: s.piece_solid.volume(),
+                keep_off: s
+                    .separations
+                    .iter()
+                    .map(|(i, p)| KeepOffJson {
+                        inclusion: name(*i),
+                        normal: p.normal.to_array(),
+                        offset_mm: p.offset,
+                    })
+                    .collect(),
+                holds: s.holds.iter().map(|i| name(*i)).collect(),
+            })
+            .collect()
+    });
+    let saw_plan = layout.map(|l| {
+        l.saw
+            .iter()
+            .enumerate()
+            .map(|(k, c)| SawJson {
+                order: k + 1,
+                piece: c.piece.clone(),
+                normal: c.normal.to_array(),
+                offset_mm: c.offset,
+                kerf_loss_mm3: c.kerf_loss_mm3,
+            })
+            .collect()
+    });
+    let layout_json = layout.map(|l| LayoutJson {
+        stones_asked: config.stones,
+        stones: l.stones.len(),
+        kerf_mm: config.kerf_mm,
+        allowance_mm: config.allowance_mm,
+        inclusion_margin_mm: config.margin_mm,
+        inclusions: inclusions.iter().map(|i| i.name.clone()).collect(),
+        total_objective: l.total,
+        total_carats: l.carats,
+        yield_fraction: l.yield_fraction,
+        kerf_loss_mm3: l.kerf_loss_mm3,
+    });
     let summary = SummaryJson {
         rough: RoughJson {
             name: rough.name.clone(),
@@ -184,6 +301,9 @@ pub fn summary_json(of: &SummaryOf<'_>, plans: Vec<PlanJson>) -> Result<String> 
         elapsed_s,
         plans,
         warnings: warnings.to_vec(),
+        layout: layout_json,
+        stones,
+        saw_plan,
     };
     serde_json::to_string_pretty(&summary)
         .map_err(|e| Error::invalid("summary.json", e.to_string()))

@@ -279,6 +279,209 @@ impl Figure for Overview<'_> {
     }
 }
 
+/// A layout of several stones in one rough ([`crate::plan::Layout`]): the rough seen from
+/// three sides in its own coordinates (down z, down −y, down x), see-through (its
+/// silhouette light, its back edges drawn too), the saw planes as their sections through
+/// the rough in blue, the inclusions in red and each stone's facets facing the viewer shaded
+/// in its series colour (farther stones drawn first).
+pub struct LayoutPicture<'a> {
+    /// The rough (mm).
+    pub rough: &'a Polyhedron,
+    /// The stones, placed, with their captions.
+    pub stones: Vec<(&'a Polyhedron, String)>,
+    /// The saw planes, `(normal, offset, the piece it cuts)`, in cutting order.
+    pub saw: Vec<(DVec3, f64, &'a Polyhedron)>,
+    /// The inclusions' hulls (mm).
+    pub inclusions: Vec<&'a Polyhedron>,
+    /// Caption above the views.
+    pub title: String,
+}
+
+/// The stones' colours: the series without its red (the inclusions' colour).
+const STONE_COLOURS: [RGBColor; 7] = [
+    SERIES[0], SERIES[2], SERIES[3], SERIES[4], SERIES[5], SERIES[6], SERIES[7],
+];
+
+const LAYOUT_VIEWS: [View; 3] = [
+    View {
+        name: "from above (down z)",
+        right: DVec3::X,
+        up: DVec3::Y,
+        toward: DVec3::Z,
+    },
+    View {
+        name: "from the front (along +y)",
+        right: DVec3::X,
+        up: DVec3::Z,
+        toward: DVec3::NEG_Y,
+    },
+    View {
+        name: "from the side (along −x)",
+        right: DVec3::Y,
+        up: DVec3::Z,
+        toward: DVec3::X,
+    },
+];
+
+/// The section of a convex solid by the plane `n·x = d`: its corners (unordered).
+fn section(solid: &Polyhedron, n: DVec3, d: f64) -> Vec<DVec3> {
+    let v = solid.vertices();
+    solid
+        .edges()
+        .iter()
+        .filter_map(|e| {
+            let (p, q) = (v[e.a], v[e.b]);
+            let (dp, dq) = (n.dot(p) - d, n.dot(q) - d);
+            ((dp <= 0.0) != (dq <= 0.0)).then(|| p + (dp / (dp - dq)) * (q - p))
+        })
+        .collect()
+}
+
+impl LayoutPicture<'_> {
+    fn lines(&self) -> u32 {
+        self.stones.len().div_ceil(3) as u32
+    }
+
+    fn draw_panel<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        (x0, y0, side): (f64, f64, f64),
+        view: &View,
+    ) -> DrawResult<DB> {
+        let (lo, hi) = self.rough.bounding_box();
+        let centre = 0.5 * (lo + hi);
+        let flat = |p: DVec3| DVec2::new((p - centre).dot(view.right), (p - centre).dot(view.up));
+        let extent = self
+            .rough
+            .vertices()
+            .iter()
+            .map(|p| flat(*p).length())
+            .fold(0.0, f64::max)
+            .max(1e-9);
+        let scale = 0.46 * side / extent;
+        let (cx, cy) = (x0 + side / 2.0, y0 + side / 2.0);
+        let px = |q: DVec2| -> (i32, i32) {
+            (
+                (cx + q.x * scale).round() as i32,
+                (cy - q.y * scale).round() as i32,
+            )
+        };
+        let hull_of = |pts: &[DVec3]| -> Vec<(i32, i32)> {
+            crate::geometry::clip2d::convex_hull(pts.iter().map(|p| flat(*p)).collect())
+                .into_iter()
+                .map(px)
+                .collect()
+        };
+        let ring = |mut pts: Vec<(i32, i32)>| {
+            if let Some(&f) = pts.first() {
+                pts.push(f);
+            }
+            pts
+        };
+        // The rough, see-through: its silhouette and every edge.
+        let outline = hull_of(self.rough.vertices());
+        root.draw(&Polygon::new(outline.clone(), RGBColor(232, 238, 245)))?;
+        let v = self.rough.vertices();
+        for e in self.rough.edges() {
+            root.draw(&PathElement::new(
+                vec![px(flat(v[e.a])), px(flat(v[e.b]))],
+                RGBColor(170, 180, 195).mix(0.6),
+            ))?;
+        }
+        root.draw(&PathElement::new(ring(outline), RGBColor(120, 130, 150)))?;
+        // The stones, farther first.
+        let mut order: Vec<usize> = (0..self.stones.len()).collect();
+        let depth = |k: usize| self.stones[k].0.centroid().dot(view.toward);
+        order.sort_by(|a, b| depth(*a).total_cmp(&depth(*b)));
+        for k in order {
+            let (solid, _) = &self.stones[k];
+            let colour = STONE_COLOURS[k % STONE_COLOURS.len()];
+            for (i, f) in solid.facets().iter().enumerate() {
+                let n = f.plane.normal;
+                if n.dot(view.toward) <= 1e-9 {
+                    continue;
+                }
+                let pts: Vec<(i32, i32)> = solid
+                    .facet_polygon(i)
+                    .iter()
+                    .map(|p| px(flat(*p)))
+                    .collect();
+                let s = shade(n, view);
+                let fill = RGBColor(
+                    (f64::from(colour.0) * s).round().min(255.0) as u8,
+                    (f64::from(colour.1) * s).round().min(255.0) as u8,
+                    (f64::from(colour.2) * s).round().min(255.0) as u8,
+                );
+                root.draw(&Polygon::new(pts.clone(), fill))?;
+                root.draw(&PathElement::new(ring(pts), BLACK.mix(0.4)))?;
+            }
+        }
+        // The saw planes' sections and the inclusions on top, so that they always show.
+        for (n, d, piece) in &self.saw {
+            let cut = section(piece, *n, *d);
+            if cut.len() >= 3 {
+                let pts = hull_of(&cut);
+                root.draw(&Polygon::new(pts.clone(), RGBColor(40, 90, 220).mix(0.12)))?;
+                root.draw(&PathElement::new(
+                    ring(pts),
+                    ShapeStyle::from(&RGBColor(40, 90, 220)).stroke_width(2),
+                ))?;
+            }
+        }
+        for inc in &self.inclusions {
+            let pts = hull_of(inc.vertices());
+            root.draw(&Polygon::new(pts.clone(), RGBColor(220, 30, 30)))?;
+            root.draw(&PathElement::new(ring(pts), RGBColor(120, 0, 0)))?;
+        }
+        Ok(())
+    }
+}
+
+impl Figure for LayoutPicture<'_> {
+    fn size(&self) -> (u32, u32) {
+        (3 * PANEL, TOP + PANEL + 20 * self.lines() + 10)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
+        let width = f64::from(3 * PANEL) - 20.0;
+        root.draw(&Text::new(
+            fitted(&self.title, 17, width),
+            (10, 8),
+            font(17),
+        ))?;
+        root.draw(&Text::new(
+            fitted(
+                "the rough see-through, saw planes blue, inclusions red, each stone in its colour",
+                13,
+                width,
+            ),
+            (10, 32),
+            font(13).color(&RGBColor(90, 90, 90)),
+        ))?;
+        for (v, view) in LAYOUT_VIEWS.iter().enumerate() {
+            let x0 = f64::from(v as u32 * PANEL);
+            self.draw_panel(root, (x0, f64::from(TOP), f64::from(PANEL)), view)?;
+            root.draw(&Text::new(
+                view.name,
+                (x0 as i32 + 8, (TOP + PANEL) as i32 - 18),
+                font(13),
+            ))?;
+        }
+        for (k, (_, label)) in self.stones.iter().enumerate() {
+            let (c, r) = (k % 3, k / 3);
+            root.draw(&Text::new(
+                fitted(label, 13, f64::from(PANEL) - 16.0),
+                (
+                    (c as u32 * PANEL) as i32 + 8,
+                    (TOP + PANEL + 4 + 20 * r as u32) as i32,
+                ),
+                font(13).color(&STONE_COLOURS[k % STONE_COLOURS.len()]),
+            ))?;
+        }
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

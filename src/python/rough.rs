@@ -170,6 +170,8 @@ fn write_plan(
         all,
         started,
         warnings: &warnings,
+        layout: None,
+        inclusions: &[],
     };
     write_folder(&run, &PlanDrawings)
 }

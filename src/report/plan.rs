@@ -5,8 +5,9 @@
 use super::{base64, escape, html, measure, ReportOptions};
 use crate::error::Result;
 use crate::metrics::ScoreConfig;
+use crate::plan::run::LayoutShown;
 use crate::plan::{Drawings, PlacedPlan, Plan, Rough};
-use crate::plot::plan::{Overview, Placed, ThreeViews};
+use crate::plot::plan::{LayoutPicture, Overview, Placed, ThreeViews};
 use std::fmt::Write;
 use std::path::Path;
 
@@ -52,6 +53,21 @@ impl Drawings for PlanDrawings {
             title: format!("best plan of each family in {}", rough.name),
         };
         crate::plot::save_to(&overview, png, svg)
+    }
+
+    fn layout(&self, rough: &Rough, shown: &LayoutShown<'_>, png: &Path, svg: &Path) -> Result<()> {
+        let picture = LayoutPicture {
+            rough: &rough.solid,
+            stones: shown
+                .stones
+                .iter()
+                .map(|p| (p.solid, p.label.to_string()))
+                .collect(),
+            saw: shown.saw.clone(),
+            inclusions: shown.inclusions.clone(),
+            title: format!("{} stones in {}", shown.stones.len(), rough.name),
+        };
+        crate::plot::save_to(&picture, png, svg)
     }
 
     fn page(

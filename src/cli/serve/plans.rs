@@ -345,6 +345,8 @@ fn execute(run: &PlanRun, rough: &Rough, config: &PlanConfig, material: &Materia
             all: &all,
             started: run.started,
             warnings: &warnings,
+            layout: None,
+            inclusions: &[],
         };
         write_folder(&folder, &PlanDrawings)?;
         read_folder(&dir).map(Some)

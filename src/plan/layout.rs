@@ -1,0 +1,853 @@
+//! Several stones in one rough (issue 54, `facetlab plan --stones N`): a layout of sawn
+//! pieces, one cut in each, ranked by total value (or weight), with the saw's kerf, a
+//! polishing allowance per stone and inclusions kept out.
+//!
+//! The design (sequential sawing on the exact containment of [`super::fit`]):
+//!
+//! - a **piece** is the rough cut by the saw planes so far, as half-spaces; a saw cut along
+//!   the plane `u·x = c` splits a piece into `u·x <= c − kerf/2` and `u·x >= c + kerf/2` (the
+//!   kerf's slab is lost, [`Layout::kerf_loss_mm3`]);
+//! - a piece's **stone** lies in the piece's half-spaces each moved in by the allowance (every
+//!   point of the stone at least the allowance from the piece's faces, sawn or natural: the
+//!   inner parallel body of a convex piece, exact) and outside every inclusion grown by its
+//!   margin: an inclusion that the piece still holds is kept out by one more half-space, the
+//!   far side of one face of its grown hull ([`Inclusion::grown`]), chosen per inclusion in
+//!   turn as the one that leaves the largest ball-like proxy (a regular icosahedron) inside. So each
+//!   stone's containment stays the exact program of [`super::fit`] over the piece's planes
+//!   (its polyhedron inside, not its bounding box), searched over orientation and
+//!   proportions by the single-stone [`Planner`] treating the region as a rough. With a price
+//!   table whose `included` factor is set, a stone may instead keep the inclusions inside,
+//!   its value times that factor; the better of the two is kept;
+//! - the **saw plan** is grown greedily: for every piece, every direction of [`directions`]
+//!   (13 in the rough's principal frame: its axes, their face and body diagonals) and of the
+//!   normals of the rough's 6 largest faces and the directions to its 6 farthest corners
+//!   (with those tied with them), and
+//!   `saw_offsets` offsets across the piece, the two halves' best stones are found by a short
+//!   search (two starts); the best 4 cuts (of different pieces or directions) are refined
+//!   (the offset by golden section, the direction by tilts of 12°, 6°, 3° and 1.5°) and the
+//!   best of them made, until `stones` pieces or
+//!   no cut adds value. The final pieces' stones are then searched with the config's full
+//!   search. Candidates run in parallel and are gathered in order, so the layout is the same
+//!   on any number of threads; directions in the principal frame make a turned and moved
+//!   rough give the layout turned and moved with it.
+//!
+//! What it is not: a laser layout (stones separated by a kerf gap along planes that do not
+//! cut through the whole piece) and a global optimum: the saw plan is greedy, cut by cut
+//! (measured against brute force in docs/plan.md).
+
+use super::config::{Objective, PlanConfig};
+use super::fit::largest_copy;
+use super::mesh::read_triangles;
+use super::rough::Rough;
+use super::search::{principal_frame, Plan, Planner};
+use crate::error::{Error, Result};
+use crate::geometry::{hull, DVec3, FacetPlane, HullOptions, Plane, Polyhedron};
+use glam::DQuat;
+use rayon::prelude::*;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The proxy of a stone when choosing the face that keeps an inclusion out: the 12 vertices
+/// of a regular icosahedron (a ball-like solid, so the choice does not depend on a turn).
+const PROXY: [[f64; 3]; 12] = {
+    const P: f64 = 1.618_033_988_749_895;
+    [
+        [0.0, 1.0, P],
+        [0.0, -1.0, P],
+        [0.0, 1.0, -P],
+        [0.0, -1.0, -P],
+        [1.0, P, 0.0],
+        [-1.0, P, 0.0],
+        [1.0, -P, 0.0],
+        [-1.0, -P, 0.0],
+        [P, 0.0, 1.0],
+        [-P, 0.0, 1.0],
+        [P, 0.0, -1.0],
+        [-P, 0.0, -1.0],
+    ]
+};
+
+/// Saw directions taken from the rough's largest faces, besides the 13 of [`directions`].
+const FACE_DIRECTIONS: usize = 6;
+
+/// Saw candidates refined per cut (the best of different pieces or directions).
+const REFINED: usize = 4;
+
+/// The directions of the support planes that, with the hull's own faces, bound an
+/// inclusion grown by its margin (the 26 of a cube's faces, edges and corners).
+fn kdop() -> Vec<DVec3> {
+    let mut out = Vec::new();
+    for x in -1..=1 {
+        for y in -1..=1 {
+            for z in -1..=1 {
+                if (x, y, z) != (0, 0, 0) {
+                    out.push(DVec3::new(x as f64, y as f64, z as f64).normalize());
+                }
+            }
+        }
+    }
+    out
+}
+
+/// An inclusion: the convex hull of a closed mesh (mm, the rough's coordinates) and the same
+/// grown by the margin.
+#[derive(Clone, Debug)]
+pub struct Inclusion {
+    /// Name (the file stem).
+    pub name: String,
+    /// The inclusion's convex hull (mm).
+    pub hull: Polyhedron,
+    /// The hull grown by the margin, enclosed in the half-spaces of the hull's faces and of
+    /// 26 directions, each moved out by the margin (every point within the margin of the
+    /// hull is inside it: a stone outside it keeps at least the margin away).
+    pub grown: Polyhedron,
+}
+
+impl Inclusion {
+    /// An inclusion from points (mm) grown by `margin` (mm); `source` names it in errors.
+    pub fn from_points(name: &str, source: &str, pts: &[DVec3], margin: f64) -> Result<Inclusion> {
+        let h = hull(pts, HullOptions::default()).map_err(|e| {
+            Error::parse(
+                source,
+                format!("the inclusion's convex hull: {e} (a closed mesh with volume is needed)"),
+            )
+        })?;
+        let named = |planes: &[Plane], tier: &str| -> Vec<FacetPlane> {
+            planes
+                .iter()
+                .zip(1..)
+                .map(|(p, i)| FacetPlane {
+                    plane: *p,
+                    name: format!("{tier}-{i}"),
+                    tier: tier.into(),
+                })
+                .collect()
+        };
+        let solid = Polyhedron::from_planes(&named(&h.planes, "inclusion"))
+            .map_err(|e| Error::parse(source, format!("the inclusion's convex hull: {e}")))?;
+        let mut grown: Vec<Plane> = h
+            .planes
+            .iter()
+            .map(|p| Plane {
+                normal: p.normal,
+                offset: p.offset + margin,
+            })
+            .collect();
+        for u in kdop() {
+            let top = solid
+                .vertices()
+                .iter()
+                .map(|v| u.dot(*v))
+                .fold(f64::NEG_INFINITY, f64::max);
+            if !grown.iter().any(|p| p.normal.dot(u) > 1.0 - 1e-9) {
+                grown.push(Plane {
+                    normal: u,
+                    offset: top + margin,
+                });
+            }
+        }
+        let grown = Polyhedron::from_planes_pruned(&named(&grown, "margin"))
+            .map_err(|e| Error::parse(source, format!("the inclusion grown by its margin: {e}")))?;
+        Ok(Inclusion {
+            name: name.to_string(),
+            hull: solid,
+            grown,
+        })
+    }
+
+    /// An inclusion from an `.obj` or `.stl` mesh (mm, the rough's coordinates), grown by
+    /// `margin`: the mesh must be closed.
+    pub fn from_mesh(path: &Path, margin: f64) -> Result<Inclusion> {
+        let shown = path.display().to_string();
+        let ext = path
+            .extension()
+            .map_or(String::new(), |e| e.to_string_lossy().to_ascii_lowercase());
+        if ext != "obj" && ext != "stl" {
+            return Err(Error::invalid(
+                "--inclusion",
+                format!(
+                    "{shown}: an inclusion is an .obj or .stl mesh (mm, the rough's coordinates)"
+                ),
+            ));
+        }
+        let bytes = std::fs::read(path).map_err(|e| Error::io(&shown, e))?;
+        let mesh = read_triangles(&bytes, &ext, &shown)?;
+        mesh.check_closed(&shown).map_err(|e| match e {
+            Error::Parse { source, message } => Error::Parse {
+                source,
+                message: message.replace("a rough must", "an inclusion must"),
+            },
+            other => other,
+        })?;
+        if mesh.vertices.iter().any(|p| !p.is_finite()) {
+            return Err(Error::parse(
+                &shown,
+                "a vertex coordinate is not a finite number",
+            ));
+        }
+        let name = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("inclusion");
+        Inclusion::from_points(name, &shown, &mesh.vertices, margin)
+    }
+}
+
+/// One saw cut: the plane `normal·x = offset` (mm, the rough's coordinates); the kerf's slab
+/// around it is lost.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SawCut {
+    /// The piece it cuts (`rough`, then `A`, `B`, `Aa`, …: the side `normal·x < offset` gets
+    /// `a`/`A`).
+    pub piece: String,
+    /// Unit normal.
+    pub normal: DVec3,
+    /// Offset (mm).
+    pub offset: f64,
+    /// The volume the kerf takes from the piece (mm³).
+    pub kerf_loss_mm3: f64,
+    /// The piece it cuts (mm).
+    pub piece_solid: Polyhedron,
+}
+
+/// One stone of a layout: its piece, its plan, the half-spaces that keep inclusions out and
+/// the inclusions it holds.
+#[derive(Clone, Debug)]
+pub struct Stone {
+    /// The family of its cut.
+    pub family: String,
+    /// The piece it is cut from (see [`SawCut::piece`]).
+    pub piece: String,
+    /// The piece as sawn (mm).
+    pub piece_solid: Polyhedron,
+    /// The stone, placed (its `yield_fraction` against the whole rough; its `objective`
+    /// the value with the `included` factor when it holds an inclusion).
+    pub plan: Plan,
+    /// The half-spaces `normal·x <= offset` that keep inclusions out, with the inclusion's
+    /// index.
+    pub separations: Vec<(usize, Plane)>,
+    /// The inclusions (indices) the stone holds, at the price table's `included` factor.
+    pub holds: Vec<usize>,
+}
+
+/// A layout: the stones, the saw cuts in cutting order and what they lose.
+#[derive(Clone, Debug)]
+pub struct Layout {
+    /// The stones, in the order of their pieces.
+    pub stones: Vec<Stone>,
+    /// The saw cuts, in cutting order.
+    pub saw: Vec<SawCut>,
+    /// The total objective (value, or carats).
+    pub total: f64,
+    /// The stones' carats.
+    pub carats: f64,
+    /// The stones' volume over the rough's.
+    pub yield_fraction: f64,
+    /// The volume the kerf takes (mm³).
+    pub kerf_loss_mm3: f64,
+}
+
+/// A piece of the rough: its label, half-spaces and solid.
+#[derive(Clone, Debug)]
+struct Piece {
+    label: String,
+    solid: Polyhedron,
+}
+
+/// How hard a piece's stone is searched.
+#[derive(Clone, Copy, PartialEq)]
+enum Effort {
+    Screen,
+    Full,
+}
+
+/// The saw directions of a layout in the rough's frame `frame`: the frame's three axes,
+/// their six face diagonals and four body diagonals (one sign each).
+pub fn directions(frame: DQuat) -> Vec<DVec3> {
+    let e = [frame * DVec3::X, frame * DVec3::Y, frame * DVec3::Z];
+    let mut out = vec![e[0], e[1], e[2]];
+    for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+        out.push((e[i] + e[j]).normalize());
+        out.push((e[i] - e[j]).normalize());
+    }
+    for (s, t) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+        out.push((e[0] + s * e[1] + t * e[2]).normalize());
+    }
+    out
+}
+
+/// Plans layouts of several stones in one rough.
+pub struct LayoutPlanner<'a> {
+    rough: &'a Rough,
+    config: &'a PlanConfig,
+    density: f64,
+    inclusions: &'a [Inclusion],
+    frame: DQuat,
+    stop: Option<&'a AtomicBool>,
+}
+
+/// The half-spaces of a solid, each moved in by `by`.
+fn moved_in(solid: &Polyhedron, by: f64) -> Vec<FacetPlane> {
+    solid
+        .facet_planes()
+        .into_iter()
+        .map(|mut f| {
+            f.plane.offset -= by;
+            f
+        })
+        .collect()
+}
+
+/// Whether the plane `p` has every vertex of `pts` strictly outside.
+fn all_outside(p: &Plane, pts: &[DVec3]) -> bool {
+    pts.iter().all(|v| p.distance(*v) > 1e-9)
+}
+
+/// Whether two convex solids are apart by one of their own face planes (a sufficient test;
+/// solids it does not part are taken as meeting).
+fn apart(a: &Polyhedron, b: &Polyhedron) -> bool {
+    a.facets()
+        .iter()
+        .any(|f| all_outside(&f.plane, b.vertices()))
+        || b.facets()
+            .iter()
+            .any(|f| all_outside(&f.plane, a.vertices()))
+}
+
+impl<'a> LayoutPlanner<'a> {
+    /// A layout planner for `rough` under `config` (its `stones`, `kerf_mm`, `allowance_mm`,
+    /// objective, families and search), `density` in g/cm³, keeping out `inclusions`.
+    pub fn new(
+        rough: &'a Rough,
+        config: &'a PlanConfig,
+        density: f64,
+        inclusions: &'a [Inclusion],
+    ) -> LayoutPlanner<'a> {
+        LayoutPlanner {
+            rough,
+            config,
+            density,
+            inclusions,
+            frame: principal_frame(rough.solid.vertices()),
+            stop: None,
+        }
+    }
+
+    /// The planner, stopped when `stop` is raised.
+    pub fn with_stop(mut self, stop: &'a AtomicBool) -> Self {
+        self.stop = Some(stop);
+        self
+    }
+
+    fn stopped(&self) -> bool {
+        self.stop.is_some_and(|s| s.load(Ordering::SeqCst))
+    }
+
+    /// The best stone of one family set in `region` (a rough of the stone's room), at
+    /// `effort`.
+    fn best_in(&self, region: Polyhedron, effort: Effort) -> Option<(String, Plan)> {
+        let mut cfg = self.config.clone();
+        cfg.top = 1;
+        if effort == Effort::Screen {
+            cfg.starts = cfg.starts.min(2);
+            cfg.max_iterations = cfg.max_iterations.min(80);
+        }
+        let room = Rough {
+            name: "piece".into(),
+            solid: region,
+            mesh_volume: None,
+            ball: None,
+            left_out: 0.0,
+            hull_vertices: 0,
+        };
+        let mut planner = Planner::new(&room, &cfg, self.density);
+        if let Some(s) = self.stop {
+            planner = planner.with_stop(s);
+        }
+        let mut best: Option<(String, Plan)> = None;
+        for f in &cfg.families {
+            let Ok(plans) = planner.plan_family(f, &|| {}) else {
+                continue;
+            };
+            if let Some(p) = plans.into_iter().next() {
+                if p.scale < cfg.min_width_mm {
+                    continue;
+                }
+                if best.as_ref().is_none_or(|(_, b)| p.objective > b.objective) {
+                    best = Some((f.clone(), p));
+                }
+            }
+        }
+        best
+    }
+
+    /// The region of a stone in `piece` kept off the inclusions it still meets: the piece
+    /// moved in by the allowance, and per inclusion one face of its grown hull's far side.
+    /// `None`: nothing is left.
+    fn kept_out(&self, region: Polyhedron) -> Option<(Polyhedron, Vec<(usize, Plane)>)> {
+        let mut region = region;
+        let mut seps = Vec::new();
+        let proxy: Vec<DVec3> = PROXY.iter().map(|p| DVec3::from_array(*p)).collect();
+        for (i, inc) in self.inclusions.iter().enumerate() {
+            if apart(&region, &inc.grown) {
+                continue;
+            }
+            let planes: Vec<Plane> = region.facets().iter().map(|f| f.plane).collect();
+            let c = region.centroid();
+            let mut best: Option<(f64, Plane)> = None;
+            for f in inc.grown.facets() {
+                // The stone's side: n·x >= d, as the half-space −n·x <= −d.
+                let h = Plane {
+                    normal: -f.plane.normal,
+                    offset: -f.plane.offset,
+                };
+                let far = region
+                    .vertices()
+                    .iter()
+                    .copied()
+                    .min_by(|a, b| h.distance(*a).total_cmp(&h.distance(*b)))?;
+                if h.distance(far) >= -1e-9 {
+                    continue;
+                }
+                // A point inside the region and strictly on the stone's side.
+                let inside = if h.distance(c) < 0.5 * h.distance(far) {
+                    c
+                } else {
+                    let (dc, df) = (h.distance(c), h.distance(far));
+                    let t = (dc - 0.5 * df) / (dc - df);
+                    c + t * (far - c)
+                };
+                let mut with = planes.clone();
+                with.push(h);
+                if let Some(fit) = largest_copy(&with, &proxy, inside) {
+                    if best.is_none_or(|(s, _)| fit.scale > s + 1e-12) {
+                        best = Some((fit.scale, h));
+                    }
+                }
+            }
+            let (_, h) = best?;
+            let mut fps = region.facet_planes();
+            fps.push(FacetPlane {
+                plane: h,
+                name: format!("keep-off-{}", i + 1),
+                tier: "inclusion".into(),
+            });
+            region = Polyhedron::from_planes_pruned(&fps).ok()?;
+            seps.push((i, h));
+        }
+        Some((region, seps))
+    }
+
+    /// The best stone of `piece` at `effort`, or `None` when none fits.
+    fn stone(&self, piece: &Piece, effort: Effort) -> Option<Stone> {
+        if self.stopped() {
+            return None;
+        }
+        let room =
+            Polyhedron::from_planes_pruned(&moved_in(&piece.solid, self.config.allowance_mm))
+                .ok()?;
+        let meets: Vec<usize> = self
+            .inclusions
+            .iter()
+            .enumerate()
+            .filter(|(_, inc)| !apart(&room, &inc.grown))
+            .map(|(i, _)| i)
+            .collect();
+        let mut best: Option<Stone> = None;
+        if let Some((region, separations)) = self.kept_out(room.clone()) {
+            if let Some((family, plan)) = self.best_in(region, effort) {
+                best = Some(self.stone_of(piece, family, plan, separations, Vec::new()));
+            }
+        }
+        let factor = match &self.config.objective {
+            Objective::Value(t) => t.included,
+            _ => None,
+        };
+        if let (Some(f), false) = (factor, meets.is_empty()) {
+            if let Some((family, mut plan)) = self.best_in(room, effort) {
+                // The stone may not hold an inclusion, only the margin around it.
+                let solid = plan.placed_solid().ok();
+                let holds: Vec<usize> = meets
+                    .iter()
+                    .copied()
+                    .filter(|&i| {
+                        solid
+                            .as_ref()
+                            .is_none_or(|s| !apart(s, &self.inclusions[i].grown))
+                    })
+                    .collect();
+                if !holds.is_empty() {
+                    plan.objective *= f;
+                }
+                if best
+                    .as_ref()
+                    .is_none_or(|b| plan.objective > b.plan.objective)
+                {
+                    best = Some(self.stone_of(piece, family, plan, Vec::new(), holds));
+                }
+            }
+        }
+        best
+    }
+
+    fn stone_of(
+        &self,
+        piece: &Piece,
+        family: String,
+        mut plan: Plan,
+        separations: Vec<(usize, Plane)>,
+        holds: Vec<usize>,
+    ) -> Stone {
+        plan.yield_fraction = plan.volume_mm3 / self.rough.volume();
+        Stone {
+            family,
+            piece: piece.label.clone(),
+            piece_solid: piece.solid.clone(),
+            plan,
+            separations,
+            holds,
+        }
+    }
+
+    /// `piece` sawn along `u·x = c`: the two pieces (`None` when either is empty) and the
+    /// kerf's loss.
+    fn saw(&self, piece: &Piece, u: DVec3, c: f64) -> Option<(Piece, Piece, f64)> {
+        let k = 0.5 * self.config.kerf_mm;
+        let mut a = piece.solid.facet_planes();
+        a.push(FacetPlane::new(
+            u,
+            c - k,
+            format!("saw-{}", piece.label),
+            "saw",
+        ));
+        let mut b = piece.solid.facet_planes();
+        b.push(FacetPlane::new(
+            -u,
+            -(c + k),
+            format!("saw-{}", piece.label),
+            "saw",
+        ));
+        let a = Polyhedron::from_planes_pruned(&a).ok()?;
+        let b = Polyhedron::from_planes_pruned(&b).ok()?;
+        let loss = (piece.solid.volume() - a.volume() - b.volume()).max(0.0);
+        let (la, lb) = if piece.label == "rough" {
+            ("A".to_string(), "B".to_string())
+        } else {
+            (format!("{}a", piece.label), format!("{}b", piece.label))
+        };
+        Some((
+            Piece {
+                label: la,
+                solid: a,
+            },
+            Piece {
+                label: lb,
+                solid: b,
+            },
+            loss,
+        ))
+    }
+
+    /// The value of `piece` sawn along `u·x = c` at screening effort (0 when it fails).
+    fn split_value(&self, piece: &Piece, u: DVec3, c: f64) -> f64 {
+        let Some((a, b, _)) = self.saw(piece, u, c) else {
+            return 0.0;
+        };
+        let v = |p: &Piece| {
+            self.stone(p, Effort::Screen)
+                .map_or(0.0, |s| s.plan.objective)
+        };
+        v(&a) + v(&b)
+    }
+
+    /// Plan the layout: at most `config.stones` stones (see the module documentation). `tick`
+    /// runs after each saw candidate is judged.
+    pub fn plan(&self, tick: &(dyn Fn() + Sync)) -> Result<Layout> {
+        let whole = Piece {
+            label: "rough".into(),
+            solid: self.rough.solid.clone(),
+        };
+        let mut pieces: Vec<(Piece, f64)> = Vec::new();
+        let v0 = self
+            .stone(&whole, Effort::Screen)
+            .map_or(0.0, |s| s.plan.objective);
+        pieces.push((whole, v0));
+        let mut saw: Vec<SawCut> = Vec::new();
+        // The normals of the rough's largest faces (a crystal is sawn along its faces), the
+        // directions to its farthest corners, then the principal frame's (a symmetric
+        // rough's principal frame is any frame: its own directions come first).
+        let mut dirs: Vec<DVec3> = Vec::new();
+        let mut faces: Vec<(f64, DVec3)> = (0..self.rough.solid.facets().len())
+            .map(|i| {
+                let poly = self.rough.solid.facet_polygon(i);
+                let area = (1..poly.len().saturating_sub(1))
+                    .map(|k| 0.5 * (poly[k] - poly[0]).cross(poly[k + 1] - poly[0]).length())
+                    .sum::<f64>();
+                (area, self.rough.solid.facets()[i].plane.normal)
+            })
+            .collect();
+        faces.sort_by(|a, b| b.0.total_cmp(&a.0));
+        // Faces as large as the last one kept are all kept (a symmetric rough's equal faces
+        // are taken together, whatever their order).
+        let least = faces
+            .get(FACE_DIRECTIONS.saturating_sub(1))
+            .map_or(0.0, |f| f.0 * (1.0 - 1e-6));
+        let apart = |dirs: &[DVec3], n: DVec3| {
+            dirs.iter()
+                .all(|d| d.dot(n).abs() < 2f64.to_radians().cos())
+        };
+        for (area, n) in faces {
+            if area < least || dirs.len() >= 2 * FACE_DIRECTIONS {
+                break;
+            }
+            if apart(&dirs, n) {
+                dirs.push(n);
+            }
+        }
+        // And the directions from the centroid to its farthest corners (a crystal's tips).
+        let centre = self.rough.solid.centroid();
+        let mut tips: Vec<(f64, DVec3)> = self
+            .rough
+            .solid
+            .vertices()
+            .iter()
+            .map(|v| (v.distance(centre), (*v - centre).normalize()))
+            .collect();
+        tips.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let least = tips
+            .get(FACE_DIRECTIONS.saturating_sub(1))
+            .map_or(0.0, |t| t.0 * (1.0 - 1e-6));
+        let cap = dirs.len() + 2 * FACE_DIRECTIONS;
+        for (d, n) in tips {
+            if d < least || dirs.len() >= cap {
+                break;
+            }
+            if apart(&dirs, n) {
+                dirs.push(n);
+            }
+        }
+        for n in directions(self.frame) {
+            if apart(&dirs, n) {
+                dirs.push(n);
+            }
+        }
+        let m = self.config.saw_offsets;
+        while pieces.len() < self.config.stones && !self.stopped() {
+            // Every piece × direction × offset, judged in parallel, gathered in order.
+            let mut cands: Vec<(usize, DVec3, f64, f64)> = Vec::new();
+            for (i, (p, _)) in pieces.iter().enumerate() {
+                for u in &dirs {
+                    let (lo, hi) = extent(&p.solid, *u);
+                    for j in 0..m {
+                        let c = lo + (hi - lo) * (j + 1) as f64 / (m + 1) as f64;
+                        cands.push((i, *u, c, (hi - lo) / (m + 1) as f64));
+                    }
+                }
+            }
+            let gains: Vec<f64> = cands
+                .par_iter()
+                .map(|&(i, u, c, _)| {
+                    let g = self.split_value(&pieces[i].0, u, c) - pieces[i].1;
+                    tick();
+                    g
+                })
+                .collect();
+            // The best few candidates (at most one per piece and direction) refined, the
+            // best refined one made.
+            let mut order: Vec<usize> =
+                (0..cands.len()).filter(|&k| gains[k].is_finite()).collect();
+            order.sort_by(|&x, &y| gains[y].total_cmp(&gains[x]).then(x.cmp(&y)));
+            let mut picked: Vec<usize> = Vec::new();
+            for k in order {
+                if picked.len() >= REFINED {
+                    break;
+                }
+                let (i, u, ..) = cands[k];
+                if !picked.iter().any(|&q| cands[q].0 == i && cands[q].1 == u) {
+                    picked.push(k);
+                }
+            }
+            let refined: Vec<(usize, DVec3, f64, f64)> = picked
+                .par_iter()
+                .map(|&k| {
+                    let (i, u, c, step) = cands[k];
+                    let (u, c, v) = self.refine(&pieces[i].0, u, c, step, gains[k] + pieces[i].1);
+                    (i, u, c, v - pieces[i].1)
+                })
+                .collect();
+            let Some(&(i, u, c, g)) = refined
+                .iter()
+                .enumerate()
+                .max_by(|a, b| a.1 .3.total_cmp(&b.1 .3).then(b.0.cmp(&a.0)))
+                .map(|(_, r)| r)
+            else {
+                break;
+            };
+            if g.is_nan() || g <= 1e-9 * pieces.iter().map(|p| p.1).sum::<f64>().max(1e-300) {
+                break;
+            }
+            let Some((a, b, loss)) = self.saw(&pieces[i].0, u, c) else {
+                break;
+            };
+            saw.push(SawCut {
+                piece: pieces[i].0.label.clone(),
+                normal: u,
+                offset: c,
+                kerf_loss_mm3: loss,
+                piece_solid: pieces[i].0.solid.clone(),
+            });
+            let va = self
+                .stone(&a, Effort::Screen)
+                .map_or(0.0, |s| s.plan.objective);
+            let vb = self
+                .stone(&b, Effort::Screen)
+                .map_or(0.0, |s| s.plan.objective);
+            pieces.splice(i..=i, [(a, va), (b, vb)]);
+        }
+        if self.stopped() {
+            return Err(Error::invalid("plan", "interrupted"));
+        }
+        // The final pieces' stones, with the full search.
+        let stones: Vec<Option<Stone>> = pieces
+            .par_iter()
+            .map(|(p, _)| self.stone(p, Effort::Full))
+            .collect();
+        let stones: Vec<Stone> = stones.into_iter().flatten().collect();
+        if stones.is_empty() {
+            return Err(Error::invalid(
+                "ROUGH",
+                format!(
+                    "no stone of the families asked fits in the rough {} with the allowance {} mm and the inclusions' margin",
+                    self.rough.name, self.config.allowance_mm
+                ),
+            ));
+        }
+        let total = stones.iter().map(|s| s.plan.objective).sum();
+        let carats = stones.iter().map(|s| s.plan.carats).sum();
+        let volume: f64 = stones.iter().map(|s| s.plan.volume_mm3).sum();
+        Ok(Layout {
+            total,
+            carats,
+            yield_fraction: volume / self.rough.volume(),
+            kerf_loss_mm3: saw.iter().map(|s| s.kerf_loss_mm3).sum(),
+            stones,
+            saw,
+        })
+    }
+
+    /// Refine a saw cut of `piece` (value `value`): the offset by golden section within
+    /// `step` either side, then the normal by tilts of 8° and 3° about two axes across it.
+    fn refine(&self, piece: &Piece, u: DVec3, c: f64, step: f64, value: f64) -> (DVec3, f64, f64) {
+        let (mut u, mut c, mut best) = (u, c, value);
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut lo, mut hi) = (c - step, c + step);
+        let mut x1 = hi - g * (hi - lo);
+        let mut x2 = lo + g * (hi - lo);
+        let mut f1 = self.split_value(piece, u, x1);
+        let mut f2 = self.split_value(piece, u, x2);
+        for _ in 0..6 {
+            if f1 >= f2 {
+                hi = x2;
+                (x2, f2) = (x1, f1);
+                x1 = hi - g * (hi - lo);
+                f1 = self.split_value(piece, u, x1);
+            } else {
+                lo = x1;
+                (x1, f1) = (x2, f2);
+                x2 = lo + g * (hi - lo);
+                f2 = self.split_value(piece, u, x2);
+            }
+        }
+        for (x, f) in [(x1, f1), (x2, f2)] {
+            if f > best {
+                (c, best) = (x, f);
+            }
+        }
+        for deg in [12.0f64, 6.0, 3.0, 1.5] {
+            // Axes across the normal taken from the rough's frame (so a turned rough tilts
+            // the same way).
+            let e = [
+                self.frame * DVec3::X,
+                self.frame * DVec3::Y,
+                self.frame * DVec3::Z,
+            ];
+            let k = e
+                .iter()
+                .copied()
+                .min_by(|p, q| p.dot(u).abs().total_cmp(&q.dot(u).abs()))
+                .unwrap_or(DVec3::X);
+            let a = (k - k.dot(u) * u).normalize();
+            let b = u.cross(a);
+            let centre = piece.solid.centroid();
+            let tilts: Vec<DVec3> = [a, -a, b, -b]
+                .iter()
+                .map(|w| DQuat::from_axis_angle(*w, deg.to_radians()) * u)
+                .collect();
+            // The plane turned about its point nearest the piece's centroid.
+            let foot = centre + (c - u.dot(centre)) * u;
+            let tried: Vec<(DVec3, f64, f64)> = tilts
+                .par_iter()
+                .map(|t| {
+                    let ct = t.dot(foot);
+                    (*t, ct, self.split_value(piece, *t, ct))
+                })
+                .collect();
+            for (t, ct, f) in tried {
+                if f > best {
+                    (u, c, best) = (t, ct, f);
+                }
+            }
+        }
+        (u, c, best)
+    }
+}
+
+/// Plan a layout of `config.stones` stones in `rough` keeping off `inclusions`, for
+/// `material`'s density: `tick` after each saw candidate, a raised `stop` ends it (an
+/// error). The colour objective plans one stone at a time and is refused here.
+pub fn plan_layout(
+    rough: &Rough,
+    config: &PlanConfig,
+    material: &crate::optics::Material,
+    inclusions: &[Inclusion],
+    tick: &(dyn Fn() + Sync),
+    stop: Option<&AtomicBool>,
+) -> Result<Layout> {
+    if config.objective == Objective::Colour {
+        return Err(Error::invalid(
+            "objective.kind",
+            "\"colour\" ranks the single plans of each family; a layout of several stones or with inclusions is ranked by weight or value",
+        ));
+    }
+    if rough.ball.is_some() {
+        return Err(Error::invalid(
+            "ROUGH",
+            "the sphere is an exact ball for single plans; a layout of several stones or with inclusions needs a polyhedral rough",
+        ));
+    }
+    let mut planner = LayoutPlanner::new(rough, config, material.density, inclusions);
+    if let Some(s) = stop {
+        planner = planner.with_stop(s);
+    }
+    planner.plan(tick)
+}
+
+/// About how many saw candidates [`LayoutPlanner::plan`] judges at most (for a progress bar).
+pub fn candidates(config: &PlanConfig) -> u64 {
+    let per_piece = ((13 + 4 * FACE_DIRECTIONS) * config.saw_offsets) as u64;
+    (1..config.stones as u64).map(|k| k * per_piece).sum()
+}
+
+/// The smallest and largest `u·v` over a solid's vertices.
+fn extent(solid: &Polyhedron, u: DVec3) -> (f64, f64) {
+    solid
+        .vertices()
+        .iter()
+        .map(|v| u.dot(*v))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        })
+}
+
+#[cfg(test)]
+mod tests;
