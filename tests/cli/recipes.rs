@@ -89,6 +89,16 @@ fn a_recipe_builds_and_every_command_reads_it() {
         &["info", "r.toml", "--set", "P2=40"],
         &["--set P2", "not a free tier"],
     );
+    // Its cutting sheet: the recipe's order and instructions, depths in mm at a size.
+    ok(p, &["sheet", "r.toml", "--diameter-mm", "8", "-o", "s.svg"]);
+    let svg = std::fs::read_to_string(p.join("s.svg")).unwrap();
+    let at = |t: &str| {
+        svg.find(t)
+            .unwrap_or_else(|| panic!("{t} not on the sheet"))
+    };
+    assert!(at("cut to centre point") < at("meet P1-G1"));
+    assert!(at("meet P1-G1") < at("leave a girdle of 3.00 % of the width"));
+    assert!(at("leave a girdle") < at("cut the table to 55.00 % of the width"));
 }
 
 #[test]
