@@ -65,7 +65,12 @@ impl Drawings for PlanDrawings {
                 .collect(),
             saw: shown.saw.clone(),
             inclusions: shown.inclusions.clone(),
-            title: format!("{} stones in {}", shown.stones.len(), rough.name),
+            title: format!(
+                "{} stone{} in {}",
+                shown.stones.len(),
+                if shown.stones.len() == 1 { "" } else { "s" },
+                rough.name
+            ),
         };
         crate::plot::save_to(&picture, png, svg)
     }
