@@ -99,12 +99,14 @@ pub fn run(a: &DesignArgs) -> Result<()> {
     let bytes: Vec<u8> = match ext.as_str() {
         "svg" => facetlab::plot::diagram::diagram(cut).into_bytes(),
         e if io::CUT_FORMATS.contains(&e) => io::write_cut(cut, e)?,
-        _ => return Err(Error::invalid(
-            "-o",
-            format!(
+        _ => {
+            return Err(Error::invalid(
+                "-o",
+                format!(
                 "cannot write `.{ext}`; allowed extensions: .asc, .gem, .obj, .stl, .svg, .toml"
             ),
-        )),
+            ))
+        }
     };
     for s in &built.steps {
         let ix: Vec<String> = s.indices.iter().map(|x| format!("{x:02}")).collect();

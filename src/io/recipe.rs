@@ -184,9 +184,11 @@ pub fn parse(text: &str, source: &str, default_name: &str) -> Result<Recipe> {
             Some(Value::String(s)) if s.trim_start().starts_with('=') => Angle::Expr(s.clone()),
             Some(Value::String(s)) => match s.trim().parse::<f64>() {
                 Ok(x) => Angle::Degrees(x),
-                Err(_) => return Err(tb(format!(
+                Err(_) => {
+                    return Err(tb(format!(
                     "angle `{s}`: a number of degrees or an expression starting with = (\"=P1-2\")"
-                ))),
+                )))
+                }
             },
             Some(v) => {
                 Angle::Degrees(float(v).ok_or_else(|| tb(format!("angle `{v}`: a number")))?)
