@@ -41,7 +41,7 @@ pub fn parse_indices(text: &str, gear: u32) -> Result<Vec<f64>, String> {
             return Err(format!("`{t}`: a range is start:step:end"));
         }
         let (a, b, c) = (num(parts[0])?, num(parts[1])?, num(parts[2])?);
-        if !(b > 0.0) || (c - a) / b > 4.0 * g {
+        if b.is_nan() || b <= 0.0 || (c - a) / b > 4.0 * g {
             return Err(format!(
                 "`{t}`: the step must be positive and the range at most a few turns of the gear"
             ));

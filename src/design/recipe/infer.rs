@@ -150,7 +150,7 @@ pub fn infer(cut: &Cut) -> Result<Inferred> {
     let mut symmetry = record.symmetry.max(1);
     let mut mirror = record.mirror;
     let closed = |s: u32, m: bool| {
-        teeth as u32 % s == 0
+        (teeth as u32).is_multiple_of(s)
             && raw.iter().all(|l| {
                 l.angle == 0.0 || {
                     let all = symmetric_indices(&l.indices, teeth as u32, gear.offset, s, m);
