@@ -11,6 +11,7 @@
 mod cuts;
 mod keywords;
 mod picture;
+mod recipe;
 mod rough;
 mod runs;
 mod score;
@@ -134,5 +135,6 @@ fn _facetlab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     tally::register(m)?;
     runs::register(m)?;
     rough::register(m)?;
+    recipe::register(m)?;
     Ok(())
 }

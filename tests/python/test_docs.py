@@ -25,6 +25,7 @@ ATTRIBUTES = {
                "brilliance_cos", "fire", "scintillation", "aset"},
     "Render": {"linear", "srgb", "coverage", "stats"},
     "Grid": {"keys"},
+    "Recipe": {"name", "tiers"},
 }
 
 # Private names with examples all the same: how a Cut pickles.

@@ -16,6 +16,8 @@
 //! - `POST /api/render`: `image/png` of the face-up (or tilted) picture.
 //! - `POST /api/export`: the cut as `.asc`, `.gem`, `.obj`, `.stl` or `.toml` bytes.
 //! - `POST /api/plan`, `GET /api/plan`: plans from an uploaded rough ([`plans`]).
+//! - `POST /api/recipe/build`, `/api/recipe/infer`: the tier editor's recipe built, and the
+//!   recipe of the current cut ([`recipes`]).
 //!
 //! Every body is a JSON object: `cut` (a preset name, or the text of a file with `format`),
 //! `set` (parameter changes: a family's parameters, or a design's tier angles), and per endpoint `light`, `size`, `tilt`, `exposure`, `quick`, `to`, and the stone's `material`, `colour`, `colour_density`, `diameter_mm` or `size_mm` (cut, score, render). Errors are
@@ -37,6 +39,7 @@ mod field;
 mod jobs;
 mod page;
 mod plans;
+mod recipes;
 mod request;
 mod routes;
 mod runs;

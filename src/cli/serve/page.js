@@ -269,7 +269,9 @@ async function doScore(name, quick) {
 async function doInfo(name) {
   const s = state.slots[name];
   try {
-    const j = await api('info-' + name, '/api/cut', requestBody(s));
+    // A recipe's stone (the tier editor's, recipe.js) is built by /api/recipe/build, which
+    // answers as /api/cut does without adopting the design's tier angles as sliders.
+    const j = await api('info-' + name, s.recipe ? '/api/recipe/build' : '/api/cut', s.recipe ? Object.assign({}, s.source, stoneBody()) : requestBody(s));
     if (state.slots[name] !== s) return;
     s.info = j;
     takeNotes(s, j);
@@ -639,7 +641,7 @@ function fillProps() {
   const a = state.slots.a;
   if (a && a.info) {
     $('#cut-name').textContent = a.info.name;
-    $('#cut-family').textContent = a.info.family ? '· ' + a.info.family : a.design ? '· design, tier angles' : '· explicit facets';
+    $('#cut-family').textContent = a.info.family ? '· ' + a.info.family : a.recipe ? '· recipe, tier by tier' : a.design ? '· design, tier angles' : '· explicit facets';
   }
 }
 
@@ -771,6 +773,7 @@ function pinB() {
   b.family = a.family;
   b.design = a.design;
   b.designError = a.designError;
+  b.recipe = a.recipe;
   b.info = a.info;
   b.scores = a.scores;
   b.quick = a.quick;

@@ -1,6 +1,6 @@
 //! The page of the workbench, embedded in the binary: `page.html`, `page.js`, `plan.js` (the
-//! rough-planning panel) and `page.css` beside this file, served at `/`, `/page.js`,
-//! `/plan.js` and `/page.css` (no build step, no network).
+//! rough-planning panel), `recipe.js` (the tier editor) and `page.css` beside this file, served at `/`, `/page.js`,
+//! `/plan.js`, `/recipe.js` and `/page.css` (no build step, no network).
 
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
@@ -11,6 +11,7 @@ const PAGE_HTML: &str = include_str!("page.html");
 const PAGE_JS: &str = include_str!("page.js");
 const PAGE_CSS: &str = include_str!("page.css");
 const PLAN_JS: &str = include_str!("plan.js");
+const RECIPE_JS: &str = include_str!("recipe.js");
 
 /// The page's routes.
 pub fn routes<S: Clone + Send + Sync + 'static>() -> Router<S> {
@@ -26,6 +27,10 @@ pub fn routes<S: Clone + Send + Sync + 'static>() -> Router<S> {
         .route(
             "/plan.js",
             get(|| async { asset("text/javascript; charset=utf-8", PLAN_JS) }),
+        )
+        .route(
+            "/recipe.js",
+            get(|| async { asset("text/javascript; charset=utf-8", RECIPE_JS) }),
         )
         .route(
             "/page.css",

@@ -5,7 +5,9 @@
 use super::error::{no_store, ApiError, ApiResult};
 use super::jobs::{build, build_design, heavy, jobs};
 use super::request::{material_for, parse_req, width_mm, Source, EXPORTS, FORMATS, PHOTO, STONE};
-use super::{page, plans, runs, AppState, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT};
+use super::{
+    page, plans, recipes, runs, AppState, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT,
+};
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
 use axum::extract::{DefaultBodyLimit, State};
@@ -42,6 +44,8 @@ pub fn app() -> Router {
         .route("/api/score", post(score_cut))
         .route("/api/render", post(render_cut))
         .route("/api/export", post(export_cut))
+        .route("/api/recipe/build", post(recipes::build_recipe))
+        .route("/api/recipe/infer", post(recipes::infer_recipe))
         .route("/api/configs", get(runs::configs))
         .route("/api/optimize", post(runs::start).get(runs::status))
         .route("/api/optimize/stop", post(runs::stop))

@@ -47,6 +47,48 @@ class Cut:
         meet_tol: float = ...,
     ) -> Dict[str, Any]: ...
 
+class Recipe:
+    def __init__(
+        self,
+        name: str = "recipe",
+        gear: int = 96,
+        symmetry: int = 1,
+        mirror: bool = False,
+        index: float = 1.54,
+        *,
+        offset: float = 0.0,
+        fractional: bool = False,
+    ) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def tiers(self) -> List[str]: ...
+    def add_tier(
+        self,
+        name: str,
+        angle: Union[float, str],
+        indices: Union[None, float, str, Sequence[Union[float, str]]] = None,
+        *,
+        meet: Union[None, str, Sequence[str]] = None,
+        centre: bool = False,
+        depth: Optional[float] = None,
+        scale: Optional[float] = None,
+        girdle: Optional[float] = None,
+        table: Optional[float] = None,
+        side: Optional[str] = None,
+        note: Optional[str] = None,
+    ) -> None: ...
+    def build(self) -> Cut: ...
+    def steps(self) -> List[Dict[str, Any]]: ...
+    def findings(self) -> List[Dict[str, Any]]: ...
+    def to_toml(self) -> str: ...
+    @classmethod
+    def from_toml(cls, text: str, name: str = "recipe") -> "Recipe": ...
+    @classmethod
+    def from_design(cls, design: CutLike) -> "Recipe": ...
+    def __len__(self) -> int: ...
+    def __eq__(self, other: object) -> bool: ...
+
 class Scores:
     @property
     def cut(self) -> str: ...

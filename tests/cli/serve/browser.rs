@@ -4,7 +4,7 @@
 use super::*;
 
 /// Wait until the page's `expr` (a JavaScript expression) is true; false after `secs`.
-async fn wait_js(page: &chromiumoxide::Page, expr: &str, secs: u64) -> bool {
+pub(super) async fn wait_js(page: &chromiumoxide::Page, expr: &str, secs: u64) -> bool {
     let t = Instant::now();
     while t.elapsed() < Duration::from_secs(secs) {
         if let Ok(r) = page.evaluate(expr).await {
@@ -37,7 +37,10 @@ async fn upload_to(page: &chromiumoxide::Page, selector: &str, file: &std::path:
     .unwrap();
 }
 
-async fn js<T: serde::de::DeserializeOwned>(page: &chromiumoxide::Page, expr: &str) -> T {
+pub(super) async fn js<T: serde::de::DeserializeOwned>(
+    page: &chromiumoxide::Page,
+    expr: &str,
+) -> T {
     page.evaluate(expr)
         .await
         .unwrap_or_else(|e| panic!("{expr}: {e}"))

@@ -13,7 +13,10 @@ mod first;
 mod fuzz;
 mod paths;
 mod plan;
+mod recipe;
 mod scores;
+#[cfg(feature = "browser-tests")]
+mod tier_editor;
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
