@@ -23,6 +23,7 @@ pub const FLAGS: &[(&str, &str)] = &[
     ("refractive index", "--ri"),
     ("material", "--material"),
     ("rough size", "--size-mm"),
+    ("inclusion mesh", "--inclusion"),
     ("sweep score", "--score"),
     ("sweep y axis", "--y"),
     ("sweep grid", "--x/--y"),

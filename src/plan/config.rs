@@ -374,62 +374,6 @@ struct RawConfig {
     free: BTreeMap<String, BTreeMap<String, toml::Value>>,
 }
 
-/// A value as a message quotes it: at most 40 characters of its TOML text, one line.
-fn quote(v: &toml::Value) -> String {
-    let t = match v {
-        toml::Value::Float(f) => shown(*f),
-        other => other.to_string(),
-    };
-    let mut out: String = t
-        .chars()
-        .take(40)
-        .map(|c| if c.is_control() { '?' } else { c })
-        .collect();
-    if t.chars().count() > 40 {
-        out.push('…');
-    }
-    out
-}
-
-/// A number (an integer or a float) from a TOML value.
-fn as_number(v: &toml::Value) -> Option<f64> {
-    match v {
-        toml::Value::Integer(i) => Some(*i as f64),
-        toml::Value::Float(f) => Some(*f),
-        _ => None,
-    }
-}
-
-/// A whole number in `lo..=hi` named `field`.
-fn whole(field: String, v: &toml::Value, lo: u64, hi: u64, what: &str) -> Result<u64> {
-    match v {
-        toml::Value::Integer(i) if *i >= 0 && (lo..=hi).contains(&(*i as u64)) => Ok(*i as u64),
-        _ => Err(Error::invalid(
-            field,
-            format!(
-                "{} is not allowed; give {what}, a whole number from {lo} to {hi}",
-                quote(v)
-            ),
-        )),
-    }
-}
-
-/// A number in `[lo, hi]` named `field`.
-fn ranged(field: String, v: &toml::Value, lo: f64, hi: f64, what: &str) -> Result<f64> {
-    match as_number(v) {
-        Some(x) if x.is_finite() && x >= lo && x <= hi => Ok(x),
-        _ => Err(Error::invalid(
-            field,
-            format!(
-                "{} is not allowed; give {what}, a number from {} to {}",
-                quote(v),
-                shown(lo),
-                shown(hi)
-            ),
-        )),
-    }
-}
-
 /// `[rough] c_axis` named `field`: three numbers, not all 0, for a uniaxial `material`.
 fn c_axis(field: String, v: &toml::Value, material: &str) -> Result<glam::DVec3> {
     let xyz: Option<Vec<f64>> = v
@@ -458,16 +402,6 @@ fn c_axis(field: String, v: &toml::Value, material: &str) -> Result<glam::DVec3>
         ));
     }
     Ok(axis.normalize())
-}
-
-/// A string named `field`.
-fn string<'v>(field: String, v: &'v toml::Value, example: &str) -> Result<&'v str> {
-    v.as_str().ok_or_else(|| {
-        Error::invalid(
-            field,
-            format!("{} is not allowed; give a string, e.g. {example}", quote(v)),
-        )
-    })
 }
 
 impl PlanConfig {
@@ -698,24 +632,12 @@ impl PlanConfig {
     }
 }
 
-/// Families to plan, each a known family named once; the error says which is not.
-pub fn check_families(names: &[String]) -> std::result::Result<Vec<String>, String> {
-    if names.is_empty() {
-        return Err("name at least one family".into());
-    }
-    for (i, name) in names.iter().enumerate() {
-        family(name).map_err(|e| match e {
-            Error::Invalid { message, .. } => message,
-            other => other.to_string(),
-        })?;
-        if names[..i].contains(name) {
-            return Err(format!(
-                "`{name}` is named twice; name each family once (its plans would be written over each other)"
-            ));
-        }
-    }
-    Ok(names.to_vec())
-}
+mod families;
+mod values;
+
+use values::{as_number, quote, ranged, string, whole};
+
+pub use families::check_families;
 
 #[cfg(test)]
 mod tests {

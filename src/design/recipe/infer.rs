@@ -4,8 +4,9 @@
 //! indicatrix finds it, from the tiers through that vertex), leaving a girdle, to a table
 //! width — wherever that placement gives back its depth, else at its depth.
 
-use super::build::{table_fraction, Carved};
+use super::build::Carved;
 use super::index::symmetric_indices;
+use super::place::table_fraction;
 use super::{Angle, Place, Recipe, RecipeTier, Side};
 use crate::cut::{Cut, GemcadRecord};
 use crate::design::{tiers, Gear};

@@ -47,8 +47,10 @@
 
 mod build;
 mod expr;
+mod finish;
 mod index;
 mod infer;
+mod place;
 mod space;
 #[cfg(test)]
 mod tests;
