@@ -28,7 +28,7 @@ pub struct Step {
 /// What a faceter should hear about a recipe that builds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FindingKind {
-    /// A facet smaller than [`SMALL_FACET`] of the width: too small to cut and see.
+    /// A facet smaller than [`SMALL_FACET`](super::SMALL_FACET) of the width: too small to cut and see.
     SmallFacet,
     /// A pavilion tier flatter than the critical angle: light from the table leaks through it.
     BelowCritical,

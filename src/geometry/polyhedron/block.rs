@@ -4,7 +4,7 @@ use super::{clip, Face, BOX};
 use crate::geometry::{DVec3, Plane};
 
 /// A block being carved plane by plane: the large box (half-size 1000) cut by half-spaces in
-/// turn, each plane's face kept as a polygon. Unlike [`Polyhedron::from_planes`], a plane
+/// turn, each plane's face kept as a polygon. Unlike [`Polyhedron::from_planes`](super::Polyhedron::from_planes), a plane
 /// that leaves no face is not an error and the block may stay open: a design being cut tier by
 /// tier is open until its last tiers and may lose facets, and its author wants to know which
 /// ([`crate::design`]'s recipes). Carving is incremental (a plane costs one pass over the
