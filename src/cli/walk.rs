@@ -33,6 +33,7 @@ fn base(cmd: &str, d: &Path) -> String {
         "generate" => format!("tolkowsky -o {d}/g.asc"),
         "design" => format!("--from tolkowsky -o {d}/d.toml"),
         "info" => "tolkowsky".into(),
+        "sheet" => format!("tolkowsky -o {d}/s.svg"),
         "trace" => "tolkowsky --photons 64".into(),
         "score" => "tolkowsky".into(),
         "optimize" => format!("{d}/c.toml --out {d}/opt"),
@@ -68,6 +69,7 @@ fn line(cmd: &str, d: &Path, flag: &str, value: &str, extra: &[&str]) -> Vec<Str
 const ANY_TEXT: &[(&str, &str)] = &[
     ("generate", "-o"),
     ("design", "-o"),
+    ("sheet", "-o"),
     ("trace", "--json"),
     ("trace", "--plots"),
     ("score", "--json"),
