@@ -2,7 +2,7 @@
 //! write the recipe of an existing design (`--from`).
 
 use clap::Args;
-use facetlab::design::recipe::{infer, Built};
+use facetlab::design::recipe::{infer, Built, Recipe};
 use facetlab::error::{Error, Result};
 use facetlab::io;
 use facetlab::io::guard::{check_new_file, cut_files, refuse_overwrite, setting};
@@ -86,7 +86,7 @@ pub fn run(a: &DesignArgs) -> Result<()> {
         );
         return Ok(());
     }
-    let built = build(&input)?;
+    let (recipe, built) = build(&input)?;
     for f in &built.findings {
         if a.lenient {
             eprintln!("warning: {}", f.message);
@@ -134,7 +134,7 @@ pub fn run(a: &DesignArgs) -> Result<()> {
     }
     io::write_atomic(&a.output, &bytes)?;
     if a.slopes {
-        print_slopes(&input)?;
+        print_slopes(recipe)?;
     }
     eprintln!(
         "wrote {} ({} facets in {} tiers)",
@@ -146,31 +146,19 @@ pub fn run(a: &DesignArgs) -> Result<()> {
 }
 
 /// The recipe file `path` read and built, errors naming it.
-fn build(path: &str) -> Result<Built> {
-    let p = std::path::Path::new(path);
-    let is_toml = p
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
-    let bytes = io::read_bytes(p)?;
-    let text = String::from_utf8_lossy(&bytes);
-    if !is_toml || !io::recipe::is_recipe(&text) {
+fn build(path: &str) -> Result<(Recipe, Built)> {
+    let Some(recipe) = io::recipe::read(std::path::Path::new(path))? else {
         return Err(Error::invalid(
             path,
             "not a recipe: a recipe is a .toml file with [design] and [[tier]] tables (--from DESIGN writes one)",
         ));
-    }
-    let stem = p
-        .file_stem()
-        .map(|s| s.to_string_lossy().to_string())
-        .unwrap_or_default();
-    let recipe = io::recipe::parse(&text, path, &stem)?;
-    recipe.build().map_err(|e| e.context(path))
+    };
+    let built = recipe.build().map_err(|e| e.context(path))?;
+    Ok((recipe, built))
 }
 
 /// The table of `--slopes`: each free tier's change of the scores per degree.
-fn print_slopes(path: &str) -> Result<()> {
-    let text = String::from_utf8_lossy(&io::read_bytes(std::path::Path::new(path))?).to_string();
-    let recipe = io::recipe::parse(&text, path, "recipe")?;
+fn print_slopes(recipe: Recipe) -> Result<()> {
     let index = recipe.index;
     let space = facetlab::design::recipe::RecipeSpace::new(recipe)?;
     let mut config = facetlab::metrics::ScoreConfig::default();

@@ -54,7 +54,6 @@ pub fn read(path: &std::path::Path) -> Result<Option<Recipe>> {
     if !path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
-        || !path.is_file()
     {
         return Ok(None);
     }

@@ -210,34 +210,23 @@ fn finish(
 /// The recipe `file` names (a `.toml` with `[design]` or `[[tier]]`, relative to the config's
 /// folder) and where it was found; `None` when it is not a recipe.
 fn load_recipe(file: &str, source: &str, at: At) -> Result<Option<(Recipe, PathBuf)>> {
+    let path = beside_config(file, source);
+    let recipe = crate::io::recipe::read(&path)
+        .map_err(|e| Error::invalid(at("cut.file"), e.to_string()))?;
+    Ok(recipe.map(|r| (r, path)))
+}
+
+/// The path `file` names, relative to the folder of the config at `source`.
+fn beside_config(file: &str, source: &str) -> PathBuf {
     let given = Path::new(file);
-    if !given
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
-    {
-        return Ok(None);
-    }
-    let path = if given.is_absolute() {
+    if given.is_absolute() {
         given.to_path_buf()
     } else {
         Path::new(source)
             .parent()
             .unwrap_or(Path::new(""))
             .join(given)
-    };
-    let Ok(bytes) = crate::io::read_bytes(&path) else {
-        return Ok(None);
-    };
-    let text = String::from_utf8_lossy(&bytes);
-    if !crate::io::recipe::is_recipe(&text) {
-        return Ok(None);
     }
-    let stem = given
-        .file_stem()
-        .map_or(String::new(), |s| s.to_string_lossy().to_string());
-    let recipe = crate::io::recipe::parse(&text, file, &stem)
-        .map_err(|e| Error::invalid(at("cut.file"), e.to_string()))?;
-    Ok(Some((recipe, path)))
 }
 
 /// A TOML key as written: bare when it can be, else quoted.
@@ -277,16 +266,8 @@ fn given_design(file: &str, given: &dyn Fn(&str) -> Option<Result<Cut>>, at: At)
 
 /// The design `file` names: a path relative to the config's folder, or a preset's name.
 fn load_design(file: &str, source: &str, at: At) -> Result<(Cut, Option<PathBuf>)> {
-    let given = Path::new(file);
-    let path = if given.is_absolute() {
-        given.to_path_buf()
-    } else {
-        Path::new(source)
-            .parent()
-            .unwrap_or(Path::new(""))
-            .join(given)
-    };
-    let is_file = given.extension().is_some();
+    let path = beside_config(file, source);
+    let is_file = Path::new(file).extension().is_some();
     let arg = if is_file {
         path.to_string_lossy().to_string()
     } else {

@@ -369,12 +369,7 @@ impl Config {
                 (Some(d), Some((given, path))) => RawCut {
                     family: None,
                     // The design file by its full path, so the written config runs anywhere.
-                    file: Some(path.as_ref().map_or(given.clone(), |p| {
-                        std::path::absolute(p)
-                            .unwrap_or_else(|_| p.clone())
-                            .display()
-                            .to_string()
-                    })),
+                    file: Some(full_path(given, path)),
                     open_meets: Some(d.open_meets().name().to_string()),
                     facet_changes: Some(
                         if self.skip_changes { "skip" } else { "refuse" }.to_string(),
@@ -385,12 +380,7 @@ impl Config {
                 // A recipe: its file by its full path, its meets its own.
                 (None, Some((given, path))) => RawCut {
                     family: None,
-                    file: Some(path.as_ref().map_or(given.clone(), |p| {
-                        std::path::absolute(p)
-                            .unwrap_or_else(|_| p.clone())
-                            .display()
-                            .to_string()
-                    })),
+                    file: Some(full_path(given, path)),
                     params: self.start.clone(),
                     ..RawCut::default()
                 },
@@ -487,6 +477,17 @@ impl Config {
             self.source
         )
     }
+}
+
+/// A design file (`[cut] file`) by its full path when it was found, so a written config runs
+/// anywhere; else as the config gave it.
+fn full_path(given: &str, path: &Option<std::path::PathBuf>) -> String {
+    path.as_ref().map_or(given.to_string(), |p| {
+        std::path::absolute(p)
+            .unwrap_or_else(|_| p.clone())
+            .display()
+            .to_string()
+    })
 }
 
 #[cfg(test)]
