@@ -211,6 +211,11 @@ fn finish(
 /// folder) and where it was found; `None` when it is not a recipe.
 fn load_recipe(file: &str, source: &str, at: At) -> Result<Option<(Recipe, PathBuf)>> {
     let path = beside_config(file, source);
+    // A file that is not there falls through to the design loader, whose error (or, for a
+    // config sent to the server, whose refusal) is the one to give.
+    if !path.is_file() {
+        return Ok(None);
+    }
     let recipe = crate::io::recipe::read(&path)
         .map_err(|e| Error::invalid(at("cut.file"), e.to_string()))?;
     Ok(recipe.map(|r| (r, path)))
