@@ -2,8 +2,9 @@
 //!
 //! Data flows one way: [`geometry`] → [`cut`] → [`design`] → [`io`] → [`optics`] → tracers
 //! ([`photon`], [`beam`]) → pictures ([`render`]) → scores ([`metrics`]) → the photon
-//! cross-check of the beam tracer ([`verify`]) → the optimizer ([`optimize`]) → rough planning
-//! ([`plan`]) → plots ([`plot`]) → one-page reports ([`report`]); the `facetlab` binary (its
+//! cross-check of the beam tracer ([`verify`]) → the optimizer ([`optimize`]) → sweeps and
+//! grids ([`sweep`]) → rough planning ([`plan`]) → plots ([`plot`]) → one-page reports
+//! ([`report`]); the `facetlab` binary (its
 //! own `cli` module, with the `serve` web page) sits on top. The library knows nothing of the
 //! command line or the web: clap, indicatif, ctrlc, axum and tokio are the binary's, behind
 //! the default `cli` feature.
@@ -53,6 +54,7 @@ pub mod photon;
 pub mod plot;
 pub mod render;
 pub mod report;
+pub mod sweep;
 pub mod verify;
 
 // The Python package's native module (feature `python`; see pyproject.toml): a face on top of

@@ -551,7 +551,7 @@ fn flag_words(text: &str) -> Vec<String> {
 /// a batch file's lines in its tests, which hold a user's flags), and the comment `optimize`
 /// writes into best.toml for a person (the axis as the command line and the config give it).
 const FLAG_WORDS_KEPT: [(&str, &str); 4] = [
-    ("src/optimize/grid/shard.rs", "(--array=0-N or 1-N)"),
+    ("src/sweep/shard.rs", "(--array=0-N or 1-N)"),
     ("src/document/batch.rs", "`score --batch`"),
     ("src/document/batch.rs", "gia-reference --set table=0.55"),
     (

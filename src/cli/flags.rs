@@ -6,7 +6,7 @@ use facetlab::metrics::{CrystalChoice, NoteKind, StoneChoice, StoneFields};
 use facetlab::optics::{
     ColourFields, CrystalFields, Material, MaterialFields, StoneSize, DENSITY_MAX,
 };
-use facetlab::optimize::{Shard, SweepScore};
+use facetlab::sweep::{Shard, SweepScore};
 
 pub use facetlab::io::text::{count, number};
 pub use facetlab::metrics::stones::on_off;

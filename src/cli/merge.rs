@@ -9,7 +9,7 @@ use super::optimize::{write_sweep_outputs, Names};
 use super::outputs::{refuse_overwrite, Exit};
 use clap::Args;
 use facetlab::error::{Error, Result};
-use facetlab::optimize::{self as opt, ShardRecord, SweepScore};
+use facetlab::sweep::{self, ShardRecord, SweepScore};
 use std::path::{Path, PathBuf};
 
 /// Flags of `facetlab merge`.
@@ -160,9 +160,9 @@ pub fn run(a: &MergeArgs) -> Result<Exit> {
         ));
     }
     let grid = first.grid();
-    let spec = opt::MapSpec::new(&grid, a.map.as_deref(), &a.at)?;
+    let spec = sweep::MapSpec::new(&grid, a.map.as_deref(), &a.at)?;
     let path = match &a.run {
-        Some(dir) if spec.axes.len() == 2 => Some(opt::sweep_path(
+        Some(dir) if spec.axes.len() == 2 => Some(sweep::run_path(
             dir,
             &grid.axes[spec.axes[0]].key,
             &grid.axes[spec.axes[1]].key,
@@ -175,7 +175,7 @@ pub fn run(a: &MergeArgs) -> Result<Exit> {
         }
         None => None,
     };
-    let (csv, png, svg) = opt::sweep_output_paths(&a.out);
+    let (csv, png, svg) = sweep::output_paths(&a.out);
     let mut inputs: Vec<PathBuf> = dirs.clone();
     for d in &dirs {
         inputs.extend([d.join("shard.json"), d.join("rows.csv")]);
@@ -193,9 +193,9 @@ pub fn run(a: &MergeArgs) -> Result<Exit> {
     for (i, r) in records.iter().enumerate() {
         let rows = dirs[i].join("rows.csv");
         let text = String::from_utf8_lossy(&facetlab::io::read_bytes(&rows)?).to_string();
-        let (got, _) = opt::read_rows(&text, &grid)
+        let (got, _) = sweep::read_rows(&text, &grid)
             .map_err(|e| Error::invalid("SHARD_DIR", format!("{}: {e}", rows.display())))?;
-        let shard = opt::Shard { k: r.k, n: r.n };
+        let shard = sweep::Shard { k: r.k, n: r.n };
         for c in got {
             if !shard.owns(c.index) {
                 return Err(Error::invalid(
@@ -212,7 +212,7 @@ pub fn run(a: &MergeArgs) -> Result<Exit> {
             cells.push((shown(i), c));
         }
     }
-    let cells = opt::assemble_shards(&grid, cells).map_err(|e| Error::invalid("SHARD_DIR", e))?;
+    let cells = sweep::assemble(&grid, cells).map_err(|e| Error::invalid("SHARD_DIR", e))?;
     if let Some(d) = csv.parent() {
         facetlab::io::check_writable(d)?;
     }
@@ -229,7 +229,7 @@ pub fn run(a: &MergeArgs) -> Result<Exit> {
         "merged {} shards: {} grid points of config hash {}",
         first.n, first.grid_size, first.config_hash
     );
-    let swept = opt::Swept {
+    let swept = sweep::Swept {
         grid: &grid,
         cells: &cells,
         labels: &labels,

@@ -1,8 +1,9 @@
 //! The optimizer: argmin searches over a cut space's parameters (a family's proportions,
-//! through [`CutSpace`](crate::cut::CutSpace)), sweeps, and a photon-tracer verification of the
+//! through [`CutSpace`](crate::cut::CutSpace)) and a photon-tracer verification of the
 //! winners. It draws no charts and writes no pages: the plots and the report are drawn from
-//! what it returns, by functions the caller hands it ([`ConvergenceChart`], [`HeatmapChart`],
-//! [`ProfileChart`], [`ParetoChart`], [`RunPage`], a [`CutWriter`] for the diagram).
+//! what it returns, by functions the caller hands it ([`ConvergenceChart`], [`ParetoChart`],
+//! [`RunPage`], a [`CutWriter`] for the diagram). Sweeps and grids over a config's
+//! parameters are the room above it, [`crate::sweep`].
 //!
 //! Data flows one way:
 //!
@@ -25,20 +26,17 @@
 //!   the beam tracer beyond 4 standard errors;
 //! - `summary.rs` is the run's summary, `report.json` and `report.md`; `run.rs` writes the run
 //!   folder (config as used, history, charts, best cut, summary, page);
-//! - `sweep.rs` maps a score over two parameters or draws the scores along one; `grid/`
-//!   sweeps any number of axes, in shards (`--shard K/N`) that a merge joins exactly;
-//!   `pareto.rs` traces the trade-off between scores;
+//! - `pareto.rs` traces the trade-off between scores;
 //! - `ratio_search.rs` retargets a design to another index: the tangent-ratio rule of
 //!   [`crate::cut::retarget`] and a search for the two ratios that restore its light return.
 //!
-//! It may import the floors below it (`verify` and everything under it), never `plan`,
-//! `plot`, `report` or the binary.
+//! It may import the floors below it (`verify` and everything under it), never `sweep`,
+//! `plan`, `plot`, `report` or the binary.
 //!
 //! The modules are private; what a caller needs is re-exported here: the config and its
 //! sections, the two scorers made from a config ([`BeamEvaluator`], [`PhotonVerifier`]),
-//! [`search`], [`verify`] and [`run()`] with their [`Hooks`] and [`RunOptions`], the sweep
-//! ([`sweep()`], [`write_sweep`], [`sweep_path`], and the one-parameter [`profile()`] with
-//! [`write_profile`]), and the verification types.
+//! [`search`], [`verify`] and [`run()`] with their [`Hooks`] and [`RunOptions`], the objective
+//! a sweep maps ([`objective_of`]), and the verification types.
 //!
 //! The objective and the verifier are traits so the searches can be tested on analytic
 //! functions and wired to the tracers separately.
@@ -87,7 +85,6 @@
 mod config;
 mod engines;
 mod evaluator;
-mod grid;
 mod guard;
 mod history;
 mod nelder_mead;
@@ -101,7 +98,6 @@ mod score_set;
 mod search;
 mod slopes;
 mod summary;
-mod sweep;
 
 // The public surface. Everything else (the solvers, the problem wrappers, the start samples,
 // the history and summary rows) is internal: reach it through these.
@@ -133,21 +129,9 @@ pub use ratio_search::{retarget, Retarget, Variant};
 // What a run keeps and reports.
 pub use history::{History, Row, Track};
 // The cost of a cut that cannot be built or scored.
-pub use problem::{weight_retention, FAILED_COST};
+pub use problem::{objective_of, weight_retention, FAILED_COST};
 // The run's summary (`report.json`, `report.md`): the start and the winners, how it went.
 pub use summary::{Candidate, DesignJson, FoundAt, OpenedJson, RunReport};
-// Sweeps: a score mapped over two parameters, or the scores along one (a profile).
-pub use sweep::{
-    output_paths as sweep_output_paths, profile, run_path as sweep_path, sweep,
-    write as write_sweep, write_profile, Axis, Cell, Heatmap, HeatmapChart, Point, Profile,
-    ProfileChart, ProfileLines, Sweep, SweepScore,
-};
-// N-axis sweeps, their shards (`--shard K/N`, job arrays) and the exact merge.
-pub use grid::{
-    assemble as assemble_shards, best as grid_best, evaluate as evaluate_grid, fixed_at,
-    hash as config_hash, map_axes, parse_at, read_rows, rows_header, shard_folder, shard_row,
-    to_csv as grid_csv, AxisRecord, Grid, GridCell, MapSpec, Shard, ShardRecord, ShardRun, Swept,
-};
 // The photon-tracer check of the winners (all of it `crate::verify`'s).
 pub use crate::verify::{Verification, Verifier, VerifyReport, VerifyRow};
 // The names of the scores (all of them `crate::metrics`').

@@ -178,6 +178,13 @@ pub fn weighted(s: &ScoreSet, w: &Weights) -> f64 {
     main + colour
 }
 
+/// The objective of a built and scored cut as a sweep maps it: the weighted score less the
+/// penalty of the cut's constraints (the score constraints are not charged).
+pub fn objective_of(config: &Config, cut: &Cut, s: &ScoreSet) -> f64 {
+    let checks = check_constraints(cut, &config.constraints);
+    weighted(s, &config.weights) - penalty(&checks, &config.constraints)
+}
+
 /// Everything known about one evaluated point.
 #[derive(Clone, Debug)]
 pub struct Evaluation {

@@ -1,16 +1,15 @@
 //! The optimizer's charts: a run's convergence (best and current cost against evaluations), a
 //! sweep's heatmap (a score over two parameters, with contour lines, a colour bar and optionally
 //! the optimizer's path) and a one-parameter sweep's profile (every score against x). They
-//! reach the optimizer as its hooks ([`crate::optimize::ConvergenceChart`],
-//! [`crate::optimize::HeatmapChart`], [`crate::optimize::ProfileChart`]): the binary hands
+//! reach the optimizer and the sweeps as their hooks ([`crate::optimize::ConvergenceChart`],
+//! [`crate::sweep::HeatmapChart`], [`crate::sweep::ProfileChart`]): the binary hands
 //! [`convergence`], [`heatmap`] and [`profile`] to a run and a sweep.
 
 use super::contour::{nice_levels, segments};
 use super::{box_key, font, legend, line_key, save_to, DrawResult, Figure, LegendStyle, TAB10};
 use crate::error::Result;
-use crate::optimize::{
-    CutWriter, FnWriter, GemWriter, Heatmap, History, ProfileLines, Track, FAILED_COST,
-};
+use crate::optimize::{CutWriter, FnWriter, GemWriter, History, Track, FAILED_COST};
+use crate::sweep::{Heatmap, ProfileLines};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;

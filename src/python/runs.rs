@@ -10,8 +10,9 @@
 use super::{run, Whole};
 use crate::error::{Error, Result};
 use crate::optimize::{
-    self as opt, BeamEvaluator, Config, Grid, Hooks, PhotonVerifier, Progress, RunOptions, Status,
+    self as opt, BeamEvaluator, Config, Hooks, PhotonVerifier, Progress, RunOptions, Status,
 };
+use crate::sweep::{self, Grid};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
@@ -329,7 +330,7 @@ impl PyGrid {
         let grid = run(py, || {
             let parsed = axes
                 .iter()
-                .map(|a| opt::Axis::parse("axes", a, &config))
+                .map(|a| sweep::Axis::parse("axes", a, &config))
                 .collect::<Result<Vec<_>>>()?;
             Grid::new(parsed)
         })?;
@@ -386,7 +387,7 @@ impl PyGrid {
             py,
             &stop,
             || {
-                Ok(opt::evaluate_grid(
+                Ok(sweep::evaluate(
                     &self.config,
                     &evaluator,
                     &self.grid,
@@ -399,7 +400,7 @@ impl PyGrid {
         )?;
         let rows = cells
             .iter()
-            .map(|c| self.row(py, &opt::shard_row(c)))
+            .map(|c| self.row(py, &sweep::shard_row(c)))
             .collect::<PyResult<Vec<_>>>()?;
         PyList::new(py, rows)
     }
@@ -413,12 +414,12 @@ impl PyGrid {
     /// True
     fn csv(&self, rows: Vec<Bound<'_, PyDict>>) -> PyResult<String> {
         // The rows as a shard's rows.csv, read back as the merge of shards reads it.
-        let mut text = opt::rows_header(&self.grid);
+        let mut text = sweep::rows_header(&self.grid);
         for r in &rows {
             text.push_str(&self.line(r)?);
             text.push('\n');
         }
-        let (mut cells, _) = opt::read_rows(&text, &self.grid)
+        let (mut cells, _) = sweep::read_rows(&text, &self.grid)
             .map_err(|e| super::Error::new_err(format!("rows: {e}")))?;
         cells.sort_by_key(|c| c.index);
         let len = self.grid.len();
@@ -429,7 +430,7 @@ impl PyGrid {
                 cells.len()
             )));
         }
-        Ok(opt::grid_csv(&self.grid, &cells))
+        Ok(sweep::to_csv(&self.grid, &cells))
     }
 
     fn __repr__(&self) -> String {

@@ -9,9 +9,8 @@ use crate::cli::flags::ShardFlag;
 use crate::cli::outputs::{refuse_overwrite, Exit};
 use clap::Args;
 use facetlab::error::{Error, Result};
-use facetlab::optimize::{
-    self as opt, Axis, Config, Grid, MapSpec, Shard, ShardRun, SweepScore, Swept,
-};
+use facetlab::optimize::Config;
+use facetlab::sweep::{self, Axis, Grid, MapSpec, Shard, ShardRun, SweepScore, Swept};
 use std::path::{Path, PathBuf};
 
 /// Flags of `facetlab sweep`.
@@ -159,11 +158,11 @@ pub(crate) fn write_sweep_outputs(
     out: &Path,
 ) -> Result<()> {
     let (grid, cells) = (swept.grid, swept.cells);
-    let (csv, png, svg) = opt::sweep_output_paths(out);
+    let (csv, png, svg) = sweep::output_paths(out);
     if let Some(d) = csv.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(d).map_err(|e| Error::io(d.display().to_string(), e))?;
     }
-    facetlab::io::write_atomic(&csv, opt::grid_csv(grid, cells).as_bytes())?;
+    facetlab::io::write_atomic(&csv, sweep::to_csv(grid, cells).as_bytes())?;
     let title = map_title(names, grid, score, spec);
     if let [ax] = spec.axes[..] {
         let lines = swept.profile_lines(ax, &spec.fixed, title);
@@ -184,7 +183,7 @@ pub(crate) fn write_sweep_outputs(
         png.display(),
         svg.display()
     );
-    if let Some((c, v)) = opt::grid_best(cells, score) {
+    if let Some((c, v)) = sweep::best(cells, score) {
         let at: Vec<String> = grid
             .axes
             .iter()
@@ -249,7 +248,7 @@ pub fn run_sweep_env(
         return run_shard(a, &config, &grid, shard, &from, &out, make);
     }
     let out = a.out.clone().unwrap_or_else(default_out);
-    let (csv, png, svg) = opt::sweep_output_paths(&out);
+    let (csv, png, svg) = sweep::output_paths(&out);
     let mut inputs = vec![a.config.clone()];
     inputs.extend(config.inputs());
     if let Some(r) = &a.run {
@@ -276,7 +275,7 @@ pub fn run_sweep_env(
                 ));
             }
             let (mx, my) = (&grid.axes[spec.axes[0]].key, &grid.axes[spec.axes[1]].key);
-            Some(opt::sweep_path(dir, mx, my)?)
+            Some(sweep::run_path(dir, mx, my)?)
         }
         None => None,
     };
@@ -290,7 +289,7 @@ pub fn run_sweep_env(
         "{spinner} {elapsed_precise} [{bar:20}] {pos}/{len} cuts  {per_sec}  eta {eta}",
     );
     let all: Vec<usize> = (0..grid.len()).collect();
-    let cells = opt::evaluate_grid(&config, evaluator.as_ref(), &grid, &all, None, &|_| {
+    let cells = sweep::evaluate(&config, evaluator.as_ref(), &grid, &all, None, &|_| {
         pb.inc(1)
     });
     pb.finish_and_clear();
@@ -305,7 +304,7 @@ pub fn run_sweep_env(
 }
 
 /// Evaluate one shard into `out/shard-K-of-N/`, resuming from its `rows.csv`
-/// ([`opt::ShardRun`]).
+/// ([`sweep::ShardRun`]).
 fn run_shard(
     a: &SweepArgs,
     config: &Config,

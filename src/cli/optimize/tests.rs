@@ -6,7 +6,7 @@ use facetlab::cut::Cut;
 use facetlab::error::Result;
 use facetlab::optimize::Config;
 use facetlab::optimize::ScoreSet;
-use facetlab::optimize::{Axis, Grid, SweepScore};
+use facetlab::sweep::{Axis, Grid, SweepScore};
 use std::sync::atomic::Ordering;
 
 fn bump(cut: &Cut) -> Result<ScoreSet> {
@@ -224,7 +224,7 @@ fn three_axes_map_any_two_held_where_asked() {
         .unwrap(),
     ])
     .unwrap();
-    let spec = facetlab::optimize::MapSpec::new(&grid, s.map.as_deref(), &s.at).unwrap();
+    let spec = facetlab::sweep::MapSpec::new(&grid, s.map.as_deref(), &s.at).unwrap();
     assert_eq!(
         (spec.axes.clone(), spec.fixed.clone()),
         (vec![2, 0], vec![2, 2, 1]),

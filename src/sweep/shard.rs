@@ -2,11 +2,11 @@
 //! finished point appends to `rows.csv` and how it is read back, the shard's record
 //! (`shard.json`), and the merge's check that the shards cover the grid exactly once.
 
+use super::map::{Axis, SCORES};
 use super::points::{num, Grid, GridCell};
 use crate::error::{setting, Error, Result};
 use crate::metrics::ScoreName;
-use crate::optimize::score_set::ScoreSet;
-use crate::optimize::sweep::{Axis, SCORES};
+use crate::optimize::ScoreSet;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write;
 
@@ -221,7 +221,7 @@ impl Shard {
 }
 
 /// FNV-1a (64 bit) of `bytes`, as 16 hex digits: the `config_hash` of a shard.
-pub fn hash(bytes: &[u8]) -> String {
+pub fn config_hash(bytes: &[u8]) -> String {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for &b in bytes {
         h ^= b as u64;

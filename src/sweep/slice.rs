@@ -2,9 +2,9 @@
 //! values (`--at KEY=VALUE`, default the middle of each axis), as a heatmap or as the scores
 //! along one axis.
 
+use super::map::{Heatmap, ProfileLines, SweepScore, SCORES};
 use super::points::{Grid, GridCell};
 use crate::error::{Error, Result};
-use crate::optimize::sweep::{Heatmap, ProfileLines, SweepScore, SCORES};
 
 /// Where the map's other axes are held: the value index on each axis (`None` for the two
 /// mapped axes). Default: the grid value nearest each axis' middle; `at` gives `(key, value)`

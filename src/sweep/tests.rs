@@ -1,7 +1,7 @@
 use super::*;
 use crate::cut::Cut;
 use crate::error::{Error, Result};
-use crate::optimize::{Axis, Config, ScoreSet, SweepScore};
+use crate::optimize::{Config, ScoreSet};
 
 fn cfg() -> Config {
     Config::from_str(
@@ -35,14 +35,14 @@ fn order_shards_rows_and_merge_agree_with_the_two_axis_sweep() {
     assert_eq!(two.point(5), vec![34.0, 40.5], "first axis fastest");
     let all: Vec<usize> = (0..two.len()).collect();
     let cells = evaluate(&c, &bump, &two, &all, None, &|_| {});
-    let old = super::super::sweep::sweep(&c, &bump, &x, &y, None).unwrap();
+    let old = super::sweep(&c, &bump, &x, &y, None).unwrap();
     assert_eq!(
         to_csv(&two, &cells),
         old.to_csv(),
         "same bytes as the 2-axis sweep"
     );
     let one = Grid::new(vec![x.clone()]).unwrap();
-    let p = super::super::sweep::profile(&c, &bump, &x, None).unwrap();
+    let p = super::profile(&c, &bump, &x, None).unwrap();
     let cells1 = evaluate(&c, &bump, &one, &[0, 1, 2, 3], None, &|_| {});
     assert_eq!(
         to_csv(&one, &cells1),
@@ -134,5 +134,5 @@ fn shards_parse_and_come_from_job_arrays() {
     assert!(Shard::from_env(&half).is_err());
     assert!(Shard::from_env(&env(&[])).unwrap().is_none());
     assert_eq!(Shard { k: 2, n: 3 }.indices(8), vec![1, 4, 7]);
-    assert_eq!(hash(b"a"), "af63dc4c8601ec8c");
+    assert_eq!(config_hash(b"a"), "af63dc4c8601ec8c");
 }

@@ -6,10 +6,11 @@
 //! where it stopped.
 
 use super::points::{evaluate, Grid};
-use super::shard::{hash, read_rows, rows_header, shard_row, AxisRecord, Shard, ShardRecord};
+use super::shard::{
+    config_hash, read_rows, rows_header, shard_row, AxisRecord, Shard, ShardRecord,
+};
 use crate::error::{Error, Result};
-use crate::optimize::config::Config;
-use crate::optimize::evaluator::Evaluator;
+use crate::optimize::{Config, Evaluator};
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -72,7 +73,7 @@ impl ShardRun {
             config: config_file.display().to_string(),
             name: config.name.clone(),
             family: config.space.name().to_string(),
-            config_hash: hash(&config_bytes),
+            config_hash: config_hash(&config_bytes),
             axes: grid
                 .axes
                 .iter()

@@ -1,12 +1,10 @@
 //! The grid's points: the [`Grid`] (its axes, its order, a point's values), a point's
 //! scores ([`GridCell`]), their evaluation in parallel and the sweep's CSV.
 
+use super::map::{score_point, Axis, SweepScore, MAX_POINTS, SCORES};
 use crate::error::{setting, Error, Result};
 use crate::metrics::ScoreName;
-use crate::optimize::config::Config;
-use crate::optimize::evaluator::Evaluator;
-use crate::optimize::score_set::ScoreSet;
-use crate::optimize::sweep::{score_point, Axis, SweepScore, MAX_POINTS, SCORES};
+use crate::optimize::{Config, Evaluator, ScoreSet};
 use rayon::prelude::*;
 use std::fmt::Write;
 use std::sync::atomic::{AtomicBool, Ordering};

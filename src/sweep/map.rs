@@ -12,19 +12,15 @@
 //! `<x key>,brilliance,fire,scintillation,objective` (+ extras), one row per x, and its chart
 //! (a [`ProfileChart`]) draws every score against x.
 //!
-//! Sweeps of any number of axes, and their shards, are in `grid/`; they write the same CSV
-//! for one and two axes.
+//! Sweeps of any number of axes, and their shards, are in `points.rs` and `shard.rs`; they
+//! write the same CSV for one and two axes.
 
-use super::config::{axis_label, Config};
-use super::evaluator::Evaluator;
-use super::history::History;
-use super::problem::{check_constraints, penalty, weighted};
-use super::score_set::ScoreSet;
 use crate::cut::Unit;
 use crate::error::{shown, Error, Result};
 use crate::io::{read_bytes, write_atomic};
 use crate::metrics::score_name::list as score_list;
 use crate::metrics::ScoreName;
+use crate::optimize::{axis_label, objective_of, Config, Evaluator, History, ScoreSet};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -302,8 +298,7 @@ pub(crate) fn score_point(
         .and_then(|cut| evaluator.evaluate(&cut).map(|s| (cut, s)));
     match scored {
         Ok((cut, s)) => {
-            let checks = check_constraints(&cut, &config.constraints);
-            let obj = weighted(&s, &config.weights) - penalty(&checks, &config.constraints);
+            let obj = objective_of(config, &cut, &s);
             (Some(s), if obj.is_finite() { obj } else { f64::NAN })
         }
         Err(_) => (None, f64::NAN),
