@@ -20,7 +20,7 @@ pub mod serve;
 mod sheet;
 pub mod trace;
 #[cfg(test)]
-mod walk;
+mod walk_tests;
 
 use clap::{Parser, Subcommand};
 use facetlab::error::Result;

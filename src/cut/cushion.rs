@@ -61,8 +61,8 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
 
 #[cfg(test)]
 mod tests {
-    use crate::cut::testutil::*;
     use crate::geometry::DVec3;
+    use crate::testkit::cuts::*;
 
     #[test]
     fn cushion_default_facets_and_symmetry() {

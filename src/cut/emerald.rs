@@ -232,7 +232,7 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
 
 #[cfg(test)]
 mod tests {
-    use crate::cut::testutil::*;
+    use crate::testkit::cuts::*;
 
     /// Closed-form total depth: girdle + crown height + pavilion depth (sharp keel), with step
     /// angles listed from the girdle inward.

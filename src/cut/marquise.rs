@@ -71,7 +71,7 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
 
 #[cfg(test)]
 mod tests {
-    use crate::cut::testutil::*;
+    use crate::testkit::cuts::*;
 
     #[test]
     fn marquise_default_facets_symmetry_and_tips() {

@@ -37,5 +37,3 @@ pub use space::{CutSpace, ParamRange};
 
 #[cfg(test)]
 mod tests;
-#[cfg(test)]
-mod testutil;

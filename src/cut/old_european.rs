@@ -118,7 +118,7 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
 
 #[cfg(test)]
 mod tests {
-    use crate::cut::testutil::*;
+    use crate::testkit::cuts::*;
 
     #[test]
     fn old_european_defaults_are_the_style() {

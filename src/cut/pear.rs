@@ -75,7 +75,7 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
 
 #[cfg(test)]
 mod tests {
-    use crate::cut::testutil::*;
+    use crate::testkit::cuts::*;
 
     #[test]
     fn pear_default_facets_and_symmetry() {

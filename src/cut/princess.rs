@@ -188,8 +188,8 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
 #[cfg(test)]
 mod tests {
     use super::pavilion_depth;
-    use crate::cut::testutil::*;
     use crate::geometry::DVec3;
+    use crate::testkit::cuts::*;
 
     #[test]
     fn princess_default_facets_and_symmetry() {

@@ -60,7 +60,7 @@ fn build(p: &Params) -> Result<Vec<FacetPlane>> {
 
 #[cfg(test)]
 mod tests {
-    use crate::cut::testutil::*;
+    use crate::testkit::cuts::*;
     use std::f64::consts::PI;
 
     #[test]

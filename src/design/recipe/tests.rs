@@ -63,7 +63,7 @@ fn every_preset_rebuilds_from_its_inferred_recipe() {
 /// rebuild from their inferred recipes, tiers named as in the file.
 #[test]
 fn gemcad_designs_rebuild_from_their_inferred_recipes() {
-    use crate::io::asc::fixtures::{MINI, STAR80};
+    use crate::testkit::asc::{MINI, STAR80};
     let mut cuts: Vec<Cut> = [("mini", MINI), ("star80", STAR80)]
         .iter()
         .map(|(n, t)| {

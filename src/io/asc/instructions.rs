@@ -163,8 +163,8 @@ impl CuttingInstructions {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::io::asc::fixtures::STAR80;
     use crate::io::asc::parse;
+    use crate::testkit::asc::STAR80;
 
     #[test]
     fn asc_cutting_instructions_pavilion_first_at_cutters_precision() {

@@ -87,8 +87,6 @@ mod read;
 mod write;
 
 #[cfg(test)]
-pub(crate) mod fixtures;
-#[cfg(test)]
 mod measure_tests;
 
 pub use check::{MAX_GEAR, RI_ABOVE, RI_MAX};

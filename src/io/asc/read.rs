@@ -576,7 +576,7 @@ fn unique_names<'a>(bases: impl Iterator<Item = &'a str> + Clone) -> Vec<String>
 mod tests {
     use super::*;
     use crate::geometry::{facet_angle_deg, facet_azimuth_deg, DVec3};
-    use crate::io::asc::fixtures::{messy, same_planes, MINI};
+    use crate::testkit::asc::{messy, same_planes, MINI};
 
     #[test]
     fn asc_parses_hand_written_brilliant() {

@@ -210,8 +210,8 @@ mod tests {
     use super::*;
     use crate::cut::units::outline_size;
     use crate::geometry::FacetPlane;
-    use crate::io::asc::fixtures::{messy, same_planes, MINI, STAR80};
     use crate::io::asc::{parse, AscDesign};
+    use crate::testkit::asc::{messy, same_planes, MINI, STAR80};
     use std::collections::{BTreeMap, HashSet};
 
     fn round_trip(gear: u32) {

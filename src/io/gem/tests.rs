@@ -7,8 +7,8 @@ use super::*;
 use crate::cut::record::DIAMOND_RI;
 use crate::cut::Cut;
 use crate::geometry::{facet_normal, FacetPlane};
-use crate::io::asc::fixtures::{messy, same_planes, MINI, STAR80};
 use crate::io::asc::{self, AscDesign};
+use crate::testkit::asc::{messy, same_planes, MINI, STAR80};
 
 /// One line of the chiral test design: angle, distance, indices on gear 96 (offset 0), the
 /// tier name, one facet's own name (by position), the instructions.

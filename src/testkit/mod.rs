@@ -1,12 +1,18 @@
-//! Shared test solids (test builds only): boxes, the cube, slabs, octahedra, the Tolkowsky
-//! preset, the GIA reference round brilliant and a plane-built square brilliant. One copy
-//! here instead of one per test module.
+//! The library's one home of test helpers (test builds only). Here: shared test solids —
+//! boxes, the cube, slabs, octahedra, the Tolkowsky preset, the GIA reference round brilliant
+//! and a plane-built square brilliant. One copy here instead of one per test module.
+//! `cuts.rs`: the family tests' helpers (building with overrides, tier counts, symmetry,
+//! widths, parameter sweeps); `asc.rs`: the test designs of the GemCad reader's, writer's and
+//! instructions' tests.
 //!
 //! All are centred at the origin, z up. Box faces are named `+x`, `-x`, `+y`, `-y`, `top`,
 //! `bottom` (tier `side`); octahedron faces `o0`…`o7` (tier `o`), ordered by the signs of
 //! their normals' (x, y, z) with x slowest, `−` before `+`.
 
 use crate::geometry::{facet_normal, DVec3, FacetPlane, Polyhedron};
+
+pub(crate) mod asc;
+pub(crate) mod cuts;
 
 /// The six planes of a box of half-sizes (hx, hy, hz).
 pub(crate) fn box_planes(hx: f64, hy: f64, hz: f64) -> Vec<FacetPlane> {

@@ -24,7 +24,7 @@ F Footnote one
 /// title, glued `g96` and `a-41`, the girdle's index list wrapped over three lines, a
 /// fractional table index, negative (counted back) and out-of-turn bezel indices, the culet as `a -0`,
 /// unknown lines and blank lines, a repeated facet.
-pub(in crate::io) fn messy() -> Vec<u8> {
+pub(crate) fn messy() -> Vec<u8> {
     let mut b: Vec<u8> =
         b"\xEF\xBB\xBFGemCad 5.0\r\ng96 0.0\r\ny8y\r\nI 2.42\r\nH Mini brilliant \x96 test\r\n"
             .to_vec();
@@ -40,7 +40,7 @@ pub(in crate::io) fn messy() -> Vec<u8> {
     b
 }
 
-pub(in crate::io) fn same_planes(
+pub(crate) fn same_planes(
     a: &[FacetPlane],
     b: &[FacetPlane],
     tol: f64,

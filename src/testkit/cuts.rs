@@ -1,7 +1,7 @@
 //! Helpers for the family tests: building with a few overrides, tier counts, symmetry of the
 //! facet plane set, widths measured on the solid, and parameter sweeps.
 
-use super::{family, Cut, Unit};
+use crate::cut::{family, Cut, Unit};
 use crate::error::Result;
 use crate::geometry::{DVec3, Plane};
 use std::collections::BTreeMap;
