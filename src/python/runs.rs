@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::optimize::{
     self as opt, BeamEvaluator, Config, Hooks, PhotonVerifier, Progress, RunOptions, Status,
 };
-use crate::sweep::{self, Grid};
+use crate::sweep::{self, Grid, GridCell};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
@@ -249,74 +249,43 @@ pub struct PyGrid {
     grid: Grid,
 }
 
-/// The fixed keys of a row besides the axes'.
-const SCORE_KEYS: [&str; 4] = ["brilliance", "fire", "scintillation", "objective"];
-
 impl PyGrid {
-    /// A row dict from a shard's `rows.csv` line (the exact text the command line's shards
-    /// write): `index`, the axes' values, the four scores, `ok` and the extra scores.
-    fn row<'py>(&self, py: Python<'py>, line: &str) -> PyResult<Bound<'py, PyDict>> {
-        let f: Vec<&str> = line.trim_end().split(',').collect();
-        let n = self.grid.axes.len();
-        let num = |t: &str| t.parse::<f64>().unwrap_or(f64::NAN);
+    /// A row dict of a grid point, with the values a shard's `rows.csv` line holds (the
+    /// library's [`GridCell::named`]): `index`, the axes' values, the four scores, `ok` and
+    /// the extra scores.
+    fn row<'py>(&self, py: Python<'py>, cell: &GridCell) -> PyResult<Bound<'py, PyDict>> {
+        let (fixed, extras) = cell.named(&self.grid);
         let d = PyDict::new(py);
-        d.set_item("index", f[0].parse::<usize>().unwrap_or(0))?;
-        for (a, t) in self.grid.axes.iter().zip(&f[1..1 + n]) {
-            d.set_item(&a.key, num(t))?;
+        d.set_item("index", cell.index)?;
+        for (k, v) in fixed {
+            d.set_item(k, v)?;
         }
-        for (k, t) in SCORE_KEYS.iter().zip(&f[1 + n..5 + n]) {
-            d.set_item(k, num(t))?;
-        }
-        let extras = f[5 + n];
-        d.set_item("ok", extras != "-")?;
-        if extras != "-" {
-            for p in extras.split(';').filter(|p| !p.is_empty()) {
-                if let Some((k, v)) = p.split_once('=') {
-                    d.set_item(k, num(v))?;
-                }
-            }
+        d.set_item("ok", extras.is_some())?;
+        for (k, v) in extras.into_iter().flatten() {
+            d.set_item(k, v)?;
         }
         Ok(d)
     }
 
-    /// A row dict back as its `rows.csv` line (`shard_row`'s format).
-    fn line(&self, row: &Bound<'_, PyDict>) -> PyResult<String> {
-        let get = |k: &str| -> PyResult<f64> {
-            row.get_item(k)?
-                .ok_or_else(|| super::Error::new_err(format!("rows: a row has no `{k}`")))?
-                .extract::<f64>()
-        };
+    /// A row dict back as its grid point (the library's [`GridCell::from_named`]).
+    fn cell(&self, row: &Bound<'_, PyDict>) -> PyResult<GridCell> {
         let index: usize = row
             .get_item("index")?
             .ok_or_else(|| super::Error::new_err("rows: a row has no `index`"))?
             .extract()?;
-        let mut o = index.to_string();
-        let mut fixed: Vec<&str> = vec!["index", "ok"];
-        for a in &self.grid.axes {
-            o.push_str(&format!(",{}", get(&a.key)?));
-            fixed.push(&a.key);
-        }
-        for k in SCORE_KEYS {
-            o.push_str(&format!(",{}", get(k)?));
-            fixed.push(k);
-        }
         let ok: bool = match row.get_item("ok")? {
             Some(v) => v.extract()?,
             None => true,
         };
-        if ok {
-            let mut pairs = Vec::new();
-            for (k, v) in row.iter() {
-                let k: String = k.extract()?;
-                if !fixed.contains(&k.as_str()) {
-                    pairs.push(format!("{k}={}", v.extract::<f64>()?));
-                }
+        let mut values = Vec::new();
+        for (k, v) in row.iter() {
+            let k: String = k.extract()?;
+            if k != "index" && k != "ok" {
+                values.push((k, v.extract::<f64>()?));
             }
-            o.push_str(&format!(",{}", pairs.join(";")));
-        } else {
-            o.push_str(",-");
         }
-        Ok(o)
+        GridCell::from_named(&self.grid, index, ok, &values)
+            .map_err(|e| super::Error::new_err(format!("rows: {e}")))
     }
 }
 
@@ -400,7 +369,7 @@ impl PyGrid {
         )?;
         let rows = cells
             .iter()
-            .map(|c| self.row(py, &sweep::shard_row(c)))
+            .map(|c| self.row(py, c))
             .collect::<PyResult<Vec<_>>>()?;
         PyList::new(py, rows)
     }
@@ -413,14 +382,10 @@ impl PyGrid {
     /// >>> g.csv(g.rows([2]) + g.rows([0, 1])) == g.csv(g.rows())
     /// True
     fn csv(&self, rows: Vec<Bound<'_, PyDict>>) -> PyResult<String> {
-        // The rows as a shard's rows.csv, read back as the merge of shards reads it.
-        let mut text = sweep::rows_header(&self.grid);
-        for r in &rows {
-            text.push_str(&self.line(r)?);
-            text.push('\n');
-        }
-        let (mut cells, _) = sweep::read_rows(&text, &self.grid)
-            .map_err(|e| super::Error::new_err(format!("rows: {e}")))?;
+        let mut cells = rows
+            .iter()
+            .map(|r| self.cell(r))
+            .collect::<PyResult<Vec<_>>>()?;
         cells.sort_by_key(|c| c.index);
         let len = self.grid.len();
         let covered = cells.len() == len && cells.iter().enumerate().all(|(i, c)| c.index == i);

@@ -22,12 +22,16 @@
 //! `index,<axis values…>,brilliance,fire,scintillation,objective,extras` where `extras` is
 //! `-` for a cut that failed and otherwise `name=value;name=value` (possibly empty). Numbers are
 //! written exactly as the sweep's CSV writes them (shortest round-trip), so a merge that reads
-//! them back writes the same bytes as one unsharded run.
+//! them back writes the same bytes as one unsharded run. `shard.rs` is the one writer and
+//! reader of these lines ([`shard_row`], [`read_rows`]) and of a row by name
+//! ([`GridCell::named`], [`GridCell::from_named`]: what the Python package's `Grid` hands out
+//! and takes back).
 //!
 //! The files: `map.rs` holds the axes, the scores a sweep maps, the two-axis map ([`sweep()`],
 //! [`write`]) and the one-axis profile ([`profile()`], [`write_profile`]); `points.rs` the
 //! grid, its evaluation and its CSV; `shard.rs` a shard's share, its row file, its record
-//! (`shard.json`) and the merge's check that the shards cover the grid once; `resume.rs` a shard run into its folder, resumably ([`ShardRun`]);
+//! (`shard.json`) and the merge's check that the shards cover the grid once; `resume.rs` a
+//! shard run into its folder, resumably ([`ShardRun`]);
 //! `slice.rs` the views of an N-axis grid (the axes mapped, the others held at
 //! `--at` values): heatmaps and profiles.
 

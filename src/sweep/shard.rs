@@ -12,11 +12,8 @@ use std::fmt::Write;
 
 /// The header of a shard's `rows.csv`.
 pub fn rows_header(grid: &Grid) -> String {
-    let keys: Vec<&str> = grid.axes.iter().map(|a| a.key.as_str()).collect();
-    format!(
-        "index,{},brilliance,fire,scintillation,objective,extras\n",
-        keys.join(",")
-    )
+    let keys: Vec<&str> = columns(grid).collect();
+    format!("index,{},extras\n", keys.join(","))
 }
 
 /// One line of a shard's `rows.csv` (with its newline).
@@ -44,33 +41,108 @@ pub fn shard_row(cell: &GridCell) -> String {
     o
 }
 
-/// Read a line of `rows.csv` back (without its newline) for a grid of `naxes` axes.
-pub fn parse_shard_row(line: &str, naxes: usize) -> Option<GridCell> {
+/// Read a line of `rows.csv` back (without its newline) for `grid`: its columns by name, as
+/// [`GridCell::from_named`] takes them.
+pub fn parse_shard_row(line: &str, grid: &Grid) -> Option<GridCell> {
     let f: Vec<&str> = line.split(',').collect();
-    if f.len() != 1 + naxes + 4 + 1 {
+    let n = grid.axes.len();
+    if f.len() != 1 + n + 4 + 1 {
         return None;
     }
     let index: usize = f[0].parse().ok()?;
-    let nums = |s: &[&str]| -> Option<Vec<f64>> { s.iter().map(|v| v.parse().ok()).collect() };
-    let values = nums(&f[1..1 + naxes])?;
-    let sc = nums(&f[1 + naxes..5 + naxes])?;
-    let scores = match f[5 + naxes] {
-        "-" => None,
-        pairs => {
-            let mut s = ScoreSet::new(sc[0], sc[1], sc[2]);
-            for p in pairs.split(';').filter(|p| !p.is_empty()) {
-                let (k, v) = p.split_once('=')?;
-                s.extra.push((ScoreName::from_key(k)?, v.parse().ok()?));
+    let mut values = columns(grid)
+        .zip(&f[1..5 + n])
+        .map(|(k, v)| Some((k.to_string(), v.parse().ok()?)))
+        .collect::<Option<Vec<(String, f64)>>>()?;
+    let ok = f[5 + n] != "-";
+    if ok {
+        for p in f[5 + n].split(';').filter(|p| !p.is_empty()) {
+            let (k, v) = p.split_once('=')?;
+            values.push((k.to_string(), v.parse().ok()?));
+        }
+    }
+    GridCell::from_named(grid, index, ok, &values).ok()
+}
+
+/// The named columns of a row of `rows.csv` between its index and its extras: each axis's key,
+/// then the four scores (`brilliance`, `fire`, `scintillation`, `objective`).
+fn columns(grid: &Grid) -> impl Iterator<Item = &str> {
+    grid.axes
+        .iter()
+        .map(|a| a.key.as_str())
+        .chain(SCORES.iter().map(|s| s.name()))
+}
+
+impl GridCell {
+    /// The row by name, with the values `rows.csv` holds (a score that is not finite is NaN):
+    /// each axis's value under its key and the four scores (`brilliance`, `fire`,
+    /// `scintillation`, `objective`); then the extra scores apart, or None for a cut that
+    /// failed (its line's `-`).
+    pub fn named(&self, grid: &Grid) -> (Vec<(String, f64)>, Option<Vec<(String, f64)>>) {
+        let as_written = |v: f64| if v.is_finite() { v } else { f64::NAN };
+        let fixed = columns(grid)
+            .map(str::to_string)
+            .zip(
+                self.values
+                    .iter()
+                    .copied()
+                    .chain(SCORES.iter().map(|s| as_written(self.value(s)))),
+            )
+            .collect();
+        let extras = self.scores.as_ref().map(|s| {
+            s.extra
+                .iter()
+                .map(|(k, v)| (k.to_string(), as_written(*v)))
+                .collect()
+        });
+        (fixed, extras)
+    }
+
+    /// The cell of grid point `index` from its values by name (what [`GridCell::named`] gives,
+    /// in any order): every axis's and the four scores'; with `ok` (the cut was scored) every
+    /// other key is an extra score, kept in the order given. `Err` names a missing key, a key
+    /// that is no score, or an index outside the grid.
+    pub fn from_named(
+        grid: &Grid,
+        index: usize,
+        ok: bool,
+        values: &[(String, f64)],
+    ) -> std::result::Result<GridCell, String> {
+        if index >= grid.len() {
+            return Err(format!(
+                "index {index} is not a point of the grid (0 to {})",
+                grid.len().saturating_sub(1)
+            ));
+        }
+        let get = |k: &str| {
+            values
+                .iter()
+                .find(|(key, _)| key == k)
+                .map(|(_, v)| *v)
+                .ok_or_else(|| format!("a row has no `{k}`"))
+        };
+        let fixed = columns(grid)
+            .map(get)
+            .collect::<std::result::Result<Vec<f64>, String>>()?;
+        let n = grid.axes.len();
+        let scores = if ok {
+            let mut s = ScoreSet::new(fixed[n], fixed[n + 1], fixed[n + 2]);
+            let named: Vec<&str> = columns(grid).collect();
+            for (k, v) in values.iter().filter(|(k, _)| !named.contains(&k.as_str())) {
+                let name = ScoreName::from_key(k).ok_or_else(|| format!("`{k}` is not a score"))?;
+                s.extra.push((name, *v));
             }
             Some(s)
-        }
-    };
-    Some(GridCell {
-        index,
-        values,
-        scores,
-        objective: sc[3],
-    })
+        } else {
+            None
+        };
+        Ok(GridCell {
+            index,
+            values: fixed[..n].to_vec(),
+            scores,
+            objective: fixed[n + 3],
+        })
+    }
 }
 
 /// Read a shard's `rows.csv` text: the cells of its complete lines, and the byte length of
@@ -92,8 +164,8 @@ pub fn read_rows(text: &str, grid: &Grid) -> std::result::Result<(Vec<GridCell>,
             good = pos;
             continue;
         }
-        match parse_shard_row(body, grid.axes.len()) {
-            Some(c) if c.index < grid.len() => cells.push(c),
+        match parse_shard_row(body, grid) {
+            Some(c) => cells.push(c),
             _ => return Err(format!("line {} is not a row of this sweep", n + 1)),
         }
         good = pos;

@@ -1,3 +1,4 @@
+use super::shard::parse_shard_row;
 use super::*;
 use crate::cut::Cut;
 use crate::error::{Error, Result};
@@ -135,4 +136,53 @@ fn shards_parse_and_come_from_job_arrays() {
     assert!(Shard::from_env(&env(&[])).unwrap().is_none());
     assert_eq!(Shard { k: 2, n: 3 }.indices(8), vec![1, 4, 7]);
     assert_eq!(config_hash(b"a"), "af63dc4c8601ec8c");
+}
+
+#[test]
+fn a_row_by_name_is_the_row_rows_csv_holds_and_comes_back_whole() {
+    let c = cfg();
+    let x = Axis::parse("x axis", "crown_angle:34:35:1", &c).unwrap();
+    let y = Axis::parse("y axis", "pavilion_angle:40:40.5:0.5", &c).unwrap();
+    let grid = Grid::new(vec![x, y]).unwrap();
+    let all: Vec<usize> = (0..grid.len()).collect();
+    let mut cells = evaluate(&c, &bump, &grid, &all, None, &|_| {});
+    assert!(
+        cells[1].scores.is_none(),
+        "crown 35, pavilion 40 is refused"
+    );
+    // A score that is not finite is written as NaN: by name too.
+    cells[2].scores.as_mut().unwrap().fire = f64::INFINITY;
+    for cell in &cells {
+        let line = shard_row(cell);
+        let read = parse_shard_row(line.trim_end(), &grid).unwrap();
+        let (fixed, extras) = cell.named(&grid);
+        assert_eq!(
+            format!("{:?}", read.named(&grid)),
+            format!("{:?}", (fixed.clone(), extras.clone()))
+        );
+        let keys: Vec<&str> = fixed.iter().map(|(k, _)| k.as_str()).collect();
+        assert_eq!(
+            format!("index,{},extras\n", keys.join(",")),
+            rows_header(&grid),
+            "the names are the header's"
+        );
+        assert_eq!(extras.is_some(), cell.scores.is_some());
+        // Back from the names, in any order: the same line.
+        let mut values: Vec<(String, f64)> = fixed.into_iter().rev().collect();
+        values.extend(extras.clone().into_iter().flatten());
+        let back = GridCell::from_named(&grid, cell.index, extras.is_some(), &values).unwrap();
+        assert_eq!(shard_row(&back), line);
+    }
+    let (fixed, _) = cells[0].named(&grid);
+    assert_eq!(fixed[0], ("crown_angle".to_string(), 34.0));
+    assert_eq!(fixed[3].0, "fire");
+    let without: Vec<(String, f64)> = fixed.iter().filter(|(k, _)| k != "fire").cloned().collect();
+    let e = GridCell::from_named(&grid, 0, true, &without).unwrap_err();
+    assert_eq!(e, "a row has no `fire`");
+    let mut odd = fixed.clone();
+    odd.push(("sparkle".into(), 1.0));
+    let e = GridCell::from_named(&grid, 0, true, &odd).unwrap_err();
+    assert_eq!(e, "`sparkle` is not a score");
+    let e = GridCell::from_named(&grid, 4, true, &fixed).unwrap_err();
+    assert_eq!(e, "index 4 is not a point of the grid (0 to 3)");
 }
