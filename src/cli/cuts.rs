@@ -11,9 +11,9 @@ use facetlab::optics::Material;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-/// Flags of `facetlab generate`.
+/// The one cut of `generate`, `info` and `sheet`: a preset or a file, and its changes.
 #[derive(Debug, Args)]
-pub struct GenerateArgs {
+pub struct OneCut {
     /// Preset name or path (.toml, .asc, .gem, .obj, .stl).
     // A String on purpose: a preset's name or a file's path.
     pub cut: String,
@@ -21,6 +21,14 @@ pub struct GenerateArgs {
     /// (`--set P1=41.2`, depths solved so its meets are kept). Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+}
+
+/// Flags of `facetlab generate`.
+#[derive(Debug, Args)]
+pub struct GenerateArgs {
+    /// The cut and its changes.
+    #[command(flatten)]
+    pub one: OneCut,
     /// Output file; the format follows the extension: .toml .asc .gem .obj .stl .svg.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: PathBuf,
@@ -32,13 +40,9 @@ pub struct GenerateArgs {
 /// Flags of `facetlab info`.
 #[derive(Debug, Args)]
 pub struct InfoArgs {
-    /// Preset name or path (.toml, .asc, .gem, .obj, .stl).
-    // A String on purpose: a preset's name or a file's path.
-    pub cut: String,
-    /// Change a parameter: a family's (`--set table=0.55`) or a design's tier angle
-    /// (`--set P1=41.2`, depths solved so its meets are kept). Repeatable.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
+    /// The cut and its changes.
+    #[command(flatten)]
+    pub one: OneCut,
     /// Print JSON instead of a table (keys documented in docs/commands.md).
     #[arg(long)]
     pub json: bool,
@@ -120,10 +124,10 @@ pub fn generate(a: &GenerateArgs) -> Result<()> {
     // `generate t.toml --set … -o t.toml` would replace the design it read.
     refuse_overwrite(
         &[(setting::OUTPUT, a.output.clone())],
-        &cut_files(std::slice::from_ref(&a.cut)),
+        &cut_files(std::slice::from_ref(&a.one.cut)),
     )?;
     check_new_file(setting::OUTPUT, &a.output, a.force)?;
-    let cut = load_with_sets(&a.cut, &a.set)?;
+    let cut = load_with_sets(&a.one.cut, &a.one.set)?;
     let ext = a
         .output
         .extension()
@@ -199,12 +203,12 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             ),
         ));
     }
-    let cut = load_with_sets(&a.cut, &a.set)?;
+    let cut = load_with_sets(&a.one.cut, &a.one.set)?;
     let material = weight_material(a.material.clone(), &cut)?;
-    let lower = a.cut.to_ascii_lowercase();
+    let lower = a.one.cut.to_ascii_lowercase();
     if lower.ends_with(".obj") || lower.ends_with(".stl") {
-        if let Ok((_, Some(note))) = facetlab::io::mesh::read_with_note(&a.cut) {
-            eprintln!("{}: {note}", a.cut);
+        if let Ok((_, Some(note))) = facetlab::io::mesh::read_with_note(&a.one.cut) {
+            eprintln!("{}: {note}", a.one.cut);
         }
     }
     let width_mm = match &a.size_mm {

@@ -12,12 +12,9 @@ use std::path::PathBuf;
 /// Flags of `facetlab sheet`.
 #[derive(Debug, Args)]
 pub struct SheetArgs {
-    /// Preset name or path (.toml, .asc, .gem, .obj, .stl).
-    // A String on purpose: a preset's name or a file's path.
-    pub cut: String,
-    /// Change a parameter or turn a design's tier (`--set P1=41.2`). Repeatable.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub set: Vec<String>,
+    /// The cut and its changes.
+    #[command(flatten)]
+    pub one: super::cuts::OneCut,
     /// Output file: .html, .svg or .pdf (one A4 page); with --mode, .html.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: PathBuf,
@@ -85,10 +82,10 @@ pub fn run(a: &SheetArgs) -> Result<()> {
     }
     refuse_overwrite(
         &[(setting::OUTPUT, a.output.clone())],
-        &cut_files(std::slice::from_ref(&a.cut)),
+        &cut_files(std::slice::from_ref(&a.one.cut)),
     )?;
     check_new_file(setting::OUTPUT, &a.output, a.force)?;
-    let cut = super::cuts::load_with_sets(&a.cut, &a.set)?;
+    let cut = super::cuts::load_with_sets(&a.one.cut, &a.one.set)?;
     let material = super::cuts::weight_material(a.material.clone(), &cut)?;
     let size_mm = match (&a.size_mm, a.diameter_mm) {
         (Some(size), _) => Some(size.width_mm(cut.ratios().l_w, "--size-mm")?),
@@ -96,11 +93,11 @@ pub fn run(a: &SheetArgs) -> Result<()> {
     };
     let o = SheetOptions { size_mm, material };
     // A recipe's sheet: its own cutting order and instructions.
-    let recipe = io::recipe::read(std::path::Path::new(&a.cut))?;
+    let recipe = io::recipe::read(std::path::Path::new(&a.one.cut))?;
     let steps = match recipe {
         Some(r) => {
             let space = facetlab::design::recipe::RecipeSpace::new(r)?;
-            let values = super::cuts::parse_sets(&a.set)?;
+            let values = super::cuts::parse_sets(&a.one.set)?;
             let built = space.recipe_at(&values)?.build()?;
             built.sheet_steps(size_mm)
         }

@@ -155,6 +155,28 @@ fn polygon_centroid(poly: &[DVec3], n: DVec3) -> DVec3 {
     }
 }
 
+/// The box's faces clipped by `planes` in the order given, each plane first passed to `check`
+/// (its index and itself); an error as soon as a plane cuts away everything left.
+fn clipped(
+    planes: &[FacetPlane],
+    check: impl Fn(usize, &FacetPlane) -> Result<()>,
+) -> Result<Vec<Face>> {
+    let mut faces = box_faces();
+    let mut buffer = Vec::new();
+    for (k, fp) in planes.iter().enumerate() {
+        check(k, fp)?;
+        clip(&mut faces, &fp.plane, k, &mut buffer);
+        if faces.is_empty() {
+            return Err(Error::Geometry(format!(
+                "the solid is empty: facet {} ({}) cuts away everything left",
+                k + 1,
+                fp.name
+            )));
+        }
+    }
+    Ok(faces)
+}
+
 /// Cut the faces by one plane (index `k`), in place and in order. Returns whether the plane
 /// cut anything off. `d` is a buffer for the distances.
 fn clip(faces: &mut Vec<Face>, plane: &Plane, k: usize, d: &mut Vec<f64>) -> bool {
@@ -327,18 +349,7 @@ impl Polyhedron {
             }
             (None, None) => {}
         }
-        let mut faces = box_faces();
-        let mut buffer = Vec::new();
-        for (k, fp) in planes.iter().enumerate() {
-            clip(&mut faces, &fp.plane, k, &mut buffer);
-            if faces.is_empty() {
-                return Err(Error::Geometry(format!(
-                    "the solid is empty: facet {} ({}) cuts away everything left",
-                    k + 1,
-                    fp.name
-                )));
-            }
-        }
+        let faces = clipped(planes, |_, _| Ok(()))?;
         if faces.iter().any(|f| f.source.is_none()) {
             return Err(Error::Geometry(
                 "the solid is unbounded: the facet planes do not enclose a finite volume".into(),
@@ -365,25 +376,17 @@ impl Polyhedron {
     /// The planes kept are the ones whose face has an area above `1e-12` of the box's after
     /// clipping, in the order given; the solid is then [`Polyhedron::from_planes`] of those.
     pub fn from_planes_pruned(planes: &[FacetPlane]) -> Result<Polyhedron> {
-        let mut faces = box_faces();
-        let mut buffer = Vec::new();
-        for (k, fp) in planes.iter().enumerate() {
-            if !(fp.plane.normal.is_finite() && fp.plane.offset.is_finite()) {
-                return Err(Error::Geometry(format!(
+        let faces = clipped(planes, |k, fp| {
+            if fp.plane.normal.is_finite() && fp.plane.offset.is_finite() {
+                Ok(())
+            } else {
+                Err(Error::Geometry(format!(
                     "facet {} ({}) has no valid plane",
                     k + 1,
                     fp.name
-                )));
+                )))
             }
-            clip(&mut faces, &fp.plane, k, &mut buffer);
-            if faces.is_empty() {
-                return Err(Error::Geometry(format!(
-                    "the solid is empty: facet {} ({}) cuts away everything left",
-                    k + 1,
-                    fp.name
-                )));
-            }
-        }
+        })?;
         let scale = faces
             .iter()
             .flat_map(|f| f.poly.iter())
