@@ -52,6 +52,6 @@ pub use map::{
 pub use points::{best, evaluate, to_csv, Grid, GridCell};
 pub use resume::{shard_folder, ShardRun};
 pub use shard::{
-    assemble, config_hash, read_rows, rows_header, shard_row, AxisRecord, Shard, ShardRecord,
+    assemble, config_hash, read_rows, rows_header, shard_row, AxisRecord, Named, Shard, ShardRecord,
 };
 pub use slice::{fixed_at, map_axes, parse_at, MapSpec, Swept};

@@ -64,6 +64,9 @@ pub fn parse_shard_row(line: &str, grid: &Grid) -> Option<GridCell> {
     GridCell::from_named(grid, index, ok, &values).ok()
 }
 
+/// Values by name: a row's columns, or its extra scores.
+pub type Named = Vec<(String, f64)>;
+
 /// The named columns of a row of `rows.csv` between its index and its extras: each axis's key,
 /// then the four scores (`brilliance`, `fire`, `scintillation`, `objective`).
 fn columns(grid: &Grid) -> impl Iterator<Item = &str> {
@@ -78,7 +81,7 @@ impl GridCell {
     /// each axis's value under its key and the four scores (`brilliance`, `fire`,
     /// `scintillation`, `objective`); then the extra scores apart, or None for a cut that
     /// failed (its line's `-`).
-    pub fn named(&self, grid: &Grid) -> (Vec<(String, f64)>, Option<Vec<(String, f64)>>) {
+    pub fn named(&self, grid: &Grid) -> (Named, Option<Named>) {
         let as_written = |v: f64| if v.is_finite() { v } else { f64::NAN };
         let fixed = columns(grid)
             .map(str::to_string)
