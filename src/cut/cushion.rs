@@ -67,7 +67,7 @@ mod tests {
     #[test]
     fn cushion_default_facets_and_symmetry() {
         let c = ok("cushion", &[]);
-        assert_brilliant_tiers(&c);
+        assert_brilliant_tiers(&c, 0);
         assert!(symmetric_under(&c, flip_x) && symmetric_under(&c, flip_y));
         // A square cushion is symmetric under the quarter turn and the diagonal mirror.
         assert!(symmetric_under(&c, |v| DVec3::new(-v.y, v.x, v.z)));

@@ -76,7 +76,7 @@ mod tests {
     #[test]
     fn marquise_default_facets_symmetry_and_tips() {
         let c = ok("marquise", &[]);
-        assert_brilliant_tiers(&c);
+        assert_brilliant_tiers(&c, 0);
         assert_eq!(
             ok("marquise", &[("culet", 0.04)]).solid.facets().len(),
             58 + 16

@@ -123,20 +123,7 @@ mod tests {
     #[test]
     fn old_european_defaults_are_the_style() {
         let c = ok("old-european", &[]);
-        assert_eq!(c.solid.facets().len(), 58 + 16);
-        let want = [
-            ("table", 1),
-            ("bezel", 8),
-            ("star", 8),
-            ("upper-half", 16),
-            ("girdle", 16),
-            ("pavilion-main", 8),
-            ("lower-half", 16),
-            ("culet", 1),
-        ];
-        for (tier, n) in want {
-            assert_eq!(count(&c, tier), n, "{tier}");
-        }
+        assert_brilliant_tiers(&c, 1);
         let p = c.proportions();
         assert!(
             (p.table - 0.43).abs() < 1e-9

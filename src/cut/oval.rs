@@ -77,7 +77,7 @@ mod tests {
     #[test]
     fn oval_default_facets_and_symmetry() {
         let c = ok("oval", &[]);
-        assert_brilliant_tiers(&c);
+        assert_brilliant_tiers(&c, 0);
         assert_eq!(c.tiers().len(), 7);
         assert!(symmetric_under(&c, flip_x) && symmetric_under(&c, flip_y));
         // Not rotationally symmetric: the ellipse is longer than wide.

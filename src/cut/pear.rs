@@ -80,7 +80,7 @@ mod tests {
     #[test]
     fn pear_default_facets_and_symmetry() {
         let c = ok("pear", &[]);
-        assert_brilliant_tiers(&c);
+        assert_brilliant_tiers(&c, 0);
         assert_eq!(ok("pear", &[("culet", 0.04)]).solid.facets().len(), 58 + 16);
         assert!(
             symmetric_under(&c, flip_y),

@@ -193,9 +193,10 @@ pub fn out_of_range_named(fam: &str) {
     }
 }
 
-/// Assert the tier counts of a brilliant without culet: 1 table, 8 bezels, 8 stars,
-/// 16 upper halves, 16 girdle facets, 8 pavilion mains, 16 lower halves (57 + 16 facets).
-pub fn assert_brilliant_tiers(c: &Cut) {
+/// Assert the tier counts of a brilliant with `culet` culets (0 or 1): 1 table, 8 bezels,
+/// 8 stars, 16 upper halves, 16 girdle facets, 8 pavilion mains, 16 lower halves (57 + 16
+/// facets and the culet).
+pub fn assert_brilliant_tiers(c: &Cut, culet: usize) {
     let want = [
         ("table", 1),
         ("bezel", 8),
@@ -204,10 +205,10 @@ pub fn assert_brilliant_tiers(c: &Cut) {
         ("girdle", 16),
         ("pavilion-main", 8),
         ("lower-half", 16),
-        ("culet", 0),
+        ("culet", culet),
     ];
     for (tier, n) in want {
         assert_eq!(count(c, tier), n, "{tier}");
     }
-    assert_eq!(c.solid.facets().len(), 57 + 16);
+    assert_eq!(c.solid.facets().len(), 57 + culet + 16);
 }

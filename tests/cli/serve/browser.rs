@@ -48,20 +48,83 @@ pub(super) async fn js<T: serde::de::DeserializeOwned>(
         .unwrap_or_else(|e| panic!("{expr}: {e}"))
 }
 
+/// Whether Chromium is installed for the browser test `test`: when it is not, false (the test
+/// is skipped, saying so), or a panic under CI.
+pub(super) fn chromium_for(test: &str) -> bool {
+    if std::path::Path::new("/usr/bin/chromium").exists() {
+        return true;
+    }
+    if in_ci() {
+        panic!("CI is set but /usr/bin/chromium is missing (.ci/run installs it)");
+    }
+    eprintln!("SKIPPED {test}: /usr/bin/chromium is not installed (apt-get install -y chromium)");
+    false
+}
+
+/// The folder of the browser tests' screenshots (target/serve-screenshots), made.
+pub(super) fn shots_dir() -> std::path::PathBuf {
+    let shots = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/serve-screenshots");
+    std::fs::create_dir_all(&shots).unwrap();
+    shots
+}
+
+/// The runtime a browser session runs on: two worker threads.
+pub(super) fn runtime() -> tokio::runtime::Runtime {
+    tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .unwrap()
+}
+
+/// A Chromium with a window and viewport of `width` × `height` and its profile in a temporary
+/// folder, the task that pumps its events, and a blank page.
+pub(super) struct Chromium {
+    pub browser: chromiumoxide::Browser,
+    pub pump: tokio::task::JoinHandle<()>,
+    pub page: chromiumoxide::Page,
+    /// The profile's folder, removed with it.
+    pub profile: tempfile::TempDir,
+}
+
+/// Start a [`Chromium`] of `width` × `height`.
+pub(super) async fn launch(width: u32, height: u32) -> Chromium {
+    use chromiumoxide::browser::{Browser, BrowserConfig};
+    use chromiumoxide::handler::viewport::Viewport;
+    use futures::StreamExt;
+
+    let profile = tempfile::tempdir().unwrap();
+    let config = BrowserConfig::builder()
+        .chrome_executable("/usr/bin/chromium")
+        .no_sandbox()
+        .user_data_dir(profile.path())
+        .window_size(width, height)
+        .viewport(Viewport {
+            width,
+            height,
+            ..Viewport::default()
+        })
+        .build()
+        .unwrap();
+    let (browser, mut handler) = Browser::launch(config).await.expect("chromium starts");
+    let pump = tokio::spawn(async move { while handler.next().await.is_some() {} });
+    let page = browser.new_page("about:blank").await.unwrap();
+    Chromium {
+        browser,
+        pump,
+        page,
+        profile,
+    }
+}
+
 #[test]
 fn serve_page_works_in_a_browser() {
-    let chromium = std::path::Path::new("/usr/bin/chromium");
-    if !chromium.exists() {
-        if in_ci() {
-            panic!("CI is set but /usr/bin/chromium is missing (.ci/run installs it)");
-        }
-        eprintln!("SKIPPED serve_page_works_in_a_browser: /usr/bin/chromium is not installed (apt-get install -y chromium)");
+    if !chromium_for("serve_page_works_in_a_browser") {
         return;
     }
     let server = Server::start();
     let url = format!("http://{}/", server.addr);
-    let shots = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/serve-screenshots");
-    std::fs::create_dir_all(&shots).unwrap();
+    let shots = shots_dir();
     // A small .asc fixture made by the binary itself.
     let dir = tempfile::tempdir().unwrap();
     let asc = dir.path().join("fixture-oval.asc");
@@ -82,11 +145,7 @@ fn serve_page_works_in_a_browser() {
         .output()
         .unwrap();
     assert!(out.status.success());
-    let rt = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()
-        .unwrap();
+    let rt = runtime();
     let rough = dir.path().join("octa.obj");
     std::fs::write(&rough, super::plan::octahedron_obj(0)).unwrap();
     // A design two of whose tiers cannot turn alone: the bundled split brilliant, as .gem.
@@ -113,30 +172,18 @@ async fn browser_session(
     split: &std::path::Path,
     rough: &std::path::Path,
 ) {
-    use chromiumoxide::browser::{Browser, BrowserConfig};
     use chromiumoxide::cdp::js_protocol::runtime::{
         ConsoleApiCalledType, EventConsoleApiCalled, EventExceptionThrown,
     };
-    use chromiumoxide::handler::viewport::Viewport;
     use chromiumoxide::page::ScreenshotParams;
     use futures::StreamExt;
 
-    let profile = tempfile::tempdir().unwrap();
-    let config = BrowserConfig::builder()
-        .chrome_executable("/usr/bin/chromium")
-        .no_sandbox()
-        .user_data_dir(profile.path())
-        .window_size(1500, 950)
-        .viewport(Viewport {
-            width: 1500,
-            height: 950,
-            ..Viewport::default()
-        })
-        .build()
-        .unwrap();
-    let (mut browser, mut handler) = Browser::launch(config).await.expect("chromium starts");
-    let pump = tokio::spawn(async move { while handler.next().await.is_some() {} });
-    let page = browser.new_page("about:blank").await.unwrap();
+    let Chromium {
+        mut browser,
+        pump,
+        page,
+        profile: _profile,
+    } = launch(1500, 950).await;
     let errors = std::sync::Arc::new(std::sync::Mutex::new(Vec::<String>::new()));
     let mut console = page
         .event_listener::<EventConsoleApiCalled>()

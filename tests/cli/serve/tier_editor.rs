@@ -3,29 +3,17 @@
 //! re-cut as an angle is typed, an error shown at its tier, undo, add, move and remove; a
 //! screenshot under target/serve-screenshots/.
 
-use super::browser::{js, wait_js};
+use super::browser::{chromium_for, js, launch, runtime, shots_dir, wait_js, Chromium};
 use super::*;
 
 #[test]
 fn the_tier_editor_recuts_the_stone_as_you_type() {
-    let chromium = std::path::Path::new("/usr/bin/chromium");
-    if !chromium.exists() {
-        if in_ci() {
-            panic!("CI is set but /usr/bin/chromium is missing (.ci/run installs it)");
-        }
-        eprintln!("SKIPPED the_tier_editor_recuts_the_stone_as_you_type: /usr/bin/chromium is not installed");
+    if !chromium_for("the_tier_editor_recuts_the_stone_as_you_type") {
         return;
     }
     let server = Server::start();
     let url = format!("http://{}/", server.addr);
-    let shots = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/serve-screenshots");
-    std::fs::create_dir_all(&shots).unwrap();
-    let rt = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()
-        .unwrap();
-    rt.block_on(session(&url, &shots));
+    runtime().block_on(session(&url, &shots_dir()));
 }
 
 /// Set the input `sel` of tier row `i` to `v` as typing does (an `input` event).
@@ -34,27 +22,14 @@ fn type_into(i: usize, sel: &str, v: &str) -> String {
 }
 
 async fn session(url: &str, shots: &std::path::Path) {
-    use chromiumoxide::browser::{Browser, BrowserConfig};
-    use chromiumoxide::handler::viewport::Viewport;
     use chromiumoxide::page::ScreenshotParams;
-    use futures::StreamExt;
 
-    let profile = tempfile::tempdir().unwrap();
-    let config = BrowserConfig::builder()
-        .chrome_executable("/usr/bin/chromium")
-        .no_sandbox()
-        .user_data_dir(profile.path())
-        .window_size(1500, 1100)
-        .viewport(Viewport {
-            width: 1500,
-            height: 1100,
-            ..Viewport::default()
-        })
-        .build()
-        .unwrap();
-    let (mut browser, mut handler) = Browser::launch(config).await.expect("chromium starts");
-    let pump = tokio::spawn(async move { while handler.next().await.is_some() {} });
-    let page = browser.new_page("about:blank").await.unwrap();
+    let Chromium {
+        mut browser,
+        pump,
+        page,
+        profile: _profile,
+    } = launch(1500, 1100).await;
     page.evaluate_on_new_document(
         "window.__errs = []; window.addEventListener('error', e => window.__errs.push(String(e.message))); window.addEventListener('unhandledrejection', e => window.__errs.push('rejection: ' + String(e.reason)));",
     )
