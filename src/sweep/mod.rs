@@ -28,7 +28,7 @@
 //! and takes back).
 //!
 //! The files: `map.rs` holds the axes, the scores a sweep maps, the two-axis map ([`sweep()`],
-//! [`write`]) and the one-axis profile ([`profile()`], [`write_profile`]); `points.rs` the
+//! [`write()`]) and the one-axis profile ([`profile()`], [`write_profile`]); `points.rs` the
 //! grid, its evaluation and its CSV; `shard.rs` a shard's share, its row file, its record
 //! (`shard.json`) and the merge's check that the shards cover the grid once; `resume.rs` a
 //! shard run into its folder, resumably ([`ShardRun`]);
