@@ -4,7 +4,7 @@
 use facetlab::error::{Error, Result};
 use facetlab::metrics::{CrystalChoice, NoteKind, StoneChoice, StoneFields};
 use facetlab::optics::{
-    ColourFields, CrystalFields, Material, MaterialFields, StoneSize, DENSITY_MAX,
+    ColourFields, CrystalFields, Material, MaterialFields, OpticAxis, StoneSize, DENSITY_MAX,
 };
 use facetlab::sweep::{Shard, SweepScore};
 
@@ -343,21 +343,24 @@ impl ColourArgs {
     }
 }
 
+/// The value parser of `--optic-axis` ([`OpticAxis::parse`], its error naming `field`).
+fn optic_axis(field: &str, s: &str) -> Result<OpticAxis> {
+    OpticAxis::parse(s, field)
+}
+
 /// `--birefringence`, `--optic-axis` and `--colour-e`, shared by the commands that trace:
 /// how a uniaxial stone is traced ([`Material::choose_crystal`]).
 #[derive(Clone, Debug, Default, clap::Args)]
 pub struct CrystalArgs {
     /// Trace a uniaxial stone (sapphire, quartz, tourmaline, …) birefringent: on (the
     /// default for those stones) or off (its ordinary ray alone).
-    #[arg(long, value_name = "on|off")]
-    // A String on purpose: checked for each stone (a crystal or not), after its notes.
-    pub birefringence: Option<String>,
+    #[arg(long, value_name = "on|off", action = clap::ArgAction::Set, value_parser = on_off_parser("--birefringence"))]
+    pub birefringence: Option<bool>,
     /// The optic (c-)axis of a uniaxial stone: DEG[@AZ], its angle from the table's normal
     /// toward azimuth AZ (0 = c ⟂ table; 90@0 = c in the table along azimuth 0). Default: as
     /// cutters orient the material.
-    #[arg(long, value_name = "DEG[@AZ]")]
-    // A String on purpose: checked for each stone (a crystal or not), after its notes.
-    pub optic_axis: Option<String>,
+    #[arg(long, value_name = "DEG[@AZ]", allow_hyphen_values = true, value_parser = parsed("--optic-axis", optic_axis))]
+    pub optic_axis: Option<OpticAxis>,
     /// A uniaxial stone's colour for light polarized ∥ its optic axis (the e-ray):
     /// #rrggbb[@Nmm] or lab(L,a,b)[@Nmm] (default path 10 mm); the stone's body colour (a
     /// coloured variety's, or --colour's where the command takes it) is then its E⊥c (o-ray)
@@ -371,8 +374,8 @@ impl CrystalArgs {
     /// The crystal settings these flags give, a birefringent stone's note at `wavelength_nm`.
     pub fn choice(&self, wavelength_nm: f64) -> CrystalChoice {
         CrystalChoice {
-            birefringence: self.birefringence.clone(),
-            optic_axis: self.optic_axis.clone(),
+            birefringence: self.birefringence,
+            optic_axis: self.optic_axis,
             colour_e: self.colour_e.clone(),
             wavelength_nm,
         }

@@ -44,10 +44,11 @@ pub struct StoneFields<'a> {
 /// The crystal settings of a uniaxial stone ([`Material::choose_crystal`]).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct CrystalChoice {
-    /// `on` or `off` (also `true`/`false`, `yes`/`no`); default: on for uniaxial stones.
-    pub birefringence: Option<String>,
-    /// The optic axis, `DEG[@AZ]`.
-    pub optic_axis: Option<String>,
+    /// Traced birefringent (on) or with its ordinary ray alone (off); default: on for
+    /// uniaxial stones.
+    pub birefringence: Option<bool>,
+    /// The optic axis (read by the face: [`OpticAxis::parse`], [`OpticAxis::new`]).
+    pub optic_axis: Option<OpticAxis>,
     /// The E ∥ c colour.
     pub colour_e: Option<String>,
     /// The wavelength (nm) a birefringent stone's note gives its indices at.
@@ -55,16 +56,10 @@ pub struct CrystalChoice {
 }
 
 impl CrystalChoice {
-    /// Read each setting given as a uniaxial stone reads it (on/off, `DEG[@AZ]`, a colour),
-    /// whatever stones it will be applied to, so a value no stone takes is refused before
-    /// any work; the error names its field.
+    /// Read the E ∥ c colour as a uniaxial stone reads it, whatever stones it will be applied
+    /// to, so a value no stone takes is refused before any work (the switch and the axis come
+    /// read); the error names its field.
     pub fn check(&self, fields: &CrystalFields<'_>) -> Result<()> {
-        if let Some(b) = &self.birefringence {
-            on_off(fields.birefringence, b)?;
-        }
-        if let Some(a) = &self.optic_axis {
-            OpticAxis::parse(a, fields.optic_axis)?;
-        }
         if let Some(c) = &self.colour_e {
             BodyColour::from_colour(&UserColour::parse(c, fields.colour_e)?, fields.colour_e)?;
         }
@@ -167,14 +162,9 @@ impl StoneChoice {
         };
         x.check(&fields.crystal)?;
         if self.chosen {
-            let on = x
-                .birefringence
-                .as_deref()
-                .map(|b| on_off(fields.crystal.birefringence, b))
-                .transpose()?;
             self.material.clone().choose_crystal(
-                on,
-                x.optic_axis.as_deref(),
+                x.birefringence,
+                x.optic_axis,
                 x.colour_e.as_deref(),
                 self.colour_density,
                 fields.crystal,
@@ -245,15 +235,10 @@ impl StoneChoice {
             }
         }
         if let Some(x) = &self.crystal {
-            let on = x
-                .birefringence
-                .as_deref()
-                .map(|b| on_off(fields.crystal.birefringence, b))
-                .transpose()?;
             for (cut, m) in cuts.iter().zip(materials.iter_mut()) {
                 m.choose_crystal(
-                    on,
-                    x.optic_axis.as_deref(),
+                    x.birefringence,
+                    x.optic_axis,
                     x.colour_e.as_deref(),
                     self.colour_density,
                     fields.crystal,
@@ -330,7 +315,7 @@ mod tests {
         assert_eq!(kinds, sorted, "design, then colour, then crystal notes");
         // A bad setting names its field, and comes alone: no note before it.
         choice.crystal = Some(CrystalChoice {
-            birefringence: Some("maybe".into()),
+            colour_e: Some("maybe".into()),
             wavelength_nm: 589.3,
             ..Default::default()
         });
@@ -343,7 +328,7 @@ mod tests {
                 &mut |_, l| notes.push(l),
             )
             .unwrap_err();
-        assert!(e.to_string().starts_with("birefringence"), "{e}");
+        assert!(e.to_string().starts_with("E∥c colour"), "{e}");
         assert!(notes.is_empty(), "{notes:?}");
         // A coloured biaxial stone (its colour a note) given an optic axis: the error alone.
         let mut peridot = StoneChoice::new(
@@ -355,7 +340,7 @@ mod tests {
         )
         .unwrap();
         peridot.crystal = Some(CrystalChoice {
-            optic_axis: Some("30".into()),
+            optic_axis: Some(OpticAxis::parse("30", "optic axis").unwrap()),
             wavelength_nm: 589.3,
             ..Default::default()
         });
@@ -385,28 +370,29 @@ mod tests {
     #[test]
     fn crystal_settings_are_read_before_any_stone() {
         let fields = FIELDS.crystal;
-        let given = |b: Option<&str>, a: Option<&str>, c: Option<&str>| {
+        let given = |c: Option<&str>| {
             CrystalChoice {
-                birefringence: b.map(String::from),
-                optic_axis: a.map(String::from),
+                birefringence: Some(false),
+                optic_axis: Some(OpticAxis::parse("45@22.5", fields.optic_axis).unwrap()),
                 colour_e: c.map(String::from),
                 wavelength_nm: 589.3,
             }
             .check(&fields)
             .map_err(|e| e.to_string())
         };
-        assert!(given(Some("off"), Some("45@22.5"), Some("#3050c0")).is_ok());
-        assert!(given(Some("maybe"), None, None)
+        assert!(given(Some("#3050c0")).is_ok());
+        assert!(given(Some("zzz")).unwrap_err().starts_with("E∥c colour:"));
+        // The switch and the axis are read at each face's door, by these.
+        assert!(on_off(fields.birefringence, "maybe")
             .unwrap_err()
+            .to_string()
             .starts_with("birefringence:"));
-        assert!(given(None, Some("nan@5"), None)
-            .unwrap_err()
-            .starts_with("optic axis:"));
-        assert!(given(None, Some("45@1e300"), None)
-            .unwrap_err()
-            .starts_with("optic axis:"));
-        assert!(given(None, None, Some("zzz"))
-            .unwrap_err()
-            .starts_with("E∥c colour:"));
+        assert!(on_off(fields.birefringence, "Yes").unwrap());
+        for bad in ["nan@5", "45@1e300"] {
+            assert!(OpticAxis::parse(bad, fields.optic_axis)
+                .unwrap_err()
+                .to_string()
+                .starts_with("optic axis:"));
+        }
     }
 }

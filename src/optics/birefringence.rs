@@ -25,7 +25,8 @@ pub const BIAXIAL_REASON: &str = "birefringence is traced for uniaxial stones; b
 
 impl Material {
     /// Apply the user's birefringence settings: `birefringence` on or off (default: on for
-    /// uniaxial stones), the optic axis `axis` (`DEG[@AZ]`, [`OpticAxis::parse`]) and the
+    /// uniaxial stones), the optic axis `axis` (read by the face: [`OpticAxis::parse`],
+    /// [`OpticAxis::new`]) and the
     /// E ∥ c colour `colour_e` (a user colour as `--colour` takes it, times `density` when
     /// given). Errors name the field: an optic axis or E ∥ c colour for a stone that is not
     /// uniaxial, birefringence asked of a biaxial stone ([`BIAXIAL_REASON`]). Birefringence
@@ -33,7 +34,7 @@ impl Material {
     pub fn choose_crystal(
         &mut self,
         birefringence: Option<bool>,
-        axis: Option<&str>,
+        axis: Option<OpticAxis>,
         colour_e: Option<&str>,
         density: Option<f64>,
         fields: CrystalFields<'_>,
@@ -74,7 +75,7 @@ impl Material {
                     u.traced = on;
                 }
                 if let Some(a) = axis {
-                    u.axis = OpticAxis::parse(a, fields.optic_axis)?;
+                    u.axis = a;
                 }
                 if let Some(text) = colour_e {
                     let c = BodyColour::from_colour(
@@ -217,7 +218,7 @@ mod tests {
         );
         m.choose_crystal(
             Some(false),
-            Some("35@20"),
+            Some(OpticAxis::parse("35@20", "optic axis").unwrap()),
             Some("#40a060@5mm"),
             Some(2.0),
             F,
@@ -238,14 +239,22 @@ mod tests {
                 && note.ends_with("; birefringence off traces the ordinary ray alone"),
             "{note}"
         );
-        let e = m
-            .choose_crystal(None, Some("95"), None, None, F)
-            .unwrap_err()
-            .to_string();
-        assert!(
-            e.starts_with("optic axis: `95` is not an optic axis"),
-            "{e}"
+        // An axis out of range is refused where it is read, as text or as numbers.
+        for e in [
+            OpticAxis::parse("95", "optic axis").unwrap_err(),
+            OpticAxis::new(95.0, 0.0, "optic axis").unwrap_err(),
+        ] {
+            let e = e.to_string();
+            assert!(
+                e.starts_with("optic axis: `95` is not an optic axis"),
+                "{e}"
+            );
+        }
+        assert_eq!(
+            OpticAxis::new(45.0, 22.5, "a").unwrap(),
+            OpticAxis::parse("45@22.5", "a").unwrap()
         );
+        assert!(OpticAxis::new(f64::NAN, 0.0, "a").is_err());
         let mut d = Material::diamond();
         d.choose_crystal(Some(true), None, None, None, F).unwrap();
         assert!(
@@ -253,7 +262,13 @@ mod tests {
                 && d.birefringence_json(589.3).is_none()
         );
         let e = d
-            .choose_crystal(None, Some("90"), None, None, F)
+            .choose_crystal(
+                None,
+                Some(OpticAxis::parse("90", "optic axis").unwrap()),
+                None,
+                None,
+                F,
+            )
             .unwrap_err()
             .to_string();
         assert!(

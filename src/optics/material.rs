@@ -233,8 +233,25 @@ impl OpticAxis {
             Some(a) => a.trim_end_matches('°').parse().map_err(|_| bad())?,
             None => 0.0,
         };
+        OpticAxis::new(tilt_deg, azimuth_deg, field).map_err(|_| bad())
+    }
+
+    /// The axis `tilt_deg` (in [0, 90]) from the table's normal toward `azimuth_deg` (in
+    /// [-360, 360]), as a face that reads numbers gives it; errors name `field` and say what
+    /// is allowed, as [`OpticAxis::parse`]'s.
+    pub fn new(tilt_deg: f64, azimuth_deg: f64, field: &str) -> crate::error::Result<OpticAxis> {
         if !((0.0..=90.0).contains(&tilt_deg) && (-360.0..=360.0).contains(&azimuth_deg)) {
-            return Err(bad());
+            let shown = if azimuth_deg == 0.0 {
+                format!("{tilt_deg}")
+            } else {
+                format!("{tilt_deg}@{azimuth_deg}")
+            };
+            return Err(crate::error::Error::invalid(
+                field,
+                format!(
+                    "`{shown}` is not an optic axis; give DEG[@AZ]: the angle of the c-axis from the table's normal in [0, 90] degrees, toward azimuth AZ in [-360, 360] degrees (e.g. 0, 90@0, 45@22.5)"
+                ),
+            ));
         }
         Ok(OpticAxis {
             tilt_deg,

@@ -15,13 +15,11 @@
 //! [`Progress`]).
 
 mod run;
-pub mod settings;
 
 pub use run::{
-    delay_ms, draw, printed_line, settings_line, stats_lines, summary, Drawn, LabPictures,
-    PhotoPictures, Pictures, Progress, RenderJob, Silent,
+    delay_ms, draw, printed_line, settings_line, stats_lines, summary, Drawn, Progress, RenderJob,
+    Silent,
 };
-pub use settings::PictureSettings;
 
 use super::palette::{CAPTION_GROUND, PICTURE_GROUND};
 use super::{font, register_font};

@@ -48,7 +48,7 @@ const fn kw(name: &'static str, kind: Kind, default: Value) -> Keyword {
 /// The keyword argument that sets each library setting an error names, as its field or inside
 /// its text ([`crate::error::setting`]), as the command line's `FLAGS` names its flag; a
 /// setting with no keyword here is shown by its own name. A picture's settings are
-/// [`crate::plot::render::settings::SETTINGS`].
+/// [`crate::render::settings::SETTINGS`].
 pub(crate) const SETTINGS: &[(&str, &str)] = &[
     ("rough size", "size_mm"),
     ("photon count", "photons"),

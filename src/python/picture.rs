@@ -12,10 +12,10 @@ use super::stone::{refuse_existing, StoneArgs};
 use crate::document::render::{CutJson, FrameJson, PhotoFrame, PhotoRecord};
 use crate::error::{Error, Result};
 use crate::plot::palette::PICTURE_GROUND;
-use crate::plot::render::settings::{self as picture, read};
-use crate::plot::render::{PictureSettings, Pictures};
 use crate::render::photo::{Photo, PhotoOptions, Tone};
+use crate::render::settings::{self as picture, read, LightChoice};
 use crate::render::{self, Image, RenderOptions};
+use crate::render::{PictureSettings, Pictures};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -156,7 +156,8 @@ fn draw(
     settings: &PictureSettings,
     stone: &StoneArgs,
 ) -> Result<(Picture, f64, String)> {
-    let pictures = settings.pictures(&stone.choice()?)?;
+    let choice = stone.choice()?;
+    let pictures = settings.pictures(&choice.material, choice.size)?;
     let (material, width_mm) = stone.material_for(cut)?;
     let t0 = Instant::now();
     let (picture, exposure, json) = match pictures {
@@ -249,7 +250,7 @@ fn picture_settings(kw: &Keywords) -> PyResult<PictureSettings> {
     let t = |k: &str| kw.text(k);
     let e = super::error;
     Ok(PictureSettings {
-        light: kw.str("light")?,
+        light: LightChoice::parse(picture::LIGHT, &kw.str("light")?).map_err(e)?,
         size: read(t("size")?.as_deref(), picture::SIZE, picture::parse_size).map_err(e)?,
         tilt: read(t("tilt")?.as_deref(), picture::TILT, parse_tilt).map_err(e)?,
         head_shadow: read(

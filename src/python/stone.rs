@@ -10,7 +10,7 @@ use crate::error::{Error, Result};
 use crate::metrics::{
     ColourNotes, CrystalChoice, StoneChoice, StoneFields, REFERENCE_WAVELENGTH_NM,
 };
-use crate::optics::{ColourFields, CrystalFields, Material, MaterialFields, StoneSize};
+use crate::optics::{ColourFields, CrystalFields, Material, MaterialFields, OpticAxis, StoneSize};
 use pyo3::prelude::*;
 
 /// The keyword arguments that choose the stone.
@@ -119,10 +119,12 @@ impl StoneArgs {
         choice.size = self.size()?;
         choice.size_is_length = self.size_mm.is_some();
         choice.crystal = Some(CrystalChoice {
-            birefringence: self
-                .birefringence
-                .map(|b| if b { "on" } else { "off" }.into()),
-            optic_axis: self.optic_axis.clone(),
+            birefringence: self.birefringence,
+            optic_axis: self
+                .optic_axis
+                .as_deref()
+                .map(|a| OpticAxis::parse(a, FIELDS.crystal.optic_axis))
+                .transpose()?,
             colour_e: self.colour_e.clone(),
             wavelength_nm: REFERENCE_WAVELENGTH_NM,
         });

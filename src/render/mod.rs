@@ -37,6 +37,7 @@ mod options;
 pub mod photo;
 pub mod pose;
 pub mod raster;
+pub mod settings;
 
 #[cfg(test)]
 mod tests;
@@ -50,3 +51,4 @@ pub use light::{
 };
 pub use options::RenderOptions;
 pub use pose::{picture_half, view_rotation, Tilt};
+pub use settings::{LabPictures, LightChoice, PhotoPictures, PictureSettings, Pictures};

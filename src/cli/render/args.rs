@@ -2,8 +2,8 @@
 
 use super::photo;
 use crate::cli::flags;
-use facetlab::plot::render::settings as picture;
 use facetlab::render::pose::{parse_rock, parse_tilt};
+use facetlab::render::settings::{self as picture, LightChoice};
 use facetlab::render::Tilt;
 use std::path::PathBuf;
 
@@ -24,10 +24,12 @@ pub struct RenderArgs {
     #[arg(
         long,
         default_value = "iso",
-        value_name = "iso|cos|aset|idealscope|hearts|arrows|fire|tent|darkfield|daylight|office|ring|studio|env:FILE"
+        value_name = "iso|cos|aset|idealscope|hearts|arrows|fire|tent|darkfield|daylight|office|ring|studio|env:FILE",
+        value_parser = flags::parsed("--light", LightChoice::parse)
     )]
-    // A String on purpose: a laboratory light or a photograph's, whose refusal names both lists.
-    pub light: String,
+    // A laboratory light or a photograph's, read once (an env:FILE map with it); its refusal
+    // names both lists.
+    pub light: LightChoice,
     /// Pixels per side of each stone's picture (8–8192); the captions (and a grey margin)
     /// come outside it unless --bare.
     #[arg(

@@ -36,7 +36,7 @@ mod settings;
 
 pub use args::RenderArgs;
 pub use run::run;
-pub use settings::settings_under;
+pub use settings::settings;
 
 #[cfg(test)]
 mod tests;

@@ -9,8 +9,8 @@ use super::RenderArgs;
 use crate::cli::flags;
 use facetlab::error::Result;
 use facetlab::io::guard::{cut_files, PictureFiles};
-use facetlab::plot::render::settings as picture;
 use facetlab::render::photo::{parse_view, GroundKind, Tone, View};
+use facetlab::render::settings as picture;
 use std::path::PathBuf;
 
 /// The photographic flags of `render` (they need a photographic `--light`).
@@ -91,7 +91,7 @@ impl PhotoArgs {
 /// of them a cut's file or the environment map.
 pub fn check_outputs(a: &RenderArgs) -> Result<()> {
     let mut inputs = cut_files(&a.cuts);
-    inputs.extend(facetlab::render::photo::PhotoLight::file_of(&a.light));
+    inputs.extend(a.light.file());
     PictureFiles {
         picture: &a.output,
         json: a.json.as_deref(),

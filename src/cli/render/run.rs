@@ -1,12 +1,13 @@
 //! `facetlab render`: its outputs checked, its progress bar and the stones' notes, and the one
 //! library call that draws.
 
-use super::{photo, settings_under, RenderArgs};
+use super::{photo, settings, RenderArgs};
 use crate::cli::flags;
 use facetlab::error::{Error, Result};
 use facetlab::io::guard::{cut_files, PictureFiles};
 use facetlab::metrics::NoteKind;
-use facetlab::plot::render::{draw, printed_line, Pictures, Progress, RenderJob};
+use facetlab::plot::render::{draw, printed_line, Progress, RenderJob};
+use facetlab::render::Pictures;
 
 /// Check a laboratory picture's outputs before any work ([`PictureFiles::check_laboratory`]).
 fn check_outputs(a: &RenderArgs) -> Result<()> {
@@ -50,8 +51,7 @@ impl Progress for Bar {
 
 /// Run `facetlab render`.
 pub fn run(a: &RenderArgs) -> Result<()> {
-    let light = facetlab::render::photo::PhotoLight::parse(&a.light)?;
-    if light.is_none() {
+    if !a.light.is_photo() {
         if let Some(flag) = a.photo.first_given() {
             return Err(Error::invalid(
                 flag,
@@ -62,7 +62,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             ));
         }
     }
-    let (pictures, stone) = settings_under(a, light)?;
+    let (pictures, stone) = settings(a)?;
     match &pictures {
         Pictures::Photo(p) => {
             photo::check_outputs(a)?;

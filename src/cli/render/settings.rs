@@ -1,14 +1,12 @@
 //! `render`'s flags validated into the library's picture settings
-//! ([`PictureSettings::pictures_under`] makes the options of a laboratory picture or a
+//! ([`PictureSettings::pictures`] makes the options of a laboratory picture or a
 //! photograph), and the rock's and animation's limits both kinds of picture share.
 
 use super::RenderArgs;
 use crate::cli::flags;
 use facetlab::error::{Error, Result};
 use facetlab::metrics::StoneChoice;
-use facetlab::plot::render::{PictureSettings, Pictures};
-use facetlab::render::photo::PhotoLight;
-use facetlab::render::Tilt;
+use facetlab::render::{PictureSettings, Pictures, Tilt};
 
 /// Largest animation: frames × cuts × size² pixels (about 1.2 GB of 8-bit RGB in memory).
 pub const MAX_ANIMATION_PIXELS: f64 = 400e6;
@@ -68,16 +66,12 @@ fn picture_settings(a: &RenderArgs) -> PictureSettings {
     }
 }
 
-/// Validate the flags into the library's types under `light` (read once: `Some`
-/// photographic light, `None` a laboratory one): the pictures, their rock or turntable, and
+/// Validate the flags into the library's types: the pictures, their rock or turntable, and
 /// the stones.
-pub fn settings_under(
-    a: &RenderArgs,
-    light: Option<PhotoLight>,
-) -> Result<(Pictures, StoneChoice)> {
+pub fn settings(a: &RenderArgs) -> Result<(Pictures, StoneChoice)> {
     let mut stone = flags::stone_choice(a.material.material()?, &a.material, &a.colour, None)?;
     let pictures = picture_settings(a)
-        .pictures_under(light, &stone)
+        .pictures(&stone.material, stone.size)
         .map_err(|e| flags::picture_to_flags(e, &a.material))?;
     let rock = a.rock;
     Ok(match pictures {

@@ -17,16 +17,15 @@ fn parse(extra: &[&str]) -> RenderArgs {
 }
 
 /// A laboratory picture's settings from the flags (as `run` reads them).
-fn settings(
+fn lab_settings(
     a: &RenderArgs,
 ) -> facetlab::error::Result<(
-    facetlab::plot::render::LabPictures,
+    facetlab::render::LabPictures,
     facetlab::metrics::StoneChoice,
 )> {
-    let light = facetlab::render::photo::PhotoLight::parse(&a.light)?;
-    settings_under(a, light).map(|(p, stone)| match p {
-        facetlab::plot::render::Pictures::Lab(p) => (p, stone),
-        facetlab::plot::render::Pictures::Photo(_) => panic!("a photograph"),
+    settings(a).map(|(p, stone)| match p {
+        facetlab::render::Pictures::Lab(p) => (p, stone),
+        facetlab::render::Pictures::Photo(_) => panic!("a photograph"),
     })
 }
 
@@ -36,18 +35,18 @@ fn first_error(extra: &[&str]) -> String {
     v.extend_from_slice(extra);
     match Cli::try_parse_from(v) {
         Err(e) => crate::cli::flags::refused_value(&e).unwrap(),
-        Ok(c) => settings(&c.args).unwrap_err().to_string(),
+        Ok(c) => lab_settings(&c.args).unwrap_err().to_string(),
     }
 }
 
 #[test]
 fn defaults_and_flags_become_render_options() {
-    let (s, _) = settings(&parse(&[])).unwrap();
+    let (s, _) = lab_settings(&parse(&[])).unwrap();
     assert_eq!(s.opts.light, Light::Iso);
     assert_eq!(s.opts.size, 512);
     assert_eq!(s.opts.tilt, Tilt::FACE_UP);
     assert_eq!((s.exposure, s.frames()), (1.0, 1));
-    let (s, _) = settings(&parse(&[
+    let (s, _) = lab_settings(&parse(&[
         "--light",
         "ASET",
         "--size",
@@ -139,7 +138,7 @@ fn captions_carry_the_statistics() {
         ..s
     };
     assert!(stats_lines(Light::Fire, &f)[0].starts_with("placement fire 0.75"));
-    let (s, _) = settings(&parse(&[
+    let (s, _) = lab_settings(&parse(&[
         "--light",
         "cos",
         "--head-shadow",
@@ -152,6 +151,6 @@ fn captions_carry_the_statistics() {
         settings_line(&s.opts, s.exposure).as_deref(),
         Some("head shadow 15°, exposure ×2")
     );
-    let (s, _) = settings(&parse(&["--light", "aset", "--exposure", "2"])).unwrap();
+    let (s, _) = lab_settings(&parse(&["--light", "aset", "--exposure", "2"])).unwrap();
     assert_eq!(settings_line(&s.opts, s.exposure), None);
 }

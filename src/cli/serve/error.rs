@@ -87,6 +87,10 @@ impl ApiError {
 /// in their errors ([`ApiError::from_picture`]): the one table of the web page, as `FLAGS` is
 /// the command line's. A setting the request cannot send keeps the library's name.
 pub const PICTURE_FIELDS: &[(&str, &str)] = &[
+    ("light", "light"),
+    ("exposure", "exposure"),
+    ("head-shadow", "head_shadow"),
+    ("ground", "ground"),
     ("size", "size"),
     ("tilt", "tilt"),
     ("view", "view"),
@@ -101,9 +105,12 @@ impl ApiError {
     pub fn from_picture(e: Error) -> Self {
         match e {
             Error::Invalid { field, message } => {
+                // The library's picture settings are named `picture FIELD`; its options' by
+                // the field alone.
+                let word = field.strip_prefix("picture ").unwrap_or(&field);
                 let field = PICTURE_FIELDS
                     .iter()
-                    .find(|(setting, _)| *setting == field)
+                    .find(|(setting, _)| *setting == word)
                     .map_or(field.clone(), |(_, f)| f.to_string());
                 Self::bad(field, message)
             }

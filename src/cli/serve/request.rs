@@ -13,7 +13,7 @@ use base64::Engine;
 use facetlab::io;
 use facetlab::optics::{ColourFields, Material, MaterialFields, StoneSize};
 use facetlab::render::photo::{GroundKind, PhotoLight, View};
-use facetlab::render::Light;
+use facetlab::render::{Light, LightChoice, PictureSettings, Tilt};
 use serde::Deserialize;
 use serde_json::{Number, Value};
 use std::collections::BTreeMap;
@@ -45,29 +45,17 @@ pub enum Source {
 pub struct Req {
     pub source: Source,
     pub set: BTreeMap<String, f64>,
-    pub light: Light,
-    pub size: usize,
-    pub tilt: f64,
-    pub exposure: f64,
-    /// The viewer's head shadow (`head_shadow`), degrees; `None`: the light's and scores' own.
-    pub head_shadow: Option<f64>,
+    /// The picture's settings (`light`, `size`, `tilt` toward azimuth 0, `exposure`,
+    /// `head_shadow`; a photograph's `view` and `view_az`, `light_rotation`, `ground` and
+    /// `aperture`, read at 250 mm, 0 a pinhole), the library's own, within the page's caps;
+    /// `head_shadow` is the scores' too (`None`: the light's and scores' own).
+    pub picture: PictureSettings,
     pub quick: bool,
     pub to: Option<&'static str>,
     /// The material traced, with its body colour (`material`, `colour`, `colour_density`).
     pub material: Material,
     /// The stone's size for its body colour (`diameter_mm` or `size_mm`).
     pub stone: StoneSize,
-    /// A photographic `light` (a rig or the studio map): `/api/render` takes a photograph.
-    pub photo: Option<PhotoLight>,
-    /// A photograph's camera (`view` elevation, `view_az` azimuth).
-    pub view: View,
-    /// A photograph's light turned about the vertical (`light_rotation`), degrees.
-    pub light_rotation: f64,
-    /// A photograph's ground (`ground`).
-    pub ground: GroundKind,
-    /// A photograph's entrance pupil (`aperture`), mm, read at 250 mm (0: a pinhole; not
-    /// sent: the ±1° filter).
-    pub aperture: Option<f64>,
     /// No `material` was sent: a design is traced in its own (its index, its notes), as every
     /// command does; `colour` and `colour_density` as sent, to colour it.
     pub own: Option<(Option<String>, Option<f64>)>,
@@ -229,13 +217,24 @@ pub fn parse_req(
         )
     };
     let (material, stone, own) = stone(&b)?;
-    // A photographic light (a rig or the bundled studio map; a map file is for the command
-    // line: nothing a client sends becomes a path).
-    let photo = match b.light.given() {
-        Ok(Some(l)) if Light::parse(l).is_err() && !l.trim().starts_with("env:") => {
-            PhotoLight::parse(l).ok().flatten()
-        }
-        _ => None,
+    // The light, read once by the library (a map file is for the command line: nothing a
+    // client sends becomes a path).
+    let unknown = |s: &str| {
+        ApiError::bad(
+            "light",
+            format!(
+                "unknown light {:?}; allowed {}, {}",
+                short(s),
+                Light::ALL.map(Light::name).join(", "),
+                PhotoLight::names().join(", ")
+            ),
+        )
+    };
+    let light = match b.light.given() {
+        Ok(None) => LightChoice::default(),
+        Ok(Some(l)) if l.trim().starts_with("env:") => return Err(unknown(l)),
+        Ok(Some(l)) => LightChoice::parse("light", l).map_err(|_| unknown(l))?,
+        Err(_) => return Err(ApiError::bad("light", "must be a string such as \"iso\"")),
     };
     let view = View {
         elevation_deg: bounded(
@@ -292,7 +291,7 @@ pub fn parse_req(
             "the entrance pupil in mm (0 = a pinhole, read at 250 mm)",
         )?),
     };
-    let is_photo = photo.is_some();
+    let is_photo = light.is_photo();
     // A photograph's settings with a laboratory light would be ignored: refused, as the
     // command line and Python refuse them.
     let sent = [
@@ -300,6 +299,7 @@ pub fn parse_req(
         b.view_az.sent(),
         b.light_rotation.sent(),
         b.ground.sent(),
+        b.aperture.sent(),
     ];
     if let (false, Some((key, _))) = (is_photo, PHOTO.iter().zip(sent).find(|(_, s)| *s)) {
         return Err(ApiError::bad(
@@ -310,68 +310,64 @@ pub fn parse_req(
             ),
         ));
     }
-    Ok(Req {
-        photo,
-        view,
-        light_rotation,
-        ground,
+    let size = match b.size.given() {
+        Ok(None) => 512,
+        Ok(Some(n)) => match n.as_u64() {
+            Some(k) if (SIZE_RANGE.0..=SIZE_RANGE.1).contains(&k) => k as usize,
+            _ => return Err(bad_size(n.to_string())),
+        },
+        Err(v) => return Err(bad_size(v.to_string())),
+    };
+    let tilt = match b.tilt.given() {
+        Ok(None) => 0.0,
+        Ok(Some(n)) => match n.as_f64() {
+            Some(t) if t.abs() <= TILT_LIMIT => t,
+            _ => return Err(bad_tilt(n.to_string())),
+        },
+        Err(v) => return Err(bad_tilt(v.to_string())),
+    };
+    let exposure = match b.exposure.given() {
+        Ok(None) => 1.0,
+        Ok(Some(n)) => match n.as_f64() {
+            Some(x) if x > 0.0 && x <= EXPOSURE_MAX => x,
+            _ => return Err(bad_exposure(n.to_string())),
+        },
+        Err(v) => return Err(bad_exposure(v.to_string())),
+    };
+    let head_shadow = match b.head_shadow.given() {
+        Ok(None) => None,
+        _ => Some(bounded(
+            &b.head_shadow,
+            "head_shadow",
+            0.0,
+            HEAD_SHADOW_MAX,
+            0.0,
+            "degrees",
+        )?),
+    };
+    // The library's picture settings: the photograph's only with a photographic light (the
+    // scores read the head shadow whatever the light).
+    let picture = PictureSettings {
+        size: Some(size),
+        tilt: Some(Tilt {
+            tilt_deg: tilt,
+            azimuth_deg: 0.0,
+        }),
+        exposure: Some(exposure),
+        head_shadow,
+        view: is_photo.then_some(view),
+        light_rotation: is_photo.then_some(light_rotation),
+        ground: is_photo.then_some(ground),
         aperture,
+        ..PictureSettings::new(light)
+    };
+    Ok(Req {
+        picture,
         material,
         stone,
         own,
         source: source(&b)?,
         set: set(&b)?,
-        light: match b.light.given() {
-            Ok(None) => Light::Iso,
-            Ok(Some(_)) if is_photo => Light::Iso,
-            Ok(Some(s)) => Light::parse(s).map_err(|_| {
-                ApiError::bad(
-                    "light",
-                    format!(
-                        "unknown light {:?}; allowed {}, {}",
-                        short(s),
-                        Light::ALL.map(Light::name).join(", "),
-                        PhotoLight::names().join(", ")
-                    ),
-                )
-            })?,
-            Err(_) => return Err(ApiError::bad("light", "must be a string such as \"iso\"")),
-        },
-        size: match b.size.given() {
-            Ok(None) => 512,
-            Ok(Some(n)) => match n.as_u64() {
-                Some(k) if (SIZE_RANGE.0..=SIZE_RANGE.1).contains(&k) => k as usize,
-                _ => return Err(bad_size(n.to_string())),
-            },
-            Err(v) => return Err(bad_size(v.to_string())),
-        },
-        tilt: match b.tilt.given() {
-            Ok(None) => 0.0,
-            Ok(Some(n)) => match n.as_f64() {
-                Some(t) if t.abs() <= TILT_LIMIT => t,
-                _ => return Err(bad_tilt(n.to_string())),
-            },
-            Err(v) => return Err(bad_tilt(v.to_string())),
-        },
-        exposure: match b.exposure.given() {
-            Ok(None) => 1.0,
-            Ok(Some(n)) => match n.as_f64() {
-                Some(x) if x > 0.0 && x <= EXPOSURE_MAX => x,
-                _ => return Err(bad_exposure(n.to_string())),
-            },
-            Err(v) => return Err(bad_exposure(v.to_string())),
-        },
-        head_shadow: match b.head_shadow.given() {
-            Ok(None) => None,
-            _ => Some(bounded(
-                &b.head_shadow,
-                "head_shadow",
-                0.0,
-                HEAD_SHADOW_MAX,
-                0.0,
-                "degrees",
-            )?),
-        },
         quick: match b.quick.given() {
             Ok(q) => q.copied().unwrap_or(false),
             Err(_) => return Err(ApiError::bad("quick", "must be true or false")),

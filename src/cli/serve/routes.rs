@@ -20,9 +20,10 @@ use facetlab::document::info::info_json;
 use facetlab::io;
 use facetlab::metrics::{score, ScoreConfig};
 use facetlab::optics::Material;
+use facetlab::optics::StoneSize;
 use facetlab::plot::diagram::diagram;
 use facetlab::plot::palette::STAGE_GROUND;
-use facetlab::render::{render, Light, RenderOptions, Tilt};
+use facetlab::render::{render, Light, Pictures};
 use serde_json::{json, Value};
 use std::sync::Arc;
 use std::time::Instant;
@@ -228,7 +229,7 @@ async fn score_cut(
         let cfg = ScoreConfig {
             material: material_for(&r, &cut)?,
             size: r.stone,
-            head_shadow_deg: r.head_shadow.unwrap_or(base.head_shadow_deg),
+            head_shadow_deg: r.picture.head_shadow.unwrap_or(base.head_shadow_deg),
             ..base
         };
         let s = score(&cut.solid, &cfg);
@@ -273,23 +274,23 @@ async fn render_cut(
         let t0 = Instant::now();
         let cut = build(&designs, &r)?;
         let t1 = Instant::now();
-        if let Some(light) = r.photo.clone() {
-            return photograph(&r, &cut, light, t0, t1);
-        }
-        let mut o = RenderOptions::new(r.light);
-        o.size = r.size;
-        o.tilt = Tilt {
-            tilt_deg: r.tilt,
-            azimuth_deg: 0.0,
+        // The cut's own material unless one was sent, as the scores.
+        let width = width_mm(&r, &cut)?;
+        let pictures = r
+            .picture
+            .pictures(&material_for(&r, &cut)?, StoneSize::Width(width))
+            .map_err(ApiError::from_picture)?;
+        let p = match pictures {
+            Pictures::Photo(p) => return photograph(&r, &cut, p, t0, t1),
+            Pictures::Lab(p) => p,
         };
-        o.head_shadow_deg = r.head_shadow;
-        o.width_mm = width_mm(&r, &cut)?;
-        o.material = material_for(&r, &cut)?;
+        let mut o = p.opts;
+        o.width_mm = width;
         o.validate().map_err(ApiError::from_picture)?;
         let img = render(&cut.solid, &o);
         let t2 = Instant::now();
-        let rgb = img.to_srgb8(r.exposure, STAGE_GROUND);
-        let n = r.size as u32;
+        let rgb = img.to_srgb8(p.exposure, STAGE_GROUND);
+        let n = o.size as u32;
         let png = io::png::encode_rgb8(n, n, &[&rgb], 0).map_err(|e| {
             ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "render", e.to_string())
         })?;
@@ -320,38 +321,23 @@ async fn render_cut(
 fn photograph(
     r: &super::request::Req,
     cut: &facetlab::cut::Cut,
-    light: facetlab::render::photo::PhotoLight,
+    p: facetlab::render::PhotoPictures,
     t0: Instant,
     t1: Instant,
 ) -> ApiResult<(Vec<u8>, String, String)> {
-    use facetlab::render::photo::{photo, Ground, PhotoOptions};
-    let mut o = PhotoOptions::new(light);
-    o.size = r.size;
-    o.view = r.view;
-    o.tilt = Tilt {
-        tilt_deg: r.tilt,
-        azimuth_deg: 0.0,
-    };
-    o.light_rotation_deg = r.light_rotation;
-    o.aperture_mm = r.aperture;
-    o.ground = Ground {
-        kind: r.ground,
-        gap: 0.0,
-    };
-    o.width_mm = width_mm(r, cut)?;
-    // The cut's own material unless one was sent, as the laboratory pictures and the scores.
-    o.material = material_for(r, cut)?;
+    use facetlab::render::photo::photo;
+    let mut o = p.opts;
     if r.quick {
         o = o.quick();
     }
     o.validate().map_err(ApiError::from_picture)?;
-    let p = photo(&cut.solid, &o);
+    let shot = photo(&cut.solid, &o);
     let t2 = Instant::now();
-    let rgb = p.to_srgb8(r.exposure, o.tone);
-    let n = r.size as u32;
+    let rgb = shot.to_srgb8(p.exposure, o.tone);
+    let n = o.size as u32;
     let png = io::png::encode_rgb8(n, n, &[&rgb], 0)
         .map_err(|e| ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "render", e.to_string()))?;
-    let stats = serde_json::to_string(&p.stats).unwrap_or_default();
+    let stats = serde_json::to_string(&shot.stats).unwrap_or_default();
     let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;
     let timing = format!(
         "build;dur={:.1}, trace;dur={:.1}, png;dur={:.1}",

@@ -176,14 +176,19 @@ impl ScoreSettings {
         at: &dyn Fn(&str) -> String,
     ) -> Result<()> {
         let (on, axis, colour_e) = &self.crystal_fields;
+        let axis_field = at("score.optic_axis");
+        let axis = axis
+            .as_ref()
+            .map(|a| crate::optics::OpticAxis::parse(&a.text(), &axis_field))
+            .transpose()?;
         material.choose_crystal(
             *on,
-            axis.as_ref().map(RawAxis::text).as_deref(),
+            axis,
             colour_e.as_deref(),
             self.colour_fields.1,
             crate::optics::CrystalFields {
                 birefringence: &at("score.birefringence"),
-                optic_axis: &at("score.optic_axis"),
+                optic_axis: &axis_field,
                 colour_e: &at("score.colour_e"),
             },
         )

@@ -14,8 +14,9 @@ use crate::error::{Error, Result};
 use crate::io::hdr::HdrImage;
 use crate::metrics::{ColourNotes, NoteKind, StoneChoice, StoneFields};
 use crate::plot::palette::PICTURE_GROUND;
-use crate::render::photo::{caption, turntable, turntable_period, PhotoOptions, PhotoStats};
-use crate::render::pose::{describe, rocked};
+use crate::render::photo::{caption, turntable_period, PhotoOptions, PhotoStats};
+use crate::render::pose::describe;
+use crate::render::settings::{LabPictures, PhotoPictures, Pictures};
 use crate::render::{self, ColourStats, Light, RenderOptions, Stats, Tilt};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -38,85 +39,6 @@ pub trait Progress: Sync {
 /// No progress shown, no notes said.
 pub struct Silent;
 impl Progress for Silent {}
-
-/// The laboratory pictures (iso, cos, aset, …): the options of the face-up (or tilted)
-/// picture, a rock and the exposure.
-#[derive(Clone, Debug)]
-pub struct LabPictures {
-    /// Options of the face-up (or tilted) picture; its material is the chosen one.
-    pub opts: RenderOptions,
-    /// A rock's amplitude in degrees and number of frames.
-    pub rock: Option<(f64, usize)>,
-    /// Brightness factor.
-    pub exposure: f64,
-}
-
-impl LabPictures {
-    /// The pose of frame `k`: the picture's pose rocked by `DEG·sin(2πk/FRAMES)` toward its
-    /// azimuth.
-    pub fn frame_tilt(&self, k: usize) -> Tilt {
-        match self.rock {
-            None => self.opts.tilt,
-            Some(rock) => rocked(self.opts.tilt, rock, k),
-        }
-    }
-
-    /// Number of frames (1 without a rock).
-    pub fn frames(&self) -> usize {
-        self.rock.map_or(1, |r| r.1)
-    }
-}
-
-/// Photographs under a studio rig: frame 0's options, a turntable or a rock, the exposure.
-#[derive(Clone, Debug)]
-pub struct PhotoPictures {
-    /// Options of frame 0; its material is the chosen one.
-    pub opts: PhotoOptions,
-    /// A turntable's number of frames.
-    pub turn: Option<usize>,
-    /// A rock's amplitude in degrees and number of frames.
-    pub rock: Option<(f64, usize)>,
-    /// Brightness factor.
-    pub exposure: f64,
-}
-
-impl PhotoPictures {
-    /// Number of frames.
-    pub fn frames(&self) -> usize {
-        self.turn.or(self.rock.map(|r| r.1)).unwrap_or(1)
-    }
-
-    /// Options of frame `k`.
-    pub fn frame(&self, k: usize) -> PhotoOptions {
-        match (self.turn, self.rock) {
-            (Some(n), _) => turntable(&self.opts, n, k),
-            (None, Some(rock)) => PhotoOptions {
-                tilt: rocked(self.opts.tilt, rock, k),
-                ..self.opts.clone()
-            },
-            _ => self.opts.clone(),
-        }
-    }
-}
-
-/// The pictures `render` draws.
-#[derive(Clone, Debug)]
-pub enum Pictures {
-    /// Under a laboratory light.
-    Lab(LabPictures),
-    /// Photographs.
-    Photo(PhotoPictures),
-}
-
-impl Pictures {
-    /// Number of frames.
-    pub fn frames(&self) -> usize {
-        match self {
-            Pictures::Lab(p) => p.frames(),
-            Pictures::Photo(p) => p.frames(),
-        }
-    }
-}
 
 /// What `render` draws and where it writes it.
 pub struct RenderJob<'a> {

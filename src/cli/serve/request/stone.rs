@@ -60,7 +60,12 @@ pub(super) fn stone(b: &Body) -> ApiResult<Stone> {
     // whether it is traced birefringent and its E ∥ c colour, through the chooser
     // `--optic-axis`, `--birefringence` and `--colour-e` use.
     let axis = match b.optic_axis.given() {
-        Ok(a) => a.map(|a| a.as_f64().unwrap_or(f64::NAN).to_string()),
+        Ok(a) => a
+            .map(|a| {
+                facetlab::optics::OpticAxis::new(a.as_f64().unwrap_or(f64::NAN), 0.0, "optic_axis")
+            })
+            .transpose()
+            .map_err(invalid)?,
         Err(v) => {
             return Err(ApiError::bad(
                 "optic_axis",
@@ -87,7 +92,7 @@ pub(super) fn stone(b: &Body) -> ApiResult<Stone> {
     material
         .choose_crystal(
             on,
-            axis.as_deref(),
+            axis,
             colour_e,
             density,
             facetlab::optics::CrystalFields {

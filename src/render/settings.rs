@@ -1,24 +1,86 @@
-//! A picture's settings as a face gives them, turned into the library's options in one place
+//! A picture's settings as a face gives them, each read once at the face's door into the
+//! library's types, and turned into the library's options in one place
 //! ([`PictureSettings::pictures`]): a laboratory picture ([`LabPictures`]) or a photograph
-//! ([`PhotoPictures`]), by the light. The command line fills [`PictureSettings`] from its
-//! typed flags; the Python package writes its keyword arguments out as text, each read by
-//! [`read`] with its parser.
+//! ([`PhotoPictures`]), by the light ([`LightChoice`], read once: a map file is read when its
+//! `env:FILE` is). The command line's flags, Python's keyword arguments and the web page's
+//! fields each fill [`PictureSettings`]; the web page adds only its own caps.
 //!
-//! Each value is read by the library's own parsers, the ones the command line's flags call
-//! ([`crate::render::pose::parse_tilt`], [`crate::render::photo::parse_view`],
-//! [`GroundKind::parse`], [`Tone::parse`]) and those here
-//! for the numbers, each with its range ([`parse_size`], [`parse_ground_gap`], …), and
+//! Each value is read by the library's own parsers, the ones every face calls
+//! ([`LightChoice::parse`], [`crate::render::pose::parse_tilt`],
+//! [`crate::render::photo::parse_view`], [`GroundKind::parse`], [`Tone::parse`]) and those
+//! here for the numbers, each with its range ([`parse_size`], [`parse_ground_gap`], …), and
 //! every error names the setting ([`SETTINGS`]: `picture view`, `picture ground-gap`, …), a
 //! setting inside a message too ([`crate::error::setting`]), for each face to spell as it
 //! spells it: the command line's flag (`--view`), Python's keyword argument (`view`).
 
-use super::{LabPictures, PhotoPictures, Pictures};
 use crate::error::{setting, Error, Result};
 use crate::io::text::{count, number};
-use crate::metrics::StoneChoice;
-use crate::optics::StoneSize;
-use crate::render::photo::{Ground, GroundKind, PhotoLight, PhotoOptions, Tone, View};
+use crate::optics::{Material, StoneSize};
+use crate::render::photo::{turntable, Ground, GroundKind, PhotoLight, PhotoOptions, Tone, View};
+use crate::render::pose::rocked;
 use crate::render::{Light, RenderOptions, Tilt};
+use std::path::PathBuf;
+
+/// The light of a picture, read once from its name ([`LightChoice::parse`]): a laboratory
+/// light, or a photograph's (a rig, the studio map, or an `env:FILE` map, read then).
+#[derive(Clone, Debug)]
+pub enum LightChoice {
+    /// A laboratory light (iso, cos, aset, idealscope, hearts, arrows, fire).
+    Lab(Light),
+    /// A photographic light.
+    Photo(PhotoLight),
+}
+
+impl Default for LightChoice {
+    /// The ISO sky.
+    fn default() -> LightChoice {
+        LightChoice::Lab(Light::Iso)
+    }
+}
+
+impl LightChoice {
+    /// The light `text` names (`field` named in the error): a laboratory light's name (any
+    /// case), a rig's, `studio`, or `env:FILE` (a Radiance `.hdr` or OpenEXR `.exr` map, read
+    /// here; its errors name the file).
+    pub fn parse(field: &str, text: &str) -> Result<LightChoice> {
+        if let Some(photo) = PhotoLight::parse(text)? {
+            return Ok(LightChoice::Photo(photo));
+        }
+        Light::parse(text.trim().to_ascii_lowercase().as_str())
+            .map(LightChoice::Lab)
+            .map_err(|_| {
+                Error::invalid(
+                    field,
+                    format!(
+                        "`{text}` is not allowed; use {}, {} or env:FILE",
+                        Light::ALL.map(Light::name).join(", "),
+                        PhotoLight::names().join(", ")
+                    ),
+                )
+            })
+    }
+
+    /// The light's name as the pictures' records give it.
+    pub fn name(&self) -> String {
+        match self {
+            LightChoice::Lab(l) => l.name().to_string(),
+            LightChoice::Photo(p) => p.name(),
+        }
+    }
+
+    /// The environment map's file, for an `env:FILE` light (an input: never overwritten).
+    pub fn file(&self) -> Option<PathBuf> {
+        match self {
+            LightChoice::Photo(p) => PhotoLight::file_of(&p.name()),
+            LightChoice::Lab(_) => None,
+        }
+    }
+
+    /// Whether it is a photograph's light.
+    pub fn is_photo(&self) -> bool {
+        matches!(self, LightChoice::Photo(_))
+    }
+}
 
 /// The light (a laboratory light, a photographic rig, `studio` or `env:FILE`).
 pub const LIGHT: &str = "picture light";
@@ -124,13 +186,11 @@ pub fn parse_aperture(field: &str, s: &str) -> Result<f64> {
 
 /// A picture's settings as the library's values (`None`: not given, the light's default),
 /// turned into options by [`PictureSettings::pictures`]. The command line fills them from
-/// its typed flags; the Python package from its keywords, each read by [`read`].
-#[derive(Clone, Debug, PartialEq)]
+/// its typed flags; Python from its keyword arguments; the web page from its fields.
+#[derive(Clone, Debug)]
 pub struct PictureSettings {
-    /// A laboratory light (iso, cos, aset, idealscope, hearts, arrows, fire) or a
-    /// photographic one (tent, darkfield, daylight, office, ring, studio, `env:FILE`, the map
-    /// read by [`PictureSettings::pictures`]).
-    pub light: String,
+    /// A laboratory light or a photographic one, read once ([`LightChoice::parse`]).
+    pub light: LightChoice,
     /// Pixels per side (8–8192; default 512).
     pub size: Option<usize>,
     /// The stone tilted toward an azimuth.
@@ -161,7 +221,7 @@ pub struct PictureSettings {
 }
 
 /// `text`, if given, read by `parse` as the setting `name` (a face that takes a picture's
-/// settings as text, Python's keyword arguments written out, reads each so).
+/// settings as text reads each so).
 pub fn read<T>(
     text: Option<&str>,
     name: &str,
@@ -172,9 +232,9 @@ pub fn read<T>(
 
 impl PictureSettings {
     /// The settings of a picture under `light`, every other setting its default.
-    pub fn new(light: &str) -> PictureSettings {
+    pub fn new(light: LightChoice) -> PictureSettings {
         PictureSettings {
-            light: light.to_string(),
+            light,
             size: None,
             tilt: None,
             head_shadow: None,
@@ -211,25 +271,18 @@ impl PictureSettings {
             .map(|(name, _)| name)
     }
 
-    /// The single picture these settings describe of stones chosen as `stone` (its material
-    /// and, given as a width, its size; each cut's own are [`StoneChoice::stones`]'): a
-    /// laboratory picture or a photograph, by the light (no animation: a face adds its rock
-    /// or turntable). An error names the setting; a photographic setting with a laboratory
-    /// light, or a head shadow with a photographic one, is refused.
-    pub fn pictures(&self, stone: &StoneChoice) -> Result<Pictures> {
-        self.pictures_under(PhotoLight::parse(&self.light)?, stone)
-    }
-
-    /// [`PictureSettings::pictures`] with the light already read: `Some` photographic light
-    /// (a map read once) or `None` for a laboratory light named by [`PictureSettings::light`].
-    pub fn pictures_under(
-        &self,
-        light: Option<PhotoLight>,
-        stone: &StoneChoice,
-    ) -> Result<Pictures> {
-        match light {
-            Some(light) => self.photo(light, stone).map(Pictures::Photo),
-            None => {
+    /// The single picture these settings describe of stones of `material` and `size` (the
+    /// stone's width, when given, is the photograph's; each cut's own material and width come
+    /// later, stone by stone): a laboratory picture or a photograph, by the light (no
+    /// animation: a face adds its rock or turntable). An error names the setting; a
+    /// photographic setting with a laboratory light, or a head shadow with a photographic one,
+    /// is refused.
+    pub fn pictures(&self, material: &Material, size: StoneSize) -> Result<Pictures> {
+        match &self.light {
+            LightChoice::Photo(light) => self
+                .photo(light.clone(), material, size)
+                .map(Pictures::Photo),
+            LightChoice::Lab(light) => {
                 if let Some(name) = self.photographic().next() {
                     return Err(Error::invalid(
                         name,
@@ -240,29 +293,17 @@ impl PictureSettings {
                         ),
                     ));
                 }
-                self.lab(stone).map(Pictures::Lab)
+                self.lab(*light, material).map(Pictures::Lab)
             }
         }
     }
 
-    fn lab(&self, stone: &StoneChoice) -> Result<LabPictures> {
-        let light =
-            Light::parse(self.light.trim().to_ascii_lowercase().as_str()).map_err(|_| {
-                Error::invalid(
-                    LIGHT,
-                    format!(
-                        "`{}` is not allowed; use {}, {} or env:FILE",
-                        self.light,
-                        Light::ALL.map(Light::name).join(", "),
-                        PhotoLight::names().join(", ")
-                    ),
-                )
-            })?;
+    fn lab(&self, light: Light, material: &Material) -> Result<LabPictures> {
         let mut opts = RenderOptions::new(light);
         opts.size = self.size.unwrap_or(opts.size);
         opts.tilt = self.tilt.unwrap_or(opts.tilt);
         opts.head_shadow_deg = self.head_shadow;
-        opts.material = stone.material.clone();
+        opts.material = material.clone();
         opts.trace.polarization = self.polarization;
         opts.validate().map_err(named)?;
         Ok(LabPictures {
@@ -272,7 +313,12 @@ impl PictureSettings {
         })
     }
 
-    fn photo(&self, light: PhotoLight, stone: &StoneChoice) -> Result<PhotoPictures> {
+    fn photo(
+        &self,
+        light: PhotoLight,
+        material: &Material,
+        size: StoneSize,
+    ) -> Result<PhotoPictures> {
         let mut o = PhotoOptions::new(light);
         o.size = self.size.unwrap_or(o.size);
         o.view = self.view.unwrap_or(o.view);
@@ -283,7 +329,7 @@ impl PictureSettings {
                 "is for the laboratory lights; a photograph's camera casts no head shadow",
             ));
         }
-        o.material = stone.material.clone();
+        o.material = material.clone();
         o.polarization = self.polarization;
         if let Some(kind) = self.ground {
             o.ground = Ground { kind, gap: 0.0 };
@@ -295,7 +341,7 @@ impl PictureSettings {
         o.distance_mm = self.distance.or(o.distance_mm);
         o.aperture_mm = self.aperture.or(o.aperture_mm);
         // The width the stone is seen at (for a perspective camera and absorption).
-        if let StoneSize::Width(w) = stone.size {
+        if let StoneSize::Width(w) = size {
             o.width_mm = w;
         }
         o.validate().map_err(named)?;
@@ -337,20 +383,90 @@ fn named(e: Error) -> Error {
     }
 }
 
+/// The laboratory pictures (iso, cos, aset, …): the options of the face-up (or tilted)
+/// picture, a rock and the exposure.
+#[derive(Clone, Debug)]
+pub struct LabPictures {
+    /// Options of the face-up (or tilted) picture; its material is the chosen one.
+    pub opts: RenderOptions,
+    /// A rock's amplitude in degrees and number of frames.
+    pub rock: Option<(f64, usize)>,
+    /// Brightness factor.
+    pub exposure: f64,
+}
+
+impl LabPictures {
+    /// The pose of frame `k`: the picture's pose rocked by `DEG·sin(2πk/FRAMES)` toward its
+    /// azimuth.
+    pub fn frame_tilt(&self, k: usize) -> Tilt {
+        match self.rock {
+            None => self.opts.tilt,
+            Some(rock) => rocked(self.opts.tilt, rock, k),
+        }
+    }
+
+    /// Number of frames (1 without a rock).
+    pub fn frames(&self) -> usize {
+        self.rock.map_or(1, |r| r.1)
+    }
+}
+
+/// Photographs under a studio rig: frame 0's options, a turntable or a rock, the exposure.
+#[derive(Clone, Debug)]
+pub struct PhotoPictures {
+    /// Options of frame 0; its material is the chosen one.
+    pub opts: PhotoOptions,
+    /// A turntable's number of frames.
+    pub turn: Option<usize>,
+    /// A rock's amplitude in degrees and number of frames.
+    pub rock: Option<(f64, usize)>,
+    /// Brightness factor.
+    pub exposure: f64,
+}
+
+impl PhotoPictures {
+    /// Number of frames.
+    pub fn frames(&self) -> usize {
+        self.turn.or(self.rock.map(|r| r.1)).unwrap_or(1)
+    }
+
+    /// Options of frame `k`.
+    pub fn frame(&self, k: usize) -> PhotoOptions {
+        match (self.turn, self.rock) {
+            (Some(n), _) => turntable(&self.opts, n, k),
+            (None, Some(rock)) => PhotoOptions {
+                tilt: rocked(self.opts.tilt, rock, k),
+                ..self.opts.clone()
+            },
+            _ => self.opts.clone(),
+        }
+    }
+}
+
+/// The pictures `render` draws.
+#[derive(Clone, Debug)]
+pub enum Pictures {
+    /// Under a laboratory light.
+    Lab(LabPictures),
+    /// Photographs.
+    Photo(PhotoPictures),
+}
+
+impl Pictures {
+    /// Number of frames.
+    pub fn frames(&self) -> usize {
+        match self {
+            Pictures::Lab(p) => p.frames(),
+            Pictures::Photo(p) => p.frames(),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::optics::Material;
     use crate::render::photo::parse_view;
     use crate::render::pose::parse_tilt;
-
-    fn stone() -> StoneChoice {
-        let fields = crate::optics::ColourFields {
-            colour: "colour",
-            density: "colour_density",
-        };
-        StoneChoice::new(Material::diamond(), false, None, None, fields).unwrap()
-    }
 
     /// A picture's settings as text, each read by its parser as a face does ([`read`]).
     #[derive(Default)]
@@ -389,20 +505,23 @@ mod tests {
                 ground_gap: read(self.ground_gap.as_deref(), GROUND_GAP, parse_ground_gap)?,
                 tone: read(self.tone.as_deref(), TONE, Tone::parse)?,
                 bands: read(self.bands.as_deref(), BANDS, parse_bands)?,
-                ..PictureSettings::new(&self.light)
+                ..PictureSettings::new(LightChoice::parse(LIGHT, &self.light)?)
             })
         }
     }
 
     fn error(s: &Text) -> String {
         s.settings()
-            .and_then(|v| v.pictures(&stone()))
+            .and_then(|v| v.pictures(&Material::diamond(), StoneSize::default()))
             .unwrap_err()
             .to_string()
     }
 
     fn pictures(s: &Text) -> Pictures {
-        s.settings().unwrap().pictures(&stone()).unwrap()
+        s.settings()
+            .unwrap()
+            .pictures(&Material::diamond(), StoneSize::default())
+            .unwrap()
     }
 
     #[test]
