@@ -18,7 +18,9 @@
 //! * `topology`: how much of fire's band traces' exit power follows facet sequences that
 //!   every band's trace has (exact beams and narrow rays apart);
 //! * `instructions` (only when named): ten tilted traces with no timing loop, to run under
-//!   `valgrind --tool=callgrind` for repeatable instruction counts;
+//!   `valgrind --tool=callgrind` for repeatable instruction counts; `instructions-exact` the
+//!   same with the narrow beams cut off (the difference over the segments is a narrow-ray
+//!   segment's cost), `instructions-score` one default score on one thread;
 //! * `photons`: how many photons a Monte Carlo photon tracer needs to match the beam tracer's
 //!   `overhead_light_return` to 1e-4 (one standard error), and the time ratio, measured with
 //!   the real photon tracer (`facetlab::photon::trace`: directed light from above, unpolarized,
@@ -330,22 +332,44 @@ fn main() {
     // Exactly ten traces of the tilted pose and nothing else, no timing loop: for instruction
     // counts (`valgrind --tool=callgrind …/beam-… --bench instructions`), which unlike the
     // wall clock do not swing with the machine's load. Only on request.
-    if filter.as_deref() == Some("instructions") {
-        let tilted = facetlab::beam::Frame::viewer(
-            facetlab::metrics::Tilt {
-                tilt_deg: 10.0,
-                azimuth_deg: 30.0,
+    // `instructions-exact` runs the same ten traces with every narrow beam cut off instead of
+    // followed (the exact part alone): the difference of the two counts over the segments is
+    // what a narrow-ray segment costs. `instructions-score` runs one default score of
+    // tolkowsky on one thread.
+    if let Some(which) = filter.as_deref().filter(|f| f.starts_with("instructions")) {
+        let exact = which.ends_with("-exact");
+        if which.starts_with("instructions-score") {
+            let cfg = ScoreConfig::default();
+            let s = one.install(|| std::hint::black_box(score(solid, &cfg)));
+            println!(
+                "{which}: one default score of tolkowsky done (brilliance {:.6})",
+                s.brilliance
+            );
+        } else {
+            let tilted = facetlab::beam::Frame::viewer(
+                facetlab::metrics::Tilt {
+                    tilt_deg: 10.0,
+                    azimuth_deg: 30.0,
+                }
+                .rotation(),
+            );
+            let opts = TraceOptions::default();
+            let opts = if exact {
+                TraceOptions {
+                    threshold: opts.split_threshold,
+                    ..opts
+                }
+            } else {
+                opts
+            };
+            let mut segments = 0;
+            for _ in 0..10 {
+                segments += std::hint::black_box(stone.trace(&tilted, ri, 589.3, &opts))
+                    .stats
+                    .ray_segments;
             }
-            .rotation(),
-        );
-        let opts = TraceOptions::default();
-        let mut segments = 0;
-        for _ in 0..10 {
-            segments += std::hint::black_box(stone.trace(&tilted, ri, 589.3, &opts))
-                .stats
-                .ray_segments;
+            println!("{which}: 10 tilted traces done ({segments} narrow-ray segments)");
         }
-        println!("instructions: 10 tilted traces done ({segments} narrow-ray segments)");
     }
 
     if run("score") {

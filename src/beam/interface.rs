@@ -49,7 +49,8 @@ pub(super) fn cross<S: ExitSink>(
     st: &mut TraceStats,
     sink: &mut S,
 ) -> (Stokes, DVec3) {
-    let fr = fresnel(m.n.dot(m.t), cx.ri, 1.0);
+    let cos = m.n.dot(m.t);
+    let fr = fresnel(cos, cx.ri, 1.0);
     let (axis, s_in) = if cx.pol {
         let a = s_axis(m.t, m.n).unwrap_or(m.axis);
         (a, rotate_stokes(m.stokes, m.axis, a, m.t))
@@ -58,7 +59,7 @@ pub(super) fn cross<S: ExitSink>(
     };
     let (mut sr, mut stt) = split(cx.pol, &fr, s_in);
     if stt.x > 0.0 {
-        match refract(m.t, m.n, cx.ri, 1.0) {
+        match transmitted(m, cos, &fr, cx.ri) {
             Some(out) => {
                 let unabsorbed = stt.x;
                 if m.keep != 1.0 {
@@ -88,6 +89,22 @@ pub(super) fn cross<S: ExitSink>(
         }
     }
     (sr, axis)
+}
+
+/// The direction of the light leaving at `m` into air: `refract(m.t, m.n, ri, 1)`, from the
+/// cosines Fresnel's split `fr` already holds where it took the incidence cosine `cos` as it
+/// is (`0 < cos ≤ 1`: the very same arithmetic, so the same bits), else by `refract`.
+#[inline(always)]
+fn transmitted(m: Meet, cos: f64, fr: &Interface, ri: f64) -> Option<DVec3> {
+    if cos > 0.0 && cos <= 1.0 {
+        if fr.tir {
+            return None;
+        }
+        let eta = ri / 1.0;
+        let n = -m.n;
+        return Some(eta * m.t + (eta * fr.cos_i - fr.cos_t) * n);
+    }
+    refract(m.t, m.n, ri, 1.0)
 }
 
 /// Reflected and transmitted Stokes vectors for `s` given in the interface's s–p frame.
