@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import Any, Callable, List, Tuple
 
 import facetlab
 import pytest
@@ -69,7 +70,7 @@ def test_plan_with_stones_is_the_command_lines_layout(cli: Cli, tmp_path: Path) 
 
 
 def test_bad_layout_keywords_are_refused_by_name(tmp_path: Path) -> None:
-    cases = [
+    cases: List[Tuple[Callable[[], Any], str]] = [
         (lambda: facetlab.plan("octahedron", size_mm=6, stones=0), "stones"),
         (lambda: facetlab.plan("octahedron", size_mm=6, stones=9), "stones"),
         (lambda: facetlab.plan("octahedron", size_mm=6, kerf=-0.1), "kerf"),
