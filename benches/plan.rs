@@ -5,23 +5,99 @@
 //! crystals (cube, octahedron) and the sphere; then a scanned pebble of 401,408 triangles
 //! (`facetlab::plan::sample::scanned_pebble`, made here): its full convex hull (target ≤ 1 s),
 //! the rough as the planner takes it (its hull stopped at `HULL_VERTICES`), and a plan of one
-//! family (target ≤ 10 s), beside the example rough's in the same run. Run:
-//! `cargo bench --bench plan` (`-- scan` for the scanned pebble alone, `-- hull` for its hull).
+//! family (target ≤ 10 s), beside the example rough's in the same run; then layouts (issue
+//! 54): 3 stones with two inclusions in the example rough, one family and every default family
+//! (target ≤ 30 s on 2 cores), and 3 stones in the scanned pebble. Run:
+//! `cargo bench --bench plan` (`-- scan` for the scanned pebble alone, `-- hull` for its hull,
+//! `-- layout` for the layouts alone).
 
 use facetlab::cut::Cut;
 use facetlab::geometry::{hull, HullOptions};
 use facetlab::plan::sample::{distorted_octahedron, scanned_pebble};
-use facetlab::plan::{largest_copy, PlanConfig, Planner, Rough};
+use facetlab::plan::{largest_copy, Inclusion, LayoutPlanner, PlanConfig, Planner, Rough};
 use glam::{DQuat, DVec3};
 use std::collections::BTreeMap;
 use std::time::Instant;
 
 fn main() {
+    if std::env::args().any(|a| a == "layout") {
+        layout();
+        return;
+    }
     let scan_only = std::env::args().any(|a| a == "scan" || a == "hull");
     if !scan_only {
         small();
     }
     scan();
+    if !scan_only {
+        layout();
+    }
+}
+
+/// A tetrahedron of size `r` mm at `c` (an inclusion's points).
+fn speck(c: DVec3, r: f64) -> Vec<DVec3> {
+    [
+        [1.0, 1.0, 1.0],
+        [1.0, -1.0, -1.0],
+        [-1.0, 1.0, -1.0],
+        [-1.0, -1.0, 1.0],
+    ]
+    .iter()
+    .map(|p| c + r * DVec3::from_array(*p))
+    .collect()
+}
+
+/// Layouts of 3 stones: the example rough with two inclusions (one family, every default
+/// family), and the scanned pebble (one family).
+fn layout() {
+    let rough = Rough::from_trimesh("rough-octahedron", "bench", distorted_octahedron(16), None)
+        .expect("example rough");
+    let c = rough.solid.centroid();
+    let inclusions = vec![
+        Inclusion::from_points("a", "a", &speck(c + DVec3::new(0.4, 0.3, 0.5), 0.2), 0.3)
+            .expect("inclusion"),
+        Inclusion::from_points("b", "b", &speck(c + DVec3::new(-0.6, 0.2, -0.8), 0.15), 0.3)
+            .expect("inclusion"),
+    ];
+    let mut config = PlanConfig {
+        stones: 3,
+        ..PlanConfig::default()
+    };
+    let families = config.families.clone();
+    for fams in [vec!["round-brilliant".to_string()], families] {
+        config.families = fams;
+        let t = Instant::now();
+        let l = LayoutPlanner::new(&rough, &config, 3.515, &inclusions)
+            .plan(&|| {})
+            .expect("layout");
+        println!(
+            "layout 3 stones, 2 inclusions, {} families: {:.2} s (target ≤ 30 s, {} threads), {} stones {:.4} ct, yield {:.2} %, kerf loss {:.2} mm³",
+            config.families.len(),
+            t.elapsed().as_secs_f64(),
+            rayon::current_num_threads(),
+            l.stones.len(),
+            l.carats,
+            100.0 * l.yield_fraction,
+            l.kerf_loss_mm3
+        );
+    }
+    let t = Instant::now();
+    let mesh = scanned_pebble(224, 1);
+    let triangles = mesh.triangles.len();
+    let pebble = Rough::from_trimesh("pebble", "bench", mesh, None).expect("rough");
+    let read_s = t.elapsed().as_secs_f64();
+    config.families = vec!["round-brilliant".into()];
+    let t = Instant::now();
+    let l = LayoutPlanner::new(&pebble, &config, 3.515, &[])
+        .plan(&|| {})
+        .expect("layout");
+    println!(
+        "layout 3 stones in the scanned pebble ({triangles} triangles, made and read in {read_s:.2} s): {:.2} s, {} stones {:.4} ct, yield {:.2} %",
+        t.elapsed().as_secs_f64(),
+        l.stones.len(),
+        l.carats,
+        100.0 * l.yield_fraction
+    );
 }
 
 /// The scanned pebble: its hull, the rough the planner takes, and one family planned.

@@ -31,6 +31,11 @@
 //!   on any number of threads; directions in the principal frame make a turned and moved
 //!   rough give the layout turned and moved with it.
 //!
+//! Under a value objective the greedy search's jumps (a price per carat that jumps at a
+//! weight) can lead it to a layout worth less than the heaviest one, so the weight layout's
+//! saw plan is planned as well, its pieces' stones taken by value, and the better of the two
+//! layouts kept ([`LayoutPlanner::plan`]).
+//!
 //! What it is not: a laser layout (stones separated by a kerf gap along planes that do not
 //! cut through the whole piece) and a global optimum: the saw plan is greedy, cut by cut
 //! (measured against brute force in docs/plan.md).
@@ -396,8 +401,53 @@ impl<'a> LayoutPlanner<'a> {
     }
 
     /// Plan the layout: at most `config.stones` stones (see the module documentation). `tick`
-    /// runs after each saw candidate is judged.
+    /// runs after each saw candidate is judged. Under a value objective the weight layout's
+    /// saw plan is planned too and its pieces' stones taken by value (each the better of the
+    /// value search's stone and the weight search's priced), and the better layout kept: the
+    /// layout ranked by value is never worth less than the weight layout priced by the same
+    /// table.
     pub fn plan(&self, tick: &(dyn Fn() + Sync)) -> Result<Layout> {
+        let valued = self.greedy(tick)?;
+        let Objective::Value(table) = &self.config.objective else {
+            return Ok(valued);
+        };
+        let mut cfg = self.config.clone();
+        cfg.objective = Objective::Weight;
+        let by_weight = LayoutPlanner {
+            config: &cfg,
+            ..*self
+        };
+        let heavy = by_weight.greedy(tick)?;
+        let stones: Vec<Stone> = heavy
+            .stones
+            .par_iter()
+            .map(|w| {
+                let mut priced = w.clone();
+                priced.plan.objective = table.value(w.plan.carats, w.plan.grade);
+                let piece = Piece {
+                    label: w.piece.clone(),
+                    solid: w.piece_solid.clone(),
+                };
+                match self.stone(&piece, Effort::Full) {
+                    Some(v) if v.plan.objective > priced.plan.objective => v,
+                    _ => priced,
+                }
+            })
+            .collect();
+        if self.stopped() {
+            return Err(Error::invalid("plan", "interrupted"));
+        }
+        let seeded = self.layout_of(stones, heavy.saw)?;
+        // Ties keep the value search's own layout.
+        Ok(if seeded.total > valued.total {
+            seeded
+        } else {
+            valued
+        })
+    }
+
+    /// The greedy saw plan and its pieces' stones (see the module documentation).
+    fn greedy(&self, tick: &(dyn Fn() + Sync)) -> Result<Layout> {
         let whole = Piece {
             label: "rough".into(),
             solid: self.rough.solid.clone(),
@@ -408,64 +458,7 @@ impl<'a> LayoutPlanner<'a> {
             .map_or(0.0, |s| s.plan.objective);
         pieces.push((whole, v0));
         let mut saw: Vec<SawCut> = Vec::new();
-        // The normals of the rough's largest faces (a crystal is sawn along its faces), the
-        // directions to its farthest corners, then the principal frame's (a symmetric
-        // rough's principal frame is any frame: its own directions come first).
-        let mut dirs: Vec<DVec3> = Vec::new();
-        let mut faces: Vec<(f64, DVec3)> = (0..self.rough.solid.facets().len())
-            .map(|i| {
-                let poly = self.rough.solid.facet_polygon(i);
-                let area = (1..poly.len().saturating_sub(1))
-                    .map(|k| 0.5 * (poly[k] - poly[0]).cross(poly[k + 1] - poly[0]).length())
-                    .sum::<f64>();
-                (area, self.rough.solid.facets()[i].plane.normal)
-            })
-            .collect();
-        faces.sort_by(|a, b| b.0.total_cmp(&a.0));
-        // Faces as large as the last one kept are all kept (a symmetric rough's equal faces
-        // are taken together, whatever their order).
-        let least = faces
-            .get(FACE_DIRECTIONS.saturating_sub(1))
-            .map_or(0.0, |f| f.0 * (1.0 - 1e-6));
-        let apart = |dirs: &[DVec3], n: DVec3| {
-            dirs.iter()
-                .all(|d| d.dot(n).abs() < 2f64.to_radians().cos())
-        };
-        for (area, n) in faces {
-            if area < least || dirs.len() >= 2 * FACE_DIRECTIONS {
-                break;
-            }
-            if apart(&dirs, n) {
-                dirs.push(n);
-            }
-        }
-        // And the directions from the centroid to its farthest corners (a crystal's tips).
-        let centre = self.rough.solid.centroid();
-        let mut tips: Vec<(f64, DVec3)> = self
-            .rough
-            .solid
-            .vertices()
-            .iter()
-            .map(|v| (v.distance(centre), (*v - centre).normalize()))
-            .collect();
-        tips.sort_by(|a, b| b.0.total_cmp(&a.0));
-        let least = tips
-            .get(FACE_DIRECTIONS.saturating_sub(1))
-            .map_or(0.0, |t| t.0 * (1.0 - 1e-6));
-        let cap = dirs.len() + 2 * FACE_DIRECTIONS;
-        for (d, n) in tips {
-            if d < least || dirs.len() >= cap {
-                break;
-            }
-            if apart(&dirs, n) {
-                dirs.push(n);
-            }
-        }
-        for n in directions(self.frame) {
-            if apart(&dirs, n) {
-                dirs.push(n);
-            }
-        }
+        let dirs = self.saw_directions();
         let m = self.config.saw_offsets;
         while pieces.len() < self.config.stones && !self.stopped() {
             // Every piece × direction × offset, judged in parallel, gathered in order.
@@ -547,7 +540,11 @@ impl<'a> LayoutPlanner<'a> {
             .par_iter()
             .map(|(p, _)| self.stone(p, Effort::Full))
             .collect();
-        let stones: Vec<Stone> = stones.into_iter().flatten().collect();
+        self.layout_of(stones.into_iter().flatten().collect(), saw)
+    }
+
+    /// The layout of `stones` sawn by `saw`, with its totals; an error when it holds none.
+    fn layout_of(&self, stones: Vec<Stone>, saw: Vec<SawCut>) -> Result<Layout> {
         if stones.is_empty() {
             return Err(Error::invalid(
                 "ROUGH",
@@ -568,72 +565,6 @@ impl<'a> LayoutPlanner<'a> {
             stones,
             saw,
         })
-    }
-
-    /// Refine a saw cut of `piece` (value `value`): the offset by golden section within
-    /// `step` either side, then the normal by tilts of 8° and 3° about two axes across it.
-    fn refine(&self, piece: &Piece, u: DVec3, c: f64, step: f64, value: f64) -> (DVec3, f64, f64) {
-        let (mut u, mut c, mut best) = (u, c, value);
-        let g = 0.5 * (5f64.sqrt() - 1.0);
-        let (mut lo, mut hi) = (c - step, c + step);
-        let mut x1 = hi - g * (hi - lo);
-        let mut x2 = lo + g * (hi - lo);
-        let mut f1 = self.split_value(piece, u, x1);
-        let mut f2 = self.split_value(piece, u, x2);
-        for _ in 0..6 {
-            if f1 >= f2 {
-                hi = x2;
-                (x2, f2) = (x1, f1);
-                x1 = hi - g * (hi - lo);
-                f1 = self.split_value(piece, u, x1);
-            } else {
-                lo = x1;
-                (x1, f1) = (x2, f2);
-                x2 = lo + g * (hi - lo);
-                f2 = self.split_value(piece, u, x2);
-            }
-        }
-        for (x, f) in [(x1, f1), (x2, f2)] {
-            if f > best {
-                (c, best) = (x, f);
-            }
-        }
-        for deg in [12.0f64, 6.0, 3.0, 1.5] {
-            // Axes across the normal taken from the rough's frame (so a turned rough tilts
-            // the same way).
-            let e = [
-                self.frame * DVec3::X,
-                self.frame * DVec3::Y,
-                self.frame * DVec3::Z,
-            ];
-            let k = e
-                .iter()
-                .copied()
-                .min_by(|p, q| p.dot(u).abs().total_cmp(&q.dot(u).abs()))
-                .unwrap_or(DVec3::X);
-            let a = (k - k.dot(u) * u).normalize();
-            let b = u.cross(a);
-            let centre = piece.solid.centroid();
-            let tilts: Vec<DVec3> = [a, -a, b, -b]
-                .iter()
-                .map(|w| DQuat::from_axis_angle(*w, deg.to_radians()) * u)
-                .collect();
-            // The plane turned about its point nearest the piece's centroid.
-            let foot = centre + (c - u.dot(centre)) * u;
-            let tried: Vec<(DVec3, f64, f64)> = tilts
-                .par_iter()
-                .map(|t| {
-                    let ct = t.dot(foot);
-                    (*t, ct, self.split_value(piece, *t, ct))
-                })
-                .collect();
-            for (t, ct, f) in tried {
-                if f > best {
-                    (u, c, best) = (t, ct, f);
-                }
-            }
-        }
-        (u, c, best)
     }
 }
 
@@ -670,10 +601,16 @@ pub fn plan_layout(
 /// About how many saw candidates [`LayoutPlanner::plan`] judges at most (for a progress bar).
 pub fn candidates(config: &PlanConfig) -> u64 {
     let per_piece = ((13 + 4 * FACE_DIRECTIONS) * config.saw_offsets) as u64;
-    (1..config.stones as u64).map(|k| k * per_piece).sum()
+    let greedy: u64 = (1..config.stones as u64).map(|k| k * per_piece).sum();
+    // A value objective plans the weight layout's saw plan too.
+    match config.objective {
+        Objective::Value(_) => 2 * greedy,
+        _ => greedy,
+    }
 }
 
 mod inclusion;
+mod saw;
 mod solids;
 
 pub use solids::directions;

@@ -123,6 +123,8 @@ struct StoneJson {
     #[serde(rename = "yield")]
     yield_fraction: f64,
     width_mm: f64,
+    /// Where it lies: its centroid in the rough's coordinates (mm).
+    centre_mm: Option<[f64; 3]>,
     piece_volume_mm3: f64,
     /// Half-spaces `normal·x <= offset_mm` that keep the inclusions off it.
     keep_off: Vec<KeepOffJson>,
@@ -231,6 +233,7 @@ pub fn summary_json(of: &SummaryOf<'_>, plans: Vec<PlanJson>) -> Result<String> 
                 objective: s.plan.objective,
                 yield_fraction: s.plan.yield_fraction,
                 width_mm: s.plan.scale,
+                centre_mm: s.plan.placed_solid().ok().map(|p| p.centroid().to_array()),
                 piece_volume_mm3: s.piece_solid.volume(),
                 keep_off: s
                     .separations

@@ -9,8 +9,10 @@ use super::{run, Whole};
 use crate::error::Error;
 use crate::optics::Material;
 use crate::plan::config::check_families;
+use crate::plan::config::{MAX_GAP_MM, MAX_STONES};
 use crate::plan::{
-    check_out, load_rough, plan_warnings, write_folder, Plan, PlanConfig, Rough, Run,
+    check_out, load_rough, plan_layout, plan_warnings, write_folder, Inclusion, Plan, PlanConfig,
+    Rough, Run, CRYSTALS,
 };
 use crate::report::PlanDrawings;
 use pyo3::prelude::*;
@@ -39,9 +41,20 @@ use std::time::Instant;
 /// >>> run = facetlab.plan("octahedron", size_mm=6, families=["oval"], top=1, out=out)
 /// >>> run["folder"] == out, sorted(os.listdir(out))[:3]
 /// (True, ['oval-1-views.png', 'oval-1-views.svg', 'oval-1.asc'])
+///
+/// Several stones (issue 54, `facetlab plan --stones N`): `stones` (1–8), `kerf` and
+/// `allowance` (mm), `inclusions` (paths of closed `.obj`/`.stl` meshes in mm in the rough's
+/// coordinates) and `margin` (mm) override the config's `[rough]` keys; with `stones` above 1
+/// or any inclusion the rough is sawn into pieces and one stone placed in each
+/// (`crate::plan::plan_layout`). The plans are then the layout's stones in the order of
+/// their pieces, each dict also with `piece` (its piece's label), `centre_mm` (the stone's
+/// centroid in the rough's coordinates) and `holds` (the inclusions it holds at the price
+/// table's `included` factor); with `out` the returned dict also has `layout`: `total`,
+/// `carats`, `yield_fraction`, `kerf_loss_mm3` and `saw_plan` (the cuts in cutting order,
+/// each `piece`, `normal`, `offset_mm` and `kerf_loss_mm3`), as `summary.json` has them.
 #[pyfunction]
 #[pyo3(signature = (rough, *, config=None, families=None, size_mm=None, material=None, top=None,
-    out=None))]
+    stones=None, kerf=None, allowance=None, inclusions=None, margin=None, out=None))]
 #[allow(clippy::too_many_arguments)]
 fn plan<'py>(
     py: Python<'py>,
@@ -51,13 +64,22 @@ fn plan<'py>(
     size_mm: Option<f64>,
     material: Option<String>,
     top: Option<Whole>,
+    stones: Option<Whole>,
+    kerf: Option<f64>,
+    allowance: Option<f64>,
+    inclusions: Option<Vec<PathBuf>>,
+    margin: Option<f64>,
     out: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let started = Instant::now();
-    // Read as the command line reads --top.
+    // Read as the command line reads --top and --stones.
     let top = top.map(|t| t.get("top", 1, 50)).transpose()?;
+    let stones = stones
+        .map(|t| t.get("stones", 1, MAX_STONES as u64))
+        .transpose()?;
+    let inclusion_paths = inclusions.unwrap_or_default();
     let rough_arg = rough.display().to_string();
-    let (cfg, rough, material) = run(py, || {
+    let (cfg, rough, material, inclusions) = run(py, || {
         let mut cfg = match &config {
             Some(p) => PlanConfig::load(p)?,
             None => PlanConfig::default(),
@@ -84,12 +106,60 @@ fn plan<'py>(
                 ));
             }
         }
+        if let Some(n) = stones {
+            cfg.stones = n as usize;
+        }
+        for (name, value, to) in [
+            ("kerf", kerf, &mut cfg.kerf_mm),
+            ("allowance", allowance, &mut cfg.allowance_mm),
+            ("margin", margin, &mut cfg.margin_mm),
+        ] {
+            if let Some(v) = value {
+                if !(v.is_finite() && (0.0..=MAX_GAP_MM).contains(&v)) {
+                    return Err(Error::invalid(
+                        name,
+                        format!(
+                            "{} is not allowed; give a distance in [0, {MAX_GAP_MM}] mm",
+                            crate::error::shown(v)
+                        ),
+                    ));
+                }
+                *to = v;
+            }
+        }
+        if !inclusion_paths.is_empty()
+            && size_mm.is_some()
+            && !CRYSTALS.contains(&rough_arg.as_str())
+        {
+            return Err(Error::invalid(
+                "inclusions",
+                "a mesh rescaled by size_mm has no coordinates the inclusions could share; give the rough in mm without size_mm",
+            ));
+        }
+        let inclusions: Vec<Inclusion> = inclusion_paths
+            .iter()
+            .map(|p| Inclusion::from_mesh(p, cfg.margin_mm))
+            .collect::<crate::error::Result<_>>()?;
         if let Some(o) = &out {
             check_out("out", o, &rough_arg, config.as_deref(), &cfg)?;
+            for p in &inclusion_paths {
+                crate::io::guard::refuse_overwrite(&[("out", o.clone())], std::slice::from_ref(p))?;
+            }
         }
         let rough = load_rough(&rough_arg, size_mm)?;
-        Ok((cfg, rough, material))
+        Ok((cfg, rough, material, inclusions))
     })?;
+    if cfg.stones > 1 || !inclusions.is_empty() {
+        let job = Job {
+            input: &rough_arg,
+            config: &cfg,
+            material: &material,
+            rough: &rough,
+            inclusions: &inclusions,
+            started,
+        };
+        return layout(py, &job, out);
+    }
     let stop = AtomicBool::new(false);
     let (planned, stopped) = watch(
         py,
@@ -113,29 +183,7 @@ fn plan<'py>(
     let plans = PyList::empty(py);
     for (family, family_plans) in &all {
         for (rank, p) in family_plans.iter().enumerate() {
-            let d = PyDict::new(py);
-            d.set_item("family", family)?;
-            d.set_item("rank", rank + 1)?;
-            d.set_item("width_mm", p.scale)?;
-            d.set_item("carats", p.carats)?;
-            d.set_item("volume_mm3", p.volume_mm3)?;
-            d.set_item("yield_fraction", p.yield_fraction)?;
-            d.set_item("objective", p.objective)?;
-            d.set_item("grade", p.grade.map(|g| g.name()))?;
-            // As summary.json gives them: the plan's optic axis (a rough with a c-axis) and
-            // the face-up colour it was ranked by (`kind = "colour"`), else None.
-            d.set_item("optic_axis", cfg.c_axis.map(|c| p.optic_axis(c).label()))?;
-            let colour = match &p.colour {
-                Some(c) => Some(super::from_json(
-                    py,
-                    &serde_json::to_string(c)
-                        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?,
-                )?),
-                None => None,
-            };
-            d.set_item("colour", colour)?;
-            d.set_item("cut", Py::new(py, PyCut { cut: p.cut.clone() })?)?;
-            plans.append(d)?;
+            plans.append(plan_dict(py, &cfg, family, rank + 1, p)?)?;
         }
     }
     let Some(out) = out else {
@@ -147,6 +195,126 @@ fn plan<'py>(
     let done = PyDict::new(py);
     done.set_item("plans", plans)?;
     done.set_item("folder", out.display().to_string())?;
+    Ok(done.into_any())
+}
+
+/// One plan as a dict (see [`plan`]).
+fn plan_dict<'py>(
+    py: Python<'py>,
+    cfg: &PlanConfig,
+    family: &str,
+    rank: usize,
+    p: &Plan,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("family", family)?;
+    d.set_item("rank", rank)?;
+    d.set_item("width_mm", p.scale)?;
+    d.set_item("carats", p.carats)?;
+    d.set_item("volume_mm3", p.volume_mm3)?;
+    d.set_item("yield_fraction", p.yield_fraction)?;
+    d.set_item("objective", p.objective)?;
+    d.set_item("grade", p.grade.map(|g| g.name()))?;
+    // As summary.json gives them: the plan's optic axis (a rough with a c-axis) and
+    // the face-up colour it was ranked by (`kind = "colour"`), else None.
+    d.set_item("optic_axis", cfg.c_axis.map(|c| p.optic_axis(c).label()))?;
+    let colour = match &p.colour {
+        Some(c) => Some(super::from_json(
+            py,
+            &serde_json::to_string(c)
+                .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?,
+        )?),
+        None => None,
+    };
+    d.set_item("colour", colour)?;
+    d.set_item("cut", Py::new(py, PyCut { cut: p.cut.clone() })?)?;
+    Ok(d)
+}
+
+/// What a layout is planned from.
+struct Job<'a> {
+    input: &'a str,
+    config: &'a PlanConfig,
+    material: &'a Material,
+    rough: &'a Rough,
+    inclusions: &'a [Inclusion],
+    started: Instant,
+}
+
+/// A layout of several stones (see [`plan`]): its stones as plan dicts, with `out` the run
+/// folder the command line writes and the layout's totals and saw plan.
+fn layout<'py>(py: Python<'py>, job: &Job, out: Option<PathBuf>) -> PyResult<Bound<'py, PyAny>> {
+    let stop = AtomicBool::new(false);
+    let (planned, stopped) = watch(
+        py,
+        &stop,
+        || {
+            plan_layout(
+                job.rough,
+                job.config,
+                job.material,
+                job.inclusions,
+                &|| {},
+                Some(&stop),
+            )
+        },
+        |_| Ok(()),
+    )?;
+    if let Some(e) = stopped {
+        return Err(e);
+    }
+    let layout = planned.map_err(super::error)?;
+    let plans = PyList::empty(py);
+    for (k, s) in layout.stones.iter().enumerate() {
+        let d = plan_dict(py, job.config, &s.family, k + 1, &s.plan)?;
+        d.set_item("piece", &s.piece)?;
+        let c = s.plan.placed_solid().map_err(super::error)?.centroid();
+        d.set_item("centre_mm", [c.x, c.y, c.z])?;
+        let holds: Vec<&str> = s
+            .holds
+            .iter()
+            .map(|&i| job.inclusions[i].name.as_str())
+            .collect();
+        d.set_item("holds", holds)?;
+        plans.append(d)?;
+    }
+    let Some(out) = out else {
+        return Ok(plans.into_any());
+    };
+    run(py, || {
+        let run = Run {
+            out: &out,
+            input: job.input,
+            config: job.config,
+            material: job.material,
+            rough: job.rough,
+            all: &[],
+            started: job.started,
+            warnings: &[],
+            layout: Some(&layout),
+            inclusions: job.inclusions,
+        };
+        write_folder(&run, &PlanDrawings)
+    })?;
+    let l = PyDict::new(py);
+    l.set_item("total", layout.total)?;
+    l.set_item("carats", layout.carats)?;
+    l.set_item("yield_fraction", layout.yield_fraction)?;
+    l.set_item("kerf_loss_mm3", layout.kerf_loss_mm3)?;
+    let saw = PyList::empty(py);
+    for c in &layout.saw {
+        let d = PyDict::new(py);
+        d.set_item("piece", &c.piece)?;
+        d.set_item("normal", [c.normal.x, c.normal.y, c.normal.z])?;
+        d.set_item("offset_mm", c.offset)?;
+        d.set_item("kerf_loss_mm3", c.kerf_loss_mm3)?;
+        saw.append(d)?;
+    }
+    l.set_item("saw_plan", saw)?;
+    let done = PyDict::new(py);
+    done.set_item("plans", plans)?;
+    done.set_item("folder", out.display().to_string())?;
+    done.set_item("layout", l)?;
     Ok(done.into_any())
 }
 

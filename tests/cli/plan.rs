@@ -250,3 +250,39 @@ fn bad_roughs_are_one_line_and_write_nothing() {
     left.retain(|f| !f.ends_with(".obj"));
     assert!(left.is_empty(), "{left:?}");
 }
+
+#[test]
+fn bad_layout_flags_are_one_line_and_write_nothing() {
+    // Issue 54's flags: each refusal is one line naming the flag or the file, exit code 2,
+    // and no run folder is made.
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    let rough = tetra(p, "rough.obj", 8.0, false);
+    let open = tetra(p, "open.obj", 0.5, true);
+    std::fs::write(p.join("garbled.obj"), "v 0 0 zero\nf 1 2 3\n").unwrap();
+    let run = |extra: &[&str], needles: &[&str]| {
+        let mut args = vec!["plan", rough.as_str(), "--quiet", "-o", "out"];
+        args.extend_from_slice(extra);
+        bad(p, &args, needles);
+    };
+    run(&["--stones", "0"], &["--stones"]);
+    run(&["--stones", "9"], &["--stones", "8"]);
+    run(&["--stones", "two"], &["--stones"]);
+    run(&["--kerf", "-0.1"], &["--kerf"]);
+    run(&["--kerf", "11"], &["--kerf"]);
+    run(&["--allowance", "-1"], &["--allowance"]);
+    run(&["--allowance", "nan"], &["--allowance"]);
+    run(&["--margin", "-0.3"], &["--margin"]);
+    run(&["--margin", "x"], &["--margin"]);
+    run(&["--inclusion", "missing.obj"], &["missing.obj"]);
+    run(&["--inclusion", "garbled.obj"], &["garbled.obj"]);
+    run(&["--inclusion", &open], &["open.obj", "not closed"]);
+    // The same keys in a config file name the key.
+    std::fs::write(p.join("bad.toml"), "[rough]\nkerf_mm = -1\n").unwrap();
+    run(&["--config", "bad.toml"], &["kerf_mm"]);
+    std::fs::write(p.join("many.toml"), "[rough]\nstones = 20\n").unwrap();
+    run(&["--config", "many.toml"], &["stones"]);
+    let mut left = files(p);
+    left.retain(|f| !f.ends_with(".obj") && !f.ends_with(".toml"));
+    assert!(left.is_empty(), "{left:?}");
+}

@@ -1,7 +1,7 @@
 // facetlab workbench: the "Plan from a rough" panel, over POST/GET /api/plan.
 'use strict';
 
-const plan = { meta: null, upload: null, timer: null, shown: null, chosen: null, material: null };
+const plan = { meta: null, upload: null, timer: null, shown: null, chosen: null, material: null, inclusions: [] };
 
 const $p = (sel) => document.querySelector(sel);
 
@@ -12,6 +12,15 @@ function planBody() {
     top: Number($p('#plan-top').value),
     starts: Number($p('#plan-starts').value),
   };
+  // A layout of several stones (or one kept off inclusions): the saw's settings too.
+  const stones = Number($p('#plan-stones').value);
+  if (stones > 1 || plan.inclusions.length > 0) {
+    body.stones = stones;
+    body.kerf_mm = Number($p('#plan-kerf').value);
+    body.allowance_mm = Number($p('#plan-allowance').value);
+    body.margin_mm = Number($p('#plan-margin').value);
+    if (plan.inclusions.length > 0) body.inclusions = plan.inclusions;
+  }
   const size = $p('#plan-size').value.trim();
   const which = $p('#plan-rough').value;
   if (which === '__upload') {
@@ -50,6 +59,9 @@ async function startPlan() {
   plan.chosen = null;
   $p('#plan-open').hidden = true;
   $p('#plan-table').hidden = true;
+  $p('#plan-stones').hidden = true;
+  $p('#plan-saw').hidden = true;
+  $p('#plan-overview-link').hidden = true;
   $p('#plan-views-link').hidden = true;
   $p('#plan-report').hidden = true;
   if (!plan.timer) plan.timer = setInterval(pollPlan, 400);
@@ -71,7 +83,10 @@ async function pollPlan() {
   const status = $p('#plan-status');
   status.classList.toggle('bad', s.state === 'failed');
   let text = `${s.name}: ${s.state}`;
-  if (running) text += `${s.family ? ', ' + s.family : ''}, ${s.starts_done}/${s.starts} starts`;
+  if (running) {
+    text += s.family ? ', ' + s.family : '';
+    text += `, ${s.starts_done}/${s.starts} ${Number($p('#plan-stones').value) > 1 || plan.inclusions.length ? 'saw cuts' : 'starts'}`;
+  }
   text += `, ${s.elapsed_s.toFixed(1)} s`;
   if (s.rough) {
     text += ` · rough ${s.rough.volume_mm3.toFixed(2)} mm³`;
@@ -86,6 +101,7 @@ async function pollPlan() {
     if (plan.shown !== s.id) {
       plan.shown = s.id;
       showPlans(s.plans || []);
+      showStones(s);
     }
   }
 }
@@ -111,6 +127,41 @@ function showPlans(plans) {
     tb.appendChild(tr);
     if (i === 0) showViews(tr, p);
   });
+}
+
+// A layout's stones (family, carats, value, position), its saw plan and overview picture.
+function showStones(s) {
+  const stones = s.stones || [];
+  const table = $p('#plan-stones');
+  const tb = table.querySelector('tbody');
+  tb.textContent = '';
+  table.hidden = stones.length === 0;
+  for (const st of stones) {
+    const tr = document.createElement('tr');
+    const c = st.centre_mm;
+    const cells = [`${st.stem} (${st.piece})`, st.family, st.carats.toFixed(3), st.objective.toFixed(2),
+      c ? c.map((x) => x.toFixed(2)).join(', ') : '—'];
+    for (const x of cells) {
+      const td = document.createElement('td');
+      td.textContent = x;
+      tr.appendChild(td);
+    }
+    tr.title = `width ${st.width_mm.toFixed(2)} mm, yield ${(100 * st.yield).toFixed(1)} %` + (st.holds.length ? `; holds ${st.holds.join(', ')}` : '');
+    tb.appendChild(tr);
+  }
+  const saw = $p('#plan-saw');
+  const l = s.layout;
+  saw.hidden = !l;
+  if (l) {
+    saw.textContent = `${l.stones} of ${l.stones_asked} stones, ${l.total_carats.toFixed(3)} ct, objective ${l.total_objective.toFixed(2)}; `
+      + `${(s.saw_plan || []).length} saw cuts, kerf loss ${l.kerf_loss_mm3.toFixed(2)} mm³`;
+  }
+  const link = $p('#plan-overview-link');
+  link.hidden = !(l && s.overview);
+  if (l && s.overview) {
+    $p('#plan-overview').src = s.overview + '?id=' + s.id;
+    link.href = s.overview;
+  }
 }
 
 function showViews(tr, p) {
@@ -216,6 +267,12 @@ async function setupPlan() {
   $p('#plan-file').addEventListener('change', (ev) => {
     const f = ev.target.files && ev.target.files[0];
     if (f) readRough(f);
+    ev.target.value = '';
+  });
+  $p('#plan-inclusions').addEventListener('change', async (ev) => {
+    const files = Array.from(ev.target.files || []);
+    plan.inclusions = await Promise.all(files.map((f) => f.text()));
+    $p('#plan-inclusions-n').textContent = files.length ? `${files.length} inclusion${files.length > 1 ? 's' : ''}` : '';
     ev.target.value = '';
   });
   $p('#plan-run').addEventListener('click', startPlan);

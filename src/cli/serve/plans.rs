@@ -9,7 +9,13 @@
 //! as in `summary.json`, each with `views`: its three-view picture's address, `overview`,
 //! `report`); `POST /api/plan/stop` stops it after the family being planned (the families
 //! planned are kept); `GET /api/plan/report` is its `report.html`, `GET /api/plan/picture/NAME`
-//! one of its pictures. The run folder ([`facetlab::plan::write_folder`]) goes to a
+//! one of its pictures. With `stones` above 1 (and `kerf_mm`, `allowance_mm`, `margin_mm`,
+//! `inclusions`: OBJ texts in the rough's coordinates) the rough is sawn into a layout of
+//! several stones as `facetlab plan --stones N` plans it ([`facetlab::plan::plan_layout`]):
+//! `starts` counts its saw cuts judged, and the status adds `stones` (each stone's family,
+//! carats, value as `objective`, `centre_mm`, piece), `saw_plan` and `layout` as in
+//! `summary.json`, with the overview picture of the rough, the saw planes and the stones.
+//! The run folder ([`facetlab::plan::write_folder`]) goes to a
 //! temporary folder that is removed once its pictures and report are read in.
 
 use super::error::{ApiError, ApiResult};
@@ -24,9 +30,10 @@ use axum::response::{IntoResponse, Response};
 use facetlab::error::Error;
 use facetlab::optics::Material;
 use facetlab::plan::config::check_families;
+use facetlab::plan::config::{MAX_GAP_MM, MAX_STONES};
 use facetlab::plan::mesh::read_triangles;
 use facetlab::plan::{plan_families, write_folder, Run as Folder};
-use facetlab::plan::{PlanConfig, Rough, CRYSTALS};
+use facetlab::plan::{plan_layout, Inclusion, PlanConfig, Rough, CRYSTALS};
 use facetlab::report::PlanDrawings;
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Number, Value};
@@ -62,6 +69,11 @@ pub struct PlanStatus {
     error: Option<String>,
     report: bool,
     warnings: Vec<String>,
+    /// A layout of several stones (`stones` above 1, or inclusions): `summary.json`'s
+    /// `stones`, `saw_plan` and `layout`.
+    stones: Vec<Value>,
+    saw_plan: Vec<Value>,
+    layout: Option<Value>,
 }
 
 /// A plan run in progress or finished: its status and, once done, its files in memory.
@@ -101,12 +113,35 @@ struct Body {
     top: Field<Number>,
     starts: Field<Number>,
     material: Field<String>,
+    stones: Field<Number>,
+    kerf_mm: Field<Number>,
+    allowance_mm: Field<Number>,
+    margin_mm: Field<Number>,
+    inclusions: Field<Vec<String>>,
 }
 
-const KEYS: [&str; 10] = [
-    "rough", "format", "encoding", "name", "crystal", "size_mm", "families", "top", "starts",
+const KEYS: [&str; 15] = [
+    "rough",
+    "format",
+    "encoding",
+    "name",
+    "crystal",
+    "size_mm",
+    "families",
+    "top",
+    "starts",
     "material",
+    "stones",
+    "kerf_mm",
+    "allowance_mm",
+    "margin_mm",
+    "inclusions",
 ];
+
+/// Stones per layout: allowed range and default (1: the single plans of each family).
+pub const STONES: (u64, u64, u64) = (1, MAX_STONES as u64, 1);
+/// Inclusions a request may send.
+pub const MAX_INCLUSIONS: usize = 8;
 
 fn unprocessable(field: &str, message: impl Into<String>) -> ApiError {
     ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, field, message)
@@ -133,6 +168,61 @@ fn whole(f: &Field<Number>, field: &str, range: (u64, u64, u64)) -> ApiResult<u6
         },
         Err(v) => Err(bad(v.to_string())),
     }
+}
+
+/// A distance in mm in `[0, MAX_GAP_MM]` from `f` (`default` when not sent), or the error
+/// naming `field`.
+fn gap(f: &Field<Number>, field: &str, default: f64) -> ApiResult<f64> {
+    match f.given() {
+        Ok(None) => Ok(default),
+        Ok(Some(n)) => match n.as_f64() {
+            Some(x) if (0.0..=MAX_GAP_MM).contains(&x) => Ok(x),
+            _ => Err(unprocessable(
+                field,
+                format!(
+                    "{} is not allowed; give a distance in [0, {MAX_GAP_MM}] mm",
+                    short(&n.to_string())
+                ),
+            )),
+        },
+        Err(_) => Err(ApiError::bad(field, "must be a number of millimetres")),
+    }
+}
+
+/// The inclusions a body sends (OBJ texts in mm in the rough's coordinates), grown by
+/// `margin`; errors name `inclusions`.
+fn inclusions(b: &Body, margin: f64) -> ApiResult<Vec<Inclusion>> {
+    let texts = match b.inclusions.given() {
+        Ok(None) => return Ok(Vec::new()),
+        Ok(Some(t)) => t,
+        Err(_) => {
+            return Err(ApiError::bad(
+                "inclusions",
+                "must be a list of .obj mesh texts (mm, the rough's coordinates)",
+            ))
+        }
+    };
+    if texts.len() > MAX_INCLUSIONS {
+        return Err(unprocessable(
+            "inclusions",
+            format!("{} sent; allowed at most {MAX_INCLUSIONS}", texts.len()),
+        ));
+    }
+    texts
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let name = format!("inclusion-{}", k + 1);
+            Inclusion::from_bytes(
+                t.as_bytes(),
+                "obj",
+                &name,
+                &format!("inclusions[{k}]"),
+                margin,
+            )
+            .map_err(|e| unprocessable("inclusions", e.to_string()))
+        })
+        .collect()
 }
 
 /// The rough a body names, read and checked in memory: a mesh's errors name `rough`, a size's
@@ -285,16 +375,33 @@ pub async fn start(
             ))
         }
     };
-    // The mesh is read on a blocking thread (a large upload takes a moment).
-    let rough = super::jobs::heavy(&st, move || rough(&b)).await?;
+    let defaults = PlanConfig::default();
+    let stones = whole(&b.stones, "stones", STONES)? as usize;
+    let kerf_mm = gap(&b.kerf_mm, "kerf_mm", defaults.kerf_mm)?;
+    let allowance_mm = gap(&b.allowance_mm, "allowance_mm", defaults.allowance_mm)?;
+    let margin_mm = gap(&b.margin_mm, "margin_mm", defaults.margin_mm)?;
+    // The meshes are read on a blocking thread (a large upload takes a moment).
+    let (rough, inclusions) =
+        super::jobs::heavy(&st, move || Ok((rough(&b)?, inclusions(&b, margin_mm)?))).await?;
+    if rough.ball.is_some() && (stones > 1 || !inclusions.is_empty()) {
+        return Err(unprocessable(
+            "stones",
+            "the sphere is planned as an exact ball, one stone; several stones or inclusions need a polyhedral rough",
+        ));
+    }
     let config = PlanConfig {
         name: rough.name.clone(),
         families,
         top,
         starts,
         material: material.name.clone(),
-        ..PlanConfig::default()
+        stones,
+        kerf_mm,
+        allowance_mm,
+        margin_mm,
+        ..defaults
     };
+    let layout = config.stones > 1 || !inclusions.is_empty();
     let (id, run) = st.plans.start(
         "rough",
         "a plan is running; stop it first (POST /api/plan/stop)",
@@ -306,18 +413,29 @@ pub async fn start(
                 name: rough.name.clone(),
                 state: "running",
                 families: config.families.clone(),
-                starts: (config.families.len() * config.starts) as u64,
+                starts: if layout {
+                    facetlab::plan::layout::candidates(&config)
+                } else {
+                    (config.families.len() * config.starts) as u64
+                },
                 ..Default::default()
             }),
             files: Mutex::new(BTreeMap::new()),
         },
     )?;
-    std::thread::spawn(move || execute(&run, &rough, &config, &material, id));
+    std::thread::spawn(move || execute(&run, &rough, &config, &material, &inclusions, id));
     Ok(axum::Json(json!({ "id": id })).into_response())
 }
 
 /// Plan, write the run folder into a temporary folder, keep its summary, pictures and report.
-fn execute(run: &PlanRun, rough: &Rough, config: &PlanConfig, material: &Material, id: u64) {
+fn execute(
+    run: &PlanRun,
+    rough: &Rough,
+    config: &PlanConfig,
+    material: &Material,
+    inclusions: &[Inclusion],
+    id: u64,
+) {
     let tick = || {
         if let Ok(mut s) = run.status.lock() {
             s.starts_done += 1;
@@ -331,26 +449,45 @@ fn execute(run: &PlanRun, rough: &Rough, config: &PlanConfig, material: &Materia
         !run.stop.load(Ordering::SeqCst)
     };
     let dir = std::env::temp_dir().join(format!("facetlab-serve-{}-plan-{id}", std::process::id()));
-    let result = plan_families(rough, config, material, &family, &tick, None).and_then(|all| {
-        if all.is_empty() {
-            return Ok(None);
-        }
-        let warnings = facetlab::plan::plan_warnings(config, &all);
-        let folder = Folder {
-            out: &dir,
-            input: &rough.name,
-            config,
-            material,
-            rough,
-            all: &all,
-            started: run.started,
-            warnings: &warnings,
-            layout: None,
-            inclusions: &[],
-        };
-        write_folder(&folder, &PlanDrawings)?;
-        read_folder(&dir).map(Some)
-    });
+    let result = if config.stones > 1 || !inclusions.is_empty() {
+        plan_layout(rough, config, material, inclusions, &tick, Some(&run.stop)).and_then(|l| {
+            let folder = Folder {
+                out: &dir,
+                input: &rough.name,
+                config,
+                material,
+                rough,
+                all: &[],
+                started: run.started,
+                warnings: &[],
+                layout: Some(&l),
+                inclusions,
+            };
+            write_folder(&folder, &PlanDrawings)?;
+            read_folder(&dir).map(Some)
+        })
+    } else {
+        plan_families(rough, config, material, &family, &tick, None).and_then(|all| {
+            if all.is_empty() {
+                return Ok(None);
+            }
+            let warnings = facetlab::plan::plan_warnings(config, &all);
+            let folder = Folder {
+                out: &dir,
+                input: &rough.name,
+                config,
+                material,
+                rough,
+                all: &all,
+                started: run.started,
+                warnings: &warnings,
+                layout: None,
+                inclusions: &[],
+            };
+            write_folder(&folder, &PlanDrawings)?;
+            read_folder(&dir).map(Some)
+        })
+    };
     let _ = std::fs::remove_dir_all(&dir);
     let stopped = run.stop.load(Ordering::SeqCst);
     let Ok(mut st) = run.status.lock() else {
@@ -385,6 +522,11 @@ fn execute(run: &PlanRun, rough: &Rough, config: &PlanConfig, material: &Materia
                         p
                     })
                     .collect();
+                // A layout's stones (family, carats, value, position, piece) and saw plan.
+                let list = |k: &str| summary[k].as_array().cloned().unwrap_or_default();
+                st.stones = list("stones");
+                st.saw_plan = list("saw_plan");
+                st.layout = summary.get("layout").cloned();
                 st.overview = files
                     .contains_key("overview.png")
                     .then(|| "/api/plan/picture/overview.png".to_string());
@@ -394,6 +536,8 @@ fn execute(run: &PlanRun, rough: &Rough, config: &PlanConfig, material: &Materia
                 }
             }
         }
+        // A layout stopped part-way has nothing to show.
+        Err(_) if stopped => st.state = "stopped",
         Err(e) => {
             st.state = "failed";
             st.error = Some(e.to_string());

@@ -103,8 +103,25 @@ impl Inclusion {
             ));
         }
         let bytes = std::fs::read(path).map_err(|e| Error::io(&shown, e))?;
-        let mesh = read_triangles(&bytes, &ext, &shown)?;
-        mesh.check_closed(&shown).map_err(|e| match e {
+        let name = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("inclusion");
+        Inclusion::from_bytes(&bytes, &ext, name, &shown, margin)
+    }
+
+    /// An inclusion from the bytes of an `.obj` or `.stl` mesh (`format` `obj` or `stl`; mm,
+    /// the rough's coordinates) named `name`, grown by `margin`; `shown` names it in errors.
+    /// The mesh must be closed.
+    pub fn from_bytes(
+        bytes: &[u8],
+        format: &str,
+        name: &str,
+        shown: &str,
+        margin: f64,
+    ) -> Result<Inclusion> {
+        let mesh = read_triangles(bytes, format, shown)?;
+        mesh.check_closed(shown).map_err(|e| match e {
             Error::Parse { source, message } => Error::Parse {
                 source,
                 message: message.replace("a rough must", "an inclusion must"),
@@ -113,14 +130,10 @@ impl Inclusion {
         })?;
         if mesh.vertices.iter().any(|p| !p.is_finite()) {
             return Err(Error::parse(
-                &shown,
+                shown,
                 "a vertex coordinate is not a finite number",
             ));
         }
-        let name = path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("inclusion");
-        Inclusion::from_points(name, &shown, &mesh.vertices, margin)
+        Inclusion::from_points(name, shown, &mesh.vertices, margin)
     }
 }

@@ -204,6 +204,11 @@ class PlanKeywords(TypedDict, total=False):
     size_mm: Optional[float]
     material: Optional[str]
     top: Optional[int]
+    stones: Optional[int]
+    kerf: Optional[float]
+    allowance: Optional[float]
+    inclusions: Optional[Sequence[PathLike]]
+    margin: Optional[float]
 
 @overload
 def plan(

@@ -199,3 +199,129 @@ fn serve_plans_a_rough() {
     assert_eq!(st["state"], "stopped", "{st}");
     assert!(st["plans"].as_array().unwrap().len() < 7, "{st}");
 }
+
+/// A closed tetrahedron of size `r` at `c` (mm) as OBJ text (an inclusion).
+fn speck_obj(c: [f64; 3], r: f64) -> String {
+    let mut out = String::new();
+    for p in [
+        [1.0, 1.0, 1.0],
+        [1.0, -1.0, -1.0],
+        [-1.0, 1.0, -1.0],
+        [-1.0, -1.0, 1.0],
+    ] {
+        out.push_str(&format!(
+            "v {} {} {}\n",
+            c[0] + r * p[0],
+            c[1] + r * p[1],
+            c[2] + r * p[2]
+        ));
+    }
+    out + "f 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n"
+}
+
+#[test]
+fn serve_plans_a_layout_of_several_stones() {
+    let s = Server::start();
+    let plan = |body: serde_json::Value| s.post("/api/plan", &body.to_string());
+    let bad = |body: serde_json::Value, field: &str, status: u16| {
+        let r = plan(body.clone());
+        assert_eq!(
+            r.status,
+            status,
+            "{body}: {}",
+            String::from_utf8_lossy(&r.body)
+        );
+        assert_error(&r, field)
+    };
+    let octa = |extra: serde_json::Value| {
+        let mut b = serde_json::json!({"crystal": "octahedron", "size_mm": 6});
+        for (k, v) in extra.as_object().unwrap() {
+            b[k] = v.clone();
+        }
+        b
+    };
+    bad(octa(serde_json::json!({"stones": 0})), "stones", 400);
+    bad(octa(serde_json::json!({"stones": 9})), "stones", 400);
+    bad(octa(serde_json::json!({"kerf_mm": -0.1})), "kerf_mm", 422);
+    bad(
+        octa(serde_json::json!({"allowance_mm": 11})),
+        "allowance_mm",
+        422,
+    );
+    bad(
+        octa(serde_json::json!({"margin_mm": "wide"})),
+        "margin_mm",
+        400,
+    );
+    bad(
+        octa(serde_json::json!({"inclusions": "not a list"})),
+        "inclusions",
+        400,
+    );
+    let open = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n";
+    let e = bad(
+        octa(serde_json::json!({"stones": 2, "inclusions": [open]})),
+        "inclusions",
+        422,
+    );
+    assert!(e.contains("not closed"), "{e}");
+    bad(
+        serde_json::json!({"crystal": "sphere", "size_mm": 6, "stones": 2}),
+        "stones",
+        422,
+    );
+    assert_error(&s.get("/api/plan"), "run");
+
+    // Two stones kept off one inclusion, a short search.
+    let (kerf, allowance, margin) = (0.25, 0.15, 0.2);
+    let r = plan(octa(serde_json::json!({
+        "families": ["round-brilliant"], "starts": 1, "stones": 2, "kerf_mm": kerf,
+        "allowance_mm": allowance, "margin_mm": margin,
+        "inclusions": [speck_obj([0.3, 0.2, 0.4], 0.15)],
+    })));
+    assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
+    let mut st = s.get("/api/plan").json();
+    for _ in 0..3000 {
+        if st["state"] != "running" {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(200));
+        st = s.get("/api/plan").json();
+    }
+    assert_eq!(st["state"], "done", "{st}");
+    let layout = &st["layout"];
+    assert_eq!(layout["kerf_mm"], kerf);
+    assert_eq!(layout["allowance_mm"], allowance);
+    assert_eq!(layout["inclusion_margin_mm"], margin);
+    let stones = st["stones"].as_array().unwrap();
+    assert_eq!(stones.len(), 2, "{st}");
+    assert_eq!(layout["stones"], 2);
+    assert_eq!(st["saw_plan"].as_array().unwrap().len(), 1, "{st}");
+    let mut total = 0.0;
+    for (k, stone) in stones.iter().enumerate() {
+        assert_eq!(stone["family"], "round-brilliant");
+        assert_eq!(stone["stem"], format!("stone-{}", k + 1));
+        let ct = stone["carats"].as_f64().unwrap();
+        // Weight ranks by carats: the value shown is the weight.
+        assert_eq!(stone["objective"].as_f64().unwrap(), ct);
+        total += ct;
+        // The position lies inside the octahedron |x| + |y| + |z| <= 3 by the allowance.
+        let c: Vec<f64> = (0..3)
+            .map(|i| stone["centre_mm"][i].as_f64().unwrap())
+            .collect();
+        let l1 = c.iter().map(|x| x.abs()).sum::<f64>();
+        assert!(l1 < 3.0 - allowance * 3f64.sqrt(), "{c:?}");
+        // Each stone's plan is listed with its views.
+        let p = st["plans"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["stem"] == stone["stem"])
+            .unwrap();
+        assert_eq!(s.get(p["views"].as_str().unwrap()).status, 200);
+    }
+    assert!((layout["total_carats"].as_f64().unwrap() - total).abs() < 1e-9);
+    let overview = s.get(st["overview"].as_str().unwrap());
+    assert_eq!(overview.status, 200);
+    assert!(png_size(&overview.body).0 > 100);
+}
