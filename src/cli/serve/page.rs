@@ -48,3 +48,23 @@ fn asset(kind: &'static str, body: &'static str) -> Response {
     )
         .into_response()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::PAGE_HTML;
+
+    /// Every `id` on the page is unique: a second element with an id makes
+    /// `querySelector` return the first, and a script then writes into the wrong element
+    /// (the plan panel's Stones input and its stones table once shared one).
+    #[test]
+    fn the_page_ids_are_unique() {
+        let mut seen = std::collections::BTreeSet::new();
+        let mut count = 0;
+        for part in PAGE_HTML.split(" id=\"").skip(1) {
+            let id = part.split('"').next().unwrap();
+            assert!(seen.insert(id), "id `{id}` appears twice in page.html");
+            count += 1;
+        }
+        assert!(count > 20, "only {count} ids found: the scan is broken");
+    }
+}

@@ -59,7 +59,7 @@ async function startPlan() {
   plan.chosen = null;
   $p('#plan-open').hidden = true;
   $p('#plan-table').hidden = true;
-  $p('#plan-stones').hidden = true;
+  $p('#plan-stone-table').hidden = true;
   $p('#plan-saw').hidden = true;
   $p('#plan-overview-link').hidden = true;
   $p('#plan-views-link').hidden = true;
@@ -132,7 +132,7 @@ function showPlans(plans) {
 // A layout's stones (family, carats, value, position), its saw plan and overview picture.
 function showStones(s) {
   const stones = s.stones || [];
-  const table = $p('#plan-stones');
+  const table = $p('#plan-stone-table');
   const tb = table.querySelector('tbody');
   tb.textContent = '';
   table.hidden = stones.length === 0;
