@@ -17,8 +17,8 @@
 mod run;
 
 pub use run::{
-    delay_ms, draw, printed_line, settings_line, stats_lines, summary, Drawn, Progress, RenderJob,
-    Silent,
+    delay_ms, draw, lab_frame, lab_record, photo_frame, photo_record, printed_line, settings_line,
+    stats_lines, summary, Drawn, Progress, RenderJob, Silent,
 };
 
 use super::palette::{CAPTION_GROUND, PICTURE_GROUND};

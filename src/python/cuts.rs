@@ -3,7 +3,7 @@
 //! class with `with_set`, `write`, its name, family and parameters; `presets()` and
 //! `families()` list what there is.
 
-use super::run;
+use super::call::{self, run};
 use crate::cut::Cut;
 use crate::error::Error;
 use crate::io;
@@ -22,6 +22,9 @@ use std::collections::BTreeMap;
 pub struct PyCut {
     pub(crate) cut: Cut,
 }
+
+// The literal default of `meet_tol` in `Cut.info`'s signature is the library's.
+const _: () = assert!(crate::design::MEET_TOL == 1e-4);
 
 /// The cut a Python argument names: a `Cut`, or a preset name or path (`str` or
 /// `os.PathLike`) loaded as the command line loads its CUT.
@@ -50,7 +53,7 @@ fn spec_of(obj: &Bound<'_, PyAny>) -> PyResult<String> {
     let os = obj.py().import("os")?;
     match os.call_method1("fspath", (obj,)) {
         Ok(p) => Ok(p.extract::<String>()?),
-        Err(_) => Err(super::Error::new_err(format!(
+        Err(_) => Err(call::Error::new_err(format!(
             "cut: expected a Cut, a preset name or a path, got {}",
             obj.get_type().name()?
         ))),
@@ -65,7 +68,7 @@ fn numbers(d: Option<&Bound<'_, PyDict>>) -> PyResult<BTreeMap<String, f64>> {
             let key: String = k.extract()?;
             let value: f64 = v
                 .extract()
-                .map_err(|_| super::Error::new_err(format!("{key}: `{v}` is not a number")))?;
+                .map_err(|_| call::Error::new_err(format!("{key}: `{v}` is not a number")))?;
             out.insert(key, value);
         }
     }
@@ -145,7 +148,7 @@ impl PyCut {
     #[pyo3(signature = (path, overwrite=false))]
     fn write(&self, py: Python<'_>, path: &Bound<'_, PyAny>, overwrite: bool) -> PyResult<()> {
         let path: std::path::PathBuf = path.extract().map_err(|_| {
-            super::Error::new_err(format!(
+            call::Error::new_err(format!(
                 "path: expected a file name (str or os.PathLike), got {}",
                 path.get_type()
                     .name()
@@ -183,7 +186,7 @@ impl PyCut {
     /// >>> info["family"], round(info["carats"], 2)
     /// ('round-brilliant', 0.99)
     #[pyo3(signature = (*, diameter_mm=6.5, material=None, instructions=false, meets=false,
-        meet_tol=crate::design::MEET_TOL))]
+        meet_tol=1e-4))]
     fn info<'py>(
         &self,
         py: Python<'py>,
@@ -227,7 +230,7 @@ impl PyCut {
             }
             serde_json::to_string(&j).map_err(|e| Error::invalid("info", e.to_string()))
         })?;
-        super::from_json(py, &text)
+        call::from_json(py, &text)
     }
 
     /// Pickling (Dask ships cuts to its workers this way): the cut's exact bytes
@@ -345,8 +348,8 @@ fn families(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 #[pyfunction]
 fn materials(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     let text = serde_json::to_string(&crate::document::materials::rows())
-        .map_err(|e| super::Error::new_err(format!("materials: {e}")))?;
-    super::from_json(py, &text)
+        .map_err(|e| call::Error::new_err(format!("materials: {e}")))?;
+    call::from_json(py, &text)
 }
 
 /// Add the cut functions and class to the module.

@@ -5,21 +5,18 @@
 //! of it ([`read`]) into the settings the command line's pictures are made from too
 //! ([`PictureSettings`]); its errors name the keyword argument.
 
+use super::args::{number, Number, Size, Whole};
+use super::call::{error, from_json, run};
 use super::cuts::cut_of;
-use super::keywords::{self, Keywords};
-use super::run;
 use super::stone::{refuse_existing, StoneArgs};
-use crate::document::render::{CutJson, FrameJson, PhotoFrame, PhotoRecord};
 use crate::error::{Error, Result};
 use crate::plot::palette::PICTURE_GROUND;
-use crate::render::photo::{Photo, PhotoOptions, Tone};
+use crate::render::photo::{Photo, Tone};
 use crate::render::settings::{self as picture, read, LightChoice};
-use crate::render::{self, Image, RenderOptions};
+use crate::render::Image;
 use crate::render::{PictureSettings, Pictures};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
-use std::time::Instant;
 
 /// The picture drawn: a laboratory picture, or a photograph with its tone curve.
 enum Picture {
@@ -117,7 +114,7 @@ impl PyRender {
     /// nothing was written).
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        super::from_json(py, &self.stats)
+        from_json(py, &self.stats)
     }
 
     /// Write the picture as a PNG (the `--bare` picture), atomically; an existing file is
@@ -149,51 +146,29 @@ impl PyRender {
 }
 
 /// Draw `cut` (given as `input`) as `settings` say, of the stone `stone` chooses: the picture,
-/// its exposure and its statistics as `render --json` writes them (`output` empty).
+/// its exposure and its statistics as `render --json` writes them (`output` empty), frame 0
+/// and its record as the command line's `render` makes them ([`crate::plot::render`]).
 fn draw(
     cut: &crate::cut::Cut,
     input: &str,
     settings: &PictureSettings,
     stone: &StoneArgs,
 ) -> Result<(Picture, f64, String)> {
+    use crate::plot::render::{lab_frame, lab_record, photo_frame, photo_record};
     let choice = stone.choice()?;
     let pictures = settings.pictures(&choice.material, choice.size)?;
     let (material, width_mm) = stone.material_for(cut)?;
-    let t0 = Instant::now();
+    let name = (cut.name.as_str(), input);
     let (picture, exposure, json) = match pictures {
         Pictures::Lab(p) => {
-            let opts = RenderOptions {
-                material,
-                width_mm,
-                ..p.opts.clone()
-            };
-            let img = render::render(&cut.solid, &opts);
-            let frame = FrameJson::new(0, opts.tilt, &img.stats, t0.elapsed().as_secs_f64());
-            let record = CutJson::new((&cut.name, input), &opts, p.exposure, vec![frame], None);
-            (
-                Picture::Lab(Box::new(img)),
-                p.exposure,
-                serde_json::to_string(&record),
-            )
+            let (img, frame) = lab_frame(&p, &cut.solid, material.clone(), width_mm, 0);
+            let record = lab_record(&p, name, material, width_mm, vec![frame]);
+            let json = serde_json::to_string(&record);
+            (Picture::Lab(Box::new(img)), p.exposure, json)
         }
         Pictures::Photo(p) => {
-            let opts = PhotoOptions {
-                material,
-                width_mm,
-                ..p.frame(0)
-            };
-            let photo = render::photo::photo(&cut.solid, &opts);
-            let stats = &photo.stats;
-            let frame = PhotoFrame::new(0, &opts, stats, t0.elapsed().as_secs_f64());
-            let record = PhotoRecord::new(
-                &cut.name,
-                input,
-                &opts,
-                stats,
-                p.exposure,
-                vec![frame],
-                None,
-            );
+            let (opts, photo, frame) = photo_frame(&p, &cut.solid, material.clone(), width_mm, 0);
+            let record = photo_record(&p, name, material, width_mm, &photo.stats, vec![frame]);
             let json = serde_json::to_string(&record);
             (Picture::Photo(Box::new(photo), opts.tone), p.exposure, json)
         }
@@ -221,16 +196,102 @@ fn draw(
 /// >>> p.stats["view"]["elevation_deg"], p.stats["ground"], p.stats["tone"]
 /// (60.0, 'white', 'filmic')
 #[pyfunction]
-#[pyo3(name = "render", signature = (cut, **kwargs))]
+#[pyo3(name = "render", signature = (cut, *, light="iso", size=256, tilt=None, view=None,
+    distance=None, aperture=None, ground=None, ground_gap=None, light_rotation=None, tone=None,
+    bands=None, head_shadow=None, exposure=1.0, polarization=true, material=None, ri=None,
+    colour=None, colour_density=None, size_mm=None, diameter_mm=None, birefringence=None,
+    optic_axis=None, colour_e=None, float64=false))]
+#[allow(clippy::too_many_arguments)]
 fn render_cut(
     py: Python<'_>,
     cut: &Bound<'_, PyAny>,
-    kwargs: Option<&Bound<'_, PyDict>>,
+    light: &str,
+    #[pyo3(from_py_with = picture_size)] size: usize,
+    tilt: Option<Size>,
+    view: Option<Size>,
+    distance: Option<Number>,
+    aperture: Option<Number>,
+    ground: Option<String>,
+    ground_gap: Option<Number>,
+    light_rotation: Option<Number>,
+    tone: Option<String>,
+    bands: Option<Whole>,
+    head_shadow: Option<Number>,
+    #[pyo3(from_py_with = exposure)] exposure: f64,
+    polarization: bool,
+    material: Option<String>,
+    ri: Option<Number>,
+    colour: Option<String>,
+    colour_density: Option<Number>,
+    size_mm: Option<Size>,
+    diameter_mm: Option<Number>,
+    birefringence: Option<bool>,
+    optic_axis: Option<String>,
+    colour_e: Option<String>,
+    float64: bool,
 ) -> PyResult<PyRender> {
-    let kw = Keywords::parse("render", &keywords::RENDER, kwargs)?;
-    let settings = picture_settings(&kw)?;
-    let stone = StoneArgs::from_keywords(&kw)?;
-    let float64 = kw.bool("float64")?;
+    use crate::render::photo::{parse_view, GroundKind, Tone};
+    use crate::render::pose::parse_tilt;
+    // Each as the command line's text (a number of degrees or `DEG@AZ`, …), read by its
+    // setting's parser, whose error names the keyword.
+    let num = |n: Option<Number>| n.map(Number::text);
+    let settings = PictureSettings {
+        light: LightChoice::parse(picture::LIGHT, light).map_err(error)?,
+        size: Some(size),
+        tilt: read(tilt.map(|t| t.text()).as_deref(), picture::TILT, parse_tilt).map_err(error)?,
+        head_shadow: read(
+            num(head_shadow).as_deref(),
+            picture::HEAD_SHADOW,
+            picture::parse_head_shadow,
+        )
+        .map_err(error)?,
+        exposure: Some(exposure),
+        polarization,
+        view: read(view.map(|v| v.text()).as_deref(), picture::VIEW, parse_view).map_err(error)?,
+        distance: read(
+            num(distance).as_deref(),
+            picture::DISTANCE,
+            picture::parse_distance,
+        )
+        .map_err(error)?,
+        aperture: read(
+            num(aperture).as_deref(),
+            picture::APERTURE,
+            picture::parse_aperture,
+        )
+        .map_err(error)?,
+        ground: read(ground.as_deref(), picture::GROUND, GroundKind::parse).map_err(error)?,
+        ground_gap: read(
+            num(ground_gap).as_deref(),
+            picture::GROUND_GAP,
+            picture::parse_ground_gap,
+        )
+        .map_err(error)?,
+        light_rotation: read(
+            num(light_rotation).as_deref(),
+            picture::LIGHT_ROTATION,
+            picture::parse_light_rotation,
+        )
+        .map_err(error)?,
+        tone: read(tone.as_deref(), picture::TONE, Tone::parse).map_err(error)?,
+        bands: read(
+            bands.as_ref().map(Whole::text),
+            picture::BANDS,
+            picture::parse_bands,
+        )
+        .map_err(error)?,
+    };
+    let stone = StoneArgs::given(
+        material,
+        ri,
+        colour,
+        colour_density,
+        size_mm,
+        diameter_mm,
+        birefringence,
+        optic_axis,
+        colour_e,
+    );
     let input = super::cuts::input_of(cut)?;
     let c = cut_of(cut)?;
     let (picture, exposure, stats) = run(py, || draw(&c, &input, &settings, &stone))?;
@@ -242,59 +303,17 @@ fn render_cut(
     })
 }
 
-/// The picture's settings from the keywords: each as the command line's text (a number of
-/// degrees or `DEG@AZ`, …), read by its setting's parser, whose error names the keyword.
-fn picture_settings(kw: &Keywords) -> PyResult<PictureSettings> {
-    use crate::render::photo::{parse_view, GroundKind, Tone};
-    use crate::render::pose::parse_tilt;
-    let t = |k: &str| kw.text(k);
-    let e = super::error;
-    Ok(PictureSettings {
-        light: LightChoice::parse(picture::LIGHT, &kw.str("light")?).map_err(e)?,
-        size: read(t("size")?.as_deref(), picture::SIZE, picture::parse_size).map_err(e)?,
-        tilt: read(t("tilt")?.as_deref(), picture::TILT, parse_tilt).map_err(e)?,
-        head_shadow: read(
-            t("head_shadow")?.as_deref(),
-            picture::HEAD_SHADOW,
-            picture::parse_head_shadow,
-        )
-        .map_err(e)?,
-        exposure: read(
-            t("exposure")?.as_deref(),
-            picture::EXPOSURE,
-            picture::parse_exposure,
-        )
-        .map_err(e)?,
-        polarization: kw.bool("polarization")?,
-        view: read(t("view")?.as_deref(), picture::VIEW, parse_view).map_err(e)?,
-        distance: read(
-            t("distance")?.as_deref(),
-            picture::DISTANCE,
-            picture::parse_distance,
-        )
-        .map_err(e)?,
-        aperture: read(
-            t("aperture")?.as_deref(),
-            picture::APERTURE,
-            picture::parse_aperture,
-        )
-        .map_err(e)?,
-        ground: read(t("ground")?.as_deref(), picture::GROUND, GroundKind::parse).map_err(e)?,
-        ground_gap: read(
-            t("ground_gap")?.as_deref(),
-            picture::GROUND_GAP,
-            picture::parse_ground_gap,
-        )
-        .map_err(e)?,
-        light_rotation: read(
-            t("light_rotation")?.as_deref(),
-            picture::LIGHT_ROTATION,
-            picture::parse_light_rotation,
-        )
-        .map_err(e)?,
-        tone: read(t("tone")?.as_deref(), picture::TONE, Tone::parse).map_err(e)?,
-        bands: read(t("bands")?.as_deref(), picture::BANDS, picture::parse_bands).map_err(e)?,
-    })
+/// `render`'s `size`: pixels per side, read as `--size` is ([`picture::parse_size`]).
+fn picture_size(obj: &Bound<'_, PyAny>) -> PyResult<usize> {
+    let n = obj.extract::<Whole>()?;
+    picture::parse_size(picture::SIZE, n.text()).map_err(error)
+}
+
+/// `render`'s `exposure`: a brightness factor, read as `--exposure` is
+/// ([`picture::parse_exposure`]).
+fn exposure(obj: &Bound<'_, PyAny>) -> PyResult<f64> {
+    let x = Number(number(obj)?);
+    picture::parse_exposure(picture::EXPOSURE, &x.text()).map_err(error)
 }
 
 /// Add `render` and its class to the module.

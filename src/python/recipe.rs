@@ -2,8 +2,9 @@
 //! ([`crate::design::recipe`]): `add_tier`, `build` (a `Cut`), `steps`, `findings`, the TOML
 //! form (`to_toml`, `Recipe.from_toml`) and the recipe of any design (`Recipe.from_design`).
 
+use super::args::whole_in;
+use super::call::{error, run};
 use super::cuts::{cut_of, PyCut};
-use super::{run, Whole};
 use crate::design::recipe::{
     infer, parse_indices, Angle, FindingKind, Place, Recipe, RecipeTier, Side, DEFAULT_INDEX,
 };
@@ -30,7 +31,7 @@ pub struct PyRecipe {
 }
 
 fn tier_err(name: &str, msg: impl Into<String>) -> PyErr {
-    super::error(Error::invalid(format!("tier {name}"), msg))
+    error(Error::invalid(format!("tier {name}"), msg))
 }
 
 /// A number argument of tier `name`'s keyword `key`: finite.
@@ -41,21 +42,32 @@ fn finite(name: &str, key: &str, v: Option<f64>) -> PyResult<Option<f64>> {
     }
 }
 
+/// `Recipe`'s `gear`: 3 to 1000 teeth.
+fn gear(obj: &Bound<'_, PyAny>) -> PyResult<u32> {
+    Ok(whole_in(obj, "gear", 3, 1000)? as u32)
+}
+
+/// `Recipe`'s `symmetry`: 1 to 1000.
+fn symmetry(obj: &Bound<'_, PyAny>) -> PyResult<u32> {
+    Ok(whole_in(obj, "symmetry", 1, 1000)? as u32)
+}
+
+// The literal default of `index` in `Recipe`'s signature is the library's.
+const _: () = assert!(DEFAULT_INDEX == 1.54);
+
 #[pymethods]
 impl PyRecipe {
     #[new]
-    #[pyo3(signature = (name="recipe", gear=Whole::from(96), symmetry=Whole::from(1), mirror=false, index=DEFAULT_INDEX, *, offset=0.0, fractional=false))]
+    #[pyo3(signature = (name="recipe", gear=96, symmetry=1, mirror=false, index=1.54, *, offset=0.0, fractional=false))]
     fn new(
         name: &str,
-        gear: Whole,
-        symmetry: Whole,
+        #[pyo3(from_py_with = gear)] gear: u32,
+        #[pyo3(from_py_with = symmetry)] symmetry: u32,
         mirror: bool,
         index: f64,
         offset: f64,
         fractional: bool,
     ) -> PyResult<PyRecipe> {
-        let gear = gear.get("gear", 3, 1000)? as u32;
-        let symmetry = symmetry.get("symmetry", 1, 1000)? as u32;
         let mut recipe = Recipe::new(name, gear, symmetry, mirror, index);
         recipe.offset = offset;
         recipe.fractional = fractional;

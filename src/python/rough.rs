@@ -3,9 +3,10 @@
 //! and with `out=` the run folder `facetlab plan --out` writes ([`crate::plan::write_folder`]
 //! with the report's drawings, [`crate::report::PlanDrawings`], the binary's call).
 
+use super::args::{within, Whole};
+use super::call::{self, run};
 use super::cuts::PyCut;
 use super::runs::watch;
-use super::{run, Whole};
 use crate::error::Error;
 use crate::optics::Material;
 use crate::plan::config::check_families;
@@ -115,16 +116,7 @@ fn plan<'py>(
             ("margin", margin, &mut cfg.margin_mm),
         ] {
             if let Some(v) = value {
-                if !(v.is_finite() && (0.0..=MAX_GAP_MM).contains(&v)) {
-                    return Err(Error::invalid(
-                        name,
-                        format!(
-                            "{} is not allowed; give a distance in [0, {MAX_GAP_MM}] mm",
-                            crate::error::shown(v)
-                        ),
-                    ));
-                }
-                *to = v;
+                *to = within(name, v, 0.0, MAX_GAP_MM, "a distance in mm")?;
             }
         }
         if !inclusion_paths.is_empty()
@@ -179,7 +171,7 @@ fn plan<'py>(
         }
         return Err(e);
     }
-    let all = planned.map_err(super::error)?;
+    let all = planned.map_err(call::error)?;
     let plans = PyList::empty(py);
     for (family, family_plans) in &all {
         for (rank, p) in family_plans.iter().enumerate() {
@@ -219,7 +211,7 @@ fn plan_dict<'py>(
     // the face-up colour it was ranked by (`kind = "colour"`), else None.
     d.set_item("optic_axis", cfg.c_axis.map(|c| p.optic_axis(c).label()))?;
     let colour = match &p.colour {
-        Some(c) => Some(super::from_json(
+        Some(c) => Some(call::from_json(
             py,
             &serde_json::to_string(c)
                 .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?,
@@ -263,12 +255,12 @@ fn layout<'py>(py: Python<'py>, job: &Job, out: Option<PathBuf>) -> PyResult<Bou
     if let Some(e) = stopped {
         return Err(e);
     }
-    let layout = planned.map_err(super::error)?;
+    let layout = planned.map_err(call::error)?;
     let plans = PyList::empty(py);
     for (k, s) in layout.stones.iter().enumerate() {
         let d = plan_dict(py, job.config, &s.family, k + 1, &s.plan)?;
         d.set_item("piece", &s.piece)?;
-        let c = s.plan.placed_solid().map_err(super::error)?.centroid();
+        let c = s.plan.placed_solid().map_err(call::error)?.centroid();
         d.set_item("centre_mm", [c.x, c.y, c.z])?;
         let holds: Vec<&str> = s
             .holds

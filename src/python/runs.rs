@@ -7,7 +7,8 @@
 //! progress to the Python callback and, on Ctrl-C (`KeyboardInterrupt`), raises the run's stop
 //! flag, waits for the run to write its folder, then re-raises.
 
-use super::{run, Whole};
+use super::args::Whole;
+use super::call::{self, run};
 use crate::error::{Error, Result};
 use crate::optimize::{
     self as opt, BeamEvaluator, Config, Hooks, PhotonVerifier, Progress, RunOptions, Status,
@@ -39,7 +40,7 @@ pub(crate) fn config_of(obj: &Bound<'_, PyAny>) -> PyResult<Config> {
         });
     }
     let path: PathBuf = obj.extract().map_err(|_| {
-        super::Error::new_err("config: expected a path to a TOML config or a dict of its shape")
+        call::Error::new_err("config: expected a path to a TOML config or a dict of its shape")
     })?;
     run(py, || Config::load(&path))
 }
@@ -70,7 +71,7 @@ pub(crate) fn watched<T: Send>(
     if let Some(e) = pending {
         return Err(e);
     }
-    result.map_err(super::error)
+    result.map_err(call::error)
 }
 
 /// [`watched`], handing back both what the work returned and the exception that stopped it
@@ -108,7 +109,7 @@ pub(crate) fn watch<T: Send>(
     });
     match out {
         Ok(Ok(r)) => Ok((r, pending)),
-        Ok(Err(p)) | Err(p) => Err(super::panicked(p)),
+        Ok(Err(p)) | Err(p) => Err(call::panicked(p)),
     }
 }
 
@@ -151,7 +152,7 @@ fn optimize<'py>(
                 .map(|mut d| d.next().is_some())
                 .unwrap_or(false);
         if busy && !overwrite {
-            return Err(super::Error::new_err(format!(
+            return Err(call::Error::new_err(format!(
                 "out: folder {} is not empty; choose a new folder, or pass overwrite=True",
                 dir.display()
             )));
@@ -203,8 +204,8 @@ fn optimize<'py>(
             report_progress,
         )?;
         let text = std::fs::read_to_string(dir.join("pareto.json"))
-            .map_err(|e| super::Error::new_err(format!("{}: {e}", dir.display())))?;
-        let front = super::from_json(py, &text)?;
+            .map_err(|e| call::Error::new_err(format!("{}: {e}", dir.display())))?;
+        let front = call::from_json(py, &text)?;
         front.set_item("folder", dir.display().to_string())?;
         return Ok(front);
     }
@@ -228,8 +229,8 @@ fn optimize<'py>(
         report_progress,
     )?;
     let text = serde_json::to_string(&summary.report)
-        .map_err(|e| super::Error::new_err(format!("report: {e}")))?;
-    let report = super::from_json(py, &text)?;
+        .map_err(|e| call::Error::new_err(format!("report: {e}")))?;
+    let report = call::from_json(py, &text)?;
     report.set_item("folder", summary.dir.display().to_string())?;
     Ok(report)
 }
@@ -271,7 +272,7 @@ impl PyGrid {
     fn cell(&self, row: &Bound<'_, PyDict>) -> PyResult<GridCell> {
         let index: usize = row
             .get_item("index")?
-            .ok_or_else(|| super::Error::new_err("rows: a row has no `index`"))?
+            .ok_or_else(|| call::Error::new_err("rows: a row has no `index`"))?
             .extract()?;
         let ok: bool = match row.get_item("ok")? {
             Some(v) => v.extract()?,
@@ -285,7 +286,7 @@ impl PyGrid {
             }
         }
         GridCell::from_named(&self.grid, index, ok, &values)
-            .map_err(|e| super::Error::new_err(format!("rows: {e}")))
+            .map_err(|e| call::Error::new_err(format!("rows: {e}")))
     }
 }
 
@@ -341,7 +342,7 @@ impl PyGrid {
                     i.get("indices", 0, len.saturating_sub(1) as u64)
                         .map(|i| i as usize)
                         .map_err(|_| {
-                            super::Error::new_err(format!(
+                            call::Error::new_err(format!(
                                 "indices: `{}` is not allowed; give an index from 0 to {} (the grid's {len} points)",
                                 i.text(),
                                 len.saturating_sub(1)
@@ -390,7 +391,7 @@ impl PyGrid {
         let len = self.grid.len();
         let covered = cells.len() == len && cells.iter().enumerate().all(|(i, c)| c.index == i);
         if !covered {
-            return Err(super::Error::new_err(format!(
+            return Err(call::Error::new_err(format!(
                 "rows: give each of the grid's {len} points once (got {} rows)",
                 cells.len()
             )));

@@ -2,16 +2,16 @@
 //! `facetlab score` computes them, returned as `Scores` objects whose `to_dict()` is the
 //! `score --json` document (the library's [`crate::metrics::json`]).
 
+use super::args::{number, Number, Size};
+use super::call::{error, from_json, run};
 use super::cuts::cut_of;
-use super::keywords::{self, Keywords};
 use super::stone::StoneArgs;
-use super::{from_json, run};
 use crate::cut::Cut;
 use crate::document::score::scores_json;
 use crate::error::{Error, Result};
 use crate::metrics::{score as score_solid, ScoreConfig, Scores};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::PyList;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 
@@ -106,14 +106,6 @@ pub(crate) struct ScoreArgs {
 impl ScoreArgs {
     /// The configuration `cut` is scored with.
     pub fn config(&self, cut: &Cut) -> Result<ScoreConfig> {
-        // Checked as `--head-shadow` is, so the message is the command line's.
-        crate::io::text::number(
-            "head_shadow",
-            &format!("{}", self.head_shadow),
-            0.0,
-            60.0,
-            "a half-angle in degrees (0 = none)",
-        )?;
         let (material, _width) = self.stone.material_for(cut)?;
         let config = ScoreConfig {
             material,
@@ -138,33 +130,55 @@ fn score_cut(cut: &Cut, args: &ScoreArgs) -> Result<PyScores> {
     Ok(PyScores { name, scores, json })
 }
 
-impl ScoreArgs {
-    /// The keyword arguments of `score` and `score_many` ([`keywords::SCORE`]).
-    fn from_keywords(kw: &Keywords<'_>) -> PyResult<ScoreArgs> {
-        Ok(ScoreArgs {
-            stone: StoneArgs::from_keywords(kw)?,
-            polarization: kw.bool("polarization")?,
-            head_shadow: kw.f64("head_shadow")?,
-        })
-    }
+/// `score`'s and `score_many`'s `head_shadow`: a number read as `--head-shadow` is (the
+/// library's [`crate::render::settings::parse_head_shadow`], 0 to 60 degrees).
+fn head_shadow(obj: &Bound<'_, PyAny>) -> PyResult<f64> {
+    let x = Number(number(obj)?);
+    crate::render::settings::parse_head_shadow("head_shadow", &x.text()).map_err(error)
 }
 
 /// Score a cut (a `Cut`, a preset name or a path) with the beam tracer, as `facetlab score`.
 /// Keyword arguments (the command line's flags): `material`, `ri`, `colour`,
 /// `colour_density`, `size_mm` (a length or "LxW"), `diameter_mm`, `birefringence`,
-/// `optic_axis`, `colour_e`, `polarization` (default True), `head_shadow` (degrees, default 15; 0 = none).
+/// `optic_axis`, `colour_e`, `polarization`, `head_shadow` (degrees; 0 = none).
 ///
 /// >>> round(facetlab.score("tolkowsky", material="cubic-zirconia").brilliance, 2)
 /// 0.62
 #[pyfunction]
-#[pyo3(signature = (cut, **kwargs))]
+#[pyo3(signature = (cut, *, material=None, ri=None, colour=None, colour_density=None,
+    size_mm=None, diameter_mm=None, birefringence=None, optic_axis=None, colour_e=None,
+    polarization=true, head_shadow=15.0))]
+#[allow(clippy::too_many_arguments)]
 fn score(
     py: Python<'_>,
     cut: &Bound<'_, PyAny>,
-    kwargs: Option<&Bound<'_, PyDict>>,
+    material: Option<String>,
+    ri: Option<Number>,
+    colour: Option<String>,
+    colour_density: Option<Number>,
+    size_mm: Option<Size>,
+    diameter_mm: Option<Number>,
+    birefringence: Option<bool>,
+    optic_axis: Option<String>,
+    colour_e: Option<String>,
+    polarization: bool,
+    #[pyo3(from_py_with = head_shadow)] head_shadow: f64,
 ) -> PyResult<PyScores> {
-    let kw = Keywords::parse("score", &keywords::SCORE, kwargs)?;
-    let args = ScoreArgs::from_keywords(&kw)?;
+    let args = ScoreArgs {
+        stone: StoneArgs::given(
+            material,
+            ri,
+            colour,
+            colour_density,
+            size_mm,
+            diameter_mm,
+            birefringence,
+            optic_axis,
+            colour_e,
+        ),
+        polarization,
+        head_shadow,
+    };
     let cut = cut_of(cut)?;
     run(py, || score_cut(&cut, &args))
 }
@@ -175,17 +189,43 @@ fn score(
 /// >>> [s.cut for s in facetlab.score_many(["tolkowsky", "gia-reference"])]
 /// ['Tolkowsky', 'GIA reference']
 #[pyfunction]
-#[pyo3(signature = (cuts, **kwargs))]
+#[pyo3(signature = (cuts, *, material=None, ri=None, colour=None, colour_density=None,
+    size_mm=None, diameter_mm=None, birefringence=None, optic_axis=None, colour_e=None,
+    polarization=true, head_shadow=15.0))]
+#[allow(clippy::too_many_arguments)]
 fn score_many<'py>(
     py: Python<'py>,
     cuts: &Bound<'py, PyAny>,
-    kwargs: Option<&Bound<'py, PyDict>>,
+    material: Option<String>,
+    ri: Option<Number>,
+    colour: Option<String>,
+    colour_density: Option<Number>,
+    size_mm: Option<Size>,
+    diameter_mm: Option<Number>,
+    birefringence: Option<bool>,
+    optic_axis: Option<String>,
+    colour_e: Option<String>,
+    polarization: bool,
+    #[pyo3(from_py_with = head_shadow)] head_shadow: f64,
 ) -> PyResult<Bound<'py, PyList>> {
-    let kw = Keywords::parse("score_many", &keywords::SCORE, kwargs)?;
-    let args = ScoreArgs::from_keywords(&kw)?;
+    let args = ScoreArgs {
+        stone: StoneArgs::given(
+            material,
+            ri,
+            colour,
+            colour_density,
+            size_mm,
+            diameter_mm,
+            birefringence,
+            optic_axis,
+            colour_e,
+        ),
+        polarization,
+        head_shadow,
+    };
     // A str is iterable too, letter by letter: one cut is `score`'s.
     if cuts.is_instance_of::<pyo3::types::PyString>() {
-        return Err(super::Error::new_err(format!(
+        return Err(super::call::Error::new_err(format!(
             "cuts: `{}` is one str, not a list of cuts; give a list such as [\"tolkowsky\"], or score one cut with facetlab.score",
             cuts
         )));
@@ -207,6 +247,9 @@ fn score_many<'py>(
             .collect::<PyResult<Vec<_>>>()?,
     )
 }
+
+// The literal default of `head_shadow` in the signatures above is the library's.
+const _: () = assert!(crate::metrics::DEFAULT_HEAD_SHADOW_DEG == 15.0);
 
 /// For the binding-overhead bench (benches/python_overhead.py): seconds of each of `repeats`
 /// library calls `metrics::score(solid, config)` on `cut`, timed in Rust with the defaults

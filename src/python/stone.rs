@@ -4,14 +4,13 @@
 //! `--optic-axis` and `--colour-e` (a design read from a file is traced in its own material
 //! unless one is given). Errors name the keyword argument.
 
-use super::keywords::Keywords;
+use super::args::{Number, Size};
 use crate::cut::Cut;
 use crate::error::{Error, Result};
 use crate::metrics::{
     ColourNotes, CrystalChoice, StoneChoice, StoneFields, REFERENCE_WAVELENGTH_NM,
 };
 use crate::optics::{ColourFields, CrystalFields, Material, MaterialFields, OpticAxis, StoneSize};
-use pyo3::prelude::*;
 
 /// The keyword arguments that choose the stone.
 #[derive(Clone, Debug, Default)]
@@ -28,26 +27,37 @@ pub(crate) struct StoneArgs {
 }
 
 impl StoneArgs {
-    /// The stone's keyword arguments ([`super::keywords::STONE`]) as given to `score`,
-    /// `score_many` and `render`.
-    pub fn from_keywords(kw: &Keywords<'_>) -> PyResult<StoneArgs> {
-        Ok(StoneArgs {
-            material: kw.opt_str("material")?,
-            ri: kw.opt_f64("ri")?,
-            colour: kw.opt_str("colour")?,
-            colour_density: kw.opt_f64("colour_density")?,
-            size_mm: kw.size_text("size_mm")?,
-            diameter_mm: kw.opt_f64("diameter_mm")?,
-            birefringence: kw.opt_bool("birefringence")?,
-            optic_axis: kw.opt_str("optic_axis")?,
-            colour_e: kw.opt_str("colour_e")?,
-        })
+    /// The stone's keyword arguments as `score`, `score_many` and `render` take them (each
+    /// signature spells them in this order, after its own).
+    #[allow(clippy::too_many_arguments)]
+    pub fn given(
+        material: Option<String>,
+        ri: Option<Number>,
+        colour: Option<String>,
+        colour_density: Option<Number>,
+        size_mm: Option<Size>,
+        diameter_mm: Option<Number>,
+        birefringence: Option<bool>,
+        optic_axis: Option<String>,
+        colour_e: Option<String>,
+    ) -> StoneArgs {
+        StoneArgs {
+            material,
+            ri: ri.map(|n| n.0),
+            colour,
+            colour_density: colour_density.map(|n| n.0),
+            size_mm: size_mm.map(|s| s.text()),
+            diameter_mm: diameter_mm.map(|n| n.0),
+            birefringence,
+            optic_axis,
+            colour_e,
+        }
     }
 }
 
 /// Check a file a call writes (`path`) before any work: not a folder, replaced only with
 /// `overwrite=True`, its folder present and writable (the library's check, as the command
-/// line's outputs; its settings spelled as keywords, [`super::keywords::SETTINGS`]).
+/// line's outputs; its settings spelled as keywords, [`super::call::SETTINGS`]).
 pub(crate) fn refuse_existing(path: &std::path::Path, overwrite: bool) -> Result<()> {
     crate::io::guard::check_new_file(crate::io::guard::setting::OUTPUT, path, overwrite)
 }

@@ -1,10 +1,11 @@
 //! `facetlab.trace`: the Monte Carlo photon tracer's tallies of one cut, as `facetlab trace`
 //! counts them, returned as the `trace --json` document ([`crate::document::trace`]).
 
+use super::args::{whole_in, within, Whole};
+use super::call::{from_json, Error as PyError};
 use super::cuts::cut_of;
 use super::runs::watched;
 use super::stone::StoneArgs;
-use super::Whole;
 use crate::document::trace::trace_json;
 use crate::error::{Error, Result};
 use crate::photon::{
@@ -29,12 +30,7 @@ struct TraceArgs {
 
 fn light_choice(a: &TraceArgs) -> Result<LightChoice> {
     if let Some(x) = a.angle {
-        if !(0.0..=180.0).contains(&x) {
-            return Err(Error::invalid(
-                "angle",
-                format!("`{x}` is not allowed; give degrees in [0, 180]"),
-            ));
-        }
+        within("angle", x, 0.0, 180.0, "degrees")?;
     }
     let name = a.light.trim().to_ascii_lowercase();
     Ok(match (name.as_str(), a.rotate, a.angle) {
@@ -114,8 +110,8 @@ fn trace_cut(
 /// >>> t["photons_shot"], t["settings"]["seed"]
 /// (2000, 1)
 #[pyfunction]
-#[pyo3(signature = (cut, *, light="overhead", angle=None, rotate=false, photons=Whole::from(1_000_000),
-    depth=Some(Whole::from(6)), absorption="thesis", polarization=true, spectrum="uniform", seed=Whole::from(1),
+#[pyo3(signature = (cut, *, light="overhead", angle=None, rotate=false, photons=1_000_000,
+    depth=6, absorption="thesis", polarization=true, spectrum="uniform", seed=1,
     material=None, ri=None, birefringence=None, optic_axis=None, colour_e=None))]
 #[allow(clippy::too_many_arguments)]
 fn trace<'py>(
@@ -124,34 +120,18 @@ fn trace<'py>(
     light: &str,
     angle: Option<f64>,
     rotate: bool,
-    photons: Whole,
-    depth: Option<Whole>,
+    #[pyo3(from_py_with = photons)] photons: u64,
+    #[pyo3(from_py_with = depth)] depth: Option<u32>,
     absorption: &str,
     polarization: bool,
     spectrum: &str,
-    seed: Whole,
+    #[pyo3(from_py_with = seed)] seed: u64,
     material: Option<String>,
     ri: Option<f64>,
     birefringence: Option<bool>,
     optic_axis: Option<String>,
     colour_e: Option<String>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    // Read as the command line reads --photons, --depth and --seed.
-    let photons = photons.get("photon count", 1, u64::MAX)?;
-    let depth = match depth {
-        None => None,
-        Some(d) => Some(
-            d.get("depth", 1, photon::UNLIMITED_CAP as u64)
-                .map_err(|_| {
-                    super::Error::new_err(format!(
-                        "depth: `{}` is not allowed; give a whole number in 1..={} or None (unlimited)",
-                        d.text(),
-                        photon::UNLIMITED_CAP
-                    ))
-                })? as u32,
-        ),
-    };
-    let seed = seed.get("seed", 0, u64::MAX)?;
     let args = TraceArgs {
         light: light.to_string(),
         angle,
@@ -181,7 +161,37 @@ fn trace<'py>(
         || trace_cut(&c, &input, &args, &stop),
         |_| Ok(()),
     )?;
-    super::from_json(py, &text)
+    from_json(py, &text)
+}
+
+// `trace`'s whole numbers, read as the command line reads --photons, --depth and --seed.
+
+/// `photons`: 1 or more.
+fn photons(obj: &Bound<'_, PyAny>) -> PyResult<u64> {
+    whole_in(obj, "photon count", 1, u64::MAX)
+}
+
+/// `depth`: the bounce limit, `None` for unlimited.
+fn depth(obj: &Bound<'_, PyAny>) -> PyResult<Option<u32>> {
+    if obj.is_none() {
+        return Ok(None);
+    }
+    let d = obj.extract::<Whole>()?;
+    let n = d
+        .get("depth", 1, photon::UNLIMITED_CAP as u64)
+        .map_err(|_| {
+            PyError::new_err(format!(
+                "depth: `{}` is not allowed; give a whole number in 1..={} or None (unlimited)",
+                d.text(),
+                photon::UNLIMITED_CAP
+            ))
+        })?;
+    Ok(Some(n as u32))
+}
+
+/// `seed`: any whole number from 0.
+fn seed(obj: &Bound<'_, PyAny>) -> PyResult<u64> {
+    whole_in(obj, "seed", 0, u64::MAX)
 }
 
 /// Add `trace` to the module.

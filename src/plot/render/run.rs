@@ -13,11 +13,12 @@ use crate::document::render::{CutJson, FrameJson, PhotoFrame, PhotoRecord};
 use crate::error::{Error, Result};
 use crate::io::hdr::HdrImage;
 use crate::metrics::{ColourNotes, NoteKind, StoneChoice, StoneFields};
+use crate::optics::Material;
 use crate::plot::palette::PICTURE_GROUND;
-use crate::render::photo::{caption, turntable_period, PhotoOptions, PhotoStats};
+use crate::render::photo::{caption, turntable_period, Photo, PhotoOptions, PhotoStats};
 use crate::render::pose::describe;
 use crate::render::settings::{LabPictures, PhotoPictures, Pictures};
-use crate::render::{self, ColourStats, Light, RenderOptions, Stats, Tilt};
+use crate::render::{self, ColourStats, Image, Light, RenderOptions, Stats, Tilt};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::Path;
@@ -191,19 +192,11 @@ fn draw_lab(
         progress,
         |k, c| {
             let tilt = s.frame_tilt(k);
-            let t0 = Instant::now();
-            let opts = RenderOptions {
-                tilt,
-                material: materials[c].clone(),
-                width_mm: widths[c],
-                ..s.opts.clone()
-            };
-            let img = render::render(&cuts[c].solid, &opts);
+            let (img, frame) = lab_frame(s, &cuts[c].solid, materials[c].clone(), widths[c], k);
             let mut rgb = img.to_srgb8(s.exposure, PICTURE_GROUND);
             if !job.bare {
                 super::outline(&mut rgb, size, super::picture_ground());
             }
-            let frame = FrameJson::new(k, tilt, &img.stats, t0.elapsed().as_secs_f64());
             let mut lines = vec![cuts[c].name.clone()];
             lines.extend(stats_lines(light, &img.stats));
             lines.extend(note.clone());
@@ -230,24 +223,51 @@ fn draw_lab(
         .zip(job.inputs)
         .zip(stats)
         .enumerate()
-        .map(|(c, ((cut, input), fr))| {
-            let opts = RenderOptions {
-                material: materials[c].clone(),
-                width_mm: widths[c],
-                ..s.opts.clone()
-            };
-            CutJson {
-                output: out.clone(),
-                ..CutJson::new(
-                    (&cut.name, input),
-                    &opts,
-                    s.exposure,
-                    fr,
-                    s.rock.map(|r| r.0),
-                )
-            }
+        .map(|(c, ((cut, input), fr))| CutJson {
+            output: out.clone(),
+            ..lab_record(s, (&cut.name, input), materials[c].clone(), widths[c], fr)
         })
         .collect())
+}
+
+/// Frame `k` of a laboratory picture of `solid` in `material`, `width_mm` wide: the picture
+/// and its frame's statistics as `render --json` records them.
+pub fn lab_frame(
+    s: &LabPictures,
+    solid: &crate::geometry::Polyhedron,
+    material: Material,
+    width_mm: f64,
+    k: usize,
+) -> (Image, FrameJson) {
+    let t0 = Instant::now();
+    let tilt = s.frame_tilt(k);
+    let opts = RenderOptions {
+        tilt,
+        material,
+        width_mm,
+        ..s.opts.clone()
+    };
+    let img = render::render(solid, &opts);
+    let frame = FrameJson::new(k, tilt, &img.stats, t0.elapsed().as_secs_f64());
+    (img, frame)
+}
+
+/// A cut's record in `render --json` (`name` and `input`, as the user gave it) of laboratory
+/// pictures whose frames are `frames` ([`lab_frame`]); its `output` is empty, the caller's to
+/// fill.
+pub fn lab_record(
+    s: &LabPictures,
+    name: (&str, &str),
+    material: Material,
+    width_mm: f64,
+    frames: Vec<FrameJson>,
+) -> CutJson {
+    let opts = RenderOptions {
+        material,
+        width_mm,
+        ..s.opts.clone()
+    };
+    CutJson::new(name, &opts, s.exposure, frames, s.rock.map(|r| r.0))
 }
 
 /// Least common multiple.
@@ -298,13 +318,8 @@ fn draw_photo(
         (!job.bare).then_some(&[][..]),
         progress,
         |k, c| {
-            let t0 = Instant::now();
-            let opts = PhotoOptions {
-                material: materials[c].clone(),
-                width_mm: widths[c],
-                ..s.frame(k)
-            };
-            let p = render::photo::photo(&cuts[c].solid, &opts);
+            let (opts, p, frame) =
+                photo_frame(s, &cuts[c].solid, materials[c].clone(), widths[c], k);
             let rgb = p.to_srgb8(s.exposure, opts.tone);
             let hdr = (k == 0 && c == 0 && job.hdr_out.is_some()).then(|| p.to_hdr());
             let mut lines = vec![cuts[c].name.clone()];
@@ -312,7 +327,6 @@ fn draw_photo(
             if s.exposure != 1.0 {
                 lines.push(format!("exposure ×{}", s.exposure));
             }
-            let frame = PhotoFrame::new(k, &opts, &p.stats, t0.elapsed().as_secs_f64());
             (rgb, lines, (frame, p.stats, hdr))
         },
     )?;
@@ -358,24 +372,58 @@ fn draw_photo(
         .zip(per_cut)
         .enumerate()
         .map(|(c, ((cut, input), fr))| {
-            let opts = PhotoOptions {
-                material: materials[c].clone(),
-                width_mm: widths[c],
-                ..s.opts.clone()
-            };
             let st = fr[0].1.clone();
-            PhotoRecord::new(
-                &cut.name,
-                input,
-                &opts,
+            let frames = fr.into_iter().map(|f| f.0).collect();
+            photo_record(
+                s,
+                (&cut.name, input),
+                materials[c].clone(),
+                widths[c],
                 &st,
-                s.exposure,
-                fr.into_iter().map(|f| f.0).collect(),
-                s.turn,
+                frames,
             )
             .written(&out, if c == 0 { hdr_out.as_deref() } else { None })
         })
         .collect())
+}
+
+/// Frame `k` of a photograph of `solid` in `material`, `width_mm` wide: its options, the
+/// photograph, and its frame's record in `render --json`.
+pub fn photo_frame(
+    s: &PhotoPictures,
+    solid: &crate::geometry::Polyhedron,
+    material: Material,
+    width_mm: f64,
+    k: usize,
+) -> (PhotoOptions, Photo, PhotoFrame) {
+    let t0 = Instant::now();
+    let opts = PhotoOptions {
+        material,
+        width_mm,
+        ..s.frame(k)
+    };
+    let p = render::photo::photo(solid, &opts);
+    let frame = PhotoFrame::new(k, &opts, &p.stats, t0.elapsed().as_secs_f64());
+    (opts, p, frame)
+}
+
+/// A cut's record in `render --json` (`name` and `input`, as the user gave it) of photographs
+/// whose frames are `frames` ([`photo_frame`]), `stats` the first's statistics; nothing
+/// written (the caller adds its files with `written`).
+pub fn photo_record(
+    s: &PhotoPictures,
+    name: (&str, &str),
+    material: Material,
+    width_mm: f64,
+    stats: &PhotoStats,
+    frames: Vec<PhotoFrame>,
+) -> PhotoRecord {
+    let opts = PhotoOptions {
+        material,
+        width_mm,
+        ..s.opts.clone()
+    };
+    PhotoRecord::new(name.0, name.1, &opts, stats, s.exposure, frames, s.turn)
 }
 
 fn pct(v: f64) -> String {

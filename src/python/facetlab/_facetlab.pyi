@@ -3,8 +3,6 @@
 import os
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union, overload
 
-from typing_extensions import TypedDict, Unpack
-
 import numpy as np
 import numpy.typing as npt
 
@@ -44,7 +42,7 @@ class Cut:
         material: Optional[str] = None,
         instructions: bool = False,
         meets: bool = False,
-        meet_tol: float = ...,
+        meet_tol: float = 1e-4,
     ) -> Dict[str, Any]: ...
 
 class Recipe:
@@ -132,45 +130,67 @@ def family(family: str, name: Optional[str] = None, **params: float) -> Cut: ...
 def presets() -> List[str]: ...
 def families() -> Dict[str, Dict[str, Any]]: ...
 def materials() -> List[Dict[str, Any]]: ...
-# The keyword arguments of score, score_many and render, as the native module lists them once
-# (src/python/keywords.rs: STONE, SCORE, RENDER; tests/python/test_keywords.py checks these
-# against that list). Every one may be left out or given as None (not given); the defaults
-# are in the functions' docstrings.
-class StoneKeywords(TypedDict, total=False):
-    material: Optional[str]
-    ri: Optional[float]
-    colour: Optional[str]
-    colour_density: Optional[float]
-    size_mm: Optional[Size]
-    diameter_mm: Optional[float]
-    birefringence: Optional[bool]
-    optic_axis: Optional[str]
-    colour_e: Optional[str]
-
-class ScoreKeywords(StoneKeywords, total=False):
-    polarization: Optional[bool]
-    head_shadow: Optional[float]
-
-class RenderKeywords(StoneKeywords, total=False):
-    light: Optional[str]
-    size: Optional[int]
-    tilt: Optional[Size]
-    view: Optional[Size]
-    distance: Optional[float]
-    aperture: Optional[float]
-    ground: Optional[str]
-    ground_gap: Optional[float]
-    light_rotation: Optional[float]
-    tone: Optional[str]
-    bands: Optional[int]
-    head_shadow: Optional[float]
-    exposure: Optional[float]
-    polarization: Optional[bool]
-    float64: Optional[bool]
-
-def score(cut: CutLike, **kwargs: Unpack[ScoreKeywords]) -> Scores: ...
-def score_many(cuts: Sequence[CutLike], **kwargs: Unpack[ScoreKeywords]) -> List[Scores]: ...
-def render(cut: CutLike, **kwargs: Unpack[RenderKeywords]) -> Render: ...
+# score, score_many and render spell their keyword arguments in their signatures, as
+# inspect.signature shows them (tests/python/test_signatures.py checks each function and
+# method here against it); the stone's keywords come in the same order in all three.
+def score(
+    cut: CutLike,
+    *,
+    material: Optional[str] = None,
+    ri: Optional[float] = None,
+    colour: Optional[str] = None,
+    colour_density: Optional[float] = None,
+    size_mm: Optional[Size] = None,
+    diameter_mm: Optional[float] = None,
+    birefringence: Optional[bool] = None,
+    optic_axis: Optional[str] = None,
+    colour_e: Optional[str] = None,
+    polarization: bool = True,
+    head_shadow: float = 15.0,
+) -> Scores: ...
+def score_many(
+    cuts: Sequence[CutLike],
+    *,
+    material: Optional[str] = None,
+    ri: Optional[float] = None,
+    colour: Optional[str] = None,
+    colour_density: Optional[float] = None,
+    size_mm: Optional[Size] = None,
+    diameter_mm: Optional[float] = None,
+    birefringence: Optional[bool] = None,
+    optic_axis: Optional[str] = None,
+    colour_e: Optional[str] = None,
+    polarization: bool = True,
+    head_shadow: float = 15.0,
+) -> List[Scores]: ...
+def render(
+    cut: CutLike,
+    *,
+    light: str = "iso",
+    size: int = 256,
+    tilt: Optional[Size] = None,
+    view: Optional[Size] = None,
+    distance: Optional[float] = None,
+    aperture: Optional[float] = None,
+    ground: Optional[str] = None,
+    ground_gap: Optional[float] = None,
+    light_rotation: Optional[float] = None,
+    tone: Optional[str] = None,
+    bands: Optional[int] = None,
+    head_shadow: Optional[float] = None,
+    exposure: float = 1.0,
+    polarization: bool = True,
+    material: Optional[str] = None,
+    ri: Optional[float] = None,
+    colour: Optional[str] = None,
+    colour_density: Optional[float] = None,
+    size_mm: Optional[Size] = None,
+    diameter_mm: Optional[float] = None,
+    birefringence: Optional[bool] = None,
+    optic_axis: Optional[str] = None,
+    colour_e: Optional[str] = None,
+    float64: bool = False,
+) -> Render: ...
 def trace(
     cut: CutLike,
     *,
@@ -198,22 +218,36 @@ def optimize(
     progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
     overwrite: bool = False,
 ) -> Dict[str, Any]: ...
-class PlanKeywords(TypedDict, total=False):
-    config: Optional[PathLike]
-    families: Optional[Sequence[str]]
-    size_mm: Optional[float]
-    material: Optional[str]
-    top: Optional[int]
-    stones: Optional[int]
-    kerf: Optional[float]
-    allowance: Optional[float]
-    inclusions: Optional[Sequence[PathLike]]
-    margin: Optional[float]
-
+# Without out: the plans; with out: {"plans", "folder"} (and "layout").
 @overload
 def plan(
-    rough: PathLike, *, out: None = None, **kwargs: Unpack[PlanKeywords]
+    rough: PathLike,
+    *,
+    config: Optional[PathLike] = None,
+    families: Optional[Sequence[str]] = None,
+    size_mm: Optional[float] = None,
+    material: Optional[str] = None,
+    top: Optional[int] = None,
+    stones: Optional[int] = None,
+    kerf: Optional[float] = None,
+    allowance: Optional[float] = None,
+    inclusions: Optional[Sequence[PathLike]] = None,
+    margin: Optional[float] = None,
+    out: None = None,
 ) -> List[Dict[str, Any]]: ...
 @overload
-def plan(rough: PathLike, *, out: PathLike, **kwargs: Unpack[PlanKeywords]) -> Dict[str, Any]: ...
-def _keywords() -> Dict[str, List[Tuple[str, str, str]]]: ...
+def plan(
+    rough: PathLike,
+    *,
+    config: Optional[PathLike] = None,
+    families: Optional[Sequence[str]] = None,
+    size_mm: Optional[float] = None,
+    material: Optional[str] = None,
+    top: Optional[int] = None,
+    stones: Optional[int] = None,
+    kerf: Optional[float] = None,
+    allowance: Optional[float] = None,
+    inclusions: Optional[Sequence[PathLike]] = None,
+    margin: Optional[float] = None,
+    out: PathLike,
+) -> Dict[str, Any]: ...
