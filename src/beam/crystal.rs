@@ -25,18 +25,17 @@
 
 use super::attenuation::exp_mean_planar;
 use super::exit::ExitBeam;
-use super::footprint::{Affine, PathLength};
 use super::frame::Frame;
-use super::mode::{ModeBeam, ModeRay};
+use super::mode::{InMode, ModeRay};
 use super::options::TraceOptions;
 use super::sink::{ExitSink, TraceStats};
-use super::stone::{Stone, GRAZE};
-use super::symmetry::{RootClip, SymSink};
-use super::work::{Ctx, Work};
+use super::stone::Stone;
+use super::trace::{Root, Tracer};
+use super::work::{Beam, Ctx, Work};
 use crate::optics::crystal::{Crystal, RawMeeting, Wave};
 use crate::optics::BodyColour;
 use crate::optics::Material;
-use glam::{DVec2, DVec3, DVec4};
+use glam::{DVec3, DVec4};
 
 /// The stone's optics for one trace at one wavelength.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -172,6 +171,56 @@ struct Reflected {
     power: [Option<f64>; 2],
 }
 
+/// The birefringent trace through `optics`' crystal.
+struct Birefringent<'a> {
+    stone: &'a Stone,
+    frame: &'a Frame,
+    optics: &'a Optics,
+}
+
+impl Tracer for Birefringent<'_> {
+    type Light = InMode;
+
+    /// At entry the light splits into the external reflection and a beam in each mode.
+    #[inline]
+    fn enter<S: ExitSink>(&self, root: Root, cx: &Ctx, w: &mut Work<InMode>, sink: &mut S) {
+        let (optics, u) = (self.optics, self.frame.u);
+        let unpolarized = DVec4::new(1.0, 0.0, 0.0, 0.0);
+        let Some(entry) = optics.crystal.enter(self.frame.dir, root.n, unpolarized, u) else {
+            w.st.cut_off += root.p;
+            return;
+        };
+        // Conserve power to rounding: the coefficients add up to 1 within ~1e-14.
+        let sum = entry.reflected.x + entry.transmitted[0].1 + entry.transmitted[1].1;
+        let scale = root.p / sum;
+        let r = entry.reflected * scale;
+        let stokes = if cx.pol {
+            r
+        } else {
+            DVec4::new(r.x, 0.0, 0.0, 0.0)
+        };
+        root.reflect(entry.reflected_dir, stokes, entry.axis, w, sink);
+        let transmitted = entry.transmitted.map(|(_, t)| Some(t * scale));
+        let merge = merged(&transmitted, cx, optics);
+        for (m, t) in going_on(transmitted, merge).into_iter().flatten() {
+            let wave = entry.transmitted[m].0;
+            let beam = root.beam(InMode {
+                wave,
+                power: t,
+                alpha: optics.alpha(&wave),
+            });
+            let narrow = merge.is_some();
+            self.stone
+                .continue_mode_beam(beam, narrow, cx, optics, w, sink);
+        }
+    }
+
+    #[inline]
+    fn split<S: ExitSink>(&self, beam: Beam<InMode>, cx: &Ctx, w: &mut Work<InMode>, sink: &mut S) {
+        self.stone.split_mode_beam(beam, cx, self.optics, w, sink);
+    }
+}
+
 impl Stone {
     /// Trace one direction through a [`Medium`], handing every exit beam to `sink`: the
     /// singly refractive trace ([`Stone::trace_window_into`]) for [`Medium::Isotropic`], the
@@ -230,190 +279,79 @@ impl Stone {
         sink: &mut S,
         keep_nodes: bool,
     ) -> (TraceStats, Vec<(u32, u32)>) {
-        let mut st = TraceStats::default();
-        let d0 = frame.dir;
         let cr = &optics.crystal;
-        let valid = |n: f64| n.is_finite() && n > 0.0;
-        if !(valid(cr.n_o) && valid(cr.n_e) && cr.axis.is_finite() && d0.is_finite()) {
-            return (st, Vec::new());
+        if !(cr.n_e.is_finite() && cr.n_e > 0.0 && cr.axis.is_finite()) {
+            return (TraceStats::default(), Vec::new());
         }
-        let total = self.cross_section(d0);
-        st.area = total;
-        if total.is_nan() || total <= 0.0 {
-            return (st, Vec::new());
-        }
-        let cx = Ctx::new(cr.n_o, opts, sink.wants_footprints(), keep_nodes);
-        let mut w = self.work();
-        w.st = st;
-        let map0 = Affine {
-            a1: frame.u,
-            a2: frame.v,
-            b: DVec2::ZERO,
+        let tracer = Birefringent {
+            stone: self,
+            frame,
+            optics,
         };
-        let (group, wedge) = if opts.symmetry && window.is_empty() {
-            self.symmetry.frame_symmetry_keeping(d0, cr.axis)
-        } else {
-            (vec![0], vec![])
-        };
-        let mut sym = SymSink::new(&self.symmetry, &group, frame, sink);
-        let mut piece: Vec<DVec3> = Vec::with_capacity(32);
-        let clip = RootClip {
-            wedge: &wedge,
-            window,
-            total,
-        };
-        for f in 0..self.facet_count() {
-            let n = self.normals[f];
-            let c = -n.dot(d0);
-            if c <= GRAZE {
-                continue;
-            }
-            let map = |x: DVec3| map0.apply(x);
-            let Some(p) = self.root_share(f, c, &clip, &mut w.cur, &mut piece, map) else {
-                continue;
-            };
-            w.st.power_in += p;
-            let node = w.node(&cx, u32::MAX, f);
-            let Some(entry) = cr.enter(d0, n, DVec4::new(1.0, 0.0, 0.0, 0.0), frame.u) else {
-                w.st.cut_off += p;
-                continue;
-            };
-            // Conserve power to rounding: the coefficients add up to 1 within ~1e-14.
-            let sum = entry.reflected.x + entry.transmitted[0].1 + entry.transmitted[1].1;
-            let scale = p / sum;
-            w.foot.clear();
-            if cx.want_fp {
-                w.foot.extend(w.cur.iter().map(|&x| map0.apply(x)));
-            }
-            let r = entry.reflected * scale;
-            let ext = ExitBeam {
-                direction: entry.reflected_dir,
-                power: r.x,
-                unabsorbed: r.x,
-                stokes: if cx.pol {
-                    r
-                } else {
-                    DVec4::new(r.x, 0.0, 0.0, 0.0)
-                },
-                axis: entry.axis,
-                entry_facet: f,
-                exit_facet: f,
-                reflections: 0,
-                external: true,
-                narrow: false,
-                late: false,
-                mode: None,
-                node,
-                sym: 0,
-            };
-            w.st.exits += 1;
-            sym.exit_at(&ext, &w.foot, &w.cur);
-            let transmitted = entry.transmitted.map(|(_, t)| Some(t * scale));
-            let merge = merged(&transmitted, &cx, optics);
-            for (m, t) in going_on(transmitted, merge).into_iter().flatten() {
-                let wave = entry.transmitted[m].0;
-                let beam = ModeBeam {
-                    wave,
-                    power: t,
-                    alpha: optics.alpha(&wave),
-                    facet: f as u32,
-                    entry: f as u32,
-                    depth: 0,
-                    node,
-                    start: 0,
-                    len: 0,
-                    map: map0,
-                    tau: PathLength::default(),
-                };
-                let narrow = merge.is_some();
-                self.continue_mode_beam(beam, narrow, &cx, optics, &mut w, &mut sym);
-            }
-            while let Some(beam) = w.mode_stack.pop() {
-                self.split_mode_beam(beam, &cx, optics, &mut w, &mut sym);
-            }
-        }
-        let g = group.len() as f64;
-        w.st.power_in *= g;
-        w.st.cut_off *= g;
-        w.st.ray_closed *= g;
-        w.st.absorbed *= g;
-        w.st.exits *= group.len();
-        let nodes = if keep_nodes {
-            std::mem::take(&mut w.nodes)
-        } else {
-            Vec::new()
-        };
-        (w.st, nodes)
+        let keeping = Some(cr.axis);
+        self.trace_roots(
+            &tracer, frame, cr.n_o, keeping, opts, window, sink, keep_nodes,
+        )
     }
 
-    /// The fate of a beam about to travel inside (its polygon in `w.cur`, its footprint in
+    /// The fate of a beam about to travel inside ([`Stone::settle`]; its footprint in
     /// `w.foot`): split exactly, followed as a narrow beam's ray (always when `narrow`: a
     /// merged pair of narrow beams), or cut off.
     fn continue_mode_beam<S: ExitSink>(
         &self,
-        beam: ModeBeam,
+        beam: Beam<InMode>,
         narrow: bool,
         cx: &Ctx,
         optics: &Optics,
-        w: &mut Work,
+        w: &mut Work<InMode>,
         sink: &mut S,
     ) {
-        let p = beam.power;
-        if p.is_nan() || p <= 0.0 || p < cx.threshold || beam.depth > cx.max_depth {
-            w.st.cut_off += p.max(0.0);
-        } else if p >= cx.split_threshold && !narrow {
-            let start = w.pts.len() as u32;
-            w.pts.extend_from_slice(&w.cur);
-            w.mode_stack.push(ModeBeam {
-                start,
-                len: w.cur.len() as u32,
-                ..beam
-            });
-        } else {
-            let n = self.normals[beam.facet as usize];
-            let (c, _) = super::exact::area_centroid(&w.cur, n);
-            let ray = ModeRay {
-                x: c,
-                wave: beam.wave,
-                power: p,
-                alpha: beam.alpha,
-                tau: if optics.absorbing {
-                    beam.tau.at(c)
-                } else {
-                    0.0
-                },
-                facet: beam.facet,
-                depth: beam.depth,
-                node: beam.node,
-                poly: 0,
-            };
-            self.follow_mode_ray(ray, beam.entry, cx, optics, w, sink);
-        }
+        let Some((beam, c, _)) = self.settle(beam, narrow, cx, w) else {
+            return;
+        };
+        let light = beam.light;
+        let ray = ModeRay {
+            x: c,
+            wave: light.wave,
+            power: light.power,
+            alpha: light.alpha,
+            tau: if optics.absorbing {
+                beam.path.at(c)
+            } else {
+                0.0
+            },
+            facet: beam.facet,
+            depth: beam.depth,
+            node: beam.node,
+            poly: 0,
+        };
+        self.follow_mode_ray(ray, beam.entry, cx, optics, w, sink);
     }
 
     /// Split one beam by the facets it reaches: at each, the light leaving is an exit beam
     /// and the light reflected goes on in each mode.
     fn split_mode_beam<S: ExitSink>(
         &self,
-        beam: ModeBeam,
+        beam: Beam<InMode>,
         cx: &Ctx,
         optics: &Optics,
-        w: &mut Work,
+        w: &mut Work<InMode>,
         sink: &mut S,
     ) {
         w.st.beams += 1;
-        let t = beam.wave.ray;
+        let light = beam.light;
+        let t = light.wave.ray;
         let Some((e1, e2, sum)) = self.tile(beam.start, beam.len, t, beam.facet, w) else {
-            w.st.cut_off += beam.power;
+            w.st.cut_off += light.power;
             return;
         };
         let f = beam.facet as usize;
         let (nf, of) = (self.normals[f], self.offsets[f]);
         let map = beam.map.slide(t, nf, of);
         let tau = if optics.absorbing {
-            beam.tau.slide_weighted(t, nf, of, beam.alpha)
+            beam.path.slide_weighted(t, nf, of, light.alpha)
         } else {
-            beam.tau
+            beam.path
         };
         for ci in 0..w.children.len() {
             let ch = w.children[ci];
@@ -432,9 +370,9 @@ impl Stone {
             } else {
                 1.0
             };
-            let pc = beam.power * (ch.area / sum);
+            let pc = light.power * (ch.area / sum);
             let Some(reflected) = self.cross_mode(
-                &beam.wave,
+                &light.wave,
                 g,
                 pc,
                 keep,
@@ -450,10 +388,12 @@ impl Stone {
             let merge = merged(&reflected.power, cx, optics);
             for (m, pr) in going_on(reflected.power, merge).into_iter().flatten() {
                 let wave = reflected.meeting.wave(m);
-                let next = ModeBeam {
-                    wave,
-                    power: pr,
-                    alpha: optics.alpha(&wave),
+                let next = Beam {
+                    light: InMode {
+                        wave,
+                        power: pr,
+                        alpha: optics.alpha(&wave),
+                    },
                     facet: g as u32,
                     entry: beam.entry,
                     depth: beam.depth + 1,
@@ -461,7 +401,7 @@ impl Stone {
                     start: 0,
                     len: 0,
                     map,
-                    tau,
+                    path: tau,
                 };
                 self.continue_mode_beam(next, merge.is_some(), cx, optics, w, sink);
             }
@@ -486,7 +426,7 @@ impl Stone {
         place: Place,
         cx: &Ctx,
         optics: &Optics,
-        w: &mut Work,
+        w: &mut Work<InMode>,
         sink: &mut S,
     ) -> Option<Reflected> {
         let (entry, depth, narrow, late, node) = origin;
@@ -544,7 +484,7 @@ impl Stone {
         entry: u32,
         cx: &Ctx,
         optics: &Optics,
-        w: &mut Work,
+        w: &mut Work<InMode>,
         sink: &mut S,
     ) {
         w.st.rays += 1;

@@ -6,7 +6,7 @@ use super::attenuation::exp_mean_planar;
 use super::interface::{cross, Meet, Origin};
 use super::sink::ExitSink;
 use super::stone::{Stone, GRAZE};
-use super::work::{Beam, Child, Ctx, Work};
+use super::work::{Beam, Child, Ctx, Light, Polarized, Work};
 use crate::geometry::clip2d;
 use crate::optics::reflect;
 use glam::{DVec2, DVec3};
@@ -40,20 +40,23 @@ pub(super) fn area_centroid(poly: &[DVec3], n: DVec3) -> (DVec3, f64) {
 }
 
 impl Stone {
-    /// Decide the fate of a beam about to travel inside: split exactly (pushed on the stack),
-    /// followed as a narrow beam, or cut off. Its polygon is in `w.cur` (on `beam.facet`'s
-    /// plane) and, when footprints are wanted, its footprint in `w.foot`.
-    pub(super) fn continue_beam<S: ExitSink>(
+    /// The fate of a beam about to travel inside (its polygon in `w.cur`, on `beam.facet`'s
+    /// plane), in either tracer: cut off (no power, below the threshold or past the depth
+    /// limit), or split exactly (its polygon onto the point stack, the beam onto the stack),
+    /// or handed back, with its polygon's area centroid and area, to be followed as a narrow
+    /// beam's ray from the centroid (always when `narrow`).
+    #[inline(always)]
+    pub(super) fn settle<L: Light>(
         &self,
-        beam: Beam,
+        beam: Beam<L>,
+        narrow: bool,
         cx: &Ctx,
-        w: &mut Work,
-        sink: &mut S,
-    ) {
-        let p = beam.stokes.x;
+        w: &mut Work<L>,
+    ) -> Option<(Beam<L>, DVec3, f64)> {
+        let p = beam.light.power();
         if p.is_nan() || p <= 0.0 || p < cx.threshold || beam.depth > cx.max_depth {
             w.st.cut_off += p.max(0.0);
-        } else if p >= cx.split_threshold {
+        } else if p >= cx.split_threshold && !narrow {
             let start = w.pts.len() as u32;
             w.pts.extend_from_slice(&w.cur);
             w.stack.push(Beam {
@@ -66,20 +69,43 @@ impl Stone {
             // (rounding slivers along shared edges among them), which moved the vertex mean,
             // and with it the ray's whole path, by a sizeable part of the beam when the solid
             // changed by 1e-10.
-            let n = self.normals[beam.facet as usize];
-            let (c, area) = area_centroid(&w.cur, n);
-            // The disc of the beam's cross-section (kept by mirror reflections).
-            let r = (area * n.dot(beam.dir).abs() / std::f64::consts::PI).sqrt();
-            self.follow_ray(beam, c, r, cx, w, sink);
+            let (c, area) = area_centroid(&w.cur, self.normals[beam.facet as usize]);
+            return Some((beam, c, area));
         }
+        None
+    }
+
+    /// The fate of a singly refractive beam about to travel inside ([`Stone::settle`]); its
+    /// footprint, when footprints are wanted, is in `w.foot`.
+    pub(super) fn continue_beam<S: ExitSink>(
+        &self,
+        beam: Beam<Polarized>,
+        cx: &Ctx,
+        w: &mut Work<Polarized>,
+        sink: &mut S,
+    ) {
+        let Some((beam, c, area)) = self.settle(beam, false, cx, w) else {
+            return;
+        };
+        // The disc of the beam's cross-section (kept by mirror reflections).
+        let n = self.normals[beam.facet as usize];
+        let r = (area * n.dot(beam.light.dir).abs() / std::f64::consts::PI).sqrt();
+        self.follow_ray(beam, c, r, cx, w, sink);
     }
 
     /// Split one internal beam by the facets it reaches.
-    pub(super) fn split_beam<S: ExitSink>(&self, beam: Beam, cx: &Ctx, w: &mut Work, sink: &mut S) {
+    pub(super) fn split_beam<S: ExitSink>(
+        &self,
+        beam: Beam<Polarized>,
+        cx: &Ctx,
+        w: &mut Work<Polarized>,
+        sink: &mut S,
+    ) {
         w.st.beams += 1;
-        let t = beam.dir;
+        let light = beam.light;
+        let t = light.dir;
         let Some((e1, e2, sum)) = self.tile(beam.start, beam.len, t, beam.facet, w) else {
-            w.st.cut_off += beam.stokes.x;
+            w.st.cut_off += light.stokes.x;
             return;
         };
 
@@ -113,8 +139,8 @@ impl Stone {
                 t,
                 n,
                 facet: g,
-                stokes: beam.stokes * (ch.area / sum),
-                axis: beam.axis,
+                stokes: light.stokes * (ch.area / sum),
+                axis: light.axis,
                 keep,
             };
             let origin = Origin {
@@ -126,9 +152,11 @@ impl Stone {
             };
             let (sr, axis) = cross(cx, meet, origin, &w.foot, &w.cur, &mut w.st, sink);
             let next = Beam {
-                dir: reflect(t, n),
-                stokes: sr,
-                axis,
+                light: Polarized {
+                    dir: reflect(t, n),
+                    stokes: sr,
+                    axis,
+                },
                 facet: g as u32,
                 entry: beam.entry,
                 depth: beam.depth + 1,
@@ -148,13 +176,13 @@ impl Stone {
     /// `w.children`, and the sum of their areas is returned with `e1, e2`. `None` when the
     /// beam has no cross-section or reaches no facet (its power is then the caller's to cut
     /// off).
-    pub(super) fn tile(
+    pub(super) fn tile<L>(
         &self,
         start: u32,
         len: u32,
         t: DVec3,
         facet: u32,
-        w: &mut Work,
+        w: &mut Work<L>,
     ) -> Option<(DVec3, DVec3, f64)> {
         // Take the beam's polygon off the point stack (it is on top).
         w.cur.clear();
@@ -237,7 +265,14 @@ impl Stone {
     /// Clip the current beam (`w.q`) by facet `g` projected on (e1, e2); append a child if the
     /// overlap exceeds `keep_area` (a sliver otherwise). Returns the overlap's area.
     #[inline]
-    fn clip_facet(&self, g: usize, e1: DVec3, e2: DVec3, w: &mut Work, keep_area: f64) -> f64 {
+    fn clip_facet<L>(
+        &self,
+        g: usize,
+        e1: DVec3,
+        e2: DVec3,
+        w: &mut Work<L>,
+        keep_area: f64,
+    ) -> f64 {
         let stamp = w.stamp;
         w.g.clear();
         let (mut lo, mut hi) = (DVec2::INFINITY, DVec2::NEG_INFINITY);

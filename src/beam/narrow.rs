@@ -7,7 +7,7 @@ use super::disc::{Part, FORK_MAX};
 use super::interface::{cross, Meet, Origin};
 use super::sink::ExitSink;
 use super::stone::Stone;
-use super::work::{Beam, Ctx, Work};
+use super::work::{Beam, Ctx, Polarized, Work};
 use crate::optics::{reflect, Stokes};
 use glam::DVec3;
 
@@ -41,24 +41,24 @@ impl Stone {
     /// disc of radius `r` (the beam's cross-section; see [`Stone::follow_disc`]).
     pub(super) fn follow_ray<S: ExitSink>(
         &self,
-        beam: Beam,
+        beam: Beam<Polarized>,
         mut x: DVec3,
         r: f64,
         cx: &Ctx,
-        w: &mut Work,
+        w: &mut Work<Polarized>,
         sink: &mut S,
     ) {
         w.st.rays += 1;
-        let p0 = beam.stokes.x;
+        let p0 = beam.light.stokes.x;
         w.st.ray_power += p0;
         let floor = cx.threshold.max(cx.ray_floor * p0);
         if cx.forks && r.is_finite() && r > 0.0 {
             return self.follow_disc(beam, x, r, cx, w, sink);
         }
         let (mut t, mut s, mut axis, mut facet, mut depth, mut prev) = (
-            beam.dir,
-            beam.stokes,
-            beam.axis,
+            beam.light.dir,
+            beam.light.stokes,
+            beam.light.axis,
             beam.facet as usize,
             beam.depth,
             beam.node,
@@ -120,7 +120,7 @@ impl Stone {
         at: RayAt,
         floor: f64,
         cx: &Ctx,
-        w: &mut Work,
+        w: &mut Work<Polarized>,
         sink: &mut S,
     ) -> Option<(Stokes, DVec3, u32)> {
         w.st.ray_segments += 1;
@@ -167,21 +167,21 @@ impl Stone {
     /// over continuously instead of all at once.
     fn follow_disc<S: ExitSink>(
         &self,
-        beam: Beam,
+        beam: Beam<Polarized>,
         x: DVec3,
         r: f64,
         cx: &Ctx,
-        w: &mut Work,
+        w: &mut Work<Polarized>,
         sink: &mut S,
     ) {
-        let p0 = beam.stokes.x;
+        let p0 = beam.light.stokes.x;
         let floor = cx.threshold.max(cx.ray_floor * p0);
         w.parts.clear();
         w.parts.push(Part {
             x,
-            t: beam.dir,
-            s: beam.stokes,
-            axis: beam.axis,
+            t: beam.light.dir,
+            s: beam.light.stokes,
+            axis: beam.light.axis,
             facet: beam.facet,
             depth: beam.depth,
             prev: beam.node,

@@ -1,20 +1,20 @@
-//! The state of one trace: its cleaned settings ([`Ctx`]), a beam waiting to be split
-//! ([`Beam`]) and the working memory reused across beams ([`Work`]).
+//! The state of one trace, in either tracer: its cleaned settings ([`Ctx`]), a beam waiting
+//! to be split ([`Beam`]) and the working memory reused across beams ([`Work`]).
 
 use super::disc::{Fork, Part};
 use super::footprint::{Affine, PathLength};
-use super::mode::{ModeBeam, ModeRay};
+use super::mode::ModeRay;
 use super::sink::TraceStats;
 use super::stone::Stone;
 use crate::optics::Stokes;
 use glam::{DVec2, DVec3};
 
-/// A beam waiting to be split.
+/// A beam waiting to be split, in either tracer: where it is and what it came from, and the
+/// light `L` it carries ([`Polarized`] in the singly refractive trace,
+/// [`InMode`](super::mode::InMode) in the birefringent one).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Beam {
-    pub(super) dir: DVec3,
-    pub(super) stokes: Stokes,
-    pub(super) axis: DVec3,
+pub(super) struct Beam<L> {
+    pub(super) light: L,
     pub(super) facet: u32,
     pub(super) entry: u32,
     pub(super) depth: u32,
@@ -23,8 +23,31 @@ pub(super) struct Beam {
     pub(super) start: u32,
     pub(super) len: u32,
     pub(super) map: Affine,
-    /// Path length from the entry facet over the polygon (used when absorbing).
+    /// From the entry facet over the polygon (used when absorbing): the path length in the
+    /// singly refractive trace, the optical depth `Σ αᵢ Lᵢ` in the birefringent one.
     pub(super) path: PathLength,
+}
+
+/// The light a beam carries, as far as the fate they share needs it.
+pub(super) trait Light: Copy {
+    /// Its power (before absorption).
+    fn power(&self) -> f64;
+}
+
+/// A singly refractive trace's beam's light: its direction and Stokes vector (reference
+/// `axis`).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Polarized {
+    pub(super) dir: DVec3,
+    pub(super) stokes: Stokes,
+    pub(super) axis: DVec3,
+}
+
+impl Light for Polarized {
+    #[inline(always)]
+    fn power(&self) -> f64 {
+        self.stokes.x
+    }
 }
 
 /// A piece of the beam being split: the facet it meets, its projected polygon
@@ -78,10 +101,11 @@ impl Ctx {
     }
 }
 
-/// Working memory of one trace, reused across beams.
-pub(super) struct Work {
+/// Working memory of one trace whose beams carry light `L`, reused across beams.
+pub(super) struct Work<L> {
     pub(super) pts: Vec<DVec3>,
-    pub(super) stack: Vec<Beam>,
+    /// The beams waiting to be split.
+    pub(super) stack: Vec<Beam<L>>,
     pub(super) cur: Vec<DVec3>,
     pub(super) q: Vec<DVec2>,
     pub(super) g: Vec<DVec2>,
@@ -105,8 +129,7 @@ pub(super) struct Work {
     pub(super) nodes: Vec<(u32, u32)>,
     pub(super) parts: Vec<Part>,
     pub(super) forks: Vec<Fork>,
-    /// A birefringent trace's beams waiting to be split, and a narrow beam's rays.
-    pub(super) mode_stack: Vec<ModeBeam>,
+    /// A birefringent narrow beam's rays.
     pub(super) mode_rays: Vec<ModeRay>,
     /// The polygons of a birefringent narrow beam's rays, each carried to the facet its ray
     /// is on ([`ModeRay::poly`]), all of the narrow beam's vertex count.
@@ -115,7 +138,7 @@ pub(super) struct Work {
     pub(super) st: TraceStats,
 }
 
-impl Work {
+impl<L> Work<L> {
     /// Lift child `ch`'s polygon (projected on `(e1, e2)`, in `cpts`) along `t` onto the
     /// plane `n · x = o` of the facet it meets, into `cur`.
     #[inline]
@@ -143,7 +166,7 @@ impl Work {
 }
 
 impl Stone {
-    pub(super) fn work(&self) -> Work {
+    pub(super) fn work<L>(&self) -> Work<L> {
         Work {
             pts: Vec::with_capacity(1024),
             stack: Vec::with_capacity(128),
@@ -167,7 +190,6 @@ impl Stone {
             nodes: Vec::with_capacity(4096),
             parts: Vec::with_capacity(32),
             forks: Vec::with_capacity(8),
-            mode_stack: Vec::new(),
             mode_rays: Vec::new(),
             mode_polys: Vec::new(),
             st: TraceStats::default(),

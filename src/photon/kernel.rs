@@ -1,19 +1,22 @@
-//! The per-photon loop.
+//! The photon tracer (`Tracer`: one light and solid resolved) and its singly refractive
+//! kernel; the lanes and the steps both kernels share are in `lanes.rs`.
 
 use super::config::{ExitWeights, TraceConfig, WavelengthSampling, CHUNK, UNLIMITED_CAP};
+use super::crystal::Birefringent;
 use super::crystal_setup::CrystalSetup;
 use super::entry_grid::EntryGrid;
+use super::lanes::{Kernel, Lane};
 use super::light::{Light, LightKind, LightSize};
 use super::reach::Reach;
 use super::solid::TraceSolid;
-use super::tally::{Counts, Fate, PhotonPath};
+use super::tally::{Counts, PhotonPath};
 use crate::error::{Error, Result};
 use crate::geometry::DVec3;
 use crate::optics::color::{d65, D65_MAX, LAMBDA_MAX, LAMBDA_MIN};
 use crate::optics::{fresnel, reflect, rotate_stokes, s_axis, Dispersion, Material, Stokes};
 use crate::optics::{Absorption, THESIS_ABSORPTION};
 use rand::rngs::SmallRng;
-use rand::{RngCore, SeedableRng};
+use rand::RngCore;
 
 /// Cells of √(1 − z) ∈ [0, √2] in the exit-angle lookup.
 const ANGLE_CELLS: usize = 4096;
@@ -111,48 +114,15 @@ struct Pol {
     e: DVec3,
 }
 
-/// Photons in flight per chunk (see `Tracer::lanes`): one per lane of the batched exit search.
-const LANES: usize = super::solid::LANES;
+/// The singly refractive kernel, with polarization when `POL`.
+struct Singly<const POL: bool>;
 
-/// One lane of a chunk: its random stream, the photons it has still to shoot, and its
-/// photon in flight.
-struct Lane {
-    rng: SmallRng,
-    left: u64,
-    /// Whether a photon is inside the stone.
-    live: bool,
-    p: DVec3,
+/// A singly refractive photon's own: its direction, the refractive index at its wavelength
+/// and its polarization.
+struct Ray {
     d: DVec3,
-    /// Refractive index and Beer–Lambert coefficient at the photon's wavelength.
     n: f64,
-    beer: f64,
-    lambda: f64,
-    /// Surface interactions so far.
-    inter: u32,
     pol: Pol,
-    /// The path's points (when recording).
-    path: Vec<DVec3>,
-}
-
-impl Lane {
-    fn new(seed: u64, photons: u64) -> Lane {
-        Lane {
-            rng: SmallRng::seed_from_u64(seed),
-            left: photons,
-            live: false,
-            p: DVec3::ZERO,
-            d: DVec3::ZERO,
-            n: 1.0,
-            beer: 0.0,
-            lambda: 0.0,
-            inter: 0,
-            pol: Pol {
-                s: Stokes::new(1.0, 0.0, 0.0, 0.0),
-                e: DVec3::X,
-            },
-            path: Vec::new(),
-        }
-    }
 }
 
 impl<'a> Tracer<'a> {
@@ -263,12 +233,13 @@ impl<'a> Tracer<'a> {
     fn chunk_impl(&self, c: u64, n: u64, hit_limit: Option<u64>) -> Counts {
         let mut k = Counts::new(self.s.facets);
         let mut none = Vec::new();
-        if self.crystal.is_some() {
-            self.lanes_crystal::<false>(c, n, hit_limit, &mut k, &mut none, 0);
+        if let Some(cs) = &self.crystal {
+            let kernel = Birefringent(cs);
+            self.lanes::<_, false>(&kernel, c, n, hit_limit, &mut k, &mut none, 0);
         } else if self.polarization {
-            self.lanes::<true, false>(c, n, hit_limit, &mut k, &mut none, 0);
+            self.lanes::<_, false>(&Singly::<true>, c, n, hit_limit, &mut k, &mut none, 0);
         } else {
-            self.lanes::<false, false>(c, n, hit_limit, &mut k, &mut none, 0);
+            self.lanes::<_, false>(&Singly::<false>, c, n, hit_limit, &mut k, &mut none, 0);
         }
         k
     }
@@ -290,12 +261,13 @@ impl<'a> Tracer<'a> {
                 None => (CHUNK.min(shot - done), None),
             };
             let mut k = Counts::new(self.s.facets);
-            if self.crystal.is_some() {
-                self.lanes_crystal::<true>(c, photons, limit, &mut k, &mut out, n);
+            let (k, out) = (&mut k, &mut out);
+            if let Some(cs) = &self.crystal {
+                self.lanes::<_, true>(&Birefringent(cs), c, photons, limit, k, out, n);
             } else if self.polarization {
-                self.lanes::<true, true>(c, photons, limit, &mut k, &mut out, n);
+                self.lanes::<_, true>(&Singly::<true>, c, photons, limit, k, out, n);
             } else {
-                self.lanes::<false, true>(c, photons, limit, &mut k, &mut out, n);
+                self.lanes::<_, true>(&Singly::<false>, c, photons, limit, k, out, n);
             }
             done += k.shot;
             hit += k.hit;
@@ -303,52 +275,6 @@ impl<'a> Tracer<'a> {
         }
         out.truncate(n);
         out
-    }
-
-    /// Trace chunk `c`'s `n` photons, `LANES` in flight at once. Lane `l` shoots its share of
-    /// the chunk (`n / LANES`, one more for the first `n % LANES` lanes) from its own random
-    /// stream, seeded from the seed, the chunk and the lane. Each round refills the lanes
-    /// whose photon has ended (shooting until one is inside the stone), finds the exits of all
-    /// the lanes' photons in one batched search and advances each by one surface interaction:
-    /// the photons' long dependent chains (exit search, Fresnel, roulette) then overlap. With
-    /// a hit limit no photon is shot once that many have hit (those in flight finish). With
-    /// `REC`, the paths of finished photons that hit are pushed to `out` until it holds `want`.
-    #[inline(always)]
-    fn lanes<const POL: bool, const REC: bool>(
-        &self,
-        c: u64,
-        n: u64,
-        hit_limit: Option<u64>,
-        k: &mut Counts,
-        out: &mut Vec<PhotonPath>,
-        want: usize,
-    ) {
-        let limit = hit_limit.unwrap_or(u64::MAX);
-        let base = chunk_seed(self.seed, c);
-        let mut lanes: [Lane; LANES] = std::array::from_fn(|l| {
-            let l = l as u64;
-            Lane::new(
-                chunk_seed(base, l),
-                n / LANES as u64 + u64::from(l < n % LANES as u64),
-            )
-        });
-        loop {
-            for l in lanes.iter_mut() {
-                while !l.live && l.left > 0 {
-                    self.start::<POL, REC>(l, k, limit, out);
-                }
-            }
-            let live = lanes.each_ref().map(|l| l.live);
-            if !live.contains(&true) || (REC && out.len() >= want) {
-                break;
-            }
-            let exits = self.s.exits_by(|l| (lanes[l].p, lanes[l].d), &live);
-            for (l, &(t, j)) in lanes.iter_mut().zip(&exits) {
-                if l.live {
-                    self.bounce::<POL, REC>(l, t, j, k, out);
-                }
-            }
-        }
     }
 
     /// A photon's wavelength from the uniform `u` (and, for D65's rejection sampling, as many
@@ -441,58 +367,6 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// Shoot the lane's next photons until one enters the stone (then do its first
-    /// interaction) or the lane has none left or the hit limit is reached.
-    #[inline(always)]
-    fn start<const POL: bool, const REC: bool>(
-        &self,
-        l: &mut Lane,
-        k: &mut Counts,
-        limit: u64,
-        out: &mut Vec<PhotonPath>,
-    ) {
-        let Some(e) = self.next_entry(&mut l.rng, &mut l.left, k, limit) else {
-            return;
-        };
-        let (o, d, t, f, lambda, x) = (e.o, e.d, e.t, e.f, e.lambda, e.x);
-        l.lambda = lambda;
-        l.n = self.fixed_n.unwrap_or_else(|| self.material.ri(lambda));
-        // Beer–Lambert coefficient per unit of path at this photon's wavelength (0 unless the
-        // model is Beer–Lambert).
-        l.beer = self
-            .absorption
-            .beer_per_width(self.material.colour.as_ref(), lambda)
-            .unwrap_or(0.0);
-        if POL {
-            l.pol = Pol {
-                s: Stokes::new(1.0, 0.0, 0.0, 0.0),
-                e: d.any_orthonormal_vector(),
-            };
-        }
-        l.p = o + t * d;
-        if REC {
-            l.path.clear();
-            l.path.push(o);
-            l.path.push(l.p);
-        }
-        l.inter = 1;
-        let m = self.s.normals[f];
-        let (nd, transmitted) = self.interface::<POL>(x, &mut l.pol, d, m, 1.0, l.n);
-        l.d = nd;
-        if !transmitted {
-            self.tally_exit(k, f, nd);
-            if REC {
-                l.path.push(l.p + nd);
-            }
-            self.finish::<REC>(l, k, Fate::Exited(f), out);
-        } else if l.inter >= self.max_depth {
-            k.depth_limited += 1;
-            self.finish::<REC>(l, k, Fate::DepthLimited, out);
-        } else {
-            l.live = true;
-        }
-    }
-
     /// Shoot a lane's next photons (`left` of them remain) until one enters the stone, and draw
     /// its wavelength and the entry roulette's uniform (one draw for both); `None`, the lane
     /// emptied, when it has none left or the hit limit is reached. The start of a photon in
@@ -572,54 +446,6 @@ impl<'a> Tracer<'a> {
         Some((o, d, t, f))
     }
 
-    /// The lane's photon inside the stone meets its next facet (`j`, at distance `t`): absorbed
-    /// on the way, or leaves, or is reflected back in (and is then depth-limited if it has no interactions
-    /// left).
-    #[inline(always)]
-    fn bounce<const POL: bool, const REC: bool>(
-        &self,
-        l: &mut Lane,
-        t: f64,
-        j: usize,
-        k: &mut Counts,
-        out: &mut Vec<PhotonPath>,
-    ) {
-        let (p, d) = (l.p, l.d);
-        if t >= f64::INFINITY || t.is_nan() {
-            // Numerically impossible for a bounded solid; counted, never a panic.
-            k.depth_limited += 1;
-            return self.finish::<REC>(l, k, Fate::DepthLimited, out);
-        }
-        // One draw for the absorption and the surface's roulette.
-        let (u, x) = two_uniforms(&mut l.rng);
-        if let Some(s) = self.absorbed_within(u, t, l.beer) {
-            k.absorbed += 1;
-            if REC {
-                l.path.push(p + s * d);
-            }
-            return self.finish::<REC>(l, k, Fate::Absorbed, out);
-        }
-        let p = p + t * d;
-        l.p = p;
-        l.inter += 1;
-        if REC {
-            l.path.push(p);
-        }
-        let m = self.s.normals[j];
-        let (nd, transmitted) = self.interface::<POL>(x, &mut l.pol, d, -m, l.n, 1.0);
-        l.d = nd;
-        if transmitted {
-            self.tally_exit(k, j, nd);
-            if REC {
-                l.path.push(p + nd);
-            }
-            self.finish::<REC>(l, k, Fate::Exited(j), out);
-        } else if l.inter >= self.max_depth {
-            k.depth_limited += 1;
-            self.finish::<REC>(l, k, Fate::DepthLimited, out);
-        }
-    }
-
     /// Where along the next `t` of its path a photon is absorbed, given the uniform `u` drawn for
     /// it and its Beer–Lambert coefficient `beer` (per girdle diameter): the thesis's flat
     /// chance per bounce (at the facet), an exponential free path, or never. Both kernels.
@@ -634,39 +460,86 @@ impl<'a> Tracer<'a> {
             }
         }
     }
-
-    /// The lane's photon has ended with `fate`.
-    #[inline(always)]
-    fn finish<const REC: bool>(
-        &self,
-        l: &mut Lane,
-        k: &mut Counts,
-        fate: Fate,
-        out: &mut Vec<PhotonPath>,
-    ) {
-        l.live = false;
-        end_path::<REC>(k, l.inter, l.lambda, &mut l.path, fate, out);
-    }
 }
 
-/// A photon's end, in both kernels: its interactions counted and, when paths are recorded,
-/// its path (taken from the lane) handed out with its wavelength and fate.
-#[inline(always)]
-pub(super) fn end_path<const REC: bool>(
-    k: &mut Counts,
-    inter: u32,
-    lambda: f64,
-    path: &mut Vec<DVec3>,
-    fate: Fate,
-    out: &mut Vec<PhotonPath>,
-) {
-    k.interactions += inter as u64;
-    if REC {
-        out.push(PhotonPath {
-            wavelength: lambda,
-            points: std::mem::take(path),
-            fate,
-        });
+impl<const POL: bool> Kernel for Singly<POL> {
+    type Own = Ray;
+
+    #[inline(always)]
+    fn blank(&self) -> Ray {
+        Ray {
+            d: DVec3::ZERO,
+            n: 1.0,
+            pol: Pol {
+                s: Stokes::new(1.0, 0.0, 0.0, 0.0),
+                e: DVec3::X,
+            },
+        }
+    }
+
+    #[inline(always)]
+    fn dir(own: &Ray) -> DVec3 {
+        own.d
+    }
+
+    #[inline(always)]
+    fn start<const REC: bool>(
+        &self,
+        tr: &Tracer<'_>,
+        l: &mut Lane<Ray>,
+        k: &mut Counts,
+        limit: u64,
+        out: &mut Vec<PhotonPath>,
+    ) {
+        let Some(e) = tr.enter::<Ray, REC>(l, k, limit) else {
+            return;
+        };
+        let (d, f) = (e.d, e.f);
+        l.own.n = tr.fixed_n.unwrap_or_else(|| tr.material.ri(e.lambda));
+        // Beer–Lambert coefficient per unit of path at this photon's wavelength (0 unless the
+        // model is Beer–Lambert).
+        l.beer = tr
+            .absorption
+            .beer_per_width(tr.material.colour.as_ref(), e.lambda)
+            .unwrap_or(0.0);
+        if POL {
+            l.own.pol = Pol {
+                s: Stokes::new(1.0, 0.0, 0.0, 0.0),
+                e: d.any_orthonormal_vector(),
+            };
+        }
+        let m = tr.s.normals[f];
+        let (nd, transmitted) = tr.interface::<POL>(e.x, &mut l.own.pol, d, m, 1.0, l.own.n);
+        l.own.d = nd;
+        if !transmitted {
+            tr.exit::<Ray, REC>(l, k, f, nd, out);
+        } else if !tr.depth_limited::<Ray, REC>(l, k, out) {
+            l.live = true;
+        }
+    }
+
+    #[inline(always)]
+    fn bounce<const REC: bool>(
+        &self,
+        tr: &Tracer<'_>,
+        l: &mut Lane<Ray>,
+        t: f64,
+        j: usize,
+        k: &mut Counts,
+        out: &mut Vec<PhotonPath>,
+    ) {
+        let d = l.own.d;
+        let Some(x) = tr.advance::<Ray, REC>(l, t, d, k, out) else {
+            return;
+        };
+        let m = tr.s.normals[j];
+        let (nd, transmitted) = tr.interface::<POL>(x, &mut l.own.pol, d, -m, l.own.n, 1.0);
+        l.own.d = nd;
+        if transmitted {
+            tr.exit::<Ray, REC>(l, k, j, nd, out);
+        } else {
+            tr.depth_limited::<Ray, REC>(l, k, out);
+        }
     }
 }
 
@@ -674,6 +547,7 @@ pub(super) fn end_path<const REC: bool>(
 mod tests {
     use super::*;
     use rand::Rng;
+    use rand::SeedableRng;
 
     /// The kernel's own unpolarized Fresnel reflectance and refraction are the library's
     /// (`optics::fresnel`, `optics::refract`): same reflectance, refraction cosine, total

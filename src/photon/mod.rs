@@ -48,6 +48,7 @@ mod crystal;
 mod crystal_setup;
 mod entry_grid;
 mod kernel;
+mod lanes;
 mod light;
 mod reach;
 mod run;

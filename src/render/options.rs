@@ -143,22 +143,8 @@ impl RenderOptions {
 
     /// Check every field; the error names the field and what is allowed.
     pub fn validate(&self) -> Result<()> {
-        if !(8..=8192).contains(&self.size) {
-            return Err(Error::invalid(
-                "size",
-                format!("{} pixels is out of range; allowed 8 to 8192", self.size),
-            ));
-        }
-        let t = self.tilt;
-        if !(t.tilt_deg.abs() <= 90.0 && t.azimuth_deg.is_finite()) {
-            return Err(Error::invalid(
-                "tilt",
-                format!(
-                    "{}° is out of range; allowed −90 to 90 degrees",
-                    shown(t.tilt_deg)
-                ),
-            ));
-        }
+        check_size(self.size)?;
+        check_tilt(self.tilt)?;
         let h = self.head_shadow();
         if !(0.0..=60.0).contains(&h) {
             return Err(Error::invalid(
@@ -184,19 +170,50 @@ impl RenderOptions {
                 format!("{} is out of range; allowed 8 to 64", self.bands),
             ));
         }
-        for l in [self.wavelength_nm, 380.0, 780.0] {
-            let n = self.material.ri(l);
-            if !(n.is_finite() && n > 1.0 - 1e-12 && n <= 10.0) {
-                return Err(Error::invalid(
-                    "material",
-                    format!(
-                        "{} has refractive index {} at {l} nm; allowed [1, 10]",
-                        self.material.name,
-                        shown(n)
-                    ),
-                ));
-            }
-        }
-        Ok(())
+        check_index(&self.material, &[self.wavelength_nm, 380.0, 780.0])
     }
+}
+
+/// Check a picture's size in pixels (8 to 8192 a side), both kinds of picture's.
+pub(super) fn check_size(size: usize) -> Result<()> {
+    if !(8..=8192).contains(&size) {
+        return Err(Error::invalid(
+            "size",
+            format!("{size} pixels is out of range; allowed 8 to 8192"),
+        ));
+    }
+    Ok(())
+}
+
+/// Check a stone's tilt (−90 to 90 degrees, a finite azimuth), both kinds of picture's.
+pub(super) fn check_tilt(t: Tilt) -> Result<()> {
+    if !(t.tilt_deg.abs() <= 90.0 && t.azimuth_deg.is_finite()) {
+        return Err(Error::invalid(
+            "tilt",
+            format!(
+                "{}° is out of range; allowed −90 to 90 degrees",
+                shown(t.tilt_deg)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Check the material's refractive index at each of `wavelengths` (nm): in [1, 10] (1 to
+/// rounding), both kinds of picture's.
+pub(super) fn check_index(material: &Material, wavelengths: &[f64]) -> Result<()> {
+    for &l in wavelengths {
+        let n = material.ri(l);
+        if !(n.is_finite() && n > 1.0 - 1e-12 && n <= 10.0) {
+            return Err(Error::invalid(
+                "material",
+                format!(
+                    "{} has refractive index {} at {l} nm; allowed [1, 10]",
+                    material.name,
+                    shown(n)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }

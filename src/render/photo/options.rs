@@ -12,6 +12,7 @@ use crate::beam::TraceOptions;
 use crate::error::{shown, Error, Result};
 use crate::optics::Material;
 use crate::render::lighting::EDGE_DEG;
+use crate::render::options::{check_index, check_size, check_tilt};
 use crate::render::Tilt;
 use glam::DVec3;
 use std::path::Path;
@@ -264,12 +265,7 @@ impl PhotoOptions {
 
     /// Check every field; the error names the field and what is allowed.
     pub fn validate(&self) -> Result<()> {
-        if !(8..=8192).contains(&self.size) {
-            return Err(Error::invalid(
-                "size",
-                format!("{} pixels is out of range; allowed 8 to 8192", self.size),
-            ));
-        }
+        check_size(self.size)?;
         let v = self.view;
         if !(v.elevation_deg.abs() <= 90.0 && v.azimuth_deg.is_finite()) {
             return Err(Error::invalid(
@@ -298,16 +294,7 @@ impl PhotoOptions {
                 ),
             ));
         }
-        let t = self.tilt;
-        if !(t.tilt_deg.abs() <= 90.0 && t.azimuth_deg.is_finite()) {
-            return Err(Error::invalid(
-                "tilt",
-                format!(
-                    "{}° is out of range; allowed −90 to 90 degrees",
-                    shown(t.tilt_deg)
-                ),
-            ));
-        }
+        check_tilt(self.tilt)?;
         if !self.light_rotation_deg.is_finite() || !self.turn_deg.is_finite() {
             return Err(Error::invalid(
                 "light-rotation",
@@ -371,18 +358,6 @@ impl PhotoOptions {
                 format!("{} is out of range; allowed 1 to 10", self.margin),
             ));
         }
-        for l in [380.0, 780.0] {
-            let n = self.material.ri(l);
-            if !(n.is_finite() && n > 1.0 - 1e-12 && n <= 10.0) {
-                return Err(Error::invalid(
-                    "material",
-                    format!(
-                        "{} has refractive index {n} at {l} nm; allowed [1, 10]",
-                        self.material.name
-                    ),
-                ));
-            }
-        }
-        Ok(())
+        check_index(&self.material, &[380.0, 780.0])
     }
 }
