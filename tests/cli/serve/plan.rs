@@ -85,7 +85,7 @@ fn serve_plans_a_rough() {
     );
     assert_eq!(
         e,
-        "600 is not allowed; give the rough's largest extent in (0, 500] mm"
+        "size_mm: 600 is not allowed; give the rough's largest extent in (0, 500] mm"
     );
     bad(
         serde_json::json!({"crystal": "icosahedron", "size_mm": 6}),
