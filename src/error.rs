@@ -174,3 +174,147 @@ pub fn shown(v: f64) -> String {
         plain
     }
 }
+
+/// Declares [`Setting`] from one list, so its variants, [`Setting::ALL`] and its names cannot
+/// disagree.
+macro_rules! settings {
+    ($($(#[doc = $doc:literal])* $v:ident => $name:literal,)*) => {
+        /// Every setting the library names in its errors and notes (an error's field, or a
+        /// setting inside its text by [`setting`]), each by its own name ([`Setting::name`]).
+        /// Each face spells every one its own way by a `match` over this enum with no wildcard
+        /// arm (the command line's flags, the web page's request fields, the Python package's
+        /// keyword arguments), so a setting added here without a spelling in a face does not
+        /// compile.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Setting {
+            $($(#[doc = $doc])* $v,)*
+        }
+
+        impl Setting {
+            /// Every setting, in the order of the enum.
+            pub const ALL: &'static [Setting] = &[$(Setting::$v,)*];
+
+            /// Its name, as the library's errors and notes give it.
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $(Setting::$v => $name,)*
+                }
+            }
+        }
+    };
+}
+
+settings! {
+    /// The angle of a trace's light.
+    LightAngle => "light angle",
+    /// A trace's photon count.
+    PhotonCount => "photon count",
+    /// How many interactions a ray is followed through.
+    TraceDepth => "trace depth",
+    /// How a stone's absorption is traced.
+    AbsorptionModel => "absorption model",
+    /// A trace at one wavelength.
+    FixedWavelength => "fixed wavelength",
+    /// A material given by its refractive index.
+    RefractiveIndex => "refractive index",
+    /// A material given by its name.
+    Material => "material",
+    /// A rough's largest extent, mm.
+    RoughSize => "rough size",
+    /// A rough's inclusion, a mesh.
+    InclusionMesh => "inclusion mesh",
+    /// The score a sweep maps.
+    SweepScore => "sweep score",
+    /// A sweep's second axis.
+    SweepYAxis => "sweep y axis",
+    /// A sweep's grid (both axes).
+    SweepGrid => "sweep grid",
+    /// A run's folder.
+    RunFolder => "run folder",
+    /// A grid's first axis.
+    FirstAxis => "first axis",
+    /// A grid's axes.
+    GridAxes => "grid axes",
+    /// The point a slice of a grid is taken at.
+    SlicePoint => "slice point",
+    /// The axes of a map of a grid.
+    MapAxes => "map axes",
+    /// The folder a shard writes.
+    ShardFolder => "shard folder",
+    /// Which shard of a sweep a run is.
+    Shard => "shard",
+    /// A batch's lines of output.
+    BatchOutput => "batch output",
+    /// A score's JSON document.
+    ScoreDocument => "score document",
+    /// The file a command writes (a picture, a page, a cut).
+    Output => "output",
+    /// The JSON document written beside the output or the printed table.
+    JsonOutput => "json output",
+    /// A photograph's linear radiance (OpenEXR or Radiance HDR).
+    HdrOutput => "hdr output",
+    /// The folder of a trace's charts.
+    PlotsFolder => "plots folder",
+    /// Replacing existing files.
+    Force => "force",
+    /// A laboratory picture rocked back and forth (an animated PNG).
+    PictureRock => "picture rock",
+    /// A photograph's turntable animation (an animated PNG or GIF).
+    PictureTurn => "picture turn",
+    /// A cut's parameter or a design's tier, `KEY=VALUE`.
+    CutParameter => "cut parameter",
+    /// A picture's light (a laboratory light, a photographic rig, `studio` or `env:FILE`).
+    PictureLight => "picture light",
+    /// A picture's pixels per side.
+    PictureSize => "picture size",
+    /// The stone's tilt, `DEG[@AZ]`.
+    PictureTilt => "picture tilt",
+    /// A laboratory picture's head shadow, degrees.
+    PictureHeadShadow => "picture head-shadow",
+    /// A picture's brightness factor.
+    PictureExposure => "picture exposure",
+    /// A photograph's camera direction, `ELEV[@AZ]`.
+    PictureView => "picture view",
+    /// A photograph's camera distance, mm.
+    PictureDistance => "picture distance",
+    /// A photograph's entrance pupil, mm (0: a pinhole).
+    PictureAperture => "picture aperture",
+    /// A photograph's ground.
+    PictureGround => "picture ground",
+    /// A photograph's gap under the stone, girdle diameters.
+    PictureGroundGap => "picture ground-gap",
+    /// A photograph's light turned about the vertical, degrees.
+    PictureLightRotation => "picture light-rotation",
+    /// A photograph's tone curve.
+    PictureTone => "picture tone",
+    /// A photograph's wavelength bands.
+    PictureBands => "picture bands",
+    /// The stone's width, mm (checked by a photograph against its camera distance).
+    PictureDiameter => "picture diameter-mm",
+}
+
+impl Setting {
+    /// The setting named `name` ([`Setting::name`]).
+    pub fn from_name(name: &str) -> Option<Setting> {
+        Setting::ALL.iter().copied().find(|s| s.name() == name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_setting_is_listed_once_by_a_name_of_its_own() {
+        for (i, &s) in Setting::ALL.iter().enumerate() {
+            assert_eq!(s as usize, i, "{s:?}");
+            assert!(
+                Setting::ALL[..i].iter().all(|o| o.name() != s.name()),
+                "{s:?}"
+            );
+            assert_eq!(Setting::from_name(s.name()), Some(s));
+            assert!(!s.name().starts_with('-') && s.name() == s.name().trim());
+        }
+        assert_eq!(Setting::from_name("no such setting"), None);
+    }
+}

@@ -3,4 +3,5 @@
 
 mod cli;
 mod layout;
+mod names;
 mod readme;

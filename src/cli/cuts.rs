@@ -185,15 +185,7 @@ pub(crate) fn weight_material(chosen: Option<Material>, cut: &Cut) -> Result<Mat
 
 /// `facetlab info`.
 pub fn info(a: &InfoArgs) -> Result<()> {
-    if !(a.diameter_mm.is_finite() && a.diameter_mm > 0.0 && a.diameter_mm < 1000.0) {
-        return Err(Error::invalid(
-            "--diameter-mm",
-            format!(
-                "{} is not allowed; give a diameter in (0, 1000) mm",
-                facetlab::error::shown(a.diameter_mm)
-            ),
-        ));
-    }
+    facetlab::optics::StoneSize::check_mm(a.diameter_mm, "--diameter-mm")?;
     if !(a.meet_tol.is_finite() && a.meet_tol > 0.0 && a.meet_tol <= 0.01) {
         return Err(Error::invalid(
             "--meet-tol",

@@ -1,7 +1,7 @@
 //! Parsing of flag values shared by the subcommands; every error is one line naming the flag
 //! and what is allowed.
 
-use facetlab::error::{Error, Result};
+use facetlab::error::{Error, Result, Setting};
 use facetlab::metrics::{CrystalChoice, NoteKind, StoneChoice, StoneFields};
 use facetlab::optics::{
     ColourFields, CrystalFields, Material, MaterialFields, OpticAxis, StoneSize, DENSITY_MAX,
@@ -11,62 +11,61 @@ use facetlab::sweep::{Shard, SweepScore};
 pub use facetlab::io::text::{count, number};
 pub use facetlab::metrics::stones::on_off;
 
-/// The one table from the library's names of settings (the field its errors name) to the
-/// flag a user types for each: the library speaks of a `trace depth`, the command line of
-/// `--depth`. Every error leaving a command passes through [`to_flags`].
-pub const FLAGS: &[(&str, &str)] = &[
-    ("light angle", "--angle"),
-    ("photon count", "--photons"),
-    ("trace depth", "--depth"),
-    ("absorption model", "--absorption"),
-    ("fixed wavelength", "--spectrum"),
-    ("refractive index", "--ri"),
-    ("material", "--material"),
-    ("rough size", "--size-mm"),
-    ("inclusion mesh", "--inclusion"),
-    ("sweep score", "--score"),
-    ("sweep y axis", "--y"),
-    ("sweep grid", "--x/--y"),
-    ("run folder", "--run"),
-    ("first axis", "--x"),
-    ("grid axes", "--axis"),
-    ("slice point", "--at"),
-    ("map axes", "--map"),
-    ("shard folder", "--out"),
-    ("batch output", "--jsonl"),
-    ("score document", "--json"),
-    ("shard", "--shard"),
-    // A command's outputs (facetlab::io::guard::setting).
-    ("output", "-o"),
-    ("json output", "--json"),
-    ("hdr output", "--hdr-out"),
-    ("plots folder", "--plots"),
-    ("force", "--force"),
-    ("picture rock", "--rock"),
-    ("picture turn", "--turn"),
-    // A cut's parameter or a design's tier, `KEY=VALUE` (info's text).
-    ("cut parameter", "--set"),
-    // A picture's settings (render's and photo's options), which the library names by the
-    // picture's own words; [`picture_to_flags`] looks them up as `picture FIELD`.
-    ("picture light", "--light"),
-    ("picture exposure", "--exposure"),
-    ("picture ground", "--ground"),
-    ("picture tone", "--tone"),
-    ("picture size", "--size"),
-    ("picture tilt", "--tilt"),
-    ("picture head-shadow", "--head-shadow"),
-    ("picture bands", "--bands"),
-    ("picture view", "--view"),
-    ("picture ground-gap", "--ground-gap"),
-    ("picture light-rotation", "--light-rotation"),
-    ("picture distance", "--distance"),
-    ("picture aperture", "--aperture"),
-    ("picture diameter-mm", "--diameter-mm"),
-];
+/// The flag a user types for each of the library's settings ([`Setting`], named by the field
+/// its errors give): the library speaks of a `trace depth`, the command line of `--depth`. A
+/// `match` with no wildcard: a setting the library adds without a flag here does not compile.
+/// Every error leaving a command passes through [`to_flags`].
+pub const fn flag(s: Setting) -> &'static str {
+    match s {
+        Setting::LightAngle => "--angle",
+        Setting::PhotonCount => "--photons",
+        Setting::TraceDepth => "--depth",
+        Setting::AbsorptionModel => "--absorption",
+        Setting::FixedWavelength => "--spectrum",
+        Setting::RefractiveIndex => "--ri",
+        Setting::Material => "--material",
+        Setting::RoughSize => "--size-mm",
+        Setting::InclusionMesh => "--inclusion",
+        Setting::SweepScore => "--score",
+        Setting::SweepYAxis => "--y",
+        Setting::SweepGrid => "--x/--y",
+        Setting::RunFolder => "--run",
+        Setting::FirstAxis => "--x",
+        Setting::GridAxes => "--axis",
+        Setting::SlicePoint => "--at",
+        Setting::MapAxes => "--map",
+        Setting::ShardFolder => "--out",
+        Setting::Shard => "--shard",
+        Setting::BatchOutput => "--jsonl",
+        Setting::ScoreDocument => "--json",
+        Setting::Output => "-o",
+        Setting::JsonOutput => "--json",
+        Setting::HdrOutput => "--hdr-out",
+        Setting::PlotsFolder => "--plots",
+        Setting::Force => "--force",
+        Setting::PictureRock => "--rock",
+        Setting::PictureTurn => "--turn",
+        Setting::CutParameter => "--set",
+        Setting::PictureLight => "--light",
+        Setting::PictureSize => "--size",
+        Setting::PictureTilt => "--tilt",
+        Setting::PictureHeadShadow => "--head-shadow",
+        Setting::PictureExposure => "--exposure",
+        Setting::PictureView => "--view",
+        Setting::PictureDistance => "--distance",
+        Setting::PictureAperture => "--aperture",
+        Setting::PictureGround => "--ground",
+        Setting::PictureGroundGap => "--ground-gap",
+        Setting::PictureLightRotation => "--light-rotation",
+        Setting::PictureTone => "--tone",
+        Setting::PictureBands => "--bands",
+        Setting::PictureDiameter => "--diameter-mm",
+    }
+}
 
-/// The flag that sets the library's setting `name` ([`FLAGS`]).
+/// The flag that sets the library's setting `name` ([`flag`]).
 pub fn flag_of(name: &str) -> Option<&'static str> {
-    FLAGS.iter().find(|(n, _)| *n == name).map(|(_, f)| *f)
+    Setting::from_name(name).map(flag)
 }
 
 /// Settings the library names inside its text that the command line gives by a whole
@@ -77,7 +76,7 @@ const COMMANDS: &[(&str, &str)] = &[(
 )];
 
 /// How the command line spells the setting `name` named inside a message or note
-/// ([`facetlab::error::setting`]): its flag ([`FLAGS`]), or the command that gives it.
+/// ([`facetlab::error::setting`]): its flag ([`flag`]), or the command that gives it.
 pub fn spelling(name: &str) -> Option<String> {
     flag_of(name)
         .or_else(|| COMMANDS.iter().find(|(n, _)| *n == name).map(|(_, c)| *c))
@@ -90,7 +89,7 @@ pub fn spelled(text: &str) -> String {
     facetlab::error::spell_settings(text, &spelling)
 }
 
-/// `e` as the command line says it: a field the library names by its setting ([`FLAGS`])
+/// `e` as the command line says it: a field the library names by its setting ([`flag`])
 /// named by its flag instead (and so every setting its message names,
 /// [`facetlab::error::setting`]), also behind a context the library put in front (`stone: trace
 /// depth`) when the name is one of the library's phrases (several words: a config key, one
@@ -125,7 +124,7 @@ pub fn to_flags(e: Error) -> Error {
 }
 
 /// `e` from a picture's `validate` (render's and photo's options) as the command line says it:
-/// its field, one of the picture's own words (`view`, `distance`), looked up in [`FLAGS`] as
+/// its field, one of the picture's own words (`view`, `distance`), looked up in [`flag`] as
 /// `picture FIELD`; its material by the setting `material` names ([`MaterialArgs::setting`]).
 /// A field no flag sets (the tile, the ground's cells) stays as the library names it.
 pub fn picture_to_flags(e: Error, material: &MaterialArgs) -> Error {
@@ -263,7 +262,7 @@ impl MaterialArgs {
         self.ri.is_some() || self.material.is_some()
     }
 
-    /// The setting that chose it, as [`FLAGS`] names it: `refractive index` (`--ri`) over
+    /// The setting that chose it, as [`flag`] names it: `refractive index` (`--ri`) over
     /// `material` (`--material`).
     pub fn setting(&self) -> &'static str {
         if self.ri.is_some() {
@@ -472,9 +471,9 @@ mod tests {
                     .map(|c| format!("-{c}")),
             )
             .collect();
-        for (i, (name, flag)) in FLAGS.iter().enumerate() {
-            assert!(FLAGS[..i].iter().all(|(n, _)| n != name), "{name} twice");
-            for f in flag.split('/') {
+        for &s in Setting::ALL {
+            let name = s.name();
+            for f in flag(s).split('/') {
                 assert!(longs.contains(f), "{name}: {f} is no flag of any command");
             }
         }

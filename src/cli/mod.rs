@@ -104,7 +104,8 @@ pub enum Command {
     /// Draw cuts as a cutter sees them: one PNG, side by side, statistics below each.
     ///
     /// Lights: iso or cos (GemRay), aset and idealscope false colours (with a legend), the
-    /// hearts & arrows viewer, or fire under spot lights. Face-up, tilted (--tilt 10@45) or
+    /// hearts & arrows viewer, fire under spot lights, or a photograph under a studio rig or an
+    /// environment map (every name: --light in `facetlab render --help`). Face-up, tilted (--tilt 10@45) or
     /// rocking as an animated PNG (--rock 15:24). --json writes the statistics.
     Render(Box<render::RenderArgs>),
     /// The cutter's workbench in the browser: a local web server with one page (presets and

@@ -89,13 +89,7 @@ pub struct PlanArgs {
 
 /// The value parser of `--size-mm`: the rough's largest extent.
 fn size_flag(s: &str) -> Result<f64> {
-    facetlab::io::text::number(
-        "--size-mm",
-        s,
-        1e-3,
-        500.0,
-        "the rough's largest extent in mm",
-    )
+    facetlab::plan::parse_rough_size_mm("--size-mm", s)
 }
 
 /// Run `facetlab plan`. Exits 130 when Ctrl-C or SIGTERM stopped it (after writing the

@@ -106,7 +106,7 @@ pub fn run(a: &ReportArgs) -> Result<()> {
         ..ScoreConfig::default()
     };
     // With the default settings only the material can be at fault: the error names it, and
-    // FLAGS names its flag as the error leaves the command.
+    // flags::flag names its flag as the error leaves the command.
     score.validate().map_err(|e| match e {
         Error::Invalid { message, .. } => Error::invalid("material", message),
         other => other,

@@ -70,15 +70,7 @@ pub fn run(a: &SheetArgs) -> Result<()> {
         ));
     }
     if let Some(d) = a.diameter_mm {
-        if !(d.is_finite() && d > 0.0 && d < 1000.0) {
-            return Err(Error::invalid(
-                "--diameter-mm",
-                format!(
-                    "{} is not allowed; give a width in (0, 1000) mm",
-                    facetlab::error::shown(d)
-                ),
-            ));
-        }
+        facetlab::optics::StoneSize::check_mm(d, "--diameter-mm")?;
     }
     refuse_overwrite(
         &[(setting::OUTPUT, a.output.clone())],

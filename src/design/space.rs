@@ -598,7 +598,7 @@ impl DesignSpace {
 /// The setting that sets a cut's parameter or turns a design's tier (`KEY=VALUE`), named in
 /// the errors of [`with_set`] and in `info`'s text, for each face to spell
 /// ([`crate::error::setting`]).
-pub const CUT_PARAMETER: &str = "cut parameter";
+pub const CUT_PARAMETER: &str = crate::error::Setting::CutParameter.name();
 
 /// `cut` with `changes` applied: a family cut's parameters, or a design's tier angles (by
 /// [`DesignSpace`], refusing angles that open a meet). The `--set KEY=VALUE` of the command

@@ -84,19 +84,19 @@ pub fn check_folder_of(path: &Path) -> Result<()> {
 /// way (the command line: `-o`, `--json`, `--hdr-out`, `--plots`, `--force`).
 pub mod setting {
     /// The file a command writes (a picture, a page, a cut).
-    pub const OUTPUT: &str = "output";
+    pub const OUTPUT: &str = crate::error::Setting::Output.name();
     /// The JSON document written beside the output or the printed table.
-    pub const JSON: &str = "json output";
+    pub const JSON: &str = crate::error::Setting::JsonOutput.name();
     /// A photograph's linear radiance (OpenEXR or Radiance HDR).
-    pub const HDR: &str = "hdr output";
+    pub const HDR: &str = crate::error::Setting::HdrOutput.name();
     /// The folder of a trace's charts.
-    pub const PLOTS: &str = "plots folder";
+    pub const PLOTS: &str = crate::error::Setting::PlotsFolder.name();
     /// Replacing existing files.
-    pub const FORCE: &str = "force";
+    pub const FORCE: &str = crate::error::Setting::Force.name();
     /// A laboratory picture rocked back and forth (an animated PNG).
-    pub const ROCK: &str = "picture rock";
+    pub const ROCK: &str = crate::error::Setting::PictureRock.name();
     /// A photograph's turntable animation (an animated PNG or GIF).
-    pub const TURN: &str = "picture turn";
+    pub const TURN: &str = crate::error::Setting::PictureTurn.name();
 }
 
 /// The CUT arguments that are files (a preset's name is none), as the inputs an output must

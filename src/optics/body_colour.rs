@@ -464,16 +464,36 @@ impl StoneSize {
     /// The width of a stone whose size is not given, mm.
     pub const DEFAULT_WIDTH_MM: f64 = 6.5;
 
+    /// A stone's sizes (a width, a length, a diameter) are below this, mm; every face checks
+    /// them by [`StoneSize::check_mm`] (a length by [`StoneSize::parse_length`]).
+    pub const MAX_MM: f64 = 1000.0;
+
+    /// A stone's width `w` in (0, [`StoneSize::MAX_MM`]) mm; the one-line error names `field`.
+    pub fn check_mm(w: f64, field: &str) -> Result<f64> {
+        if w.is_finite() && w > 0.0 && w < StoneSize::MAX_MM {
+            Ok(w)
+        } else {
+            Err(Error::invalid(
+                field,
+                format!(
+                    "{} is not allowed; give a width in (0, {}) mm",
+                    shown(w),
+                    StoneSize::MAX_MM
+                ),
+            ))
+        }
+    }
+
     /// `L` or `LxW` in mm (`--size-mm`); errors name `field`.
     pub fn parse_length(text: &str, field: &str) -> Result<StoneSize> {
         let bad = |why: String| Error::invalid(field, format!("`{text}` {why}"));
         let num = |t: &str| -> Result<f64> {
             match t.trim().parse::<f64>() {
-                Ok(v) if v.is_finite() && v > 0.0 && v < 1000.0 => Ok(v),
-                _ => Err(bad(
-                    "is not allowed; give L or LxW in millimetres, each in (0, 1000), e.g. 10x5"
-                        .into(),
-                )),
+                Ok(v) if v.is_finite() && v > 0.0 && v < StoneSize::MAX_MM => Ok(v),
+                _ => Err(bad(format!(
+                    "is not allowed; give L or LxW in millimetres, each in (0, {}), e.g. 10x5",
+                    StoneSize::MAX_MM
+                ))),
             }
         };
         let lower = text.to_ascii_lowercase();
@@ -485,14 +505,7 @@ impl StoneSize {
 
     /// A width in mm (`--diameter-mm`); errors name `field`.
     pub fn width(w: f64, field: &str) -> Result<StoneSize> {
-        if w.is_finite() && w > 0.0 && w < 1000.0 {
-            Ok(StoneSize::Width(w))
-        } else {
-            Err(Error::invalid(
-                field,
-                format!("{} is not allowed; give a width in (0, 1000) mm", shown(w)),
-            ))
-        }
+        StoneSize::check_mm(w, field).map(StoneSize::Width)
     }
 
     /// The width W in mm of a design whose length/width is `l_w`; errors name `field` when

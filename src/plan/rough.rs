@@ -19,9 +19,39 @@ const BALL_PLANES: usize = 192;
 /// unless `--size-mm` is given.
 pub const PLAUSIBLE_MM: [f64; 2] = [0.3, 300.0];
 
-/// Coordinates must stay within this distance of the origin (mm); the solids are built inside
-/// a box of ±1000.
-const REACH_MM: f64 = 500.0;
+/// The largest rough, mm: its largest extent (a crystal form's, a mesh's `--size-mm`) and every
+/// coordinate's distance from the origin stay within it (the solids are built inside a box of
+/// ±1000). Every face checks a rough's size by [`rough_size_mm`].
+pub const ROUGH_MAX_MM: f64 = 500.0;
+
+/// A rough's largest extent `size_mm`, in (0, [`ROUGH_MAX_MM`]] mm; the one-line error names
+/// `field`.
+pub fn rough_size_mm(field: &str, size_mm: f64) -> Result<f64> {
+    if size_mm.is_finite() && size_mm > 0.0 && size_mm <= ROUGH_MAX_MM {
+        Ok(size_mm)
+    } else {
+        Err(Error::invalid(
+            field,
+            format!(
+                "{} is not allowed; give the rough's largest extent in (0, {ROUGH_MAX_MM}] mm",
+                shown(size_mm)
+            ),
+        ))
+    }
+}
+
+/// [`rough_size_mm`] of a text (a face's number as typed, quoted in the error when it is none).
+pub fn parse_rough_size_mm(field: &str, text: &str) -> Result<f64> {
+    match text.trim().parse::<f64>() {
+        Ok(x) => rough_size_mm(field, x),
+        Err(_) => Err(Error::invalid(
+            field,
+            format!(
+                "`{text}` is not allowed; give the rough's largest extent in (0, {ROUGH_MAX_MM}] mm"
+            ),
+        )),
+    }
+}
 
 /// The most vertices a rough's hull keeps. A scan's hull has nearly every vertex of its mesh
 /// (200,000 for a mesh of 400,000 triangles); beyond this many the hull is grown greedily,
@@ -90,10 +120,10 @@ impl Rough {
             .iter()
             .map(|p| p.abs().max_element())
             .fold(0.0, f64::max);
-        if far > REACH_MM {
+        if far > ROUGH_MAX_MM {
             return Err(Error::invalid(
                 name,
-                format!("the rough reaches {far:.1} mm from the origin; allowed up to {REACH_MM} mm (move it nearer the origin)"),
+                format!("the rough reaches {far:.1} mm from the origin; allowed up to {ROUGH_MAX_MM} mm (move it nearer the origin)"),
             ));
         }
         // Rounding can leave the planes of nearly coplanar facets meeting in a knot of
@@ -238,15 +268,7 @@ impl Rough {
     /// rhombic dodecahedron, the cube, and a macle (a spinel-law twin: an octahedron flattened
     /// to a third of its height along a three-fold axis, that axis turned to z).
     pub fn crystal(form: &str, size_mm: f64) -> Result<Rough> {
-        if !(size_mm.is_finite() && size_mm > 0.0 && size_mm <= REACH_MM) {
-            return Err(Error::invalid(
-                "rough size",
-                format!(
-                    "{} is not a crystal size; allowed (0, {REACH_MM}] mm",
-                    shown(size_mm)
-                ),
-            ));
-        }
+        rough_size_mm("rough size", size_mm)?;
         if form == "sphere" {
             return Rough::ball(size_mm);
         }
@@ -462,4 +484,42 @@ pub fn load_rough(arg: &str, size_mm: Option<f64>) -> Result<Rough> {
         return Rough::crystal(arg, size_mm.unwrap_or(1.0));
     }
     Rough::from_mesh(path, size_mm)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_rough_size_is_in_its_one_range_and_the_crystal_forms_keep_it() {
+        assert_eq!(rough_size_mm("size", ROUGH_MAX_MM).unwrap(), ROUGH_MAX_MM);
+        assert_eq!(parse_rough_size_mm("size", " 1e-4 ").unwrap(), 1e-4);
+        for x in [
+            0.0,
+            -1.0,
+            ROUGH_MAX_MM * (1.0 + 1e-12),
+            f64::NAN,
+            f64::INFINITY,
+        ] {
+            let e = rough_size_mm("size", x).unwrap_err().to_string();
+            assert_eq!(
+                e,
+                format!(
+                    "size: {} is not allowed; give the rough's largest extent in (0, 500] mm",
+                    shown(x)
+                )
+            );
+        }
+        let e = parse_rough_size_mm("size", "big").unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "size: `big` is not allowed; give the rough's largest extent in (0, 500] mm"
+        );
+        // A crystal form at the largest size is built, and measures it; one beyond is refused
+        // by the same check.
+        let r = Rough::crystal("cube", ROUGH_MAX_MM).unwrap();
+        assert!((r.size() - ROUGH_MAX_MM).abs() < 1e-9 * ROUGH_MAX_MM);
+        let e = Rough::crystal("cube", 600.0).unwrap_err().to_string();
+        assert!(e.starts_with("rough size: 600 is not allowed"), "{e}");
+    }
 }

@@ -198,15 +198,7 @@ impl PyCut {
     ) -> PyResult<Bound<'py, PyAny>> {
         let cut = &self.cut;
         let text = run(py, || {
-            if !(diameter_mm.is_finite() && diameter_mm > 0.0 && diameter_mm < 1000.0) {
-                return Err(Error::invalid(
-                    "diameter_mm",
-                    format!(
-                        "{} is not allowed; give a diameter in (0, 1000) mm",
-                        crate::error::shown(diameter_mm)
-                    ),
-                ));
-            }
+            crate::optics::StoneSize::check_mm(diameter_mm, "diameter_mm")?;
             if !(meet_tol.is_finite() && meet_tol > 0.0 && meet_tol <= 0.01) {
                 return Err(Error::invalid(
                     "meet_tol",

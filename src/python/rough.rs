@@ -97,15 +97,7 @@ fn plan<'py>(
         }
         let material = Material::by_name(&cfg.material)?;
         if let Some(s) = size_mm {
-            if !(s.is_finite() && s > 0.0 && s < 1000.0) {
-                return Err(Error::invalid(
-                    "size_mm",
-                    format!(
-                        "{} is not allowed; give the rough's largest extent in (0, 1000) mm",
-                        crate::error::shown(s)
-                    ),
-                ));
-            }
+            crate::plan::rough_size_mm("size_mm", s)?;
         }
         if let Some(n) = stones {
             cfg.stones = n as usize;

@@ -99,6 +99,45 @@ impl Light {
         }
     }
 
+    /// A short title for menus ([`crate::render::lights`]).
+    pub fn label(self) -> &'static str {
+        match self {
+            Light::Iso => "ISO (uniform sky)",
+            Light::Cos => "COS (cosine sky)",
+            Light::Aset => "ASET",
+            Light::IdealScope => "IdealScope",
+            Light::Hearts => "Hearts (face down)",
+            Light::Arrows => "Arrows (face up)",
+            Light::Fire => "Fire (spot lights)",
+        }
+    }
+
+    /// What it is, in a few words, for help texts ([`crate::render::lights`]).
+    pub fn about(self) -> &'static str {
+        match self {
+            Light::Iso => "uniform sky",
+            Light::Cos => "cosine sky",
+            Light::Aset => "false colour by the elevation the light comes from",
+            Light::IdealScope => "red returned, white leak",
+            Light::Hearts => "face-down in the hearts & arrows viewer",
+            Light::Arrows => "face-up in it",
+            Light::Fire => "spectral, under spot lights",
+        }
+    }
+
+    /// The exposure a picture under it is best first shown at: the ISO sky returns ~0.9 of a
+    /// white diffuser from a good stone, so at 1 its picture is nearly white and the contrast
+    /// is hard to see; the fire picture is dark flashes on black. `None` for the false colours,
+    /// which take no exposure.
+    pub fn first_exposure(self) -> Option<f64> {
+        match self {
+            Light::Iso => Some(0.7),
+            Light::Cos | Light::Hearts | Light::Arrows => Some(1.0),
+            Light::Fire => Some(1.5),
+            Light::Aset | Light::IdealScope => None,
+        }
+    }
+
     /// The light called `name` (as [`Light::name`] gives it).
     pub fn parse(name: &str) -> Result<Light> {
         Light::ALL

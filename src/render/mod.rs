@@ -33,6 +33,7 @@ mod image;
 mod layer;
 mod light;
 pub mod lighting;
+pub mod lights;
 mod options;
 pub mod photo;
 pub mod pose;

@@ -13,7 +13,7 @@
 //! setting inside a message too ([`crate::error::setting`]), for each face to spell as it
 //! spells it: the command line's flag (`--view`), Python's keyword argument (`view`).
 
-use crate::error::{setting, Error, Result};
+use crate::error::{setting, Error, Result, Setting};
 use crate::io::text::{count, number};
 use crate::optics::{Material, StoneSize};
 use crate::render::photo::{turntable, Ground, GroundKind, PhotoLight, PhotoOptions, Tone, View};
@@ -83,33 +83,33 @@ impl LightChoice {
 }
 
 /// The light (a laboratory light, a photographic rig, `studio` or `env:FILE`).
-pub const LIGHT: &str = "picture light";
+pub const LIGHT: &str = Setting::PictureLight.name();
 /// Pixels per side.
-pub const SIZE: &str = "picture size";
+pub const SIZE: &str = Setting::PictureSize.name();
 /// The stone's tilt, `DEG[@AZ]`.
-pub const TILT: &str = "picture tilt";
+pub const TILT: &str = Setting::PictureTilt.name();
 /// A laboratory picture's head shadow, degrees.
-pub const HEAD_SHADOW: &str = "picture head-shadow";
+pub const HEAD_SHADOW: &str = Setting::PictureHeadShadow.name();
 /// Brightness factor.
-pub const EXPOSURE: &str = "picture exposure";
+pub const EXPOSURE: &str = Setting::PictureExposure.name();
 /// A photograph's camera direction, `ELEV[@AZ]`.
-pub const VIEW: &str = "picture view";
+pub const VIEW: &str = Setting::PictureView.name();
 /// A photograph's camera distance, mm.
-pub const DISTANCE: &str = "picture distance";
+pub const DISTANCE: &str = Setting::PictureDistance.name();
 /// A photograph's entrance pupil, mm (0: a pinhole).
-pub const APERTURE: &str = "picture aperture";
+pub const APERTURE: &str = Setting::PictureAperture.name();
 /// A photograph's ground.
-pub const GROUND: &str = "picture ground";
+pub const GROUND: &str = Setting::PictureGround.name();
 /// A photograph's gap under the stone, girdle diameters.
-pub const GROUND_GAP: &str = "picture ground-gap";
+pub const GROUND_GAP: &str = Setting::PictureGroundGap.name();
 /// A photograph's light turned about the vertical, degrees.
-pub const LIGHT_ROTATION: &str = "picture light-rotation";
+pub const LIGHT_ROTATION: &str = Setting::PictureLightRotation.name();
 /// A photograph's tone curve.
-pub const TONE: &str = "picture tone";
+pub const TONE: &str = Setting::PictureTone.name();
 /// A photograph's wavelength bands.
-pub const BANDS: &str = "picture bands";
+pub const BANDS: &str = Setting::PictureBands.name();
 /// The stone's width, mm (checked by a photograph against its camera distance).
-pub const DIAMETER: &str = "picture diameter-mm";
+pub const DIAMETER: &str = Setting::PictureDiameter.name();
 
 /// Every setting a picture's errors name, for the faces' tables of their spellings.
 pub const SETTINGS: [&str; 14] = [

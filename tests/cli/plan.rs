@@ -244,6 +244,12 @@ fn bad_roughs_are_one_line_and_write_nothing() {
         &["plan", "cube", "--size-mm", "-5", "-o", "out"],
         &["--size-mm"],
     );
+    // The library's one range of a rough's size (the web page's and Python's too).
+    bad(
+        p,
+        &["plan", "cube", "--size-mm", "600", "-o", "out"],
+        &["--size-mm: 600 is not allowed; give the rough's largest extent in (0, 500] mm"],
+    );
     let closed = tetra(p, "closed.obj", 5.0, false);
     bad(p, &["plan", &closed, "-o", &closed], &["--out"]);
     let mut left = files(p);

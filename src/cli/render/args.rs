@@ -6,6 +6,12 @@ use facetlab::render::pose::{parse_rock, parse_tilt};
 use facetlab::render::settings::{self as picture, LightChoice};
 use facetlab::render::Tilt;
 use std::path::PathBuf;
+use std::sync::LazyLock;
+
+/// `--light`'s values, from the library's table ([`facetlab::render::lights`]).
+static LIGHT_VALUES: LazyLock<String> = LazyLock::new(facetlab::render::lights::values);
+/// `--light`'s help, from the same table.
+static LIGHT_HELP: LazyLock<String> = LazyLock::new(facetlab::render::lights::help);
 
 /// Flags of `facetlab render`.
 #[derive(clap::Args, Debug, Clone)]
@@ -14,17 +20,12 @@ pub struct RenderArgs {
     /// files.
     #[arg(required = true, value_name = "CUT")]
     pub cuts: Vec<String>,
-    /// Lighting: iso (uniform sky), cos (cosine sky), aset (false colour by the elevation the
-    /// light comes from), idealscope (red returned, white leak), hearts (face-down in the
-    /// hearts & arrows viewer), arrows (face-up in it), fire (spectral, under spot lights);
-    /// or a photograph under a studio rig: tent (light box with a spark light), darkfield
-    /// (point lights on black), daylight (sky and sun), office (ceiling panels), ring (ring
-    /// light round the lens), studio (the bundled procedural environment map), or
-    /// env:FILE (your equirectangular .hdr or .exr environment map).
+    // Its values and help come from the library's one table of lights (a new rig adds itself).
     #[arg(
         long,
         default_value = "iso",
-        value_name = "iso|cos|aset|idealscope|hearts|arrows|fire|tent|darkfield|daylight|office|ring|studio|env:FILE",
+        value_name = LIGHT_VALUES.as_str(),
+        help = LIGHT_HELP.as_str(),
         value_parser = flags::parsed("--light", LightChoice::parse)
     )]
     // A laboratory light or a photograph's, read once (an env:FILE map with it); its refusal

@@ -3,7 +3,7 @@
 
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
-use facetlab::error::Error;
+use facetlab::error::{Error, Setting};
 use serde_json::json;
 
 /// An API error: a status and a one-line message naming the field.
@@ -83,35 +83,71 @@ impl ApiError {
     }
 }
 
-/// The request's field for each picture setting the library's render and photo options name
-/// in their errors ([`ApiError::from_picture`]): the one table of the web page, as `FLAGS` is
-/// the command line's. A setting the request cannot send keeps the library's name.
-pub const PICTURE_FIELDS: &[(&str, &str)] = &[
-    ("light", "light"),
-    ("exposure", "exposure"),
-    ("head-shadow", "head_shadow"),
-    ("ground", "ground"),
-    ("size", "size"),
-    ("tilt", "tilt"),
-    ("view", "view"),
-    ("light-rotation", "light_rotation"),
-    ("aperture", "aperture"),
-    ("material", "material"),
-];
+/// The request's field for each of the library's settings ([`Setting`], named by the field its
+/// errors give; [`ApiError::from_picture`]): the web page's spellings, as `flags::flag` is the
+/// command line's. A `match` with no wildcard, so a setting the library adds must be placed
+/// here; `None`: no request sends it (its error keeps the library's name).
+pub const fn field(s: Setting) -> Option<&'static str> {
+    match s {
+        Setting::Material => Some("material"),
+        Setting::RoughSize => Some("size_mm"),
+        Setting::InclusionMesh => Some("inclusions"),
+        Setting::PictureLight => Some("light"),
+        Setting::PictureSize => Some("size"),
+        Setting::PictureTilt => Some("tilt"),
+        Setting::PictureHeadShadow => Some("head_shadow"),
+        Setting::PictureExposure => Some("exposure"),
+        Setting::PictureView => Some("view"),
+        Setting::PictureAperture => Some("aperture"),
+        Setting::PictureGround => Some("ground"),
+        Setting::PictureLightRotation => Some("light_rotation"),
+        Setting::LightAngle
+        | Setting::PhotonCount
+        | Setting::TraceDepth
+        | Setting::AbsorptionModel
+        | Setting::FixedWavelength
+        | Setting::RefractiveIndex
+        | Setting::SweepScore
+        | Setting::SweepYAxis
+        | Setting::SweepGrid
+        | Setting::RunFolder
+        | Setting::FirstAxis
+        | Setting::GridAxes
+        | Setting::SlicePoint
+        | Setting::MapAxes
+        | Setting::ShardFolder
+        | Setting::Shard
+        | Setting::BatchOutput
+        | Setting::ScoreDocument
+        | Setting::Output
+        | Setting::JsonOutput
+        | Setting::HdrOutput
+        | Setting::PlotsFolder
+        | Setting::Force
+        | Setting::PictureRock
+        | Setting::PictureTurn
+        | Setting::CutParameter
+        | Setting::PictureDistance
+        | Setting::PictureGroundGap
+        | Setting::PictureTone
+        | Setting::PictureBands
+        | Setting::PictureDiameter => None,
+    }
+}
 
 impl ApiError {
     /// A render's or a photograph's option refused by the library (its `validate`): a 400
-    /// naming the request's field ([`PICTURE_FIELDS`]); any other error about `render`.
+    /// naming the request's field ([`field`]); any other error about `render`.
     pub fn from_picture(e: Error) -> Self {
         match e {
             Error::Invalid { field, message } => {
                 // The library's picture settings are named `picture FIELD`; its options' by
                 // the field alone.
-                let word = field.strip_prefix("picture ").unwrap_or(&field);
-                let field = PICTURE_FIELDS
-                    .iter()
-                    .find(|(setting, _)| *setting == word)
-                    .map_or(field.clone(), |(_, f)| f.to_string());
+                let setting = Setting::from_name(&field)
+                    .or_else(|| Setting::from_name(&format!("picture {field}")));
+                let field = setting
+                    .and_then(self::field)
+                    .map_or(field.clone(), str::to_string);
                 Self::bad(field, message)
             }
             other => Self::bad("render", other.to_string()),

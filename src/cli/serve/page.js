@@ -33,19 +33,16 @@ const PROP_ROWS = [
   ['total_depth', 'Total depth', '%'],
   ['girdle', 'Girdle', '%'],
 ];
-const LIGHT_NAMES = {
-  iso: 'ISO (uniform sky)', cos: 'COS (cosine sky)', aset: 'ASET', fire: 'Fire (spot lights)',
-  idealscope: 'IdealScope', hearts: 'Hearts (face down)', arrows: 'Arrows (face up)',
-  tent: 'Photo: light tent', darkfield: 'Photo: dark-field', daylight: 'Photo: daylight',
-  office: 'Photo: office', ring: 'Photo: ring light', studio: 'Photo: studio map',
-};
-// Photographic lights (a camera under a studio rig): filled from /api/presets.
-let PHOTO_LIGHTS = [];
-const isPhoto = (l) => PHOTO_LIGHTS.includes(l);
-// Exposure each light starts with (the slider changes it): the ISO sky returns ~0.9 of a white
-// diffuser from a good stone, so at 1 the picture is nearly white and its contrast pattern is
-// hard to see; the fire picture is dark flashes on black. False-colour lights ignore exposure.
-const LIGHT_EXPOSURE = { iso: 0.7, cos: 1, fire: 1.5, hearts: 1, arrows: 1, tent: 0.8, darkfield: 1, daylight: 0.5, office: 1, ring: 1.2, studio: 1 };
+// The lights, from /api/presets' `light_table` (the library's one table): each one's menu
+// title, whether it is a photograph's (a camera under a studio rig), the exposure it is first
+// shown at (null: a false colour, which takes none) and its default head shadow.
+let LIGHTS = {};
+const isPhoto = (l) => !!(LIGHTS[l] && LIGHTS[l].photo);
+const lightLabel = (l) => (LIGHTS[l] ? LIGHTS[l].label : l);
+const firstExposure = (l) => (LIGHTS[l] ? LIGHTS[l].exposure : 1);
+// Lights whose picture takes the head-shadow control: the laboratory ones under an open sky
+// (the others have a port, head or tube of their own, or are photographs).
+const takesHeadShadow = (l) => !!(LIGHTS[l] && LIGHTS[l].head_shadow_deg === 0);
 const QUICK_DELAY = 15;     // ms of quiet before a request leaves (debounce) …
 const MAX_WAIT = 100;       // … but while a slider keeps moving, one leaves at least this often
 const FULL_DELAY = 700;     // ms of quiet before the full (slow) scores are asked for
@@ -54,15 +51,12 @@ const FULL_DELAY = 700;     // ms of quiet before the full (slow) scores are ask
 // even ISO sky shows a good stone as a nearly uniform bright disc, the cosine sky and the
 // viewer's head give the contrast a cutter looks at.
 const FIRST_LIGHT = 'cos';
-// Lights whose picture takes the head-shadow control (the others have a port, head or tube of
-// their own, or are photographs).
-const HEAD_SHADOW_LIGHTS = ['iso', 'cos', 'fire'];
 
 const state = {
   meta: null,
   light: FIRST_LIGHT,
   tilt: 0,
-  exposure: LIGHT_EXPOSURE[FIRST_LIGHT],
+  exposure: 1, // the light's own once the table is read (start)
   // The viewer's head shadow (half-angle, degrees) of the ISO, COS and fire pictures.
   headShadow: 15,
   // A photograph's camera elevation, light rotation and ground.
@@ -189,7 +183,7 @@ async function doRender(name, quick) {
   const img = $('#render-' + name);
   const frame = img.parentElement;
   const want = { light: state.light, tilt: state.tilt, exposure: state.exposure };
-  if (HEAD_SHADOW_LIGHTS.includes(state.light)) want.head_shadow = state.headShadow;
+  if (takesHeadShadow(state.light)) want.head_shadow = state.headShadow;
   const photo = isPhoto(state.light);
   clearTimeout(timers[name + 'photo']);
   if (photo) {
@@ -657,7 +651,7 @@ function caption(name) {
   }
   const parts = [v.name];
   if (v.changed) parts.push(`(${v.changed} changed)`);
-  parts.push('· ' + (LIGHT_NAMES[v.light] || v.light));
+  parts.push('· ' + lightLabel(v.light));
   if (v.head_shadow) parts.push(`· head shadow ${v.head_shadow}°`);
   if (s.info) parts.push('· ' + s.info.material);
   if (v.tilt) parts.push(`· tilt ${v.tilt}°`);
@@ -862,14 +856,15 @@ async function start() {
     sel.appendChild(o);
   }
   const light = $('#light');
-  PHOTO_LIGHTS = state.meta.photo_lights || [];
-  for (const l of state.meta.lights.concat(PHOTO_LIGHTS)) {
+  for (const l of state.meta.light_table) {
+    LIGHTS[l.name] = l;
     const o = document.createElement('option');
-    o.value = l;
-    o.textContent = LIGHT_NAMES[l] || l;
+    o.value = l.name;
+    o.textContent = l.label;
     light.appendChild(o);
   }
   light.value = state.light;
+  state.exposure = firstExposure(state.light) || 1;
   const exposure = $('#exposure');
   buildTables();
   setupStone();
@@ -887,7 +882,7 @@ async function start() {
   });
   const head = $('#head-shadow');
   const setHeadShadow = () => {
-    const on = HEAD_SHADOW_LIGHTS.includes(state.light);
+    const on = takesHeadShadow(state.light);
     head.disabled = !on;
     $('#head-shadow-val').textContent = on ? `${state.headShadow}°` : 'n/a';
   };
@@ -901,7 +896,7 @@ async function start() {
   const setExposure = (v) => {
     state.exposure = v;
     exposure.value = String(v);
-    const falseColour = !(state.light in LIGHT_EXPOSURE);
+    const falseColour = firstExposure(state.light) === null;
     exposure.disabled = falseColour;
     $('#exposure-val').textContent = falseColour ? 'n/a' : v.toFixed(2);
   };
@@ -910,7 +905,7 @@ async function start() {
   light.addEventListener('change', () => {
     state.light = light.value;
     photoBar.hidden = !isPhoto(state.light);
-    setExposure(LIGHT_EXPOSURE[state.light] || 1);
+    setExposure(firstExposure(state.light) || 1);
     setHeadShadow();
     for (const n of ['a', 'b']) if (state.slots[n]) { state.slots[n].t0 = performance.now(); schedule(n, 'render', 0); }
   });

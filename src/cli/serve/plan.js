@@ -242,6 +242,8 @@ async function setupPlan() {
     return;
   }
   plan.meta = meta;
+  // The rough's largest extent: the library's one range (its own checks refuse the rest).
+  $p('#plan-size').max = String(meta.limits.rough_mm[1]);
   const sel = $p('#plan-rough');
   for (const c of meta.crystals) {
     const o = document.createElement('option');

@@ -27,7 +27,7 @@ use axum::extract::rejection::BytesRejection;
 use axum::extract::{Path, State};
 use axum::http::{header, StatusCode};
 use axum::response::{IntoResponse, Response};
-use facetlab::error::Error;
+use facetlab::error::{Error, Setting};
 use facetlab::optics::Material;
 use facetlab::plan::config::check_families;
 use facetlab::plan::config::{MAX_GAP_MM, MAX_STONES};
@@ -230,22 +230,23 @@ fn inclusions(b: &Body, margin: f64) -> ApiResult<Vec<Inclusion>> {
 fn rough(b: &Body) -> ApiResult<Rough> {
     let size = match b.size_mm.given() {
         Ok(None) => None,
-        Ok(Some(n)) => match n.as_f64() {
-            Some(x) if x.is_finite() && x > 0.0 && x <= 500.0 => Some(x),
-            _ => {
-                return Err(unprocessable(
-                    "size_mm",
-                    format!("{n} is not allowed; give the rough's largest extent in (0, 500] mm"),
-                ))
-            }
-        },
+        Ok(Some(n)) => Some(
+            facetlab::plan::rough_size_mm("size_mm", n.as_f64().unwrap_or(f64::NAN)).map_err(
+                |e| match e {
+                    Error::Invalid { message, .. } => unprocessable("size_mm", message),
+                    other => unprocessable("size_mm", other.to_string()),
+                },
+            )?,
+        ),
         Err(_) => return Err(ApiError::bad("size_mm", "must be a number of millimetres")),
     };
     let lib = |e: Error| match e {
-        Error::Invalid { field, message } if field == "rough size" => {
-            unprocessable("size_mm", message)
+        // A setting the request sends by its field (the rough's size: `size_mm`), else the
+        // rough itself.
+        Error::Invalid { field, message } => {
+            let f = Setting::from_name(&field).and_then(super::error::field);
+            unprocessable(f.unwrap_or("rough"), message)
         }
-        Error::Invalid { message, .. } => unprocessable("rough", message),
         other => unprocessable("rough", other.to_string()),
     };
     match (b.crystal.given(), b.rough.given()) {

@@ -6,7 +6,7 @@
 
 use super::error::{no_store, ApiError, ApiResult};
 use super::jobs::{build, heavy};
-use super::request::{material_for, parse_req, width_mm, Source, STONE};
+use super::request::{parse_req, stone_for, Source, STONE};
 use super::AppState;
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
@@ -79,7 +79,8 @@ pub async fn build_recipe(
         let built = recipe.build().map_err(recipe_error)?;
         let t1 = Instant::now();
         let cut = &built.cut;
-        let info = info_json(cut, width_mm(&r, cut)?, &material_for(&r, cut)?);
+        let (material, width) = stone_for(&r, cut)?;
+        let info = info_json(cut, width, &material);
         let mut v = serde_json::to_value(&info)
             .map_err(|e| ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "cut", e.to_string()))?;
         let steps: Vec<Value> = built

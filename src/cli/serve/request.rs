@@ -20,7 +20,7 @@ use std::collections::BTreeMap;
 
 mod stone;
 use stone::stone;
-pub use stone::{material_for, width_mm};
+pub use stone::stone_for;
 
 /// File formats accepted as `format` and produced as `to`.
 pub const FORMATS: [&str; 5] = ["asc", "gem", "obj", "stl", "toml"];
@@ -52,13 +52,9 @@ pub struct Req {
     pub picture: PictureSettings,
     pub quick: bool,
     pub to: Option<&'static str>,
-    /// The material traced, with its body colour (`material`, `colour`, `colour_density`).
-    pub material: Material,
-    /// The stone's size for its body colour (`diameter_mm` or `size_mm`).
-    pub stone: StoneSize,
-    /// No `material` was sent: a design is traced in its own (its index, its notes), as every
-    /// command does; `colour` and `colour_density` as sent, to colour it.
-    pub own: Option<(Option<String>, Option<f64>)>,
+    /// The stones ([`stone_for`]): the material sent (else a design's own, as every command
+    /// traces it), its body colour, the size and the crystal settings.
+    pub stone: facetlab::metrics::StoneChoice,
 }
 
 pub use super::field::Field;
@@ -216,7 +212,7 @@ pub fn parse_req(
             ),
         )
     };
-    let (material, stone, own) = stone(&b)?;
+    let stone = stone(&b)?;
     // The light, read once by the library (a map file is for the command line: nothing a
     // client sends becomes a path).
     let unknown = |s: &str| {
@@ -363,9 +359,7 @@ pub fn parse_req(
     };
     Ok(Req {
         picture,
-        material,
         stone,
-        own,
         source: source(&b)?,
         set: set(&b)?,
         quick: match b.quick.given() {

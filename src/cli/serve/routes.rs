@@ -4,7 +4,7 @@
 
 use super::error::{no_store, ApiError, ApiResult};
 use super::jobs::{build, build_design, heavy, jobs};
-use super::request::{material_for, parse_req, width_mm, Source, EXPORTS, FORMATS, PHOTO, STONE};
+use super::request::{parse_req, stone_for, Source, EXPORTS, FORMATS, PHOTO, STONE};
 use super::{
     page, plans, recipes, runs, AppState, BODY_LIMIT, EXPOSURE_MAX, SIZE_RANGE, TILT_LIMIT,
 };
@@ -111,6 +111,7 @@ fn presets_json() -> Value {
         "families": fams,
         "lights": Light::ALL.map(Light::name),
         "photo_lights": facetlab::render::photo::PhotoLight::names(),
+        "light_table": facetlab::render::lights::table(),
         "formats": FORMATS,
         "materials": materials_json(),
         "crystals": facetlab::plan::CRYSTALS,
@@ -122,7 +123,8 @@ fn presets_json() -> Value {
         },
         "limits": {
             "colour_density": [0.0, facetlab::optics::DENSITY_MAX],
-            "stone_mm": [0.0, 1000.0],
+            "stone_mm": [0.0, facetlab::optics::StoneSize::MAX_MM],
+            "rough_mm": [0.0, facetlab::plan::ROUGH_MAX_MM],
             "size": [SIZE_RANGE.0, SIZE_RANGE.1],
             "tilt": [-TILT_LIMIT, TILT_LIMIT],
             "exposure": [0.0, EXPOSURE_MAX],
@@ -168,7 +170,8 @@ async fn cut_info(
     let designs = st.designs.clone();
     let (v, probe) = heavy(&st, move || {
         let (cut, design) = build_design(&designs, &r, true)?;
-        let info = info_json(&cut, width_mm(&r, &cut)?, &material_for(&r, &cut)?);
+        let (material, width) = stone_for(&r, &cut)?;
+        let info = info_json(&cut, width, &material);
         let mut v = serde_json::to_value(&info)
             .map_err(|e| ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "cut", e.to_string()))?;
         let mut probe = None;
@@ -220,15 +223,15 @@ async fn score_cut(
         let t0 = Instant::now();
         let cut = build(&designs, &r)?;
         // Refuses a length × width that disagrees with the cut's L/W.
-        width_mm(&r, &cut)?;
+        let (material, _) = stone_for(&r, &cut)?;
         let base = if r.quick {
             ScoreConfig::fast()
         } else {
             ScoreConfig::default()
         };
         let cfg = ScoreConfig {
-            material: material_for(&r, &cut)?,
-            size: r.stone,
+            material,
+            size: r.stone.size,
             head_shadow_deg: r.picture.head_shadow.unwrap_or(base.head_shadow_deg),
             ..base
         };
@@ -275,10 +278,10 @@ async fn render_cut(
         let cut = build(&designs, &r)?;
         let t1 = Instant::now();
         // The cut's own material unless one was sent, as the scores.
-        let width = width_mm(&r, &cut)?;
+        let (material, width) = stone_for(&r, &cut)?;
         let pictures = r
             .picture
-            .pictures(&material_for(&r, &cut)?, StoneSize::Width(width))
+            .pictures(&material, StoneSize::Width(width))
             .map_err(ApiError::from_picture)?;
         let p = match pictures {
             Pictures::Photo(p) => return photograph(&r, &cut, p, t0, t1),

@@ -62,6 +62,39 @@ impl Rig {
         }
     }
 
+    /// A short title for menus ([`crate::render::lights`]).
+    pub fn label(self) -> &'static str {
+        match self {
+            Rig::Tent => "Photo: light tent",
+            Rig::Darkfield => "Photo: dark-field",
+            Rig::Daylight => "Photo: daylight",
+            Rig::Office => "Photo: office",
+            Rig::Ring => "Photo: ring light",
+        }
+    }
+
+    /// What it is, in a few words, for help texts ([`crate::render::lights`]).
+    pub fn about(self) -> &'static str {
+        match self {
+            Rig::Tent => "light box with a spark light",
+            Rig::Darkfield => "point lights on black",
+            Rig::Daylight => "sky and sun",
+            Rig::Office => "ceiling panels",
+            Rig::Ring => "ring light round the lens",
+        }
+    }
+
+    /// The exposure a photograph under it is best first shown at (the daylight's sun and the
+    /// tent's bright fabric want less, the ring's dim room more).
+    pub fn first_exposure(self) -> f64 {
+        match self {
+            Rig::Tent => 0.8,
+            Rig::Darkfield | Rig::Office => 1.0,
+            Rig::Daylight => 0.5,
+            Rig::Ring => 1.2,
+        }
+    }
+
     /// The rig called `name`.
     pub fn parse(name: &str) -> Result<Rig> {
         Rig::ALL

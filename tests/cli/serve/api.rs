@@ -28,6 +28,18 @@ fn serve_api_answers_and_refuses_bad_requests() {
         .find(|x| x["key"] == "pavilion_angle")
         .unwrap();
     assert!(pav["min"].as_f64().unwrap() < 40.9 && pav["max"].as_f64().unwrap() > 40.9);
+    // The lights the page's menu is built from: the library's one table, and the two name
+    // lists it makes.
+    let table = serde_json::to_value(facetlab::render::lights::table()).unwrap();
+    assert_eq!(p["light_table"], table);
+    let names = |photo: bool| -> Vec<serde_json::Value> {
+        let t = table.as_array().unwrap().iter();
+        t.filter(|e| e["photo"] == photo)
+            .map(|e| e["name"].clone())
+            .collect()
+    };
+    assert_eq!(p["lights"].as_array().unwrap(), &names(false));
+    assert_eq!(p["photo_lights"].as_array().unwrap(), &names(true));
     let page = s.get("/");
     assert_eq!(page.status, 200);
     assert!(String::from_utf8_lossy(&page.body).contains("facetlab"));

@@ -112,3 +112,57 @@ fn serve_turns_the_optic_axis() {
         422,
     );
 }
+
+/// The server's stones go through the library's `StoneChoice`, as the command line's and
+/// Python's: a design traced in its own uniaxial material (no `material` sent) takes the optic
+/// axis and birefringence sent, as `score --optic-axis` does, and the refusals are the command
+/// line's lines with the body's field for the flag.
+#[test]
+fn a_design_in_its_own_material_takes_the_crystal_settings() {
+    let s = Server::start();
+    let quartz = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/optim/quartz-brilliant.asc"
+    ))
+    .unwrap();
+    let score = |extra: serde_json::Value| -> Value {
+        let mut b = serde_json::json!({"cut": quartz, "format": "asc", "quick": true});
+        for (k, v) in extra.as_object().unwrap() {
+            b[k] = v.clone();
+        }
+        let r = s.post("/api/score", &b.to_string());
+        assert_eq!(r.status, 200, "{}", String::from_utf8_lossy(&r.body));
+        r.json()
+    };
+    let default = score(serde_json::json!({}));
+    let flat = score(serde_json::json!({"optic_axis": 90}));
+    let off = score(serde_json::json!({"birefringence": false}));
+    let set = |j: &Value| j["settings"]["birefringence"].clone();
+    assert_eq!(
+        default["settings"]["material"], "quartz",
+        "{}",
+        default["settings"]
+    );
+    assert_eq!(set(&default)["traced"], true, "{}", set(&default));
+    assert_eq!(set(&flat)["optic_axis"]["tilt_deg"], 90.0, "{}", set(&flat));
+    assert_eq!(set(&off)["traced"], false, "{}", set(&off));
+    let b = |j: &Value| j["brilliance"].as_f64().unwrap();
+    assert!((b(&flat) - b(&default)).abs() > 1e-6);
+
+    // The same refusal as the command line's, the field for the flag.
+    let r = s.post(
+        "/api/score",
+        &serde_json::json!({"cut": quartz, "format": "asc", "optic_axis": 120}).to_string(),
+    );
+    let web = assert_error(&r, "optic_axis");
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("q.asc"), &quartz).unwrap();
+    let out = crate::cli::run_in(dir.path(), &["score", "q.asc", "--optic-axis", "120"]);
+    assert_eq!(out.status.code(), Some(2));
+    let cli = String::from_utf8_lossy(&out.stderr);
+    let message = web.strip_prefix("optic_axis: ").unwrap();
+    assert!(
+        cli.contains(&format!("--optic-axis: {message}")),
+        "{cli} vs {web}"
+    );
+}

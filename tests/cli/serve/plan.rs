@@ -77,6 +77,16 @@ fn serve_plans_a_rough() {
     );
     assert!(e.contains("20000"), "{e}");
     bad(serde_json::json!({"crystal": "octahedron"}), "size_mm", 422);
+    // The library's one range of a rough's size (the command line's and Python's too).
+    let e = bad(
+        serde_json::json!({"crystal": "cube", "size_mm": 600}),
+        "size_mm",
+        422,
+    );
+    assert_eq!(
+        e,
+        "size_mm: 600 is not allowed; give the rough's largest extent in (0, 500] mm"
+    );
     bad(
         serde_json::json!({"crystal": "icosahedron", "size_mm": 6}),
         "crystal",

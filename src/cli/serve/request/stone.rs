@@ -1,15 +1,32 @@
-//! The stone a request asks for: its material, body colour and size, read through the
-//! library's choosers as the command line reads its flags.
+//! The stone a request asks for: its material, body colour, size and crystal settings, read
+//! into the library's [`StoneChoice`] as the command line reads its flags and Python its
+//! keywords, and each cut's stone made by it ([`StoneChoice::stones`]).
 
 use super::*;
+use facetlab::metrics::{ColourNotes, CrystalChoice, StoneChoice, StoneFields};
+use facetlab::optics::{CrystalFields, OpticAxis};
 
-/// The material (with its body colour) and the stone's size, through the library's choosers
-/// that `score` and `render` use for `--material`, `--colour`, `--colour-density`,
-/// `--diameter-mm` and `--size-mm`; errors name the body's fields.
-/// The material, the size, and when no material was sent the colour fields (see [`Req::own`]).
-type Stone = (Material, StoneSize, Option<(Option<String>, Option<f64>)>);
+/// The body's fields, as the library's errors name them.
+const FIELDS: StoneFields<'static> = StoneFields {
+    colour: ColourFields {
+        colour: "colour",
+        density: "colour_density",
+    },
+    crystal: CrystalFields {
+        birefringence: "birefringence",
+        optic_axis: "optic_axis",
+        colour_e: "colour_e",
+    },
+    width: "diameter_mm",
+    length: "size_mm",
+    overrides: "a material sent overrides it",
+};
 
-pub(super) fn stone(b: &Body) -> ApiResult<Stone> {
+/// The stones' choice: the material (`material`, else each cut's own), its body colour
+/// (`colour`, `colour_density`), the size (`diameter_mm` or `size_mm`) and the crystal settings
+/// (`optic_axis`, `birefringence`, `colour_e`), through the library's choosers that `score` and
+/// `render` use for their flags; errors name the body's fields.
+pub(super) fn stone(b: &Body) -> ApiResult<StoneChoice> {
     let name = match b.material.given() {
         Ok(n) => n.map(String::as_str),
         Err(_) => {
@@ -19,7 +36,7 @@ pub(super) fn stone(b: &Body) -> ApiResult<Stone> {
             ))
         }
     };
-    let mut material = Material::choose(
+    let material = Material::choose(
         name,
         None,
         MaterialFields {
@@ -46,23 +63,24 @@ pub(super) fn stone(b: &Body) -> ApiResult<Stone> {
             ))
         }
     };
-    material
-        .choose_colour(
-            colour,
-            density,
-            ColourFields {
-                colour: "colour",
-                density: "colour_density",
-            },
-        )
-        .map_err(invalid)?;
+    let mut choice = StoneChoice::new(
+        material,
+        name.is_some(),
+        colour.map(str::to_string),
+        density,
+        FIELDS.colour,
+    )
+    .map_err(invalid)?;
     // A uniaxial stone's optic axis (degrees from the table's normal, toward azimuth 0),
-    // whether it is traced birefringent and its E ∥ c colour, through the chooser
-    // `--optic-axis`, `--birefringence` and `--colour-e` use.
+    // whether it is traced birefringent and its E ∥ c colour.
     let axis = match b.optic_axis.given() {
         Ok(a) => a
             .map(|a| {
-                facetlab::optics::OpticAxis::new(a.as_f64().unwrap_or(f64::NAN), 0.0, "optic_axis")
+                OpticAxis::new(
+                    a.as_f64().unwrap_or(f64::NAN),
+                    0.0,
+                    FIELDS.crystal.optic_axis,
+                )
             })
             .transpose()
             .map_err(invalid)?,
@@ -89,19 +107,12 @@ pub(super) fn stone(b: &Body) -> ApiResult<Stone> {
             ))
         }
     };
-    material
-        .choose_crystal(
-            on,
-            axis,
-            colour_e,
-            density,
-            facetlab::optics::CrystalFields {
-                birefringence: "birefringence",
-                optic_axis: "optic_axis",
-                colour_e: "colour_e",
-            },
-        )
-        .map_err(invalid)?;
+    choice.crystal = Some(CrystalChoice {
+        birefringence: on,
+        optic_axis: axis,
+        colour_e: colour_e.map(str::to_string),
+        wavelength_nm: facetlab::metrics::REFERENCE_WAVELENGTH_NM,
+    });
     let size = match (b.diameter_mm.given(), b.size_mm.given()) {
         (Ok(Some(_)), Ok(Some(_))) => {
             return Err(ApiError::bad(
@@ -127,34 +138,26 @@ pub(super) fn stone(b: &Body) -> ApiResult<Stone> {
         }
         (Ok(None), Ok(None)) => StoneSize::default(),
     };
-    let own = name
-        .is_none()
-        .then(|| (colour.map(str::to_string), density));
-    Ok((material, size, own))
+    choice.size_is_length = matches!(size, StoneSize::Length(_) | StoneSize::LengthWidth(..));
+    choice.size = size;
+    // Refused before any cut is built: a colour_e no stone takes, and the crystal settings a
+    // material sent does not take.
+    choice.check(&FIELDS).map_err(invalid)?;
+    Ok(choice)
 }
 
-/// The material `cut` is traced in: the one sent, else the cut's own (a design's index or
-/// notes, [`facetlab::metrics::material_of`]; diamond for a family), coloured as sent.
-pub fn material_for(r: &Req, cut: &facetlab::cut::Cut) -> ApiResult<Material> {
-    let Some((colour, density)) = &r.own else {
-        return Ok(r.material.clone());
-    };
-    let (mut m, _) = facetlab::metrics::material_of(cut, &Material::diamond(), false);
-    m.choose_colour(
-        colour.as_deref(),
-        *density,
-        ColourFields {
-            colour: "colour",
-            density: "colour_density",
-        },
-    )
-    .map_err(invalid)?;
-    Ok(m)
-}
-
-/// The stone's width in mm for `cut` (a length follows from its L/W).
-pub fn width_mm(r: &Req, cut: &facetlab::cut::Cut) -> ApiResult<f64> {
-    r.stone
-        .width_mm(cut.ratios().l_w, "size_mm")
-        .map_err(invalid)
+/// The stone `cut` is traced as ([`StoneChoice::stones`]): its material (the one sent, else
+/// the cut's own, a design's index or notes; diamond for a family) with its body colour and
+/// crystal settings, and its width in mm (a length follows from its L/W).
+pub fn stone_for(r: &Req, cut: &facetlab::cut::Cut) -> ApiResult<(Material, f64)> {
+    let s = r
+        .stone
+        .stones(
+            std::slice::from_ref(cut),
+            &FIELDS,
+            ColourNotes::Traced,
+            &mut |_, _| {},
+        )
+        .map_err(invalid)?;
+    Ok((s.materials[0].clone(), s.widths[0]))
 }
