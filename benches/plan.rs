@@ -7,14 +7,15 @@
 //! the rough as the planner takes it (its hull stopped at `HULL_VERTICES`), and a plan of one
 //! family (target ≤ 10 s), beside the example rough's in the same run; then layouts (issue
 //! 54): 3 stones with two inclusions in the example rough, one family and every default family
-//! (target ≤ 30 s on 2 cores), and 3 stones in the scanned pebble. Run:
+//! (target ≤ 30 s on 2 cores), the same with a laser (one family), and 3 stones in the scanned
+//! pebble. Run:
 //! `cargo bench --bench plan` (`-- scan` for the scanned pebble alone, `-- hull` for its hull,
 //! `-- layout` for the layouts alone).
 
 use facetlab::cut::Cut;
 use facetlab::geometry::{hull, HullOptions};
 use facetlab::plan::sample::{distorted_octahedron, scanned_pebble};
-use facetlab::plan::{largest_copy, Inclusion, LayoutPlanner, PlanConfig, Planner, Rough};
+use facetlab::plan::{largest_copy, Cutter, Inclusion, LayoutPlanner, PlanConfig, Planner, Rough};
 use glam::{DQuat, DVec3};
 use std::collections::BTreeMap;
 use std::time::Instant;
@@ -81,6 +82,22 @@ fn layout() {
             l.kerf_loss_mm3
         );
     }
+    // The same with a laser (one family): the sawn layout, then its stones regrown.
+    config.families = vec!["round-brilliant".into()];
+    config.cutter = Cutter::Laser;
+    let t = Instant::now();
+    let l = LayoutPlanner::new(&rough, &config, 3.515, &inclusions)
+        .plan(&|| {})
+        .expect("layout");
+    println!(
+        "laser layout 3 stones, 2 inclusions, 1 family: {:.2} s, {} stones {:.4} ct, yield {:.2} %, kerf loss {:.2} mm³",
+        t.elapsed().as_secs_f64(),
+        l.stones.len(),
+        l.carats,
+        100.0 * l.yield_fraction,
+        l.kerf_loss_mm3
+    );
+    config.cutter = Cutter::Saw;
     let t = Instant::now();
     let mesh = scanned_pebble(224, 1);
     let triangles = mesh.triangles.len();

@@ -17,8 +17,8 @@ use facetlab::error::{Error, Result};
 use facetlab::optics::Material;
 use facetlab::plan::config::{check_families, MAX_GAP_MM, MAX_STONES};
 use facetlab::plan::{
-    check_out, load_rough, plan_families, plan_layout, plan_warnings, write_folder, Inclusion,
-    PlanConfig, Run, CRYSTALS,
+    check_out, load_rough, plan_families, plan_layout, plan_warnings, write_folder, Cutter,
+    Inclusion, PlanConfig, Run, CRYSTALS,
 };
 use facetlab::report::PlanDrawings;
 use std::path::{Path, PathBuf};
@@ -71,6 +71,10 @@ pub struct PlanArgs {
     #[arg(long, value_name = "MM", allow_hyphen_values = true,
           value_parser = super::flags::real("--allowance", 0.0, MAX_GAP_MM, "the polishing allowance in mm"))]
     pub allowance: Option<f64>,
+    /// How the stones are parted: saw (straight cuts through a piece, in turn; the default)
+    /// or laser (a kerf-wide cut along a plane between each pair of stones).
+    #[arg(long, value_name = "saw|laser", value_parser = super::flags::parsed("--cutter", Cutter::named))]
+    pub cutter: Option<Cutter>,
     /// An inclusion: a closed .obj or .stl mesh in mm in the rough's coordinates (repeat for
     /// more); no stone comes within the margin of its convex hull.
     #[arg(long = "inclusion", value_name = "FILE")]
@@ -121,6 +125,9 @@ pub fn run(a: &PlanArgs) -> Result<Exit> {
     }
     if let Some(k) = a.margin {
         config.margin_mm = k;
+    }
+    if let Some(c) = a.cutter {
+        config.cutter = c;
     }
     let material = Material::by_name(&config.material)?;
     let size = a.size_mm;
@@ -273,7 +280,8 @@ fn run_layout(
     println!("rough {}: {:.3} mm³", rough.name, rough.volume());
     for (k, c) in layout.saw.iter().enumerate() {
         println!(
-            "saw {} ({}): normal ({:.4}, {:.4}, {:.4}), offset {:.3} mm, kerf loss {:.3} mm³",
+            "{} {} ({}): normal ({:.4}, {:.4}, {:.4}), offset {:.3} mm, kerf loss {:.3} mm³",
+            layout.cutter.name(),
             k + 1,
             c.piece,
             c.normal.x,

@@ -293,6 +293,48 @@ pub struct PlanConfig {
     pub margin_mm: f64,
     /// Saw offsets tried per direction and piece, `[search] saw_offsets`.
     pub saw_offsets: usize,
+    /// How a layout's stones are parted, `[rough] cutter`: straight saw cuts through a piece
+    /// or laser cuts between pairs of stones ([`super::layout`]).
+    pub cutter: Cutter,
+}
+
+/// How the stones of a layout are parted.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Cutter {
+    /// Sequential sawing: each cut a plane through the whole piece (guillotine cuts).
+    #[default]
+    Saw,
+    /// A laser: each pair of stones apart by a kerf-wide gap along a plane, cut only between
+    /// them.
+    Laser,
+}
+
+impl Cutter {
+    /// The names, as written in configs.
+    pub const NAMES: [&'static str; 2] = ["saw", "laser"];
+
+    /// The cutter named `name` (`saw` or `laser`); an error names `field`.
+    pub fn named(field: &str, name: &str) -> Result<Cutter> {
+        match name.trim() {
+            "saw" => Ok(Cutter::Saw),
+            "laser" => Ok(Cutter::Laser),
+            _ => Err(Error::invalid(
+                field,
+                format!(
+                    "\"{}\" is not allowed; give saw (straight cuts through a piece) or laser (a cut between each pair of stones)",
+                    name.escape_default()
+                ),
+            )),
+        }
+    }
+
+    /// Its name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Cutter::Saw => "saw",
+            Cutter::Laser => "laser",
+        }
+    }
 }
 
 /// The most stones a layout plans.
@@ -322,6 +364,7 @@ impl Default for PlanConfig {
             allowance_mm: 0.20,
             margin_mm: 0.30,
             saw_offsets: 5,
+            cutter: Cutter::Saw,
         }
     }
 }
@@ -345,6 +388,7 @@ struct RawRough {
     kerf_mm: Option<toml::Value>,
     allowance_mm: Option<toml::Value>,
     inclusion_margin_mm: Option<toml::Value>,
+    cutter: Option<toml::Value>,
 }
 
 #[derive(Deserialize, Default)]
@@ -618,6 +662,12 @@ impl PlanConfig {
         }
         if let Some(v) = &raw.rough.inclusion_margin_mm {
             c.margin_mm = gap("inclusion_margin_mm", v)?;
+        }
+        if let Some(v) = &raw.rough.cutter {
+            c.cutter = Cutter::named(
+                &at("rough.cutter"),
+                string(at("rough.cutter"), v, "\"laser\"")?,
+            )?;
         }
         if let Some(v) = &raw.search.saw_offsets {
             c.saw_offsets = whole(

@@ -36,12 +36,13 @@
 //! saw plan is planned as well, its pieces' stones taken by value, and the better of the two
 //! layouts kept ([`LayoutPlanner::plan`]).
 //!
-//! What it is not: a laser layout (stones separated by a kerf gap along planes that do not
-//! cut through the whole piece) and a global optimum: the saw plan is greedy, cut by cut
-//! (measured against brute force in docs/plan.md).
+//! With a laser ([`Cutter::Laser`]) the sawn layout is then improved pair by pair, each pair
+//! of stones parted by a kerf-wide gap along a plane cut only between them
+//! (`src/plan/layout/laser.rs`). What it is not: a global optimum: the saw plan is
+//! greedy, cut by cut, the laser's a coordinate ascent (measured against brute force in
+//! docs/plan.md).
 
-use super::config::{Objective, PlanConfig};
-use super::fit::largest_copy;
+use super::config::{Cutter, Objective, PlanConfig};
 use super::rough::Rough;
 use super::search::{principal_frame, Plan, Planner};
 use crate::error::{Error, Result};
@@ -128,6 +129,10 @@ pub struct Layout {
     pub yield_fraction: f64,
     /// The volume the kerf takes (mm³).
     pub kerf_loss_mm3: f64,
+    /// How the stones were parted: with a laser, `saw` holds the laser's cuts.
+    pub cutter: Cutter,
+    /// Every pair of stones and a plane between them with the kerf and both allowances.
+    pub pairs: Vec<Parting>,
 }
 
 /// A piece of the rough: its label, half-spaces and solid.
@@ -232,39 +237,17 @@ impl<'a> LayoutPlanner<'a> {
             if apart(&region, &inc.grown) {
                 continue;
             }
-            let planes: Vec<Plane> = region.facets().iter().map(|f| f.plane).collect();
-            let c = region.centroid();
-            let mut best: Option<(f64, Plane)> = None;
-            for f in inc.grown.facets() {
-                // The stone's side: n·x >= d, as the half-space −n·x <= −d.
-                let h = Plane {
+            // The stone's side of a face: n·x >= d, as the half-space −n·x <= −d.
+            let sides: Vec<Plane> = inc
+                .grown
+                .facets()
+                .iter()
+                .map(|f| Plane {
                     normal: -f.plane.normal,
                     offset: -f.plane.offset,
-                };
-                let far = region
-                    .vertices()
-                    .iter()
-                    .copied()
-                    .min_by(|a, b| h.distance(*a).total_cmp(&h.distance(*b)))?;
-                if h.distance(far) >= -1e-9 {
-                    continue;
-                }
-                // A point inside the region and strictly on the stone's side.
-                let inside = if h.distance(c) < 0.5 * h.distance(far) {
-                    c
-                } else {
-                    let (dc, df) = (h.distance(c), h.distance(far));
-                    let t = (dc - 0.5 * df) / (dc - df);
-                    c + t * (far - c)
-                };
-                let mut with = planes.clone();
-                with.push(h);
-                if let Some(fit) = largest_copy(&with, &proxy, inside) {
-                    if best.is_none_or(|(s, _)| fit.scale > s + 1e-12) {
-                        best = Some((fit.scale, h));
-                    }
-                }
-            }
+                })
+                .collect();
+            let best = widest(&region, &sides, &proxy);
             let (_, h) = best?;
             let mut fps = region.facet_planes();
             fps.push(FacetPlane {
@@ -407,6 +390,15 @@ impl<'a> LayoutPlanner<'a> {
     /// layout ranked by value is never worth less than the weight layout priced by the same
     /// table.
     pub fn plan(&self, tick: &(dyn Fn() + Sync)) -> Result<Layout> {
+        let sawn = self.sawn(tick)?;
+        match self.config.cutter {
+            Cutter::Saw => Ok(sawn),
+            Cutter::Laser => self.laser(sawn),
+        }
+    }
+
+    /// The layout sawn (see [`LayoutPlanner::plan`]).
+    fn sawn(&self, tick: &(dyn Fn() + Sync)) -> Result<Layout> {
         let valued = self.greedy(tick)?;
         let Objective::Value(table) = &self.config.objective else {
             return Ok(valued);
@@ -557,11 +549,14 @@ impl<'a> LayoutPlanner<'a> {
         let total = stones.iter().map(|s| s.plan.objective).sum();
         let carats = stones.iter().map(|s| s.plan.carats).sum();
         let volume: f64 = stones.iter().map(|s| s.plan.volume_mm3).sum();
+        let pairs = laser::sawn_pairs(&stones, &saw);
         Ok(Layout {
             total,
             carats,
             yield_fraction: volume / self.rough.volume(),
             kerf_loss_mm3: saw.iter().map(|s| s.kerf_loss_mm3).sum(),
+            cutter: Cutter::Saw,
+            pairs,
             stones,
             saw,
         })
@@ -610,13 +605,15 @@ pub fn candidates(config: &PlanConfig) -> u64 {
 }
 
 mod inclusion;
+mod laser;
 mod saw;
 mod solids;
 
 pub use solids::directions;
-use solids::{apart, extent, moved_in};
+use solids::{apart, extent, moved_in, widest};
 
 pub use inclusion::Inclusion;
+pub use laser::Parting;
 
 #[cfg(test)]
 mod tests;

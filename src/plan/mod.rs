@@ -48,7 +48,7 @@ pub mod search;
 pub mod summary;
 
 pub use ball::{enclosing_ball, Ball};
-pub use config::{Bound, Objective, PlanConfig, PriceTable, DEFAULT_FAMILIES};
+pub use config::{Bound, Cutter, Objective, PlanConfig, PriceTable, DEFAULT_FAMILIES};
 pub use fit::{largest_copy, Fit};
 pub use layout::{plan_layout, Inclusion, Layout, LayoutPlanner, SawCut, Stone};
 pub use out::check_out;

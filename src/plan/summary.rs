@@ -149,9 +149,18 @@ struct SawJson {
     kerf_loss_mm3: f64,
 }
 
+/// A plane between two stones: the kerf's middle plane, the first stone below it.
+#[derive(Serialize)]
+struct PairJson {
+    stones: [String; 2],
+    normal: [f64; 3],
+    offset_mm: f64,
+}
+
 /// The layout's totals and settings.
 #[derive(Serialize)]
 struct LayoutJson {
+    cutter: &'static str,
     stones_asked: usize,
     stones: usize,
     kerf_mm: f64,
@@ -163,6 +172,7 @@ struct LayoutJson {
     #[serde(rename = "yield")]
     yield_fraction: f64,
     kerf_loss_mm3: f64,
+    pairs: Vec<PairJson>,
 }
 
 #[derive(Serialize)]
@@ -262,6 +272,7 @@ pub fn summary_json(of: &SummaryOf<'_>, plans: Vec<PlanJson>) -> Result<String> 
             .collect()
     });
     let layout_json = layout.map(|l| LayoutJson {
+        cutter: l.cutter.name(),
         stones_asked: config.stones,
         stones: l.stones.len(),
         kerf_mm: config.kerf_mm,
@@ -272,6 +283,15 @@ pub fn summary_json(of: &SummaryOf<'_>, plans: Vec<PlanJson>) -> Result<String> 
         total_carats: l.carats,
         yield_fraction: l.yield_fraction,
         kerf_loss_mm3: l.kerf_loss_mm3,
+        pairs: l
+            .pairs
+            .iter()
+            .map(|p| PairJson {
+                stones: p.stones.map(|k| format!("stone-{}", k + 1)),
+                normal: p.normal.to_array(),
+                offset_mm: p.offset,
+            })
+            .collect(),
     });
     let summary = SummaryJson {
         rough: RoughJson {

@@ -10,7 +10,7 @@ use super::runs::watch;
 use crate::error::Error;
 use crate::optics::Material;
 use crate::plan::config::check_families;
-use crate::plan::config::{MAX_GAP_MM, MAX_STONES};
+use crate::plan::config::{Cutter, MAX_GAP_MM, MAX_STONES};
 use crate::plan::{
     check_out, load_rough, plan_layout, plan_warnings, write_folder, Inclusion, Plan, PlanConfig,
     Rough, Run, CRYSTALS,
@@ -53,9 +53,13 @@ use std::time::Instant;
 /// table's `included` factor); with `out` the returned dict also has `layout`: `total`,
 /// `carats`, `yield_fraction`, `kerf_loss_mm3` and `saw_plan` (the cuts in cutting order,
 /// each `piece`, `normal`, `offset_mm` and `kerf_loss_mm3`), as `summary.json` has them.
+/// `cutter` (`"saw"` or `"laser"`, the config's `[rough] cutter`): with a laser the stones
+/// are parted pair by pair, not by cuts through the piece, and `saw_plan` holds the laser's
+/// cuts; `layout` also has `cutter` and `pairs` (each pair's `stones`, indices from 0, and
+/// the plane between them, `normal` and `offset_mm`).
 #[pyfunction]
 #[pyo3(signature = (rough, *, config=None, families=None, size_mm=None, material=None, top=None,
-    stones=None, kerf=None, allowance=None, inclusions=None, margin=None, out=None))]
+    stones=None, kerf=None, allowance=None, inclusions=None, margin=None, cutter=None, out=None))]
 #[allow(clippy::too_many_arguments)]
 fn plan<'py>(
     py: Python<'py>,
@@ -70,6 +74,7 @@ fn plan<'py>(
     allowance: Option<f64>,
     inclusions: Option<Vec<PathBuf>>,
     margin: Option<f64>,
+    cutter: Option<String>,
     out: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let started = Instant::now();
@@ -101,6 +106,9 @@ fn plan<'py>(
         }
         if let Some(n) = stones {
             cfg.stones = n as usize;
+        }
+        if let Some(c) = &cutter {
+            cfg.cutter = Cutter::named("cutter", c)?;
         }
         for (name, value, to) in [
             ("kerf", kerf, &mut cfg.kerf_mm),
@@ -295,6 +303,16 @@ fn layout<'py>(py: Python<'py>, job: &Job, out: Option<PathBuf>) -> PyResult<Bou
         saw.append(d)?;
     }
     l.set_item("saw_plan", saw)?;
+    l.set_item("cutter", layout.cutter.name())?;
+    let pairs = PyList::empty(py);
+    for p in &layout.pairs {
+        let d = PyDict::new(py);
+        d.set_item("stones", p.stones)?;
+        d.set_item("normal", [p.normal.x, p.normal.y, p.normal.z])?;
+        d.set_item("offset_mm", p.offset)?;
+        pairs.append(d)?;
+    }
+    l.set_item("pairs", pairs)?;
     let done = PyDict::new(py);
     done.set_item("plans", plans)?;
     done.set_item("folder", out.display().to_string())?;

@@ -280,6 +280,7 @@ fn bad_layout_flags_are_one_line_and_write_nothing() {
     run(&["--allowance", "nan"], &["--allowance"]);
     run(&["--margin", "-0.3"], &["--margin"]);
     run(&["--margin", "x"], &["--margin"]);
+    run(&["--cutter", "water-jet"], &["--cutter", "saw", "laser"]);
     run(&["--inclusion", "missing.obj"], &["missing.obj"]);
     run(&["--inclusion", "garbled.obj"], &["garbled.obj"]);
     run(&["--inclusion", &open], &["open.obj", "not closed"]);
@@ -288,6 +289,8 @@ fn bad_layout_flags_are_one_line_and_write_nothing() {
     run(&["--config", "bad.toml"], &["kerf_mm"]);
     std::fs::write(p.join("many.toml"), "[rough]\nstones = 20\n").unwrap();
     run(&["--config", "many.toml"], &["stones"]);
+    std::fs::write(p.join("cutter.toml"), "[rough]\ncutter = \"wire\"\n").unwrap();
+    run(&["--config", "cutter.toml"], &["rough.cutter", "laser"]);
     let mut left = files(p);
     left.retain(|f| !f.ends_with(".obj") && !f.ends_with(".toml"));
     assert!(left.is_empty(), "{left:?}");

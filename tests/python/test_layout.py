@@ -69,6 +69,25 @@ def test_plan_with_stones_is_the_command_lines_layout(cli: Cli, tmp_path: Path) 
     assert [s["carats"] for s in again] == [s["carats"] for s in stones]
 
 
+def test_a_laser_layout_is_the_command_lines(cli: Cli, tmp_path: Path) -> None:
+    (tmp_path / "plan.toml").write_text(CONFIG)
+    p = cli(
+        tmp_path, "plan", "octahedron", "--size-mm", "6", "--family", "round-brilliant",
+        "--stones", "2", "--cutter", "laser", "--config", "plan.toml", "--quiet", "-o", "cli",
+    )
+    assert p.returncode == 0, p.stderr
+    want = json.loads((tmp_path / "cli" / "summary.json").read_text())
+    got = facetlab.plan(
+        "octahedron", size_mm=6, families=["round-brilliant"], config=tmp_path / "plan.toml",
+        stones=2, cutter="laser", out=tmp_path / "py",
+    )
+    assert want["layout"]["cutter"] == got["layout"]["cutter"] == "laser"
+    pairs = got["layout"]["pairs"]
+    assert [q["stones"] for q in pairs] == [[0, 1]] * (len(got["plans"]) - 1)
+    assert [q["offset_mm"] for q in pairs] == [q["offset_mm"] for q in want["layout"]["pairs"]]
+    assert got["layout"]["carats"] == pytest.approx(want["layout"]["total_carats"], rel=1e-12)
+
+
 def test_bad_layout_keywords_are_refused_by_name(tmp_path: Path) -> None:
     cases: List[Tuple[Callable[[], Any], str]] = [
         (lambda: facetlab.plan("octahedron", size_mm=6, stones=0), "stones"),
@@ -76,6 +95,7 @@ def test_bad_layout_keywords_are_refused_by_name(tmp_path: Path) -> None:
         (lambda: facetlab.plan("octahedron", size_mm=6, kerf=-0.1), "kerf"),
         (lambda: facetlab.plan("octahedron", size_mm=6, allowance=float("nan")), "allowance"),
         (lambda: facetlab.plan("octahedron", size_mm=6, margin=11.0), "margin"),
+        (lambda: facetlab.plan("octahedron", size_mm=6, cutter="wire"), "cutter"),
     ]
     for call, name in cases:
         with pytest.raises(facetlab.Error, match=f"^{name}: "):

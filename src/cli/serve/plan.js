@@ -19,6 +19,7 @@ function planBody() {
     body.kerf_mm = Number($p('#plan-kerf').value);
     body.allowance_mm = Number($p('#plan-allowance').value);
     body.margin_mm = Number($p('#plan-margin').value);
+    body.cutter = $p('#plan-cutter').value;
     if (plan.inclusions.length > 0) body.inclusions = plan.inclusions;
   }
   const size = $p('#plan-size').value.trim();
@@ -154,7 +155,7 @@ function showStones(s) {
   saw.hidden = !l;
   if (l) {
     saw.textContent = `${l.stones} of ${l.stones_asked} stones, ${l.total_carats.toFixed(3)} ct, objective ${l.total_objective.toFixed(2)}; `
-      + `${(s.saw_plan || []).length} saw cuts, kerf loss ${l.kerf_loss_mm3.toFixed(2)} mm³`;
+      + `${(s.saw_plan || []).length} ${l.cutter || 'saw'} cuts, kerf loss ${l.kerf_loss_mm3.toFixed(2)} mm³`;
   }
   const link = $p('#plan-overview-link');
   link.hidden = !(l && s.overview);

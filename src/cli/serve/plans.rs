@@ -10,7 +10,7 @@
 //! `report`); `POST /api/plan/stop` stops it after the family being planned (the families
 //! planned are kept); `GET /api/plan/report` is its `report.html`, `GET /api/plan/picture/NAME`
 //! one of its pictures. With `stones` above 1 (and `kerf_mm`, `allowance_mm`, `margin_mm`,
-//! `inclusions`: OBJ texts in the rough's coordinates) the rough is sawn into a layout of
+//! `inclusions`: OBJ texts in the rough's coordinates; `cutter`: `saw` or `laser`) the rough is sawn into a layout of
 //! several stones as `facetlab plan --stones N` plans it ([`facetlab::plan::plan_layout`]):
 //! `starts` counts its saw cuts judged, and the status adds `stones` (each stone's family,
 //! carats, value as `objective`, `centre_mm`, piece), `saw_plan` and `layout` as in
@@ -33,7 +33,7 @@ use facetlab::plan::config::check_families;
 use facetlab::plan::config::{MAX_GAP_MM, MAX_STONES};
 use facetlab::plan::mesh::read_triangles;
 use facetlab::plan::{plan_families, write_folder, Run as Folder};
-use facetlab::plan::{plan_layout, Inclusion, PlanConfig, Rough, CRYSTALS};
+use facetlab::plan::{plan_layout, Cutter, Inclusion, PlanConfig, Rough, CRYSTALS};
 use facetlab::report::PlanDrawings;
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Number, Value};
@@ -118,9 +118,10 @@ struct Body {
     allowance_mm: Field<Number>,
     margin_mm: Field<Number>,
     inclusions: Field<Vec<String>>,
+    cutter: Field<String>,
 }
 
-const KEYS: [&str; 15] = [
+const KEYS: [&str; 16] = [
     "rough",
     "format",
     "encoding",
@@ -136,6 +137,7 @@ const KEYS: [&str; 15] = [
     "allowance_mm",
     "margin_mm",
     "inclusions",
+    "cutter",
 ];
 
 /// Stones per layout: allowed range and default (1: the single plans of each family).
@@ -381,6 +383,14 @@ pub async fn start(
     let kerf_mm = gap(&b.kerf_mm, "kerf_mm", defaults.kerf_mm)?;
     let allowance_mm = gap(&b.allowance_mm, "allowance_mm", defaults.allowance_mm)?;
     let margin_mm = gap(&b.margin_mm, "margin_mm", defaults.margin_mm)?;
+    let cutter = match b.cutter.given() {
+        Ok(None) => defaults.cutter,
+        Ok(Some(c)) => Cutter::named("cutter", c).map_err(|e| match e {
+            Error::Invalid { message, .. } => unprocessable("cutter", message),
+            other => unprocessable("cutter", other.to_string()),
+        })?,
+        Err(_) => return Err(ApiError::bad("cutter", "must be \"saw\" or \"laser\"")),
+    };
     // The meshes are read on a blocking thread (a large upload takes a moment).
     let (rough, inclusions) =
         super::jobs::heavy(&st, move || Ok((rough(&b)?, inclusions(&b, margin_mm)?))).await?;
@@ -400,6 +410,7 @@ pub async fn start(
         kerf_mm,
         allowance_mm,
         margin_mm,
+        cutter,
         ..defaults
     };
     let layout = config.stones > 1 || !inclusions.is_empty();

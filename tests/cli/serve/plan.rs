@@ -263,6 +263,8 @@ fn serve_plans_a_layout_of_several_stones() {
         "margin_mm",
         400,
     );
+    bad(octa(serde_json::json!({"cutter": "wire"})), "cutter", 422);
+    bad(octa(serde_json::json!({"cutter": 2})), "cutter", 400);
     bad(
         octa(serde_json::json!({"inclusions": "not a list"})),
         "inclusions",
@@ -301,6 +303,8 @@ fn serve_plans_a_layout_of_several_stones() {
     assert_eq!(st["state"], "done", "{st}");
     let layout = &st["layout"];
     assert_eq!(layout["kerf_mm"], kerf);
+    assert_eq!(layout["cutter"], "saw");
+    assert_eq!(layout["pairs"].as_array().unwrap().len(), 1, "{layout}");
     assert_eq!(layout["allowance_mm"], allowance);
     assert_eq!(layout["inclusion_margin_mm"], margin);
     let stones = st["stones"].as_array().unwrap();
