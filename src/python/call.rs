@@ -1,9 +1,10 @@
 //! How every Python call meets the library: the library runs with the GIL released ([`run`]);
 //! a library error becomes `facetlab.Error` (a `ValueError`) carrying the command line's
-//! one-line message with the settings it names spelled as keyword arguments ([`SETTINGS`]),
+//! one-line message with the settings it names spelled as keyword arguments ([`keyword`]),
 //! and a panic (a bug) is caught and becomes `facetlab.InternalError`, so no panic crosses
 //! into Python. The library's JSON documents reach Python as dicts ([`from_json`]).
 
+use crate::error::Setting;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -23,40 +24,68 @@ create_exception!(
 );
 
 /// The keyword argument that sets each library setting an error names, as its field or inside
-/// its text ([`crate::error::setting`]), as the command line's `FLAGS` names its flag; a
-/// setting with no keyword here is shown by its own name. A picture's settings are
-/// [`crate::render::settings::SETTINGS`].
-pub(crate) const SETTINGS: &[(&str, &str)] = &[
-    ("rough size", "size_mm"),
-    ("photon count", "photons"),
-    ("output", "path"),
-    ("force", "overwrite=True"),
-    ("picture light", "light"),
-    ("picture size", "size"),
-    ("picture tilt", "tilt"),
-    ("picture head-shadow", "head_shadow"),
-    ("picture exposure", "exposure"),
-    ("picture view", "view"),
-    ("picture distance", "distance"),
-    ("picture aperture", "aperture"),
-    ("picture ground", "ground"),
-    ("picture ground-gap", "ground_gap"),
-    ("picture light-rotation", "light_rotation"),
-    ("picture tone", "tone"),
-    ("picture bands", "bands"),
-    ("picture diameter-mm", "diameter_mm"),
-];
+/// its text ([`crate::error::setting`]), as the command line's flags name theirs: a `match`
+/// over [`Setting`] with no wildcard arm, so a setting added to the library needs a decision
+/// here to compile. `None`: the package has no keyword of its own for it (a setting of a
+/// command the package does not have, or one it takes under the library's name), and the
+/// message shows the setting by its own name.
+pub(crate) const fn keyword(s: Setting) -> Option<&'static str> {
+    match s {
+        Setting::RoughSize => Some("size_mm"),
+        Setting::PhotonCount => Some("photons"),
+        Setting::Output => Some("path"),
+        Setting::Force => Some("overwrite=True"),
+        Setting::PictureLight => Some("light"),
+        Setting::PictureSize => Some("size"),
+        Setting::PictureTilt => Some("tilt"),
+        Setting::PictureHeadShadow => Some("head_shadow"),
+        Setting::PictureExposure => Some("exposure"),
+        Setting::PictureView => Some("view"),
+        Setting::PictureDistance => Some("distance"),
+        Setting::PictureAperture => Some("aperture"),
+        Setting::PictureGround => Some("ground"),
+        Setting::PictureGroundGap => Some("ground_gap"),
+        Setting::PictureLightRotation => Some("light_rotation"),
+        Setting::PictureTone => Some("tone"),
+        Setting::PictureBands => Some("bands"),
+        Setting::PictureDiameter => Some("diameter_mm"),
+        Setting::LightAngle
+        | Setting::TraceDepth
+        | Setting::AbsorptionModel
+        | Setting::FixedWavelength
+        | Setting::RefractiveIndex
+        | Setting::Material
+        | Setting::InclusionMesh
+        | Setting::SweepScore
+        | Setting::SweepYAxis
+        | Setting::SweepGrid
+        | Setting::RunFolder
+        | Setting::FirstAxis
+        | Setting::GridAxes
+        | Setting::SlicePoint
+        | Setting::MapAxes
+        | Setting::ShardFolder
+        | Setting::Shard
+        | Setting::BatchOutput
+        | Setting::ScoreDocument
+        | Setting::JsonOutput
+        | Setting::HdrOutput
+        | Setting::PlotsFolder
+        | Setting::PictureRock
+        | Setting::PictureTurn
+        | Setting::CutParameter => None,
+    }
+}
 
-/// The keyword argument of the library's setting `name` ([`SETTINGS`]).
+/// The keyword argument of the library's setting `name` ([`keyword`]).
 pub(crate) fn keyword_of(name: &str) -> Option<String> {
-    SETTINGS
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, k)| k.to_string())
+    Setting::from_name(name)
+        .and_then(keyword)
+        .map(str::to_string)
 }
 
 /// A library error as `facetlab.Error`: the setting it names as its field, and those its
-/// message names, spelled as keyword arguments ([`SETTINGS`]).
+/// message names, spelled as keyword arguments ([`keyword`]).
 pub(crate) fn error(e: crate::error::Error) -> PyErr {
     use crate::error::Error as E;
     let e = match e.spell_settings(&keyword_of) {

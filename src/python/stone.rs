@@ -57,7 +57,7 @@ impl StoneArgs {
 
 /// Check a file a call writes (`path`) before any work: not a folder, replaced only with
 /// `overwrite=True`, its folder present and writable (the library's check, as the command
-/// line's outputs; its settings spelled as keywords, [`super::call::SETTINGS`]).
+/// line's outputs; its settings spelled as keywords, [`super::call::keyword`]).
 pub(crate) fn refuse_existing(path: &std::path::Path, overwrite: bool) -> Result<()> {
     crate::io::guard::check_new_file(crate::io::guard::setting::OUTPUT, path, overwrite)
 }
