@@ -1,7 +1,6 @@
 //! The light of a birefringent trace's beams and rays, each in one mode of the crystal: what
 //! the work stack holds (`work.rs`) and the crystal's trace (`crystal.rs`) splits.
 
-use super::work::Light;
 use crate::optics::crystal::Wave;
 use glam::DVec3;
 
@@ -14,13 +13,6 @@ pub(super) struct InMode {
     pub(super) power: f64,
     /// Absorption per girdle diameter along this beam.
     pub(super) alpha: f64,
-}
-
-impl Light for InMode {
-    #[inline(always)]
-    fn power(&self) -> f64 {
-        self.power
-    }
 }
 
 /// A narrow beam's ray (or one of the rays it splits into) at `x` on `facet`.

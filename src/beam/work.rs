@@ -3,7 +3,7 @@
 
 use super::disc::{Fork, Part};
 use super::footprint::{Affine, PathLength};
-use super::mode::ModeRay;
+use super::mode::{InMode, ModeRay};
 use super::sink::TraceStats;
 use super::stone::Stone;
 use crate::optics::Stokes;
@@ -47,6 +47,13 @@ impl Light for Polarized {
     #[inline(always)]
     fn power(&self) -> f64 {
         self.stokes.x
+    }
+}
+
+impl Light for InMode {
+    #[inline(always)]
+    fn power(&self) -> f64 {
+        self.power
     }
 }
 
