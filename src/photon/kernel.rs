@@ -1,15 +1,15 @@
-//! The photon tracer (`Tracer`: one light and solid resolved) and its singly refractive
-//! kernel; the lanes and the steps both kernels share are in `lanes.rs`.
+//! The photon tracer (`Tracer`: one light and solid resolved) and what a photon meets at an
+//! interface; the lanes and the steps both kernels share are in `lanes.rs`, the singly
+//! refractive kernel in `singly.rs`, the birefringent one in `crystal.rs`, and the choice of
+//! kernel for a chunk of photons in `chunks.rs`.
 
-use super::config::{ExitWeights, TraceConfig, WavelengthSampling, CHUNK, UNLIMITED_CAP};
-use super::crystal::Birefringent;
+use super::config::{ExitWeights, TraceConfig, WavelengthSampling, UNLIMITED_CAP};
 use super::crystal_setup::CrystalSetup;
 use super::entry_grid::EntryGrid;
-use super::lanes::{Kernel, Lane};
 use super::light::{Light, LightKind, LightSize};
 use super::reach::Reach;
 use super::solid::TraceSolid;
-use super::tally::{Counts, PhotonPath};
+use super::tally::Counts;
 use crate::error::{Error, Result};
 use crate::geometry::DVec3;
 use crate::optics::color::{d65, D65_MAX, LAMBDA_MAX, LAMBDA_MIN};
@@ -33,8 +33,8 @@ pub(crate) struct Tracer<'a> {
     half: f64,
     pub(super) max_depth: u32,
     pub(super) absorption: Absorption,
-    polarization: bool,
-    material: Material,
+    pub(super) polarization: bool,
+    pub(super) material: Material,
     wavelengths: WavelengthSampling,
     pub(super) fixed_n: Option<f64>,
     pub(super) seed: u64,
@@ -109,20 +109,9 @@ pub(super) struct Entry {
 }
 
 /// Polarization state: Stokes vector (I = 1) and its reference axis.
-struct Pol {
-    s: Stokes,
-    e: DVec3,
-}
-
-/// The singly refractive kernel, with polarization when `POL`.
-struct Singly<const POL: bool>;
-
-/// A singly refractive photon's own: its direction, the refractive index at its wavelength
-/// and its polarization.
-struct Ray {
-    d: DVec3,
-    n: f64,
-    pol: Pol,
+pub(super) struct Pol {
+    pub(super) s: Stokes,
+    pub(super) e: DVec3,
 }
 
 impl<'a> Tracer<'a> {
@@ -211,72 +200,6 @@ impl<'a> Tracer<'a> {
         self.s.facets
     }
 
-    /// Trace chunk `c` of `n` photons; with `hit_limit`, stop after that many hits.
-    pub(crate) fn chunk(&self, c: u64, n: u64, hit_limit: Option<u64>) -> Counts {
-        #[cfg(target_arch = "x86_64")]
-        if self.s.avx2 {
-            // SAFETY: AVX2 and FMA were detected at run time.
-            return unsafe { self.chunk_avx2(c, n, hit_limit) };
-        }
-        self.chunk_impl(c, n, hit_limit)
-    }
-
-    /// [`Tracer::chunk`] compiled for AVX2 (the same arithmetic: Rust never fuses or
-    /// reorders floating-point operations on its own, so the numbers do not change).
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma")]
-    unsafe fn chunk_avx2(&self, c: u64, n: u64, hit_limit: Option<u64>) -> Counts {
-        self.chunk_impl(c, n, hit_limit)
-    }
-
-    #[inline(always)]
-    fn chunk_impl(&self, c: u64, n: u64, hit_limit: Option<u64>) -> Counts {
-        let mut k = Counts::new(self.s.facets);
-        let mut none = Vec::new();
-        if let Some(cs) = &self.crystal {
-            let kernel = Birefringent(cs);
-            self.lanes::<_, false>(&kernel, c, n, hit_limit, &mut k, &mut none, 0);
-        } else if self.polarization {
-            self.lanes::<_, false>(&Singly::<true>, c, n, hit_limit, &mut k, &mut none, 0);
-        } else {
-            self.lanes::<_, false>(&Singly::<false>, c, n, hit_limit, &mut k, &mut none, 0);
-        }
-        k
-    }
-
-    /// Replay the run's chunks in order (`shot` photons in all; `until_hit`: the run shot until
-    /// that many hit, so each chunk is replayed with the same hit limit) and record the paths
-    /// of the first `n` photons that hit the stone, in the order they finished.
-    pub(crate) fn record_paths(
-        &self,
-        n: usize,
-        shot: u64,
-        until_hit: Option<u64>,
-    ) -> Vec<PhotonPath> {
-        let mut out = Vec::new();
-        let (mut done, mut hit, mut c) = (0u64, 0u64, 0u64);
-        while done < shot && out.len() < n {
-            let (photons, limit) = match until_hit {
-                Some(h) => (CHUNK, Some(h - hit)),
-                None => (CHUNK.min(shot - done), None),
-            };
-            let mut k = Counts::new(self.s.facets);
-            let (k, out) = (&mut k, &mut out);
-            if let Some(cs) = &self.crystal {
-                self.lanes::<_, true>(&Birefringent(cs), c, photons, limit, k, out, n);
-            } else if self.polarization {
-                self.lanes::<_, true>(&Singly::<true>, c, photons, limit, k, out, n);
-            } else {
-                self.lanes::<_, true>(&Singly::<false>, c, photons, limit, k, out, n);
-            }
-            done += k.shot;
-            hit += k.hit;
-            c += 1;
-        }
-        out.truncate(n);
-        out
-    }
-
     /// A photon's wavelength from the uniform `u` (and, for D65's rejection sampling, as many
     /// more draws as it takes: each candidate from a fresh uniform, its acceptance another).
     #[inline(always)]
@@ -332,7 +255,7 @@ impl<'a> Tracer<'a> {
     /// for a photon moving in `d` from index `n1` into `n2`; `m_in` is the normal facing
     /// against `d`. Returns the new direction and whether it was transmitted.
     #[inline(always)]
-    fn interface<const POL: bool>(
+    pub(super) fn interface<const POL: bool>(
         &self,
         x: f64,
         pol: &mut Pol,
@@ -458,87 +381,6 @@ impl<'a> Tracer<'a> {
                 let s = -(1.0 - u).ln() / beer;
                 (s < t).then_some(s)
             }
-        }
-    }
-}
-
-impl<const POL: bool> Kernel for Singly<POL> {
-    type Own = Ray;
-
-    #[inline(always)]
-    fn blank(&self) -> Ray {
-        Ray {
-            d: DVec3::ZERO,
-            n: 1.0,
-            pol: Pol {
-                s: Stokes::new(1.0, 0.0, 0.0, 0.0),
-                e: DVec3::X,
-            },
-        }
-    }
-
-    #[inline(always)]
-    fn dir(own: &Ray) -> DVec3 {
-        own.d
-    }
-
-    #[inline(always)]
-    fn start<const REC: bool>(
-        &self,
-        tr: &Tracer<'_>,
-        l: &mut Lane<Ray>,
-        k: &mut Counts,
-        limit: u64,
-        out: &mut Vec<PhotonPath>,
-    ) {
-        let Some(e) = tr.enter::<Ray, REC>(l, k, limit) else {
-            return;
-        };
-        let (d, f) = (e.d, e.f);
-        l.own.n = tr.fixed_n.unwrap_or_else(|| tr.material.ri(e.lambda));
-        // Beer–Lambert coefficient per unit of path at this photon's wavelength (0 unless the
-        // model is Beer–Lambert).
-        l.beer = tr
-            .absorption
-            .beer_per_width(tr.material.colour.as_ref(), e.lambda)
-            .unwrap_or(0.0);
-        if POL {
-            l.own.pol = Pol {
-                s: Stokes::new(1.0, 0.0, 0.0, 0.0),
-                e: d.any_orthonormal_vector(),
-            };
-        }
-        let m = tr.s.normals[f];
-        let (nd, transmitted) = tr.interface::<POL>(e.x, &mut l.own.pol, d, m, 1.0, l.own.n);
-        l.own.d = nd;
-        if !transmitted {
-            tr.exit::<Ray, REC>(l, k, f, nd, out);
-        } else if !tr.depth_limited::<Ray, REC>(l, k, out) {
-            l.live = true;
-        }
-    }
-
-    #[inline(always)]
-    fn bounce<const REC: bool>(
-        &self,
-        tr: &Tracer<'_>,
-        l: &mut Lane<Ray>,
-        t: f64,
-        j: usize,
-        k: &mut Counts,
-        out: &mut Vec<PhotonPath>,
-    ) {
-        let d = l.own.d;
-        let Some(x) = tr.advance::<Ray, REC>(l, t, d, k, out) else {
-            return;
-        };
-        let m = tr.s.normals[j];
-        let (nd, transmitted) = tr.interface::<POL>(x, &mut l.own.pol, d, -m, l.own.n, 1.0);
-        l.own.d = nd;
-        if transmitted {
-            tr.exit::<Ray, REC>(l, k, j, nd, out);
-        } else {
-            tr.depth_limited::<Ray, REC>(l, k, out);
         }
     }
 }

@@ -43,6 +43,7 @@
 //! ```
 
 mod absorption;
+mod chunks;
 mod config;
 mod crystal;
 mod crystal_setup;
@@ -52,6 +53,7 @@ mod lanes;
 mod light;
 mod reach;
 mod run;
+mod singly;
 mod solid;
 mod tally;
 #[cfg(test)]
