@@ -233,6 +233,7 @@ def plan(
     allowance: Optional[float] = None,
     inclusions: Optional[Sequence[PathLike]] = None,
     margin: Optional[float] = None,
+    cutter: Optional[str] = None,
     out: None = None,
 ) -> List[Dict[str, Any]]: ...
 @overload
@@ -249,5 +250,6 @@ def plan(
     allowance: Optional[float] = None,
     inclusions: Optional[Sequence[PathLike]] = None,
     margin: Optional[float] = None,
+    cutter: Optional[str] = None,
     out: PathLike,
 ) -> Dict[str, Any]: ...
