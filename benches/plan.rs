@@ -10,7 +10,8 @@
 //! (target ≤ 30 s on 2 cores), the same with a laser (one family), and 3 stones in the scanned
 //! pebble. Run:
 //! `cargo bench --bench plan` (`-- scan` for the scanned pebble alone, `-- hull` for its hull,
-//! `-- layout` for the layouts alone).
+//! `-- layout` for the layouts alone; `FACETLAB_LAYOUTS=one,all,laser,pebble` picks some of
+//! the layouts, all by default).
 
 use facetlab::cut::Cut;
 use facetlab::geometry::{hull, HullOptions};
@@ -64,8 +65,16 @@ fn layout() {
         stones: 3,
         ..PlanConfig::default()
     };
+    let picked = std::env::var("FACETLAB_LAYOUTS").unwrap_or_default();
+    let wants = |name: &str| picked.is_empty() || picked.split(',').any(|p| p.trim() == name);
     let families = config.families.clone();
-    for fams in [vec!["round-brilliant".to_string()], families] {
+    for (name, fams) in [
+        ("one", vec!["round-brilliant".to_string()]),
+        ("all", families),
+    ] {
+        if !wants(name) {
+            continue;
+        }
         config.families = fams;
         let t = Instant::now();
         let l = LayoutPlanner::new(&rough, &config, 3.515, &inclusions)
@@ -82,11 +91,22 @@ fn layout() {
             l.kerf_loss_mm3
         );
     }
-    // The same with a laser (one family): the sawn layout, then its stones regrown.
     config.families = vec!["round-brilliant".into()];
+    if wants("laser") {
+        laser(&rough, &config, &inclusions);
+    }
+    if wants("pebble") {
+        pebble(&config);
+    }
+}
+
+/// The example rough's layout with a laser (one family): the sawn layout, then its stones
+/// regrown.
+fn laser(rough: &Rough, config: &PlanConfig, inclusions: &[Inclusion]) {
+    let mut config = config.clone();
     config.cutter = Cutter::Laser;
     let t = Instant::now();
-    let l = LayoutPlanner::new(&rough, &config, 3.515, &inclusions)
+    let l = LayoutPlanner::new(rough, &config, 3.515, inclusions)
         .plan(&|| {})
         .expect("layout");
     println!(
@@ -97,15 +117,17 @@ fn layout() {
         100.0 * l.yield_fraction,
         l.kerf_loss_mm3
     );
-    config.cutter = Cutter::Saw;
+}
+
+/// 3 stones of one family in the scanned pebble.
+fn pebble(config: &PlanConfig) {
     let t = Instant::now();
     let mesh = scanned_pebble(224, 1);
     let triangles = mesh.triangles.len();
     let pebble = Rough::from_trimesh("pebble", "bench", mesh, None).expect("rough");
     let read_s = t.elapsed().as_secs_f64();
-    config.families = vec!["round-brilliant".into()];
     let t = Instant::now();
-    let l = LayoutPlanner::new(&pebble, &config, 3.515, &[])
+    let l = LayoutPlanner::new(&pebble, config, 3.515, &[])
         .plan(&|| {})
         .expect("layout");
     println!(

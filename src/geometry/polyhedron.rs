@@ -7,6 +7,7 @@
 //! the solid, duplicate planes, an unbounded or empty solid.
 
 mod block;
+mod cut;
 mod parts;
 
 use block::box_faces;
@@ -276,6 +277,43 @@ fn first_duplicate(planes: &[FacetPlane]) -> Option<(usize, usize)> {
     best
 }
 
+/// The planes of `faces` that [`Polyhedron::from_planes_pruned`] keeps: those whose face has
+/// an area above `1e-10` of the faces' squared size, in order.
+fn kept_planes(faces: &[Face]) -> Vec<usize> {
+    let scale = faces
+        .iter()
+        .flat_map(|f| f.poly.iter())
+        .map(|p| p.length())
+        .fold(0.0, f64::max)
+        .max(1e-300);
+    let mut keep: Vec<usize> = faces
+        .iter()
+        .filter(|f| area_vector(&f.poly).length() > 1e-10 * scale * scale)
+        .filter_map(|f| f.source)
+        .collect();
+    keep.sort_unstable();
+    keep.dedup();
+    keep
+}
+
+/// The solid of `faces` (clipped by `planes`, each face's source its plane's index), welded
+/// at the finest tolerance that pairs every edge: exact designs weld at WELD; planes read from
+/// rounded mesh coordinates miss their common points by more and leave clusters of nearly
+/// coincident vertices, welded at a coarser tolerance.
+fn welded(faces: &[Face], planes: &[FacetPlane]) -> Result<Polyhedron> {
+    let mut first_err = None;
+    for weld in [WELD, 10.0 * WELD, 100.0 * WELD, 1000.0 * WELD] {
+        match assemble(faces, planes, weld) {
+            Ok(p) => return Ok(p),
+            Err(Assembly::Final(e)) => return Err(first_err.unwrap_or(e)),
+            Err(Assembly::Unpaired(e)) => {
+                first_err.get_or_insert(e);
+            }
+        }
+    }
+    Err(first_err.unwrap_or_else(|| Error::Geometry("degenerate solid".into())))
+}
+
 impl Polyhedron {
     /// Welded vertices.
     pub fn vertices(&self) -> &[DVec3] {
@@ -355,20 +393,7 @@ impl Polyhedron {
                 "the solid is unbounded: the facet planes do not enclose a finite volume".into(),
             ));
         }
-        // Weld at the finest tolerance that pairs every edge: exact designs weld at WELD;
-        // planes read from rounded mesh coordinates miss their common points by more and
-        // leave clusters of nearly coincident vertices, welded at a coarser tolerance.
-        let mut first_err = None;
-        for weld in [WELD, 10.0 * WELD, 100.0 * WELD, 1000.0 * WELD] {
-            match assemble(&faces, planes, weld) {
-                Ok(p) => return Ok(p),
-                Err(Assembly::Final(e)) => return Err(first_err.unwrap_or(e)),
-                Err(Assembly::Unpaired(e)) => {
-                    first_err.get_or_insert(e);
-                }
-            }
-        }
-        Err(first_err.unwrap_or_else(|| Error::Geometry("degenerate solid".into())))
+        welded(&faces, planes)
     }
 
     /// The solid of the half-spaces `planes`, those that do not touch it left out (a
@@ -387,20 +412,10 @@ impl Polyhedron {
                 )))
             }
         })?;
-        let scale = faces
+        let kept: Vec<FacetPlane> = kept_planes(&faces)
             .iter()
-            .flat_map(|f| f.poly.iter())
-            .map(|p| p.length())
-            .fold(0.0, f64::max)
-            .max(1e-300);
-        let mut keep: Vec<usize> = faces
-            .iter()
-            .filter(|f| area_vector(&f.poly).length() > 1e-10 * scale * scale)
-            .filter_map(|f| f.source)
+            .map(|&k| planes[k].clone())
             .collect();
-        keep.sort_unstable();
-        keep.dedup();
-        let kept: Vec<FacetPlane> = keep.iter().map(|&k| planes[k].clone()).collect();
         Polyhedron::from_planes(&kept)
     }
 

@@ -144,6 +144,9 @@ pub struct Planner<'a> {
     /// Raised to stop: the starts not begun are skipped and the rest end at once, and
     /// [`Planner::plan_family`] returns no plans.
     stop: Option<&'a AtomicBool>,
+    /// A screening search: each start restarted once from its best, not twice
+    /// ([`Planner::screening`]).
+    screening: bool,
 }
 
 /// The rough's frame: vertices' centroid and principal axes (largest spread first), each
@@ -315,7 +318,18 @@ impl<'a> Planner<'a> {
             density,
             config,
             stop: None,
+            screening: false,
         }
+    }
+
+    /// The planner as a screen (a layout's saw candidates): each start's Nelder–Mead
+    /// restarted once from its best with a smaller simplex, not twice. A screened plan is a
+    /// lower bound of the full search's, good for ranking candidates, not for cutting.
+    /// (Measured on the bench's layouts: no restart at all ranks the candidates too coarsely,
+    /// a laser layout's sawn start 1.3 % lighter.)
+    pub fn screening(mut self) -> Self {
+        self.screening = true;
+        self
     }
 
     /// The planner, stopped when `stop` is raised (Ctrl-C): a family being planned then ends
@@ -565,7 +579,8 @@ impl<'a> Planner<'a> {
     /// collapsed simplex stalls).
     fn run_start(&self, problem: &Problem<'_>, x0: &[f64]) -> Option<(f64, Vec<f64>)> {
         let mut best = self.nelder_mead(problem, x0, 1.0)?;
-        for step in [0.1, 0.01] {
+        let restarts: &[f64] = if self.screening { &[0.1] } else { &[0.1, 0.01] };
+        for &step in restarts {
             let next = self.nelder_mead(problem, &best.1, step)?;
             if next.0 <= best.0 {
                 best = next;

@@ -1,8 +1,8 @@
 //! The saw cuts a layout tries: the directions and the refinement of the best cuts.
 
 use super::solids::directions;
-use super::{LayoutPlanner, Piece, FACE_DIRECTIONS};
-use crate::geometry::DVec3;
+use super::{LayoutPlanner, FACE_DIRECTIONS};
+use crate::geometry::{DVec3, Polyhedron};
 use glam::DQuat;
 use rayon::prelude::*;
 
@@ -69,11 +69,13 @@ impl LayoutPlanner<'_> {
         dirs
     }
 
-    /// Refine a saw cut of `piece` (value `value`): the offset by golden section within
-    /// `step` either side, then the normal by tilts of 8° and 3° about two axes across it.
+    /// Refine a saw cut of the piece of centroid `centre` whose stone's room is `room` (value
+    /// `value`): the offset by golden section within `step` either side, then the normal by
+    /// tilts of 12°, 6°, 3° and 1.5° about two axes across it.
     pub(super) fn refine(
         &self,
-        piece: &Piece,
+        room: &Polyhedron,
+        centre: DVec3,
         u: DVec3,
         c: f64,
         step: f64,
@@ -84,19 +86,19 @@ impl LayoutPlanner<'_> {
         let (mut lo, mut hi) = (c - step, c + step);
         let mut x1 = hi - g * (hi - lo);
         let mut x2 = lo + g * (hi - lo);
-        let mut f1 = self.split_value(piece, u, x1);
-        let mut f2 = self.split_value(piece, u, x2);
+        let mut f1 = self.split_value(room, u, x1);
+        let mut f2 = self.split_value(room, u, x2);
         for _ in 0..6 {
             if f1 >= f2 {
                 hi = x2;
                 (x2, f2) = (x1, f1);
                 x1 = hi - g * (hi - lo);
-                f1 = self.split_value(piece, u, x1);
+                f1 = self.split_value(room, u, x1);
             } else {
                 lo = x1;
                 (x1, f1) = (x2, f2);
                 x2 = lo + g * (hi - lo);
-                f2 = self.split_value(piece, u, x2);
+                f2 = self.split_value(room, u, x2);
             }
         }
         for (x, f) in [(x1, f1), (x2, f2)] {
@@ -119,7 +121,6 @@ impl LayoutPlanner<'_> {
                 .unwrap_or(DVec3::X);
             let a = (k - k.dot(u) * u).normalize();
             let b = u.cross(a);
-            let centre = piece.solid.centroid();
             let tilts: Vec<DVec3> = [a, -a, b, -b]
                 .iter()
                 .map(|w| DQuat::from_axis_angle(*w, deg.to_radians()) * u)
@@ -130,7 +131,7 @@ impl LayoutPlanner<'_> {
                 .par_iter()
                 .map(|t| {
                     let ct = t.dot(foot);
-                    (*t, ct, self.split_value(piece, *t, ct))
+                    (*t, ct, self.split_value(room, *t, ct))
                 })
                 .collect();
             for (t, ct, f) in tried {
