@@ -260,8 +260,8 @@ impl ScoreConfig {
     /// [`ScoreConfig::SMOOTH_FIRE_SPLIT`] and fire traced at [`ScoreConfig::SMOOTH_BANDS`]
     /// wavelength bands, so that brilliance and fire are smooth on the 0.002° scale of
     /// `cargo bench --bench profile` (fine-scale excess of brilliance 0.008 and of fire 0.297,
-    /// against 0.352 and 0.847 at the default, 2026-12-06) for about 5.9 times the default's
-    /// CPU time per cut. For 1-D profiles, maps and the final polish of an optimization; the
+    /// against 0.352 and 0.847 at the default, 2026-12-06) for about 5.8 times the default's
+    /// instructions per cut (cachegrind). For 1-D profiles, maps and the final polish of an optimization; the
     /// numbers are the default's refined, not another score: on those cuts brilliance moves by
     /// at most 4.3e-4 and fire by at most 0.011 (on average +0.003, fire converging from below
     /// as its bands multiply) (see the [module documentation](super) on smoothness).

@@ -96,8 +96,9 @@
 //! fire (measured 2026-12-06 on the profile's 501 cuts under the 15° head shadow): tilted
 //! poses split down to 1e-5 (brilliance 0.352 → 0.008), fire's traces to 3e-7 and fire traced
 //! at 32 wavelength bands instead of 8 (fire 0.847 → 0.297; scintillation 0.124 → 0.062), for
-//! about 5.9 times the default's CPU time per cut (with 16 bands fire's excess is 0.361 at 4.2
-//! times). Splitting alone stops helping fire: over the profile's first 0.2° with 8 bands its
+//! 5.8 times the default's instructions per cut (cachegrind, five cuts of the profile; 5.9
+//! times its CPU time over the 501 cuts; with 16 bands fire's excess is 0.361 at 4.2 times the
+//! CPU time). Splitting alone stops helping fire: over the profile's first 0.2° with 8 bands its
 //! excess is 0.44 at the default, 0.22 at 3e-7, 0.21 at 1e-7 and 0.20 at 3e-8, the second
 //! differences at 1e-7 and 3e-8 correlating by 0.99 (the trace has converged), and a ray floor
 //! of 0 or images of 32 or 128 pixels change it by less than 0.03. What is left is the
