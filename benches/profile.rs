@@ -21,8 +21,12 @@
 //! smallest of this, fire's and the tilted poses'),
 //! `FACETLAB_PROFILE_TILTS=face-up` scores the face-up pose only,
 //! `FACETLAB_PROFILE_HEAD_SHADOW` sets the viewer's head shadow (default 15°, 0 the open-sky
-//! scores), and `FACETLAB_PROFILE_DEGREES`
-//! the profile's width (default 1°) (for experiments).
+//! scores), `FACETLAB_PROFILE_BANDS` fire's wavelength bands, `FACETLAB_PROFILE_PLACEMENTS`
+//! fire's placements of the spot lights, `FACETLAB_PROFILE_RESOLUTION` the images' pixels per
+//! side, `FACETLAB_PROFILE_START` the first pavilion angle (default 40°) and
+//! `FACETLAB_PROFILE_DEGREES` the profile's width (default 1°) (for experiments).
+//! `FACETLAB_PROFILE_SPLIT=1e-5 FACETLAB_PROFILE_FIRE_SPLIT=3e-7 FACETLAB_PROFILE_BANDS=32` is
+//! the smooth setting, `ScoreConfig::smooth`.
 //!
 //! Then, per pose of the brilliance average, the same two figures for its light return
 //! (`(ISO + COS) / 2`). Split finer and finer, a pose's profile converges to the exact one's
@@ -139,6 +143,22 @@ fn main() {
     {
         cfg.head_shadow_deg = x;
     }
+    // `FACETLAB_PROFILE_BANDS`, `FACETLAB_PROFILE_PLACEMENTS`, `FACETLAB_PROFILE_RESOLUTION`:
+    // fire's wavelength bands, its placements of the spot lights and the images' pixels.
+    let count = |name: &str| {
+        std::env::var(name)
+            .ok()
+            .and_then(|s| s.parse::<usize>().ok())
+    };
+    if let Some(x) = count("FACETLAB_PROFILE_BANDS") {
+        cfg.bands = x;
+    }
+    if let Some(x) = count("FACETLAB_PROFILE_PLACEMENTS") {
+        cfg.fire_placements = x;
+    }
+    if let Some(x) = count("FACETLAB_PROFILE_RESOLUTION") {
+        cfg.resolution = x;
+    }
     // `FACETLAB_PROFILE_TILTS=face-up`: the face-up pose only.
     if std::env::var("FACETLAB_PROFILE_TILTS").as_deref() == Ok("face-up") {
         cfg.tilts = vec![facetlab::metrics::Tilt::FACE_UP];
@@ -148,8 +168,13 @@ fn main() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(1.0);
+    // `FACETLAB_PROFILE_START`: the profile's first pavilion angle (default 40°).
+    let start: f64 = std::env::var("FACETLAB_PROFILE_START")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(40.0);
     let angles: Vec<f64> = (0..=steps)
-        .map(|k| 40.0 + degrees * k as f64 / steps as f64)
+        .map(|k| start + degrees * k as f64 / steps as f64)
         .collect();
     let t0 = Instant::now();
     let scores: Vec<Scores> = angles
@@ -158,8 +183,8 @@ fn main() {
         .collect();
     let dt = t0.elapsed().as_secs_f64();
     println!(
-        "profile: pavilion 40.0° → {:.3}°, {} cuts, split {:e} (fire {:e}, face-up {:e}), {:.1} s ({:.1} ms/cut on {} threads)",
-        40.0 + degrees,
+        "profile: pavilion {start:.3}° → {:.3}°, {} cuts, split {:e} (fire {:e}, face-up {:e}), {:.1} s ({:.1} ms/cut on {} threads)",
+        start + degrees,
         angles.len(),
         cfg.trace.split_threshold,
         cfg.fire_split_threshold,

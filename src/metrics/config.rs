@@ -20,6 +20,44 @@ pub const REFERENCE_WAVELENGTH_NM: f64 = 589.3;
 /// 7.6 % → 72.8 %), a stone that looks nearly black. 0 gives the open-sky scores.
 pub const DEFAULT_HEAD_SHADOW_DEG: f64 = 15.0;
 
+/// A named scoring setting, the one list of them: `[score] setting` in an optimization's
+/// config names one ([`ScoreSetting::from_name`]), and [`ScoreSetting::config`] is its
+/// configuration.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ScoreSetting {
+    /// [`ScoreConfig::default`]: the scores as reported everywhere.
+    #[default]
+    Default,
+    /// [`ScoreConfig::smooth`]: the same scores traced finer, smooth on a 0.002° scale.
+    Smooth,
+}
+
+impl ScoreSetting {
+    /// Every setting, in the order of the enum.
+    pub const ALL: &'static [ScoreSetting] = &[ScoreSetting::Default, ScoreSetting::Smooth];
+
+    /// Its name, as a config writes it.
+    pub const fn name(self) -> &'static str {
+        match self {
+            ScoreSetting::Default => "default",
+            ScoreSetting::Smooth => "smooth",
+        }
+    }
+
+    /// The setting named `name` ([`ScoreSetting::name`]).
+    pub fn from_name(name: &str) -> Option<ScoreSetting> {
+        ScoreSetting::ALL.iter().copied().find(|s| s.name() == name)
+    }
+
+    /// Its configuration.
+    pub fn config(self) -> ScoreConfig {
+        match self {
+            ScoreSetting::Default => ScoreConfig::default(),
+            ScoreSetting::Smooth => ScoreConfig::smooth(),
+        }
+    }
+}
+
 /// What to score and how.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ScoreConfig {
@@ -217,6 +255,39 @@ impl ScoreConfig {
         }
     }
 
+    /// The smooth setting ([`ScoreSetting::Smooth`]): the default configuration with the
+    /// tilted poses split down to [`ScoreConfig::SMOOTH_SPLIT`], fire's face-up traces to
+    /// [`ScoreConfig::SMOOTH_FIRE_SPLIT`] and fire traced at [`ScoreConfig::SMOOTH_BANDS`]
+    /// wavelength bands, so that brilliance and fire are smooth on the 0.002° scale of
+    /// `cargo bench --bench profile` (fine-scale excess of brilliance 0.008 and of fire 0.297,
+    /// against 0.352 and 0.847 at the default, 2026-12-06) for about 5.8 times the default's
+    /// instructions per cut (cachegrind). For 1-D profiles, maps and the final polish of an optimization; the
+    /// numbers are the default's refined, not another score: on those cuts brilliance moves by
+    /// at most 4.3e-4 and fire by at most 0.011 (on average +0.003, fire converging from below
+    /// as its bands multiply) (see the [module documentation](super) on smoothness).
+    pub fn smooth() -> ScoreConfig {
+        let d = ScoreConfig::default();
+        ScoreConfig {
+            trace: TraceOptions {
+                split_threshold: Self::SMOOTH_SPLIT,
+                ..d.trace
+            },
+            fire_split_threshold: Self::SMOOTH_FIRE_SPLIT,
+            bands: Self::SMOOTH_BANDS,
+            ..d
+        }
+    }
+
+    /// Split threshold of the tilted poses' traces in [`ScoreConfig::smooth`].
+    pub const SMOOTH_SPLIT: f64 = 1e-5;
+    /// Split threshold of fire's face-up traces in [`ScoreConfig::smooth`].
+    pub const SMOOTH_FIRE_SPLIT: f64 = 3e-7;
+    /// Fire's wavelength bands in [`ScoreConfig::smooth`]: with the default 8, each of a
+    /// dispersed fan's eight beams crosses a spot light's rim on its own, and that sampling of
+    /// the spectrum, not the splitting, is most of fire's fine-scale roughness once its traces
+    /// are split finely.
+    pub const SMOOTH_BANDS: usize = 32;
+
     /// Check every field; the error names the field and what is allowed.
     pub fn validate(&self) -> Result<()> {
         let w = self.wavelength_nm;
@@ -347,6 +418,7 @@ mod tests {
     fn config_validation_names_the_field() {
         assert!(ScoreConfig::default().validate().is_ok());
         assert!(ScoreConfig::fast().validate().is_ok());
+        assert!(ScoreConfig::smooth().validate().is_ok());
         let bad = |c: ScoreConfig, field: &str| {
             let e = c.validate().unwrap_err().to_string();
             assert!(e.starts_with(field), "{e}");
@@ -421,6 +493,29 @@ mod tests {
             },
             "fire-placements",
         );
+    }
+
+    /// The named settings map as documented: `default` is [`ScoreConfig::default`], `smooth`
+    /// the default with only its splits and fire's bands refined; names read back.
+    #[test]
+    fn named_settings_map_as_documented() {
+        for &s in ScoreSetting::ALL {
+            assert_eq!(ScoreSetting::from_name(s.name()), Some(s));
+        }
+        assert_eq!(ScoreSetting::from_name("Smooth"), None);
+        assert_eq!(ScoreSetting::default().config(), ScoreConfig::default());
+        let (d, s) = (ScoreConfig::default(), ScoreSetting::Smooth.config());
+        assert_eq!(s, ScoreConfig::smooth());
+        assert!(s.trace.split_threshold < d.trace.split_threshold);
+        assert!(s.fire_split_threshold < d.fire_split_threshold);
+        assert!(s.bands > d.bands);
+        let back = ScoreConfig {
+            trace: d.trace,
+            fire_split_threshold: d.fire_split_threshold,
+            bands: d.bands,
+            ..s
+        };
+        assert_eq!(back, d, "the smooth setting changes only splits and bands");
     }
 
     #[test]

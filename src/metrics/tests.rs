@@ -13,6 +13,7 @@ mod birefringence;
 mod golden;
 mod head_shadow;
 mod invariance;
+mod smooth;
 
 /// A lighter configuration for tests that score many cuts.
 pub(super) fn lean() -> ScoreConfig {

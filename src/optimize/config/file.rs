@@ -448,6 +448,8 @@ impl Config {
                 ri: self.score.ri,
                 head_shadow: Some(self.score.head_shadow_deg),
                 polarization: Some(self.score.polarization),
+                setting: (self.score.setting != crate::metrics::ScoreSetting::Default)
+                    .then(|| self.score.setting.name().to_string()),
                 split_threshold: Some(self.score.split_threshold),
                 fire_split_threshold: Some(self.score.fire_split_threshold),
                 ray_floor: Some(self.score.ray_floor),

@@ -21,10 +21,16 @@ pub struct RawScore {
     /// Track polarization; default true.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub polarization: Option<bool>,
-    /// Split threshold of the tilted poses' traces (brilliance, scintillation); default 1e-4.
+    /// The named setting the other fields start from: `"default"` or `"smooth"`
+    /// ([`ScoreSetting`](crate::metrics::ScoreSetting): split thresholds 1e-5 and 3e-7 and 32
+    /// bands for fire, smooth on a 0.002° scale and slower); default `"default"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub setting: Option<String>,
+    /// Split threshold of the tilted poses' traces (brilliance, scintillation); default 1e-4
+    /// (the setting's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub split_threshold: Option<f64>,
-    /// Split threshold of fire's face-up traces; default 3e-6.
+    /// Split threshold of fire's face-up traces; default 3e-6 (the setting's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fire_split_threshold: Option<f64>,
     /// Share of its starting power below which a narrow beam's ray stops (its rest handed
@@ -146,6 +152,8 @@ pub struct ScoreSettings {
     pub head_shadow_deg: f64,
     /// Track polarization.
     pub polarization: bool,
+    /// The named setting the scoring configuration starts from.
+    pub setting: crate::metrics::ScoreSetting,
     /// Split threshold of the tilted poses' traces.
     pub split_threshold: f64,
     /// Split threshold of fire's face-up traces.
@@ -198,6 +206,7 @@ impl ScoreSettings {
 impl ScoreSettings {
     /// The beam tracer's scoring configuration for these settings.
     pub fn score_config(&self) -> crate::metrics::ScoreConfig {
+        let base = self.setting.config();
         crate::metrics::ScoreConfig {
             material: self.material.clone(),
             size: self.size,
@@ -208,9 +217,9 @@ impl ScoreSettings {
                 split_threshold: self.split_threshold,
                 ray_floor: self.ray_floor,
                 narrow_forks: self.narrow_forks,
-                ..crate::metrics::ScoreConfig::default().trace
+                ..base.trace
             },
-            ..crate::metrics::ScoreConfig::default()
+            ..base
         }
     }
 }
@@ -242,7 +251,20 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
         }
         Ok(x)
     };
-    let defaults = crate::metrics::ScoreConfig::default();
+    let setting = match rs.setting.as_deref() {
+        None => crate::metrics::ScoreSetting::default(),
+        Some(name) => crate::metrics::ScoreSetting::from_name(name).ok_or_else(|| {
+            let names: Vec<&str> = crate::metrics::ScoreSetting::ALL
+                .iter()
+                .map(|s| s.name())
+                .collect();
+            Error::invalid(
+                at("score.setting"),
+                format!("`{name}` is not a setting; allowed {}", names.join(", ")),
+            )
+        })?,
+    };
+    let defaults = setting.config();
     let split = |field: &str, value: Option<f64>, default: f64| -> Result<f64> {
         ranged(
             field,
@@ -298,6 +320,7 @@ pub(super) fn validate(rs: &RawScore, at: At) -> Result<ScoreSettings> {
             "[0, 60] degrees (0 = none)",
         )?,
         polarization: rs.polarization.unwrap_or(true),
+        setting,
         split_threshold: split(
             "score.split_threshold",
             rs.split_threshold,
@@ -379,6 +402,35 @@ mod tests {
             let e = config(body).unwrap_err().to_string();
             assert!(e.contains(needle) && !e.contains('\n'), "{body}: {e}");
         }
+    }
+
+    /// `[score] setting = "smooth"` scores with [`ScoreConfig::smooth`] (its split thresholds
+    /// overridable field by field), survives writing the config back, and a name that is no
+    /// setting is a one-line error naming the field and the settings allowed.
+    ///
+    /// [`ScoreConfig::smooth`]: crate::metrics::ScoreConfig::smooth
+    #[test]
+    fn the_smooth_setting_is_named_in_score() {
+        use crate::metrics::ScoreConfig;
+        let c = config("setting = \"smooth\"\n").unwrap();
+        assert_eq!(c.score.score_config(), ScoreConfig::smooth());
+        let again = Config::from_raw(&c.as_used(), "again.toml").unwrap();
+        assert_eq!(again.score.score_config(), ScoreConfig::smooth());
+        let c = config("setting = \"default\"\n").unwrap();
+        assert_eq!(c.score.score_config(), ScoreConfig::default());
+        assert!(c.as_used().score.unwrap().setting.is_none());
+        let c = config("setting = \"smooth\"\nfire_split_threshold = 1e-6\n").unwrap();
+        let sc = c.score.score_config();
+        assert_eq!(
+            (sc.fire_split_threshold, sc.bands, sc.trace.split_threshold),
+            (1e-6, ScoreConfig::smooth().bands, ScoreConfig::SMOOTH_SPLIT)
+        );
+        let e = config("setting = \"fine\"\n").unwrap_err().to_string();
+        assert!(
+            e.contains("c.toml: score.setting: `fine` is not a setting; allowed default, smooth")
+                && !e.contains('\n'),
+            "{e}"
+        );
     }
 
     /// A design's note `F Material: …` sets the material a config scores it in, unless
