@@ -36,6 +36,10 @@
 //! saw plan is planned as well, its pieces' stones taken by value, and the better of the two
 //! layouts kept ([`LayoutPlanner::plan`]).
 //!
+//! Under the colour objective (`kind = "colour"`, a coloured rough) the layout is planned by
+//! value (or weight) and then each final piece's stone chosen by value × colour from its
+//! candidates (`src/plan/layout/by_colour.rs`).
+//!
 //! With a laser ([`Cutter::Laser`]) the sawn layout is then improved pair by pair, each pair
 //! of stones parted by a kerf-wide gap along a plane cut only between them
 //! (`src/plan/layout/laser.rs`). What it is not: a global optimum: the saw plan is
