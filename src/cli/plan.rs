@@ -297,8 +297,16 @@ fn run_layout(
         } else {
             ", holds an inclusion"
         };
+        // Ranked by colour: its worth, face-up chroma and colour factor.
+        let colour = match (s.colour, s.plan.colour) {
+            (Some(w), Some(c)) => format!(
+                ", worth {:.4} × colour {:.3} (C* {:.1})",
+                w.worth, w.factor, c.c
+            ),
+            _ => String::new(),
+        };
         println!(
-            "stone-{} {:<16} {:.4} ct, W {:.3} mm, objective {:.4}{holds}",
+            "stone-{} {:<16} {:.4} ct, W {:.3} mm, objective {:.4}{colour}{holds}",
             k + 1,
             s.family,
             s.plan.carats,

@@ -16,6 +16,13 @@
 //! ([`ScoreConfig::fast`]: 6 bands, split to 1e-4 of the light). The fast path: the weight
 //! search finds each family's plans (scoring colour inside the search would cost a full
 //! trace per step), then they are ranked by colour, one face-up trace per band each.
+//!
+//! A layout of several stones (`--stones N`) is ranked by value × colour: each stone's worth
+//! (its price-table value, or its carats without a table) times its **colour factor**, its
+//! face-up C* over the material's [`reference_chroma`] (the most chroma a plain slab of it
+//! shows in daylight, at its best thickness): about the share of the material's most vivid
+//! colour the stone shows face-up, falling for a too-pale and for a too-dark stone as C*
+//! does (`src/plan/layout/by_colour.rs` ranks the stones).
 
 use super::{Objective, Plan, PlanConfig};
 use crate::error::{Error, Result};
@@ -25,7 +32,7 @@ use crate::render::ColourStats;
 
 /// Refuse `kind = "colour"` for a colourless material: one line naming `objective.kind`.
 pub fn check(config: &PlanConfig, material: &Material) -> Result<()> {
-    if config.objective == Objective::Colour && material.colour.is_none() {
+    if matches!(config.objective, Objective::Colour(_)) && material.colour.is_none() {
         return Err(Error::invalid(
             "objective.kind",
             format!(
@@ -58,6 +65,43 @@ pub fn face_up_colour(
     c_axis: Option<glam::DVec3>,
 ) -> Option<ColourStats> {
     colour_of(&p.cut.solid, &colour_config(p, material, c_axis))
+}
+
+/// The reference chroma of a layout's colour factor: the largest C*ab of D65 light through a
+/// plain slab of `material`, over thicknesses from 1 µm to 10 m (a scan of 141 thicknesses
+/// evenly in their logarithm, refined by golden section) and both rays of a pleochroic
+/// stone. A slab shows no colour at zero thickness and none once it turns black, so the
+/// largest lies between. `None` for a colourless material.
+pub fn reference_chroma(material: &Material) -> Option<f64> {
+    let most = |b: &crate::optics::BodyColour| {
+        let f = |log_mm: f64| {
+            let lab = b.lab_through(10f64.powf(log_mm));
+            lab.y.hypot(lab.z)
+        };
+        let (n, lo, hi) = (141, -3.0, 4.0);
+        let x = |i: usize| lo + (hi - lo) * i as f64 / (n - 1) as f64;
+        let best = (0..n).max_by(|&a, &b| f(x(a)).total_cmp(&f(x(b))).then(b.cmp(&a)));
+        let best = best.unwrap_or(0);
+        let (mut a, mut b) = (x(best.saturating_sub(1)), x((best + 1).min(n - 1)));
+        let r = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..60 {
+            let (c, d) = (b - r * (b - a), a + r * (b - a));
+            if f(c) >= f(d) {
+                b = d;
+            } else {
+                a = c;
+            }
+        }
+        f(x(best)).max(f(0.5 * (a + b)))
+    };
+    let rays = material.colour.iter().chain(material.colour_e());
+    rays.map(most).reduce(f64::max)
+}
+
+/// The colour factor of a stone whose face-up colour is `c`: its chroma over the material's
+/// [`reference_chroma`] `reference`.
+pub fn colour_factor(c: &ColourStats, reference: f64) -> f64 {
+    c.c / reference
 }
 
 /// Rank a family's `plans` by their face-up colour's chroma C*, most colour first (the plans
@@ -119,7 +163,7 @@ mod tests {
         let m = pleochroic();
         let cut = Cut::from_family("round", "round-brilliant", &BTreeMap::new()).unwrap();
         let config = PlanConfig {
-            objective: Objective::Colour,
+            objective: Objective::Colour(None),
             ..PlanConfig::default()
         };
         let planner = Planner::new(&rough, &config, m.density);
@@ -159,7 +203,7 @@ mod tests {
         let path = dir.path().join("plan.toml");
         std::fs::write(&path, "[objective]\nkind = \"colour\"\n").unwrap();
         let config = PlanConfig::load(&path).unwrap();
-        assert_eq!(config.objective, Objective::Colour);
+        assert_eq!(config.objective, Objective::Colour(None));
         let rough = load_rough("octahedron", Some(5.0)).unwrap();
         for name in ["sapphire", "diamond"] {
             let m = Material::by_name(name).unwrap();

@@ -13,10 +13,11 @@
 //! kind = "weight"               # "weight" (carats), "value" (price table × quality) or
 //!                               # "colour": a coloured rough's kept plans (found by weight)
 //!                               # ranked by their face-up colour's chroma C*, each scored
-//!                               # at its own size and optic axis (src/plan/colour.rs)
+//!                               # at its own size and optic axis (src/plan/colour.rs);
+//!                               # a layout's stones by value (or carats) × colour factor
 //! grade = "excellent"           # round brilliants only: the grade estimate must reach it
 //! min_brilliance = 0.65         # every family: brilliance (fast scores) at least this
-//! prices = "prices.toml"        # for "value", relative to this file
+//! prices = "prices.toml"        # for "value" (and "colour"), relative to this file
 //!
 //! [rough]
 //! c_axis = [0.0, 0.0, 1.0]      # a uniaxial stone's c-axis in the rough's coordinates:
@@ -67,8 +68,9 @@ pub enum Objective {
     /// Price from a table × a quality factor.
     Value(PriceTable),
     /// Face-up colour (a coloured material): the weight search finds each family's plans,
-    /// which are then ranked by the chroma C* of their face-up colour ([`super::colour`]).
-    Colour,
+    /// which are then ranked by the chroma C* of their face-up colour ([`super::colour`]); a
+    /// layout's stones by worth × colour factor, worth the price (with a table) or carats.
+    Colour(Option<PriceTable>),
 }
 
 /// The heaviest band limit a price table may give (carats).
@@ -555,25 +557,30 @@ impl PlanConfig {
             Some(v) => string(at("objective.kind"), v, "\"weight\"")?,
             None => "weight",
         };
-        c.objective = match kind {
-            "weight" => Objective::Weight,
-            "colour" | "color" => Objective::Colour,
-            "value" => {
-                let Some(p) = &raw.objective.prices else {
-                    return Err(Error::invalid(
-                        at("objective.prices"),
-                        "kind = \"value\" needs a price file: prices = \"prices.toml\"",
-                    ));
-                };
+        // The price file: "value" needs one; "colour" may price a layout's stones with one.
+        let prices = match &raw.objective.prices {
+            Some(p) if matches!(kind, "value" | "colour" | "color") => {
                 let p = string(at("objective.prices"), p, "\"prices.toml\"")?;
                 let path = dir.join(p);
                 let shown = path.display().to_string();
                 let bytes = crate::io::read_bytes(&path)?;
                 let text = String::from_utf8_lossy(&bytes);
                 c.price_file = Some(path);
-                Objective::Value(PriceTable::parse(&text, &shown)?)
+                Some(PriceTable::parse(&text, &shown)?)
             }
-            other => {
+            _ => None,
+        };
+        c.objective = match (kind, prices) {
+            ("weight", _) => Objective::Weight,
+            ("colour" | "color", t) => Objective::Colour(t),
+            ("value", Some(t)) => Objective::Value(t),
+            ("value", None) => {
+                return Err(Error::invalid(
+                    at("objective.prices"),
+                    "kind = \"value\" needs a price file: prices = \"prices.toml\"",
+                ))
+            }
+            (other, _) => {
                 return Err(Error::invalid(
                     at("objective.kind"),
                     format!("unknown objective `{other}`; allowed: weight, value, colour"),

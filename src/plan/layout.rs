@@ -37,6 +37,10 @@
 //! saw plan is planned as well, its pieces' stones taken by value, and the better of the two
 //! layouts kept ([`LayoutPlanner::plan`]).
 //!
+//! Under the colour objective (`kind = "colour"`, a coloured rough) the layout is planned by
+//! value (or weight) and then each final piece's stone chosen by value × colour from its
+//! candidates (`src/plan/layout/by_colour.rs`).
+//!
 //! With a laser ([`Cutter::Laser`]) the sawn layout is then improved pair by pair, each pair
 //! of stones parted by a kerf-wide gap along a plane cut only between them
 //! (`src/plan/layout/laser.rs`). What it is not: a global optimum: the saw plan is
@@ -48,6 +52,7 @@ use super::rough::Rough;
 use super::search::{principal_frame, Plan, Planner};
 use crate::error::{Error, Result};
 use crate::geometry::{DVec3, FacetPlane, Plane, Polyhedron};
+use crate::optics::Material;
 use glam::DQuat;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -113,6 +118,18 @@ pub struct Stone {
     pub separations: Vec<(usize, Plane)>,
     /// The inclusions (indices) the stone holds, at the price table's `included` factor.
     pub holds: Vec<usize>,
+    /// A layout ranked by colour: the stone's worth and colour factor (`plan.objective` is
+    /// their product, `plan.colour` its face-up colour).
+    pub colour: Option<ColourWorth>,
+}
+
+/// A stone's worth under `kind = "colour"` (`src/plan/layout/by_colour.rs`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ColourWorth {
+    /// Its price-table value (a table given), else its carats.
+    pub worth: f64,
+    /// Its face-up chroma over the material's reference ([`super::colour::colour_factor`]).
+    pub factor: f64,
 }
 
 /// A layout: the stones, the saw cuts in cutting order and what they lose.
@@ -134,6 +151,8 @@ pub struct Layout {
     pub cutter: Cutter,
     /// Every pair of stones and a plane between them with the kerf and both allowances.
     pub pairs: Vec<Parting>,
+    /// Ranked by colour: the material's reference chroma of the colour factors.
+    pub colour_reference: Option<f64>,
 }
 
 /// A piece of the rough: its label, half-spaces and solid.
@@ -162,6 +181,7 @@ pub struct LayoutPlanner<'a> {
     inclusions: &'a [Inclusion],
     frame: DQuat,
     stop: Option<&'a AtomicBool>,
+    material: Option<&'a Material>,
 }
 
 impl<'a> LayoutPlanner<'a> {
@@ -180,7 +200,14 @@ impl<'a> LayoutPlanner<'a> {
             inclusions,
             frame: principal_frame(rough.solid.vertices()),
             stop: None,
+            material: None,
         }
+    }
+
+    /// The planner with the `material` whose face-up colour ranks a `kind = "colour"` layout.
+    pub fn with_material(mut self, material: &'a Material) -> Self {
+        self.material = Some(material);
+        self
     }
 
     /// The planner, stopped when `stop` is raised.
@@ -193,11 +220,11 @@ impl<'a> LayoutPlanner<'a> {
         self.stop.is_some_and(|s| s.load(Ordering::SeqCst))
     }
 
-    /// The best stone of one family set in `region` (a rough of the stone's room), at
-    /// `effort`.
-    fn best_in(&self, region: Polyhedron, effort: Effort) -> Option<(String, Plan)> {
+    /// Each family's best `top` plans in `region` (a rough of the stone's room) at `effort`,
+    /// in the config's order of the families.
+    fn plans_in(&self, region: Polyhedron, effort: Effort, top: usize) -> Vec<(String, Plan)> {
         let mut cfg = self.config.clone();
-        cfg.top = 1;
+        cfg.top = top;
         if effort == Effort::Screen {
             cfg.starts = cfg.starts.min(2);
             cfg.max_iterations = cfg.max_iterations.min(80);
@@ -217,21 +244,15 @@ impl<'a> LayoutPlanner<'a> {
         if let Some(s) = self.stop {
             planner = planner.with_stop(s);
         }
-        let mut best: Option<(String, Plan)> = None;
+        let mut out = Vec::new();
         for f in &cfg.families {
             let Ok(plans) = planner.plan_family(f, &|| {}) else {
                 continue;
             };
-            if let Some(p) = plans.into_iter().next() {
-                if p.scale < cfg.min_width_mm {
-                    continue;
-                }
-                if best.as_ref().is_none_or(|(_, b)| p.objective > b.objective) {
-                    best = Some((f.clone(), p));
-                }
-            }
+            let fits = plans.into_iter().filter(|p| p.scale >= cfg.min_width_mm);
+            out.extend(fits.map(|p| (f.clone(), p)));
         }
-        best
+        out
     }
 
     /// The region of a stone in `piece` kept off the inclusions it still meets: the piece
@@ -269,11 +290,23 @@ impl<'a> LayoutPlanner<'a> {
         Some((region, seps))
     }
 
-    /// The best stone of `piece` at `effort`, or `None` when none fits.
+    /// The best stone of `piece` at `effort`, or `None` when none fits: the first of the
+    /// most valuable of [`LayoutPlanner::candidates`].
     fn stone(&self, piece: &Piece, effort: Effort) -> Option<Stone> {
         let room = self.room(&piece.solid)?;
         let (family, plan, separations, holds) = self.stone_in(room, effort)?;
         Some(self.stone_of(piece, family, plan, separations, holds))
+    }
+
+    /// The stones of `piece` at `effort` ([`LayoutPlanner::candidates_in`] its room).
+    fn candidates(&self, piece: &Piece, effort: Effort, top: usize) -> Vec<Stone> {
+        let Some(room) = self.room(&piece.solid) else {
+            return Vec::new();
+        };
+        self.candidates_in(room, effort, top)
+            .into_iter()
+            .map(|(family, plan, seps, holds)| self.stone_of(piece, family, plan, seps, holds))
+            .collect()
     }
 
     /// The room of a stone in a piece `solid`: the piece moved in by the allowance (`None`
@@ -282,11 +315,24 @@ impl<'a> LayoutPlanner<'a> {
         Polyhedron::from_planes_pruned(&moved_in(solid, self.config.allowance_mm)).ok()
     }
 
-    /// The best stone in `room` (a piece moved in by the allowance) at `effort`: its family,
-    /// plan, the planes keeping it off inclusions and the inclusions it holds.
+    /// The best stone in `room` (a piece moved in by the allowance) at `effort`: the first of
+    /// the most valuable of [`LayoutPlanner::candidates_in`].
     fn stone_in(&self, room: Polyhedron, effort: Effort) -> Option<InRoom> {
+        let mut best: Option<InRoom> = None;
+        for s in self.candidates_in(room, effort, 1) {
+            if best.as_ref().is_none_or(|b| s.1.objective > b.1.objective) {
+                best = Some(s);
+            }
+        }
+        best
+    }
+
+    /// The stones in `room` at `effort`: each family's best `top` kept off the inclusions,
+    /// then (a price table with an `included` factor, an inclusion in the room) each
+    /// family's best `top` that may hold them, at that factor when one does.
+    fn candidates_in(&self, room: Polyhedron, effort: Effort, top: usize) -> Vec<InRoom> {
         if self.stopped() {
-            return None;
+            return Vec::new();
         }
         let meets: Vec<usize> = self
             .inclusions
@@ -295,10 +341,10 @@ impl<'a> LayoutPlanner<'a> {
             .filter(|(_, inc)| !apart(&room, &inc.grown))
             .map(|(i, _)| i)
             .collect();
-        let mut best: Option<InRoom> = None;
+        let mut out = Vec::new();
         if let Some((region, separations)) = self.kept_out(room.clone()) {
-            if let Some((family, plan)) = self.best_in(region, effort) {
-                best = Some((family, plan, separations, Vec::new()));
+            for (family, plan) in self.plans_in(region, effort, top) {
+                out.push((family, plan, separations.clone(), Vec::new()));
             }
         }
         let factor = match &self.config.objective {
@@ -306,7 +352,7 @@ impl<'a> LayoutPlanner<'a> {
             _ => None,
         };
         if let (Some(f), false) = (factor, meets.is_empty()) {
-            if let Some((family, mut plan)) = self.best_in(room, effort) {
+            for (family, mut plan) in self.plans_in(room, effort, top) {
                 // The stone may not hold an inclusion, only the margin around it.
                 let solid = plan.placed_solid().ok();
                 let holds: Vec<usize> = meets
@@ -321,12 +367,10 @@ impl<'a> LayoutPlanner<'a> {
                 if !holds.is_empty() {
                     plan.objective *= f;
                 }
-                if best.as_ref().is_none_or(|b| plan.objective > b.1.objective) {
-                    best = Some((family, plan, Vec::new(), holds));
-                }
+                out.push((family, plan, Vec::new(), holds));
             }
         }
-        best
+        out
     }
 
     fn stone_of(
@@ -345,6 +389,7 @@ impl<'a> LayoutPlanner<'a> {
             plan,
             separations,
             holds,
+            colour: None,
         }
     }
 
@@ -401,7 +446,11 @@ impl<'a> LayoutPlanner<'a> {
     /// value search's stone and the weight search's priced), and the better layout kept: the
     /// layout ranked by value is never worth less than the weight layout priced by the same
     /// table.
+    /// Under `kind = "colour"`, see `src/plan/layout/by_colour.rs`.
     pub fn plan(&self, tick: &(dyn Fn() + Sync)) -> Result<Layout> {
+        if let Objective::Colour(prices) = &self.config.objective {
+            return self.coloured(prices.as_ref(), tick);
+        }
         let sawn = self.sawn(tick)?;
         match self.config.cutter {
             Cutter::Saw => Ok(sawn),
@@ -580,13 +629,14 @@ impl<'a> LayoutPlanner<'a> {
             pairs,
             stones,
             saw,
+            colour_reference: None,
         })
     }
 }
 
 /// Plan a layout of `config.stones` stones in `rough` keeping off `inclusions`, for
-/// `material`'s density: `tick` after each saw candidate, a raised `stop` ends it (an
-/// error). The colour objective plans one stone at a time and is refused here.
+/// `material`'s density (and, under `kind = "colour"`, its colour; a colourless material
+/// refuses it): `tick` after each saw candidate, a raised `stop` ends it (an error).
 pub fn plan_layout(
     rough: &Rough,
     config: &PlanConfig,
@@ -595,19 +645,15 @@ pub fn plan_layout(
     tick: &(dyn Fn() + Sync),
     stop: Option<&AtomicBool>,
 ) -> Result<Layout> {
-    if config.objective == Objective::Colour {
-        return Err(Error::invalid(
-            "objective.kind",
-            "\"colour\" ranks the single plans of each family; a layout of several stones or with inclusions is ranked by weight or value",
-        ));
-    }
+    super::colour::check(config, material)?;
     if rough.ball.is_some() {
         return Err(Error::invalid(
             "ROUGH",
             "the sphere is an exact ball for single plans; a layout of several stones or with inclusions needs a polyhedral rough",
         ));
     }
-    let mut planner = LayoutPlanner::new(rough, config, material.density, inclusions);
+    let mut planner =
+        LayoutPlanner::new(rough, config, material.density, inclusions).with_material(material);
     if let Some(s) = stop {
         planner = planner.with_stop(s);
     }
@@ -620,11 +666,12 @@ pub fn candidates(config: &PlanConfig) -> u64 {
     let greedy: u64 = (1..config.stones as u64).map(|k| k * per_piece).sum();
     // A value objective plans the weight layout's saw plan too.
     match config.objective {
-        Objective::Value(_) => 2 * greedy,
+        Objective::Value(_) | Objective::Colour(Some(_)) => 2 * greedy,
         _ => greedy,
     }
 }
 
+mod by_colour;
 mod inclusion;
 mod laser;
 mod saw;

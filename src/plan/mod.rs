@@ -50,7 +50,7 @@ pub mod summary;
 pub use ball::{enclosing_ball, Ball};
 pub use config::{Bound, Cutter, Objective, PlanConfig, PriceTable, DEFAULT_FAMILIES};
 pub use fit::{largest_copy, Fit};
-pub use layout::{plan_layout, Inclusion, Layout, LayoutPlanner, SawCut, Stone};
+pub use layout::{plan_layout, ColourWorth, Inclusion, Layout, LayoutPlanner, SawCut, Stone};
 pub use out::check_out;
 pub use rough::{load_rough, parse_rough_size_mm, rough_size_mm, Rough, CRYSTALS, ROUGH_MAX_MM};
 pub use run::{plan_families, write_folder, Drawings, PlacedPlan, Run};

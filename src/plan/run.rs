@@ -57,7 +57,7 @@ pub fn plan_families(
         if planner.stopped() {
             break;
         }
-        if config.objective == super::Objective::Colour {
+        if matches!(config.objective, super::Objective::Colour(_)) {
             super::colour::rank_by_colour(&mut plans, config, material, |p| planner.meets_grade(p));
         }
         all.push((f.clone(), plans));

@@ -373,7 +373,7 @@ impl<'a> Planner<'a> {
             cut.solid.volume() * fit.scale.powi(3) * self.density * CARATS_PER_MM3_PER_DENSITY;
         let objective = match &self.config.objective {
             // The colour ranks the plans the weight search finds (super::colour).
-            Objective::Weight | Objective::Colour => carats,
+            Objective::Weight | Objective::Colour(_) => carats,
             Objective::Value(t) => t.value(carats, grade),
         };
         Some((fit, carats, objective, grade))

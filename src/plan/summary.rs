@@ -130,6 +130,14 @@ struct StoneJson {
     keep_off: Vec<KeepOffJson>,
     /// Inclusions it holds (at the price table's `included` factor).
     holds: Vec<String>,
+    /// Ranked by colour: its worth (price-table value, else carats), face-up colour and
+    /// colour factor; `objective` is worth × factor.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    worth: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    colour: Option<crate::render::ColourStats>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    colour_factor: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -173,6 +181,11 @@ struct LayoutJson {
     yield_fraction: f64,
     kerf_loss_mm3: f64,
     pairs: Vec<PairJson>,
+    /// Ranked by colour: the stones' worth before colour, and the reference chroma.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    total_worth: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    colour_reference_c: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -255,6 +268,9 @@ pub fn summary_json(of: &SummaryOf<'_>, plans: Vec<PlanJson>) -> Result<String> 
                     })
                     .collect(),
                 holds: s.holds.iter().map(|i| name(*i)).collect(),
+                worth: s.colour.map(|c| c.worth),
+                colour: s.colour.and(s.plan.colour),
+                colour_factor: s.colour.map(|c| c.factor),
             })
             .collect()
     });
@@ -292,6 +308,14 @@ pub fn summary_json(of: &SummaryOf<'_>, plans: Vec<PlanJson>) -> Result<String> 
                 offset_mm: p.offset,
             })
             .collect(),
+        total_worth: l.colour_reference.map(|_| {
+            l.stones
+                .iter()
+                .filter_map(|s| s.colour)
+                .map(|c| c.worth)
+                .sum()
+        }),
+        colour_reference_c: l.colour_reference,
     });
     let summary = SummaryJson {
         rough: RoughJson {
@@ -310,11 +334,11 @@ pub fn summary_json(of: &SummaryOf<'_>, plans: Vec<PlanJson>) -> Result<String> 
         objective: match &config.objective {
             Objective::Weight => "weight".into(),
             Objective::Value(_) => "value".into(),
-            Objective::Colour => "colour".into(),
+            Objective::Colour(_) => "colour".into(),
         },
         currency: match &config.objective {
-            Objective::Value(t) => Some(t.currency.clone()),
-            Objective::Weight | Objective::Colour => None,
+            Objective::Value(t) | Objective::Colour(Some(t)) => Some(t.currency.clone()),
+            Objective::Weight | Objective::Colour(None) => None,
         },
         grade: config.grade.map(|g| g.name().to_string()),
         min_brilliance: config.min_brilliance,

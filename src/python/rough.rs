@@ -56,7 +56,11 @@ use std::time::Instant;
 /// `cutter` (`"saw"` or `"laser"`, the config's `[rough] cutter`): with a laser the stones
 /// are parted pair by pair, not by cuts through the piece, and `saw_plan` holds the laser's
 /// cuts; `layout` also has `cutter` and `pairs` (each pair's `stones`, indices from 0, and
-/// the plane between them, `normal` and `offset_mm`).
+/// the plane between them, `normal` and `offset_mm`). A config with `[objective] kind =
+/// "colour"` ranks the layout by value × colour (docs/plan.md): each stone's dict then
+/// also has `worth` (its price-table value, else its carats) and `colour_factor` (its
+/// face-up chroma over the material's reference; `objective` is their product, `colour` its
+/// face-up colour), and `layout` has `total_worth` and `colour_reference` (C*).
 #[pyfunction]
 #[pyo3(signature = (rough, *, config=None, families=None, size_mm=None, material=None, top=None,
     stones=None, kerf=None, allowance=None, inclusions=None, margin=None, cutter=None, out=None))]
@@ -268,6 +272,10 @@ fn layout<'py>(py: Python<'py>, job: &Job, out: Option<PathBuf>) -> PyResult<Bou
             .map(|&i| job.inclusions[i].name.as_str())
             .collect();
         d.set_item("holds", holds)?;
+        if let Some(w) = s.colour {
+            d.set_item("worth", w.worth)?;
+            d.set_item("colour_factor", w.factor)?;
+        }
         plans.append(d)?;
     }
     let Some(out) = out else {
@@ -313,6 +321,16 @@ fn layout<'py>(py: Python<'py>, job: &Job, out: Option<PathBuf>) -> PyResult<Bou
         pairs.append(d)?;
     }
     l.set_item("pairs", pairs)?;
+    if let Some(r) = layout.colour_reference {
+        let worth: f64 = layout
+            .stones
+            .iter()
+            .filter_map(|s| s.colour)
+            .map(|c| c.worth)
+            .sum();
+        l.set_item("total_worth", worth)?;
+        l.set_item("colour_reference", r)?;
+    }
     let done = PyDict::new(py);
     done.set_item("plans", plans)?;
     done.set_item("folder", out.display().to_string())?;

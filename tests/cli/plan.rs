@@ -295,3 +295,100 @@ fn bad_layout_flags_are_one_line_and_write_nothing() {
     left.retain(|f| !f.ends_with(".obj") && !f.ends_with(".toml"));
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// A coloured rough's layout ranked by value × colour (issue 54): `--stones 2` with `kind =
+/// "colour"` and a price table (cheaper per carat above 0.06 ct: two stones are worth more
+/// than one) writes each stone's worth (its price), face-up colour and
+/// colour factor beside its carats and yield, its objective their product and the layout's
+/// total their sum; a colourless rough refuses it in one line naming `objective.kind`,
+/// writing nothing.
+#[test]
+fn a_coloured_rough_ranks_its_layout_by_value_times_colour() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path();
+    std::fs::write(
+        p.join("prices.toml"),
+        "currency = \"EUR\"\n[[band]]\nfrom_carats = 0\nper_carat = 1000\n\
+         [[band]]\nfrom_carats = 0.06\nper_carat = 300\n",
+    )
+    .unwrap();
+    let cfg =
+        "seed = 3\nmaterial = \"ruby\"\n[objective]\nkind = \"colour\"\nprices = \"prices.toml\"\n\
+               [rough]\nc_axis = [0.3, -0.2, 0.9]\n\
+               [search]\nstarts = 2\nmax_iterations = 40\nsaw_offsets = 2\n";
+    std::fs::write(p.join("plan.toml"), cfg).unwrap();
+    let args = |config: &'static str, out: &'static str| {
+        [
+            "plan",
+            "octahedron",
+            "--size-mm",
+            "5",
+            "--family",
+            "oval",
+            "--top",
+            "1",
+            "--stones",
+            "2",
+            "--config",
+            config,
+            "--quiet",
+            "-o",
+            out,
+        ]
+    };
+    let stdout = ok(p, &args("plan.toml", "run"));
+    assert!(stdout.contains("× colour"), "{stdout}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(p.join("run/summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(json["objective"], "colour");
+    assert_eq!(json["currency"], "EUR");
+    let layout = &json["layout"];
+    let reference = layout["colour_reference_c"]
+        .as_f64()
+        .expect("the reference");
+    assert!(reference > 0.0, "{layout}");
+    let stones = json["stones"].as_array().unwrap();
+    assert_eq!(stones.len(), 2, "{json}");
+    let (mut total, mut worth) = (0.0, 0.0);
+    for s in stones {
+        let f = |k: &str| s[k].as_f64().unwrap_or_else(|| panic!("{k}: {s}"));
+        let c = s["colour"]["c"].as_f64().expect("the stone's colour");
+        assert!(f("yield") > 0.0 && f("carats") > 0.0, "{s}");
+        let per_carat = if f("carats") >= 0.06 { 300.0 } else { 1000.0 };
+        assert!(
+            (f("worth") - per_carat * f("carats")).abs() < 1e-9 * f("worth"),
+            "{s}"
+        );
+        assert!((f("colour_factor") - c / reference).abs() < 1e-12, "{s}");
+        assert!(
+            (f("objective") - f("worth") * f("colour_factor")).abs() < 1e-9 * f("worth"),
+            "{s}"
+        );
+        total += f("objective");
+        worth += f("worth");
+    }
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b;
+    assert!(
+        near(layout["total_objective"].as_f64().unwrap(), total),
+        "{layout}"
+    );
+    assert!(
+        near(layout["total_worth"].as_f64().unwrap(), worth),
+        "{layout}"
+    );
+    // Each stone's plan gives the same colour.
+    assert_eq!(json["plans"][0]["colour"], stones[0]["colour"]);
+
+    std::fs::write(
+        p.join("clear.toml"),
+        "material = \"diamond\"\n[objective]\nkind = \"colour\"\n",
+    )
+    .unwrap();
+    bad(
+        p,
+        &args("clear.toml", "clear"),
+        &["objective.kind", "diamond"],
+    );
+    assert!(!p.join("clear").exists());
+}

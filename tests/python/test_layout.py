@@ -106,3 +106,31 @@ def test_bad_layout_keywords_are_refused_by_name(tmp_path: Path) -> None:
     with pytest.raises(facetlab.Error, match="open.obj"):
         facetlab.plan("octahedron", size_mm=6, inclusions=[tmp_path / "open.obj"], out=tmp_path / "o")
     assert not (tmp_path / "o").exists()
+
+
+def test_a_colour_layout_is_the_command_lines(cli: Cli, tmp_path: Path) -> None:
+    """``[objective] kind = "colour"`` with two stones: the layout ranked by value × colour,
+    each stone's ``worth`` × ``colour_factor`` its ``objective``, as ``summary.json`` has it."""
+    (tmp_path / "plan.toml").write_text(
+        'material = "ruby"\n[objective]\nkind = "colour"\n[rough]\nc_axis = [0.3, -0.2, 0.9]\n'
+        + CONFIG.replace("seed = 3\n", "")
+    )
+    p = cli(
+        tmp_path, "plan", "octahedron", "--size-mm", "5", "--family", "oval", "--top", "1",
+        "--stones", "2", "--config", "plan.toml", "--quiet", "-o", "cli",
+    )
+    assert p.returncode == 0, p.stderr
+    want = json.loads((tmp_path / "cli" / "summary.json").read_text())
+    got = facetlab.plan(
+        "octahedron", size_mm=5, families=["oval"], top=1, stones=2,
+        config=tmp_path / "plan.toml", out=tmp_path / "py",
+    )
+    assert want["objective"] == "colour"
+    layout = got["layout"]
+    assert layout["colour_reference"] == want["layout"]["colour_reference_c"] > 0.0
+    assert layout["total_worth"] == pytest.approx(want["layout"]["total_worth"], rel=1e-12)
+    assert len(got["plans"]) == len(want["stones"])
+    for g, w in zip(got["plans"], want["stones"]):
+        assert (g["worth"], g["colour_factor"]) == (w["worth"], w["colour_factor"])
+        assert g["objective"] == pytest.approx(g["worth"] * g["colour_factor"], rel=1e-12)
+        assert g["colour"]["c"] == w["colour"]["c"]

@@ -615,3 +615,5 @@ fn brute_force_laser() {
         100.0 * (sawn.carats / best - 1.0)
     );
 }
+
+mod colour;
