@@ -144,8 +144,7 @@ pub struct Planner<'a> {
     /// Raised to stop: the starts not begun are skipped and the rest end at once, and
     /// [`Planner::plan_family`] returns no plans.
     stop: Option<&'a AtomicBool>,
-    /// A screening search: each start restarted once from its best, not twice
-    /// ([`Planner::screening`]).
+    /// A screening search ([`Planner::screening`]).
     screening: bool,
 }
 
@@ -322,11 +321,8 @@ impl<'a> Planner<'a> {
         }
     }
 
-    /// The planner as a screen (a layout's saw candidates): each start's Nelder–Mead
-    /// restarted once from its best with a smaller simplex, not twice. A screened plan is a
-    /// lower bound of the full search's, good for ranking candidates, not for cutting.
-    /// (Measured on the bench's layouts: no restart at all ranks the candidates too coarsely,
-    /// a laser layout's sawn start 1.3 % lighter.)
+    /// The planner as a screen (ranking a layout's saw candidates): each start restarted
+    /// once, not twice (none ranked too coarsely: a sawn layout 1.3 % lighter).
     pub fn screening(mut self) -> Self {
         self.screening = true;
         self
