@@ -55,7 +55,8 @@ pub struct PlanArgs {
     )]
     pub top: Option<u64>,
     /// Stones to place in the rough (1–8; default the config's, 1): 2 and more saw the rough
-    /// into pieces, one stone each, ranked by total value (docs/plan.md).
+    /// into pieces, one stone each, ranked by the objective: weight, value, or value × colour
+    /// (docs/plan.md).
     #[arg(
         long,
         value_name = "N",
