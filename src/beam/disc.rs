@@ -86,11 +86,8 @@ impl Stone {
         let kg = ng.dot(t);
         let (a, b) = self.neighbor_range[g];
         let (a, b) = (a as usize, b as usize);
-        for (j, (pl, &h)) in self.neighbor_planes[a..b]
-            .iter()
-            .zip(&self.neighbors[a..b])
-            .enumerate()
-        {
+        for (j, e) in self.edges[a..b].iter().enumerate() {
+            let (pl, h) = (e.plane, e.facet);
             let nh = pl.truncate();
             let kh = nh.dot(t);
             if kh <= GRAZE {

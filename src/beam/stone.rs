@@ -3,7 +3,7 @@
 
 use super::symmetry::{clipped_share, RootClip, Symmetry};
 use crate::geometry::Polyhedron;
-use glam::{DVec2, DVec3};
+use glam::{DVec2, DVec3, DVec4};
 use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Facets with `|n · d|` below this are seen edge-on: no beam starts or ends on them.
@@ -19,8 +19,12 @@ pub struct Stone {
     pub(super) facet_vertices: Vec<u32>,
     pub(super) facet_range: Vec<(u32, u32)>,
     pub(super) neighbors: Vec<u32>,
-    /// Plane `(normal, offset)` of each entry of `neighbors`, stored alongside for the walk.
-    pub(super) neighbor_planes: Vec<glam::DVec4>,
+    /// Each entry of `neighbors` with its plane, in one record for the walk (and the forks).
+    pub(super) edges: Vec<WalkEdge>,
+    /// Each facet's plane and its range in `edges`, in one record for the walk: a step reads
+    /// one record and one contiguous run of edges (three tables and their bounds checks
+    /// before, 44 instructions a step, cachegrind).
+    walk_facets: Vec<WalkFacet>,
     /// The shared edge's end points of each entry of `neighbors` (for narrow beams' forks).
     pub(super) neighbor_edges: Vec<(DVec3, DVec3)>,
     pub(super) neighbor_range: Vec<(u32, u32)>,
@@ -39,6 +43,23 @@ pub struct Stone {
     facet_table: LazyTable,
     /// Facet centroids (where the facet table's rays start).
     centroids: Vec<DVec3>,
+}
+
+/// A neighbour of a facet as the walk reads it: the neighbour's plane `(normal, offset)` and
+/// its index.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct WalkEdge {
+    pub(super) plane: DVec4,
+    pub(super) facet: u32,
+}
+
+/// A facet as the walk reads it: its plane `(normal, offset)` and its neighbours' range in
+/// [`Stone::edges`].
+#[derive(Clone, Copy, Debug)]
+struct WalkFacet {
+    plane: DVec4,
+    start: u32,
+    end: u32,
 }
 
 /// A table of `u32` entries filled on first use, shareable between threads: an entry is a
@@ -203,15 +224,30 @@ impl Stone {
             vertices: solid.vertices().to_vec(),
             facet_vertices,
             facet_range,
-            neighbor_planes: Vec::new(),
+            edges: Vec::new(),
+            walk_facets: Vec::new(),
             neighbor_edges,
             neighbors,
             neighbor_range,
         };
-        stone.neighbor_planes = stone
+        let plane = |f: usize| stone.normals[f].extend(stone.offsets[f]);
+        stone.edges = stone
             .neighbors
             .iter()
-            .map(|&h| stone.normals[h as usize].extend(stone.offsets[h as usize]))
+            .map(|&h| WalkEdge {
+                plane: plane(h as usize),
+                facet: h,
+            })
+            .collect();
+        stone.walk_facets = (0..nf)
+            .map(|f| {
+                let (start, end) = stone.neighbor_range[f];
+                WalkFacet {
+                    plane: plane(f),
+                    start,
+                    end,
+                }
+            })
             .collect();
         stone
     }
@@ -317,24 +353,23 @@ impl Stone {
         t: DVec3,
         exclude: usize,
     ) -> Option<(usize, f64)> {
-        let nf = self.facet_count();
-        let mut k = self.normals[g].dot(t);
+        let mut f = &self.walk_facets[g];
+        let mut k = f.plane.truncate().dot(t);
         if g == exclude || k <= GRAZE {
             return self.exit_facet_scan(x, t, exclude);
         }
-        for _ in 0..nf {
-            let s = (self.offsets[g] - self.normals[g].dot(x)) / k;
+        for _ in 0..self.walk_facets.len() {
+            let s = (f.plane.w - f.plane.truncate().dot(x)) / k;
             let p = (x + t * s).extend(-1.0);
-            let (mut worst, mut next) = (1e-13, usize::MAX);
-            let (a, b) = self.neighbor_range[g];
-            let (a, b) = (a as usize, b as usize);
-            for (pl, &h) in self.neighbor_planes[a..b].iter().zip(&self.neighbors[a..b]) {
-                let v = pl.dot(p);
+            let (mut worst, mut next, mut next_k) = (1e-13, usize::MAX, 0.0);
+            for e in &self.edges[f.start as usize..f.end as usize] {
+                let v = e.plane.dot(p);
                 if v > worst {
-                    let h = h as usize;
-                    if h != exclude && self.normals[h].dot(t) > GRAZE {
-                        worst = v;
-                        next = h;
+                    let h = e.facet as usize;
+                    // The neighbour's normal is its plane's (the same bits as `normals[h]`).
+                    let kh = e.plane.truncate().dot(t);
+                    if h != exclude && kh > GRAZE {
+                        (worst, next, next_k) = (v, h, kh);
                     }
                 }
             }
@@ -342,7 +377,8 @@ impl Stone {
                 return Some((g, s));
             }
             g = next;
-            k = self.normals[g].dot(t);
+            k = next_k;
+            f = &self.walk_facets[g];
         }
         self.exit_facet_scan(x, t, exclude)
     }
