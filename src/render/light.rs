@@ -205,12 +205,12 @@ impl Light {
             }
             Light::Hearts | Light::Arrows => {
                 let zen = 90.0 - lighting::elevation_deg(w);
-                let v = soft_above(zen, light.head_shadow_deg)
+                let v = soft_above(zen, light.head_shadow_deg())
                     * (1.0 - soft_above(zen, SCOPE_WALL_DEG));
                 ([v, 0.0, 0.0, 0.0, 0.0], v)
             }
             Light::Aset => {
-                let s = aset_shares(w, light.head_shadow_deg);
+                let s = aset_shares(w, light.head_shadow_deg());
                 (s, s[0] + s[1] + s[2])
             }
             Light::IdealScope => {
