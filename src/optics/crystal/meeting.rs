@@ -155,7 +155,9 @@ impl Crystal {
     pub(crate) fn meet_raw(&self, wave: &Wave, n: DVec3) -> Option<RawMeeting> {
         let nu = n;
         let tg = Tangent::new(wave.k, nu);
-        if let (Some(mi), Some(mr)) = (self.real_modes(&tg, 1.0), self.real_modes(&tg, -1.0)) {
+        if let Some(roots) = self.real_roots(&tg) {
+            let mi = self.real_modes(&tg, &roots, 1.0);
+            let mr = self.real_modes(&tg, &roots, -1.0);
             return self.meet_real(&tg, mi[wave.mode.index()], mr);
         }
         let inc = self.raw_modes(&tg, 1.0)[wave.mode.index()];

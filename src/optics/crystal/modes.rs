@@ -58,10 +58,13 @@ impl Crystal {
         ]
     }
 
-    /// Both modes' real wave vectors and (not normalised) fields when both propagate, the
-    /// common case: [`Crystal::raw_modes`] in real arithmetic.
+    /// What both sides' real modes share for tangential wave vector `tg.kt`: the square
+    /// roots of the ordinary and extraordinary normal components' equations and the
+    /// latter's coefficients; `None` unless both modes propagate. [`Crystal::real_modes`]
+    /// of either side follows from them, so a facet's incident and reflected sides take
+    /// their square roots once.
     #[inline]
-    pub(super) fn real_modes(&self, tg: &Tangent, sigma: f64) -> Option<[(DVec3, DVec3); 2]> {
+    pub(super) fn real_roots(&self, tg: &Tangent) -> Option<RealRoots> {
         let c = self.axis;
         let (eo, ee) = (self.eps_o, self.eps_e);
         let go = eo - tg.kt2;
@@ -74,8 +77,28 @@ impl Crystal {
         if go < 0.0 || disc < 0.0 {
             return None;
         }
-        let ko = tg.kt + tg.nu * (sigma * go.sqrt());
-        let ke = tg.kt + tg.nu * ((sigma * disc.sqrt() - qb) / qa);
+        Some(RealRoots {
+            ordinary: go.sqrt(),
+            extraordinary: disc.sqrt(),
+            qa,
+            qb,
+        })
+    }
+
+    /// Both modes' real wave vectors and (not normalised) fields leaving the facet along
+    /// `σ ν` when both propagate (`roots` from [`Crystal::real_roots`]), the common case:
+    /// [`Crystal::raw_modes`] in real arithmetic.
+    #[inline]
+    pub(super) fn real_modes(
+        &self,
+        tg: &Tangent,
+        roots: &RealRoots,
+        sigma: f64,
+    ) -> [(DVec3, DVec3); 2] {
+        let c = self.axis;
+        let (eo, ee) = (self.eps_o, self.eps_e);
+        let ko = tg.kt + tg.nu * (sigma * roots.ordinary);
+        let ke = tg.kt + tg.nu * ((sigma * roots.extraordinary - roots.qb) / roots.qa);
         let mut fo = ko.cross(c);
         let dfield = ke * ke.dot(c) - c * ke.length_squared();
         let mut fe = dfield / eo + c * (dfield.dot(c) * (1.0 / ee - 1.0 / eo));
@@ -91,7 +114,7 @@ impl Crystal {
         } else if fe.length_squared() <= 1e-24 * ke.length_squared() * ke.length_squared() {
             fe = c.cross(fo);
         }
-        Some([(ko, fo), (ke, fe)])
+        [(ko, fo), (ke, fe)]
     }
 
     /// A propagating wave of mode `mode` from its boundary field (real for a propagating
@@ -113,4 +136,16 @@ impl Crystal {
             field: e.normalize(),
         }
     }
+}
+
+/// The square roots and coefficients both sides' real modes share ([`Crystal::real_roots`]).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RealRoots {
+    /// `√(ε_o − |k_t|²)`: the ordinary wave's normal component (up to its side's sign).
+    ordinary: f64,
+    /// The square root of the extraordinary wave's quadratic's discriminant.
+    extraordinary: f64,
+    /// The extraordinary wave's quadratic's leading and half-middle coefficients.
+    qa: f64,
+    qb: f64,
 }
