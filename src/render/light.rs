@@ -2,7 +2,7 @@
 //! palettes, and each one's channel values for light arriving from a direction, over the
 //! radiance functions of [`lighting`](super::lighting).
 
-use super::lighting::{self, aset_shares, soft_above, Lighting};
+use super::lighting::{self, aset_shares_in, soft_above, Lighting};
 use crate::error::{Error, Result};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -210,7 +210,7 @@ impl Light {
                 ([v, 0.0, 0.0, 0.0, 0.0], v)
             }
             Light::Aset => {
-                let s = aset_shares(w, light.head_shadow_deg());
+                let s = aset_shares_in(w, light.head_cone());
                 (s, s[0] + s[1] + s[2])
             }
             Light::IdealScope => {

@@ -158,6 +158,13 @@ impl Lighting {
         self.head_shadow_deg
     }
 
+    /// The head shadow's cone, `None` without a head shadow (the test [`Lighting::head`]
+    /// makes).
+    pub fn head_cone(&self) -> Option<&Cone> {
+        let none = self.head_shadow_deg <= 0.0;
+        (!none).then_some(&self.head)
+    }
+
     /// Share of the light from `w` that the viewer's head lets through: 0 inside the shadow
     /// cone around the zenith, 1 outside, soft at the rim.
     #[inline]
@@ -284,16 +291,23 @@ pub fn aset_bins(w: DVec3) -> [f64; 4] {
 /// They add up to 1; with no port (`port_deg` ≤ 0) blue is all of 75–90°.
 #[inline]
 pub fn aset_shares(w: DVec3, port_deg: f64) -> [f64; 5] {
-    let b = aset_bins(w);
-    let lit = if port_deg <= 0.0 {
-        1.0
+    if port_deg <= 0.0 {
+        aset_shares_in(w, None)
     } else if port_deg == super::PORT_DEG {
         static PORT: std::sync::LazyLock<Cone> =
             std::sync::LazyLock::new(|| Cone::new(super::PORT_DEG));
-        PORT.outside(w)
+        aset_shares_in(w, Some(&PORT))
     } else {
-        Cone::new(port_deg).outside(w)
-    };
+        aset_shares_in(w, Some(&Cone::new(port_deg)))
+    }
+}
+
+/// [`aset_shares`] with the port given as its cone (`None`: no port), for a caller that
+/// keeps one (a [`Lighting`]'s head shadow, [`Lighting::head_cone`]).
+#[inline]
+pub fn aset_shares_in(w: DVec3, port: Option<&Cone>) -> [f64; 5] {
+    let b = aset_bins(w);
+    let lit = port.map_or(1.0, |c| c.outside(w));
     [
         b[0] * lit,
         b[1] * lit,
@@ -384,6 +398,16 @@ mod tests {
                     want.to_bits(),
                     "cone {deg}, z {z}"
                 );
+            }
+        }
+        // A lighting's head cone is the port of the same angle (the ASET picture's port is
+        // the head shadow), none without a head shadow.
+        for deg in [0.0, crate::render::PORT_DEG, 15.0] {
+            let light = Lighting::new(deg, &[]);
+            assert_eq!(light.head_cone().is_some(), deg > 0.0);
+            for i in 0..=2000 {
+                let w = dir(-90.0 + 0.09 * i as f64, 0.0);
+                assert_eq!(aset_shares_in(w, light.head_cone()), aset_shares(w, deg));
             }
         }
         // The shortcuts are taken: the rim is all that needs an arcsine.
