@@ -128,9 +128,8 @@ impl Spot {
 /// Radiance functions of the scoring environments, with the head shadow applied.
 #[derive(Clone, Debug)]
 pub struct Lighting {
-    /// Head shadow half-angle around the zenith (the viewer's direction), degrees; 0 = none.
-    head_shadow_deg: f64,
-    /// The head shadow's cone.
+    /// The head shadow: a cone of its half-angle around the zenith (the viewer's direction),
+    /// degrees; 0 = none.
     head: Cone,
     spots: Vec<(DVec3, f64, f64, f64)>,
 }
@@ -147,7 +146,6 @@ impl Lighting {
             })
             .collect();
         Lighting {
-            head_shadow_deg,
             head: Cone::new(head_shadow_deg),
             spots,
         }
@@ -155,13 +153,13 @@ impl Lighting {
 
     /// The head shadow's half-angle around the zenith, degrees (0 = none).
     pub fn head_shadow_deg(&self) -> f64 {
-        self.head_shadow_deg
+        self.head.deg
     }
 
-    /// The head shadow's cone, `None` without a head shadow (the test [`Lighting::head`]
-    /// makes).
+    /// The head shadow's cone, `None` without a head shadow (a half-angle of 0 or less).
+    #[inline]
     pub fn head_cone(&self) -> Option<&Cone> {
-        let none = self.head_shadow_deg <= 0.0;
+        let none = self.head.deg <= 0.0;
         (!none).then_some(&self.head)
     }
 
@@ -169,10 +167,7 @@ impl Lighting {
     /// cone around the zenith, 1 outside, soft at the rim.
     #[inline]
     pub fn head(&self, w: DVec3) -> f64 {
-        if self.head_shadow_deg <= 0.0 {
-            return 1.0;
-        }
-        self.head.outside(w)
+        self.head_cone().map_or(1.0, |c| c.outside(w))
     }
 
     /// GemRay-style ISO lighting: radiance 1 over the upper hemisphere, 0 below (soft at the
