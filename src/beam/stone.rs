@@ -308,7 +308,9 @@ impl Stone {
     /// Measured against it and dropped (2026-12-03): every facet tested four at a time with
     /// AVX, without branches (and without dividing, in two independent chains), took 1.13 times
     /// the CPU time of ten tilted traces, and a branch-free neighbour loop here gained nothing
-    /// measurable: the walk tests about 2 × 7 planes where a scan tests all of them.
+    /// measurable: the walk tests about 2 × 7 planes where a scan tests all of them. Four walks
+    /// in lockstep, one per AVX2 lane (2026-12-06): the same bits, but 1.37 times the
+    /// instructions and about twice the time (docs/benchmarks.md).
     #[inline]
     pub(crate) fn exit_facet(&self, x: DVec3, t: DVec3, exclude: usize) -> Option<(usize, f64)> {
         let cell = cube_cell(t);
