@@ -84,9 +84,8 @@ impl Stone {
         let t = part.t;
         let ng = self.normals[g];
         let kg = ng.dot(t);
-        let (a, b) = self.neighbor_range[g];
-        let (a, b) = (a as usize, b as usize);
-        for (j, e) in self.edges[a..b].iter().enumerate() {
+        let a = self.facet_edge_start(g);
+        for (j, e) in self.facet_edges(g).iter().enumerate() {
             let (pl, h) = (e.plane, e.facet);
             let nh = pl.truncate();
             let kh = nh.dot(t);

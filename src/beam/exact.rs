@@ -235,7 +235,7 @@ impl Stone {
             let a = self.clip_facet(g, e1, e2, w, min_area);
             if a > min_area {
                 sum += a;
-                for &h in self.facet_neighbors(g) {
+                for h in self.facet_edges(g).iter().map(|e| e.facet) {
                     if w.fstamp[h as usize] != stamp && self.normals[h as usize].dot(t) > GRAZE {
                         w.fstamp[h as usize] = stamp;
                         w.queue.push(h);

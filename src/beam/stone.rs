@@ -18,16 +18,15 @@ pub struct Stone {
     pub(super) vertices: Vec<DVec3>,
     pub(super) facet_vertices: Vec<u32>,
     pub(super) facet_range: Vec<(u32, u32)>,
-    pub(super) neighbors: Vec<u32>,
-    /// Each entry of `neighbors` with its plane, in one record for the walk (and the forks).
-    pub(super) edges: Vec<WalkEdge>,
+    /// Each facet's neighbours (by their facet index, facet after facet) with their planes,
+    /// in one record for the walk, the forks and the flood.
+    edges: Vec<WalkEdge>,
     /// Each facet's plane and its range in `edges`, in one record for the walk: a step reads
     /// one record and one contiguous run of edges, not four tables (ten tilted traces 700.1 M
     /// -> 693.2 M instructions, cachegrind).
     walk_facets: Vec<WalkFacet>,
-    /// The shared edge's end points of each entry of `neighbors` (for narrow beams' forks).
+    /// The shared edge's end points of each entry of `edges` (for narrow beams' forks).
     pub(super) neighbor_edges: Vec<(DVec3, DVec3)>,
-    pub(super) neighbor_range: Vec<(u32, u32)>,
     /// Cube map over directions: the facet whose normal is closest to each cell's direction,
     /// where walks toward a ray's exit facet start.
     pub(super) dir_table: Vec<u32>,
@@ -227,12 +226,9 @@ impl Stone {
             edges: Vec::new(),
             walk_facets: Vec::new(),
             neighbor_edges,
-            neighbors,
-            neighbor_range,
         };
         let plane = |f: usize| stone.normals[f].extend(stone.offsets[f]);
-        stone.edges = stone
-            .neighbors
+        stone.edges = neighbors
             .iter()
             .map(|&h| WalkEdge {
                 plane: plane(h as usize),
@@ -241,7 +237,7 @@ impl Stone {
             .collect();
         stone.walk_facets = (0..nf)
             .map(|f| {
-                let (start, end) = stone.neighbor_range[f];
+                let (start, end) = neighbor_range[f];
                 WalkFacet {
                     plane: plane(f),
                     start,
@@ -450,9 +446,17 @@ impl Stone {
         &self.facet_vertices[a as usize..b as usize]
     }
 
+    /// Facet `f`'s neighbours with their planes; their shared edges are `neighbor_edges`
+    /// from [`Stone::facet_edge_start`] on.
     #[inline]
-    pub(super) fn facet_neighbors(&self, f: usize) -> &[u32] {
-        let (a, b) = self.neighbor_range[f];
-        &self.neighbors[a as usize..b as usize]
+    pub(super) fn facet_edges(&self, f: usize) -> &[WalkEdge] {
+        let w = &self.walk_facets[f];
+        &self.edges[w.start as usize..w.end as usize]
+    }
+
+    /// Where facet `f`'s neighbours start in `neighbor_edges` (and in `edges`).
+    #[inline]
+    pub(super) fn facet_edge_start(&self, f: usize) -> usize {
+        self.walk_facets[f].start as usize
     }
 }
