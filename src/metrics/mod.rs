@@ -197,7 +197,7 @@
 //!   leave the stone toward 75–80° elevation (blue: 75–90° less the port), 45–75° (red), 0–45°
 //!   (green), below the horizon (leak), or into the viewer's dark port within [`PORT_DEG`](crate::render::PORT_DEG)
 //!   (10°) of the zenith (port, taken out of blue), with ±1° soft boundaries: the shares of
-//!   the ASET picture at its default port ([`lighting::aset_shares`], one definition for
+//!   the ASET picture at its default port ([`lighting::aset_shares_in`], one definition for
 //!   both). The brilliance's head shadow does not apply to them.
 //!
 //! [`TraceOptions`]: crate::beam::TraceOptions

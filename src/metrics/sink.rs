@@ -7,7 +7,7 @@ use super::fire::{FireLattice, Reach};
 use super::symmetry::OrbitCoverage;
 use crate::beam::{ExitBeam, ExitSink, Frame, Medium, Stone, TraceOptions, TraceStats};
 use crate::geometry::{clip2d, Polyhedron};
-use crate::render::lighting::{aset_shares, Lighting};
+use crate::render::lighting::{aset_shares_in, Cone, Lighting};
 use crate::render::raster::{Coverage, Raster};
 use crate::render::Tilt;
 use crate::render::PORT_DEG;
@@ -137,6 +137,8 @@ pub(super) struct PoseSink<'a> {
     ccov: Coverage,
     /// Fire's placement lookup for the current orbit's elevation (shared by its copies).
     reach: Reach,
+    /// The ASET bins' viewer port ([`PORT_DEG`]).
+    port: Cone,
 }
 
 impl ExitSink for PoseSink<'_> {
@@ -174,7 +176,7 @@ impl ExitSink for PoseSink<'_> {
             r.traced += p;
             let up = if w.z > 0.0 { p } else { 0.0 };
             r.up += up;
-            let b = aset_shares(w, PORT_DEG);
+            let b = aset_shares_in(w, Some(&self.port));
             for (acc, x) in r.aset.iter_mut().zip(b) {
                 *acc += p * x;
             }
@@ -383,6 +385,7 @@ impl<'a> JobContext<'a> {
             corbit: OrbitCoverage::default(),
             ccov: Coverage::default(),
             reach: Reach::default(),
+            port: Cone::new(PORT_DEG),
         };
         (frame, opts, sink)
     }

@@ -286,19 +286,12 @@ pub fn aset_bins(w: DVec3) -> [f64; 4] {
 /// They add up to 1; with no port (`port_deg` ≤ 0) blue is all of 75–90°.
 #[inline]
 pub fn aset_shares(w: DVec3, port_deg: f64) -> [f64; 5] {
-    if port_deg <= 0.0 {
-        aset_shares_in(w, None)
-    } else if port_deg == super::PORT_DEG {
-        static PORT: std::sync::LazyLock<Cone> =
-            std::sync::LazyLock::new(|| Cone::new(super::PORT_DEG));
-        aset_shares_in(w, Some(&PORT))
-    } else {
-        aset_shares_in(w, Some(&Cone::new(port_deg)))
-    }
+    let none = port_deg <= 0.0;
+    aset_shares_in(w, (!none).then(|| Cone::new(port_deg)).as_ref())
 }
 
 /// [`aset_shares`] with the port given as its cone (`None`: no port), for a caller that
-/// keeps one (a [`Lighting`]'s head shadow, [`Lighting::head_cone`]).
+/// keeps one (a [`Lighting`]'s head shadow, [`Lighting::head_cone`]; the scores' port).
 #[inline]
 pub fn aset_shares_in(w: DVec3, port: Option<&Cone>) -> [f64; 5] {
     let b = aset_bins(w);
